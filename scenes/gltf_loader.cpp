@@ -1,0 +1,850 @@
+#include "scenes/gltf_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "runtime/error.h"
+
+namespace hmb::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Far beyond any real asset, small enough that a hostile count cannot exhaust memory.
+constexpr uint64_t kMaxElements = uint64_t{1} << 27;
+constexpr size_t kMaxNodes = size_t{1} << 24;
+
+std::string toLower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// tinygltf reports several lines; our errors are one line.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n' || c == '\r') {
+      if (!out.empty() && out.back() != ' ') out += "; ";
+    } else {
+      out += c;
+    }
+  }
+  while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
+  return out;
+}
+
+int componentCount(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;  // matrices are never vertex or animation data we read
+  }
+}
+
+int componentSize(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
+template <typename T>
+T readUnaligned(const uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return v;
+}
+
+// One component, as the glTF spec maps normalized integers to [0, 1] or [-1, 1].
+double decodeComponent(const uint8_t* p, int componentType, bool normalized) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const double v = readUnaligned<int8_t>(p);
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+      const double v = readUnaligned<uint8_t>(p);
+      return normalized ? v / 255.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      const double v = readUnaligned<int16_t>(p);
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      const double v = readUnaligned<uint16_t>(p);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      const double v = readUnaligned<uint32_t>(p);
+      return normalized ? v / 4294967295.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return readUnaligned<float>(p);
+    default: return 0.0;
+  }
+}
+
+bool allFinite(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+struct Bytes {
+  const uint8_t* data = nullptr;
+  size_t size = 0;
+};
+
+class GltfImporter {
+ public:
+  GltfImporter(const fs::path& path, const tinygltf::Model& model) : path_(path), model_(model) {}
+
+  Scene run() {
+    scene_.name = path_.stem().string();
+    checkExtensions();
+    buildNodes();
+    readAnimations();
+    placeContent();
+    return std::move(scene_);
+  }
+
+  [[noreturn]] void fail(const std::string& message) const { throw Error(path_.string() + ": " + message); }
+  void warn(const std::string& message) { scene_.stats.warnings.push_back(message); }
+
+ private:
+  // --- raw data --------------------------------------------------------------------------
+
+  Bytes viewBytes(int viewIndex, const std::string& user) const {
+    if (viewIndex < 0 || static_cast<size_t>(viewIndex) >= model_.bufferViews.size())
+      fail(user + " refers to buffer view " + std::to_string(viewIndex) + ", which does not exist");
+    const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(viewIndex)];
+    if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model_.buffers.size())
+      fail("buffer view " + std::to_string(viewIndex) + " refers to buffer " + std::to_string(view.buffer) +
+           ", which does not exist");
+    const tinygltf::Buffer& buffer = model_.buffers[static_cast<size_t>(view.buffer)];
+    if (buffer.data.empty())
+      fail("buffer " + std::to_string(view.buffer) + " has no data (missing or empty buffer file)");
+    if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset)
+      fail("buffer view " + std::to_string(viewIndex) + " (bytes " + std::to_string(view.byteOffset) + "+" +
+           std::to_string(view.byteLength) + ") lies outside buffer " + std::to_string(view.buffer) + " of " +
+           std::to_string(buffer.data.size()) + " bytes");
+    return Bytes{buffer.data.data() + view.byteOffset, view.byteLength};
+  }
+
+  // Reads an accessor (strided view, then its sparse substitutions) into doubles,
+  // `components` per element. `what` names the use, for messages.
+  std::vector<double> readAccessor(int index, const std::string& what, std::initializer_list<int> allowedTypes,
+                                   int* componentsOut = nullptr) const {
+    if (index < 0 || static_cast<size_t>(index) >= model_.accessors.size())
+      fail(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
+    const tinygltf::Accessor& acc = model_.accessors[static_cast<size_t>(index)];
+    const std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
+    if (std::find(allowedTypes.begin(), allowedTypes.end(), acc.type) == allowedTypes.end())
+      fail(name + " has an unexpected element type");
+    const int components = componentCount(acc.type);
+    const int size = componentSize(acc.componentType);
+    if (size == 0) fail(name + " has an unsupported component type " + std::to_string(acc.componentType));
+    if (acc.count > kMaxElements) fail(name + " has an absurd element count " + std::to_string(acc.count));
+    if (componentsOut) *componentsOut = components;
+
+    const size_t elementSize = static_cast<size_t>(size) * static_cast<size_t>(components);
+    std::vector<double> out(acc.count * static_cast<size_t>(components), 0.0);
+    if (acc.bufferView >= 0 && acc.count > 0) {
+      const Bytes view = viewBytes(acc.bufferView, name);
+      const size_t declaredStride = model_.bufferViews[static_cast<size_t>(acc.bufferView)].byteStride;
+      const size_t stride = declaredStride != 0 ? declaredStride : elementSize;
+      if (stride < elementSize) fail(name + " has a byte stride smaller than its element");
+      // offset + stride * (count - 1) + elementSize <= view.size, without overflow.
+      if (acc.byteOffset > view.size || elementSize > view.size - acc.byteOffset ||
+          (acc.count - 1) > (view.size - acc.byteOffset - elementSize) / stride)
+        fail(name + " reads past the end of buffer view " + std::to_string(acc.bufferView));
+      for (size_t e = 0; e < acc.count; ++e) {
+        const uint8_t* element = view.data + acc.byteOffset + e * stride;
+        for (int c = 0; c < components; ++c)
+          out[e * components + c] = decodeComponent(element + c * size, acc.componentType, acc.normalized);
+      }
+    }
+    if (acc.sparse.isSparse) applySparse(acc, name, components, size, out);
+    return out;
+  }
+
+  void applySparse(const tinygltf::Accessor& acc, const std::string& name, int components, int size,
+                   std::vector<double>& out) const {
+    const int count = acc.sparse.count;
+    if (count < 0 || static_cast<size_t>(count) > acc.count) fail(name + " has an invalid sparse count");
+    const int indexType = acc.sparse.indices.componentType;
+    const int indexSize = componentSize(indexType);
+    if (indexSize == 0 || indexType == TINYGLTF_COMPONENT_TYPE_FLOAT || indexType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+        indexType == TINYGLTF_COMPONENT_TYPE_SHORT)
+      fail(name + " has an invalid sparse index type");
+    const Bytes indices = viewBytes(acc.sparse.indices.bufferView, name + " sparse indices");
+    const Bytes values = viewBytes(acc.sparse.values.bufferView, name + " sparse values");
+    const size_t indexOffset = static_cast<size_t>(std::max(acc.sparse.indices.byteOffset, 0));
+    const size_t valueOffset = static_cast<size_t>(std::max(acc.sparse.values.byteOffset, 0));
+    const size_t elementSize = static_cast<size_t>(size * components);
+    const size_t n = static_cast<size_t>(count);
+    if (indexOffset > indices.size || n > (indices.size - indexOffset) / static_cast<size_t>(indexSize) ||
+        valueOffset > values.size || n > (values.size - valueOffset) / elementSize)
+      fail(name + " has sparse data past the end of its buffer view");
+    for (size_t i = 0; i < n; ++i) {
+      const double target = decodeComponent(indices.data + indexOffset + i * indexSize, indexType, false);
+      if (target >= static_cast<double>(acc.count)) fail(name + " has a sparse index out of range");
+      const size_t e = static_cast<size_t>(target);
+      for (int c = 0; c < components; ++c)
+        out[e * components + c] = decodeComponent(values.data + valueOffset + i * elementSize + c * size,
+                                                  acc.componentType, acc.normalized);
+    }
+  }
+
+  std::vector<uint32_t> readIndices(int index, const std::string& what, size_t vertexCount) const {
+    if (index >= 0 && static_cast<size_t>(index) < model_.accessors.size()) {
+      const int type = model_.accessors[static_cast<size_t>(index)].componentType;
+      if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+          type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail("accessor " + std::to_string(index) + " (" + what + ") is not of an unsigned integer type");
+    }
+    const std::vector<double> raw = readAccessor(index, what, {TINYGLTF_TYPE_SCALAR});
+    std::vector<uint32_t> indices(raw.size());
+    for (size_t i = 0; i < raw.size(); ++i) {
+      if (raw[i] >= static_cast<double>(vertexCount))
+        fail("accessor " + std::to_string(index) + " (" + what + ") has index " +
+             std::to_string(static_cast<uint64_t>(raw[i])) + " at element " + std::to_string(i) +
+             ", past the vertex count " + std::to_string(vertexCount));
+      indices[i] = static_cast<uint32_t>(raw[i]);
+    }
+    return indices;
+  }
+
+  // --- file level -------------------------------------------------------------------------
+
+  void checkExtensions() {
+    for (const std::string& ext : model_.extensionsRequired) {
+      // Compressed geometry would silently load as empty accessors: refuse it instead.
+      if (ext.find("compression") != std::string::npos)
+        fail("requires extension " + ext + ", which is not supported");
+      warn("required extension " + ext + " is ignored");
+    }
+    if (!model_.skins.empty()) warn("skins are ignored: skinned meshes are drawn in their bind pose");
+  }
+
+  // --- nodes ------------------------------------------------------------------------------
+
+  void requireFinite(const std::vector<double>& values, const std::string& what) const {
+    if (!allFinite(values)) fail(what + " is not finite");
+  }
+
+  Trs decomposeMatrix(const glm::mat4& m, size_t nodeIndex) {
+    Trs trs;
+    trs.translation = glm::vec3(m[3]);
+    const glm::mat3 linear(m);
+    glm::vec3 scale(glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2]));
+    // A mirroring matrix keeps working as a negative x scale.
+    if (glm::determinant(linear) < 0.0f) scale.x = -scale.x;
+    if (scale.x != 0.0f && scale.y != 0.0f && scale.z != 0.0f) {
+      const glm::mat3 rotation(linear[0] / scale.x, linear[1] / scale.y, linear[2] / scale.z);
+      trs.rotation = glm::normalize(glm::quat_cast(rotation));
+    }
+    trs.scale = scale;
+    // TRS cannot hold shear or projection: keep the closest TRS and say so.
+    const glm::mat4 back = trs.matrix();
+    float error = 0.0f, magnitude = 1e-30f;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) {
+        error = std::max(error, std::abs(back[c][r] - m[c][r]));
+        magnitude = std::max(magnitude, std::abs(m[c][r]));
+      }
+    if (error > 1e-3f * magnitude)
+      warn("node " + std::to_string(nodeIndex) + " has a matrix with shear or projection; approximated by TRS");
+    return trs;
+  }
+
+  Trs nodeTrs(const tinygltf::Node& node, size_t i) {
+    const std::string what = "node " + std::to_string(i);
+    if (!node.matrix.empty()) {
+      if (node.matrix.size() != 16) fail(what + " has a matrix without 16 values");
+      requireFinite(node.matrix, what + " matrix");
+      glm::dmat4 m = glm::make_mat4(node.matrix.data());  // column-major, as glTF
+      return decomposeMatrix(glm::mat4(m), i);
+    }
+    Trs trs;
+    if (!node.translation.empty()) {
+      if (node.translation.size() != 3) fail(what + " translation does not have 3 values");
+      requireFinite(node.translation, what + " translation");
+      trs.translation = glm::vec3(glm::make_vec3(node.translation.data()));
+    }
+    if (!node.rotation.empty()) {
+      if (node.rotation.size() != 4) fail(what + " rotation does not have 4 values");
+      requireFinite(node.rotation, what + " rotation");
+      const glm::quat q(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                        static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+      const float len = glm::length(q);
+      if (len > 0.0f && std::isfinite(len))
+        trs.rotation = q / len;
+      else
+        warn(what + " has a zero rotation quaternion; identity used");
+    }
+    if (!node.scale.empty()) {
+      if (node.scale.size() != 3) fail(what + " scale does not have 3 values");
+      requireFinite(node.scale, what + " scale");
+      trs.scale = glm::vec3(glm::make_vec3(node.scale.data()));
+    }
+    return trs;
+  }
+
+  void buildNodes() {
+    const size_t count = model_.nodes.size();
+    if (count > kMaxNodes) fail("has an absurd node count " + std::to_string(count));
+    scene_.nodes.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      const tinygltf::Node& src = model_.nodes[i];
+      scene_.nodes[i].name = src.name.empty() ? "node " + std::to_string(i) : src.name;
+      scene_.nodes[i].local = nodeTrs(src, i);
+    }
+    for (size_t i = 0; i < count; ++i) {
+      for (int child : model_.nodes[i].children) {
+        if (child < 0 || static_cast<size_t>(child) >= count)
+          fail("node " + std::to_string(i) + " has child " + std::to_string(child) + ", which does not exist");
+        if (static_cast<size_t>(child) == i) fail("node " + std::to_string(i) + " is its own child (cycle)");
+        Node& c = scene_.nodes[static_cast<size_t>(child)];
+        if (c.parent >= 0)
+          fail("node " + std::to_string(child) + " has two parents (" + std::to_string(c.parent) + " and " +
+               std::to_string(i) + ")");
+        c.parent = static_cast<int32_t>(i);
+      }
+    }
+    // With one parent per node, a cycle is a parent chain that never reaches a root.
+    // 0: unvisited, 1: on the chain being walked, 2: known to reach a root.
+    std::vector<uint8_t> state(count, 0);
+    std::vector<size_t> chain;
+    for (size_t start = 0; start < count; ++start) {
+      chain.clear();
+      int64_t current = static_cast<int64_t>(start);
+      while (current >= 0 && state[static_cast<size_t>(current)] == 0) {
+        state[static_cast<size_t>(current)] = 1;
+        chain.push_back(static_cast<size_t>(current));
+        current = scene_.nodes[static_cast<size_t>(current)].parent;
+      }
+      if (current >= 0 && state[static_cast<size_t>(current)] == 1)
+        fail("the node hierarchy has a cycle through node " + std::to_string(current));
+      for (size_t n : chain) state[n] = 2;
+    }
+  }
+
+  // Nodes of the rendered scene, parents before children, in file order within a level.
+  std::vector<uint32_t> sceneNodesInOrder() {
+    std::vector<int> roots;
+    if (model_.defaultScene >= 0 && static_cast<size_t>(model_.defaultScene) < model_.scenes.size()) {
+      roots = model_.scenes[static_cast<size_t>(model_.defaultScene)].nodes;
+    } else if (!model_.scenes.empty()) {
+      if (model_.defaultScene >= 0) warn("default scene does not exist; scene 0 used");
+      roots = model_.scenes[0].nodes;
+    } else {
+      for (size_t i = 0; i < scene_.nodes.size(); ++i)
+        if (scene_.nodes[i].parent < 0) roots.push_back(static_cast<int>(i));
+    }
+    std::vector<uint32_t> order;
+    std::vector<uint8_t> seen(scene_.nodes.size(), 0);
+    std::vector<uint32_t> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
+      if (*it < 0 || static_cast<size_t>(*it) >= scene_.nodes.size())
+        fail("the scene refers to node " + std::to_string(*it) + ", which does not exist");
+      stack.push_back(static_cast<uint32_t>(*it));
+    }
+    while (!stack.empty()) {
+      const uint32_t n = stack.back();
+      stack.pop_back();
+      if (seen[n]) continue;  // a root listed twice, or listed as root and child
+      seen[n] = 1;
+      order.push_back(n);
+      const std::vector<int>& children = model_.nodes[n].children;
+      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(static_cast<uint32_t>(*it));
+    }
+    return order;
+  }
+
+  // --- materials and textures -------------------------------------------------------------
+
+  static void toRgba8(const tinygltf::Image& image, std::vector<uint8_t>& rgba) {
+    const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+    const int components = image.component;
+    const bool wide = image.bits == 16;
+    rgba.assign(pixels * 4, 255);
+    for (size_t p = 0; p < pixels; ++p) {
+      uint8_t c[4] = {0, 0, 0, 255};
+      for (int k = 0; k < components; ++k) {
+        const size_t at = p * static_cast<size_t>(components) + static_cast<size_t>(k);
+        c[k] = wide ? static_cast<uint8_t>((readUnaligned<uint16_t>(image.image.data() + at * 2) + 128) / 257)
+                    : image.image[at];
+      }
+      uint8_t* dst = rgba.data() + p * 4;
+      if (components <= 2) {  // grey, grey + alpha
+        dst[0] = dst[1] = dst[2] = c[0];
+        dst[3] = components == 2 ? c[1] : 255;
+      } else {
+        dst[0] = c[0];
+        dst[1] = c[1];
+        dst[2] = c[2];
+        dst[3] = components == 4 ? c[3] : 255;
+      }
+    }
+  }
+
+  int32_t textureForImage(int imageIndex, const std::string& user) {
+    if (imageIndex < 0 || static_cast<size_t>(imageIndex) >= model_.images.size())
+      fail(user + " refers to image " + std::to_string(imageIndex) + ", which does not exist");
+    if (auto it = textureOfImage_.find(imageIndex); it != textureOfImage_.end()) return it->second;
+    const tinygltf::Image& stored = model_.images[static_cast<size_t>(imageIndex)];
+    const std::string what = "image " + std::to_string(imageIndex) + (stored.uri.empty() ? "" : " (" + stored.uri + ")");
+    // Images inside buffer views were left undecoded at parse time (see decodeLater): decode
+    // them now that the view is known to lie inside its buffer.
+    tinygltf::Image decoded;
+    if (stored.image.empty() && stored.bufferView >= 0) {
+      const Bytes bytes = viewBytes(stored.bufferView, what);
+      if (bytes.size > static_cast<size_t>(std::numeric_limits<int>::max())) fail(what + " is too large");
+      decoded = stored;
+      std::string err, warning;
+      if (!tinygltf::LoadImageData(&decoded, imageIndex, &err, &warning, 0, 0, bytes.data, static_cast<int>(bytes.size),
+                                   nullptr))
+        fail(what + " could not be decoded: " + oneLine(err));
+    }
+    const tinygltf::Image& image = decoded.image.empty() ? stored : decoded;
+    if (image.image.empty() || image.width <= 0 || image.height <= 0)
+      fail(what + " could not be loaded (missing file or undecodable data)");
+    if (image.component < 1 || image.component > 4 || (image.bits != 8 && image.bits != 16))
+      fail(what + " has an unsupported pixel format");
+    const size_t needed = static_cast<size_t>(image.width) * static_cast<size_t>(image.height) *
+                          static_cast<size_t>(image.component) * static_cast<size_t>(image.bits / 8);
+    if (image.image.size() < needed) fail(what + " has less pixel data than its size says");
+    Texture texture;
+    texture.name = image.name.empty() ? what : image.name;
+    texture.width = static_cast<uint32_t>(image.width);
+    texture.height = static_cast<uint32_t>(image.height);
+    toRgba8(image, texture.rgba8);
+    const int32_t index = static_cast<int32_t>(scene_.textures.size());
+    scene_.textures.push_back(std::move(texture));
+    textureOfImage_[imageIndex] = index;
+    return index;
+  }
+
+  void readMaterials() {
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& src = model_.materials[i];
+      const std::string what = "material " + std::to_string(i);
+      Material material;
+      material.name = src.name.empty() ? what : src.name;
+      material.doubleSided = src.doubleSided;
+      const std::vector<double>& factor = src.pbrMetallicRoughness.baseColorFactor;
+      if (factor.size() == 4) {
+        requireFinite(factor, what + " baseColorFactor");
+        material.baseColorFactor = glm::vec4(glm::make_vec4(factor.data()));
+      } else if (!factor.empty()) {
+        fail(what + " baseColorFactor does not have 4 values");
+      }
+      const tinygltf::TextureInfo& info = src.pbrMetallicRoughness.baseColorTexture;
+      int uvSet = 0;
+      if (info.index >= 0) {
+        if (static_cast<size_t>(info.index) >= model_.textures.size())
+          fail(what + " refers to texture " + std::to_string(info.index) + ", which does not exist");
+        const tinygltf::Texture& texture = model_.textures[static_cast<size_t>(info.index)];
+        if (texture.source < 0)
+          warn(what + ": texture " + std::to_string(info.index) + " has no image we can decode; untextured");
+        else
+          material.baseColorTexture = textureForImage(texture.source, "texture " + std::to_string(info.index));
+        uvSet = std::max(info.texCoord, 0);
+      }
+      materialUvSet_.push_back(uvSet);
+      scene_.materials.push_back(std::move(material));
+    }
+  }
+
+  uint32_t defaultMaterial() {
+    if (!defaultMaterial_) {
+      Material material;
+      material.name = "default";
+      defaultMaterial_ = static_cast<uint32_t>(scene_.materials.size());
+      scene_.materials.push_back(material);
+      materialUvSet_.push_back(0);
+    }
+    return *defaultMaterial_;
+  }
+
+  // --- meshes -----------------------------------------------------------------------------
+
+  static std::vector<glm::vec3> faceWeightedNormals(const Mesh& mesh) {
+    std::vector<glm::vec3> normals(mesh.positions.size(), glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+      // Unnormalized cross product: larger triangles weigh more.
+      const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+      normals[a] += n;
+      normals[b] += n;
+      normals[c] += n;
+    }
+    for (glm::vec3& n : normals) {
+      const float len = glm::length(n);
+      n = (len > 0.0f && std::isfinite(len)) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    return normals;
+  }
+
+  // Triangle list from a triangle primitive's vertex order (glTF 2.0 spec, section 3.7.2.1).
+  static std::vector<uint32_t> toTriangleList(int mode, const std::vector<uint32_t>& order) {
+    std::vector<uint32_t> out;
+    const size_t n = order.size();
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      out.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n - n % 3));
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (size_t i = 0; i + 2 < n; ++i) {
+        const size_t odd = i % 2;
+        out.insert(out.end(), {order[i], order[i + 1 + odd], order[i + 2 - odd]});
+      }
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      for (size_t i = 0; i + 2 < n; ++i) out.insert(out.end(), {order[i + 1], order[i + 2], order[0]});
+    }
+    return out;
+  }
+
+  std::optional<uint32_t> convertPrimitive(size_t meshIndex, size_t primIndex) {
+    const tinygltf::Primitive& prim = model_.meshes[meshIndex].primitives[primIndex];
+    const std::string what = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primIndex);
+    const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode == TINYGLTF_MODE_POINTS) {
+      ++scene_.stats.pointPrimitives;
+      warn(what + ": points skipped");
+      return std::nullopt;
+    }
+    if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+      ++scene_.stats.linePrimitives;
+      warn(what + ": lines skipped");
+      return std::nullopt;
+    }
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+      fail(what + " has unknown mode " + std::to_string(mode));
+    ++scene_.stats.trianglePrimitives;
+    if (!prim.targets.empty()) warn(what + ": morph targets ignored");
+
+    const auto position = prim.attributes.find("POSITION");
+    if (position == prim.attributes.end()) {
+      warn(what + ": no POSITION attribute; skipped");
+      return std::nullopt;
+    }
+    Mesh mesh;
+    mesh.name = (model_.meshes[meshIndex].name.empty() ? "mesh " + std::to_string(meshIndex)
+                                                       : model_.meshes[meshIndex].name) +
+                "/" + std::to_string(primIndex);
+    const std::vector<double> positions = readAccessor(position->second, "POSITION of " + what, {TINYGLTF_TYPE_VEC3});
+    for (size_t i = 0; i < positions.size(); ++i)
+      if (!std::isfinite(positions[i]))
+        fail("accessor " + std::to_string(position->second) + " (POSITION of " + what +
+             ") has a non-finite value at vertex " + std::to_string(i / 3));
+    const size_t vertexCount = positions.size() / 3;
+    mesh.positions.resize(vertexCount);
+    for (size_t v = 0; v < vertexCount; ++v)
+      mesh.positions[v] = glm::vec3(positions[v * 3], positions[v * 3 + 1], positions[v * 3 + 2]);
+
+    std::vector<uint32_t> order;
+    if (prim.indices >= 0) {
+      order = readIndices(prim.indices, "indices of " + what, vertexCount);
+    } else {
+      order.resize(vertexCount);
+      for (size_t v = 0; v < vertexCount; ++v) order[v] = static_cast<uint32_t>(v);
+    }
+    if (mode == TINYGLTF_MODE_TRIANGLES && order.size() % 3 != 0)
+      warn(what + ": index count not a multiple of 3; trailing indices ignored");
+    const std::vector<uint32_t> triangles = toTriangleList(mode, order);
+    mesh.indices.reserve(triangles.size());
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+      const uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+      const glm::vec3 area = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+      if (a == b || b == c || a == c || glm::dot(area, area) == 0.0f) {
+        ++scene_.stats.degenerateTriangles;
+        continue;
+      }
+      mesh.indices.insert(mesh.indices.end(), {a, b, c});
+    }
+    if (mesh.indices.empty()) {
+      warn(what + ": no non-degenerate triangles; skipped");
+      return std::nullopt;
+    }
+
+    if (prim.material >= 0 && static_cast<size_t>(prim.material) >= model_.materials.size())
+      fail(what + " refers to material " + std::to_string(prim.material) + ", which does not exist");
+    mesh.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material) : defaultMaterial();
+
+    readNormals(prim, what, mesh);
+    const std::string uvName = "TEXCOORD_" + std::to_string(materialUvSet_[mesh.material]);
+    if (const auto uv = prim.attributes.find(uvName); uv != prim.attributes.end()) {
+      const std::vector<double> uvs = readAccessor(uv->second, uvName + " of " + what, {TINYGLTF_TYPE_VEC2});
+      if (uvs.size() / 2 != vertexCount) fail(what + ": " + uvName + " count differs from POSITION count");
+      requireFinite(uvs, "accessor " + std::to_string(uv->second) + " (" + uvName + " of " + what + ")");
+      mesh.uvs.resize(vertexCount);
+      for (size_t v = 0; v < vertexCount; ++v) mesh.uvs[v] = glm::vec2(uvs[v * 2], uvs[v * 2 + 1]);
+    }
+
+    const uint32_t index = static_cast<uint32_t>(scene_.meshes.size());
+    scene_.meshes.push_back(std::move(mesh));
+    return index;
+  }
+
+  // File normals where usable; generated ones (smooth over shared vertices, so flat for
+  // unshared ones) where absent, zero or not finite.
+  void readNormals(const tinygltf::Primitive& prim, const std::string& what, Mesh& mesh) {
+    const size_t vertexCount = mesh.positions.size();
+    const auto normal = prim.attributes.find("NORMAL");
+    if (normal == prim.attributes.end()) {
+      mesh.normals = faceWeightedNormals(mesh);
+      return;
+    }
+    const std::vector<double> values = readAccessor(normal->second, "NORMAL of " + what, {TINYGLTF_TYPE_VEC3});
+    if (values.size() / 3 != vertexCount) fail(what + ": NORMAL count differs from POSITION count");
+    mesh.normals.resize(vertexCount);
+    std::vector<glm::vec3> generated;
+    size_t replaced = 0;
+    for (size_t v = 0; v < vertexCount; ++v) {
+      const glm::vec3 n(values[v * 3], values[v * 3 + 1], values[v * 3 + 2]);
+      const float len = glm::length(n);
+      if (len > 1e-12f && std::isfinite(len)) {
+        mesh.normals[v] = n / len;
+      } else {
+        if (generated.empty()) generated = faceWeightedNormals(mesh);
+        mesh.normals[v] = generated[v];
+        ++replaced;
+      }
+    }
+    if (replaced > 0) warn(what + ": " + std::to_string(replaced) + " invalid normals replaced");
+  }
+
+  const std::vector<uint32_t>& meshesOf(int meshIndex, size_t nodeIndex) {
+    if (meshIndex < 0 || static_cast<size_t>(meshIndex) >= model_.meshes.size())
+      fail("node " + std::to_string(nodeIndex) + " refers to mesh " + std::to_string(meshIndex) +
+           ", which does not exist");
+    auto [it, inserted] = meshesOfGltfMesh_.try_emplace(meshIndex);
+    if (inserted) {
+      const size_t primitives = model_.meshes[static_cast<size_t>(meshIndex)].primitives.size();
+      for (size_t p = 0; p < primitives; ++p)
+        if (auto mesh = convertPrimitive(static_cast<size_t>(meshIndex), p)) it->second.push_back(*mesh);
+    }
+    return it->second;
+  }
+
+  // --- animation --------------------------------------------------------------------------
+
+  void readAnimations() {
+    for (size_t a = 0; a < model_.animations.size(); ++a) {
+      const tinygltf::Animation& anim = model_.animations[a];
+      for (size_t c = 0; c < anim.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& src = anim.channels[c];
+        const std::string what = "animation " + std::to_string(a) + " channel " + std::to_string(c);
+        AnimationChannel channel;
+        if (src.target_path == "translation") channel.path = AnimationPath::Translation;
+        else if (src.target_path == "rotation") channel.path = AnimationPath::Rotation;
+        else if (src.target_path == "scale") channel.path = AnimationPath::Scale;
+        else {
+          warn(what + ": " + src.target_path + " animation ignored");
+          continue;
+        }
+        if (src.target_node < 0) {
+          warn(what + ": no target node; ignored");
+          continue;
+        }
+        if (static_cast<size_t>(src.target_node) >= scene_.nodes.size())
+          fail(what + " targets node " + std::to_string(src.target_node) + ", which does not exist");
+        channel.node = static_cast<uint32_t>(src.target_node);
+        if (src.sampler < 0 || static_cast<size_t>(src.sampler) >= anim.samplers.size())
+          fail(what + " refers to sampler " + std::to_string(src.sampler) + ", which does not exist");
+        const tinygltf::AnimationSampler& sampler = anim.samplers[static_cast<size_t>(src.sampler)];
+        if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") channel.interpolation = Interpolation::Linear;
+        else if (sampler.interpolation == "STEP") channel.interpolation = Interpolation::Step;
+        else if (sampler.interpolation == "CUBICSPLINE") channel.interpolation = Interpolation::CubicSpline;
+        else fail(what + " has unknown interpolation " + sampler.interpolation);
+
+        const std::vector<double> times = readAccessor(sampler.input, "input of " + what, {TINYGLTF_TYPE_SCALAR});
+        requireFinite(times, "accessor " + std::to_string(sampler.input) + " (input of " + what + ")");
+        const bool rotation = channel.path == AnimationPath::Rotation;
+        int components = 0;
+        const std::vector<double> values = readAccessor(
+            sampler.output, "output of " + what, {rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3}, &components);
+        requireFinite(values, "accessor " + std::to_string(sampler.output) + " (output of " + what + ")");
+        const size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+        if (times.empty()) {
+          warn(what + ": no keys; ignored");
+          continue;
+        }
+        if (values.size() / static_cast<size_t>(components) != times.size() * perKey)
+          fail(what + ": output count does not match " + std::to_string(times.size()) + " keys");
+
+        // Keys must increase; equal times (seen in exported files) keep the later key.
+        for (size_t k = 0; k < times.size(); ++k) {
+          if (k + 1 < times.size() && times[k + 1] < times[k]) fail(what + ": key times decrease");
+          if (k + 1 < times.size() && times[k + 1] == times[k]) continue;
+          channel.times.push_back(static_cast<float>(times[k]));
+          for (size_t j = 0; j < perKey; ++j) {
+            const size_t e = (k * perKey + j) * static_cast<size_t>(components);
+            channel.values.emplace_back(values[e], values[e + 1], values[e + 2], rotation ? values[e + 3] : 0.0);
+          }
+        }
+        if (channel.times.size() < times.size()) warn(what + ": keys with repeated times dropped");
+        scene_.channels.push_back(std::move(channel));
+      }
+    }
+    if (!scene_.channels.empty()) {
+      float first = scene_.channels[0].times.front(), last = scene_.channels[0].times.back();
+      for (const AnimationChannel& ch : scene_.channels) {
+        first = std::min(first, ch.times.front());
+        last = std::max(last, ch.times.back());
+      }
+      scene_.settings.frameTime = 0.5f * (first + last);
+    }
+  }
+
+  // --- what the scene shows ---------------------------------------------------------------
+
+  void readCamera(const tinygltf::Node& node, uint32_t nodeIndex) {
+    if (node.camera < 0) return;
+    if (static_cast<size_t>(node.camera) >= model_.cameras.size())
+      fail("node " + std::to_string(nodeIndex) + " refers to camera " + std::to_string(node.camera) +
+           ", which does not exist");
+    const tinygltf::Camera& src = model_.cameras[static_cast<size_t>(node.camera)];
+    const std::string what = "camera " + std::to_string(node.camera);
+    if (src.type != "perspective") {
+      warn(what + ": " + src.type + " cameras are not supported; ignored");
+      return;
+    }
+    if (scene_.camera) return;  // the first one wins
+    const tinygltf::PerspectiveCamera& p = src.perspective;
+    if (!(p.yfov > 0.0 && p.yfov < 3.14159) || !(p.aspectRatio >= 0.0) || !(p.znear >= 0.0) || !(p.zfar >= 0.0) ||
+        !std::isfinite(p.aspectRatio) || !std::isfinite(p.znear) || !std::isfinite(p.zfar))
+      fail(what + " has invalid perspective parameters");
+    Camera camera;
+    camera.node = static_cast<int32_t>(nodeIndex);
+    camera.yfov = static_cast<float>(p.yfov);
+    camera.aspectRatio = static_cast<float>(p.aspectRatio);
+    camera.znear = static_cast<float>(p.znear);
+    camera.zfar = static_cast<float>(p.zfar);
+    if (camera.zfar != 0.0f && !(camera.zfar > camera.znear)) {
+      warn(what + ": zfar not beyond znear; derived instead");
+      camera.zfar = 0.0f;
+    }
+    scene_.camera = camera;
+  }
+
+  void readLight(const tinygltf::Node& node, uint32_t nodeIndex) {
+    const auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end() || !ext->second.IsObject() || !ext->second.Has("light")) return;
+    const tinygltf::Value& ref = ext->second.Get("light");
+    const int lightIndex = ref.IsNumber() ? ref.GetNumberAsInt() : -1;
+    if (lightIndex < 0 || static_cast<size_t>(lightIndex) >= model_.lights.size())
+      fail("node " + std::to_string(nodeIndex) + " refers to light " + std::to_string(lightIndex) +
+           ", which does not exist");
+    const tinygltf::Light& light = model_.lights[static_cast<size_t>(lightIndex)];
+    if (light.type != "directional") {
+      warn("light " + std::to_string(lightIndex) + ": " + light.type + " lights are not supported; ignored");
+      return;
+    }
+    if (haveLight_) return;
+    glm::vec3 color(1.0f);
+    if (light.color.size() == 3 && allFinite(light.color)) color = glm::vec3(glm::make_vec3(light.color.data()));
+    const float intensity = std::isfinite(light.intensity) ? static_cast<float>(light.intensity) : 1.0f;
+    const glm::mat4 world = scene_.worldMatrixAt(nodeIndex, scene_.settings.frameTime);
+    const glm::vec3 direction(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+    const float len = glm::length(direction);
+    if (!(len > 0.0f) || !std::isfinite(len)) {
+      warn("light " + std::to_string(lightIndex) + ": degenerate direction; ignored");
+      return;
+    }
+    scene_.light.direction = direction / len;
+    scene_.light.color = color * intensity;
+    haveLight_ = true;
+  }
+
+  void placeContent() {
+    readMaterials();
+    uint32_t nextObjectId = 1;
+    for (uint32_t nodeIndex : sceneNodesInOrder()) {
+      const tinygltf::Node& node = model_.nodes[nodeIndex];
+      if (node.mesh >= 0) {
+        const std::vector<uint32_t>& meshes = meshesOf(node.mesh, nodeIndex);
+        for (uint32_t mesh : meshes) scene_.instances.push_back(Instance{mesh, nodeIndex, nextObjectId});
+        if (!meshes.empty()) ++nextObjectId;
+      }
+      readCamera(node, nodeIndex);
+      readLight(node, nodeIndex);
+    }
+  }
+
+  const fs::path& path_;
+  const tinygltf::Model& model_;
+  Scene scene_;
+  std::map<int, int32_t> textureOfImage_;
+  std::map<int, std::vector<uint32_t>> meshesOfGltfMesh_;
+  std::vector<int> materialUvSet_;
+  std::optional<uint32_t> defaultMaterial_;
+  bool haveLight_ = false;
+};
+
+// tinygltf hands an image's buffer view to the decoder without checking that the view lies
+// inside its buffer, so a corrupt file could make the decoder read out of bounds. Images in
+// buffer views are therefore decoded later, after validation; images from URIs (bytes that
+// tinygltf read itself) are decoded as usual.
+bool decodeLater(tinygltf::Image* image, const int imageIndex, std::string* err, std::string* warn, int width,
+                 int height, const unsigned char* bytes, int size, void* userData) {
+  if (image->bufferView >= 0) return true;
+  return tinygltf::LoadImageData(image, imageIndex, err, warn, width, height, bytes, size, userData);
+}
+
+bool looksBinary(const fs::path& path) {
+  const std::string ext = toLower(path.extension().string());
+  if (ext == ".glb") return true;
+  if (ext == ".gltf") return false;
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  in.read(magic, 4);
+  return in.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw Error(path.string() + ": no such file");
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = false;
+  try {
+    tinygltf::TinyGLTF parser;
+    parser.SetImageLoader(&decodeLater, nullptr);
+    ok = looksBinary(path) ? parser.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                           : parser.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  } catch (const std::exception& e) {
+    throw Error(path.string() + ": " + oneLine(e.what()));
+  }
+  if (!ok) throw Error(path.string() + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+
+  GltfImporter importer(path, model);
+  Scene scene;
+  try {
+    scene = importer.run();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {  // e.g. out of memory on a hostile file
+    importer.fail(oneLine(e.what()));
+  }
+  if (!warn.empty()) scene.stats.warnings.insert(scene.stats.warnings.begin(), oneLine(warn));
+  return scene;
+}
+
+}  // namespace hmb::scene

@@ -1,0 +1,145 @@
+// The scene model: what every method renders. Meshes, materials, a node hierarchy with TRS
+// animation that can be sampled at any time, instances that carry an object id, a camera,
+// a directional light, and the per-scene motion-blur settings.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "bvh/aabb.h"
+
+namespace hmb::scene {
+
+struct Texture {
+  std::string name;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> rgba8;  // width * height * 4, sRGB-encoded base colour
+};
+
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};  // linear RGBA
+  int32_t baseColorTexture = -1;    // index into Scene::textures, -1 when untextured
+  bool doubleSided = false;         // glTF: back faces are culled unless set
+};
+
+// One triangle list with one material (a glTF primitive). Positions are in the mesh's own space.
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // per vertex, same count as positions (generated if absent)
+  std::vector<glm::vec2> uvs;      // per vertex or empty
+  std::vector<uint32_t> indices;   // 3 per triangle
+  uint32_t material = 0;           // index into Scene::materials
+  uint32_t triangleCount() const { return static_cast<uint32_t>(indices.size() / 3); }
+};
+
+// A node's local transform: translation, rotation, scale (glTF order T * R * S).
+struct Trs {
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
+  glm::vec3 scale{1.0f};
+  glm::mat4 matrix() const;
+};
+
+struct Node {
+  std::string name;
+  int32_t parent = -1;  // index into Scene::nodes, -1 for a root
+  Trs local;            // rest transform, overridden per channel by animation
+};
+
+enum class AnimationPath { Translation, Rotation, Scale };
+enum class Interpolation { Step, Linear, CubicSpline };
+
+// One animated property of one node. For CubicSpline, values holds (in-tangent, value,
+// out-tangent) triples per key, as in glTF. Rotations are stored as (x, y, z, w).
+struct AnimationChannel {
+  uint32_t node = 0;
+  AnimationPath path = AnimationPath::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;  // seconds, strictly increasing
+  std::vector<glm::vec4> values;
+};
+
+// Draws one mesh with the world transform of one node. Instances of the same node share
+// an object id: the id names an object, not a draw.
+struct Instance {
+  uint32_t mesh = 0;
+  uint32_t node = 0;
+  uint32_t objectId = 0;
+};
+
+struct Camera {
+  int32_t node = -1;              // the camera looks down the node's -Z, +Y up (glTF)
+  float yfov = 0.8f;              // radians
+  float aspectRatio = 0.0f;       // 0: taken from the image size
+  float znear = 0.0f;             // 0: derived from the scene (see deriveDefaults)
+  float zfar = 0.0f;              // 0: derived from the scene
+};
+
+struct DirectionalLight {
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // direction the light travels, world space, unit
+  glm::vec3 color{1.0f};                   // linear, intensity folded in
+  glm::vec3 ambient{0.15f};                // constant ambient term
+};
+
+// Per-scene settings of the technique (paper, section 4). A value <= 0 means "derive from
+// the scene" where the comment says so.
+struct Settings {
+  float softZExtent = 0.0f;     // SOFT_Z_EXTENT in scene units; <= 0: derived from scene scale
+  float edgeThreshold = 0.9f;   // ray-mask edge threshold e
+  float fps = 120.0f;           // frame rate; the previous frame is at t - 1/fps
+  float exposure = 1.0f / 60.0f;// shutter open over [t - exposure, t]
+  float frameTime = 0.0f;       // t_k: the default time rendered
+};
+
+// What the loader left out, so reports can say it.
+struct LoadStats {
+  uint32_t trianglePrimitives = 0;
+  uint32_t linePrimitives = 0;   // skipped: not rendered
+  uint32_t pointPrimitives = 0;  // skipped: not rendered
+  uint32_t degenerateTriangles = 0;
+  std::vector<std::string> warnings;
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Node> nodes;
+  std::vector<AnimationChannel> channels;
+  std::vector<Instance> instances;
+  std::optional<Camera> camera;  // none: deriveDefaults places one
+  DirectionalLight light;
+  Settings settings;
+  LoadStats stats;
+
+  // Local transform of a node at time t (seconds): its rest TRS with every animation channel
+  // that targets it sampled at t (clamped to the channel's key range).
+  Trs localTrsAt(uint32_t node, float t) const;
+  // World matrix of a node at time t: the product of local transforms up to the root.
+  glm::mat4 worldMatrixAt(uint32_t node, float t) const;
+  // True when any channel targets the node or one of its ancestors.
+  bool isAnimated(uint32_t node) const;
+  // World-space bounds of every instance at time t.
+  Aabb boundsAt(float t) const;
+  uint64_t triangleCount() const;
+};
+
+// Rotation whose -Z axis (the camera's view direction) points along `forward`, with +Y as
+// close to world up as possible.
+glm::quat lookRotation(const glm::vec3& forward);
+
+// Fills in what the scene left open, from the scene itself (never from fixed constants): a
+// camera framing the bounds when none is given, near/far from the bounds seen from the
+// camera, SOFT_Z_EXTENT from the scene's scale.
+void deriveDefaults(Scene& scene);
+
+}  // namespace hmb::scene
