@@ -1,0 +1,28 @@
+// Lets one header declare structs and constants for both GLSL kernels and C++ hosts, so the
+// two sides cannot drift. Shared structs use only 4-byte scalars, vec2/ivec2/uvec2 at 8-byte
+// offsets and vec4/uvec4/mat4 at 16-byte offsets, which lay out the same in std430 and C++;
+// every shared struct is checked with HMB_CHECK_SIZE on the C++ side.
+#ifndef HMB_KERNELS_SHARED_GLSL_CPP_H
+#define HMB_KERNELS_SHARED_GLSL_CPP_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+#define HMB_GPU_BEGIN                \
+  namespace hmb::gpu {               \
+  using uint = uint32_t;             \
+  using vec2 = glm::vec2;            \
+  using vec4 = glm::vec4;            \
+  using ivec2 = glm::ivec2;          \
+  using uvec2 = glm::uvec2;          \
+  using uvec4 = glm::uvec4;          \
+  using mat4 = glm::mat4;
+#define HMB_GPU_END }
+#define HMB_CHECK_SIZE(type, bytes) static_assert(sizeof(hmb::gpu::type) == (bytes), #type " layout drifted");
+#else
+#define HMB_GPU_BEGIN
+#define HMB_GPU_END
+#define HMB_CHECK_SIZE(type, bytes)
+#endif
+
+#endif

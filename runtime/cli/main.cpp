@@ -1,0 +1,248 @@
+// hmblur: the command-line front end. Everything it does goes through the library API
+// (runtime/renderer.h); errors are one line on stderr and a non-zero exit.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "runtime/error.h"
+#include "runtime/io/image.h"
+#include "runtime/renderer.h"
+#include "runtime/report.h"
+#include "runtime/system_info.h"
+#include "runtime/vulkan/context.h"
+#include "scenes/load_scene.h"
+#include "scenes/reference_scenes.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+enum ExitCode { kOk = 0, kError = 1, kValidationFailed = 3 };
+
+struct GlobalOptions {
+  bool quiet = false;
+  int device = -1;
+  bool validation = false;
+};
+
+struct RenderOptions {
+  std::string scene = "living-room";
+  std::string method = "test-pattern";
+  uint32_t width = 1280;
+  uint32_t height = 720;
+  std::optional<float> frameTime;
+  std::string out;
+  std::string report;
+};
+
+struct DemoOptions {
+  std::string outDir = "out";
+  uint32_t width = 640;
+  uint32_t height = 360;
+};
+
+void progress(const GlobalOptions& global, const std::string& message) {
+  if (!global.quiet) std::cerr << "hmblur: " << message << '\n';
+}
+
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// Fails before any work when an output path cannot be written as asked.
+void checkOutputPath(const std::string& path, std::initializer_list<const char*> extensions, const char* what) {
+  if (path.empty()) return;
+  const std::string ext = lowerExtension(path);
+  if (std::none_of(extensions.begin(), extensions.end(), [&](const char* e) { return ext == e; })) {
+    std::string list;
+    for (const char* e : extensions) list += (list.empty() ? "" : " or ") + std::string(e);
+    throw hmb::Error(std::string(what) + " '" + path + "' must end in " + list);
+  }
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw hmb::Error(std::string(what) + " '" + path + "': directory '" + parent.string() + "' does not exist");
+}
+
+void writeImage(const fs::path& path, const hmb::RenderResult& result) {
+  if (lowerExtension(path) == ".exr")
+    hmb::io::writeExr(path, result.image);
+  else
+    hmb::io::writePng(path, result.display);
+}
+
+hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
+  hmb::vk::ContextOptions options;
+  options.deviceIndex = global.device;
+  options.validation = global.validation;
+  return options;
+}
+
+// With --validation, any validation error fails the command after its work is done.
+int validationVerdict(const hmb::vk::Context& context) {
+  if (!context.validationEnabled() || context.validationErrors() == 0) return kOk;
+  std::cerr << "hmblur: error: " << context.validationErrors() << " Vulkan validation error(s)\n";
+  for (const std::string& message : context.validationMessages()) std::cerr << "  " << message << '\n';
+  return kValidationFailed;
+}
+
+std::string formatMs(const std::optional<double>& ms) {
+  if (!ms) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f ms", *ms);
+  return text;
+}
+
+int listDevices() {
+  const auto devices = hmb::vk::Context::listDevices();
+  if (devices.empty()) throw hmb::Error("no Vulkan device found (on Debian, mesa-vulkan-drivers provides lavapipe)");
+  for (const auto& d : devices) {
+    std::cout << d.index << ": " << d.name << " [" << d.type << "] Vulkan " << d.apiVersion;
+    if (!d.driverName.empty()) std::cout << ", " << d.driverName;
+    if (!d.driverInfo.empty()) std::cout << " (" << d.driverInfo << ")";
+    std::cout << (d.computeCapable ? "" : ", no compute queue")
+              << (d.int64BufferAtomics ? ", int64 atomics" : ", no int64 atomics")
+              << (d.timestamps ? ", timestamps" : ", no timestamps") << '\n';
+  }
+  return kOk;
+}
+
+int listScenes() {
+  for (const std::string& name : hmb::scene::referenceSceneNames()) {
+    const hmb::scene::Scene scene = hmb::scene::loadScene(name);
+    std::cout << name << ": " << scene.triangleCount() << " triangles, " << scene.instances.size()
+              << " instances, SOFT_Z_EXTENT " << scene.settings.softZExtent << ", e " << scene.settings.edgeThreshold
+              << ", " << scene.settings.fps << " fps, exposure " << scene.settings.exposure << " s\n";
+  }
+  std::cout << "(or any .gltf / .glb file)\n";
+  return kOk;
+}
+
+int render(const GlobalOptions& global, const RenderOptions& options) {
+  hmb::RenderSettings settings;
+  settings.method = options.method;
+  settings.width = options.width;
+  settings.height = options.height;
+  settings.frameTime = options.frameTime;
+  hmb::validateRenderSettings(settings);
+  checkOutputPath(options.out, {".exr", ".png"}, "--out");
+  checkOutputPath(options.report, {".json"}, "--report");
+
+  progress(global, "loading scene " + options.scene);
+  const hmb::scene::Scene scene = hmb::scene::loadScene(options.scene);
+  hmb::vk::Context context(contextOptions(global));
+  progress(global, "device: " + context.info().name);
+  hmb::Renderer renderer(context);
+  progress(global, "rendering " + options.method + " at " + std::to_string(options.width) + "x" +
+                       std::to_string(options.height));
+  const hmb::RenderResult result = renderer.render(scene, settings);
+
+  if (!options.out.empty()) writeImage(options.out, result);
+  if (!options.report.empty())
+    hmb::writeJson(options.report, hmb::renderReport(context.info(), hmb::querySystemInfo(), scene, result));
+  if (!global.quiet) {
+    std::cout << options.method << ": " << formatMs(result.frameMilliseconds) << " on " << context.info().name << '\n';
+    for (const auto& pass : result.plan.passes())
+      std::cout << "  " << pass.name << ": " << (pass.run ? formatMs(pass.milliseconds) : "skipped (" + pass.reason + ")")
+                << '\n';
+  }
+  return validationVerdict(context);
+}
+
+// The main job: the default scene with every method this build has, images and one report.
+int demo(const GlobalOptions& global, const DemoOptions& options) {
+  fs::create_directories(options.outDir);
+  const std::string sceneName = hmb::scene::referenceSceneNames().front();
+  progress(global, "loading scene " + sceneName);
+  const hmb::scene::Scene scene = hmb::scene::loadScene(sceneName);
+  hmb::vk::Context context(contextOptions(global));
+  progress(global, "device: " + context.info().name);
+  hmb::Renderer renderer(context);
+
+  const hmb::SystemInfo system = hmb::querySystemInfo();
+  nlohmann::json report = {{"tool", "hmblur demo"},
+                           {"date", hmb::utcTimestamp()},
+                           {"device", hmb::deviceJson(context.info())},
+                           {"system", hmb::systemJson(system)},
+                           {"scene", hmb::sceneJson(scene)},
+                           {"methods", nlohmann::json::array()}};
+  for (const std::string& method : hmb::methodNames()) {
+    hmb::RenderSettings settings;
+    settings.method = method;
+    settings.width = options.width;
+    settings.height = options.height;
+    progress(global, "rendering " + method);
+    const hmb::RenderResult result = renderer.render(scene, settings);
+    const fs::path stem = fs::path(options.outDir) / (sceneName + "-" + method);
+    hmb::io::writePng(stem.string() + ".png", result.display);
+    hmb::io::writeExr(stem.string() + ".exr", result.image);
+    report["methods"].push_back({{"method", method},
+                                 {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds)
+                                                                       : nlohmann::json(nullptr)},
+                                 {"passes", hmb::passesJson(result.plan)},
+                                 {"images", {stem.string() + ".png", stem.string() + ".exr"}}});
+    std::cout << method << ": " << formatMs(result.frameMilliseconds) << " -> " << stem.string() << ".png\n";
+  }
+  const fs::path reportPath = fs::path(options.outDir) / "report.json";
+  hmb::writeJson(reportPath, report);
+  std::cout << "report: " << reportPath.string() << '\n';
+  return validationVerdict(context);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"hybrid-mblur: motion blur by post-process, hybrid ray reveal and distributed ray tracing, "
+               "all in Vulkan compute"};
+  app.require_subcommand(1);
+  app.fallthrough();
+  GlobalOptions global;
+  app.add_flag("-q,--quiet", global.quiet, "Print nothing but errors and results");
+  app.add_option("--device", global.device, "Vulkan device index (see list-devices); default: best compute device")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--validation", global.validation,
+               "Enable the Khronos validation layer; any validation error fails the command");
+
+  RenderOptions renderOptions;
+  CLI::App* renderCmd = app.add_subcommand("render", "Render one frame of a scene with one method");
+  renderCmd->add_option("--scene", renderOptions.scene, "Reference scene name or a .gltf/.glb file")
+      ->capture_default_str();
+  renderCmd->add_option("--method", renderOptions.method, "Rendering method")->capture_default_str();
+  renderCmd->add_option("--width", renderOptions.width, "Image width in pixels")->capture_default_str();
+  renderCmd->add_option("--height", renderOptions.height, "Image height in pixels")->capture_default_str();
+  renderCmd->add_option("--frame-time", renderOptions.frameTime, "Time of the frame in seconds (shutter closes then)");
+  renderCmd->add_option("--out", renderOptions.out, "Output image: .exr (beauty + AOV layers) or .png (display)");
+  renderCmd->add_option("--report", renderOptions.report, "JSON report: device, settings, per-pass times");
+
+  DemoOptions demoOptions;
+  CLI::App* demoCmd = app.add_subcommand("demo", "Render the default scene with every method and write a report");
+  demoCmd->add_option("--out-dir", demoOptions.outDir, "Output folder")->capture_default_str();
+  demoCmd->add_option("--width", demoOptions.width, "Image width in pixels")->capture_default_str();
+  demoCmd->add_option("--height", demoOptions.height, "Image height in pixels")->capture_default_str();
+
+  CLI::App* listScenesCmd = app.add_subcommand("list-scenes", "List the built-in reference scenes");
+  CLI::App* listDevicesCmd = app.add_subcommand("list-devices", "List the Vulkan devices");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    if (*listDevicesCmd) return listDevices();
+    if (*listScenesCmd) return listScenes();
+    if (*renderCmd) return render(global, renderOptions);
+    if (*demoCmd) return demo(global, demoOptions);
+  } catch (const std::exception& e) {
+    std::cerr << "hmblur: error: " << e.what() << '\n';
+    return kError;
+  }
+  return kOk;
+}

@@ -1,0 +1,33 @@
+#include "runtime/frame_plan.h"
+
+#include <algorithm>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb {
+
+void FramePlan::run(std::string name) {
+  if (runs(name)) throw Error("pass '" + name + "' planned twice");
+  passes_.push_back({std::move(name), true, {}, std::nullopt});
+}
+
+void FramePlan::skip(std::string name, std::string reason) {
+  passes_.push_back({std::move(name), false, std::move(reason), std::nullopt});
+}
+
+bool FramePlan::runs(std::string_view name) const {
+  return std::any_of(passes_.begin(), passes_.end(), [&](const PlannedPass& p) { return p.run && p.name == name; });
+}
+
+void FramePlan::attachTimings(const vk::FrameTimings& timings) {
+  for (const vk::PassTiming& timing : timings.passes) {
+    auto it = std::find_if(passes_.begin(), passes_.end(),
+                           [&](const PlannedPass& p) { return p.run && p.name == timing.name; });
+    if (it == passes_.end())
+      throw Error("pass '" + timing.name + "' was recorded but not planned");
+    if (timing.milliseconds) it->milliseconds = it->milliseconds.value_or(0.0) + *timing.milliseconds;
+  }
+}
+
+}  // namespace hmb

@@ -1,0 +1,38 @@
+// Which passes a frame runs, which it leaves out and why, and what each one cost. Decided
+// before recording from the scene and the settings; the report prints it as it is.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hmb::vk {
+struct FrameTimings;
+}
+
+namespace hmb {
+
+struct PlannedPass {
+  std::string name;
+  bool run = true;
+  std::string reason;                  // why it is skipped (empty for a pass that runs)
+  std::optional<double> milliseconds;  // device time, once measured
+};
+
+class FramePlan {
+ public:
+  void run(std::string name);
+  void skip(std::string name, std::string reason);
+  bool runs(std::string_view name) const;
+  const std::vector<PlannedPass>& passes() const { return passes_; }
+
+  // Copies measured times onto the passes of the same name (a pass dispatched more than once
+  // accumulates its dispatches).
+  void attachTimings(const vk::FrameTimings& timings);
+
+ private:
+  std::vector<PlannedPass> passes_;
+};
+
+}  // namespace hmb

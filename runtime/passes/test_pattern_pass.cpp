@@ -1,0 +1,18 @@
+#include "runtime/passes/test_pattern_pass.h"
+
+#include "kernels/debug/test_pattern.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+
+TestPatternPass::TestPatternPass(const vk::Context& context)
+    : kernel_(context, "debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams)) {}
+
+void TestPatternPass::record(vk::FrameRecorder& frame, const vk::Buffer& linear, uint32_t width, uint32_t height,
+                             float time) const {
+  const gpu::TestPatternParams params{width, height, time, 0};
+  frame.dispatch(kName, kernel_, {&linear}, params,
+                 {vk::groupsFor(width, HMB_TEST_PATTERN_GROUP_X), vk::groupsFor(height, HMB_TEST_PATTERN_GROUP_Y), 1});
+}
+
+}  // namespace hmb::passes

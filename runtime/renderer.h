@@ -1,0 +1,63 @@
+// The library API: a renderer on a chosen device renders a scene with a method and hands back
+// the images, the frame plan and the timings. The CLI uses nothing else.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "runtime/frame_plan.h"
+#include "runtime/io/image.h"
+#include "scenes/scene.h"
+
+namespace hmb::vk {
+class Context;
+}
+
+namespace hmb {
+
+// The largest image side accepted; larger requests fail before any allocation.
+inline constexpr uint32_t kMaxImageSide = 16384;
+
+struct RenderSettings {
+  std::string method = "test-pattern";
+  uint32_t width = 1280;
+  uint32_t height = 720;
+  std::optional<float> frameTime;  // seconds; default: the scene's settings.frameTime
+};
+
+struct RenderResult {
+  std::string method;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  float frameTime = 0.0f;
+  io::LayeredImage image;    // linear beauty + AOV layers
+  io::Rgba8Image display;    // the display transform of the beauty layer
+  FramePlan plan;
+  std::optional<double> frameMilliseconds;
+};
+
+// The methods this build can render, in the order the demo runs them.
+const std::vector<std::string>& methodNames();
+
+// Throws hmb::Error (one line) for an unknown method or an unusable size.
+void validateRenderSettings(const RenderSettings& settings);
+
+class Renderer {
+ public:
+  explicit Renderer(vk::Context& context);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  RenderResult render(const scene::Scene& scene, const RenderSettings& settings);
+
+ private:
+  struct Passes;
+  vk::Context& context_;
+  std::unique_ptr<Passes> passes_;  // pipelines are created once, on first use
+};
+
+}  // namespace hmb

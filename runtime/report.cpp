@@ -1,0 +1,99 @@
+#include "runtime/report.h"
+
+#include <fstream>
+
+#include "runtime/error.h"
+
+namespace hmb {
+
+nlohmann::json deviceJson(const vk::DeviceInfo& device) {
+  return {
+      {"index", device.index},
+      {"name", device.name},
+      {"type", device.type},
+      {"driver", device.driverName},
+      {"driver_info", device.driverInfo},
+      {"api_version", device.apiVersion},
+      {"int64_buffer_atomics", device.int64BufferAtomics},
+      {"timestamps", device.timestamps},
+      {"subgroup_size", device.subgroupSize},
+      {"max_storage_buffer_bytes", device.maxStorageBufferRange},
+      {"device_local_bytes", device.deviceLocalBytes},
+  };
+}
+
+nlohmann::json systemJson(const SystemInfo& system) {
+  return {
+      {"cpu", system.cpu},
+      {"hardware_threads", system.hardwareThreads},
+      {"LP_NUM_THREADS", system.lpNumThreads},
+      {"version", system.version},
+      {"git_revision", system.gitRevision},
+  };
+}
+
+nlohmann::json sceneJson(const scene::Scene& scene) {
+  nlohmann::json camera = nullptr;
+  if (scene.camera)
+    camera = {{"yfov", scene.camera->yfov}, {"znear", scene.camera->znear}, {"zfar", scene.camera->zfar},
+              {"animated", scene.camera->node >= 0 && scene.isAnimated(static_cast<uint32_t>(scene.camera->node))}};
+  return {
+      {"name", scene.name},
+      {"triangles", scene.triangleCount()},
+      {"meshes", scene.meshes.size()},
+      {"instances", scene.instances.size()},
+      {"materials", scene.materials.size()},
+      {"textures", scene.textures.size()},
+      {"animation_channels", scene.channels.size()},
+      {"camera", camera},
+      {"settings",
+       {{"soft_z_extent", scene.settings.softZExtent},
+        {"edge_threshold", scene.settings.edgeThreshold},
+        {"fps", scene.settings.fps},
+        {"exposure_s", scene.settings.exposure},
+        {"frame_time_s", scene.settings.frameTime}}},
+      {"skipped",
+       {{"line_primitives", scene.stats.linePrimitives},
+        {"point_primitives", scene.stats.pointPrimitives},
+        {"degenerate_triangles", scene.stats.degenerateTriangles}}},
+      {"warnings", scene.stats.warnings},
+  };
+}
+
+nlohmann::json passesJson(const FramePlan& plan) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const PlannedPass& pass : plan.passes()) {
+    nlohmann::json entry = {{"name", pass.name}, {"status", pass.run ? "run" : "skipped"}};
+    if (pass.run)
+      entry["ms"] = pass.milliseconds ? nlohmann::json(*pass.milliseconds) : nlohmann::json(nullptr);
+    else
+      entry["reason"] = pass.reason;
+    passes.push_back(std::move(entry));
+  }
+  return passes;
+}
+
+nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& system, const scene::Scene& scene,
+                            const RenderResult& result) {
+  return {
+      {"tool", "hmblur"},
+      {"date", utcTimestamp()},
+      {"device", deviceJson(device)},
+      {"system", systemJson(system)},
+      {"method", result.method},
+      {"resolution", {{"width", result.width}, {"height", result.height}}},
+      {"frame_time_s", result.frameTime},
+      {"scene", sceneJson(scene)},
+      {"passes", passesJson(result.plan)},
+      {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds) : nlohmann::json(nullptr)},
+  };
+}
+
+void writeJson(const std::filesystem::path& path, const nlohmann::json& json) {
+  std::ofstream out(path);
+  if (!out) throw Error(path.string() + ": cannot open for writing");
+  out << json.dump(2) << '\n';
+  if (!out) throw Error(path.string() + ": write failed");
+}
+
+}  // namespace hmb

@@ -1,0 +1,28 @@
+// The JSON report of a render: device, driver, CPU, LP_NUM_THREADS, resolution, scene
+// settings, and per pass its time or that it was skipped and why.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "runtime/renderer.h"
+#include "runtime/system_info.h"
+#include "runtime/vulkan/context.h"
+#include "scenes/scene.h"
+
+namespace hmb {
+
+nlohmann::json deviceJson(const vk::DeviceInfo& device);
+nlohmann::json systemJson(const SystemInfo& system);
+nlohmann::json sceneJson(const scene::Scene& scene);
+nlohmann::json passesJson(const FramePlan& plan);
+
+nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& system, const scene::Scene& scene,
+                            const RenderResult& result);
+
+// Writes pretty-printed JSON; throws hmb::Error naming the file on failure.
+void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
+
+}  // namespace hmb

@@ -1,0 +1,140 @@
+#include "runtime/vulkan/buffer.h"
+
+#include <utility>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/check.h"
+#include "runtime/vulkan/context.h"
+
+namespace hmb::vk {
+namespace {
+
+std::string mib(VkDeviceSize bytes) {
+  return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+}  // namespace
+
+Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::string name)
+    : context_(&context), size_(bytes), name_(std::move(name)) {
+  if (bytes == 0) throw Error("buffer '" + name_ + "' has size 0");
+  const auto& limits = context.limits();
+  if (bytes > limits.maxStorageBufferRange)
+    throw Error("buffer '" + name_ + "' needs " + mib(bytes) + " but the device allows at most " +
+                mib(limits.maxStorageBufferRange) + " per storage buffer; use a smaller image or scene");
+
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = bytes;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  const VkDevice device = context.device();
+  HMB_VK_CHECK(vkCreateBuffer(device, &info, nullptr, &buffer_));
+
+  try {
+    VkMemoryRequirements req{};
+    vkGetBufferMemoryRequirements(device, buffer_, &req);
+
+    const VkMemoryPropertyFlags hostFlags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    uint32_t type = UINT32_MAX;
+    switch (use) {
+      case MemoryUse::Device:
+        // Device-local; host-visible as well where the device has such memory (CPU devices,
+        // resizable BAR), which saves a staging copy.
+        type = context.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, hostFlags);
+        if (type == UINT32_MAX) type = context.findMemoryType(req.memoryTypeBits, 0);
+        break;
+      case MemoryUse::Upload:
+        type = context.findMemoryType(req.memoryTypeBits, hostFlags);
+        break;
+      case MemoryUse::Readback:
+        type = context.findMemoryType(req.memoryTypeBits, hostFlags, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        break;
+    }
+    if (type == UINT32_MAX) throw Error("no memory type fits buffer '" + name_ + "'");
+
+    const auto& memory = context.memoryProperties();
+    const VkDeviceSize heapSize = memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size;
+    if (req.size > heapSize)
+      throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " but its memory heap holds " + mib(heapSize));
+
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = type;
+    HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory_));
+    HMB_VK_CHECK(vkBindBufferMemory(device, buffer_, memory_, 0));
+
+    if ((memory.memoryTypes[type].propertyFlags & hostFlags) == hostFlags)
+      HMB_VK_CHECK(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+Buffer::~Buffer() { release(); }
+
+Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+  if (this != &other) {
+    release();
+    context_ = std::exchange(other.context_, nullptr);
+    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, nullptr);
+    name_ = std::move(other.name_);
+  }
+  return *this;
+}
+
+void Buffer::release() {
+  if (!context_) return;
+  const VkDevice device = context_->device();
+  if (mapped_) vkUnmapMemory(device, memory_);
+  if (buffer_) vkDestroyBuffer(device, buffer_, nullptr);
+  if (memory_) vkFreeMemory(device, memory_, nullptr);
+  buffer_ = VK_NULL_HANDLE;
+  memory_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
+}
+
+void Buffer::write(std::span<const std::byte> bytes, VkDeviceSize offset) {
+  if (offset + bytes.size() > size_)
+    throw Error("write of " + std::to_string(bytes.size()) + " bytes past the end of buffer '" + name_ + "'");
+  if (bytes.empty()) return;
+  if (mapped_) {
+    std::memcpy(static_cast<std::byte*>(mapped_) + offset, bytes.data(), bytes.size());
+    return;
+  }
+  Buffer staging(*context_, bytes.size(), MemoryUse::Upload, name_ + " (staging)");
+  std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+  context_->submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy region{0, offset, bytes.size()};
+    vkCmdCopyBuffer(cmd, staging.handle(), buffer_, 1, &region);
+  });
+}
+
+void Buffer::read(std::span<std::byte> bytes, VkDeviceSize offset) const {
+  if (offset + bytes.size() > size_)
+    throw Error("read of " + std::to_string(bytes.size()) + " bytes past the end of buffer '" + name_ + "'");
+  if (bytes.empty()) return;
+  if (mapped_) {
+    std::memcpy(bytes.data(), static_cast<const std::byte*>(mapped_) + offset, bytes.size());
+    return;
+  }
+  Buffer staging(*context_, bytes.size(), MemoryUse::Readback, name_ + " (readback)");
+  context_->submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy region{offset, 0, bytes.size()};
+    vkCmdCopyBuffer(cmd, buffer_, staging.handle(), 1, &region);
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0,
+                         nullptr, 0, nullptr);
+  });
+  std::memcpy(bytes.data(), staging.mapped(), bytes.size());
+}
+
+}  // namespace hmb::vk

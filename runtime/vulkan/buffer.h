@@ -1,0 +1,67 @@
+// Storage buffers. Every kernel reads and writes plain buffers (no images): lavapipe has
+// 64-bit buffer atomics but no 64-bit image atomics, and buffers keep layouts explicit.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace hmb::vk {
+
+class Context;
+
+enum class MemoryUse {
+  Device,    // kernel working memory; mapped too when the device memory is host-visible
+  Upload,    // host writes, device reads
+  Readback,  // device writes, host reads
+};
+
+class Buffer {
+ public:
+  Buffer() = default;
+  // Throws hmb::Error before allocating when the size exceeds what the device allows.
+  Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::string name);
+  ~Buffer();
+  Buffer(Buffer&& other) noexcept;
+  Buffer& operator=(Buffer&& other) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceSize size() const { return size_; }
+  const std::string& name() const { return name_; }
+  // Host pointer when the memory is host-visible and coherent, else nullptr.
+  void* mapped() const { return mapped_; }
+
+  // Host <-> buffer copies; go through a staging buffer when the memory is not mapped.
+  void write(std::span<const std::byte> bytes, VkDeviceSize offset = 0);
+  void read(std::span<std::byte> bytes, VkDeviceSize offset = 0) const;
+
+  template <class T>
+  void upload(std::span<const T> values) {
+    write(std::as_bytes(values));
+  }
+  template <class T>
+  std::vector<T> download() const {
+    std::vector<T> values(size_ / sizeof(T));
+    read(std::as_writable_bytes(std::span<T>(values)));
+    return values;
+  }
+
+ private:
+  void release();
+
+  const Context* context_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+  std::string name_;
+};
+
+}  // namespace hmb::vk

@@ -1,0 +1,78 @@
+#include "runtime/vulkan/compute_kernel.h"
+
+#include <vector>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/check.h"
+#include "runtime/vulkan/context.h"
+#include "runtime/vulkan/kernel_registry.h"
+
+namespace hmb::vk {
+
+ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, uint32_t storageBufferCount,
+                             uint32_t pushConstantBytes)
+    : context_(context),
+      name_(kernelName),
+      storageBufferCount_(storageBufferCount),
+      pushConstantBytes_(pushConstantBytes) {
+  const EmbeddedKernel& spirv = findKernel(kernelName);
+  if (pushConstantBytes > context.limits().maxPushConstantsSize)
+    throw Error("kernel '" + name_ + "' needs " + std::to_string(pushConstantBytes) +
+                " bytes of push constants; the device allows " +
+                std::to_string(context.limits().maxPushConstantsSize));
+  const VkDevice device = context.device();
+  VkShaderModule module = VK_NULL_HANDLE;
+  try {
+    std::vector<VkDescriptorSetLayoutBinding> bindings(storageBufferCount);
+    for (uint32_t i = 0; i < storageBufferCount; ++i) {
+      bindings[i].binding = i;
+      bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      bindings[i].descriptorCount = 1;
+      bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = storageBufferCount;
+    setInfo.pBindings = bindings.data();
+    HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout_));
+
+    const VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout_;
+    layoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &pushRange;
+    HMB_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout_));
+
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = spirv.wordCount * sizeof(uint32_t);
+    moduleInfo.pCode = spirv.words;
+    HMB_VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
+
+    VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    pipelineInfo.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipelineInfo.stage.module = module;
+    pipelineInfo.stage.pName = "main";
+    pipelineInfo.layout = layout_;
+    HMB_VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline_));
+    vkDestroyShaderModule(device, module, nullptr);
+  } catch (...) {
+    if (module) vkDestroyShaderModule(device, module, nullptr);
+    release();
+    throw;
+  }
+}
+
+ComputeKernel::~ComputeKernel() { release(); }
+
+void ComputeKernel::release() {
+  const VkDevice device = context_.device();
+  if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
+  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+  pipeline_ = VK_NULL_HANDLE;
+  layout_ = VK_NULL_HANDLE;
+  setLayout_ = VK_NULL_HANDLE;
+}
+
+}  // namespace hmb::vk

@@ -1,0 +1,423 @@
+#include "runtime/vulkan/context.h"
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/check.h"
+
+namespace hmb::vk {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+constexpr uint32_t kMaxKeptMessages = 64;
+
+bool hasInstanceLayer(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool hasInstanceExtension(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
+std::string versionString(uint32_t v) {
+  return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+         std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+const char* typeName(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete-gpu";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated-gpu";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual-gpu";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    default: return "other";
+  }
+}
+
+// Lower is better: the order in which devices are chosen when none is named.
+int typeRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+    default: return 4;
+  }
+}
+
+// The compute queue family: compute with timestamps first, then any compute family.
+int pickQueueFamily(VkPhysicalDevice device) {
+  uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  int best = -1;
+  for (uint32_t i = 0; i < count; ++i) {
+    if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
+    if (best < 0) best = static_cast<int>(i);
+    if (families[i].timestampValidBits > 0) return static_cast<int>(i);
+  }
+  return best;
+}
+
+DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
+  VkPhysicalDeviceProperties props{};
+  vkGetPhysicalDeviceProperties(device, &props);
+
+  DeviceInfo info;
+  info.index = index;
+  info.name = props.deviceName;
+  info.type = typeName(props.deviceType);
+  info.apiVersion = versionString(props.apiVersion);
+  info.vendorId = props.vendorID;
+  info.deviceId = props.deviceID;
+  info.timestampPeriodNs = props.limits.timestampPeriod;
+  info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
+  std::copy(std::begin(props.limits.maxComputeWorkGroupCount), std::end(props.limits.maxComputeWorkGroupCount),
+            std::begin(info.maxComputeWorkGroupCount));
+
+  const bool vulkan12 = props.apiVersion >= VK_API_VERSION_1_2;
+  const bool driverPropsExt = hasDeviceExtension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME);
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props2.pNext = &subgroup;
+  if (vulkan12 || driverPropsExt) subgroup.pNext = &driver;
+  vkGetPhysicalDeviceProperties2(device, &props2);
+  info.subgroupSize = subgroup.subgroupSize;
+  if (vulkan12 || driverPropsExt) {
+    info.driverName = driver.driverName;
+    info.driverInfo = driver.driverInfo;
+  }
+
+  VkPhysicalDeviceShaderAtomicInt64Features atomic64{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES};
+  if (vulkan12 || hasDeviceExtension(device, VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME)) {
+    VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features2.pNext = &atomic64;
+    vkGetPhysicalDeviceFeatures2(device, &features2);
+    info.int64BufferAtomics = atomic64.shaderBufferInt64Atomics && features2.features.shaderInt64;
+  }
+
+  const int family = pickQueueFamily(device);
+  info.computeCapable = family >= 0;
+  if (family >= 0) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+    info.timestamps = families[family].timestampValidBits > 0 && props.limits.timestampPeriod > 0.0f;
+  }
+
+  VkPhysicalDeviceMemoryProperties memory{};
+  vkGetPhysicalDeviceMemoryProperties(device, &memory);
+  for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+    if (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      info.deviceLocalBytes = std::max<uint64_t>(info.deviceLocalBytes, memory.memoryHeaps[h].size);
+  return info;
+}
+
+// A bare instance: enough to enumerate devices.
+struct InstanceSetup {
+  std::vector<const char*> layers;
+  std::vector<const char*> extensions;
+  VkInstanceCreateFlags flags = 0;
+};
+
+VkInstance createInstance(const InstanceSetup& setup, const void* next) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "hybrid-mblur";
+  app.pEngineName = "hmb";
+  app.apiVersion = VK_API_VERSION_1_2;
+
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pNext = next;
+  info.flags = setup.flags;
+  info.pApplicationInfo = &app;
+  info.enabledLayerCount = static_cast<uint32_t>(setup.layers.size());
+  info.ppEnabledLayerNames = setup.layers.data();
+  info.enabledExtensionCount = static_cast<uint32_t>(setup.extensions.size());
+  info.ppEnabledExtensionNames = setup.extensions.data();
+
+  VkInstance instance = VK_NULL_HANDLE;
+  const VkResult result = vkCreateInstance(&info, nullptr, &instance);
+  if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
+    throw Error("no Vulkan driver found (install a driver; on Debian, mesa-vulkan-drivers provides lavapipe)");
+  HMB_VK_CHECK(result);
+  return instance;
+}
+
+InstanceSetup portableSetup() {
+  InstanceSetup setup;
+  // Lets portability implementations (e.g. layered drivers) be enumerated too.
+  if (hasInstanceExtension(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME)) {
+    setup.extensions.push_back(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
+    setup.flags |= VK_INSTANCE_CREATE_ENUMERATE_PORTABILITY_BIT_KHR;
+  }
+  return setup;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+  uint32_t count = 0;
+  HMB_VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+  std::vector<VkPhysicalDevice> devices(count);
+  HMB_VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+  return devices;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> Context::listDevices() {
+  const VkInstance instance = createInstance(portableSetup(), nullptr);
+  std::vector<DeviceInfo> infos;
+  try {
+    const auto devices = physicalDevices(instance);
+    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+  } catch (...) {
+    vkDestroyInstance(instance, nullptr);
+    throw;
+  }
+  vkDestroyInstance(instance, nullptr);
+  return infos;
+}
+
+Context::Context(const ContextOptions& options) {
+  InstanceSetup setup = portableSetup();
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messengerInfo.messageSeverity =
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messengerInfo.pfnUserCallback = &Context::onDebugMessage;
+  messengerInfo.pUserData = this;
+
+  const bool debugUtils = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (options.validation) {
+    if (!hasInstanceLayer(kValidationLayer))
+      throw Error(std::string("validation requested but ") + kValidationLayer +
+                  " is not installed (Debian: vulkan-validationlayers)");
+    if (!debugUtils) throw Error("validation requested but VK_EXT_debug_utils is not available");
+    setup.layers.push_back(kValidationLayer);
+    validationEnabled_ = true;
+  }
+  if (validationEnabled_) setup.extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+  // The messenger is chained at creation too, so instance creation itself is validated.
+  VkValidationFeatureEnableEXT syncValidation = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = &syncValidation;
+  const void* next = nullptr;
+  if (validationEnabled_) {
+    next = &messengerInfo;
+    if (options.synchronizationValidation) {
+      features.pNext = &messengerInfo;
+      next = &features;
+    }
+  }
+  instance_ = createInstance(setup, next);
+
+  try {
+    if (validationEnabled_) {
+      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+      if (!create) throw Error("validation requested but vkCreateDebugUtilsMessengerEXT is missing");
+      HMB_VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
+    }
+
+    const auto devices = physicalDevices(instance_);
+    if (devices.empty()) throw Error("no Vulkan device found (on Debian, mesa-vulkan-drivers provides lavapipe)");
+
+    std::vector<DeviceInfo> infos;
+    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+
+    int chosen = -1;
+    if (options.deviceIndex >= 0) {
+      if (options.deviceIndex >= static_cast<int>(devices.size()))
+        throw Error("--device " + std::to_string(options.deviceIndex) + " does not exist: " +
+                    std::to_string(devices.size()) + " device(s) found (see `hmblur list-devices`)");
+      if (!infos[options.deviceIndex].computeCapable)
+        throw Error("device " + std::to_string(options.deviceIndex) + " (" + infos[options.deviceIndex].name +
+                    ") has no compute queue");
+      chosen = options.deviceIndex;
+    } else {
+      int bestRank = 1 << 30;
+      for (uint32_t i = 0; i < devices.size(); ++i) {
+        if (!infos[i].computeCapable) continue;
+        VkPhysicalDeviceProperties props{};
+        vkGetPhysicalDeviceProperties(devices[i], &props);
+        const int rank = typeRank(props.deviceType);
+        if (rank < bestRank) {
+          bestRank = rank;
+          chosen = static_cast<int>(i);
+        }
+      }
+      if (chosen < 0) throw Error("no Vulkan device with a compute queue found");
+    }
+
+    physicalDevice_ = devices[chosen];
+    info_ = infos[chosen];
+    if (options.disableInt64Atomics) info_.int64BufferAtomics = false;
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(physicalDevice_, &props);
+    limits_ = props.limits;
+    vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+    queueFamily_ = static_cast<uint32_t>(pickQueueFamily(physicalDevice_));
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = queueFamily_;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+
+    // Only features that a kernel may use, and only where present.
+    VkPhysicalDeviceFeatures available{};
+    vkGetPhysicalDeviceFeatures(physicalDevice_, &available);
+    VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features2.features.shaderInt64 = available.shaderInt64;
+    VkPhysicalDeviceShaderAtomicInt64Features atomic64{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES};
+    std::vector<const char*> deviceExtensions;
+    if (info_.int64BufferAtomics) {
+      atomic64.shaderBufferInt64Atomics = VK_TRUE;
+      features2.pNext = &atomic64;
+      if (props.apiVersion < VK_API_VERSION_1_2)
+        deviceExtensions.push_back(VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME);
+    }
+    // Portability implementations must enable this extension when they expose it.
+    if (hasDeviceExtension(physicalDevice_, "VK_KHR_portability_subset"))
+      deviceExtensions.push_back("VK_KHR_portability_subset");
+
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.pNext = &features2;
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.enabledExtensionCount = static_cast<uint32_t>(deviceExtensions.size());
+    deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
+    HMB_VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
+    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = queueFamily_;
+    HMB_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
+  } catch (...) {
+    releaseHandles();
+    throw;
+  }
+}
+
+Context::~Context() { releaseHandles(); }
+
+void Context::releaseHandles() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+    device_ = VK_NULL_HANDLE;
+    commandPool_ = VK_NULL_HANDLE;
+  }
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+    messenger_ = VK_NULL_HANDLE;
+  }
+  if (instance_) {
+    vkDestroyInstance(instance_, nullptr);
+    instance_ = VK_NULL_HANDLE;
+  }
+}
+
+uint32_t Context::findMemoryType(uint32_t allowedTypes, VkMemoryPropertyFlags required,
+                                 VkMemoryPropertyFlags preferred) const {
+  uint32_t fallback = UINT32_MAX;
+  for (uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
+    if (!(allowedTypes & (1u << i))) continue;
+    const VkMemoryPropertyFlags flags = memoryProperties_.memoryTypes[i].propertyFlags;
+    if ((flags & required) != required) continue;
+    if ((flags & preferred) == preferred) return i;
+    if (fallback == UINT32_MAX) fallback = i;
+  }
+  return fallback;
+}
+
+void Context::submitAndWait(VkCommandBuffer commandBuffer) const {
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence = VK_NULL_HANDLE;
+  HMB_VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence));
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &commandBuffer;
+  VkResult result = vkQueueSubmit(queue_, 1, &submit, fence);
+  if (result == VK_SUCCESS) result = vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
+  vkDestroyFence(device_, fence, nullptr);
+  HMB_VK_CHECK(result);
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  allocInfo.commandPool = commandPool_;
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
+  VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+  HMB_VK_CHECK(vkAllocateCommandBuffers(device_, &allocInfo, &commandBuffer));
+  // Freed on every path, a throwing record callback included.
+  struct Release {
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer buffer;
+    ~Release() { vkFreeCommandBuffers(device, pool, 1, &buffer); }
+  } release{device_, commandPool_, commandBuffer};
+
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  HMB_VK_CHECK(vkBeginCommandBuffer(commandBuffer, &begin));
+  record(commandBuffer);
+  HMB_VK_CHECK(vkEndCommandBuffer(commandBuffer));
+  submitAndWait(commandBuffer);
+}
+
+std::vector<std::string> Context::validationMessages() const {
+  std::lock_guard lock(messagesMutex_);
+  return messages_;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                       VkDebugUtilsMessageTypeFlagsEXT,
+                                                       const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                       void* user) {
+  auto* self = static_cast<Context*>(user);
+  const bool isError = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  (isError ? self->validationErrors_ : self->validationWarnings_).fetch_add(1);
+  std::lock_guard lock(self->messagesMutex_);
+  if (self->messages_.size() < kMaxKeptMessages)
+    self->messages_.push_back(std::string(isError ? "error: " : "warning: ") +
+                              (data && data->pMessage ? data->pMessage : "(no message)"));
+  return VK_FALSE;
+}
+
+}  // namespace hmb::vk

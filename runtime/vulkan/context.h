@@ -1,0 +1,102 @@
+// The Vulkan instance, the chosen compute device and its queue, and the debug messenger that
+// counts validation messages (tests fail on any error).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace hmb::vk {
+
+// What the report and `hmblur list-devices` say about a device.
+struct DeviceInfo {
+  uint32_t index = 0;
+  std::string name;
+  std::string type;  // "discrete-gpu", "integrated-gpu", "virtual-gpu", "cpu", "other"
+  std::string driverName;
+  std::string driverInfo;
+  std::string apiVersion;  // "1.3.230"
+  uint32_t vendorId = 0;
+  uint32_t deviceId = 0;
+  bool computeCapable = false;
+  bool int64BufferAtomics = false;  // shaderBufferInt64Atomics
+  bool timestamps = false;          // the compute queue has timestamp bits
+  double timestampPeriodNs = 0.0;
+  uint64_t maxStorageBufferRange = 0;
+  uint64_t deviceLocalBytes = 0;  // the largest device-local heap
+  uint32_t maxComputeWorkGroupCount[3] = {0, 0, 0};
+  uint32_t subgroupSize = 0;
+};
+
+struct ContextOptions {
+  int deviceIndex = -1;                // -1: choose (discrete GPU first, then any compute device)
+  bool validation = false;             // enable VK_LAYER_KHRONOS_validation and count its messages
+  bool synchronizationValidation = false;
+  bool disableInt64Atomics = false;    // pretend the device lacks them (tests of fallbacks)
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  // Lists the devices without creating a logical device.
+  static std::vector<DeviceInfo> listDevices();
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  VkCommandPool commandPool() const { return commandPool_; }
+  const DeviceInfo& info() const { return info_; }
+  const VkPhysicalDeviceLimits& limits() const { return limits_; }
+  bool validationEnabled() const { return validationEnabled_; }
+
+  // Memory type with all required flags among those the buffer allows; prefers the ones that
+  // also have the preferred flags. Returns UINT32_MAX when none fits.
+  uint32_t findMemoryType(uint32_t allowedTypes, VkMemoryPropertyFlags required,
+                          VkMemoryPropertyFlags preferred = 0) const;
+  const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
+
+  // Records commands into a one-time command buffer, submits it and waits.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+  void submitAndWait(VkCommandBuffer commandBuffer) const;
+
+  // Validation messages seen since creation (errors and warnings counted separately).
+  uint32_t validationErrors() const { return validationErrors_.load(); }
+  uint32_t validationWarnings() const { return validationWarnings_.load(); }
+  std::vector<std::string> validationMessages() const;
+
+ private:
+  void releaseHandles();
+  static VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(
+      VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+      const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceLimits limits_{};
+  VkPhysicalDeviceMemoryProperties memoryProperties_{};
+  DeviceInfo info_;
+  bool validationEnabled_ = false;
+
+  std::atomic<uint32_t> validationErrors_{0};
+  std::atomic<uint32_t> validationWarnings_{0};
+  mutable std::mutex messagesMutex_;
+  std::vector<std::string> messages_;
+};
+
+}  // namespace hmb::vk

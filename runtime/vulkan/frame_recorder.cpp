@@ -1,0 +1,179 @@
+#include "runtime/vulkan/frame_recorder.h"
+
+#include <vector>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/check.h"
+#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/context.h"
+
+namespace hmb::vk {
+namespace {
+
+constexpr uint32_t kMaxBindingsPerPass = 16;
+
+// Everything a pass may write becomes visible to everything the next pass may do.
+void passBarrier(VkCommandBuffer cmd, VkPipelineStageFlags dstStages, VkAccessFlags dstAccess) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = dstAccess;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, dstStages, 0, 1,
+                       &barrier, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace
+
+FrameRecorder::FrameRecorder(const Context& context, uint32_t maxPasses)
+    : context_(context), maxPasses_(maxPasses) {
+  const VkDevice device = context.device();
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  allocInfo.commandPool = context.commandPool();
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
+  HMB_VK_CHECK(vkAllocateCommandBuffers(device, &allocInfo, &commandBuffer_));
+
+  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, maxPasses * kMaxBindingsPerPass};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = maxPasses;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &poolSize;
+  HMB_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool_));
+
+  if (context.info().timestamps) {
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = 2 * maxPasses;
+    HMB_VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &count, families.data());
+    const uint32_t bits = families[context.queueFamily()].timestampValidBits;
+    timestampMask_ = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+  }
+}
+
+FrameRecorder::~FrameRecorder() {
+  const VkDevice device = context_.device();
+  vkDeviceWaitIdle(device);
+  if (queryPool_) vkDestroyQueryPool(device, queryPool_, nullptr);
+  if (descriptorPool_) vkDestroyDescriptorPool(device, descriptorPool_, nullptr);
+  if (commandBuffer_) vkFreeCommandBuffers(device, context_.commandPool(), 1, &commandBuffer_);
+}
+
+void FrameRecorder::begin() {
+  HMB_VK_CHECK(vkResetDescriptorPool(context_.device(), descriptorPool_, 0));
+  HMB_VK_CHECK(vkResetCommandBuffer(commandBuffer_, 0));
+  VkCommandBufferBeginInfo beginInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  beginInfo.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  HMB_VK_CHECK(vkBeginCommandBuffer(commandBuffer_, &beginInfo));
+  if (queryPool_) vkCmdResetQueryPool(commandBuffer_, queryPool_, 0, 2 * maxPasses_);
+  passNames_.clear();
+  recording_ = true;
+}
+
+uint32_t FrameRecorder::beginPass(std::string_view pass) {
+  if (!recording_) throw Error("pass '" + std::string(pass) + "' recorded outside begin()/submitAndWait()");
+  if (passNames_.size() >= maxPasses_)
+    throw Error("frame has more than " + std::to_string(maxPasses_) + " passes");
+  const auto index = static_cast<uint32_t>(passNames_.size());
+  passNames_.emplace_back(pass);
+  if (queryPool_) vkCmdWriteTimestamp(commandBuffer_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queryPool_, 2 * index);
+  return index;
+}
+
+void FrameRecorder::endPass(uint32_t index) {
+  if (queryPool_)
+    vkCmdWriteTimestamp(commandBuffer_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 2 * index + 1);
+  passBarrier(commandBuffer_,
+              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+              VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                  VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+}
+
+void FrameRecorder::dispatch(std::string_view pass, const ComputeKernel& kernel,
+                             std::span<const Buffer* const> buffers, std::span<const std::byte> pushConstants,
+                             glm::uvec3 groups) {
+  if (buffers.size() != kernel.storageBufferCount())
+    throw Error("pass '" + std::string(pass) + "' binds " + std::to_string(buffers.size()) + " buffers; kernel '" +
+                kernel.name() + "' has " + std::to_string(kernel.storageBufferCount()));
+  if (pushConstants.size() != kernel.pushConstantBytes())
+    throw Error("pass '" + std::string(pass) + "' pushes " + std::to_string(pushConstants.size()) +
+                " bytes; kernel '" + kernel.name() + "' takes " + std::to_string(kernel.pushConstantBytes()));
+  const auto& limits = context_.limits();
+  for (int axis = 0; axis < 3; ++axis)
+    if (groups[axis] > limits.maxComputeWorkGroupCount[axis])
+      throw Error("pass '" + std::string(pass) + "' needs " + std::to_string(groups[axis]) +
+                  " work groups along axis " + std::to_string(axis) + "; the device allows " +
+                  std::to_string(limits.maxComputeWorkGroupCount[axis]));
+
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  if (!buffers.empty()) {
+    const VkDescriptorSetLayout setLayout = kernel.setLayout();
+    VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocInfo.descriptorPool = descriptorPool_;
+    allocInfo.descriptorSetCount = 1;
+    allocInfo.pSetLayouts = &setLayout;
+    HMB_VK_CHECK(vkAllocateDescriptorSets(context_.device(), &allocInfo, &set));
+
+    std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+    std::vector<VkWriteDescriptorSet> writes(buffers.size());
+    for (size_t i = 0; i < buffers.size(); ++i) {
+      if (!buffers[i] || !buffers[i]->handle())
+        throw Error("pass '" + std::string(pass) + "' binds an empty buffer at slot " + std::to_string(i));
+      infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+      writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      writes[i].dstSet = set;
+      writes[i].dstBinding = static_cast<uint32_t>(i);
+      writes[i].descriptorCount = 1;
+      writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(context_.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  }
+
+  const uint32_t index = beginPass(pass);
+  vkCmdBindPipeline(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
+  if (set) vkCmdBindDescriptorSets(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.layout(), 0, 1, &set, 0, nullptr);
+  if (!pushConstants.empty())
+    vkCmdPushConstants(commandBuffer_, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       static_cast<uint32_t>(pushConstants.size()), pushConstants.data());
+  if (groups.x > 0 && groups.y > 0 && groups.z > 0) vkCmdDispatch(commandBuffer_, groups.x, groups.y, groups.z);
+  endPass(index);
+}
+
+void FrameRecorder::fill(std::string_view pass, const Buffer& buffer, uint32_t value) {
+  const uint32_t index = beginPass(pass);
+  vkCmdFillBuffer(commandBuffer_, buffer.handle(), 0, VK_WHOLE_SIZE, value);
+  endPass(index);
+}
+
+FrameTimings FrameRecorder::submitAndWait() {
+  if (!recording_) throw Error("submitAndWait() without begin()");
+  recording_ = false;
+  // The host reads results after the fence: make every write visible to it.
+  passBarrier(commandBuffer_, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  HMB_VK_CHECK(vkEndCommandBuffer(commandBuffer_));
+  context_.submitAndWait(commandBuffer_);
+
+  FrameTimings timings;
+  const auto passCount = static_cast<uint32_t>(passNames_.size());
+  std::vector<uint64_t> stamps(2 * passCount);
+  if (queryPool_ && passCount > 0)
+    HMB_VK_CHECK(vkGetQueryPoolResults(context_.device(), queryPool_, 0, 2 * passCount,
+                                       stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  const double nsPerTick = context_.info().timestampPeriodNs;
+  auto ticksToMs = [&](uint64_t from, uint64_t to) { return double((to - from) & timestampMask_) * nsPerTick * 1e-6; };
+  for (uint32_t i = 0; i < passCount; ++i) {
+    PassTiming timing{passNames_[i], std::nullopt};
+    if (queryPool_) timing.milliseconds = ticksToMs(stamps[2 * i], stamps[2 * i + 1]);
+    timings.passes.push_back(std::move(timing));
+  }
+  if (queryPool_ && passCount > 0) timings.frameMilliseconds = ticksToMs(stamps[0], stamps[2 * passCount - 1]);
+  return timings;
+}
+
+}  // namespace hmb::vk

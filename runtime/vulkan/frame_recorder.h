@@ -1,0 +1,76 @@
+// One command buffer per frame: each pass is a dispatch (or a fill) between two timestamp
+// queries, followed by a barrier so the next pass sees its writes. submitAndWait() returns
+// the time of every pass as the device measured it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+namespace hmb::vk {
+
+class Buffer;
+class ComputeKernel;
+class Context;
+
+struct PassTiming {
+  std::string name;
+  std::optional<double> milliseconds;  // empty when the queue has no timestamps
+};
+
+struct FrameTimings {
+  std::vector<PassTiming> passes;
+  std::optional<double> frameMilliseconds;  // first pass start to last pass end
+};
+
+// Work groups needed to cover `items` with groups of `groupSize`.
+inline uint32_t groupsFor(uint32_t items, uint32_t groupSize) { return (items + groupSize - 1) / groupSize; }
+
+class FrameRecorder {
+ public:
+  explicit FrameRecorder(const Context& context, uint32_t maxPasses = 256);
+  ~FrameRecorder();
+  FrameRecorder(const FrameRecorder&) = delete;
+  FrameRecorder& operator=(const FrameRecorder&) = delete;
+
+  // Starts a new frame; the previous frame's command buffer and descriptor sets are reused.
+  void begin();
+
+  void dispatch(std::string_view pass, const ComputeKernel& kernel, std::span<const Buffer* const> buffers,
+                std::span<const std::byte> pushConstants, glm::uvec3 groups);
+  template <class Push>
+  void dispatch(std::string_view pass, const ComputeKernel& kernel, std::initializer_list<const Buffer*> buffers,
+                const Push& push, glm::uvec3 groups) {
+    dispatch(pass, kernel, std::span<const Buffer* const>(buffers.begin(), buffers.size()),
+             std::as_bytes(std::span<const Push>(&push, 1)), groups);
+  }
+
+  // Fills a whole buffer with a 32-bit value (clears, sentinels).
+  void fill(std::string_view pass, const Buffer& buffer, uint32_t value);
+
+  // Ends the command buffer, submits it, waits, and reads the timestamps.
+  FrameTimings submitAndWait();
+
+ private:
+  uint32_t beginPass(std::string_view pass);
+  void endPass(uint32_t index);
+
+  const Context& context_;
+  uint32_t maxPasses_;
+  VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+  VkQueryPool queryPool_ = VK_NULL_HANDLE;
+  uint64_t timestampMask_ = 0;
+  std::vector<std::string> passNames_;
+  bool recording_ = false;
+};
+
+}  // namespace hmb::vk

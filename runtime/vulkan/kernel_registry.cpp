@@ -1,0 +1,15 @@
+#include "runtime/vulkan/kernel_registry.h"
+
+#include <string>
+
+#include "runtime/error.h"
+
+namespace hmb::vk {
+
+const EmbeddedKernel& findKernel(std::string_view name) {
+  for (const EmbeddedKernel& kernel : embeddedKernels())
+    if (kernel.name == name) return kernel;
+  throw Error("kernel '" + std::string(name) + "' is not built into this binary");
+}
+
+}  // namespace hmb::vk

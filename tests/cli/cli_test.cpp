@@ -1,0 +1,143 @@
+// The hmblur executable as a user meets it: exit codes, one-line errors, files it writes.
+// Every command runs with --validation, so a validation error fails it with exit code 3.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "runtime/io/image.h"
+
+namespace hmb::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CliRun hmblur(const std::string& args) {
+  const std::string command = std::string(HMB_CLI_PATH) + " --validation " + args + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> chunk{};
+  while (size_t n = fread(chunk.data(), 1, chunk.size(), pipe)) run.output.append(chunk.data(), n);
+  const int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+fs::path tempDir(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("hmblur_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A user error is one line on stderr naming the problem, and a non-zero exit (commands
+// checked with this run --quiet, so progress lines do not count).
+void expectOneLineError(const CliRun& run, const std::string& needle) {
+  EXPECT_NE(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find(needle), std::string::npos) << run.output;
+  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+}
+
+TEST(CliTest, ListDevicesNamesAComputeDevice) {
+  const CliRun run = hmblur("list-devices");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("0: "), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("no compute queue"), std::string::npos) << run.output;
+}
+
+TEST(CliTest, ListScenesNamesTheReferenceScenes) {
+  const CliRun run = hmblur("list-scenes");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  for (const char* name : {"living-room", "temple", "bistro"}) EXPECT_NE(run.output.find(name), std::string::npos);
+}
+
+TEST(CliTest, RenderWritesPngExrAndAReportThatNamesEveryPass) {
+  const fs::path dir = tempDir("render");
+  const CliRun run = hmblur("--quiet render --scene living-room --method test-pattern --width 33 --height 17 --out " +
+                         (dir / "frame.png").string() + " --report " + (dir / "report.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const io::Rgba8Image png = io::readPng(dir / "frame.png");
+  EXPECT_EQ(png.width, 33u);
+  EXPECT_EQ(png.height, 17u);
+
+  std::ifstream in(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["method"], "test-pattern");
+  EXPECT_EQ(report["scene"]["name"], "living-room");
+  EXPECT_TRUE(report["system"].contains("LP_NUM_THREADS"));
+  std::vector<std::string> names;
+  for (const auto& pass : report["passes"]) names.push_back(pass["name"]);
+  EXPECT_EQ(names, (std::vector<std::string>{"test-pattern", "encode-display"}));
+
+  const CliRun exr = hmblur("--quiet render --method test-pattern --width 8 --height 8 --out " + (dir / "frame.exr").string());
+  ASSERT_EQ(exr.exitCode, 0) << exr.output;
+  const io::LayeredImage image = io::readExr(dir / "frame.exr");
+  EXPECT_EQ(image.width, 8u);
+  ASSERT_NE(image.find(""), nullptr);
+}
+
+TEST(CliTest, MissingFileIsAOneLineError) {
+  expectOneLineError(hmblur("--quiet render --scene /nonexistent/scene.gltf --method test-pattern"), "no such file");
+}
+
+TEST(CliTest, UnknownSceneIsAOneLineErrorNamingTheScenes) {
+  const CliRun run = hmblur("--quiet render --scene no-such-scene --method test-pattern");
+  expectOneLineError(run, "no-such-scene");
+  EXPECT_NE(run.output.find("living-room"), std::string::npos) << run.output;
+}
+
+TEST(CliTest, UnknownMethodNamesTheAvailableOnes) {
+  const CliRun run = hmblur("--quiet render --method magic");
+  expectOneLineError(run, "unknown method 'magic'");
+  EXPECT_NE(run.output.find("test-pattern"), std::string::npos) << run.output;
+}
+
+TEST(CliTest, BadSizesAreRejected) {
+  expectOneLineError(hmblur("--quiet render --method test-pattern --width 0"), "empty");
+  expectOneLineError(hmblur("--quiet render --method test-pattern --width 100000"), "exceeds");
+  EXPECT_NE(hmblur("render --method test-pattern --width abc").exitCode, 0);
+  EXPECT_NE(hmblur("render --method test-pattern --height -5").exitCode, 0);
+}
+
+TEST(CliTest, BadOutputPathsFailBeforeRendering) {
+  expectOneLineError(hmblur("--quiet render --method test-pattern --out frame.bmp"), "must end in .exr or .png");
+  expectOneLineError(hmblur("--quiet render --method test-pattern --out /nonexistent-dir/frame.png"), "does not exist");
+  expectOneLineError(hmblur("--quiet render --method test-pattern --report report.txt"), ".json");
+}
+
+TEST(CliTest, DeviceOutOfRangeIsAOneLineError) {
+  expectOneLineError(hmblur("--quiet --device 99 render --method test-pattern --width 4 --height 4"), "--device 99");
+}
+
+TEST(CliTest, DemoWritesImagesAndAReport) {
+  const fs::path dir = tempDir("demo");
+  const CliRun run = hmblur("--quiet demo --width 32 --height 18 --out-dir " + dir.string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  std::ifstream in(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  ASSERT_FALSE(report["methods"].empty());
+  for (const auto& method : report["methods"])
+    for (const auto& image : method["images"]) EXPECT_TRUE(fs::exists(image.get<std::string>())) << image;
+}
+
+TEST(CliTest, HelpListsTheSubcommands) {
+  const CliRun run = hmblur("--help");
+  EXPECT_EQ(run.exitCode, 0);
+  for (const char* sub : {"render", "demo", "list-scenes", "list-devices"})
+    EXPECT_NE(run.output.find(sub), std::string::npos) << sub;
+}
+
+}  // namespace
+}  // namespace hmb::test

@@ -1,0 +1,59 @@
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "runtime/error.h"
+#include "runtime/renderer.h"
+#include "runtime/report.h"
+#include "runtime/system_info.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using ReportTest = VulkanTest;
+
+TEST_F(ReportTest, ReportNamesDeviceSystemSettingsAndEveryPass) {
+  Renderer renderer(context());
+  scene::Scene scene;
+  scene.name = "empty";
+  scene.settings.softZExtent = 0.03f;
+  RenderSettings settings;
+  settings.width = 16;
+  settings.height = 9;
+  RenderResult result = renderer.render(scene, settings);
+  result.plan.skip("ray-reveal", "no pixel in the ray mask");
+
+  const nlohmann::json report = renderReport(context().info(), querySystemInfo(), scene, result);
+  EXPECT_EQ(report["device"]["name"], context().info().name);
+  EXPECT_TRUE(report["system"].contains("LP_NUM_THREADS"));
+  EXPECT_FALSE(report["system"]["cpu"].get<std::string>().empty());
+  EXPECT_EQ(report["resolution"]["width"], 16);
+  EXPECT_FLOAT_EQ(report["scene"]["settings"]["soft_z_extent"].get<float>(), 0.03f);
+  ASSERT_EQ(report["passes"].size(), result.plan.passes().size());
+  for (size_t i = 0; i < result.plan.passes().size(); ++i) {
+    const auto& pass = report["passes"][i];
+    EXPECT_EQ(pass["name"], result.plan.passes()[i].name);
+    if (pass["status"] == "skipped")
+      EXPECT_EQ(pass["reason"], "no pixel in the ray mask");
+    else
+      EXPECT_TRUE(pass.contains("ms"));
+  }
+
+  const std::string path = testing::TempDir() + "report_test.json";
+  writeJson(path, report);
+  std::ifstream in(path);
+  EXPECT_EQ(nlohmann::json::parse(in), report);
+  EXPECT_THROW(writeJson("/nonexistent-dir/x.json", report), Error);
+}
+
+TEST(SystemInfoTest, RecordsLpNumThreadsAsSet) {
+  setenv("LP_NUM_THREADS", "3", 1);
+  EXPECT_EQ(querySystemInfo().lpNumThreads, "3");
+  unsetenv("LP_NUM_THREADS");
+  EXPECT_EQ(querySystemInfo().lpNumThreads, "unset");
+}
+
+}  // namespace
+}  // namespace hmb::test
