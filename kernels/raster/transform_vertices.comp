@@ -1,0 +1,25 @@
+#version 450
+// Clip-space position of every instance vertex at the frame time and at the previous frame.
+#extension GL_GOOGLE_include_directive : require
+#include "raster_layout.h"
+#include "../shared/scene_layout.h"
+#include "../shared/indexing.glsl"
+
+layout(local_size_x = HMB_RASTER_GROUP) in;
+
+layout(std430, binding = HMB_TRANSFORM_BINDING_VERTICES) readonly buffer Vertices { GpuVertex vertices[]; };
+layout(std430, binding = HMB_TRANSFORM_BINDING_INSTANCE_VERTICES) readonly buffer InstanceVertices { GpuInstanceVertex instanceVertices[]; };
+layout(std430, binding = HMB_TRANSFORM_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
+layout(std430, binding = HMB_TRANSFORM_BINDING_CAMERA) readonly buffer Camera { GpuCamera camera; };
+layout(std430, binding = HMB_TRANSFORM_BINDING_CLIP_CURRENT) writeonly buffer ClipCurrent { vec4 clipCurrent[]; };
+layout(std430, binding = HMB_TRANSFORM_BINDING_CLIP_PREVIOUS) writeonly buffer ClipPrevious { vec4 clipPrevious[]; };
+layout(push_constant) uniform Params { uint vertexCount; };
+
+void main() {
+  const uint i = linearInvocationIndex();
+  if (i >= vertexCount) return;
+  const GpuInstanceVertex iv = instanceVertices[i];
+  const vec4 p = vertices[iv.meshVertex].position;
+  clipCurrent[i] = camera.viewProjCurrent * (instances[iv.instance].worldCurrent * p);
+  clipPrevious[i] = camera.viewProjPrevious * (instances[iv.instance].worldPrevious * p);
+}

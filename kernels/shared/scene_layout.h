@@ -1,0 +1,76 @@
+// The scene as kernels see it: vertices, triangles, instances, materials and the camera of
+// one frame, in buffers laid out identically for GLSL (std430) and C++.
+#ifndef HMB_KERNELS_SHARED_SCENE_LAYOUT_H
+#define HMB_KERNELS_SHARED_SCENE_LAYOUT_H
+
+#include "glsl_cpp.h"
+
+HMB_GPU_BEGIN
+
+// One vertex of one mesh, in the mesh's own space.
+struct GpuVertex {
+  vec4 position;  // xyz, w = 1
+  vec4 normal;    // xyz, w = 0
+  vec2 uv;
+  uint pad0;
+  uint pad1;
+};
+
+// One triangle of one instance: indices into the instance-expanded vertex stream (so the
+// transformed positions of this instance are found directly), and the instance.
+struct GpuTriangle {
+  uint v0;
+  uint v1;
+  uint v2;
+  uint instance;
+};
+
+// One vertex of the instance-expanded stream: which mesh vertex, transformed by which instance.
+struct GpuInstanceVertex {
+  uint meshVertex;
+  uint instance;
+};
+
+#define HMB_INSTANCE_DOUBLE_SIDED 1u
+
+struct GpuInstance {
+  mat4 worldCurrent;   // object to world at the frame time t
+  mat4 worldPrevious;  // object to world at t - 1/fps
+  mat4 normalCurrent;  // inverse transpose of worldCurrent (upper 3x3 used)
+  uint objectId;       // 0 is the background
+  uint material;
+  uint flags;          // HMB_INSTANCE_*
+  uint pad0;
+};
+
+#define HMB_NO_TEXTURE 0xffffffffu
+
+struct GpuMaterial {
+  vec4 baseColor;      // linear RGBA factor
+  uint textureOffset;  // first texel in the texel buffer, HMB_NO_TEXTURE when untextured
+  uint textureWidth;
+  uint textureHeight;
+  uint pad0;
+};
+
+struct GpuCamera {
+  mat4 viewProjCurrent;   // world to clip at t (Vulkan clip: y down, depth z/w in [0, 1])
+  mat4 viewProjPrevious;  // world to clip at t - 1/fps
+  mat4 viewCurrent;       // world to camera at t (camera looks down -z)
+  vec4 positionCurrent;   // world-space eye at t
+  vec4 lightDirection;    // xyz: direction light travels, world space, unit
+  vec4 lightColor;        // rgb
+  vec4 ambient;           // rgb
+  vec4 background;        // rgb: colour where no surface is hit
+};
+
+HMB_GPU_END
+
+HMB_CHECK_SIZE(GpuVertex, 48)
+HMB_CHECK_SIZE(GpuTriangle, 16)
+HMB_CHECK_SIZE(GpuInstanceVertex, 8)
+HMB_CHECK_SIZE(GpuInstance, 208)
+HMB_CHECK_SIZE(GpuMaterial, 32)
+HMB_CHECK_SIZE(GpuCamera, 272)
+
+#endif

@@ -1,0 +1,148 @@
+#include "runtime/gpu_scene.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "runtime/error.h"
+
+namespace hmb {
+namespace {
+
+// A buffer of at least one element: Vulkan has no empty buffers, and an empty scene is valid.
+template <class T>
+vk::Buffer uploadArray(const vk::Context& context, const std::vector<T>& values, const char* name) {
+  std::vector<T> padded = values;
+  if (padded.empty()) padded.emplace_back();
+  vk::Buffer buffer(context, padded.size() * sizeof(T), vk::MemoryUse::Device, name);
+  buffer.upload(std::span<const T>(padded));
+  return buffer;
+}
+
+glm::mat4 cameraWorld(const scene::Scene& scene, float t) {
+  if (!scene.camera || scene.camera->node < 0) return glm::mat4(1.0f);
+  return scene.worldMatrixAt(static_cast<uint32_t>(scene.camera->node), t);
+}
+
+glm::mat4 projection(const scene::Scene& scene, uint32_t width, uint32_t height) {
+  const scene::Camera camera = scene.camera.value_or(scene::Camera{});
+  const float aspect = camera.aspectRatio > 0.0f ? camera.aspectRatio : float(width) / float(height);
+  const float znear = camera.znear > 0.0f ? camera.znear : 0.1f;
+  const float zfar = camera.zfar > znear ? camera.zfar : znear * 1000.0f;
+  glm::mat4 p = glm::perspectiveRH_ZO(camera.yfov, aspect, znear, zfar);
+  p[1][1] *= -1.0f;  // Vulkan clip space: y points down the image
+  return p;
+}
+
+}  // namespace
+
+FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
+  FrameCamera camera;
+  const float previous = t - 1.0f / scene.settings.fps;
+  const glm::mat4 worldNow = cameraWorld(scene, t);
+  camera.view = glm::inverse(worldNow);
+  camera.projection = projection(scene, width, height);
+  camera.viewProjCurrent = camera.projection * camera.view;
+  camera.viewProjPrevious = camera.projection * glm::inverse(cameraWorld(scene, previous));
+  camera.eye = glm::vec3(worldNow[3]);
+  return camera;
+}
+
+GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
+  std::vector<gpu::GpuVertex> vertices;
+  std::vector<uint32_t> meshVertexBase;
+  for (const scene::Mesh& mesh : scene.meshes) {
+    meshVertexBase.push_back(static_cast<uint32_t>(vertices.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      gpu::GpuVertex v{};
+      v.position = glm::vec4(mesh.positions[i], 1.0f);
+      v.normal = glm::vec4(i < mesh.normals.size() ? mesh.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f), 0.0f);
+      v.uv = i < mesh.uvs.size() ? mesh.uvs[i] : glm::vec2(0.0f);
+      vertices.push_back(v);
+    }
+  }
+
+  // Each instance gets its own copy of its mesh's vertex indices and triangles, so kernels
+  // address transformed vertices without indirection.
+  std::vector<gpu::GpuInstanceVertex> instanceVertices;
+  std::vector<gpu::GpuTriangle> triangles;
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const scene::Mesh& mesh = scene.meshes.at(scene.instances[i].mesh);
+    const auto base = static_cast<uint32_t>(instanceVertices.size());
+    for (uint32_t v = 0; v < mesh.positions.size(); ++v)
+      instanceVertices.push_back({meshVertexBase[scene.instances[i].mesh] + v, i});
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+      triangles.push_back({base + mesh.indices[t], base + mesh.indices[t + 1], base + mesh.indices[t + 2], i});
+  }
+  if (triangles.size() >= 0x7fffffffu) throw Error("scene has more triangles than one frame can address");
+  triangleCount_ = static_cast<uint32_t>(triangles.size());
+  instanceVertexCount_ = static_cast<uint32_t>(instanceVertices.size());
+
+  std::vector<gpu::GpuMaterial> materials;
+  std::vector<uint32_t> texels;
+  std::vector<uint32_t> textureOffset;
+  for (const scene::Texture& texture : scene.textures) {
+    textureOffset.push_back(static_cast<uint32_t>(texels.size()));
+    const size_t count = size_t(texture.width) * texture.height;
+    const size_t start = texels.size();
+    texels.resize(start + count);
+    std::memcpy(texels.data() + start, texture.rgba8.data(), std::min(texture.rgba8.size(), count * 4));
+  }
+  for (const scene::Material& m : scene.materials) {
+    gpu::GpuMaterial g{};
+    g.baseColor = m.baseColorFactor;
+    g.textureOffset = HMB_NO_TEXTURE;
+    if (m.baseColorTexture >= 0 && size_t(m.baseColorTexture) < scene.textures.size()) {
+      const scene::Texture& texture = scene.textures[m.baseColorTexture];
+      if (texture.width > 0 && texture.height > 0) {
+        g.textureOffset = textureOffset[m.baseColorTexture];
+        g.textureWidth = texture.width;
+        g.textureHeight = texture.height;
+      }
+    }
+    materials.push_back(g);
+  }
+
+  vertices_ = uploadArray(context, vertices, "scene vertices");
+  instanceVertices_ = uploadArray(context, instanceVertices, "instance vertices");
+  triangles_ = uploadArray(context, triangles, "triangles");
+  materials_ = uploadArray(context, materials, "materials");
+  texels_ = uploadArray(context, texels, "texels");
+  instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
+                          vk::MemoryUse::Device, "instances");
+  cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
+}
+
+void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
+  const float previous = t - 1.0f / scene.settings.fps;
+  std::vector<gpu::GpuInstance> instances;
+  for (const scene::Instance& instance : scene.instances) {
+    gpu::GpuInstance g{};
+    g.worldCurrent = scene.worldMatrixAt(instance.node, t);
+    g.worldPrevious = scene.worldMatrixAt(instance.node, previous);
+    g.normalCurrent = glm::transpose(glm::inverse(g.worldCurrent));
+    g.objectId = instance.objectId;
+    const scene::Mesh& mesh = scene.meshes.at(instance.mesh);
+    g.material = mesh.material;
+    const bool doubleSided = mesh.material < scene.materials.size() && scene.materials[mesh.material].doubleSided;
+    g.flags = doubleSided ? HMB_INSTANCE_DOUBLE_SIDED : 0u;
+    instances.push_back(g);
+  }
+  if (!instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(instances));
+
+  camera_ = frameCamera(scene, t, width, height);
+  gpu::GpuCamera c{};
+  c.viewProjCurrent = camera_.viewProjCurrent;
+  c.viewProjPrevious = camera_.viewProjPrevious;
+  c.viewCurrent = camera_.view;
+  c.positionCurrent = glm::vec4(camera_.eye, 1.0f);
+  c.lightDirection = glm::vec4(glm::normalize(scene.light.direction), 0.0f);
+  c.lightColor = glm::vec4(scene.light.color, 0.0f);
+  c.ambient = glm::vec4(scene.light.ambient, 0.0f);
+  c.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&c, 1));
+}
+
+}  // namespace hmb

@@ -1,0 +1,59 @@
+// The scene on the device: geometry and materials uploaded once, instance transforms and the
+// camera of a frame time uploaded per frame. Layouts: kernels/shared/scene_layout.h.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "kernels/shared/scene_layout.h"
+#include "runtime/vulkan/buffer.h"
+#include "scenes/scene.h"
+
+namespace hmb {
+
+// The camera of one frame on the host: what the kernels get, and what tests need to check them.
+struct FrameCamera {
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};  // Vulkan clip space: y down, depth z/w in [0, 1]
+  glm::mat4 viewProjCurrent{1.0f};
+  glm::mat4 viewProjPrevious{1.0f};
+  glm::vec3 eye{0.0f};
+};
+
+// The camera at frame time t for an image of the given size; the previous frame is t - 1/fps.
+FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
+
+class GpuScene {
+ public:
+  GpuScene(const vk::Context& context, const scene::Scene& scene);
+
+  // Writes instance transforms at t and t - 1/fps and the camera for the frame.
+  void setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
+
+  uint32_t triangleCount() const { return triangleCount_; }
+  uint32_t instanceVertexCount() const { return instanceVertexCount_; }
+  const FrameCamera& camera() const { return camera_; }
+
+  const vk::Buffer& vertices() const { return vertices_; }
+  const vk::Buffer& instanceVertices() const { return instanceVertices_; }
+  const vk::Buffer& triangles() const { return triangles_; }
+  const vk::Buffer& instances() const { return instances_; }
+  const vk::Buffer& materials() const { return materials_; }
+  const vk::Buffer& texels() const { return texels_; }
+  const vk::Buffer& cameraBuffer() const { return cameraBuffer_; }
+
+ private:
+  uint32_t triangleCount_ = 0;
+  uint32_t instanceVertexCount_ = 0;
+  FrameCamera camera_;
+  vk::Buffer vertices_;
+  vk::Buffer instanceVertices_;
+  vk::Buffer triangles_;
+  vk::Buffer instances_;
+  vk::Buffer materials_;
+  vk::Buffer texels_;
+  vk::Buffer cameraBuffer_;
+};
+
+}  // namespace hmb

@@ -1,0 +1,486 @@
+#include "tests/oracle/graphics_raster.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "oracle_frag.spv.h"
+#include "oracle_vert.spv.h"
+#include "runtime/error.h"
+#include "runtime/vulkan/check.h"
+#include "runtime/vulkan/context.h"
+
+namespace hmb::oracle {
+namespace {
+
+// One vertex as the vertex shader reads it; the id is repeated on all three vertices so that
+// the flat id does not depend on the provoking-vertex convention.
+struct Vertex {
+  float clip[4];
+  uint32_t id;
+};
+static_assert(sizeof(Vertex) == 20);
+
+constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
+
+bool supportsDepthAttachment(VkPhysicalDevice device, VkFormat format) {
+  VkFormatProperties props{};
+  vkGetPhysicalDeviceFormatProperties(device, format, &props);
+  const VkFormatFeatureFlags needed =
+      VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
+  return (props.optimalTilingFeatures & needed) == needed;
+}
+
+VkShaderModule createShader(VkDevice device, const uint32_t* words, size_t bytes) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = bytes;
+  info.pCode = words;
+  VkShaderModule module = VK_NULL_HANDLE;
+  HMB_VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
+  return module;
+}
+
+}  // namespace
+
+GraphicsRasterizer::GraphicsRasterizer(const vk::Context& context, uint32_t width, uint32_t height)
+    : context_(context), width_(width), height_(height) {
+  if (width == 0 || height == 0) throw Error("graphics oracle: image size must be at least 1x1");
+  const VkPhysicalDeviceLimits& limits = context.limits();
+  if (width > limits.maxFramebufferWidth || height > limits.maxFramebufferHeight)
+    throw Error("graphics oracle: " + std::to_string(width) + "x" + std::to_string(height) +
+                " exceeds the device's framebuffer limit");
+
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &familyCount, families.data());
+  const VkQueueFamilyProperties& family = families.at(context.queueFamily());
+  if (!(family.queueFlags & VK_QUEUE_GRAPHICS_BIT))
+    throw Error("graphics oracle: the context's queue family has no graphics support");
+
+  // 32-bit float depth keeps the oracle's depth exact to float precision; 24-bit unorm is the
+  // fallback that Vulkan guarantees when D32_SFLOAT is missing.
+  for (VkFormat format : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_X8_D24_UNORM_PACK32}) {
+    if (supportsDepthAttachment(context.physicalDevice(), format)) {
+      depthFormat_ = format;
+      break;
+    }
+  }
+  if (depthFormat_ == VK_FORMAT_UNDEFINED) throw Error("graphics oracle: no usable depth format");
+
+  try {
+    createRenderPass();
+    createAttachments();
+    createPipelines();
+    const VkDeviceSize pixels = VkDeviceSize(width) * height;
+    idsReadback_ = vk::Buffer(context, pixels * 4, vk::MemoryUse::Readback, "oracle ids (readback)");
+    depthReadback_ = vk::Buffer(context, pixels * 4, vk::MemoryUse::Readback, "oracle depth (readback)");
+    if (context.info().timestamps) {
+      VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      queryInfo.queryCount = 2;
+      HMB_VK_CHECK(vkCreateQueryPool(context.device(), &queryInfo, nullptr, &queryPool_));
+      const uint32_t bits = family.timestampValidBits;
+      timestampMask_ = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+    }
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+GraphicsRasterizer::~GraphicsRasterizer() { release(); }
+
+void GraphicsRasterizer::release() {
+  const VkDevice device = context_.device();
+  if (queryPool_) vkDestroyQueryPool(device, queryPool_, nullptr);
+  for (VkPipeline& pipeline : pipelines_)
+    if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
+  if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
+  if (framebuffer_) vkDestroyFramebuffer(device, framebuffer_, nullptr);
+  if (renderPass_) vkDestroyRenderPass(device, renderPass_, nullptr);
+  destroy(color_);
+  destroy(depth_);
+  destroy(vertices_);
+  destroy(staging_);
+  queryPool_ = VK_NULL_HANDLE;
+  pipelines_[0] = pipelines_[1] = VK_NULL_HANDLE;
+  pipelineLayout_ = VK_NULL_HANDLE;
+  framebuffer_ = VK_NULL_HANDLE;
+  renderPass_ = VK_NULL_HANDLE;
+}
+
+void GraphicsRasterizer::createRenderPass() {
+  VkAttachmentDescription attachments[2]{};
+  // Both attachments are cleared on load and left ready to be copied to the readback buffers.
+  attachments[0].format = kIdFormat;
+  attachments[1].format = depthFormat_;
+  for (VkAttachmentDescription& a : attachments) {
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // every call clears, old contents are not needed
+    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  }
+  const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &colorRef;
+  subpass.pDepthStencilAttachment = &depthRef;
+
+  constexpr VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                                    VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                                    VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  constexpr VkAccessFlags attachmentWrites =
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkSubpassDependency dependencies[2]{};
+  // The previous call's readback copies read the attachments before this call clears them.
+  dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[0].dstSubpass = 0;
+  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[0].dstStageMask = attachmentStages;
+  dependencies[0].srcAccessMask = 0;
+  dependencies[0].dstAccessMask = attachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+  // The readback copies read what the subpass wrote.
+  dependencies[1].srcSubpass = 0;
+  dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[1].srcStageMask = attachmentStages;
+  dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[1].srcAccessMask = attachmentWrites;
+  dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = 2;
+  info.pAttachments = attachments;
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = 2;
+  info.pDependencies = dependencies;
+  HMB_VK_CHECK(vkCreateRenderPass(context_.device(), &info, nullptr, &renderPass_));
+}
+
+GraphicsRasterizer::Attachment GraphicsRasterizer::createAttachment(VkFormat format, VkImageUsageFlags usage,
+                                                                    VkImageAspectFlags aspect) {
+  const VkDevice device = context_.device();
+  Attachment a;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width_, height_, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  try {
+    HMB_VK_CHECK(vkCreateImage(device, &info, nullptr, &a.image));
+    VkMemoryRequirements req{};
+    vkGetImageMemoryRequirements(device, a.image, &req);
+    uint32_t type = context_.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type == UINT32_MAX) type = context_.findMemoryType(req.memoryTypeBits, 0);
+    if (type == UINT32_MAX) throw Error("graphics oracle: no memory type fits an attachment");
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = type;
+    HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &a.memory));
+    HMB_VK_CHECK(vkBindImageMemory(device, a.image, a.memory, 0));
+
+    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    view.image = a.image;
+    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.format = format;
+    view.subresourceRange = {aspect, 0, 1, 0, 1};
+    HMB_VK_CHECK(vkCreateImageView(device, &view, nullptr, &a.view));
+  } catch (...) {
+    destroy(a);
+    throw;
+  }
+  return a;
+}
+
+void GraphicsRasterizer::createAttachments() {
+  color_ = createAttachment(kIdFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  depth_ = createAttachment(depthFormat_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  const VkImageView views[2] = {color_.view, depth_.view};
+  VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  info.renderPass = renderPass_;
+  info.attachmentCount = 2;
+  info.pAttachments = views;
+  info.width = width_;
+  info.height = height_;
+  info.layers = 1;
+  HMB_VK_CHECK(vkCreateFramebuffer(context_.device(), &info, nullptr, &framebuffer_));
+}
+
+void GraphicsRasterizer::createPipelines() {
+  const VkDevice device = context_.device();
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  HMB_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &pipelineLayout_));
+
+  VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+  try {
+    vert = createShader(device, kOracle_vert, sizeof(kOracle_vert));
+    frag = createShader(device, kOracle_frag, sizeof(kOracle_frag));
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vert;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = frag;
+    stages[1].pName = "main";
+
+    const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const VkVertexInputAttributeDescription attributes[2] = {
+        {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, clip)},
+        {1, 0, VK_FORMAT_R32_UINT, offsetof(Vertex, id)},
+    };
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertexInput.vertexBindingDescriptionCount = 1;
+    vertexInput.pVertexBindingDescriptions = &binding;
+    vertexInput.vertexAttributeDescriptionCount = 2;
+    vertexInput.pVertexAttributeDescriptions = attributes;
+
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+
+    const VkViewport viewport{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {width_, height_}};
+    VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewportState.viewportCount = 1;
+    viewportState.pViewports = &viewport;
+    viewportState.scissorCount = 1;
+    viewportState.pScissors = &scissor;
+
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.depthClampEnable = VK_FALSE;  // clip to 0 <= z/w <= 1 like the compute rasterizer
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // see the header: CCW with y up is front
+    raster.lineWidth = 1.0f;
+
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = VK_TRUE;
+    depth.depthWriteEnable = VK_TRUE;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+
+    VkPipelineColorBlendAttachmentState blendAttachment{};
+    blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = 1;
+    blend.pAttachments = &blendAttachment;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewportState;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.layout = pipelineLayout_;
+    info.renderPass = renderPass_;
+    info.subpass = 0;
+    const VkCullModeFlags cullModes[2] = {VK_CULL_MODE_BACK_BIT, VK_CULL_MODE_NONE};
+    for (int i = 0; i < 2; ++i) {
+      raster.cullMode = cullModes[i];
+      HMB_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines_[i]));
+    }
+  } catch (...) {
+    if (vert) vkDestroyShaderModule(device, vert, nullptr);
+    if (frag) vkDestroyShaderModule(device, frag, nullptr);
+    throw;
+  }
+  vkDestroyShaderModule(device, vert, nullptr);
+  vkDestroyShaderModule(device, frag, nullptr);
+}
+
+GraphicsRasterizer::DeviceBuffer GraphicsRasterizer::createBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage,
+                                                                  VkMemoryPropertyFlags required,
+                                                                  VkMemoryPropertyFlags preferred) {
+  const VkDevice device = context_.device();
+  DeviceBuffer b;
+  b.size = bytes;
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = bytes;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  try {
+    HMB_VK_CHECK(vkCreateBuffer(device, &info, nullptr, &b.buffer));
+    VkMemoryRequirements req{};
+    vkGetBufferMemoryRequirements(device, b.buffer, &req);
+    const uint32_t type = context_.findMemoryType(req.memoryTypeBits, required, preferred);
+    if (type == UINT32_MAX) throw Error("graphics oracle: no memory type fits the vertex buffer");
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = type;
+    HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &b.memory));
+    HMB_VK_CHECK(vkBindBufferMemory(device, b.buffer, b.memory, 0));
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    if ((context_.memoryProperties().memoryTypes[type].propertyFlags & host) == host)
+      HMB_VK_CHECK(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+  } catch (...) {
+    destroy(b);
+    throw;
+  }
+  return b;
+}
+
+void GraphicsRasterizer::destroy(DeviceBuffer& b) {
+  const VkDevice device = context_.device();
+  if (b.mapped) vkUnmapMemory(device, b.memory);
+  if (b.buffer) vkDestroyBuffer(device, b.buffer, nullptr);
+  if (b.memory) vkFreeMemory(device, b.memory, nullptr);
+  b = DeviceBuffer{};
+}
+
+void GraphicsRasterizer::destroy(Attachment& a) {
+  const VkDevice device = context_.device();
+  if (a.view) vkDestroyImageView(device, a.view, nullptr);
+  if (a.image) vkDestroyImage(device, a.image, nullptr);
+  if (a.memory) vkFreeMemory(device, a.memory, nullptr);
+  a = Attachment{};
+}
+
+void* GraphicsRasterizer::reserveVertices(VkDeviceSize bytes) {
+  if (vertices_.size < bytes) {
+    // Grow by half again so a benchmark ramping up its triangle count reallocates rarely.
+    const VkDeviceSize size = std::max(bytes, vertices_.size + vertices_.size / 2);
+    destroy(vertices_);
+    destroy(staging_);
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    // Device-local so the timed draw reads fast memory; written directly where that memory
+    // is also host-visible (CPU devices, resizable BAR), else through a staging buffer.
+    vertices_ = createBuffer(size, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, host);
+    if (!vertices_.mapped) staging_ = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, host, 0);
+  }
+  return vertices_.mapped ? vertices_.mapped : staging_.mapped;
+}
+
+OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triangles) {
+  const VkDeviceSize vertexBytes = VkDeviceSize(triangles.size()) * 3 * sizeof(Vertex);
+  if (triangles.size() > UINT32_MAX / 3) throw Error("graphics oracle: too many triangles for one draw");
+
+  // Consecutive triangles with the same sidedness share one draw, so the draw order (which
+  // decides equal-depth ties) is the span's order.
+  struct Draw {
+    uint32_t pipeline, firstVertex, vertexCount;
+  };
+  std::vector<Draw> draws;
+  if (!triangles.empty()) {
+    auto* out = static_cast<Vertex*>(reserveVertices(vertexBytes));
+    for (size_t t = 0; t < triangles.size(); ++t) {
+      const OracleTriangle& tri = triangles[t];
+      for (int v = 0; v < 3; ++v) {
+        Vertex& vertex = out[3 * t + v];
+        std::memcpy(vertex.clip, &tri.clip[v], sizeof(vertex.clip));
+        vertex.id = tri.id;
+      }
+      const uint32_t pipeline = tri.doubleSided ? 1 : 0;
+      if (draws.empty() || draws.back().pipeline != pipeline)
+        draws.push_back({pipeline, uint32_t(3 * t), 0});
+      draws.back().vertexCount += 3;
+    }
+  }
+
+  context_.submitAndWait([&](VkCommandBuffer cmd) {
+    if (staging_.mapped && vertexBytes > 0) {
+      // The previous call's draw read the vertex buffer; then this call's upload fills it.
+      VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before,
+                           0, nullptr, 0, nullptr);
+      const VkBufferCopy region{0, 0, vertexBytes};
+      vkCmdCopyBuffer(cmd, staging_.buffer, vertices_.buffer, 1, &region);
+      VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      after.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      after.dstAccessMask = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT;
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, 0, 1, &after,
+                           0, nullptr, 0, nullptr);
+    }
+    if (queryPool_) {
+      vkCmdResetQueryPool(cmd, queryPool_, 0, 2);
+      // ALL_COMMANDS: the start stamp waits for the upload above, so it is not timed.
+      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, queryPool_, 0);
+    }
+
+    VkClearValue clears[2]{};
+    clears[0].color.uint32[0] = 0;
+    clears[1].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = renderPass_;
+    begin.framebuffer = framebuffer_;
+    begin.renderArea = {{0, 0}, {width_, height_}};
+    begin.clearValueCount = 2;
+    begin.pClearValues = clears;
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    if (!draws.empty()) {
+      const VkDeviceSize offset = 0;
+      vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &offset);
+      uint32_t bound = UINT32_MAX;
+      for (const Draw& draw : draws) {
+        if (draw.pipeline != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[draw.pipeline]);
+        bound = draw.pipeline;
+        vkCmdDraw(cmd, draw.vertexCount, 1, draw.firstVertex, 0);
+      }
+    }
+    vkCmdEndRenderPass(cmd);
+    if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 1);
+
+    // The render pass left both attachments in TRANSFER_SRC_OPTIMAL (its outgoing dependency
+    // orders the copies after the attachment writes).
+    VkBufferImageCopy region{};
+    region.imageExtent = {width_, height_, 1};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, idsReadback_.handle(), 1, &region);
+    region.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+    vkCmdCopyImageToBuffer(cmd, depth_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depthReadback_.handle(), 1,
+                           &region);
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
+                         0, nullptr);
+  });
+
+  lastDrawMs_.reset();
+  if (queryPool_) {
+    uint64_t stamps[2] = {0, 0};
+    HMB_VK_CHECK(vkGetQueryPoolResults(context_.device(), queryPool_, 0, 2, sizeof(stamps), stamps,
+                                       sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const double ticks = double((stamps[1] - stamps[0]) & timestampMask_);
+    lastDrawMs_ = ticks * context_.info().timestampPeriodNs * 1e-6;
+  }
+
+  OracleImage image;
+  image.width = width_;
+  image.height = height_;
+  image.ids = idsReadback_.download<uint32_t>();
+  if (depthFormat_ == VK_FORMAT_X8_D24_UNORM_PACK32) {
+    // 24-bit unorm in the low bits of each texel.
+    const std::vector<uint32_t> raw = depthReadback_.download<uint32_t>();
+    image.depth.resize(raw.size());
+    for (size_t i = 0; i < raw.size(); ++i) image.depth[i] = float(double(raw[i] & 0xFFFFFFu) / 16777215.0);
+  } else {
+    image.depth = depthReadback_.download<float>();  // D32 formats copy the depth aspect as plain floats
+  }
+  return image;
+}
+
+OracleImage rasterizeWithGraphicsPipeline(const vk::Context& context, uint32_t width, uint32_t height,
+                                          std::span<const OracleTriangle> triangles) {
+  GraphicsRasterizer rasterizer(context, width, height);
+  return rasterizer.rasterize(triangles);
+}
+
+}  // namespace hmb::oracle

@@ -1,0 +1,50 @@
+// Every embedded kernel builds a compute pipeline against the layout its shared header
+// declares; the validation layer checks the SPIR-V's bindings and push constants against it.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "kernels/debug/test_pattern.h"
+#include "kernels/gbuffer/gbuffer_layout.h"
+#include "kernels/output/encode_display.h"
+#include "kernels/raster/raster_layout.h"
+#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/kernel_registry.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+struct KernelLayout {
+  const char* name;
+  uint32_t bindings;
+  uint32_t pushBytes;
+  bool needsInt64Atomics;
+};
+
+const KernelLayout kLayouts[] = {
+    {"debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams), false},
+    {"output/encode_display", HMB_ENCODE_DISPLAY_BINDING_COUNT, sizeof(gpu::EncodeDisplayParams), false},
+    {"raster/transform_vertices", HMB_TRANSFORM_BINDING_COUNT, sizeof(uint32_t), false},
+    {"raster/setup_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams), false},
+    {"raster/size_dispatch", 1, sizeof(gpu::RasterParams), false},
+    {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
+    {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
+    {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false},
+};
+
+using KernelPipelinesTest = VulkanTest;
+
+TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
+  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
+    const KernelLayout* layout = nullptr;
+    for (const KernelLayout& l : kLayouts)
+      if (kernel.name == l.name) layout = &l;
+    ASSERT_NE(layout, nullptr) << "no layout declared in this test for kernel " << kernel.name;
+    if (layout->needsInt64Atomics && !context().info().int64BufferAtomics) continue;
+    EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout->bindings, layout->pushBytes)) << kernel.name;
+  }
+}
+
+}  // namespace
+}  // namespace hmb::test
