@@ -19,8 +19,7 @@ std::vector<float> shutterSampleTimes(const Settings& s) {
   const float span = std::max(frameInterval, exposure);
   constexpr int kSamples = 5;
   std::vector<float> times;
-  for (int i = 0; i < kSamples; ++i)
-    times.push_back(s.frameTime - span * static_cast<float>(i) / (kSamples - 1));
+  for (int i = 0; i < kSamples; ++i) times.push_back(s.frameTime - span * static_cast<float>(i) / (kSamples - 1));
   return times;
 }
 
@@ -39,9 +38,7 @@ std::vector<Aabb> instanceBounds(const Scene& scene, const std::vector<float>& t
   return out;
 }
 
-float distanceToBox(const glm::vec3& p, const Aabb& box) {
-  return glm::length(p - glm::clamp(p, box.min, box.max));
-}
+float distanceToBox(const glm::vec3& p, const Aabb& box) { return glm::length(p - glm::clamp(p, box.min, box.max)); }
 
 float farthestCornerDistance(const glm::vec3& p, const Aabb& box) {
   const glm::vec3 far = glm::max(glm::abs(p - box.min), glm::abs(p - box.max));
@@ -66,7 +63,10 @@ float medianEdgeLength(const Scene& scene, float t) {
       bool valid = true;
       for (int k = 0; k < 3; ++k) {
         const uint32_t index = mesh.indices[tri * 3 + k];
-        if (index >= mesh.positions.size()) { valid = false; break; }
+        if (index >= mesh.positions.size()) {
+          valid = false;
+          break;
+        }
         p[k] = glm::vec3(world * glm::vec4(mesh.positions[index], 1.0f));
       }
       if (!valid) continue;

@@ -100,6 +100,20 @@ double decodeComponent(const uint8_t* p, int componentType, bool normalized) {
   }
 }
 
+std::optional<AnimationPath> animationPath(const std::string& path) {
+  if (path == "translation") return AnimationPath::Translation;
+  if (path == "rotation") return AnimationPath::Rotation;
+  if (path == "scale") return AnimationPath::Scale;
+  return std::nullopt;  // "weights" and extension paths: not part of the scene model
+}
+
+std::optional<Interpolation> interpolationOf(const std::string& name) {
+  if (name.empty() || name == "LINEAR") return Interpolation::Linear;
+  if (name == "STEP") return Interpolation::Step;
+  if (name == "CUBICSPLINE") return Interpolation::CubicSpline;
+  return std::nullopt;
+}
+
 bool allFinite(const std::vector<double>& values) {
   return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
 }
@@ -205,8 +219,8 @@ class GltfImporter {
       if (target >= static_cast<double>(acc.count)) fail(name + " has a sparse index out of range");
       const size_t e = static_cast<size_t>(target);
       for (int c = 0; c < components; ++c)
-        out[e * components + c] = decodeComponent(values.data + valueOffset + i * elementSize + c * size,
-                                                  acc.componentType, acc.normalized);
+        out[e * components + c] =
+            decodeComponent(values.data + valueOffset + i * elementSize + c * size, acc.componentType, acc.normalized);
     }
   }
 
@@ -234,8 +248,7 @@ class GltfImporter {
   void checkExtensions() {
     for (const std::string& ext : model_.extensionsRequired) {
       // Compressed geometry would silently load as empty accessors: refuse it instead.
-      if (ext.find("compression") != std::string::npos)
-        fail("requires extension " + ext + ", which is not supported");
+      if (ext.find("compression") != std::string::npos) fail("requires extension " + ext + ", which is not supported");
       warn("required extension " + ext + " is ignored");
     }
     if (!model_.skins.empty()) warn("skins are ignored: skinned meshes are drawn in their bind pose");
@@ -408,7 +421,8 @@ class GltfImporter {
       fail(user + " refers to image " + std::to_string(imageIndex) + ", which does not exist");
     if (auto it = textureOfImage_.find(imageIndex); it != textureOfImage_.end()) return it->second;
     const tinygltf::Image& stored = model_.images[static_cast<size_t>(imageIndex)];
-    const std::string what = "image " + std::to_string(imageIndex) + (stored.uri.empty() ? "" : " (" + stored.uri + ")");
+    const std::string what =
+        "image " + std::to_string(imageIndex) + (stored.uri.empty() ? "" : " (" + stored.uri + ")");
     // Images inside buffer views were left undecoded at parse time (see decodeLater): decode
     // them now that the view is known to lie inside its buffer.
     tinygltf::Image decoded;
@@ -543,9 +557,9 @@ class GltfImporter {
       return std::nullopt;
     }
     Mesh mesh;
-    mesh.name = (model_.meshes[meshIndex].name.empty() ? "mesh " + std::to_string(meshIndex)
-                                                       : model_.meshes[meshIndex].name) +
-                "/" + std::to_string(primIndex);
+    mesh.name =
+        (model_.meshes[meshIndex].name.empty() ? "mesh " + std::to_string(meshIndex) : model_.meshes[meshIndex].name) +
+        "/" + std::to_string(primIndex);
     const std::vector<double> positions = readAccessor(position->second, "POSITION of " + what, {TINYGLTF_TYPE_VEC3});
     for (size_t i = 0; i < positions.size(); ++i)
       if (!std::isfinite(positions[i]))
@@ -650,13 +664,12 @@ class GltfImporter {
         const tinygltf::AnimationChannel& src = anim.channels[c];
         const std::string what = "animation " + std::to_string(a) + " channel " + std::to_string(c);
         AnimationChannel channel;
-        if (src.target_path == "translation") channel.path = AnimationPath::Translation;
-        else if (src.target_path == "rotation") channel.path = AnimationPath::Rotation;
-        else if (src.target_path == "scale") channel.path = AnimationPath::Scale;
-        else {
+        const std::optional<AnimationPath> path = animationPath(src.target_path);
+        if (!path) {
           warn(what + ": " + src.target_path + " animation ignored");
           continue;
         }
+        channel.path = *path;
         if (src.target_node < 0) {
           warn(what + ": no target node; ignored");
           continue;
@@ -667,10 +680,9 @@ class GltfImporter {
         if (src.sampler < 0 || static_cast<size_t>(src.sampler) >= anim.samplers.size())
           fail(what + " refers to sampler " + std::to_string(src.sampler) + ", which does not exist");
         const tinygltf::AnimationSampler& sampler = anim.samplers[static_cast<size_t>(src.sampler)];
-        if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") channel.interpolation = Interpolation::Linear;
-        else if (sampler.interpolation == "STEP") channel.interpolation = Interpolation::Step;
-        else if (sampler.interpolation == "CUBICSPLINE") channel.interpolation = Interpolation::CubicSpline;
-        else fail(what + " has unknown interpolation " + sampler.interpolation);
+        const std::optional<Interpolation> interpolation = interpolationOf(sampler.interpolation);
+        if (!interpolation) fail(what + " has unknown interpolation " + sampler.interpolation);
+        channel.interpolation = *interpolation;
 
         const std::vector<double> times = readAccessor(sampler.input, "input of " + what, {TINYGLTF_TYPE_SCALAR});
         requireFinite(times, "accessor " + std::to_string(sampler.input) + " (input of " + what + ")");

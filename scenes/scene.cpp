@@ -54,16 +54,13 @@ bool sampleChannel(const AnimationChannel& ch, float t, glm::vec4& out, bool isR
     return true;
   }
   // First key strictly after t; the segment is [k0, k0 + 1].
-  const size_t k1 = static_cast<size_t>(std::upper_bound(ch.times.begin(), ch.times.end(), t) -
-                                        ch.times.begin());
+  const size_t k1 = static_cast<size_t>(std::upper_bound(ch.times.begin(), ch.times.end(), t) - ch.times.begin());
   const size_t k0 = k1 - 1;
   const float dt = ch.times[k1] - ch.times[k0];
   const float u = dt > 0.0f ? std::clamp((t - ch.times[k0]) / dt, 0.0f, 1.0f) : 1.0f;
 
   switch (ch.interpolation) {
-    case Interpolation::Step:
-      out = keyValue(k0);
-      return true;
+    case Interpolation::Step: out = keyValue(k0); return true;
     case Interpolation::Linear:
       if (isRotation) {
         const glm::quat q = shortestSlerp(toQuat(keyValue(k0)), toQuat(keyValue(k1)), u);
@@ -128,9 +125,7 @@ glm::mat4 Scene::worldMatrixAt(uint32_t node, float t) const {
   glm::mat4 world(1.0f);
   // At most nodes.size() steps: a cycle (which the loader rejects) cannot loop forever.
   int64_t current = node;
-  for (size_t steps = 0; current >= 0 && static_cast<size_t>(current) < nodes.size() &&
-                         steps < nodes.size();
-       ++steps) {
+  for (size_t steps = 0; current >= 0 && static_cast<size_t>(current) < nodes.size() && steps < nodes.size(); ++steps) {
     world = localTrsAt(static_cast<uint32_t>(current), t).matrix() * world;
     current = nodes[static_cast<size_t>(current)].parent;
   }
@@ -139,9 +134,7 @@ glm::mat4 Scene::worldMatrixAt(uint32_t node, float t) const {
 
 bool Scene::isAnimated(uint32_t node) const {
   int64_t current = node;
-  for (size_t steps = 0; current >= 0 && static_cast<size_t>(current) < nodes.size() &&
-                         steps < nodes.size();
-       ++steps) {
+  for (size_t steps = 0; current >= 0 && static_cast<size_t>(current) < nodes.size() && steps < nodes.size(); ++steps) {
     for (const AnimationChannel& ch : channels)
       if (ch.node == static_cast<uint32_t>(current)) return true;
     current = nodes[static_cast<size_t>(current)].parent;

@@ -16,16 +16,16 @@ namespace {
 glm::mat4 at(const glm::vec3& p) { return glm::translate(glm::mat4(1.0f), p); }
 
 std::vector<glm::vec2> wineBottleProfile() {
-  return {{0.0f, 0.0f},    {0.036f, 0.0f},  {0.038f, 0.01f}, {0.038f, 0.19f}, {0.034f, 0.215f}, {0.022f, 0.235f},
-          {0.014f, 0.26f}, {0.013f, 0.3f},  {0.015f, 0.305f}, {0.015f, 0.315f}, {0.0f, 0.315f}};
+  return {{0.0f, 0.0f},    {0.036f, 0.0f}, {0.038f, 0.01f},  {0.038f, 0.19f},  {0.034f, 0.215f}, {0.022f, 0.235f},
+          {0.014f, 0.26f}, {0.013f, 0.3f}, {0.015f, 0.305f}, {0.015f, 0.315f}, {0.0f, 0.315f}};
 }
 std::vector<glm::vec2> squatBottleProfile() {
   return {{0.0f, 0.0f},    {0.045f, 0.0f},  {0.048f, 0.012f}, {0.048f, 0.14f}, {0.04f, 0.17f},
           {0.016f, 0.19f}, {0.015f, 0.23f}, {0.018f, 0.235f}, {0.0f, 0.235f}};
 }
 std::vector<glm::vec2> glassProfile() {  // a wine glass: foot, stem, bowl (open, double-sided)
-  return {{0.0f, 0.0f},    {0.035f, 0.0f},  {0.035f, 0.004f}, {0.005f, 0.008f}, {0.004f, 0.07f},
-          {0.02f, 0.085f}, {0.04f, 0.11f},  {0.042f, 0.14f},  {0.035f, 0.18f}};
+  return {{0.0f, 0.0f},    {0.035f, 0.0f}, {0.035f, 0.004f}, {0.005f, 0.008f}, {0.004f, 0.07f},
+          {0.02f, 0.085f}, {0.04f, 0.11f}, {0.042f, 0.14f},  {0.035f, 0.18f}};
 }
 
 Mesh makeChair(uint32_t material) {
@@ -76,7 +76,7 @@ Scene makeBistro() {
   const uint32_t trayMat = b.material("tray", {0.7f, 0.7f, 0.72f});
   const uint32_t bottleMats[] = {
       b.material("green bottle", {0.05f, 0.3f, 0.08f}), b.material("amber bottle", {0.45f, 0.2f, 0.03f}),
-      b.material("clear bottle", {0.7f, 0.8f, 0.85f}),  b.material("blue bottle", {0.08f, 0.15f, 0.5f}),
+      b.material("clear bottle", {0.7f, 0.8f, 0.85f}), b.material("blue bottle", {0.08f, 0.15f, 0.5f}),
       b.material("red bottle", {0.5f, 0.05f, 0.07f})};
 
   b.object("floor", b.mesh(makePlane({14.0f, 10.0f}, floorMat)), makeTrs({0.0f, 0.0f, 0.0f}));
@@ -86,13 +86,14 @@ Scene makeBistro() {
            makeTrs({0.0f, 2.0f, -5.0f}, glm::angleAxis(glm::half_pi<float>(), glm::vec3(1.0f, 0.0f, 0.0f))));
   const uint32_t sideWall = b.mesh(makePlane({10.0f, 4.0f}, wallMat));
   for (float side : {-1.0f, 1.0f})
-    b.object(side < 0 ? "left wall" : "right wall", sideWall,
-             makeTrs({side * 7.0f, 2.0f, 0.0f},
-                     glm::angleAxis(side * glm::half_pi<float>(), glm::vec3(0.0f, 0.0f, 1.0f)) *
-                         glm::angleAxis(glm::half_pi<float>(), yAxis)));
+    b.object(
+        side < 0 ? "left wall" : "right wall", sideWall,
+        makeTrs({side * 7.0f, 2.0f, 0.0f}, glm::angleAxis(side * glm::half_pi<float>(), glm::vec3(0.0f, 0.0f, 1.0f)) *
+                                               glm::angleAxis(glm::half_pi<float>(), yAxis)));
 
   // Bar counter and three shelves of bottles behind it.
-  const uint32_t counter = b.object("counter", b.mesh(makeBox({4.0f, 0.53f, 0.3f}, counterMat)), makeTrs({-1.0f, 0.53f, -3.6f}));
+  const uint32_t counter =
+      b.object("counter", b.mesh(makeBox({4.0f, 0.53f, 0.3f}, counterMat)), makeTrs({-1.0f, 0.53f, -3.6f}));
   b.addToObject(counter, b.mesh([&] {
     Mesh top = makeBox({4.1f, 0.025f, 0.38f}, counterTopMat);
     for (glm::vec3& p : top.positions) p.y += 0.555f;
@@ -111,7 +112,8 @@ Scene makeBistro() {
       const bool isWine = rng.below(3) != 0;
       const uint32_t mesh = (isWine ? wine : squat)[rng.below(5)];
       b.object("bottle", mesh,
-               makeTrs({x, y + 0.02f, -4.83f + rng.uniform(-0.06f, 0.06f)}, glm::angleAxis(rng.uniform(0.0f, 6.28f), yAxis)));
+               makeTrs({x, y + 0.02f, -4.83f + rng.uniform(-0.06f, 0.06f)},
+                       glm::angleAxis(rng.uniform(0.0f, 6.28f), yAxis)));
     }
   }
   // Bar stools in front of the counter.
@@ -153,9 +155,11 @@ Scene makeBistro() {
 
   // Pendant lamps over the tables.
   const uint32_t cordMesh = b.mesh(makeCylinder(0.006f, 1.2f, 8, metalMat, false));
-  const uint32_t shadeMesh = b.mesh(makeLathe({{0.03f, 0.25f}, {0.06f, 0.2f}, {0.16f, 0.06f}, {0.2f, 0.0f}}, 32, lampMat));
+  const uint32_t shadeMesh =
+      b.mesh(makeLathe({{0.03f, 0.25f}, {0.06f, 0.2f}, {0.16f, 0.06f}, {0.2f, 0.0f}}, 32, lampMat));
   for (int i = 0; i < 5; ++i) {
-    const uint32_t lamp = b.object("pendant lamp", cordMesh, makeTrs({-5.2f + 2.6f * static_cast<float>(i), 2.8f, 0.6f}));
+    const uint32_t lamp =
+        b.object("pendant lamp", cordMesh, makeTrs({-5.2f + 2.6f * static_cast<float>(i), 2.8f, 0.6f}));
     b.addToObject(lamp, shadeMesh);
   }
 
@@ -170,18 +174,22 @@ Scene makeBistro() {
 
   // Waiter's tray with glasses and a bottle crossing the foreground at 6 m/s: one object
   // (a parent node) so that the tray and its load move as one.
-  const uint32_t trayNode = b.object("tray", b.mesh(makeCylinder(0.22f, 0.015f, 40, trayMat)), makeTrs({0.0f, 1.15f, 2.4f}));
+  const uint32_t trayNode =
+      b.object("tray", b.mesh(makeCylinder(0.22f, 0.015f, 40, trayMat)), makeTrs({0.0f, 1.15f, 2.4f}));
   const uint32_t trayId = b.scene().instances.back().objectId;
   for (int k = 0; k < 3; ++k) {
     const float a = glm::two_pi<float>() * static_cast<float>(k) / 3.0f;
-    const uint32_t child = b.node("tray glass", makeTrs({0.12f * std::cos(a), 0.015f, 0.12f * std::sin(a)}), static_cast<int32_t>(trayNode));
+    const uint32_t child = b.node("tray glass", makeTrs({0.12f * std::cos(a), 0.015f, 0.12f * std::sin(a)}),
+                                  static_cast<int32_t>(trayNode));
     b.scene().instances.push_back(Instance{glassMesh, child, trayId});
   }
   b.translationKeys(trayNode, {0.0f, 2.0f}, {{-6.0f, 1.15f, 2.4f}, {6.0f, 1.15f, 2.4f}});
 
   // A chair pushed back in jerks (step keys), still during the default frame's shutter.
-  const uint32_t dragged = b.object("dragged chair", chairMesh, makeTrs({1.6f, 0.0f, 2.6f}, glm::angleAxis(2.8f, yAxis)));
-  b.translationKeys(dragged, {0.25f, 0.75f, 1.25f, 1.75f}, {{1.6f, 0.0f, 2.5f}, {1.65f, 0.0f, 2.6f}, {1.7f, 0.0f, 2.7f}, {1.75f, 0.0f, 2.8f}},
+  const uint32_t dragged =
+      b.object("dragged chair", chairMesh, makeTrs({1.6f, 0.0f, 2.6f}, glm::angleAxis(2.8f, yAxis)));
+  b.translationKeys(dragged, {0.25f, 0.75f, 1.25f, 1.75f},
+                    {{1.6f, 0.0f, 2.5f}, {1.65f, 0.0f, 2.6f}, {1.7f, 0.0f, 2.7f}, {1.75f, 0.0f, 2.8f}},
                     Interpolation::Step);
 
   // Camera dollying right at 3 m/s while panning left, at standing eye height.

@@ -14,7 +14,8 @@ Scene makeLivingRoom() {
   SceneBuilder b("living-room");
   const glm::vec3 xAxis(1.0f, 0.0f, 0.0f), zAxis(0.0f, 0.0f, 1.0f);
 
-  const int32_t woodTexture = b.texture(makeCheckerTexture("floor boards", 256, 256, 4, 32, {150, 105, 70}, {120, 82, 52}));
+  const int32_t woodTexture =
+      b.texture(makeCheckerTexture("floor boards", 256, 256, 4, 32, {150, 105, 70}, {120, 82, 52}));
   const int32_t rugTexture = b.texture(makeStripeTexture("rug stripes", 128, 16, 8, {60, 90, 140}, {220, 210, 190}));
   const uint32_t floorMat = b.material("floor", glm::vec3(1.0f), woodTexture);
   const uint32_t rugMat = b.material("rug", glm::vec3(1.0f), rugTexture);
@@ -42,7 +43,8 @@ Scene makeLivingRoom() {
   appendMesh(sofa, makeBox({1.0f, 0.125f, 0.42f}, sofaMat), glm::translate(glm::mat4(1.0f), {0.0f, 0.325f, -1.43f}));
   appendMesh(sofa, makeBox({1.0f, 0.36f, 0.12f}, sofaMat), glm::translate(glm::mat4(1.0f), {0.0f, 0.56f, -1.78f}));
   for (float side : {-1.0f, 1.0f})
-    appendMesh(sofa, makeBox({0.12f, 0.26f, 0.45f}, sofaMat), glm::translate(glm::mat4(1.0f), {side * 1.1f, 0.46f, -1.45f}));
+    appendMesh(sofa, makeBox({0.12f, 0.26f, 0.45f}, sofaMat),
+               glm::translate(glm::mat4(1.0f), {side * 1.1f, 0.46f, -1.45f}));
   b.object("sofa", b.mesh(std::move(sofa)), makeTrs(glm::vec3(0.0f)));
 
   // Cushion leaning on the back, rolled so that its right edge runs diagonally.
@@ -61,17 +63,20 @@ Scene makeLivingRoom() {
   b.object("coffee table", b.mesh(std::move(table)), makeTrs({0.0f, 0.0f, -0.45f}));
 
   // Floor lamp on the right.
-  const uint32_t lamp = b.object("lamp", b.mesh(makeCylinder(0.015f, 1.5f, 12, metalMat)), makeTrs({1.6f, 0.0f, -1.6f}));
+  const uint32_t lamp =
+      b.object("lamp", b.mesh(makeCylinder(0.015f, 1.5f, 12, metalMat)), makeTrs({1.6f, 0.0f, -1.6f}));
   b.addToObject(lamp, b.mesh(makeLathe({{0.0f, 1.45f}, {0.22f, 1.45f}, {0.14f, 1.75f}, {0.0f, 1.75f}}, 32, lampMat)));
 
   // The vase: a revolved profile, open at the top (double-sided), sliding along +x at 9 m/s.
-  const std::vector<glm::vec2> vaseProfile = {
-      {0.0f, 0.0f},     {0.05f, 0.0f},   {0.066f, 0.03f}, {0.084f, 0.09f}, {0.09f, 0.14f},  {0.082f, 0.2f},
-      {0.06f, 0.255f},  {0.042f, 0.29f}, {0.04f, 0.32f},  {0.048f, 0.345f}, {0.052f, 0.35f}, {0.045f, 0.35f},
-      {0.036f, 0.32f},  {0.034f, 0.29f}};
+  const std::vector<glm::vec2> vaseProfile = {{0.0f, 0.0f},    {0.05f, 0.0f},    {0.066f, 0.03f}, {0.084f, 0.09f},
+                                              {0.09f, 0.14f},  {0.082f, 0.2f},   {0.06f, 0.255f}, {0.042f, 0.29f},
+                                              {0.04f, 0.32f},  {0.048f, 0.345f}, {0.052f, 0.35f}, {0.045f, 0.35f},
+                                              {0.036f, 0.32f}, {0.034f, 0.29f}};
   const float tableTop = 0.425f;
-  const uint32_t vase = b.object("vase", b.mesh(makeLathe(vaseProfile, 48, vaseMat)), makeTrs({0.0f, tableTop, -0.45f}));
-  b.translationKeys(vase, {0.0f, 0.2f, 0.4f}, {{-1.8f, tableTop, -0.45f}, {0.0f, tableTop, -0.45f}, {1.8f, tableTop, -0.45f}});
+  const uint32_t vase =
+      b.object("vase", b.mesh(makeLathe(vaseProfile, 48, vaseMat)), makeTrs({0.0f, tableTop, -0.45f}));
+  b.translationKeys(vase, {0.0f, 0.2f, 0.4f},
+                    {{-1.8f, tableTop, -0.45f}, {0.0f, tableTop, -0.45f}, {1.8f, tableTop, -0.45f}});
 
   // Camera at seated eye height, looking at the vase with the cushion's edge behind it.
   // From 1.8 m with a 0.7 rad field of view, 360 rows span 1.3 m: 9 m/s over 1/60 s is ~40 px.

@@ -142,7 +142,8 @@ Mesh makeTorus(float ringRadius, float tubeRadius, uint32_t segments, uint32_t t
   std::vector<glm::vec2> profile;
   for (uint32_t k = 0; k <= tubeSegments; ++k) {
     // Around the tube counter-clockwise in (radius, y), so the lathe's normals point outward.
-    const float a = glm::two_pi<float>() * static_cast<float>(k) / static_cast<float>(tubeSegments) - glm::half_pi<float>();
+    const float a =
+        glm::two_pi<float>() * static_cast<float>(k) / static_cast<float>(tubeSegments) - glm::half_pi<float>();
     profile.emplace_back(ringRadius + tubeRadius * std::cos(a), tubeRadius * std::sin(a));
   }
   Mesh mesh = makeLathe(profile, segments, material);

@@ -17,7 +17,8 @@ Scene makeTemple() {
   SceneBuilder b("temple");
   const glm::vec3 xAxis(1.0f, 0.0f, 0.0f), yAxis(0.0f, 1.0f, 0.0f), zAxis(0.0f, 0.0f, 1.0f);
 
-  const int32_t stoneTexture = b.texture(makeCheckerTexture("floor slabs", 256, 256, 16, 16, {196, 184, 160}, {150, 136, 112}));
+  const int32_t stoneTexture =
+      b.texture(makeCheckerTexture("floor slabs", 256, 256, 16, 16, {196, 184, 160}, {150, 136, 112}));
   const uint32_t floorMat = b.material("floor", glm::vec3(1.0f), stoneTexture);
   const uint32_t columnMat = b.material("sandstone", {0.72f, 0.6f, 0.42f});
   const uint32_t wallMat = b.material("wall", {0.55f, 0.45f, 0.35f});
@@ -38,7 +39,8 @@ Scene makeTemple() {
   column.name = "column";
   column.material = columnMat;
   appendMesh(column, makeBox({0.6f, 0.15f, 0.6f}, columnMat), glm::translate(glm::mat4(1.0f), {0.0f, 0.15f, 0.0f}));
-  appendMesh(column, makeCylinder(0.42f, 5.4f, 32, columnMat, false), glm::translate(glm::mat4(1.0f), {0.0f, 0.3f, 0.0f}));
+  appendMesh(column, makeCylinder(0.42f, 5.4f, 32, columnMat, false),
+             glm::translate(glm::mat4(1.0f), {0.0f, 0.3f, 0.0f}));
   appendMesh(column, makeBox({0.65f, 0.15f, 0.65f}, columnMat), glm::translate(glm::mat4(1.0f), {0.0f, 5.85f, 0.0f}));
   const uint32_t columnMesh = b.mesh(std::move(column));
   for (int row = 0; row < 2; ++row)
@@ -81,9 +83,8 @@ Scene makeTemple() {
   b.translationKeys(crate, {0.0f, 2.0f}, {{-12.0f, 0.4f, -1.0f}, {12.0f, 0.4f, -1.0f}});
 
   // Urn drifting left at mid depth on a bobbing cubic-spline path (tangents in m/s).
-  const std::vector<glm::vec2> urnProfile = {{0.0f, 0.0f},  {0.18f, 0.0f}, {0.2f, 0.06f}, {0.32f, 0.3f},
-                                             {0.3f, 0.5f},  {0.16f, 0.7f}, {0.14f, 0.8f}, {0.2f, 0.86f},
-                                             {0.0f, 0.86f}};
+  const std::vector<glm::vec2> urnProfile = {{0.0f, 0.0f},  {0.18f, 0.0f}, {0.2f, 0.06f}, {0.32f, 0.3f}, {0.3f, 0.5f},
+                                             {0.16f, 0.7f}, {0.14f, 0.8f}, {0.2f, 0.86f}, {0.0f, 0.86f}};
   const uint32_t urn = b.object("urn", b.mesh(makeLathe(urnProfile, 40, urnMat)), makeTrs({0.0f, 0.5f, -12.0f}));
   {
     const std::vector<float> times = {0.0f, 1.0f, 2.0f};

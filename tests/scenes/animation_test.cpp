@@ -63,13 +63,13 @@ TEST(TrsTest, LookRotationPointsMinusZAlongForwardWithYUp) {
 TEST(AnimationTest, LinearTranslationInterpolatesAndClamps) {
   Scene scene = oneNode();
   scene.nodes[0].local.translation = {9, 9, 9};
-  scene.channels.push_back(channel(AnimationPath::Translation, Interpolation::Linear, {1.0f, 3.0f},
-                                   {{0, 0, 0, 0}, {4, -2, 8, 0}}));
+  scene.channels.push_back(
+      channel(AnimationPath::Translation, Interpolation::Linear, {1.0f, 3.0f}, {{0, 0, 0, 0}, {4, -2, 8, 0}}));
   expectVec3(scene.localTrsAt(0, 2.0f).translation, {2, -1, 4});
   expectVec3(scene.localTrsAt(0, 1.5f).translation, {1, -0.5f, 2});
   expectVec3(scene.localTrsAt(0, 1.0f).translation, {0, 0, 0});
-  expectVec3(scene.localTrsAt(0, -5.0f).translation, {0, 0, 0});  // before the first key
-  expectVec3(scene.localTrsAt(0, 10.0f).translation, {4, -2, 8}); // after the last key
+  expectVec3(scene.localTrsAt(0, -5.0f).translation, {0, 0, 0});   // before the first key
+  expectVec3(scene.localTrsAt(0, 10.0f).translation, {4, -2, 8});  // after the last key
   // Only the animated path is overridden.
   expectVec3(scene.localTrsAt(0, 2.0f).scale, {1, 1, 1});
 }
@@ -88,8 +88,12 @@ TEST(AnimationTest, CubicSplineFollowsTheHermiteFormulaWithScaledTangents) {
   Scene scene = oneNode();
   // Keys at t = 0 and t = 2: value 0 with out-tangent 1, value 4 with in-tangent 2.
   scene.channels.push_back(channel(AnimationPath::Translation, Interpolation::CubicSpline, {0.0f, 2.0f},
-                                   {{9, 0, 0, 0}, {0, 0, 0, 0}, {1, 0, 0, 0},     // key 0: in, value, out
-                                    {2, 0, 0, 0}, {4, 0, 0, 0}, {9, 0, 0, 0}}));  // key 1
+                                   {{9, 0, 0, 0},
+                                    {0, 0, 0, 0},
+                                    {1, 0, 0, 0},  // key 0: in, value, out
+                                    {2, 0, 0, 0},
+                                    {4, 0, 0, 0},
+                                    {9, 0, 0, 0}}));  // key 1
   // u = 0.5, dt = 2: h00 = 0.5, h10 = 0.125, h01 = 0.5, h11 = -0.125
   // p = 0.5*0 + 0.125*2*1 + 0.5*4 - 0.125*2*2 = 1.75
   EXPECT_NEAR(scene.localTrsAt(0, 1.0f).translation.x, 1.75f, kEps);
@@ -126,8 +130,8 @@ TEST(AnimationTest, CubicRotationIsNormalized) {
   const glm::vec4 a = xyzw(glm::angleAxis(0.0f, glm::vec3(1, 0, 0)));
   const glm::vec4 b = xyzw(glm::angleAxis(1.5f, glm::vec3(1, 0, 0)));
   const glm::vec4 zero(0.0f);
-  scene.channels.push_back(channel(AnimationPath::Rotation, Interpolation::CubicSpline, {0.0f, 1.0f},
-                                   {zero, a, zero, zero, b, zero}));
+  scene.channels.push_back(
+      channel(AnimationPath::Rotation, Interpolation::CubicSpline, {0.0f, 1.0f}, {zero, a, zero, zero, b, zero}));
   const glm::quat mid = scene.localTrsAt(0, 0.5f).rotation;
   EXPECT_NEAR(glm::length(mid), 1.0f, kEps);
   // Zero tangents, symmetric: halfway is the normalized average, i.e. 0.75 rad about x.
@@ -137,8 +141,8 @@ TEST(AnimationTest, CubicRotationIsNormalized) {
 TEST(AnimationTest, ChannelsOfOtherNodesDoNotApply) {
   Scene scene = oneNode();
   scene.nodes.push_back(Node{"other", -1, Trs{}});
-  scene.channels.push_back(channel(AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f},
-                                   {{0, 0, 0, 0}, {1, 1, 1, 0}}, 1));
+  scene.channels.push_back(
+      channel(AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f}, {{0, 0, 0, 0}, {1, 1, 1, 0}}, 1));
   expectVec3(scene.localTrsAt(0, 0.5f).translation, {0, 0, 0});
   expectVec3(scene.localTrsAt(1, 0.5f).translation, {0.5f, 0.5f, 0.5f});
   EXPECT_FALSE(scene.isAnimated(0));
@@ -147,8 +151,8 @@ TEST(AnimationTest, ChannelsOfOtherNodesDoNotApply) {
 
 TEST(AnimationTest, MalformedChannelIsIgnoredNotFatal) {
   Scene scene = oneNode();
-  scene.channels.push_back(channel(AnimationPath::Translation, Interpolation::CubicSpline, {0.0f, 1.0f},
-                                   {{1, 1, 1, 0}}));  // too few values
+  scene.channels.push_back(
+      channel(AnimationPath::Translation, Interpolation::CubicSpline, {0.0f, 1.0f}, {{1, 1, 1, 0}}));  // too few values
   scene.channels.push_back(channel(AnimationPath::Translation, Interpolation::Linear, {}, {}));
   expectVec3(scene.localTrsAt(0, 0.5f).translation, {0, 0, 0});
   expectVec3(scene.localTrsAt(42, 0.5f).translation, {0, 0, 0});  // node out of range
@@ -170,8 +174,8 @@ TEST(HierarchyTest, WorldMatrixComposesParentsFirst) {
   expectVec3(glm::vec3(scene.worldMatrixAt(1, 0.0f) * glm::vec4(0, 0, 1, 1)), {4, 0, 0});
 
   // Animating the parent moves the child.
-  scene.channels.push_back(channel(AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f},
-                                   {{1, 0, 0, 0}, {1, 10, 0, 0}}, 0));
+  scene.channels.push_back(
+      channel(AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f}, {{1, 0, 0, 0}, {1, 10, 0, 0}}, 0));
   expectVec3(glm::vec3(scene.worldMatrixAt(1, 0.5f)[3]), {2, 5, 0});
   EXPECT_TRUE(scene.isAnimated(1));
   EXPECT_TRUE(scene.isAnimated(0));
@@ -202,8 +206,8 @@ TEST(SceneTest, BoundsAndTriangleCountFollowInstances) {
   scene.instances.push_back(Instance{0, 0, 1});
   scene.instances.push_back(Instance{0, 1, 2});
   EXPECT_EQ(scene.triangleCount(), 2u);
-  scene.channels.push_back(channel(AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f},
-                                   {{10, 0, 0, 0}, {10, 0, 4, 0}}, 0));
+  scene.channels.push_back(
+      channel(AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f}, {{10, 0, 0, 0}, {10, 0, 4, 0}}, 0));
   const Aabb bounds = scene.boundsAt(1.0f);
   expectVec3(bounds.min, {-5, 0, 0});
   expectVec3(bounds.max, {11, 1, 4});

@@ -19,8 +19,11 @@ Scene testScene(float unit) {
   b.object("floor", b.mesh(procedural::makePlane({6.0f * unit, 4.0f * unit}, mat)), makeTrs(glm::vec3(0.0f)));
   const uint32_t box = b.mesh(procedural::makeBox(glm::vec3(0.4f * unit), mat));
   for (int i = 0; i < 4; ++i)
-    b.object("box", box, makeTrs(glm::vec3(-2.0f + 1.3f * static_cast<float>(i), 0.4f, -1.0f + 0.5f * static_cast<float>(i)) * unit));
-  const uint32_t ball = b.object("ball", b.mesh(procedural::makeSphere(0.3f * unit, 32, 16, mat)), makeTrs(glm::vec3(0.0f, 1.0f, 0.5f) * unit));
+    b.object(
+        "box", box,
+        makeTrs(glm::vec3(-2.0f + 1.3f * static_cast<float>(i), 0.4f, -1.0f + 0.5f * static_cast<float>(i)) * unit));
+  const uint32_t ball = b.object("ball", b.mesh(procedural::makeSphere(0.3f * unit, 32, 16, mat)),
+                                 makeTrs(glm::vec3(0.0f, 1.0f, 0.5f) * unit));
   b.translationKeys(ball, {0.0f, 1.0f}, {glm::vec3(-1.0f, 1.0f, 0.5f) * unit, glm::vec3(1.0f, 1.0f, 0.5f) * unit});
   Scene scene = b.finish();
   scene.settings.frameTime = 0.5f;

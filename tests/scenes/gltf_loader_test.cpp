@@ -33,12 +33,13 @@ TEST(GltfLoaderTest, HierarchyMaterialAndTexture) {
   const std::vector<uint8_t> png = test::encodePng(2, 1, 3, 8, {255, 0, 0, 0, 255, 0});
   w.doc["images"] = {{{"uri", "data:image/png;base64," + test::base64(png.data(), png.size())}}};
   w.doc["textures"] = {{{"source", 0}}};
-  w.doc["materials"] = {{{"name", "paint"},
-                         {"doubleSided", true},
-                         {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}}, {"baseColorTexture", {{"index", 0}}}}}}};
+  w.doc["materials"] = {
+      {{"name", "paint"},
+       {"doubleSided", true},
+       {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}}, {"baseColorTexture", {{"index", 0}}}}}}};
   const int child = w.addNode({{"name", "child"}, {"mesh", mesh}, {"translation", {0, 0, 1}}});
-  const int parent = w.addNode({{"name", "parent"}, {"children", {child}}, {"translation", {10, 0, 0}},
-                                {"scale", {2, 2, 2}}});
+  const int parent =
+      w.addNode({{"name", "parent"}, {"children", {child}}, {"translation", {10, 0, 0}}, {"scale", {2, 2, 2}}});
   w.setSceneRoots({parent});
   const Scene scene = loadGltf(w.writeGltf(dir() / "hierarchy.gltf"));
 
@@ -98,8 +99,9 @@ TEST(GltfLoaderTest, DefaultMaterialWhenPrimitiveHasNone) {
 
 TEST(GltfLoaderTest, PerspectiveCameraAndIgnoredOrthographic) {
   GltfWriter w;
-  w.doc["cameras"] = {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}},
-                      {{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"aspectRatio", 1.5}, {"znear", 0.05}}}}};
+  w.doc["cameras"] = {
+      {{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}},
+      {{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"aspectRatio", 1.5}, {"znear", 0.05}}}}};
   const int ortho = w.addNode({{"camera", 0}});
   const int persp = w.addNode({{"camera", 1}, {"translation", {0, 1, 5}}});
   w.setSceneRoots({ortho, persp, w.addNode({{"mesh", w.addMesh({test::addQuadPrimitive(w)})}})});
@@ -123,21 +125,24 @@ TEST(GltfLoaderTest, AnimationChannelsAreSampled) {
   const int turns = w.addFloats({0, 0, 0, 1, 0, s, 0, s}, "VEC4");  // identity, 90 deg about y
   const int steps = w.addFloats({1, 1, 1, 3, 3, 3}, "VEC3");
   const int weights = w.addFloats({0, 1}, "SCALAR");
-  w.doc["animations"] = {{{"samplers", {{{"input", times}, {"output", moves}},
-                                        {{"input", times}, {"output", turns}, {"interpolation", "LINEAR"}},
-                                        {{"input", times}, {"output", steps}, {"interpolation", "STEP"}},
-                                        {{"input", times}, {"output", weights}}}},
-                          {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}},
-                                        {{"sampler", 1}, {"target", {{"node", node}, {"path", "rotation"}}}},
-                                        {{"sampler", 2}, {"target", {{"node", node}, {"path", "scale"}}}},
-                                        {{"sampler", 3}, {"target", {{"node", node}, {"path", "weights"}}}}}}}};
+  w.doc["animations"] = {{{"samplers",
+                           {{{"input", times}, {"output", moves}},
+                            {{"input", times}, {"output", turns}, {"interpolation", "LINEAR"}},
+                            {{"input", times}, {"output", steps}, {"interpolation", "STEP"}},
+                            {{"input", times}, {"output", weights}}}},
+                          {"channels",
+                           {{{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}},
+                            {{"sampler", 1}, {"target", {{"node", node}, {"path", "rotation"}}}},
+                            {{"sampler", 2}, {"target", {{"node", node}, {"path", "scale"}}}},
+                            {{"sampler", 3}, {"target", {{"node", node}, {"path", "weights"}}}}}}}};
   const Scene scene = loadGltf(w.writeGltf(dir() / "animation.gltf"));
   ASSERT_EQ(scene.channels.size(), 3u);  // weights ignored
   EXPECT_FALSE(scene.stats.warnings.empty());
   EXPECT_NEAR(scene.settings.frameTime, 1.0f, kEps);  // middle of the animation
   const Trs mid = scene.localTrsAt(0, 1.0f);
   expectVec3(mid.translation, {2, 0, 0});
-  expectVec3(mid.rotation * glm::vec3(1, 0, 0), {std::cos(glm::quarter_pi<float>()), 0, -std::sin(glm::quarter_pi<float>())}, 1e-4f);
+  expectVec3(mid.rotation * glm::vec3(1, 0, 0),
+             {std::cos(glm::quarter_pi<float>()), 0, -std::sin(glm::quarter_pi<float>())}, 1e-4f);
   expectVec3(mid.scale, {1, 1, 1});
   expectVec3(scene.localTrsAt(0, 2.0f).scale, {3, 3, 3});
   EXPECT_TRUE(scene.isAnimated(0));
@@ -200,8 +205,8 @@ TEST(GltfLoaderTest, NonIndexedByteIndicesAndInterleavedStride) {
   byteIndexed["indices"] = w.addIndices({0, 1, 2, 2, 1, 0}, test::kUnsignedByte);
   // Normalized unsigned-byte uvs.
   const std::vector<uint8_t> uvBytes = {0, 0, 255, 0, 0, 255, 0, 0};
-  byteIndexed["attributes"]["TEXCOORD_0"] = w.addAccessor(w.addView(uvBytes.data(), uvBytes.size()), test::kUnsignedByte,
-                                                          3, "VEC2", 0, /*normalized=*/true);
+  byteIndexed["attributes"]["TEXCOORD_0"] =
+      w.addAccessor(w.addView(uvBytes.data(), uvBytes.size()), test::kUnsignedByte, 3, "VEC2", 0, /*normalized=*/true);
   w.setSceneRoots({w.addNode({{"mesh", w.addMesh({nonIndexed, byteIndexed})}})});
   const Scene scene = loadGltf(w.writeGltf(dir() / "interleaved.gltf"));
   ASSERT_EQ(scene.meshes.size(), 2u);
@@ -224,9 +229,10 @@ TEST(GltfLoaderTest, SparseAccessorOverridesBaseValues) {
   const std::vector<float> sparseValue = {0, 5, 0};
   const int indexView = w.addView(sparseIndex.data(), 2);
   const int valueView = w.addView(sparseValue.data(), 12);
-  w.doc["accessors"][base]["sparse"] = {{"count", 1},
-                                        {"indices", {{"bufferView", indexView}, {"componentType", test::kUnsignedShort}}},
-                                        {"values", {{"bufferView", valueView}}}};
+  w.doc["accessors"][base]["sparse"] = {
+      {"count", 1},
+      {"indices", {{"bufferView", indexView}, {"componentType", test::kUnsignedShort}}},
+      {"values", {{"bufferView", valueView}}}};
   w.setSceneRoots({w.addNode({{"mesh", w.addMesh({{{"attributes", {{"POSITION", base}}}}})}})});
   const Scene scene = loadGltf(w.writeGltf(dir() / "sparse.gltf"));
   ASSERT_EQ(scene.meshes.size(), 1u);
@@ -282,7 +288,8 @@ TEST(GltfLoaderTest, MatrixNodesDecomposeIncludingMirrors) {
 TEST(GltfLoaderTest, DirectionalLightPointsDownTheNodesMinusZ) {
   GltfWriter w;
   w.doc["extensionsUsed"] = {"KHR_lights_punctual"};
-  w.doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "directional"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 2.0}}};
+  w.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "directional"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 2.0}}};
   const float s = std::sqrt(0.5f);
   // Rotated -90 deg about x: -Z turns into -Y (straight down).
   const int light = w.addNode({{"rotation", {-s, 0, 0, s}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});

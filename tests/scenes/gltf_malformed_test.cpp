@@ -52,7 +52,8 @@ TEST(GltfMalformedTest, TruncatedGlb) {
   const std::vector<uint8_t> glb = quadFile().glbBytes();
   for (size_t keep : {size_t{6}, size_t{20}, glb.size() / 2, glb.size() - 4}) {
     const auto path = dir() / ("truncated-" + std::to_string(keep) + ".glb");
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(keep));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(keep));
     expectLoadError(path, "");
   }
 }

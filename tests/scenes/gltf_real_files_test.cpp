@@ -15,8 +15,8 @@ std::filesystem::path modelsDir() {
   return {};
 }
 
-#define REQUIRE_MODELS()                                                  \
-  const std::filesystem::path root = modelsDir();                         \
+#define REQUIRE_MODELS()                          \
+  const std::filesystem::path root = modelsDir(); \
   if (root.empty()) GTEST_SKIP() << "assimp-testmodels is not installed"
 
 TEST(GltfRealFilesTest, BoxTexturedInAllContainers) {

@@ -69,7 +69,8 @@ std::vector<uint8_t> encodePng(uint32_t width, uint32_t height, int channels, in
     z.push_back(static_cast<uint8_t>(n >> 8));
     z.push_back(static_cast<uint8_t>(~n));
     z.push_back(static_cast<uint8_t>(~n >> 8));
-    z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(pos), raw.begin() + static_cast<std::ptrdiff_t>(pos + n));
+    z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(pos),
+             raw.begin() + static_cast<std::ptrdiff_t>(pos + n));
     pos += n;
   } while (pos < raw.size());
   uint32_t a = 1, b = 0;
@@ -160,7 +161,8 @@ std::filesystem::path GltfWriter::writeGltf(const std::filesystem::path& path, b
   if (!bin.empty()) {
     if (externalBin) {
       const std::filesystem::path binPath = path.parent_path() / (path.stem().string() + ".bin");
-      std::ofstream(binPath, std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+      std::ofstream(binPath, std::ios::binary)
+          .write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
       out["buffers"] = {{{"byteLength", bin.size()}, {"uri", binPath.filename().string()}}};
     } else {
       out["buffers"] = {{{"byteLength", bin.size()},
@@ -179,7 +181,8 @@ std::vector<uint8_t> GltfWriter::glbBytes() const {
   std::string json = out.dump();
   while (json.size() % 4 != 0) json += ' ';
   std::vector<uint8_t> glb;
-  const uint32_t total = 12 + 8 + static_cast<uint32_t>(json.size()) + (payload.empty() ? 0 : 8 + static_cast<uint32_t>(payload.size()));
+  const uint32_t total =
+      12 + 8 + static_cast<uint32_t>(json.size()) + (payload.empty() ? 0 : 8 + static_cast<uint32_t>(payload.size()));
   glb.insert(glb.end(), {'g', 'l', 'T', 'F'});
   putLittleEndian32(glb, 2);
   putLittleEndian32(glb, total);
@@ -196,7 +199,8 @@ std::vector<uint8_t> GltfWriter::glbBytes() const {
 
 std::filesystem::path GltfWriter::writeGlb(const std::filesystem::path& path) const {
   const std::vector<uint8_t> glb = glbBytes();
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
   return path;
 }
 

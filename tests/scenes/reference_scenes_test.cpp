@@ -66,7 +66,8 @@ TEST(ReferenceScenesTest, EveryScenesDataIsConsistent) {
       for (uint32_t i : mesh.indices) ASSERT_LT(i, mesh.positions.size());
       for (const glm::vec3& n : mesh.normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-3f);
     }
-    for (const Material& m : scene.materials) ASSERT_LT(m.baseColorTexture, static_cast<int32_t>(scene.textures.size()));
+    for (const Material& m : scene.materials)
+      ASSERT_LT(m.baseColorTexture, static_cast<int32_t>(scene.textures.size()));
     for (const Texture& t : scene.textures) ASSERT_EQ(t.rgba8.size(), size_t{t.width} * t.height * 4);
     for (const Instance& inst : scene.instances) {
       ASSERT_LT(inst.mesh, scene.meshes.size());
@@ -98,7 +99,8 @@ TEST(ReferenceScenesTest, ScenesAreDeterministic) {
       EXPECT_EQ(a.meshes[m].indices, b.meshes[m].indices);
     }
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
-    for (size_t n = 0; n < a.nodes.size(); ++n) EXPECT_EQ(a.worldMatrixAt(static_cast<uint32_t>(n), 0.3f), b.worldMatrixAt(static_cast<uint32_t>(n), 0.3f));
+    for (size_t n = 0; n < a.nodes.size(); ++n)
+      EXPECT_EQ(a.worldMatrixAt(static_cast<uint32_t>(n), 0.3f), b.worldMatrixAt(static_cast<uint32_t>(n), 0.3f));
     ASSERT_EQ(a.instances.size(), b.instances.size());
     for (size_t i = 0; i < a.instances.size(); ++i) EXPECT_EQ(a.instances[i].objectId, b.instances[i].objectId);
     ASSERT_EQ(a.textures.size(), b.textures.size());
