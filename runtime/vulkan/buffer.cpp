@@ -15,7 +15,8 @@ std::string mib(VkDeviceSize bytes) {
 
 }  // namespace
 
-Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::string name)
+Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::string name,
+               VkBufferUsageFlags extraUsage)
     : context_(&context), size_(bytes), name_(std::move(name)) {
   if (bytes == 0) throw Error("buffer '" + name_ + "' has size 0");
   const auto& limits = context.limits();
@@ -26,7 +27,7 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = bytes;
   info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | extraUsage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   const VkDevice device = context.device();
   HMB_VK_CHECK(vkCreateBuffer(device, &info, nullptr, &buffer_));

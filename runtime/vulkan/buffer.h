@@ -25,7 +25,9 @@ class Buffer {
  public:
   Buffer() = default;
   // Throws hmb::Error before allocating when the size exceeds what the device allows.
-  Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::string name);
+  // extraUsage adds to the storage/transfer/indirect usage every buffer has (e.g. vertex input).
+  Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::string name,
+         VkBufferUsageFlags extraUsage = 0);
   ~Buffer();
   Buffer(Buffer&& other) noexcept;
   Buffer& operator=(Buffer&& other) noexcept;

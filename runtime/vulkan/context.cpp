@@ -128,7 +128,9 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-    info.timestamps = families[family].timestampValidBits > 0 && props.limits.timestampPeriod > 0.0f;
+    const uint32_t bits = families[family].timestampValidBits;
+    info.timestamps = bits > 0 && props.limits.timestampPeriod > 0.0f;
+    info.timestampMask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
   }
 
   VkPhysicalDeviceMemoryProperties memory{};

@@ -26,6 +26,7 @@ struct DeviceInfo {
   bool computeCapable = false;
   bool int64BufferAtomics = false;  // shaderBufferInt64Atomics
   bool timestamps = false;          // the compute queue has timestamp bits
+  uint64_t timestampMask = 0;       // the valid bits of a timestamp on that queue
   double timestampPeriodNs = 0.0;
   uint64_t maxStorageBufferRange = 0;
   uint64_t deviceLocalBytes = 0;  // the largest device-local heap

@@ -45,12 +45,6 @@ FrameRecorder::FrameRecorder(const Context& context, uint32_t maxPasses)
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
     queryInfo.queryCount = 2 * maxPasses;
     HMB_VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
-    uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &count, families.data());
-    const uint32_t bits = families[context.queueFamily()].timestampValidBits;
-    timestampMask_ = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
   }
 }
 
@@ -166,7 +160,8 @@ FrameTimings FrameRecorder::submitAndWait() {
                                        stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
                                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   const double nsPerTick = context_.info().timestampPeriodNs;
-  auto ticksToMs = [&](uint64_t from, uint64_t to) { return double((to - from) & timestampMask_) * nsPerTick * 1e-6; };
+  const uint64_t mask = context_.info().timestampMask;
+  auto ticksToMs = [&](uint64_t from, uint64_t to) { return double((to - from) & mask) * nsPerTick * 1e-6; };
   for (uint32_t i = 0; i < passCount; ++i) {
     PassTiming timing{passNames_[i], std::nullopt};
     if (queryPool_) timing.milliseconds = ticksToMs(stamps[2 * i], stamps[2 * i + 1]);

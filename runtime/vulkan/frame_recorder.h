@@ -68,7 +68,6 @@ class FrameRecorder {
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
-  uint64_t timestampMask_ = 0;
   std::vector<std::string> passNames_;
   bool recording_ = false;
 };

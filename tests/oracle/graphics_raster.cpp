@@ -80,8 +80,6 @@ GraphicsRasterizer::GraphicsRasterizer(const vk::Context& context, uint32_t widt
       queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
       queryInfo.queryCount = 2;
       HMB_VK_CHECK(vkCreateQueryPool(context.device(), &queryInfo, nullptr, &queryPool_));
-      const uint32_t bits = family.timestampValidBits;
-      timestampMask_ = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
     }
   } catch (...) {
     release();
@@ -101,8 +99,8 @@ void GraphicsRasterizer::release() {
   if (renderPass_) vkDestroyRenderPass(device, renderPass_, nullptr);
   destroy(color_);
   destroy(depth_);
-  destroy(vertices_);
-  destroy(staging_);
+  vertices_ = vk::Buffer();
+  staging_ = vk::Buffer();
   queryPool_ = VK_NULL_HANDLE;
   pipelines_[0] = pipelines_[1] = VK_NULL_HANDLE;
   pipelineLayout_ = VK_NULL_HANDLE;
@@ -305,45 +303,6 @@ void GraphicsRasterizer::createPipelines() {
   vkDestroyShaderModule(device, frag, nullptr);
 }
 
-GraphicsRasterizer::DeviceBuffer GraphicsRasterizer::createBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage,
-                                                                  VkMemoryPropertyFlags required,
-                                                                  VkMemoryPropertyFlags preferred) {
-  const VkDevice device = context_.device();
-  DeviceBuffer b;
-  b.size = bytes;
-  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-  info.size = bytes;
-  info.usage = usage;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  try {
-    HMB_VK_CHECK(vkCreateBuffer(device, &info, nullptr, &b.buffer));
-    VkMemoryRequirements req{};
-    vkGetBufferMemoryRequirements(device, b.buffer, &req);
-    const uint32_t type = context_.findMemoryType(req.memoryTypeBits, required, preferred);
-    if (type == UINT32_MAX) throw Error("graphics oracle: no memory type fits the vertex buffer");
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = type;
-    HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &b.memory));
-    HMB_VK_CHECK(vkBindBufferMemory(device, b.buffer, b.memory, 0));
-    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    if ((context_.memoryProperties().memoryTypes[type].propertyFlags & host) == host)
-      HMB_VK_CHECK(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
-  } catch (...) {
-    destroy(b);
-    throw;
-  }
-  return b;
-}
-
-void GraphicsRasterizer::destroy(DeviceBuffer& b) {
-  const VkDevice device = context_.device();
-  if (b.mapped) vkUnmapMemory(device, b.memory);
-  if (b.buffer) vkDestroyBuffer(device, b.buffer, nullptr);
-  if (b.memory) vkFreeMemory(device, b.memory, nullptr);
-  b = DeviceBuffer{};
-}
-
 void GraphicsRasterizer::destroy(Attachment& a) {
   const VkDevice device = context_.device();
   if (a.view) vkDestroyImageView(device, a.view, nullptr);
@@ -353,19 +312,16 @@ void GraphicsRasterizer::destroy(Attachment& a) {
 }
 
 void* GraphicsRasterizer::reserveVertices(VkDeviceSize bytes) {
-  if (vertices_.size < bytes) {
+  if (vertices_.size() < bytes) {
     // Grow by half again so a benchmark ramping up its triangle count reallocates rarely.
-    const VkDeviceSize size = std::max(bytes, vertices_.size + vertices_.size / 2);
-    destroy(vertices_);
-    destroy(staging_);
-    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    const VkDeviceSize size = std::max(bytes, vertices_.size() + vertices_.size() / 2);
+    staging_ = vk::Buffer();
     // Device-local so the timed draw reads fast memory; written directly where that memory
     // is also host-visible (CPU devices, resizable BAR), else through a staging buffer.
-    vertices_ = createBuffer(size, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, host);
-    if (!vertices_.mapped) staging_ = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, host, 0);
+    vertices_ = vk::Buffer(context_, size, vk::MemoryUse::Device, "oracle vertices", VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    if (!vertices_.mapped()) staging_ = vk::Buffer(context_, size, vk::MemoryUse::Upload, "oracle vertex staging");
   }
-  return vertices_.mapped ? vertices_.mapped : staging_.mapped;
+  return vertices_.mapped() ? vertices_.mapped() : staging_.mapped();
 }
 
 OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triangles) {
@@ -395,13 +351,13 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
   }
 
   context_.submitAndWait([&](VkCommandBuffer cmd) {
-    if (staging_.mapped && vertexBytes > 0) {
+    if (staging_.mapped() && vertexBytes > 0) {
       // The previous call's draw read the vertex buffer; then this call's upload fills it.
       VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before,
                            0, nullptr, 0, nullptr);
       const VkBufferCopy region{0, 0, vertexBytes};
-      vkCmdCopyBuffer(cmd, staging_.buffer, vertices_.buffer, 1, &region);
+      vkCmdCopyBuffer(cmd, staging_.handle(), vertices_.handle(), 1, &region);
       VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       after.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
       after.dstAccessMask = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT;
@@ -426,7 +382,8 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     if (!draws.empty()) {
       const VkDeviceSize offset = 0;
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &offset);
+      const VkBuffer vertexBuffer = vertices_.handle();
+      vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
       uint32_t bound = UINT32_MAX;
       for (const Draw& draw : draws) {
         if (draw.pipeline != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[draw.pipeline]);
@@ -458,7 +415,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
     uint64_t stamps[2] = {0, 0};
     HMB_VK_CHECK(vkGetQueryPoolResults(context_.device(), queryPool_, 0, 2, sizeof(stamps), stamps,
                                        sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const double ticks = double((stamps[1] - stamps[0]) & timestampMask_);
+    const double ticks = double((stamps[1] - stamps[0]) & context_.info().timestampMask);
     lastDrawMs_ = ticks * context_.info().timestampPeriodNs * 1e-6;
   }
 

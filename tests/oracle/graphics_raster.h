@@ -73,12 +73,6 @@ class GraphicsRasterizer {
   VkFormat depthFormat() const { return depthFormat_; }
 
  private:
-  struct DeviceBuffer {
-    VkBuffer buffer = VK_NULL_HANDLE;
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    VkDeviceSize size = 0;
-    void* mapped = nullptr;
-  };
   struct Attachment {
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
@@ -89,9 +83,6 @@ class GraphicsRasterizer {
   void createAttachments();
   void createPipelines();
   Attachment createAttachment(VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
-  DeviceBuffer createBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage, VkMemoryPropertyFlags required,
-                            VkMemoryPropertyFlags preferred);
-  void destroy(DeviceBuffer& buffer);
   void destroy(Attachment& attachment);
   void* reserveVertices(VkDeviceSize bytes);  // where the host writes this call's vertices
   void release();
@@ -104,10 +95,9 @@ class GraphicsRasterizer {
   VkPipeline pipelines_[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};  // [0] culls back faces, [1] culls none
   Attachment color_, depth_;
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
-  DeviceBuffer vertices_, staging_;  // staging_ only where vertex memory is not host-visible
+  vk::Buffer vertices_, staging_;  // staging_ only where vertex memory is not host-visible
   vk::Buffer idsReadback_, depthReadback_;
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
-  uint64_t timestampMask_ = ~0ull;
   std::optional<double> lastDrawMs_;
 };
 
