@@ -26,12 +26,21 @@ glm::mat4 cameraWorld(const scene::Scene& scene, float t) {
   return scene.worldMatrixAt(static_cast<uint32_t>(scene.camera->node), t);
 }
 
+struct DepthRange {
+  float znear, zfar;
+};
+
+DepthRange depthRange(const scene::Scene& scene) {
+  const scene::Camera camera = scene.camera.value_or(scene::Camera{});
+  const float znear = camera.znear > 0.0f ? camera.znear : 0.1f;
+  return {znear, camera.zfar > znear ? camera.zfar : znear * 1000.0f};
+}
+
 glm::mat4 projection(const scene::Scene& scene, uint32_t width, uint32_t height) {
   const scene::Camera camera = scene.camera.value_or(scene::Camera{});
   const float aspect = camera.aspectRatio > 0.0f ? camera.aspectRatio : float(width) / float(height);
-  const float znear = camera.znear > 0.0f ? camera.znear : 0.1f;
-  const float zfar = camera.zfar > znear ? camera.zfar : znear * 1000.0f;
-  glm::mat4 p = glm::perspectiveRH_ZO(camera.yfov, aspect, znear, zfar);
+  const DepthRange range = depthRange(scene);
+  glm::mat4 p = glm::perspectiveRH_ZO(camera.yfov, aspect, range.znear, range.zfar);
   p[1][1] *= -1.0f;  // Vulkan clip space: y points down the image
   return p;
 }
@@ -47,6 +56,9 @@ FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint
   camera.viewProjCurrent = camera.projection * camera.view;
   camera.viewProjPrevious = camera.projection * glm::inverse(cameraWorld(scene, previous));
   camera.eye = glm::vec3(worldNow[3]);
+  const DepthRange range = depthRange(scene);
+  camera.znear = range.znear;
+  camera.zfar = range.zfar;
   return camera;
 }
 

@@ -19,6 +19,8 @@ struct FrameCamera {
   glm::mat4 viewProjCurrent{1.0f};
   glm::mat4 viewProjPrevious{1.0f};
   glm::vec3 eye{0.0f};
+  float znear = 0.1f;  // camera-space distances of the clip planes
+  float zfar = 100.0f;
 };
 
 // The camera at frame time t for an image of the given size; the previous frame is t - 1/fps.

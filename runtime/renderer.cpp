@@ -5,28 +5,68 @@
 #include <cstring>
 
 #include "runtime/error.h"
+#include "runtime/gpu_scene.h"
 #include "runtime/passes/encode_display_pass.h"
+#include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/test_pattern_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {
+namespace {
+
+// Overflowing rasterizer buffers grow to what the frame needed, so a second try fits; a third
+// guards against counters that disagree between two recordings of the same frame.
+constexpr int kMaxRecordAttempts = 3;
+
+io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> channels,
+                         const std::vector<glm::vec4>& values) {
+  io::ImageLayer layer{name, std::move(channels), false, {}, {}};
+  const size_t n = layer.channels.size();
+  layer.values.reserve(values.size() * n);
+  for (const glm::vec4& v : values)
+    for (size_t c = 0; c < n; ++c) layer.values.push_back(v[int(c)]);
+  return layer;
+}
+
+io::Rgba8Image downloadDisplay(const vk::Buffer& display, uint32_t width, uint32_t height) {
+  const auto packed = display.download<uint32_t>();
+  io::Rgba8Image image;
+  image.width = width;
+  image.height = height;
+  image.pixels.resize(size_t(width) * height * 4);
+  std::memcpy(image.pixels.data(), packed.data(), image.pixels.size());
+  return image;
+}
+
+}  // namespace
 
 struct Renderer::Passes {
-  explicit Passes(const vk::Context& context) : testPattern(context), encodeDisplay(context), recorder(context) {}
+  explicit Passes(const vk::Context& context)
+      : testPattern(context),
+        encodeDisplay(context),
+        gbuffer(context, passes::defaultVisibilityScheme(context.info())),
+        recorder(context) {}
   passes::TestPatternPass testPattern;
   passes::EncodeDisplayPass encodeDisplay;
+  passes::GBufferStage gbuffer;
   vk::FrameRecorder recorder;
 };
 
 const std::vector<std::string>& methodNames() {
+  static const std::vector<std::string> names = {"sharp"};
+  return names;
+}
+
+const std::vector<std::string>& debugMethodNames() {
   static const std::vector<std::string> names = {"test-pattern"};
   return names;
 }
 
 void validateRenderSettings(const RenderSettings& settings) {
-  const auto& names = methodNames();
+  std::vector<std::string> names = methodNames();
+  names.insert(names.end(), debugMethodNames().begin(), debugMethodNames().end());
   if (std::find(names.begin(), names.end(), settings.method) == names.end()) {
     std::string list;
     for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
@@ -54,34 +94,59 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
   result.width = settings.width;
   result.height = settings.height;
   result.frameTime = settings.frameTime.value_or(scene.settings.frameTime);
-
-  const uint64_t pixels = uint64_t(settings.width) * settings.height;
-  vk::Buffer linear(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "beauty (linear RGBA)");
+  const uint32_t width = settings.width, height = settings.height;
+  const uint64_t pixels = uint64_t(width) * height;
   vk::Buffer display(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "display (RGBA8)");
-
-  // The test pattern proves the runtime; it does not read the scene.
-  result.plan.run(passes::TestPatternPass::kName);
-  result.plan.run(passes::EncodeDisplayPass::kName);
-
   vk::FrameRecorder& frame = passes_->recorder;
-  frame.begin();
-  passes_->testPattern.record(frame, linear, settings.width, settings.height, result.frameTime);
-  passes_->encodeDisplay.record(frame, linear, display, settings.width, settings.height);
-  const vk::FrameTimings timings = frame.submitAndWait();
+  vk::FrameTimings timings;
+
+  if (settings.method == "test-pattern") {
+    // The test pattern proves the runtime; it does not read the scene.
+    vk::Buffer linear(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "beauty (linear RGBA)");
+    result.plan.run(passes::TestPatternPass::kName);
+    result.plan.run(passes::EncodeDisplayPass::kName);
+    frame.begin();
+    passes_->testPattern.record(frame, linear, width, height, result.frameTime);
+    passes_->encodeDisplay.record(frame, linear, display, width, height);
+    timings = frame.submitAndWait();
+    result.image = {width, height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
+  } else {
+    // sharp: the G-buffer's shaded colour, the shutter-close instant without blur.
+    GpuScene gpuScene(context_, scene);
+    gpuScene.setFrame(scene, result.frameTime, width, height);
+    passes::GBufferStage& gbuffer = passes_->gbuffer;
+    gbuffer.prepare(gpuScene, width, height);
+    gbuffer.plan(result.plan);
+    result.plan.run(passes::EncodeDisplayPass::kName);
+    for (int attempt = 0;; ++attempt) {
+      frame.begin();
+      gbuffer.record(frame, gpuScene);
+      passes_->encodeDisplay.record(frame, gbuffer.color(), display, width, height);
+      timings = frame.submitAndWait();
+      if (!gbuffer.growIfOverflowed()) break;
+      if (attempt + 1 >= kMaxRecordAttempts)
+        throw Error("rasterizer buffers still overflow after " + std::to_string(kMaxRecordAttempts) + " attempts");
+    }
+    result.visibilityScheme = passes::visibilitySchemeName(gbuffer.rasterizer().scheme());
+    result.raster = gbuffer.rasterizer().stats();
+
+    const auto normalDepth = gbuffer.normalDepth().download<glm::vec4>();
+    std::vector<glm::vec4> depth(normalDepth.size());
+    for (size_t i = 0; i < depth.size(); ++i) depth[i].x = normalDepth[i].w;
+    std::vector<glm::vec4> velocity;
+    for (const glm::vec2& v : gbuffer.velocity().download<glm::vec2>()) velocity.emplace_back(v, 0.0f, 0.0f);
+    io::ImageLayer objectId{"objectId", {"id"}, true, {}, gbuffer.objectId().download<uint32_t>()};
+    objectId.ids.resize(pixels);
+    result.image = {width,
+                    height,
+                    {vec4Layer("", {"R", "G", "B", "A"}, gbuffer.color().download<glm::vec4>()),
+                     vec4Layer("depth", {"Z"}, depth), vec4Layer("normal", {"X", "Y", "Z"}, normalDepth),
+                     vec4Layer("velocity", {"X", "Y"}, velocity), std::move(objectId)}};
+  }
+
   result.plan.attachTimings(timings);
   result.frameMilliseconds = timings.frameMilliseconds;
-
-  const auto beauty = linear.download<glm::vec4>();
-  io::ImageLayer beautyLayer{"", {"R", "G", "B", "A"}, false, {}, {}};
-  beautyLayer.values.reserve(beauty.size() * 4);
-  for (const glm::vec4& p : beauty) beautyLayer.values.insert(beautyLayer.values.end(), {p.r, p.g, p.b, p.a});
-  result.image = {settings.width, settings.height, {std::move(beautyLayer)}};
-
-  const auto packed = display.download<uint32_t>();
-  result.display.width = settings.width;
-  result.display.height = settings.height;
-  result.display.pixels.resize(packed.size() * 4);
-  std::memcpy(result.display.pixels.data(), packed.data(), result.display.pixels.size());
+  result.display = downloadDisplay(display, width, height);
   return result;
 }
 

@@ -10,6 +10,7 @@
 
 #include "runtime/frame_plan.h"
 #include "runtime/io/image.h"
+#include "runtime/passes/rasterize_pass.h"
 #include "scenes/scene.h"
 
 namespace hmb::vk {
@@ -22,7 +23,7 @@ namespace hmb {
 inline constexpr uint32_t kMaxImageSide = 16384;
 
 struct RenderSettings {
-  std::string method = "test-pattern";
+  std::string method = "sharp";
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;  // seconds; default: the scene's settings.frameTime
@@ -37,10 +38,15 @@ struct RenderResult {
   io::Rgba8Image display;    // the display transform of the beauty layer
   FramePlan plan;
   std::optional<double> frameMilliseconds;
+  // The G-buffer rasterizer of the frame (methods without one leave these empty).
+  std::string visibilityScheme;
+  passes::RasterStats raster;
 };
 
 // The methods this build can render, in the order the demo runs them.
 const std::vector<std::string>& methodNames();
+// Methods that prove the runtime rather than render the scene (accepted, not in the demo).
+const std::vector<std::string>& debugMethodNames();
 
 // Throws hmb::Error (one line) for an unknown method or an unusable size.
 void validateRenderSettings(const RenderSettings& settings);

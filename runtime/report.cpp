@@ -73,6 +73,15 @@ nlohmann::json passesJson(const FramePlan& plan) {
   return passes;
 }
 
+nlohmann::json rasterJson(const RenderResult& result) {
+  if (result.visibilityScheme.empty()) return nullptr;
+  return {{"visibility_scheme", result.visibilityScheme},
+          {"setup_triangles", result.raster.setupTriangles},
+          {"tile_pairs", result.raster.tilePairs},
+          {"large_triangles", result.raster.largeTriangles},
+          {"buffer_regrowths", result.raster.regrowths}};
+}
+
 nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& system, const scene::Scene& scene,
                             const RenderResult& result) {
   return {
@@ -86,6 +95,7 @@ nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& syst
       {"scene", sceneJson(scene)},
       {"passes", passesJson(result.plan)},
       {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds) : nlohmann::json(nullptr)},
+      {"raster", rasterJson(result)},
   };
 }
 

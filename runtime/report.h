@@ -18,6 +18,8 @@ nlohmann::json deviceJson(const vk::DeviceInfo& device);
 nlohmann::json systemJson(const SystemInfo& system);
 nlohmann::json sceneJson(const scene::Scene& scene);
 nlohmann::json passesJson(const FramePlan& plan);
+// The G-buffer rasterizer of a render (visibility scheme, counts); null for methods without one.
+nlohmann::json rasterJson(const RenderResult& result);
 
 nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& system, const scene::Scene& scene,
                             const RenderResult& result);

@@ -17,7 +17,7 @@
 #define HMB_RESOLVE_BINDING_CAMERA 7
 #define HMB_RESOLVE_BINDING_CLIP_CURRENT 8
 #define HMB_RESOLVE_BINDING_CLIP_PREVIOUS 9
-#define HMB_RESOLVE_BINDING_COLOR 10         // vec4: linear shaded colour, a = 1 on surfaces
+#define HMB_RESOLVE_BINDING_COLOR 10         // vec4: linear shaded colour, opaque (background colour where empty)
 #define HMB_RESOLVE_BINDING_NORMAL_DEPTH 11  // vec4: xyz world normal, w camera-space depth
 #define HMB_RESOLVE_BINDING_VELOCITY 12      // vec2: screen velocity, pixels per frame (y down)
 #define HMB_RESOLVE_BINDING_OBJECT_ID 13     // uint: object id, 0 for the background

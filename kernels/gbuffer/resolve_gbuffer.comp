@@ -50,7 +50,7 @@ void main() {
   const uint index = pixel.y * params.width + pixel.x;
   const uint triangleId = visibility[index].x;
   if (triangleId == HMB_VIS_EMPTY) {
-    color[index] = vec4(camera.background.rgb, 0.0);
+    color[index] = vec4(camera.background.rgb, 1.0);
     normalDepth[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
     velocity[index] = vec2(0.0);
     objectId[index] = 0u;

@@ -10,6 +10,9 @@
 #define HMB_RASTER_TILE 8
 // Sub-pixel precision: vertices snap to 1/256 pixel, so shared edges evaluate identically.
 #define HMB_RASTER_SUBPIXEL 256.0
+// A triangle touching more tiles than this hands its (triangle, tile) pairs to
+// bin_large_triangles, where a whole workgroup writes them, instead of writing them itself.
+#define HMB_RASTER_LARGE_TILES 16u
 
 // A visibility-buffer entry is uint64 (depth bits << 32 | triangle id), read as uvec2
 // (x = triangle id, y = depth bits). Cleared to all ones: no triangle, farthest depth.
@@ -31,7 +34,19 @@
 #define HMB_SETUP_BINDING_SETUP 3      // SetupTriangle[]
 #define HMB_SETUP_BINDING_PAIRS 4      // uvec2 (setup index, tile index)[]
 #define HMB_SETUP_BINDING_COUNTERS 5   // RasterCounters
-#define HMB_SETUP_BINDING_COUNT 6
+#define HMB_SETUP_BINDING_LARGE 6      // uint setup index[] of triangles binned by bin_large_triangles
+#define HMB_SETUP_BINDING_COUNT 7
+
+// size_dispatch
+#define HMB_SIZE_DISPATCH_BINDING_COUNTERS 0
+#define HMB_SIZE_DISPATCH_BINDING_COUNT 1
+
+// bin_large_triangles
+#define HMB_BIN_LARGE_BINDING_SETUP 0
+#define HMB_BIN_LARGE_BINDING_PAIRS 1
+#define HMB_BIN_LARGE_BINDING_COUNTERS 2
+#define HMB_BIN_LARGE_BINDING_LARGE 3
+#define HMB_BIN_LARGE_BINDING_COUNT 4
 
 // rasterize_tiles
 #define HMB_RASTERIZE_BINDING_SETUP 0
@@ -46,7 +61,7 @@ struct RasterParams {
   uint width;
   uint height;
   uint triangleCount;      // setup: triangles in; rasterize: unused
-  uint setupCapacity;      // SetupTriangle slots
+  uint setupCapacity;      // SetupTriangle slots (and large-triangle list slots)
   uint pairCapacity;       // (triangle, tile) pair slots
   uint tilesX;
   uint pass;               // rasterize_depth32: 0 writes depth, 1 writes ids where depth matches
@@ -60,20 +75,26 @@ struct SetupTriangle {
   vec2 p1;
   vec2 p2;
   uint triangle;      // id of the scene triangle it came from (near clipping may split one)
-  uint bounds;        // unused padding slot kept for alignment
+  uint firstPair;     // index of its first (triangle, tile) pair; its tiles follow row by row
   vec4 depth;         // xyz: z/w at p0, p1, p2
   uvec4 pixelBounds;  // inclusive pixel rectangle: x0, y0, x1, y1
 };
 
-// Atomic counters of one frame, with an indirect dispatch for the rasterize pass.
+// Atomic counters of one frame and the indirect dispatches sized from them. setupCount and
+// pairCount keep counting past their capacities, so after an overflow the host knows the size
+// that fits.
 struct RasterCounters {
   uint setupCount;
   uint pairCount;
-  uint dispatchX;  // indirect dispatch of rasterize_tiles: groups along x
-  uint dispatchY;
-  uint dispatchZ;
-  uint overflow;   // non-zero when a capacity was exceeded (the host grows and re-renders)
+  uint largeCount;
+  uint overflow;     // HMB_RASTER_OVERFLOW_* bits: the host grows the buffers and renders again
+  uint rasterizeX;   // indirect dispatch of rasterize_tiles (VkDispatchIndirectCommand)
+  uint rasterizeY;
+  uint rasterizeZ;
   uint pad0;
+  uint binLargeX;    // indirect dispatch of bin_large_triangles: one workgroup per triangle
+  uint binLargeY;
+  uint binLargeZ;
   uint pad1;
 };
 
@@ -81,6 +102,14 @@ HMB_GPU_END
 
 HMB_CHECK_SIZE(RasterParams, 32)
 HMB_CHECK_SIZE(SetupTriangle, 64)
-HMB_CHECK_SIZE(RasterCounters, 32)
+HMB_CHECK_SIZE(RasterCounters, 48)
+
+#define HMB_RASTER_OVERFLOW_SETUP 1u          // more set-up triangles than setupCapacity
+#define HMB_RASTER_OVERFLOW_PAIRS 2u          // more (triangle, tile) pairs than pairCapacity
+#define HMB_RASTER_OVERFLOW_PAIRS_WRAPPED 4u  // the pair count passed 2^32
+
+// Byte offsets of the indirect dispatches inside RasterCounters.
+#define HMB_RASTER_COUNTERS_RASTERIZE_OFFSET 16
+#define HMB_RASTER_COUNTERS_BIN_LARGE_OFFSET 32
 
 #endif

@@ -18,15 +18,17 @@ layout(std430, binding = HMB_RASTERIZE_BINDING_VISIBILITY) buffer Visibility { u
 layout(push_constant) uniform Params { RasterParams params; };
 
 void main() {
-  const uint i = linearInvocationIndex();
+  const uint i = linearInvocationIndex(HMB_RASTER_GROUP);
   if (i >= min(counters.pairCount, params.pairCapacity)) return;
   const uvec2 pair = pairs[i];
   const SetupTriangle s = setup[pair.x];
   uvec2 first, last;
   pairRectangle(s, pair.y, params.tilesX, first, last);
+  const TriangleEdges edges = makeEdges(s);
+  if (!rectangleMayBeCovered(edges, first, last)) return;
   for (uint y = first.y; y <= last.y; ++y) {
     for (uint x = first.x; x <= last.x; ++x) {
-      const float depth = coverageDepth(s, uvec2(x, y));
+      const float depth = coverageDepth(s, edges, uvec2(x, y));
       if (depth < 0.0) continue;
       const uint index = y * params.width + x;
       const uint64_t candidate = (uint64_t(floatBitsToUint(depth)) << 32) | uint64_t(s.triangle);

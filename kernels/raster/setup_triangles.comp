@@ -2,7 +2,7 @@
 // Per scene triangle: frustum cull, clip against the near plane and a guard band (so snapped
 // screen coordinates stay exact in float), snap to the sub-pixel grid, cull back faces of
 // single-sided materials and zero-area triangles, then bin: one (triangle, tile) pair per
-// screen tile its pixel bounds touch.
+// screen tile its pixel bounds touch (large triangles leave that to bin_large_triangles).
 #extension GL_GOOGLE_include_directive : require
 #include "raster_layout.h"
 #include "../shared/scene_layout.h"
@@ -16,6 +16,7 @@ layout(std430, binding = HMB_SETUP_BINDING_CLIP_CURRENT) readonly buffer ClipCur
 layout(std430, binding = HMB_SETUP_BINDING_SETUP) writeonly buffer Setup { SetupTriangle setup[]; };
 layout(std430, binding = HMB_SETUP_BINDING_PAIRS) writeonly buffer Pairs { uvec2 pairs[]; };
 layout(std430, binding = HMB_SETUP_BINDING_COUNTERS) buffer Counters { RasterCounters counters; };
+layout(std430, binding = HMB_SETUP_BINDING_LARGE) writeonly buffer Large { uint large[]; };
 layout(push_constant) uniform Params { RasterParams params; };
 
 // Clip planes as dot(plane, clip) >= 0: near (z >= 0) and a guard band of 4x the viewport.
@@ -77,26 +78,30 @@ void emitTriangle(vec4 c0, vec4 c1, vec4 c2, uint triangle, bool doubleSided) {
   const ivec2 last = min(ivec2(floor(hi - 0.5)), ivec2(params.width, params.height) - 1);
   if (first.x > last.x || first.y > last.y) return;
 
+  const uvec2 tileFirst = uvec2(first) / HMB_RASTER_TILE;
+  const uvec2 tileSpan = uvec2(last) / HMB_RASTER_TILE - tileFirst + 1u;
+  const uint pairCount = tileSpan.x * tileSpan.y;
+
   const uint slot = atomicAdd(counters.setupCount, 1u);
-  if (slot >= params.setupCapacity) {
-    atomicMax(counters.overflow, 1u);
+  const uint base = atomicAdd(counters.pairCount, pairCount);
+  uint overflow = slot >= params.setupCapacity ? HMB_RASTER_OVERFLOW_SETUP : 0u;
+  if (base + pairCount < base) overflow |= HMB_RASTER_OVERFLOW_PAIRS_WRAPPED;
+  else if (base + pairCount > params.pairCapacity) overflow |= HMB_RASTER_OVERFLOW_PAIRS;
+  if (overflow != 0u) {
+    atomicOr(counters.overflow, overflow);
     return;
   }
   setup[slot].p0 = p0;
   setup[slot].p1 = p1;
   setup[slot].p2 = p2;
   setup[slot].triangle = triangle;
-  setup[slot].bounds = 0u;
+  setup[slot].firstPair = base;
   setup[slot].depth = vec4(z, 0.0);
   setup[slot].pixelBounds = uvec4(first, last);
 
-  const uvec2 tileFirst = uvec2(first) / HMB_RASTER_TILE;
-  const uvec2 tileLast = uvec2(last) / HMB_RASTER_TILE;
-  const uvec2 tileSpan = tileLast - tileFirst + 1u;
-  const uint pairCount = tileSpan.x * tileSpan.y;
-  const uint base = atomicAdd(counters.pairCount, pairCount);
-  if (base + pairCount > params.pairCapacity || base + pairCount < base) {
-    atomicMax(counters.overflow, 1u);
+  if (pairCount > HMB_RASTER_LARGE_TILES) {
+    // Many tiles: a workgroup of bin_large_triangles writes them, not this one invocation.
+    large[atomicAdd(counters.largeCount, 1u)] = slot;  // largeCount <= setupCount: fits
     return;
   }
   for (uint i = 0u; i < pairCount; ++i) {
@@ -106,7 +111,7 @@ void emitTriangle(vec4 c0, vec4 c1, vec4 c2, uint triangle, bool doubleSided) {
 }
 
 void main() {
-  const uint t = linearInvocationIndex();
+  const uint t = linearInvocationIndex(HMB_RASTER_GROUP);
   if (t >= params.triangleCount) return;
   const GpuTriangle tri = triangles[t];
   const bool doubleSided = (instances[tri.instance].flags & HMB_INSTANCE_DOUBLE_SIDED) != 0u;

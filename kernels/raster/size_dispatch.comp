@@ -1,18 +1,30 @@
 #version 450
-// Turns the number of (triangle, tile) pairs the setup produced into the indirect dispatch of
-// rasterize_tiles, folded into rows of at most 65535 groups.
+// Sizes the indirect dispatches that follow setup: bin_large_triangles (one workgroup per
+// large triangle) and rasterize_tiles (one invocation per (triangle, tile) pair), each folded
+// into rows of at most 65535 groups.
 #extension GL_GOOGLE_include_directive : require
 #include "raster_layout.h"
 
 layout(local_size_x = 1) in;
 
-layout(std430, binding = 0) buffer Counters { RasterCounters counters; };
+layout(std430, binding = HMB_SIZE_DISPATCH_BINDING_COUNTERS) buffer Counters { RasterCounters counters; };
 layout(push_constant) uniform Params { RasterParams params; };
 
+uvec3 folded(uint groups) {
+  return groups == 0u ? uvec3(0u, 0u, 1u) : uvec3(min(groups, 65535u), (groups + 65534u) / 65535u, 1u);
+}
+
 void main() {
-  const uint pairs = min(counters.pairCount, params.pairCapacity);
-  const uint groups = (pairs + HMB_RASTER_GROUP - 1u) / HMB_RASTER_GROUP;
-  counters.dispatchX = min(groups, 65535u);
-  counters.dispatchY = groups == 0u ? 0u : (groups + 65534u) / 65535u;
-  counters.dispatchZ = 1u;
+  // After an overflow nothing is rasterized: the host grows the buffers and renders again.
+  const bool overflow = counters.overflow != 0u;
+  const uint pairs = overflow ? 0u : counters.pairCount;
+  const uint large = overflow ? 0u : counters.largeCount;
+  const uvec3 rasterize = folded((pairs + HMB_RASTER_GROUP - 1u) / HMB_RASTER_GROUP);
+  const uvec3 binLarge = folded(large);
+  counters.rasterizeX = rasterize.x;
+  counters.rasterizeY = rasterize.y;
+  counters.rasterizeZ = rasterize.z;
+  counters.binLargeX = binLarge.x;
+  counters.binLargeY = binLarge.y;
+  counters.binLargeZ = binLarge.z;
 }

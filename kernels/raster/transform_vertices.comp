@@ -16,7 +16,7 @@ layout(std430, binding = HMB_TRANSFORM_BINDING_CLIP_PREVIOUS) writeonly buffer C
 layout(push_constant) uniform Params { uint vertexCount; };
 
 void main() {
-  const uint i = linearInvocationIndex();
+  const uint i = linearInvocationIndex(HMB_RASTER_GROUP);
   if (i >= vertexCount) return;
   const GpuInstanceVertex iv = instanceVertices[i];
   const vec4 p = vertices[iv.meshVertex].position;

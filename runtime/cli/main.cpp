@@ -32,7 +32,7 @@ struct GlobalOptions {
 
 struct RenderOptions {
   std::string scene = "living-room";
-  std::string method = "test-pattern";
+  std::string method = "sharp";
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;
@@ -186,6 +186,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
                                  {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds)
                                                                        : nlohmann::json(nullptr)},
                                  {"passes", hmb::passesJson(result.plan)},
+                                 {"raster", hmb::rasterJson(result)},
                                  {"images", {stem.string() + ".png", stem.string() + ".exr"}}});
     std::cout << method << ": " << formatMs(result.frameMilliseconds) << " -> " << stem.string() << ".png\n";
   }

@@ -87,21 +87,15 @@ void FrameRecorder::endPass(uint32_t index) {
                   VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
-void FrameRecorder::dispatch(std::string_view pass, const ComputeKernel& kernel,
-                             std::span<const Buffer* const> buffers, std::span<const std::byte> pushConstants,
-                             glm::uvec3 groups) {
+uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel,
+                                         std::span<const Buffer* const> buffers,
+                                         std::span<const std::byte> pushConstants) {
   if (buffers.size() != kernel.storageBufferCount())
     throw Error("pass '" + std::string(pass) + "' binds " + std::to_string(buffers.size()) + " buffers; kernel '" +
                 kernel.name() + "' has " + std::to_string(kernel.storageBufferCount()));
   if (pushConstants.size() != kernel.pushConstantBytes())
     throw Error("pass '" + std::string(pass) + "' pushes " + std::to_string(pushConstants.size()) +
                 " bytes; kernel '" + kernel.name() + "' takes " + std::to_string(kernel.pushConstantBytes()));
-  const auto& limits = context_.limits();
-  for (int axis = 0; axis < 3; ++axis)
-    if (groups[axis] > limits.maxComputeWorkGroupCount[axis])
-      throw Error("pass '" + std::string(pass) + "' needs " + std::to_string(groups[axis]) +
-                  " work groups along axis " + std::to_string(axis) + "; the device allows " +
-                  std::to_string(limits.maxComputeWorkGroupCount[axis]));
 
   VkDescriptorSet set = VK_NULL_HANDLE;
   if (!buffers.empty()) {
@@ -134,7 +128,31 @@ void FrameRecorder::dispatch(std::string_view pass, const ComputeKernel& kernel,
   if (!pushConstants.empty())
     vkCmdPushConstants(commandBuffer_, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        static_cast<uint32_t>(pushConstants.size()), pushConstants.data());
+  return index;
+}
+
+void FrameRecorder::dispatch(std::string_view pass, const ComputeKernel& kernel,
+                             std::span<const Buffer* const> buffers, std::span<const std::byte> pushConstants,
+                             glm::uvec3 groups) {
+  const auto& limits = context_.limits();
+  for (int axis = 0; axis < 3; ++axis)
+    if (groups[axis] > limits.maxComputeWorkGroupCount[axis])
+      throw Error("pass '" + std::string(pass) + "' needs " + std::to_string(groups[axis]) +
+                  " work groups along axis " + std::to_string(axis) + "; the device allows " +
+                  std::to_string(limits.maxComputeWorkGroupCount[axis]));
+  const uint32_t index = bindAndBeginPass(pass, kernel, buffers, pushConstants);
   if (groups.x > 0 && groups.y > 0 && groups.z > 0) vkCmdDispatch(commandBuffer_, groups.x, groups.y, groups.z);
+  endPass(index);
+}
+
+void FrameRecorder::dispatchIndirect(std::string_view pass, const ComputeKernel& kernel,
+                                     std::span<const Buffer* const> buffers, std::span<const std::byte> pushConstants,
+                                     const Buffer& indirect, VkDeviceSize offset) {
+  if (offset % 4 != 0 || offset + sizeof(VkDispatchIndirectCommand) > indirect.size())
+    throw Error("pass '" + std::string(pass) + "': indirect dispatch at byte " + std::to_string(offset) +
+                " does not fit buffer '" + indirect.name() + "'");
+  const uint32_t index = bindAndBeginPass(pass, kernel, buffers, pushConstants);
+  vkCmdDispatchIndirect(commandBuffer_, indirect.handle(), offset);
   endPass(index);
 }
 

@@ -32,7 +32,16 @@ struct FrameTimings {
 };
 
 // Work groups needed to cover `items` with groups of `groupSize`.
-inline uint32_t groupsFor(uint32_t items, uint32_t groupSize) { return (items + groupSize - 1) / groupSize; }
+inline uint32_t groupsFor(uint32_t items, uint32_t groupSize) {
+  return static_cast<uint32_t>((uint64_t(items) + groupSize - 1) / groupSize);
+}
+
+// A 1D run of groups folded into rows of at most 65535 (the smallest maxComputeWorkGroupCount
+// Vulkan allows); kernels read their index with linearInvocationIndex() (shared/indexing.glsl).
+inline glm::uvec3 foldedGroups(uint32_t groups) {
+  if (groups == 0) return {0, 0, 1};
+  return {groups < 65535u ? groups : 65535u, (groups + 65534u) / 65535u, 1};
+}
 
 class FrameRecorder {
  public:
@@ -53,6 +62,18 @@ class FrameRecorder {
              std::as_bytes(std::span<const Push>(&push, 1)), groups);
   }
 
+  // A dispatch whose group counts the device reads from `indirect` at `offset` when the pass
+  // runs (a VkDispatchIndirectCommand written by an earlier pass of the same frame).
+  void dispatchIndirect(std::string_view pass, const ComputeKernel& kernel, std::span<const Buffer* const> buffers,
+                        std::span<const std::byte> pushConstants, const Buffer& indirect, VkDeviceSize offset);
+  template <class Push>
+  void dispatchIndirect(std::string_view pass, const ComputeKernel& kernel,
+                        std::initializer_list<const Buffer*> buffers, const Push& push, const Buffer& indirect,
+                        VkDeviceSize offset) {
+    dispatchIndirect(pass, kernel, std::span<const Buffer* const>(buffers.begin(), buffers.size()),
+                     std::as_bytes(std::span<const Push>(&push, 1)), indirect, offset);
+  }
+
   // Fills a whole buffer with a 32-bit value (clears, sentinels).
   void fill(std::string_view pass, const Buffer& buffer, uint32_t value);
 
@@ -60,6 +81,9 @@ class FrameRecorder {
   FrameTimings submitAndWait();
 
  private:
+  // Checks the bindings, binds pipeline, descriptors and push constants, opens the pass.
+  uint32_t bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel, std::span<const Buffer* const> buffers,
+                            std::span<const std::byte> pushConstants);
   uint32_t beginPass(std::string_view pass);
   void endPass(uint32_t index);
 

@@ -46,6 +46,7 @@ TEST_F(RendererTest, TestPatternFrameHasBeautyDisplayAndPlan) {
   Renderer renderer(context());
   const scene::Scene empty;
   RenderSettings settings;
+  settings.method = "test-pattern";
   settings.width = 7;
   settings.height = 3;
   const RenderResult result = renderer.render(empty, settings);

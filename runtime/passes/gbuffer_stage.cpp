@@ -1,0 +1,49 @@
+#include "runtime/passes/gbuffer_stage.h"
+
+#include <algorithm>
+
+#include <glm/glm.hpp>
+
+#include "runtime/frame_plan.h"
+#include "runtime/gpu_scene.h"
+
+namespace hmb::passes {
+
+GBufferStage::GBufferStage(const vk::Context& context, VisibilityScheme scheme)
+    : context_(context), transform_(context), rasterize_(context, scheme), resolve_(context) {}
+
+void GBufferStage::plan(FramePlan& plan) const {
+  plan.run(TransformVerticesPass::kName);
+  rasterize_.plan(plan);
+  plan.run(ResolveGBufferPass::kName);
+}
+
+void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t height) {
+  const uint32_t vertices = std::max(1u, scene.instanceVertexCount());
+  if (vertices > vertexCapacity_) {
+    clipCurrent_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip current");
+    clipPrevious_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip previous");
+    vertexCapacity_ = vertices;
+  }
+  if (width != width_ || height != height_) {
+    const uint64_t pixels = uint64_t(width) * height;
+    visibility_ = vk::Buffer(context_, pixels * sizeof(uint64_t), vk::MemoryUse::Device, "visibility");
+    color_ = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "gbuffer colour");
+    normalDepth_ = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "gbuffer normal+depth");
+    velocity_ = vk::Buffer(context_, pixels * sizeof(glm::vec2), vk::MemoryUse::Device, "gbuffer velocity");
+    objectId_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "gbuffer object id");
+    width_ = width;
+    height_ = height;
+  }
+  rasterize_.reserve(scene.triangleCount(), width, height);
+}
+
+void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const {
+  transform_.record(frame, scene, clipCurrent_, clipPrevious_);
+  const RasterInputs inputs{&scene.triangles(), &scene.instances(), &clipCurrent_, scene.triangleCount()};
+  rasterize_.record(frame, inputs, visibility_, width_, height_);
+  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_,
+                  {&color_, &normalDepth_, &velocity_, &objectId_}, width_, height_);
+}
+
+}  // namespace hmb::passes

@@ -1,0 +1,52 @@
+// The G-buffer stage every method starts from: transform_vertices -> the compute rasterizer
+// (RasterizePass) -> resolve_gbuffer. Owns the per-frame buffers between those passes.
+#pragma once
+
+#include <cstdint>
+
+#include "runtime/passes/rasterize_pass.h"
+#include "runtime/passes/resolve_gbuffer_pass.h"
+#include "runtime/passes/transform_vertices_pass.h"
+#include "runtime/vulkan/buffer.h"
+
+namespace hmb {
+class FramePlan;
+class GpuScene;
+}
+
+namespace hmb::passes {
+
+class GBufferStage {
+ public:
+  GBufferStage(const vk::Context& context, VisibilityScheme scheme);
+
+  void plan(FramePlan& plan) const;
+
+  // Sizes the buffers for this scene and resolution (reuses them when they fit).
+  void prepare(const GpuScene& scene, uint32_t width, uint32_t height);
+  void record(vk::FrameRecorder& frame, const GpuScene& scene) const;
+  // After the frame: true when the rasterizer's buffers overflowed and grew (record again).
+  bool growIfOverflowed() { return rasterize_.growIfOverflowed(); }
+
+  const RasterizePass& rasterizer() const { return rasterize_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  const vk::Buffer& clipCurrent() const { return clipCurrent_; }
+  const vk::Buffer& clipPrevious() const { return clipPrevious_; }
+  const vk::Buffer& visibility() const { return visibility_; }
+  const vk::Buffer& color() const { return color_; }
+  const vk::Buffer& normalDepth() const { return normalDepth_; }
+  const vk::Buffer& velocity() const { return velocity_; }
+  const vk::Buffer& objectId() const { return objectId_; }
+
+ private:
+  const vk::Context& context_;
+  TransformVerticesPass transform_;
+  RasterizePass rasterize_;
+  ResolveGBufferPass resolve_;
+  uint32_t width_ = 0, height_ = 0, vertexCapacity_ = 0;
+  vk::Buffer clipCurrent_, clipPrevious_;
+  vk::Buffer visibility_, color_, normalDepth_, velocity_, objectId_;
+};
+
+}  // namespace hmb::passes

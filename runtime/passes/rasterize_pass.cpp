@@ -1,0 +1,146 @@
+#include "runtime/passes/rasterize_pass.h"
+
+#include <algorithm>
+
+#include "kernels/raster/raster_layout.h"
+#include "runtime/error.h"
+#include "runtime/frame_plan.h"
+#include "runtime/vulkan/context.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+namespace {
+
+const char* rasterizeKernelName(VisibilityScheme scheme) {
+  return scheme == VisibilityScheme::Int64Atomics ? "raster/rasterize_tiles" : "raster/rasterize_tiles_depth32";
+}
+
+uint32_t tilesAlong(uint32_t pixels) { return vk::groupsFor(pixels, HMB_RASTER_TILE); }
+
+// Room for `needed` plus a quarter, so a frame that grows a little does not overflow again.
+uint64_t withHeadroom(uint64_t needed) { return needed + needed / 4 + 1024; }
+
+}  // namespace
+
+const char* visibilitySchemeName(VisibilityScheme scheme) {
+  return scheme == VisibilityScheme::Int64Atomics ? "int64-atomics" : "depth32-two-pass";
+}
+
+VisibilityScheme defaultVisibilityScheme(const vk::DeviceInfo& device) {
+  return device.int64BufferAtomics ? VisibilityScheme::Int64Atomics : VisibilityScheme::Depth32TwoPass;
+}
+
+RasterizePass::RasterizePass(const vk::Context& context, VisibilityScheme scheme)
+    : context_(context),
+      scheme_(scheme),
+      setupKernel_(context, "raster/setup_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams)),
+      sizeDispatchKernel_(context, "raster/size_dispatch", HMB_SIZE_DISPATCH_BINDING_COUNT, sizeof(gpu::RasterParams)),
+      binLargeKernel_(context, "raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams)),
+      rasterizeKernel_(context, rasterizeKernelName(scheme), HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams)) {
+  if (scheme == VisibilityScheme::Int64Atomics && !context.info().int64BufferAtomics)
+    throw Error("device '" + context.info().name + "' lacks shaderBufferInt64Atomics; use the depth32-two-pass scheme");
+  counters_ = vk::Buffer(context, sizeof(gpu::RasterCounters), vk::MemoryUse::Device, "raster counters");
+}
+
+void RasterizePass::plan(FramePlan& plan) const {
+  plan.run(kClearVisibility);
+  plan.run(kClearCounters);
+  plan.run(kSetup);
+  plan.run(kSizeDispatch);
+  plan.run(kBinLarge);
+  if (scheme_ == VisibilityScheme::Int64Atomics) {
+    plan.run(kRasterize);
+  } else {
+    plan.skip(kRasterize, "device lacks shaderBufferInt64Atomics: 32-bit two-pass visibility instead");
+    plan.run(kRasterizeDepth32);
+    plan.run(kRasterizeIds32);
+  }
+}
+
+void RasterizePass::allocate(uint32_t setupCapacity, uint32_t pairCapacity) {
+  setup_ = vk::Buffer(context_, uint64_t(setupCapacity) * sizeof(gpu::SetupTriangle), vk::MemoryUse::Device,
+                      "raster setup triangles");
+  large_ = vk::Buffer(context_, uint64_t(setupCapacity) * sizeof(uint32_t), vk::MemoryUse::Device,
+                      "raster large triangles");
+  pairs_ = vk::Buffer(context_, uint64_t(pairCapacity) * sizeof(glm::uvec2), vk::MemoryUse::Device,
+                      "raster tile pairs");
+  setupCapacity_ = setupCapacity;
+  pairCapacity_ = pairCapacity;
+}
+
+void RasterizePass::reserve(uint32_t triangleCount, uint32_t width, uint32_t height) {
+  // Most triangles give one setup triangle (near clipping may split one into up to six, culling
+  // drops many) touching one to four tiles; a screen of large triangles touches each tile a few times.
+  const uint64_t tiles = uint64_t(tilesAlong(width)) * tilesAlong(height);
+  const uint64_t setupWanted = withHeadroom(triangleCount);
+  const uint64_t pairsWanted = std::max(4 * tiles, 2 * setupWanted);
+  const uint64_t range = context_.info().maxStorageBufferRange;
+  const auto setupCapacity = static_cast<uint32_t>(std::min<uint64_t>(setupWanted, range / sizeof(gpu::SetupTriangle)));
+  const auto pairCapacity = static_cast<uint32_t>(std::min<uint64_t>(pairsWanted, range / sizeof(glm::uvec2)));
+  if (setupCapacity > setupCapacity_ || pairCapacity > pairCapacity_)
+    allocate(std::max(setupCapacity, setupCapacity_), std::max(pairCapacity, pairCapacity_));
+}
+
+void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs, const vk::Buffer& visibility,
+                           uint32_t width, uint32_t height) const {
+  if (!setup_.handle()) throw Error("RasterizePass::record() before reserve()");
+  if (visibility.size() < uint64_t(width) * height * sizeof(uint64_t))
+    throw Error("visibility buffer '" + visibility.name() + "' is smaller than " + std::to_string(width) + "x" +
+                std::to_string(height) + " entries");
+  gpu::RasterParams params{};
+  params.width = width;
+  params.height = height;
+  params.triangleCount = inputs.triangleCount;
+  params.setupCapacity = setupCapacity_;
+  params.pairCapacity = pairCapacity_;
+  params.tilesX = tilesAlong(width);
+
+  frame.fill(kClearVisibility, visibility, HMB_VIS_EMPTY);
+  frame.fill(kClearCounters, counters_, 0u);
+  frame.dispatch(kSetup, setupKernel_,
+                 {inputs.triangles, inputs.instances, inputs.clipCurrent, &setup_, &pairs_, &counters_, &large_},
+                 params, vk::foldedGroups(vk::groupsFor(inputs.triangleCount, HMB_RASTER_GROUP)));
+  frame.dispatch(kSizeDispatch, sizeDispatchKernel_, {&counters_}, params, {1, 1, 1});
+  frame.dispatchIndirect(kBinLarge, binLargeKernel_, {&setup_, &pairs_, &counters_, &large_}, params, counters_,
+                         HMB_RASTER_COUNTERS_BIN_LARGE_OFFSET);
+  if (scheme_ == VisibilityScheme::Int64Atomics) {
+    frame.dispatchIndirect(kRasterize, rasterizeKernel_, {&setup_, &pairs_, &counters_, &visibility}, params,
+                           counters_, HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+  } else {
+    params.pass = 0;
+    frame.dispatchIndirect(kRasterizeDepth32, rasterizeKernel_, {&setup_, &pairs_, &counters_, &visibility}, params,
+                           counters_, HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+    params.pass = 1;
+    frame.dispatchIndirect(kRasterizeIds32, rasterizeKernel_, {&setup_, &pairs_, &counters_, &visibility}, params,
+                           counters_, HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+  }
+}
+
+bool RasterizePass::growIfOverflowed() {
+  gpu::RasterCounters counters{};
+  counters_.read(std::as_writable_bytes(std::span<gpu::RasterCounters>(&counters, 1)));
+  stats_.setupTriangles = std::min(counters.setupCount, setupCapacity_);
+  stats_.tilePairs = std::min(counters.pairCount, pairCapacity_);
+  stats_.largeTriangles = counters.largeCount;
+  if (counters.overflow == 0) return false;
+
+  // The counters kept counting past capacity, so they hold what the frame needs (unless the
+  // pair count passed 2^32, which no single buffer can hold anyway).
+  const uint64_t range = context_.info().maxStorageBufferRange;
+  const uint64_t maxSetup = range / sizeof(gpu::SetupTriangle);
+  const uint64_t maxPairs = range / sizeof(glm::uvec2);
+  const uint64_t setupNeeded = counters.setupCount;
+  const uint64_t pairsNeeded =
+      (counters.overflow & HMB_RASTER_OVERFLOW_PAIRS_WRAPPED) ? (uint64_t(1) << 32) : counters.pairCount;
+  if (setupNeeded > maxSetup || pairsNeeded > maxPairs)
+    throw Error("the frame needs " + std::to_string(setupNeeded) + " set-up triangles and " +
+                std::to_string(pairsNeeded) + " (triangle, tile) pairs; device '" + context_.info().name +
+                "' holds at most " + std::to_string(maxSetup) + " and " + std::to_string(maxPairs) +
+                " in one buffer: lower the resolution or simplify the scene");
+  allocate(static_cast<uint32_t>(std::min(withHeadroom(std::max<uint64_t>(setupNeeded, setupCapacity_)), maxSetup)),
+           static_cast<uint32_t>(std::min(withHeadroom(std::max<uint64_t>(pairsNeeded, pairCapacity_)), maxPairs)));
+  ++stats_.regrowths;
+  return true;
+}
+
+}  // namespace hmb::passes

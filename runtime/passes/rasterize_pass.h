@@ -1,0 +1,108 @@
+// Host side of the compute rasterizer's visibility passes: clear, setup_triangles,
+// size_dispatch, bin_large_triangles and rasterize_tiles (or its 32-bit two-pass fallback).
+// Input: clip-space triangles; output: the visibility buffer (uint64 per pixel, read as uvec2
+// (triangle id, depth bits), HMB_VIS_EMPTY where nothing is hit).
+//
+// The setup and pair buffers are sized by estimate. When a frame needs more, the kernels flag
+// an overflow and rasterize nothing; growIfOverflowed() then sizes the buffers from the
+// counters (which keep counting past capacity) and the caller records the frame again.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb::vk {
+class FrameRecorder;
+struct DeviceInfo;
+}
+
+namespace hmb {
+class FramePlan;
+}
+
+namespace hmb::passes {
+
+enum class VisibilityScheme {
+  Int64Atomics,    // one atomicMin of (depth bits << 32 | triangle id) per covered pixel
+  Depth32TwoPass,  // without shaderBufferInt64Atomics: atomicMin depth, then id where depth matches
+};
+
+const char* visibilitySchemeName(VisibilityScheme scheme);
+VisibilityScheme defaultVisibilityScheme(const vk::DeviceInfo& device);
+
+// Clip-space triangles to rasterize: GpuTriangle (v0, v1, v2, instance), GpuInstance (for the
+// double-sided flag) and one clip-space vec4 per vertex.
+struct RasterInputs {
+  const vk::Buffer* triangles = nullptr;
+  const vk::Buffer* instances = nullptr;
+  const vk::Buffer* clipCurrent = nullptr;
+  uint32_t triangleCount = 0;
+};
+
+// What the last frame's counters said (read after the frame by growIfOverflowed()).
+struct RasterStats {
+  uint32_t setupTriangles = 0;  // triangles left after culling and clipping (clipping may add)
+  uint32_t tilePairs = 0;       // (triangle, tile) pairs rasterized
+  uint32_t largeTriangles = 0;  // triangles binned by bin_large_triangles
+  uint32_t regrowths = 0;       // times the buffers grew since this pass was created
+};
+
+class RasterizePass {
+ public:
+  static constexpr const char* kClearVisibility = "clear-visibility";
+  static constexpr const char* kClearCounters = "clear-raster-counters";
+  static constexpr const char* kSetup = "setup-triangles";
+  static constexpr const char* kSizeDispatch = "size-dispatch";
+  static constexpr const char* kBinLarge = "bin-large-triangles";
+  static constexpr const char* kRasterize = "rasterize-tiles";
+  static constexpr const char* kRasterizeDepth32 = "rasterize-depth32";
+  static constexpr const char* kRasterizeIds32 = "rasterize-ids32";
+
+  RasterizePass(const vk::Context& context, VisibilityScheme scheme);
+
+  VisibilityScheme scheme() const { return scheme_; }
+
+  // Lists the passes record() dispatches, and the ones the scheme leaves out with the reason.
+  void plan(FramePlan& plan) const;
+
+  // Makes room for a frame of this many triangles at this size (keeps larger buffers).
+  void reserve(uint32_t triangleCount, uint32_t width, uint32_t height);
+
+  // visibility: width * height uint64. Call reserve() first.
+  void record(vk::FrameRecorder& frame, const RasterInputs& inputs, const vk::Buffer& visibility, uint32_t width,
+              uint32_t height) const;
+
+  // After the frame ran: reads the counters into stats(); when a capacity overflowed, grows
+  // the buffers to what the frame needed and returns true (the caller records it again).
+  // Throws hmb::Error when the frame needs more than the device can hold in one buffer.
+  bool growIfOverflowed();
+
+  const RasterStats& stats() const { return stats_; }
+  uint32_t setupCapacity() const { return setupCapacity_; }
+  uint32_t pairCapacity() const { return pairCapacity_; }
+  // The intermediate buffers, for tests of the setup and binning kernels.
+  const vk::Buffer& setupBuffer() const { return setup_; }
+  const vk::Buffer& pairBuffer() const { return pairs_; }
+
+ private:
+  void allocate(uint32_t setupCapacity, uint32_t pairCapacity);
+
+  const vk::Context& context_;
+  VisibilityScheme scheme_;
+  vk::ComputeKernel setupKernel_;
+  vk::ComputeKernel sizeDispatchKernel_;
+  vk::ComputeKernel binLargeKernel_;
+  vk::ComputeKernel rasterizeKernel_;
+  uint32_t setupCapacity_ = 0;
+  uint32_t pairCapacity_ = 0;
+  vk::Buffer setup_;     // SetupTriangle[setupCapacity]
+  vk::Buffer large_;     // uint[setupCapacity]
+  vk::Buffer pairs_;     // uvec2[pairCapacity]
+  vk::Buffer counters_;  // RasterCounters
+  RasterStats stats_;
+};
+
+}  // namespace hmb::passes

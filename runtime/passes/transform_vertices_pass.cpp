@@ -1,0 +1,21 @@
+#include "runtime/passes/transform_vertices_pass.h"
+
+#include "kernels/raster/raster_layout.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+
+TransformVerticesPass::TransformVerticesPass(const vk::Context& context)
+    : kernel_(context, "raster/transform_vertices", HMB_TRANSFORM_BINDING_COUNT, sizeof(uint32_t)) {}
+
+void TransformVerticesPass::record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clipCurrent,
+                                   const vk::Buffer& clipPrevious) const {
+  const uint32_t vertexCount = scene.instanceVertexCount();
+  frame.dispatch(kName, kernel_,
+                 {&scene.vertices(), &scene.instanceVertices(), &scene.instances(), &scene.cameraBuffer(),
+                  &clipCurrent, &clipPrevious},
+                 vertexCount, vk::foldedGroups(vk::groupsFor(vertexCount, HMB_RASTER_GROUP)));
+}
+
+}  // namespace hmb::passes

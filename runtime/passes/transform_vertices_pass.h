@@ -1,0 +1,32 @@
+// Host side of kernels/raster/transform_vertices.comp: clip-space positions of every instance
+// vertex at the frame time and at the previous frame.
+#pragma once
+
+#include <cstdint>
+
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb::vk {
+class Buffer;
+class FrameRecorder;
+}
+
+namespace hmb {
+class GpuScene;
+}
+
+namespace hmb::passes {
+
+class TransformVerticesPass {
+ public:
+  static constexpr const char* kName = "transform-vertices";
+  explicit TransformVerticesPass(const vk::Context& context);
+  // clipCurrent, clipPrevious: one vec4 per instance vertex of the scene.
+  void record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clipCurrent,
+              const vk::Buffer& clipPrevious) const;
+
+ private:
+  vk::ComputeKernel kernel_;
+};
+
+}  // namespace hmb::passes
