@@ -13,14 +13,13 @@ layout(local_size_x = HMB_RESOLVE_GROUP_X, local_size_y = HMB_RESOLVE_GROUP_Y) i
 
 layout(std430, binding = HMB_RESOLVE_BINDING_VISIBILITY) readonly buffer Visibility { uvec2 visibility[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_TRIANGLES) readonly buffer Triangles { GpuTriangle triangles[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_INSTANCE_VERTICES) readonly buffer InstanceVertices { GpuInstanceVertex instanceVertices[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_VERTICES) readonly buffer Vertices { GpuVertex vertices[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_TEXELS) readonly buffer Texels { uint texels[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_CAMERA) readonly buffer Camera { GpuCamera camera; };
 layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_CURRENT) readonly buffer ClipCurrent { vec4 clipCurrent[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_PREVIOUS) readonly buffer ClipPrevious { vec4 clipPrevious[]; };
+layout(std430, binding = HMB_RESOLVE_BINDING_SHADING) readonly buffer Shading { GpuVertexShading shading[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_COLOR) writeonly buffer Color { vec4 color[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_NORMAL_DEPTH) writeonly buffer NormalDepth { vec4 normalDepth[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_VELOCITY) writeonly buffer Velocity { vec2 velocity[]; };
@@ -32,16 +31,18 @@ layout(push_constant) uniform Params { ResolveParams params; };
 // Barycentrics b (sum 1) of the point of triangle (c0, c1, c2) that projects to ndc:
 // sum b_i (c_i.xy - ndc * c_i.w) = 0. They weight clip-space (hence world-space) attributes
 // directly, i.e. they are already perspective-correct.
-vec3 clipBarycentrics(vec4 c0, vec4 c1, vec4 c2, vec2 ndc) {
-  const vec3 rowX = vec3(c0.x - ndc.x * c0.w, c1.x - ndc.x * c1.w, c2.x - ndc.x * c2.w);
-  const vec3 rowY = vec3(c0.y - ndc.y * c0.w, c1.y - ndc.y * c1.w, c2.y - ndc.y * c2.w);
+// Clip positions are passed as (x, y, w).
+vec3 clipBarycentrics(vec3 c0, vec3 c1, vec3 c2, vec2 ndc) {
+  const vec3 rowX = vec3(c0.x - ndc.x * c0.z, c1.x - ndc.x * c1.z, c2.x - ndc.x * c2.z);
+  const vec3 rowY = vec3(c0.y - ndc.y * c0.z, c1.y - ndc.y * c1.z, c2.y - ndc.y * c2.z);
   const vec3 k = cross(rowX, rowY);
   const float sum = k.x + k.y + k.z;
   return sum != 0.0 ? k / sum : vec3(1.0 / 3.0);
 }
 
-vec2 clipToPixel(vec4 c) {
-  return (c.xy / c.w * 0.5 + 0.5) * vec2(params.width, params.height);
+// Clip position (x, y, w) to pixel coordinates.
+vec2 clipToPixel(vec3 c) {
+  return (c.xy / c.z * 0.5 + 0.5) * vec2(params.width, params.height);
 }
 
 void main() {
@@ -57,32 +58,31 @@ void main() {
     return;
   }
 
+  // Every word a kernel loads at a per-pixel address costs a gather on CPU devices, so this
+  // reads only what it needs: clip x, y, w (w is camera-space depth), world normals and uvs.
   const GpuTriangle tri = triangles[triangleId];
-  const GpuInstance instance = instances[tri.instance];
   const vec2 centre = vec2(pixel) + 0.5;
   const vec2 ndc = centre / vec2(params.width, params.height) * 2.0 - 1.0;
-  const vec4 c0 = clipCurrent[tri.v0], c1 = clipCurrent[tri.v1], c2 = clipCurrent[tri.v2];
+  const vec3 c0 = clipCurrent[tri.v0].xyw, c1 = clipCurrent[tri.v1].xyw, c2 = clipCurrent[tri.v2].xyw;
   const vec3 b = clipBarycentrics(c0, c1, c2, ndc);
 
-  const GpuVertex v0 = vertices[instanceVertices[tri.v0].meshVertex];
-  const GpuVertex v1 = vertices[instanceVertices[tri.v1].meshVertex];
-  const GpuVertex v2 = vertices[instanceVertices[tri.v2].meshVertex];
-  const vec3 objectNormal = b.x * v0.normal.xyz + b.y * v1.normal.xyz + b.z * v2.normal.xyz;
-  vec3 n = mat3(instance.normalCurrent) * objectNormal;
+  vec3 n = b.x * shading[tri.v0].normal.xyz + b.y * shading[tri.v1].normal.xyz + b.z * shading[tri.v2].normal.xyz;
   n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
-  const vec4 objectPosition = b.x * v0.position + b.y * v1.position + b.z * v2.position;
-  const vec3 world = (instance.worldCurrent * objectPosition).xyz;
-  // Double-sided surfaces seen from behind shade with the normal facing the viewer.
-  if (dot(n, camera.positionCurrent.xyz - world) < 0.0) n = -n;
-  const vec2 uv = b.x * v0.uv + b.y * v1.uv + b.z * v2.uv;
+  // A triangle seen from behind (only double-sided ones reach here) shades with its normal
+  // turned to the viewer. The homogeneous determinant has the sign of the screen-space area
+  // (positive: back face, y down) and stays right for vertices behind the camera.
+  if (dot(c0, cross(c1, c2)) > 0.0) n = -n;
+  const vec2 uv = b.x * shading[tri.v0].uv + b.y * shading[tri.v1].uv + b.z * shading[tri.v2].uv;
 
-  const vec4 previousClip = b.x * clipPrevious[tri.v0] + b.y * clipPrevious[tri.v1] + b.z * clipPrevious[tri.v2];
+  const vec3 previousClip =
+      b.x * clipPrevious[tri.v0].xyw + b.y * clipPrevious[tri.v1].xyw + b.z * clipPrevious[tri.v2].xyw;
   // A point behind the camera at the previous frame has no screen position: no velocity.
-  const vec2 motion = previousClip.w > 0.0 ? centre - clipToPixel(previousClip) : vec2(0.0);
+  const vec2 motion = previousClip.z > 0.0 ? centre - clipToPixel(previousClip) : vec2(0.0);
 
-  const float depth = -(camera.viewCurrent * vec4(world, 1.0)).z;
-  color[index] = vec4(shadeSurface(materials[instance.material], uv, n, camera), 1.0);
+  // Clip w of a perspective projection is the camera-space depth, and linear in barycentrics.
+  const float depth = dot(b, vec3(c0.z, c1.z, c2.z));
+  color[index] = vec4(shadeSurface(instances[tri.instance].material, uv, n), 1.0);
   normalDepth[index] = vec4(n, depth);
   velocity[index] = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
-  objectId[index] = instance.objectId;
+  objectId[index] = instances[tri.instance].objectId;
 }

@@ -34,6 +34,11 @@ float planeDistance(int plane, vec4 c) {
   }
 }
 
+// planeDistance(plane, c) >= 0 for every plane (the same comparisons, without the arrays).
+bool insideClipVolume(vec4 c) {
+  return c.z >= 0.0 && abs(c.x) <= kGuardBand * c.w && abs(c.y) <= kGuardBand * c.w;
+}
+
 bool lexLess(vec4 a, vec4 b) {
   if (a.x != b.x) return a.x < b.x;
   if (a.y != b.y) return a.y < b.y;
@@ -128,6 +133,12 @@ void main() {
       (a.y > a.w && b.y > b.w && c.y > c.w) || (a.y < -a.w && b.y < -b.w && c.y < -c.w) ||
       (a.z < 0.0 && b.z < 0.0 && c.z < 0.0) || (a.z > a.w && b.z > b.w && c.z > c.w))
     return;
+
+  // Most triangles need no clipping: skip the polygon arrays, which CPU devices keep in memory.
+  if (insideClipVolume(a) && insideClipVolume(b) && insideClipVolume(c)) {
+    emitTriangle(a, b, c, t, doubleSided);
+    return;
+  }
 
   int count = 3;
   for (int plane = 0; plane < kPlaneCount; ++plane) {

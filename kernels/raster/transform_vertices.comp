@@ -1,5 +1,6 @@
 #version 450
-// Clip-space position of every instance vertex at the frame time and at the previous frame.
+// Clip-space position of every instance vertex at the frame time and at the previous frame,
+// and what shading needs of it (world normal, uv).
 #extension GL_GOOGLE_include_directive : require
 #include "raster_layout.h"
 #include "../shared/scene_layout.h"
@@ -13,6 +14,7 @@ layout(std430, binding = HMB_TRANSFORM_BINDING_INSTANCES) readonly buffer Instan
 layout(std430, binding = HMB_TRANSFORM_BINDING_CAMERA) readonly buffer Camera { GpuCamera camera; };
 layout(std430, binding = HMB_TRANSFORM_BINDING_CLIP_CURRENT) writeonly buffer ClipCurrent { vec4 clipCurrent[]; };
 layout(std430, binding = HMB_TRANSFORM_BINDING_CLIP_PREVIOUS) writeonly buffer ClipPrevious { vec4 clipPrevious[]; };
+layout(std430, binding = HMB_TRANSFORM_BINDING_SHADING) writeonly buffer Shading { GpuVertexShading shading[]; };
 layout(push_constant) uniform Params { uint vertexCount; };
 
 void main() {
@@ -22,4 +24,6 @@ void main() {
   const vec4 p = vertices[iv.meshVertex].position;
   clipCurrent[i] = camera.viewProjCurrent * (instances[iv.instance].worldCurrent * p);
   clipPrevious[i] = camera.viewProjPrevious * (instances[iv.instance].worldPrevious * p);
+  shading[i].normal = vec4(mat3(instances[iv.instance].normalCurrent) * vertices[iv.meshVertex].normal.xyz, 0.0);
+  shading[i].uv = vertices[iv.meshVertex].uv;
 }

@@ -31,6 +31,16 @@ struct GpuInstanceVertex {
   uint instance;
 };
 
+// What shading needs of one instance vertex at the frame time, written by the transform
+// kernel so that per-pixel passes read 5 words per vertex instead of mesh vertex, index and
+// normal matrix.
+struct GpuVertexShading {
+  vec4 normal;  // xyz: world-space normal (not normalized), w: unused
+  vec2 uv;
+  uint pad0;
+  uint pad1;
+};
+
 #define HMB_INSTANCE_DOUBLE_SIDED 1u
 
 struct GpuInstance {
@@ -69,6 +79,7 @@ HMB_GPU_END
 HMB_CHECK_SIZE(GpuVertex, 48)
 HMB_CHECK_SIZE(GpuTriangle, 16)
 HMB_CHECK_SIZE(GpuInstanceVertex, 8)
+HMB_CHECK_SIZE(GpuVertexShading, 32)
 HMB_CHECK_SIZE(GpuInstance, 208)
 HMB_CHECK_SIZE(GpuMaterial, 32)
 HMB_CHECK_SIZE(GpuCamera, 272)

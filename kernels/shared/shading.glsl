@@ -1,34 +1,44 @@
 // The one shading function of every method (resolve, ray reveal, reference): base colour
 // (factor x sRGB texture, bilinear, repeat), one directional light plus ambient, no shadows.
-// Needs the Materials and Texels buffers declared by the including kernel.
+// Needs the Materials, Texels and Camera buffers declared by the including kernel. Reads
+// fields one at a time (no struct copies): CPU devices gather every word a kernel loads.
 #ifndef HMB_KERNELS_SHARED_SHADING_GLSL
 #define HMB_KERNELS_SHARED_SHADING_GLSL
 
-float srgbToLinear(float c) { return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4); }
-
-vec4 texelLinear(GpuMaterial m, ivec2 t) {
-  t = ivec2(uint(t.x) % m.textureWidth, uint(t.y) % m.textureHeight);
-  const vec4 c = unpackUnorm4x8(texels[m.textureOffset + uint(t.y) * m.textureWidth + uint(t.x)]);
-  return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a);
+vec3 srgbToLinear(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
 
-vec4 baseColor(GpuMaterial m, vec2 uv) {
-  if (m.textureOffset == HMB_NO_TEXTURE) return m.baseColor;
-  // Repeat wrap; fract keeps huge uv values finite and in range.
-  const vec2 st = fract(uv) * vec2(m.textureWidth, m.textureHeight) - 0.5;
-  const ivec2 i = ivec2(floor(st));
-  const vec2 f = st - vec2(i);
-  const ivec2 wrap = ivec2(m.textureWidth, m.textureHeight);
-  const vec4 c00 = texelLinear(m, (i + wrap) % wrap);
-  const vec4 c10 = texelLinear(m, (i + ivec2(1, 0) + wrap) % wrap);
-  const vec4 c01 = texelLinear(m, (i + ivec2(0, 1) + wrap) % wrap);
-  const vec4 c11 = texelLinear(m, (i + ivec2(1, 1) + wrap) % wrap);
-  return m.baseColor * mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+// Texel (x, y) of the texture at `offset` with rows of `width`, as linear RGBA.
+vec4 texelLinear(uint offset, uint width, uint x, uint y) {
+  const vec4 c = unpackUnorm4x8(texels[offset + y * width + x]);
+  return vec4(srgbToLinear(c.rgb), c.a);
 }
 
-// n: unit world normal facing the viewer; lightDirection: the direction light travels.
-vec3 shadeSurface(GpuMaterial m, vec2 uv, vec3 n, GpuCamera camera) {
-  const vec3 albedo = baseColor(m, uv).rgb;
+vec4 baseColor(uint material, vec2 uv) {
+  const uint offset = materials[material].textureOffset;
+  if (offset == HMB_NO_TEXTURE) return materials[material].baseColor;
+  if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
+  // Repeat wrap without integer division: fract puts uv in [0, 1], so the texel to the left
+  // of a sample is in [-1, size - 1] and wraps with one comparison per axis.
+  const ivec2 size = ivec2(materials[material].textureWidth, materials[material].textureHeight);
+  const vec2 st = fract(uv) * vec2(size) - 0.5;
+  const vec2 f = st - floor(st);
+  const ivec2 i = clamp(ivec2(floor(st)), ivec2(-1), size - 1);
+  const uvec2 lo = uvec2(mix(i, size - 1, lessThan(i, ivec2(0))));
+  const uvec2 hi = uvec2(mix(i + 1, ivec2(0), greaterThanEqual(i + 1, size)));
+  const uint width = uint(size.x);
+  const vec4 c00 = texelLinear(offset, width, lo.x, lo.y);
+  const vec4 c10 = texelLinear(offset, width, hi.x, lo.y);
+  const vec4 c01 = texelLinear(offset, width, lo.x, hi.y);
+  const vec4 c11 = texelLinear(offset, width, hi.x, hi.y);
+  return materials[material].baseColor * mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+}
+
+// n: unit world normal facing the viewer. Light from the frame's camera block: lightDirection
+// is the direction light travels.
+vec3 shadeSurface(uint material, vec2 uv, vec3 n) {
+  const vec3 albedo = baseColor(material, uv).rgb;
   const float lambert = max(dot(n, -camera.lightDirection.xyz), 0.0);
   return albedo * (camera.ambient.rgb + camera.lightColor.rgb * lambert);
 }

@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include "kernels/shared/scene_layout.h"
 #include "runtime/frame_plan.h"
 #include "runtime/gpu_scene.h"
 
@@ -23,6 +24,8 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
   if (vertices > vertexCapacity_) {
     clipCurrent_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip current");
     clipPrevious_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip previous");
+    vertexShading_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(gpu::GpuVertexShading), vk::MemoryUse::Device,
+                                "vertex shading");
     vertexCapacity_ = vertices;
   }
   if (width != width_ || height != height_) {
@@ -39,10 +42,10 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
 }
 
 void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const {
-  transform_.record(frame, scene, clipCurrent_, clipPrevious_);
+  transform_.record(frame, scene, clipCurrent_, clipPrevious_, vertexShading_);
   const RasterInputs inputs{&scene.triangles(), &scene.instances(), &clipCurrent_, scene.triangleCount()};
   rasterize_.record(frame, inputs, visibility_, width_, height_);
-  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_,
+  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_,
                   {&color_, &normalDepth_, &velocity_, &objectId_}, width_, height_);
 }
 

@@ -33,6 +33,7 @@ class GBufferStage {
   uint32_t height() const { return height_; }
   const vk::Buffer& clipCurrent() const { return clipCurrent_; }
   const vk::Buffer& clipPrevious() const { return clipPrevious_; }
+  const vk::Buffer& vertexShading() const { return vertexShading_; }
   const vk::Buffer& visibility() const { return visibility_; }
   const vk::Buffer& color() const { return color_; }
   const vk::Buffer& normalDepth() const { return normalDepth_; }
@@ -45,7 +46,7 @@ class GBufferStage {
   RasterizePass rasterize_;
   ResolveGBufferPass resolve_;
   uint32_t width_ = 0, height_ = 0, vertexCapacity_ = 0;
-  vk::Buffer clipCurrent_, clipPrevious_;
+  vk::Buffer clipCurrent_, clipPrevious_, vertexShading_;
   vk::Buffer visibility_, color_, normalDepth_, velocity_, objectId_;
 };
 

@@ -29,7 +29,8 @@ class ResolveGBufferPass {
   static constexpr const char* kName = "resolve-gbuffer";
   explicit ResolveGBufferPass(const vk::Context& context);
   void record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& visibility,
-              const vk::Buffer& clipCurrent, const vk::Buffer& clipPrevious, const GBufferTargets& targets,
+              const vk::Buffer& clipCurrent, const vk::Buffer& clipPrevious, const vk::Buffer& vertexShading,
+              const GBufferTargets& targets,
               uint32_t width, uint32_t height) const;
 
  private:

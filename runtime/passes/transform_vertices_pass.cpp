@@ -10,11 +10,11 @@ TransformVerticesPass::TransformVerticesPass(const vk::Context& context)
     : kernel_(context, "raster/transform_vertices", HMB_TRANSFORM_BINDING_COUNT, sizeof(uint32_t)) {}
 
 void TransformVerticesPass::record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clipCurrent,
-                                   const vk::Buffer& clipPrevious) const {
+                                   const vk::Buffer& clipPrevious, const vk::Buffer& shading) const {
   const uint32_t vertexCount = scene.instanceVertexCount();
   frame.dispatch(kName, kernel_,
                  {&scene.vertices(), &scene.instanceVertices(), &scene.instances(), &scene.cameraBuffer(),
-                  &clipCurrent, &clipPrevious},
+                  &clipCurrent, &clipPrevious, &shading},
                  vertexCount, vk::foldedGroups(vk::groupsFor(vertexCount, HMB_RASTER_GROUP)));
 }
 

@@ -1,5 +1,5 @@
 // Host side of kernels/raster/transform_vertices.comp: clip-space positions of every instance
-// vertex at the frame time and at the previous frame.
+// vertex at the frame time and at the previous frame, and its world normal and uv.
 #pragma once
 
 #include <cstdint>
@@ -21,9 +21,9 @@ class TransformVerticesPass {
  public:
   static constexpr const char* kName = "transform-vertices";
   explicit TransformVerticesPass(const vk::Context& context);
-  // clipCurrent, clipPrevious: one vec4 per instance vertex of the scene.
+  // Per instance vertex of the scene: clipCurrent, clipPrevious (vec4), shading (GpuVertexShading).
   void record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clipCurrent,
-              const vk::Buffer& clipPrevious) const;
+              const vk::Buffer& clipPrevious, const vk::Buffer& shading) const;
 
  private:
   vk::ComputeKernel kernel_;

@@ -117,6 +117,23 @@ TEST(CliTest, BadOutputPathsFailBeforeRendering) {
   expectOneLineError(hmblur("--quiet render --method test-pattern --report report.txt"), ".json");
 }
 
+// The default method renders the scene's G-buffer: its EXR carries the AOVs, its report the
+// rasterizer's visibility scheme.
+TEST(CliTest, SharpRenderWritesAovLayersAndTheVisibilityScheme) {
+  const fs::path dir = tempDir("sharp");
+  const CliRun run = hmblur("--quiet render --scene temple --width 40 --height 24 --out " +
+                            (dir / "frame.exr").string() + " --report " + (dir / "report.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const io::LayeredImage image = io::readExr(dir / "frame.exr");
+  for (const char* layer : {"", "depth", "normal", "velocity", "objectId"})
+    EXPECT_NE(image.find(layer), nullptr) << layer;
+  std::ifstream in(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["method"], "sharp");
+  EXPECT_TRUE(report["raster"]["visibility_scheme"].is_string()) << report.dump();
+  EXPECT_GT(report["raster"]["setup_triangles"].get<int>(), 0);
+}
+
 TEST(CliTest, DeviceOutOfRangeIsAOneLineError) {
   expectOneLineError(hmblur("--quiet --device 99 render --method test-pattern --width 4 --height 4"), "--device 99");
 }

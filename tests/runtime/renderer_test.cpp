@@ -1,10 +1,14 @@
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
 #include "runtime/error.h"
 #include "runtime/io/image.h"
 #include "runtime/renderer.h"
+#include "scenes/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -84,6 +88,70 @@ TEST_F(RendererTest, ImageLargerThanTheDeviceAllowsFailsBeforeRendering) {
   if (uint64_t(kMaxImageSide) * kMaxImageSide * 16 <= context().limits().maxStorageBufferRange)
     GTEST_SKIP() << "this device takes the largest image";
   EXPECT_THROW(renderer.render(scene::Scene{}, settings), Error);
+}
+
+// The sharp method: beauty plus the AOV layers every later method reads, and a plan that names
+// every G-buffer pass with its time.
+TEST_F(RendererTest, SharpFrameHasBeautyAovsPlanAndRasterStats) {
+  Renderer renderer(context());
+  const scene::Scene scene = scene::loadScene("living-room");
+  RenderSettings settings;
+  settings.method = "sharp";
+  settings.width = 67;
+  settings.height = 37;
+  const RenderResult result = renderer.render(scene, settings);
+  const size_t pixels = 67 * 37;
+  const std::pair<const char*, size_t> layers[] = {{"", 4}, {"depth", 1}, {"normal", 3}, {"velocity", 2}};
+  for (const auto& [name, channels] : layers) {
+    const io::ImageLayer* layer = result.image.find(name);
+    ASSERT_NE(layer, nullptr) << name;
+    ASSERT_EQ(layer->values.size(), pixels * channels) << name;
+    for (float v : layer->values) ASSERT_TRUE(std::isfinite(v)) << name;
+  }
+  const io::ImageLayer* ids = result.image.find("objectId");
+  ASSERT_NE(ids, nullptr);
+  ASSERT_TRUE(ids->isUint);
+  ASSERT_EQ(ids->ids.size(), pixels);
+  EXPECT_GT(std::count_if(ids->ids.begin(), ids->ids.end(), [](uint32_t id) { return id != 0; }), 0);
+
+  EXPECT_EQ(result.visibilityScheme, passes::visibilitySchemeName(passes::defaultVisibilityScheme(context().info())));
+  EXPECT_GT(result.raster.setupTriangles, 0u);
+  EXPECT_GT(result.raster.tilePairs, 0u);
+  for (const char* pass : {"transform-vertices", "setup-triangles", "bin-large-triangles", "resolve-gbuffer",
+                           "encode-display"})
+    EXPECT_TRUE(result.plan.runs(pass)) << pass;
+  if (context().info().timestamps)
+    for (const auto& pass : result.plan.passes())
+      if (pass.run) EXPECT_TRUE(pass.milliseconds.has_value()) << pass.name;
+}
+
+// A device without 64-bit buffer atomics gets the two-pass visibility, the plan says so, and
+// the picture is the same.
+TEST_F(RendererTest, DeviceWithoutInt64AtomicsRendersTheSameFrameWithTheFallback) {
+  vk::ContextOptions options;
+  options.validation = true;
+  options.disableInt64Atomics = true;
+  vk::Context fallbackContext(options);
+  const scene::Scene scene = scene::loadScene("temple");
+  RenderSettings settings;
+  settings.width = 80;
+  settings.height = 45;
+  Renderer fallback(fallbackContext);
+  const RenderResult a = fallback.render(scene, settings);
+  EXPECT_EQ(fallbackContext.validationErrors(), 0u);
+  EXPECT_EQ(a.visibilityScheme, "depth32-two-pass");
+  EXPECT_TRUE(a.plan.runs("rasterize-depth32"));
+  EXPECT_TRUE(a.plan.runs("rasterize-ids32"));
+  EXPECT_FALSE(a.plan.runs("rasterize-tiles"));
+  const auto skipped = std::find_if(a.plan.passes().begin(), a.plan.passes().end(),
+                                    [](const PlannedPass& p) { return p.name == "rasterize-tiles"; });
+  ASSERT_NE(skipped, a.plan.passes().end());
+  EXPECT_NE(skipped->reason.find("shaderBufferInt64Atomics"), std::string::npos) << skipped->reason;
+
+  Renderer native(context());
+  const RenderResult b = native.render(scene, settings);
+  EXPECT_EQ(a.display.pixels, b.display.pixels);
+  EXPECT_EQ(a.image.find("objectId")->ids, b.image.find("objectId")->ids);
 }
 
 }  // namespace
