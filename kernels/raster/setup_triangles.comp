@@ -39,20 +39,21 @@ bool insideClipVolume(vec4 c) {
   return c.z >= 0.0 && abs(c.x) <= kGuardBand * c.w && abs(c.y) <= kGuardBand * c.w;
 }
 
-bool lexLess(vec4 a, vec4 b) {
-  if (a.x != b.x) return a.x < b.x;
-  if (a.y != b.y) return a.y < b.y;
-  if (a.z != b.z) return a.z < b.z;
-  return a.w < b.w;
-}
-
-// The intersection of an edge with a plane, computed from the endpoints in a fixed order so
-// that two triangles sharing the edge get the very same point (no cracks after clipping).
+// The intersection of an edge with a plane, interpolated from the endpoint inside the plane:
+// the choice depends only on the edge and the plane, so two triangles sharing the edge get the
+// very same point (no cracks after clipping), and dividing before scaling keeps the point
+// exact enough when the outside endpoint is astronomically far (t = da / (da - db) would
+// round to 1 and return the outside endpoint itself). `precise`: no fused multiply-add, so
+// the C++ reference (tests/raster/raster_reference.cpp) gets the same bits.
 vec4 intersectEdge(int plane, vec4 a, vec4 b) {
-  if (lexLess(b, a)) { const vec4 t = a; a = b; b = t; }
-  const float da = planeDistance(plane, a);
-  const float db = planeDistance(plane, b);
-  return mix(a, b, da / (da - db));
+  float da = planeDistance(plane, a);
+  float db = planeDistance(plane, b);
+  if (!(da >= 0.0)) {
+    const vec4 t = a; a = b; b = t;
+    const float d = da; da = db; db = d;
+  }
+  precise const vec4 point = a + (b - a) / (da - db) * da;
+  return point;
 }
 
 vec2 snapToScreen(vec4 c) {

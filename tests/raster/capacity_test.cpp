@@ -1,0 +1,77 @@
+// The rasterizer's setup and pair buffers are sized by estimate: a frame that needs more must
+// flag the overflow, rasterize nothing half-way, and after growIfOverflowed() render exactly
+// what a pass with room to spare renders.
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "kernels/raster/raster_layout.h"
+#include "runtime/error.h"
+#include "runtime/passes/rasterize_pass.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/frame_recorder.h"
+#include "tests/raster/raster_harness.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using CapacityTest = VulkanTest;
+
+// Thousands of overlapping triangles, each touching several tiles, at random depths.
+ClipTriangles crowd(uint32_t count) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> xy(-1.2f, 1.2f), z(0.05f, 0.95f);
+  ClipTriangles t;
+  for (uint32_t i = 0; i < count; ++i) {
+    const glm::vec2 c(xy(rng), xy(rng));
+    const float depth = z(rng);
+    t.add({c.x - 0.6f, c.y - 0.5f, depth, 1.0f}, {c.x + 0.6f, c.y - 0.4f, depth, 1.0f}, {c.x, c.y + 0.6f, depth, 1.0f});
+  }
+  return t;
+}
+
+TEST_F(CapacityTest, OverflowGrowsTheBuffersAndTheSecondFrameMatchesARoomyPass) {
+  constexpr uint32_t kWidth = 64, kHeight = 48;
+  const ClipTriangles input = crowd(3000);
+  for (auto scheme : {passes::VisibilityScheme::Int64Atomics, passes::VisibilityScheme::Depth32TwoPass}) {
+    SCOPED_TRACE(passes::visibilitySchemeName(scheme));
+    std::vector<gpu::GpuInstance> instances(input.doubleSided.size());
+    for (auto& instance : instances) instance.flags = HMB_INSTANCE_DOUBLE_SIDED;
+    vk::Buffer clip(context(), input.clip.size() * sizeof(glm::vec4), vk::MemoryUse::Device, "clip");
+    clip.upload(std::span<const glm::vec4>(input.clip));
+    vk::Buffer triangles(context(), input.triangles.size() * sizeof(gpu::GpuTriangle), vk::MemoryUse::Device, "tris");
+    triangles.upload(std::span<const gpu::GpuTriangle>(input.triangles));
+    vk::Buffer instanceBuffer(context(), instances.size() * sizeof(gpu::GpuInstance), vk::MemoryUse::Device, "inst");
+    instanceBuffer.upload(std::span<const gpu::GpuInstance>(instances));
+    vk::Buffer visibility(context(), uint64_t(kWidth) * kHeight * 8, vk::MemoryUse::Device, "visibility");
+    const passes::RasterInputs inputs{&triangles, &instanceBuffer, &clip, uint32_t(input.triangles.size())};
+
+    // Reserved for one triangle: both the setup and the pair capacity overflow.
+    passes::RasterizePass pass(context(), scheme);
+    pass.reserve(1, kWidth, kHeight);
+    const uint32_t setupBefore = pass.setupCapacity(), pairsBefore = pass.pairCapacity();
+    vk::FrameRecorder frame(context());
+    frame.begin();
+    pass.record(frame, inputs, visibility, kWidth, kHeight);
+    frame.submitAndWait();
+    // Nothing is rasterized from an overflowing frame (no half-drawn picture).
+    for (const glm::uvec2& e : visibility.download<glm::uvec2>()) ASSERT_EQ(e.x, HMB_VIS_EMPTY);
+    ASSERT_TRUE(pass.growIfOverflowed());
+    EXPECT_GT(pass.setupCapacity(), setupBefore);
+    EXPECT_GT(pass.pairCapacity(), pairsBefore);
+    EXPECT_EQ(pass.stats().regrowths, 1u);
+
+    frame.begin();
+    pass.record(frame, inputs, visibility, kWidth, kHeight);
+    frame.submitAndWait();
+    EXPECT_FALSE(pass.growIfOverflowed());
+    EXPECT_GE(pass.stats().setupTriangles, 2000u);
+
+    const Visibility roomy = rasterizeClipTriangles(context(), input, kWidth, kHeight, scheme);
+    EXPECT_EQ(visibility.download<glm::uvec2>(), roomy.entries);
+  }
+}
+
+}  // namespace
+}  // namespace hmb::test
