@@ -1,0 +1,329 @@
+#include "bench/raster_suite.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <span>
+#include <sstream>
+
+#include <glm/glm.hpp>
+
+#include "kernels/raster/raster_layout.h"
+#include "kernels/shared/scene_layout.h"
+#include "runtime/error.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/passes/gbuffer_stage.h"
+#include "runtime/vulkan/context.h"
+#include "runtime/vulkan/frame_recorder.h"
+#include "scenes/load_scene.h"
+#include "tests/oracle/graphics_raster.h"
+
+namespace hmb::bench {
+namespace {
+
+// Overflowing rasterizer buffers grow to what the frame needed, so the second try fits.
+constexpr int kMaxFitAttempts = 3;
+
+std::string sizeName(ImageSize size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
+
+std::string fixed(double value, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", digits, value);
+  return text;
+}
+
+// Busy CPU seconds of the whole host and of this process (lavapipe's threads included), from
+// /proc; valid is false where /proc is missing.
+struct CpuSample {
+  double hostBusy = 0, self = 0;
+  std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
+  bool valid = false;
+};
+
+CpuSample sampleCpu() {
+  CpuSample sample;
+  const double tick = 1.0 / double(sysconf(_SC_CLK_TCK));
+  std::ifstream stat("/proc/stat");
+  std::string label;
+  unsigned long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+  if (!(stat >> label >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal) || label != "cpu")
+    return sample;
+  sample.hostBusy = double(user + nice + system + irq + softirq + steal) * tick;
+  // /proc/self/stat: utime and stime are fields 14 and 15, counted from the ')' closing the name.
+  std::ifstream selfStat("/proc/self/stat");
+  const std::string line((std::istreambuf_iterator<char>(selfStat)), std::istreambuf_iterator<char>());
+  const auto close = line.rfind(')');
+  if (close == std::string::npos) return sample;
+  std::istringstream fields(line.substr(close + 2));
+  std::string skip;
+  for (int field = 3; field < 14; ++field) fields >> skip;
+  unsigned long long utime = 0, stime = 0;
+  if (!(fields >> utime >> stime)) return sample;
+  sample.self = double(utime + stime) * tick;
+  sample.valid = true;
+  return sample;
+}
+
+// Cores busy with other processes between two samples.
+double otherLoad(const CpuSample& from, const CpuSample& to) {
+  const double wall = std::chrono::duration<double>(to.wall - from.wall).count();
+  if (!from.valid || !to.valid || wall <= 0) return NAN;
+  return std::max(0.0, ((to.hostBusy - from.hostBusy) - (to.self - from.self)) / wall);
+}
+
+// Linear interpolation between order statistics (the common "type 7" quantile).
+double quantile(const std::vector<double>& sorted, double q) {
+  const double pos = q * double(sorted.size() - 1);
+  const auto lo = static_cast<size_t>(std::floor(pos));
+  const size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (pos - double(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+double required(const std::optional<double>& ms, const std::string& what) {
+  if (!ms) throw Error(what + ": the device has no timestamps; the benchmark needs them");
+  return *ms;
+}
+
+// The transform kernel's clip-space output with the scene's triangles, in triangle-id order, so
+// equal depths resolve to the smallest id in both rasterizers. Sidedness comes from the device's
+// instance flags: exactly what the compute rasterizer reads.
+std::vector<oracle::OracleTriangle> oracleTriangles(const passes::GBufferStage& stage, const GpuScene& gpuScene) {
+  std::vector<glm::vec4> clip = stage.clipCurrent().download<glm::vec4>();
+  clip.resize(gpuScene.instanceVertexCount());
+  std::vector<gpu::GpuTriangle> triangles = gpuScene.triangles().download<gpu::GpuTriangle>();
+  triangles.resize(gpuScene.triangleCount());
+  const std::vector<gpu::GpuInstance> instances = gpuScene.instances().download<gpu::GpuInstance>();
+
+  std::vector<oracle::OracleTriangle> out(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const gpu::GpuTriangle& tri = triangles[t];
+    out[t].clip[0] = clip.at(tri.v0);
+    out[t].clip[1] = clip.at(tri.v1);
+    out[t].clip[2] = clip.at(tri.v2);
+    out[t].id = static_cast<uint32_t>(t);
+    out[t].doubleSided = (instances.at(tri.instance).flags & HMB_INSTANCE_DOUBLE_SIDED) != 0;
+  }
+  return out;
+}
+
+// Fraction of pixels where both rasterizers see the same triangle (or both see none).
+double idAgreement(const std::vector<glm::uvec2>& visibility, const oracle::OracleImage& graphics) {
+  const size_t pixels = graphics.ids.size();
+  if (pixels == 0) return 1.0;
+  if (visibility.size() < pixels) throw Error("visibility buffer is smaller than the oracle image");
+  size_t same = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const uint32_t expected = graphics.ids[i] == 0 ? HMB_VIS_EMPTY : graphics.ids[i] - 1;
+    same += visibility[i].x == expected;
+  }
+  return double(same) / double(pixels);
+}
+
+// The passes the graphics pipeline also does (clearing and rasterizing): everything in the
+// G-buffer frame but transform (the oracle is handed clip-space vertices) and resolve (the
+// oracle shades nothing). Defined by exclusion so that the sum stays right when the
+// rasterizer's pass list changes.
+bool isVisibilityPass(const std::string& name) {
+  return name != passes::TransformVerticesPass::kName && name != passes::ResolveGBufferPass::kName;
+}
+
+RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContext, const std::string& sceneName,
+                   const scene::Scene& scene, ImageSize size, const RasterSuiteOptions& options,
+                   const Progress& progress) {
+  const std::string label = sceneName + " " + sizeName(size);
+  GpuScene gpuScene(context, scene);
+  gpuScene.setFrame(scene, scene.settings.frameTime, size.width, size.height);
+  passes::GBufferStage stage(context, passes::defaultVisibilityScheme(context.info()));
+  stage.prepare(gpuScene, size.width, size.height);
+  vk::FrameRecorder frame(context);
+  const auto renderCompute = [&] {
+    frame.begin();
+    stage.record(frame, gpuScene);
+    return frame.submitAndWait();
+  };
+
+  progress(label + ": sizing the rasterizer's buffers");
+  for (int attempt = 1;; ++attempt) {
+    renderCompute();
+    if (!stage.growIfOverflowed()) break;
+    if (attempt == kMaxFitAttempts)
+      throw Error(label + ": rasterizer buffers still overflow after " + std::to_string(attempt) + " attempts");
+  }
+  const std::vector<oracle::OracleTriangle> triangles = oracleTriangles(stage, gpuScene);
+  oracle::GraphicsRasterizer graphics(graphicsContext, size.width, size.height);
+
+  RasterCase result;
+  result.scene = sceneName;
+  result.size = size;
+  result.visibilityScheme = passes::visibilitySchemeName(stage.rasterizer().scheme());
+  result.triangles = gpuScene.triangleCount();
+
+  std::vector<double> visibility, transform, resolve, computeFrame, graphicsDraw, ratio, coverage;
+  std::map<std::string, std::vector<double>> passSamples;
+  progress(label + ": " + std::to_string(options.warmup) + " warm-up + " + std::to_string(options.repeats) +
+           " timed iterations");
+  const CpuSample cpuBefore = sampleCpu();
+  for (int i = 0; i < options.warmup + options.repeats; ++i) {
+    vk::FrameTimings compute;
+    oracle::OracleImage image;
+    double drawMs = 0;
+    const auto runCompute = [&] {
+      compute = renderCompute();
+      if (stage.growIfOverflowed()) throw Error(label + ": rasterizer buffers overflowed during timing");
+    };
+    const auto runGraphics = [&] {
+      image = graphics.rasterize(triangles);
+      drawMs = required(graphics.lastDrawMilliseconds(), label);
+    };
+    // Alternate which goes first, so neither always runs on caches the other warmed.
+    if (i % 2 == 0) {
+      runCompute();
+      runGraphics();
+    } else {
+      runGraphics();
+      runCompute();
+    }
+
+    // Validate while timing: every iteration, warm-up included.
+    const double agreement = idAgreement(stage.visibility().download<glm::uvec2>(), image);
+    if (agreement < kMinIdAgreement)
+      throw Error(label + ": id agreement with the graphics pipeline " + fixed(100.0 * agreement, 3) +
+                  "% is below " + fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");
+    result.minIdAgreement = std::min(result.minIdAgreement, agreement);
+    if (i < options.warmup) continue;
+
+    double vis = 0, allPasses = 0;
+    for (const vk::PassTiming& pass : compute.passes) {
+      const double ms = required(pass.milliseconds, label);
+      passSamples[pass.name].push_back(ms);
+      allPasses += ms;
+      if (pass.name == passes::TransformVerticesPass::kName)
+        transform.push_back(ms);
+      else if (pass.name == passes::ResolveGBufferPass::kName)
+        resolve.push_back(ms);
+      if (isVisibilityPass(pass.name)) vis += ms;
+    }
+    visibility.push_back(vis);
+    computeFrame.push_back(required(compute.frameMilliseconds, label));
+    coverage.push_back(computeFrame.back() > 0 ? allPasses / computeFrame.back() : NAN);
+    graphicsDraw.push_back(drawMs);
+    ratio.push_back(drawMs > 0 ? vis / drawMs : NAN);
+  }
+
+  result.otherCpuLoad = otherLoad(cpuBefore, sampleCpu());
+  const passes::RasterStats& stats = stage.rasterizer().stats();
+  result.setupTriangles = stats.setupTriangles;
+  result.tilePairs = stats.tilePairs;
+  result.largeTriangles = stats.largeTriangles;
+  result.regrowths = stats.regrowths;
+  result.computeVisibility = summarize(visibility);
+  result.transform = summarize(transform);
+  result.resolve = summarize(resolve);
+  result.computeFrame = summarize(computeFrame);
+  result.graphicsDraw = summarize(graphicsDraw);
+  result.ratio = summarize(ratio);
+  result.passCoverage = summarize(coverage);
+  for (auto& [name, samples] : passSamples) result.passes[name] = summarize(samples);
+  progress(label + ": visibility " + fixed(result.computeVisibility.median, 2) + " ms, graphics " +
+           fixed(result.graphicsDraw.median, 2) + " ms, ratio " + fixed(result.ratio.median, 2) + ", agreement " +
+           fixed(100.0 * result.minIdAgreement, 3) + "%, other processes " + fixed(result.otherCpuLoad, 2) +
+           " cores");
+  return result;
+}
+
+nlohmann::json summaryJson(const Summary& s) {
+  return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"q1", s.q1}, {"q3", s.q3}, {"samples", s.samples}};
+}
+
+}  // namespace
+
+ImageSize parseImageSize(const std::string& text) {
+  unsigned width = 0, height = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%ux%u%c", &width, &height, &tail) != 2 || width == 0 || height == 0)
+    throw Error("image size '" + text + "' must be WIDTHxHEIGHT, e.g. 1280x720");
+  return {width, height};
+}
+
+Summary summarize(std::vector<double> samples) {
+  Summary s;
+  s.samples = samples;
+  if (samples.empty()) return s;
+  std::sort(samples.begin(), samples.end());
+  s.min = samples.front();
+  s.max = samples.back();
+  s.median = quantile(samples, 0.5);
+  s.q1 = quantile(samples, 0.25);
+  s.q3 = quantile(samples, 0.75);
+  return s;
+}
+
+std::vector<RasterCase> runRasterSuite(const vk::Context& compute, const vk::Context& graphics,
+                                       const RasterSuiteOptions& options, const Progress& progress) {
+  if (!compute.info().timestamps) throw Error("device " + compute.info().name + " has no timestamps");
+  if (compute.info().index != graphics.info().index)
+    throw Error("the graphics context must use the same physical device as the compute context");
+  std::vector<RasterCase> cases;
+  for (const std::string& name : options.scenes) {
+    progress("loading scene " + name);
+    const scene::Scene scene = scene::loadScene(name);
+    for (const ImageSize size : options.sizes)
+      cases.push_back(runCase(compute, graphics, name, scene, size, options, progress));
+  }
+  return cases;
+}
+
+nlohmann::json rasterCaseJson(const RasterCase& c) {
+  nlohmann::json passes = nlohmann::json::object();
+  for (const auto& [name, summary] : c.passes) passes[name] = summaryJson(summary);
+  return {
+      {"scene", c.scene},
+      {"width", c.size.width},
+      {"height", c.size.height},
+      {"visibility_scheme", c.visibilityScheme},
+      {"triangles", c.triangles},
+      {"setup_triangles", c.setupTriangles},
+      {"tile_pairs", c.tilePairs},
+      {"large_triangles", c.largeTriangles},
+      {"regrowths", c.regrowths},
+      {"min_id_agreement", c.minIdAgreement},
+      {"other_cpu_load_cores", std::isnan(c.otherCpuLoad) ? nlohmann::json(nullptr) : nlohmann::json(c.otherCpuLoad)},
+      {"ms",
+       {{"compute_visibility", summaryJson(c.computeVisibility)},
+        {"transform_vertices", summaryJson(c.transform)},
+        {"resolve_gbuffer", summaryJson(c.resolve)},
+        {"compute_frame", summaryJson(c.computeFrame)},
+        {"graphics_draw", summaryJson(c.graphicsDraw)},
+        {"compute_passes", passes}}},
+      {"ratio_visibility_to_graphics", summaryJson(c.ratio)},
+      {"compute_pass_coverage", summaryJson(c.passCoverage)},
+  };
+}
+
+void printRasterTable(std::ostream& out, const std::vector<RasterCase>& cases) {
+  char line[256];
+  std::snprintf(line, sizeof(line), "%-12s %-9s %8s %8s %9s %6s %9s %9s %9s %9s %19s %9s\n", "scene", "size",
+                "tris", "setup", "pairs", "large", "transform", "visib.", "resolve", "graphics",
+                "visib./graphics", "agreement");
+  out << line;
+  for (const RasterCase& c : cases) {
+    const std::string ratio =
+        fixed(c.ratio.median, 2) + " [" + fixed(c.ratio.q1, 2) + "-" + fixed(c.ratio.q3, 2) + "]";
+    std::snprintf(line, sizeof(line), "%-12s %-9s %8u %8u %9u %6u %9.2f %9.2f %9.2f %9.2f %19s %8.3f%%\n",
+                  c.scene.c_str(), sizeName(c.size).c_str(), c.triangles, c.setupTriangles, c.tilePairs,
+                  c.largeTriangles, c.transform.median, c.computeVisibility.median, c.resolve.median,
+                  c.graphicsDraw.median, ratio.c_str(), 100.0 * c.minIdAgreement);
+    out << line;
+  }
+  out << "Times: device ms, medians. visib. = compute clears through rasterize (transform excluded: the graphics\n"
+         "pipeline is given the same clip-space vertices); graphics = render pass clear + draw + store.\n"
+         "visib./graphics: median of per-iteration ratios [interquartile range]; agreement: worst iteration.\n";
+}
+
+}  // namespace hmb::bench
