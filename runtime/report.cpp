@@ -79,6 +79,7 @@ nlohmann::json rasterJson(const RenderResult& result) {
           {"setup_triangles", result.raster.setupTriangles},
           {"tile_pairs", result.raster.tilePairs},
           {"large_triangles", result.raster.largeTriangles},
+          {"clipped_triangles", result.raster.clippedTriangles},
           {"buffer_regrowths", result.raster.regrowths}};
 }
 

@@ -1,5 +1,6 @@
-// Layouts of the rasterizer's kernels: transform -> setup (cull, near clip, snap, bin) ->
-// rasterize tiles (visibility buffer) -> gbuffer/resolve.
+// Layouts of the rasterizer's kernels: transform -> setup (cull, snap, bin; list triangles
+// that need clipping) -> clip -> bin large triangles -> rasterize tiles (visibility buffer)
+// -> gbuffer/resolve.
 #ifndef HMB_KERNELS_RASTER_RASTER_LAYOUT_H
 #define HMB_KERNELS_RASTER_RASTER_LAYOUT_H
 
@@ -36,7 +37,8 @@
 #define HMB_SETUP_BINDING_PAIRS 4      // uvec2 (setup index, tile index)[]
 #define HMB_SETUP_BINDING_COUNTERS 5   // RasterCounters
 #define HMB_SETUP_BINDING_LARGE 6      // uint setup index[] of triangles binned by bin_large_triangles
-#define HMB_SETUP_BINDING_COUNT 7
+#define HMB_SETUP_BINDING_CLIP_LIST 7  // uint triangle[] that need clipping (clip_triangles has the same bindings)
+#define HMB_SETUP_BINDING_COUNT 8
 
 // size_dispatch
 #define HMB_SIZE_DISPATCH_BINDING_COUNTERS 0
@@ -65,8 +67,9 @@ struct RasterParams {
   uint setupCapacity;      // SetupTriangle slots (and large-triangle list slots)
   uint pairCapacity;       // (triangle, tile) pair slots
   uint tilesX;
-  uint pass;               // rasterize_depth32: 0 writes depth, 1 writes ids where depth matches
-  uint pad0;
+  uint pass;               // size_dispatch: 0 sizes clip_triangles, 1 the passes after it;
+                           // rasterize_depth32: 0 writes depth, 1 writes ids where depth matches
+  uint clipCapacity;       // clip-list slots
 };
 
 // A triangle ready to rasterize: snapped screen positions (pixels, y down) ordered so that
@@ -92,10 +95,14 @@ struct RasterCounters {
   uint rasterizeX;   // indirect dispatch of rasterize_tiles (VkDispatchIndirectCommand)
   uint rasterizeY;
   uint rasterizeZ;
-  uint pad0;
+  uint clipCount;    // triangles listed for clip_triangles
   uint binLargeX;    // indirect dispatch of bin_large_triangles: one workgroup per triangle
   uint binLargeY;
   uint binLargeZ;
+  uint pad0;
+  uint clipX;        // indirect dispatch of clip_triangles: one invocation per listed triangle
+  uint clipY;
+  uint clipZ;
   uint pad1;
 };
 
@@ -103,14 +110,16 @@ HMB_GPU_END
 
 HMB_CHECK_SIZE(RasterParams, 32)
 HMB_CHECK_SIZE(SetupTriangle, 64)
-HMB_CHECK_SIZE(RasterCounters, 48)
+HMB_CHECK_SIZE(RasterCounters, 64)
 
 #define HMB_RASTER_OVERFLOW_SETUP 1u          // more set-up triangles than setupCapacity
 #define HMB_RASTER_OVERFLOW_PAIRS 2u          // more (triangle, tile) pairs than pairCapacity
 #define HMB_RASTER_OVERFLOW_PAIRS_WRAPPED 4u  // the pair count passed 2^32
+#define HMB_RASTER_OVERFLOW_CLIP 8u           // more triangles to clip than clipCapacity
 
 // Byte offsets of the indirect dispatches inside RasterCounters.
 #define HMB_RASTER_COUNTERS_RASTERIZE_OFFSET 16
 #define HMB_RASTER_COUNTERS_BIN_LARGE_OFFSET 32
+#define HMB_RASTER_COUNTERS_CLIP_OFFSET 48
 
 #endif

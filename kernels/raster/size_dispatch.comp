@@ -1,7 +1,8 @@
 #version 450
-// Sizes the indirect dispatches that follow setup: bin_large_triangles (one workgroup per
-// large triangle) and rasterize_tiles (one invocation per (triangle, tile) pair), each folded
-// into rows of at most 65535 groups.
+// Sizes the indirect dispatches that follow setup, folded into rows of at most 65535 groups.
+// Pass 0 (after setup_triangles): clip_triangles, one invocation per listed triangle. Pass 1
+// (after clip_triangles): bin_large_triangles (one workgroup per large triangle) and
+// rasterize_tiles (one invocation per (triangle, tile) pair).
 #extension GL_GOOGLE_include_directive : require
 #include "raster_layout.h"
 
@@ -15,6 +16,14 @@ uvec3 folded(uint groups) {
 }
 
 void main() {
+  if (params.pass == 0u) {
+    const uint listed = min(counters.clipCount, params.clipCapacity);
+    const uvec3 clip = folded((listed + HMB_RASTER_GROUP - 1u) / HMB_RASTER_GROUP);
+    counters.clipX = clip.x;
+    counters.clipY = clip.y;
+    counters.clipZ = clip.z;
+    return;
+  }
   // After an overflow nothing is rasterized: the host grows the buffers and renders again.
   const bool overflow = counters.overflow != 0u;
   const uint pairs = overflow ? 0u : counters.pairCount;

@@ -34,6 +34,7 @@ RasterizePass::RasterizePass(const vk::Context& context, VisibilityScheme scheme
     : context_(context),
       scheme_(scheme),
       setupKernel_(context, "raster/setup_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams)),
+      clipKernel_(context, "raster/clip_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams)),
       sizeDispatchKernel_(context, "raster/size_dispatch", HMB_SIZE_DISPATCH_BINDING_COUNT, sizeof(gpu::RasterParams)),
       binLargeKernel_(context, "raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams)),
       rasterizeKernel_(context, rasterizeKernelName(scheme), HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams)) {
@@ -46,6 +47,8 @@ void RasterizePass::plan(FramePlan& plan) const {
   plan.run(kClearVisibility);
   plan.run(kClearCounters);
   plan.run(kSetup);
+  plan.run(kSizeClipDispatch);
+  plan.run(kClip);
   plan.run(kSizeDispatch);
   plan.run(kBinLarge);
   if (scheme_ == VisibilityScheme::Int64Atomics) {
@@ -68,6 +71,11 @@ void RasterizePass::allocate(uint32_t setupCapacity, uint32_t pairCapacity) {
   pairCapacity_ = pairCapacity;
 }
 
+void RasterizePass::allocateClipList(uint32_t clipCapacity) {
+  clipList_ = vk::Buffer(context_, uint64_t(clipCapacity) * sizeof(uint32_t), vk::MemoryUse::Device, "raster clip list");
+  clipCapacity_ = clipCapacity;
+}
+
 void RasterizePass::reserve(uint32_t triangleCount, uint32_t width, uint32_t height) {
   // Most triangles give one setup triangle (near clipping may split one into up to six, culling
   // drops many) touching one to four tiles; a screen of large triangles touches each tile a few times.
@@ -77,6 +85,9 @@ void RasterizePass::reserve(uint32_t triangleCount, uint32_t width, uint32_t hei
   const uint64_t range = context_.info().maxStorageBufferRange;
   const auto setupCapacity = static_cast<uint32_t>(std::min<uint64_t>(setupWanted, range / sizeof(gpu::SetupTriangle)));
   const auto pairCapacity = static_cast<uint32_t>(std::min<uint64_t>(pairsWanted, range / sizeof(glm::uvec2)));
+  // Few triangles cross the near plane or the 4x guard band.
+  const auto clipCapacity = static_cast<uint32_t>(std::min<uint64_t>(triangleCount / 8 + 1024, range / sizeof(uint32_t)));
+  if (clipCapacity > clipCapacity_) allocateClipList(clipCapacity);
   if (setupCapacity > setupCapacity_ || pairCapacity > pairCapacity_)
     allocate(std::max(setupCapacity, setupCapacity_), std::max(pairCapacity, pairCapacity_));
 }
@@ -94,12 +105,18 @@ void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs,
   params.setupCapacity = setupCapacity_;
   params.pairCapacity = pairCapacity_;
   params.tilesX = tilesAlong(width);
+  params.clipCapacity = clipCapacity_;
 
   frame.fill(kClearVisibility, visibility, HMB_VIS_EMPTY);
   frame.fill(kClearCounters, counters_, 0u);
-  frame.dispatch(kSetup, setupKernel_,
-                 {inputs.triangles, inputs.instances, inputs.clipCurrent, &setup_, &pairs_, &counters_, &large_},
-                 params, vk::foldedGroups(vk::groupsFor(inputs.triangleCount, HMB_RASTER_GROUP)));
+  const std::initializer_list<const vk::Buffer*> setupBindings = {
+      inputs.triangles, inputs.instances, inputs.clipCurrent, &setup_, &pairs_, &counters_, &large_, &clipList_};
+  frame.dispatch(kSetup, setupKernel_, setupBindings, params,
+                 vk::foldedGroups(vk::groupsFor(inputs.triangleCount, HMB_RASTER_GROUP)));
+  params.pass = 0;
+  frame.dispatch(kSizeClipDispatch, sizeDispatchKernel_, {&counters_}, params, {1, 1, 1});
+  frame.dispatchIndirect(kClip, clipKernel_, setupBindings, params, counters_, HMB_RASTER_COUNTERS_CLIP_OFFSET);
+  params.pass = 1;
   frame.dispatch(kSizeDispatch, sizeDispatchKernel_, {&counters_}, params, {1, 1, 1});
   frame.dispatchIndirect(kBinLarge, binLargeKernel_, {&setup_, &pairs_, &counters_, &large_}, params, counters_,
                          HMB_RASTER_COUNTERS_BIN_LARGE_OFFSET);
@@ -122,6 +139,7 @@ bool RasterizePass::growIfOverflowed() {
   stats_.setupTriangles = std::min(counters.setupCount, setupCapacity_);
   stats_.tilePairs = std::min(counters.pairCount, pairCapacity_);
   stats_.largeTriangles = counters.largeCount;
+  stats_.clippedTriangles = counters.clipCount;
   if (counters.overflow == 0) return false;
 
   // The counters kept counting past capacity, so they hold what the frame needs (unless the
@@ -132,6 +150,9 @@ bool RasterizePass::growIfOverflowed() {
   const uint64_t setupNeeded = counters.setupCount;
   const uint64_t pairsNeeded =
       (counters.overflow & HMB_RASTER_OVERFLOW_PAIRS_WRAPPED) ? (uint64_t(1) << 32) : counters.pairCount;
+  const uint64_t maxClip = range / sizeof(uint32_t);
+  if (counters.overflow & HMB_RASTER_OVERFLOW_CLIP)
+    allocateClipList(static_cast<uint32_t>(std::min(withHeadroom(counters.clipCount), maxClip)));
   if (setupNeeded > maxSetup || pairsNeeded > maxPairs)
     throw Error("the frame needs " + std::to_string(setupNeeded) + " set-up triangles and " +
                 std::to_string(pairsNeeded) + " (triangle, tile) pairs; device '" + context_.info().name +

@@ -1,5 +1,6 @@
-// Host side of the compute rasterizer's visibility passes: clear, setup_triangles,
-// size_dispatch, bin_large_triangles and rasterize_tiles (or its 32-bit two-pass fallback).
+// Host side of the compute rasterizer's visibility passes: clears, setup_triangles,
+// clip_triangles (for the triangles setup lists), bin_large_triangles and rasterize_tiles (or
+// its 32-bit two-pass fallback), with size_dispatch sizing the indirect ones.
 // Input: clip-space triangles; output: the visibility buffer (uint64 per pixel, read as uvec2
 // (triangle id, depth bits), HMB_VIS_EMPTY where nothing is hit).
 //
@@ -47,6 +48,7 @@ struct RasterStats {
   uint32_t setupTriangles = 0;  // triangles left after culling and clipping (clipping may add)
   uint32_t tilePairs = 0;       // (triangle, tile) pairs rasterized
   uint32_t largeTriangles = 0;  // triangles binned by bin_large_triangles
+  uint32_t clippedTriangles = 0;  // triangles that crossed the near plane or the guard band
   uint32_t regrowths = 0;       // times the buffers grew since this pass was created
 };
 
@@ -55,6 +57,8 @@ class RasterizePass {
   static constexpr const char* kClearVisibility = "clear-visibility";
   static constexpr const char* kClearCounters = "clear-raster-counters";
   static constexpr const char* kSetup = "setup-triangles";
+  static constexpr const char* kSizeClipDispatch = "size-clip-dispatch";
+  static constexpr const char* kClip = "clip-triangles";
   static constexpr const char* kSizeDispatch = "size-dispatch";
   static constexpr const char* kBinLarge = "bin-large-triangles";
   static constexpr const char* kRasterize = "rasterize-tiles";
@@ -89,17 +93,21 @@ class RasterizePass {
 
  private:
   void allocate(uint32_t setupCapacity, uint32_t pairCapacity);
+  void allocateClipList(uint32_t clipCapacity);
 
   const vk::Context& context_;
   VisibilityScheme scheme_;
   vk::ComputeKernel setupKernel_;
+  vk::ComputeKernel clipKernel_;
   vk::ComputeKernel sizeDispatchKernel_;
   vk::ComputeKernel binLargeKernel_;
   vk::ComputeKernel rasterizeKernel_;
   uint32_t setupCapacity_ = 0;
   uint32_t pairCapacity_ = 0;
+  uint32_t clipCapacity_ = 0;
   vk::Buffer setup_;     // SetupTriangle[setupCapacity]
   vk::Buffer large_;     // uint[setupCapacity]
+  vk::Buffer clipList_;  // uint[clipCapacity]
   vk::Buffer pairs_;     // uvec2[pairCapacity]
   vk::Buffer counters_;  // RasterCounters
   RasterStats stats_;

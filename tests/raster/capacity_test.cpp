@@ -11,6 +11,7 @@
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/raster/raster_harness.h"
+#include "tests/raster/raster_reference.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -71,6 +72,28 @@ TEST_F(CapacityTest, OverflowGrowsTheBuffersAndTheSecondFrameMatchesARoomyPass) 
     const Visibility roomy = rasterizeClipTriangles(context(), input, kWidth, kHeight, scheme);
     EXPECT_EQ(visibility.download<glm::uvec2>(), roomy.entries);
   }
+}
+
+// Triangles crossing the near plane go through a list for clip_triangles, sized by estimate
+// too: more of them than the list holds must grow it, not drop them.
+TEST_F(CapacityTest, ClipListOverflowGrowsAndLosesNoTriangle) {
+  constexpr uint32_t kWidth = 40, kHeight = 30;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> xy(-0.8f, 0.8f), z(0.1f, 0.9f);
+  ClipTriangles input;
+  for (int i = 0; i < 1500; ++i) {
+    const glm::vec2 c(xy(rng), xy(rng));
+    const float depth = z(rng);
+    // The third vertex lies behind the eye (w < 0, z < 0): every triangle needs clipping.
+    input.add({c.x - 0.3f, c.y, depth, 1.0f}, {c.x + 0.3f, c.y, depth, 1.0f}, {c.x, c.y + 0.3f, -0.5f, -1.0f});
+  }
+  const Visibility visibility =
+      rasterizeClipTriangles(context(), input, kWidth, kHeight, passes::VisibilityScheme::Int64Atomics);
+  EXPECT_GE(visibility.stats.regrowths, 1u) << "1500 triangles to clip should outgrow the first clip list";
+  // Every clipped triangle is in: the result is the C++ reference's, bit for bit.
+  const auto setup = reference::setupTriangles(input.clip, input.triangles, input.doubleSided, kWidth, kHeight);
+  EXPECT_EQ(visibility.stats.setupTriangles, setup.size());
+  EXPECT_EQ(visibility.entries, reference::rasterizeReference(setup, kWidth, kHeight).entries);
 }
 
 }  // namespace

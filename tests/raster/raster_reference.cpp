@@ -43,7 +43,7 @@ bool insideClipVolume(vec4 c) {
   return c.z >= 0.0f && std::abs(c.x) <= kGuardBand * c.w && std::abs(c.y) <= kGuardBand * c.w;
 }
 
-// Mirrors intersectEdge in setup_triangles.comp: from the endpoint inside the plane, divide
+// Mirrors intersectEdge in clip_triangles.comp: from the endpoint inside the plane, divide
 // before scaling (the kernel marks the expression `precise`, so no fused multiply-add).
 vec4 intersectEdge(int plane, vec4 a, vec4 b) {
   float da = planeDistance(plane, a);

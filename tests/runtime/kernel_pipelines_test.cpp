@@ -27,6 +27,7 @@ const KernelLayout kLayouts[] = {
     {"output/encode_display", HMB_ENCODE_DISPLAY_BINDING_COUNT, sizeof(gpu::EncodeDisplayParams), false},
     {"raster/transform_vertices", HMB_TRANSFORM_BINDING_COUNT, sizeof(uint32_t), false},
     {"raster/setup_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams), false},
+    {"raster/clip_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"raster/size_dispatch", HMB_SIZE_DISPATCH_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
