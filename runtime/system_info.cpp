@@ -6,9 +6,7 @@
 #include <fstream>
 #include <thread>
 
-#ifndef HMB_GIT_REVISION
-#define HMB_GIT_REVISION "unknown"
-#endif
+#include "git_revision.h"  // generated at build time: HMB_GIT_REVISION
 #ifndef HMB_VERSION
 #define HMB_VERSION "unknown"
 #endif
