@@ -56,7 +56,9 @@ TEST_F(RealFilesRenderTest, EveryLoadableFileRendersAFiniteFrameThatShowsItsGeom
     for (float v : result.image.find("")->values) ASSERT_TRUE(std::isfinite(v));
     const auto& ids = result.image.find("objectId")->ids;
     const auto covered = std::count_if(ids.begin(), ids.end(), [](uint32_t id) { return id != 0; });
-    if (scene.triangleCount() > 0) EXPECT_GT(covered, 0) << "the default or given camera should see the scene";
+    if (scene.triangleCount() > 0) {
+      EXPECT_GT(covered, 0) << "the default or given camera should see the scene";
+    }
     ++rendered;
   }
   EXPECT_GT(rendered, files.size() / 2);
