@@ -120,9 +120,13 @@ TEST_F(RendererTest, SharpFrameHasBeautyAovsPlanAndRasterStats) {
   for (const char* pass : {"transform-vertices", "setup-triangles", "bin-large-triangles", "resolve-gbuffer",
                            "encode-display"})
     EXPECT_TRUE(result.plan.runs(pass)) << pass;
-  if (context().info().timestamps)
-    for (const auto& pass : result.plan.passes())
-      if (pass.run) EXPECT_TRUE(pass.milliseconds.has_value()) << pass.name;
+  if (context().info().timestamps) {
+    for (const auto& pass : result.plan.passes()) {
+      if (pass.run) {
+        EXPECT_TRUE(pass.milliseconds.has_value()) << pass.name;
+      }
+    }
+  }
 }
 
 // A device without 64-bit buffer atomics gets the two-pass visibility, the plan says so, and
