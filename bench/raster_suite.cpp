@@ -27,9 +27,6 @@
 namespace hmb::bench {
 namespace {
 
-// Overflowing rasterizer buffers grow to what the frame needed, so the second try fits.
-constexpr int kMaxFitAttempts = 3;
-
 std::string sizeName(ImageSize size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
 
 std::string fixed(double value, int digits) {
@@ -98,31 +95,10 @@ std::vector<oracle::OracleTriangle> oracleTriangles(const passes::GBufferStage& 
   clip.resize(gpuScene.instanceVertexCount());
   std::vector<gpu::GpuTriangle> triangles = gpuScene.triangles().download<gpu::GpuTriangle>();
   triangles.resize(gpuScene.triangleCount());
-  const std::vector<gpu::GpuInstance> instances = gpuScene.instances().download<gpu::GpuInstance>();
-
-  std::vector<oracle::OracleTriangle> out(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const gpu::GpuTriangle& tri = triangles[t];
-    out[t].clip[0] = clip.at(tri.v0);
-    out[t].clip[1] = clip.at(tri.v1);
-    out[t].clip[2] = clip.at(tri.v2);
-    out[t].id = static_cast<uint32_t>(t);
-    out[t].doubleSided = (instances.at(tri.instance).flags & HMB_INSTANCE_DOUBLE_SIDED) != 0;
-  }
-  return out;
-}
-
-// Fraction of pixels where both rasterizers see the same triangle (or both see none).
-double idAgreement(const std::vector<glm::uvec2>& visibility, const oracle::OracleImage& graphics) {
-  const size_t pixels = graphics.ids.size();
-  if (pixels == 0) return 1.0;
-  if (visibility.size() < pixels) throw Error("visibility buffer is smaller than the oracle image");
-  size_t same = 0;
-  for (size_t i = 0; i < pixels; ++i) {
-    const uint32_t expected = graphics.ids[i] == 0 ? HMB_VIS_EMPTY : graphics.ids[i] - 1;
-    same += visibility[i].x == expected;
-  }
-  return double(same) / double(pixels);
+  std::vector<bool> doubleSided;
+  for (const gpu::GpuInstance& instance : gpuScene.instances().download<gpu::GpuInstance>())
+    doubleSided.push_back((instance.flags & HMB_INSTANCE_DOUBLE_SIDED) != 0);
+  return oracle::oracleTriangles(clip, triangles, doubleSided);
 }
 
 // The passes the graphics pipeline also does (clearing and rasterizing): everything in the
@@ -149,11 +125,10 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   };
 
   progress(label + ": sizing the rasterizer's buffers");
-  for (int attempt = 1;; ++attempt) {
-    renderCompute();
-    if (!stage.growIfOverflowed()) break;
-    if (attempt == kMaxFitAttempts)
-      throw Error(label + ": rasterizer buffers still overflow after " + std::to_string(attempt) + " attempts");
+  try {
+    passes::submitUntilRasterFits(frame, stage.rasterizer(), [&](vk::FrameRecorder& f) { stage.record(f, gpuScene); });
+  } catch (const Error& e) {
+    throw Error(label + ": " + e.what());
   }
   const std::vector<oracle::OracleTriangle> triangles = oracleTriangles(stage, gpuScene);
   oracle::GraphicsRasterizer graphics(graphicsContext, size.width, size.height);
@@ -191,7 +166,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
     }
 
     // Validate while timing: every iteration, warm-up included.
-    const double agreement = idAgreement(stage.visibility().download<glm::uvec2>(), image);
+    const double agreement = oracle::idAgreement(stage.visibility().download<glm::uvec2>(), image);
     if (agreement < kMinIdAgreement)
       throw Error(label + ": id agreement with the graphics pipeline " + fixed(100.0 * agreement, 3) +
                   "% is below " + fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");

@@ -11,16 +11,6 @@
 namespace hmb {
 namespace {
 
-// A buffer of at least one element: Vulkan has no empty buffers, and an empty scene is valid.
-template <class T>
-vk::Buffer uploadArray(const vk::Context& context, const std::vector<T>& values, const char* name) {
-  std::vector<T> padded = values;
-  if (padded.empty()) padded.emplace_back();
-  vk::Buffer buffer(context, padded.size() * sizeof(T), vk::MemoryUse::Device, name);
-  buffer.upload(std::span<const T>(padded));
-  return buffer;
-}
-
 glm::mat4 cameraWorld(const scene::Scene& scene, float t) {
   if (!scene.camera || scene.camera->node < 0) return glm::mat4(1.0f);
   return scene.worldMatrixAt(static_cast<uint32_t>(scene.camera->node), t);
@@ -117,11 +107,11 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
     materials.push_back(g);
   }
 
-  vertices_ = uploadArray(context, vertices, "scene vertices");
-  instanceVertices_ = uploadArray(context, instanceVertices, "instance vertices");
-  triangles_ = uploadArray(context, triangles, "triangles");
-  materials_ = uploadArray(context, materials, "materials");
-  texels_ = uploadArray(context, texels, "texels");
+  vertices_ = vk::uploadedBuffer(context, vertices, "scene vertices");
+  instanceVertices_ = vk::uploadedBuffer(context, instanceVertices, "instance vertices");
+  triangles_ = vk::uploadedBuffer(context, triangles, "triangles");
+  materials_ = vk::uploadedBuffer(context, materials, "materials");
+  texels_ = vk::uploadedBuffer(context, texels, "texels");
   instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
                           vk::MemoryUse::Device, "instances");
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");

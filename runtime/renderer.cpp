@@ -16,10 +16,6 @@
 namespace hmb {
 namespace {
 
-// Overflowing rasterizer buffers grow to what the frame needed, so a second try fits; a third
-// guards against counters that disagree between two recordings of the same frame.
-constexpr int kMaxRecordAttempts = 3;
-
 io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> channels,
                          const std::vector<glm::vec4>& values) {
   io::ImageLayer layer{name, std::move(channels), false, {}, {}};
@@ -118,15 +114,10 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     gbuffer.prepare(gpuScene, width, height);
     gbuffer.plan(result.plan);
     result.plan.run(passes::EncodeDisplayPass::kName);
-    for (int attempt = 0;; ++attempt) {
-      frame.begin();
-      gbuffer.record(frame, gpuScene);
-      passes_->encodeDisplay.record(frame, gbuffer.color(), display, width, height);
-      timings = frame.submitAndWait();
-      if (!gbuffer.growIfOverflowed()) break;
-      if (attempt + 1 >= kMaxRecordAttempts)
-        throw Error("rasterizer buffers still overflow after " + std::to_string(kMaxRecordAttempts) + " attempts");
-    }
+    timings = passes::submitUntilRasterFits(frame, gbuffer.rasterizer(), [&](vk::FrameRecorder& f) {
+      gbuffer.record(f, gpuScene);
+      passes_->encodeDisplay.record(f, gbuffer.color(), display, width, height);
+    });
     result.visibilityScheme = passes::visibilitySchemeName(gbuffer.rasterizer().scheme());
     result.raster = gbuffer.rasterizer().stats();
 

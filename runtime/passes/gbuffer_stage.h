@@ -29,6 +29,7 @@ class GBufferStage {
   bool growIfOverflowed() { return rasterize_.growIfOverflowed(); }
 
   const RasterizePass& rasterizer() const { return rasterize_; }
+  RasterizePass& rasterizer() { return rasterize_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   const vk::Buffer& clipCurrent() const { return clipCurrent_; }

@@ -20,6 +20,10 @@ uint32_t tilesAlong(uint32_t pixels) { return vk::groupsFor(pixels, HMB_RASTER_T
 // Room for `needed` plus a quarter, so a frame that grows a little does not overflow again.
 uint64_t withHeadroom(uint64_t needed) { return needed + needed / 4 + 1024; }
 
+// Grown buffers fit the frame that overflowed; a third try guards against counters that
+// disagree between two recordings of the same frame.
+constexpr int kMaxRecordAttempts = 3;
+
 }  // namespace
 
 const char* visibilitySchemeName(VisibilityScheme scheme) {
@@ -163,6 +167,18 @@ bool RasterizePass::growIfOverflowed() {
            static_cast<uint32_t>(std::min(withHeadroom(std::max<uint64_t>(pairsNeeded, pairCapacity_)), maxPairs)));
   ++stats_.regrowths;
   return true;
+}
+
+vk::FrameTimings submitUntilRasterFits(vk::FrameRecorder& frame, RasterizePass& rasterizer,
+                                       const std::function<void(vk::FrameRecorder&)>& record) {
+  for (int attempt = 1;; ++attempt) {
+    frame.begin();
+    record(frame);
+    vk::FrameTimings timings = frame.submitAndWait();
+    if (!rasterizer.growIfOverflowed()) return timings;
+    if (attempt == kMaxRecordAttempts)
+      throw Error("rasterizer buffers still overflow after " + std::to_string(attempt) + " attempts");
+  }
 }
 
 }  // namespace hmb::passes

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "runtime/vulkan/buffer.h"
@@ -18,6 +19,7 @@
 namespace hmb::vk {
 class FrameRecorder;
 struct DeviceInfo;
+struct FrameTimings;
 }
 
 namespace hmb {
@@ -112,5 +114,11 @@ class RasterizePass {
   vk::Buffer counters_;  // RasterCounters
   RasterStats stats_;
 };
+
+// Records (with `record`, which must include `rasterizer`'s passes) and submits a frame until
+// the rasterizer's buffers fit it; returns the timings of the frame that fit. Buffers grow to
+// what an overflowing frame needed, so the second try fits; throws hmb::Error after three.
+vk::FrameTimings submitUntilRasterFits(vk::FrameRecorder& frame, RasterizePass& rasterizer,
+                                       const std::function<void(vk::FrameRecorder&)>& record);
 
 }  // namespace hmb::passes

@@ -66,4 +66,15 @@ class Buffer {
   std::string name_;
 };
 
+// A device buffer holding `values`, at least one (value-initialized) element long: Vulkan has
+// no empty buffers, and empty arrays (a scene without textures) are valid.
+template <class T>
+Buffer uploadedBuffer(const Context& context, const std::vector<T>& values, std::string name) {
+  const T empty{};
+  const std::span<const T> data = values.empty() ? std::span<const T>(&empty, 1) : std::span<const T>(values);
+  Buffer buffer(context, data.size_bytes(), MemoryUse::Device, std::move(name));
+  buffer.upload(data);
+  return buffer;
+}
+
 }  // namespace hmb::vk

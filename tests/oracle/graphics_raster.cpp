@@ -6,6 +6,7 @@
 
 #include "oracle_frag.spv.h"
 #include "oracle_vert.spv.h"
+#include "kernels/raster/raster_layout.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/check.h"
 #include "runtime/vulkan/context.h"
@@ -438,6 +439,33 @@ OracleImage rasterizeWithGraphicsPipeline(const vk::Context& context, uint32_t w
                                           std::span<const OracleTriangle> triangles) {
   GraphicsRasterizer rasterizer(context, width, height);
   return rasterizer.rasterize(triangles);
+}
+
+std::vector<OracleTriangle> oracleTriangles(std::span<const glm::vec4> clip,
+                                            std::span<const gpu::GpuTriangle> triangles,
+                                            const std::vector<bool>& doubleSided) {
+  std::vector<OracleTriangle> out(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const gpu::GpuTriangle& tri = triangles[t];
+    out[t].clip[0] = clip[tri.v0];
+    out[t].clip[1] = clip[tri.v1];
+    out[t].clip[2] = clip[tri.v2];
+    out[t].id = static_cast<uint32_t>(t);
+    out[t].doubleSided = doubleSided.at(tri.instance);
+  }
+  return out;
+}
+
+double idAgreement(std::span<const glm::uvec2> visibility, const OracleImage& oracle) {
+  const size_t pixels = oracle.ids.size();
+  if (pixels == 0) return 1.0;
+  if (visibility.size() < pixels) throw Error("visibility buffer is smaller than the oracle image");
+  size_t same = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const uint32_t expected = oracle.ids[i] == 0 ? HMB_VIS_EMPTY : oracle.ids[i] - 1;
+    same += visibility[i].x == expected;
+  }
+  return double(same) / double(pixels);
 }
 
 }  // namespace hmb::oracle

@@ -27,9 +27,11 @@
 #include <span>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 #include <vulkan/vulkan.h>
 
+#include "kernels/shared/scene_layout.h"
 #include "runtime/vulkan/buffer.h"
 
 namespace hmb::vk {
@@ -104,5 +106,17 @@ class GraphicsRasterizer {
 // One-shot form: builds a GraphicsRasterizer, draws, reads back.
 OracleImage rasterizeWithGraphicsPipeline(const vk::Context& context, uint32_t width, uint32_t height,
                                           std::span<const OracleTriangle> triangles);
+
+// Scene triangles (GpuTriangle indices into `clip`, the clip-space vertices) as oracle
+// triangles with id = position in the list, so that on equal depth the smallest id wins as in
+// the compute visibility buffer. doubleSided is per instance (GpuTriangle::instance indexes it).
+std::vector<OracleTriangle> oracleTriangles(std::span<const glm::vec4> clip,
+                                            std::span<const gpu::GpuTriangle> triangles,
+                                            const std::vector<bool>& doubleSided);
+
+// Fraction of pixels where a compute visibility buffer (entries (triangle id, depth bits),
+// HMB_VIS_EMPTY when empty) and the oracle see the same triangle, or both none. Throws
+// hmb::Error when the buffer has fewer entries than the image has pixels.
+double idAgreement(std::span<const glm::uvec2> visibility, const OracleImage& oracle);
 
 }  // namespace hmb::oracle

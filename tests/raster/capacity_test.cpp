@@ -39,12 +39,9 @@ TEST_F(CapacityTest, OverflowGrowsTheBuffersAndTheSecondFrameMatchesARoomyPass) 
     SCOPED_TRACE(passes::visibilitySchemeName(scheme));
     std::vector<gpu::GpuInstance> instances(input.doubleSided.size());
     for (auto& instance : instances) instance.flags = HMB_INSTANCE_DOUBLE_SIDED;
-    vk::Buffer clip(context(), input.clip.size() * sizeof(glm::vec4), vk::MemoryUse::Device, "clip");
-    clip.upload(std::span<const glm::vec4>(input.clip));
-    vk::Buffer triangles(context(), input.triangles.size() * sizeof(gpu::GpuTriangle), vk::MemoryUse::Device, "tris");
-    triangles.upload(std::span<const gpu::GpuTriangle>(input.triangles));
-    vk::Buffer instanceBuffer(context(), instances.size() * sizeof(gpu::GpuInstance), vk::MemoryUse::Device, "inst");
-    instanceBuffer.upload(std::span<const gpu::GpuInstance>(instances));
+    const vk::Buffer clip = vk::uploadedBuffer(context(), input.clip, "clip");
+    const vk::Buffer triangles = vk::uploadedBuffer(context(), input.triangles, "triangles");
+    const vk::Buffer instanceBuffer = vk::uploadedBuffer(context(), instances, "instances");
     vk::Buffer visibility(context(), uint64_t(kWidth) * kHeight * 8, vk::MemoryUse::Device, "visibility");
     const passes::RasterInputs inputs{&triangles, &instanceBuffer, &clip, uint32_t(input.triangles.size())};
 

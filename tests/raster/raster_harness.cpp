@@ -12,30 +12,6 @@
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test {
-namespace {
-
-template <class T>
-vk::Buffer uploaded(const vk::Context& context, std::vector<T> values, const char* name) {
-  if (values.empty()) values.emplace_back();
-  vk::Buffer buffer(context, values.size() * sizeof(T), vk::MemoryUse::Device, name);
-  buffer.upload(std::span<const T>(values));
-  return buffer;
-}
-
-// Records until the rasterizer's buffers fit the frame.
-template <class Record>
-void runUntilItFits(const vk::Context& context, Record&& record, passes::RasterizePass& pass) {
-  vk::FrameRecorder frame(context);
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    frame.begin();
-    record(frame);
-    frame.submitAndWait();
-    if (!pass.growIfOverflowed()) return;
-  }
-  throw Error("rasterizer buffers still overflow after 3 attempts");
-}
-
-}  // namespace
 
 float Visibility::depthAt(uint32_t x, uint32_t y) const {
   const uint32_t bits = entries[size_t(y) * width + x].y;
@@ -56,9 +32,9 @@ Visibility rasterizeClipTriangles(const vk::Context& context, const ClipTriangle
   std::vector<gpu::GpuInstance> instances(std::max<size_t>(1, input.doubleSided.size()));
   for (size_t i = 0; i < input.doubleSided.size(); ++i)
     instances[i].flags = input.doubleSided[i] ? HMB_INSTANCE_DOUBLE_SIDED : 0u;
-  const vk::Buffer clip = uploaded(context, input.clip, "test clip positions");
-  const vk::Buffer triangles = uploaded(context, input.triangles, "test triangles");
-  const vk::Buffer instanceBuffer = uploaded(context, instances, "test instances");
+  const vk::Buffer clip = vk::uploadedBuffer(context, input.clip, "test clip positions");
+  const vk::Buffer triangles = vk::uploadedBuffer(context, input.triangles, "test triangles");
+  const vk::Buffer instanceBuffer = vk::uploadedBuffer(context, instances, "test instances");
   const vk::Buffer visibility(context, uint64_t(width) * height * sizeof(uint64_t), vk::MemoryUse::Device,
                               "test visibility");
 
@@ -66,8 +42,10 @@ Visibility rasterizeClipTriangles(const vk::Context& context, const ClipTriangle
   const auto triangleCount = static_cast<uint32_t>(input.triangles.size());
   pass.reserve(triangleCount, width, height);
   const passes::RasterInputs inputs{&triangles, &instanceBuffer, &clip, triangleCount};
-  runUntilItFits(context, [&](vk::FrameRecorder& frame) { pass.record(frame, inputs, visibility, width, height); },
-                 pass);
+  vk::FrameRecorder frame(context);
+  passes::submitUntilRasterFits(frame, pass, [&](vk::FrameRecorder& f) {
+    pass.record(f, inputs, visibility, width, height);
+  });
   Visibility out{width, height, visibility.download<glm::uvec2>(), pass.stats(), {}, {}};
   out.setup = pass.setupBuffer().download<gpu::SetupTriangle>();
   out.setup.resize(out.stats.setupTriangles);
@@ -77,19 +55,7 @@ Visibility rasterizeClipTriangles(const vk::Context& context, const ClipTriangle
 }
 
 std::vector<oracle::OracleTriangle> oracleTriangles(const ClipTriangles& input) {
-  std::vector<oracle::OracleTriangle> out;
-  out.reserve(input.triangles.size());
-  for (size_t t = 0; t < input.triangles.size(); ++t) {
-    const gpu::GpuTriangle& tri = input.triangles[t];
-    oracle::OracleTriangle o;
-    o.clip[0] = input.clip[tri.v0];
-    o.clip[1] = input.clip[tri.v1];
-    o.clip[2] = input.clip[tri.v2];
-    o.id = static_cast<uint32_t>(t);
-    o.doubleSided = input.doubleSided[tri.instance];
-    out.push_back(o);
-  }
-  return out;
+  return oracle::oracleTriangles(input.clip, input.triangles, input.doubleSided);
 }
 
 GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
@@ -99,13 +65,7 @@ GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& sc
   passes::GBufferStage stage(context, scheme);
   stage.prepare(gpuScene, width, height);
   vk::FrameRecorder frame(context);
-  for (int attempt = 0;; ++attempt) {
-    frame.begin();
-    stage.record(frame, gpuScene);
-    frame.submitAndWait();
-    if (!stage.growIfOverflowed()) break;
-    if (attempt == 2) throw Error("rasterizer buffers still overflow after 3 attempts");
-  }
+  passes::submitUntilRasterFits(frame, stage.rasterizer(), [&](vk::FrameRecorder& f) { stage.record(f, gpuScene); });
 
   GBufferReadback out;
   out.clipTriangles.clip = stage.clipCurrent().download<glm::vec4>();
@@ -125,14 +85,7 @@ GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& sc
 }
 
 double idAgreement(const Visibility& visibility, const oracle::OracleImage& oracle) {
-  size_t same = 0;
-  const size_t pixels = size_t(visibility.width) * visibility.height;
-  for (size_t i = 0; i < pixels; ++i) {
-    const uint32_t compute = visibility.entries[i].x;
-    const uint32_t expected = oracle.ids[i] == 0 ? HMB_VIS_EMPTY : oracle.ids[i] - 1;
-    same += compute == expected;
-  }
-  return pixels == 0 ? 1.0 : double(same) / double(pixels);
+  return oracle::idAgreement(visibility.entries, oracle);
 }
 
 }  // namespace hmb::test

@@ -30,6 +30,16 @@ Scene testScene(float unit) {
   return scene;
 }
 
+// Gives the scene a camera of its own at `eye`, looking down -z, with near and far left open.
+void addCameraAt(Scene& scene, const glm::vec3& eye) {
+  Node cameraNode;
+  cameraNode.local = makeTrs(eye);
+  scene.nodes.push_back(cameraNode);
+  Camera camera;
+  camera.node = static_cast<int32_t>(scene.nodes.size() - 1);
+  scene.camera = camera;
+}
+
 glm::mat4 cameraView(const Scene& scene) {
   return glm::inverse(scene.worldMatrixAt(static_cast<uint32_t>(scene.camera->node), scene.settings.frameTime));
 }
@@ -87,12 +97,7 @@ TEST(DeriveDefaultsTest, SoftZExtentIsAboutTheRoomScaleOfThePaper) {
 
 TEST(DeriveDefaultsTest, GivenCameraGetsNearAndFarFromTheBounds) {
   Scene scene = testScene(1.0f);
-  Node cameraNode;
-  cameraNode.local = makeTrs({0.0f, 1.5f, 8.0f});  // looking down -z at the scene
-  scene.nodes.push_back(cameraNode);
-  Camera camera;
-  camera.node = static_cast<int32_t>(scene.nodes.size() - 1);
-  scene.camera = camera;
+  addCameraAt(scene, {0.0f, 1.5f, 8.0f});  // looking down -z at the scene
   deriveDefaults(scene);
   // The nearest geometry is ~5 m away and the farthest ~11 m.
   EXPECT_GT(scene.camera->znear, 0.5f);
@@ -103,12 +108,7 @@ TEST(DeriveDefaultsTest, GivenCameraGetsNearAndFarFromTheBounds) {
 
 TEST(DeriveDefaultsTest, CameraInsideTheSceneKeepsAPositiveNear) {
   Scene scene = testScene(1.0f);
-  Node cameraNode;
-  cameraNode.local = makeTrs({-2.0f, 0.4f, -1.0f});  // inside the first box
-  scene.nodes.push_back(cameraNode);
-  Camera camera;
-  camera.node = static_cast<int32_t>(scene.nodes.size() - 1);
-  scene.camera = camera;
+  addCameraAt(scene, {-2.0f, 0.4f, -1.0f});  // inside the first box
   deriveDefaults(scene);
   EXPECT_GT(scene.camera->znear, 0.0f);
   EXPECT_LT(scene.camera->znear, 0.01f);
