@@ -40,7 +40,7 @@ struct BvhHit {
   float v;        // barycentric weight of the third vertex
   uint triangle;  // HMB_NO_HIT when nothing was hit
   uint objectId;  // object of the hit triangle (HMB_NO_HIT when nothing was hit)
-  uint pad0;
+  uint instance;  // two-level traces: the instance hit (HMB_NO_HIT when nothing was hit)
   uint pad1;
   uint pad2;
 };

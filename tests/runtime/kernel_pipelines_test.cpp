@@ -7,7 +7,9 @@
 #include "kernels/debug/test_pattern.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
 #include "kernels/output/encode_display.h"
+#include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/raster/raster_layout.h"
+#include "kernels/trace/trace_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "tests/support/vulkan_test.h"
@@ -23,6 +25,12 @@ struct KernelLayout {
 };
 
 const KernelLayout kLayouts[] = {
+    {"bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t), false},
+    {"bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
+    {"bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
+    {"bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
+    {"trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT, sizeof(gpu::TraceParams), false},
+    {"trace/trace_rays", HMB_TRACE_BINDING_COUNT, sizeof(gpu::TraceParams), false},
     {"debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams), false},
     {"output/encode_display", HMB_ENCODE_DISPLAY_BINDING_COUNT, sizeof(gpu::EncodeDisplayParams), false},
     {"raster/transform_vertices", HMB_TRANSFORM_BINDING_COUNT, sizeof(uint32_t), false},

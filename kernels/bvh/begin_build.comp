@@ -1,0 +1,74 @@
+#version 450
+// One workgroup per tree: the root's bounds and centroid bounds over its primitive range,
+// the identity order of that range, and the root's task for level 0. Roots are nodes
+// 0..treeCount-1; their links all end the traversal.
+#extension GL_GOOGLE_include_directive : require
+#include "bvh_build_common.glsl"
+#include "../shared/indexing.glsl"
+#include "../shared/ordered_float.glsl"
+
+layout(local_size_x = HMB_BVH_BUILD_GROUP) in;
+
+shared uint boundsMin[3];
+shared uint boundsMax[3];
+shared uint centroidMin[3];
+shared uint centroidMax[3];
+
+void main() {
+  const uint tree = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  if (tree >= params.treeCount) return;  // uniform across the workgroup
+  const uint lane = gl_LocalInvocationID.x;
+  if (lane < 3) {
+    boundsMin[lane] = kOrderedPositiveInfinity;
+    boundsMax[lane] = kOrderedNegativeInfinity;
+    centroidMin[lane] = kOrderedPositiveInfinity;
+    centroidMax[lane] = kOrderedNegativeInfinity;
+  }
+  barrier();
+
+  const uvec2 range = roots[tree];
+  vec3 lo = vec3(uintBitsToFloat(0x7f800000u)), hi = -lo, cLo = lo, cHi = hi;
+  for (uint k = lane; k < range.y; k += HMB_BVH_BUILD_GROUP) {
+    const uint primitive = range.x + k;
+    primitives[primitive] = primitive;
+    const BvhBox box = boxes[primitive];
+    const vec3 c = centroidOf(box);
+    lo = min(lo, box.min.xyz);
+    hi = max(hi, box.max.xyz);
+    cLo = min(cLo, c);
+    cHi = max(cHi, c);
+  }
+  for (uint a = 0; a < 3; ++a) {
+    atomicMin(boundsMin[a], orderedUint(lo[a]));
+    atomicMax(boundsMax[a], orderedUint(hi[a]));
+    atomicMin(centroidMin[a], orderedUint(cLo[a]));
+    atomicMax(centroidMax[a], orderedUint(cHi[a]));
+  }
+  barrier();
+
+  if (lane < HMB_BVH_OCTANTS) links[tree * HMB_BVH_OCTANTS + lane] = HMB_BVH_LINK_END;
+  if (lane != 0) return;
+  BvhNode root;
+  root.minX = orderedFloat(boundsMin[0]);
+  root.minY = orderedFloat(boundsMin[1]);
+  root.minZ = orderedFloat(boundsMin[2]);
+  root.maxX = orderedFloat(boundsMax[0]);
+  root.maxY = orderedFloat(boundsMax[1]);
+  root.maxZ = orderedFloat(boundsMax[2]);
+  // A lone primitive is a leaf now; an empty tree an empty leaf-less root that no ray enters.
+  root.leftOrFirst = range.y <= 1u ? range.x : HMB_BVH_LINK_END;
+  root.count = range.y == 1u ? 1u : 0u;
+  nodes[tree] = root;
+  if (range.y <= 1u) {
+    if (range.y == 1u) atomicAdd(counters.leafCount, 1u);
+    return;
+  }
+  BvhBuildTask task;
+  task.node = tree;
+  task.first = range.x;
+  task.count = range.y;
+  task.pad0 = 0u;
+  task.centroidMin = vec4(orderedFloat(centroidMin[0]), orderedFloat(centroidMin[1]), orderedFloat(centroidMin[2]), 0.0);
+  task.centroidMax = vec4(orderedFloat(centroidMax[0]), orderedFloat(centroidMax[1]), orderedFloat(centroidMax[2]), 0.0);
+  tasks[atomicAdd(counters.taskCount[0], 1u)] = task;
+}

@@ -1,0 +1,316 @@
+#version 450
+// One level of the top-down binned SAH build, one workgroup per task. The workgroup bins the
+// task's primitives by centroid on each axis (up to HMB_BVH_BINS bins across the centroid
+// bounds), costs every bin boundary by the surface area heuristic, and either makes the node a
+// leaf (at most HMB_BVH_MAX_LEAF primitives and no split cheaper) or partitions the range into
+// two child nodes. A child of one primitive becomes a leaf at once; others are the next
+// level's tasks. Primitive ranges alternate between the two halves of the primitive buffer by
+// level parity; every leaf leaves its primitives in the first half, the final order.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+#include "bvh_build_common.glsl"
+#include "../shared/ordered_float.glsl"
+
+#define GROUP HMB_BVH_LEVEL_GROUP
+#define BINS HMB_BVH_BINS
+#define LEAF_SPLIT (-1)
+#define MEDIAN_SPLIT (-2)
+// lavapipe ends an invocation's loops after 65535 iterations in all (its guard against endless
+// loops), silently. The two loops over a task's primitives take UNROLL primitives per lane
+// and iteration, so that a task of HMB_BVH_MAX_TREE_PRIMITIVES stays under that count.
+#define UNROLL 8
+
+layout(local_size_x = GROUP) in;
+
+#define kInfinity uintBitsToFloat(0x7f800000u)
+
+// Per lane, per (axis, bin): primitive count and the merged boxes (min xyz, max xyz).
+shared uint laneBinCount[GROUP * 3 * BINS];
+shared float laneBinBounds[GROUP * 3 * BINS * 6];
+// The bins of the whole task (bounds as ordered uints, see ordered_float.glsl), then each
+// axis's left-to-right sweep.
+shared uint binCount[3 * BINS];
+shared uint binBounds[3 * BINS * 6];
+shared float leftArea[3 * BINS];   // per (axis, bin b): area of bins 0..b merged
+shared uint leftCountOf[3 * BINS];  // per (axis, bin b): primitives in bins 0..b
+shared float axisCost[3];           // the cheapest split of each axis (+inf: none)
+shared uint axisSplit[3];           // its last bin on the left
+shared int chosenSplit;             // the axis split along, or LEAF_SPLIT / MEDIAN_SPLIT
+shared uint firstChild;
+shared uint cursor[2];
+// Per lane, per side: box min xyz, max xyz, centroid min xyz, max xyz of what it sent there.
+shared float laneChildBounds[GROUP * 24];
+shared float childBounds[24];
+
+float surfaceArea(vec3 lo, vec3 hi) {
+  const vec3 e = max(hi - lo, vec3(0.0));
+  return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+
+// Bin of a centroid coordinate among `bins`; scale is 0 on an axis whose centroids coincide
+// (not binned).
+uint binOf(float c, float lo, float scale, uint bins) {
+  return uint(clamp((c - lo) * scale, 0.0, float(bins - 1u)));
+}
+
+vec3 binLower(uint slot) {
+  return vec3(orderedFloat(binBounds[slot * 6]), orderedFloat(binBounds[slot * 6 + 1]), orderedFloat(binBounds[slot * 6 + 2]));
+}
+vec3 binUpper(uint slot) {
+  return vec3(orderedFloat(binBounds[slot * 6 + 3]), orderedFloat(binBounds[slot * 6 + 4]),
+              orderedFloat(binBounds[slot * 6 + 5]));
+}
+
+// A small task bins straight into the task's bins with shared atomics: cheaper than setting
+// up and merging a copy per lane when each lane bins only a few primitives.
+void binWithAtomics(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane) {
+  for (uint i = lane; i < 3 * BINS; i += GROUP) {
+    binCount[i] = 0u;
+    for (uint d = 0; d < 3; ++d) {
+      binBounds[i * 6 + d] = kOrderedPositiveInfinity;
+      binBounds[i * 6 + 3 + d] = kOrderedNegativeInfinity;
+    }
+  }
+  barrier();
+  for (uint k = lane; k < task.count; k += GROUP) {
+    const BvhBox box = boxes[primitives[inBase + task.first + k]];
+    const vec3 c = centroidOf(box);
+    for (uint a = 0; a < 3; ++a) {
+      if (scale[a] == 0.0) continue;
+      const uint slot = a * BINS + binOf(c[a], task.centroidMin[a], scale[a], bins);
+      atomicAdd(binCount[slot], 1u);
+      for (uint d = 0; d < 3; ++d) {
+        atomicMin(binBounds[slot * 6 + d], orderedUint(box.min[d]));
+        atomicMax(binBounds[slot * 6 + 3 + d], orderedUint(box.max[d]));
+      }
+    }
+  }
+}
+
+// A large task bins into a copy per lane, without atomics, then merges the copies.
+void binPerLane(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane) {
+  const uint mine = lane * 3 * BINS;
+  for (uint a = 0; a < 3; ++a)
+    for (uint b = 0; b < bins; ++b) {
+      const uint slot = mine + a * BINS + b;
+      laneBinCount[slot] = 0u;
+      for (uint d = 0; d < 3; ++d) {
+        laneBinBounds[slot * 6 + d] = kInfinity;
+        laneBinBounds[slot * 6 + 3 + d] = -kInfinity;
+      }
+    }
+  for (uint base = lane; base < task.count; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
+    const uint k = base + u * GROUP;
+    if (k >= task.count) break;
+    const BvhBox box = boxes[primitives[inBase + task.first + k]];
+    const vec3 c = centroidOf(box);
+    for (uint a = 0; a < 3; ++a) {
+      if (scale[a] == 0.0) continue;
+      const uint slot = mine + a * BINS + binOf(c[a], task.centroidMin[a], scale[a], bins);
+      laneBinCount[slot] += 1u;
+      for (uint d = 0; d < 3; ++d) {
+        laneBinBounds[slot * 6 + d] = min(laneBinBounds[slot * 6 + d], box.min[d]);
+        laneBinBounds[slot * 6 + 3 + d] = max(laneBinBounds[slot * 6 + 3 + d], box.max[d]);
+      }
+    }
+  }
+  barrier();
+  for (uint i = lane; i < 3 * bins; i += GROUP) {
+    const uint slot = (i / bins) * BINS + i % bins;
+    uint n = 0u;
+    vec3 lo = vec3(kInfinity), hi = -lo;
+    for (uint l = 0; l < GROUP; ++l) {
+      const uint from = l * 3 * BINS + slot;
+      n += laneBinCount[from];
+      lo = min(lo, vec3(laneBinBounds[from * 6], laneBinBounds[from * 6 + 1], laneBinBounds[from * 6 + 2]));
+      hi = max(hi, vec3(laneBinBounds[from * 6 + 3], laneBinBounds[from * 6 + 4], laneBinBounds[from * 6 + 5]));
+    }
+    binCount[slot] = n;
+    for (uint d = 0; d < 3; ++d) {
+      binBounds[slot * 6 + d] = orderedUint(lo[d]);
+      binBounds[slot * 6 + 3 + d] = orderedUint(hi[d]);
+    }
+  }
+}
+
+void main() {
+  const uint parity = params.level & 1u;
+  const uint taskIndex = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  if (taskIndex >= counters.taskCount[parity]) return;  // uniform across the workgroup
+  const uint lane = gl_LocalInvocationID.x;
+  const BvhBuildTask task = tasks[parity * params.taskCapacity + taskIndex];
+  const uint inBase = parity * params.primitiveCount;
+  const uint outBase = (1u - parity) * params.primitiveCount;
+
+  // Bins span the centroid bounds; a small range gets one bin per primitive. The scale stays
+  // finite so that no 0 * inf makes a NaN bin.
+  const uint bins = clamp(task.count, 2u, uint(BINS));
+  const vec3 extent = task.centroidMax.xyz - task.centroidMin.xyz;
+  vec3 scale;
+  for (uint a = 0; a < 3; ++a)
+    scale[a] = extent[a] > 0.0 && !isinf(extent[a]) ? min(float(bins) / extent[a], 3.0e38) : 0.0;
+
+  if (task.count >= HMB_BVH_LANE_BINS_MIN) binPerLane(task, inBase, scale, bins, lane);
+  else binWithAtomics(task, inBase, scale, bins, lane);
+  barrier();
+
+  // Each axis's splits "bins 0..s left, s+1.. right" costed in two sweeps by one lane per
+  // axis: left to right stores the left sides, right to left costs each split.
+  const BvhNode node = nodes[task.node];
+  const float nodeArea = surfaceArea(vec3(node.minX, node.minY, node.minZ), vec3(node.maxX, node.maxY, node.maxZ));
+  if (lane < 3) {
+    const uint a = lane;
+    float best = kInfinity;
+    uint bestSplit = 0u;
+    if (scale[a] != 0.0) {
+      vec3 lo = vec3(kInfinity), hi = -lo;
+      uint n = 0u;
+      for (uint b = 0; b + 1 < bins; ++b) {
+        const uint slot = a * BINS + b;
+        n += binCount[slot];
+        lo = min(lo, binLower(slot));
+        hi = max(hi, binUpper(slot));
+        leftArea[slot] = surfaceArea(lo, hi);
+        leftCountOf[slot] = n;
+      }
+      lo = vec3(kInfinity), hi = -lo;
+      n = 0u;
+      for (uint b = bins - 1u; b > 0u; --b) {
+        const uint slot = a * BINS + b;
+        n += binCount[slot];
+        lo = min(lo, binLower(slot));
+        hi = max(hi, binUpper(slot));
+        const uint left = leftCountOf[slot - 1u];
+        if (left == 0u || n == 0u) continue;
+        // A node with no area (all primitives on a line or a point) weighs children equally.
+        const float leftShare = nodeArea > 0.0 ? leftArea[slot - 1u] / nodeArea : 1.0;
+        const float rightShare = nodeArea > 0.0 ? surfaceArea(lo, hi) / nodeArea : 1.0;
+        const float cost = 1.0 + leftShare * float(left) + rightShare * float(n);
+        if (cost <= best) best = cost, bestSplit = b - 1u;  // ties: the lowest split
+      }
+    }
+    axisCost[a] = best;
+    axisSplit[a] = bestSplit;
+  }
+  barrier();
+
+  if (lane == 0) {
+    int best = LEAF_SPLIT;
+    float bestCost = kInfinity;
+    for (int a = 0; a < 3; ++a)
+      if (axisCost[a] < bestCost) best = a, bestCost = axisCost[a];
+    const bool mayBeLeaf = task.count <= HMB_BVH_MAX_LEAF;
+    if (mayBeLeaf && (best == LEAF_SPLIT || float(task.count) <= bestCost)) best = LEAF_SPLIT;
+    else if (best == LEAF_SPLIT) best = MEDIAN_SPLIT;  // centroids coincide: halve the range
+    chosenSplit = best;
+    if (best != LEAF_SPLIT) {
+      firstChild = atomicAdd(counters.nodeCount, 2u);
+      cursor[0] = 0u;
+      cursor[1] = 0u;
+    }
+  }
+  barrier();
+
+  const int split = chosenSplit;
+  if (split == LEAF_SPLIT) {
+    if (parity == 1u)
+      for (uint k = lane; k < task.count; k += GROUP) primitives[task.first + k] = primitives[inBase + task.first + k];
+    if (lane == 0) {
+      nodes[task.node].leftOrFirst = task.first;
+      nodes[task.node].count = task.count;
+      atomicAdd(counters.leafCount, 1u);
+    }
+    return;
+  }
+
+  const uint axis = split == MEDIAN_SPLIT ? 0u : uint(split);
+  const uint lastLeftBin = split == MEDIAN_SPLIT ? 0u : axisSplit[axis];
+  const uint leftCount = split == MEDIAN_SPLIT ? task.count / 2u : leftCountOf[axis * BINS + lastLeftBin];
+  const uint rightCount = task.count - leftCount;
+  // What this lane sends to each side, merged in registers (no per-primitive shared writes).
+  vec3 boxLo[2] = vec3[2](vec3(kInfinity), vec3(kInfinity)), boxHi[2] = vec3[2](-vec3(kInfinity), -vec3(kInfinity));
+  vec3 centreLo[2] = boxLo, centreHi[2] = boxHi;
+  for (uint base = lane; base < task.count; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
+    const uint k = base + u * GROUP;
+    if (k >= task.count) break;
+    const uint primitive = primitives[inBase + task.first + k];
+    const BvhBox box = boxes[primitive];
+    const vec3 c = centroidOf(box);
+    const bool right = split == MEDIAN_SPLIT
+                           ? k >= leftCount
+                           : binOf(c[axis], task.centroidMin[axis], scale[axis], bins) > lastLeftBin;
+    const uint position = task.first + (right ? leftCount + atomicAdd(cursor[1], 1u) : atomicAdd(cursor[0], 1u));
+    primitives[outBase + position] = primitive;
+    if ((right ? rightCount : leftCount) == 1u) primitives[position] = primitive;  // a leaf at once: final place
+    if (right) {
+      boxLo[1] = min(boxLo[1], box.min.xyz), boxHi[1] = max(boxHi[1], box.max.xyz);
+      centreLo[1] = min(centreLo[1], c), centreHi[1] = max(centreHi[1], c);
+    } else {
+      boxLo[0] = min(boxLo[0], box.min.xyz), boxHi[0] = max(boxHi[0], box.max.xyz);
+      centreLo[0] = min(centreLo[0], c), centreHi[0] = max(centreHi[0], c);
+    }
+  }
+  for (uint side = 0; side < 2; ++side)
+    for (uint d = 0; d < 3; ++d) {
+      laneChildBounds[lane * 24 + side * 12 + d] = boxLo[side][d];
+      laneChildBounds[lane * 24 + side * 12 + 3 + d] = boxHi[side][d];
+      laneChildBounds[lane * 24 + side * 12 + 6 + d] = centreLo[side][d];
+      laneChildBounds[lane * 24 + side * 12 + 9 + d] = centreHi[side][d];
+    }
+  barrier();
+  for (uint i = lane; i < 24; i += GROUP) {
+    const bool lower = (i % 6) < 3;
+    float v = lower ? kInfinity : -kInfinity;
+    for (uint l = 0; l < GROUP; ++l) v = lower ? min(v, laneChildBounds[l * 24 + i]) : max(v, laneChildBounds[l * 24 + i]);
+    childBounds[i] = v;
+  }
+  barrier();
+
+  const uint left = firstChild;
+  // Jobs 0..7: the links of each octant; 8: the node; 9 and 10: the two children.
+  for (uint job = lane; job < HMB_BVH_OCTANTS + 3u; job += GROUP) {
+    if (job < HMB_BVH_OCTANTS) {
+      // The child on the ray's side of the split axis first: the left one unless the ray
+      // runs towards negative values on that axis.
+      const uint rightFirst = (job >> axis) & 1u;
+      const uint escape = links[task.node * HMB_BVH_OCTANTS + job] & HMB_BVH_LINK_NEXT_MASK;
+      links[(left + rightFirst) * HMB_BVH_OCTANTS + job] = left + 1u - rightFirst;
+      links[(left + 1u - rightFirst) * HMB_BVH_OCTANTS + job] = escape;
+      links[task.node * HMB_BVH_OCTANTS + job] = escape | (rightFirst != 0u ? HMB_BVH_LINK_RIGHT_FIRST : 0u);
+      continue;
+    }
+    if (job == HMB_BVH_OCTANTS) {
+      nodes[task.node].leftOrFirst = left;
+      nodes[task.node].count = 0u;
+      continue;
+    }
+    const uint side = job - (HMB_BVH_OCTANTS + 1u);
+    const uint b = side * 12;
+    const uint first = task.first + (side == 0u ? 0u : leftCount);
+    const uint count = side == 0u ? leftCount : rightCount;
+    BvhNode child;
+    child.minX = childBounds[b];
+    child.minY = childBounds[b + 1];
+    child.minZ = childBounds[b + 2];
+    child.maxX = childBounds[b + 3];
+    child.maxY = childBounds[b + 4];
+    child.maxZ = childBounds[b + 5];
+    child.leftOrFirst = first;
+    child.count = count == 1u ? 1u : 0u;
+    nodes[left + side] = child;
+    if (count == 1u) {
+      atomicAdd(counters.leafCount, 1u);
+      continue;
+    }
+    BvhBuildTask next;
+    next.node = left + side;
+    next.first = first;
+    next.count = count;
+    next.pad0 = 0u;
+    next.centroidMin = vec4(childBounds[b + 6], childBounds[b + 7], childBounds[b + 8], 0.0);
+    next.centroidMax = vec4(childBounds[b + 9], childBounds[b + 10], childBounds[b + 11], 0.0);
+    const uint slot = atomicAdd(counters.taskCount[1u - parity], 1u);
+    tasks[(1u - parity) * params.taskCapacity + slot] = next;
+    atomicMax(counters.levels, params.level + 2u);
+  }
+}

@@ -1,0 +1,102 @@
+// Layouts of the BVH builder's kernels: triangle_bounds / instance_motion_bounds (primitive
+// boxes) -> begin_build (one root task per tree) -> build_level, once per tree level, with
+// size_build_dispatch sizing the next level's indirect dispatch.
+//
+// The build is top-down binned SAH, level by level: one workgroup per task (a node and its
+// primitive range) bins the range's centroids, picks the cheapest split on any axis, and
+// partitions the range into its two children, which become the next level's tasks. Several
+// trees (one per mesh) build in the same levels; tree r's root is node r.
+#ifndef HMB_KERNELS_BVH_BVH_BUILD_LAYOUT_H
+#define HMB_KERNELS_BVH_BVH_BUILD_LAYOUT_H
+
+#include "../shared/glsl_cpp.h"
+#include "../../bvh/bvh_layout.h"
+
+#define HMB_BVH_BUILD_GROUP 64
+// build_level's workgroup, one task each: 8 lanes, lavapipe's SIMD width (64 lanes made
+// small tasks 3x slower there). A task of at least HMB_BVH_LANE_BINS_MIN primitives bins into
+// a copy of the bins per lane, without atomics (lavapipe runs each shared atomic lane by lane
+// as a compare-exchange loop, which made binning of large tasks 2x slower); smaller ones bin
+// with shared atomics, which costs less than clearing and merging the copies.
+#define HMB_BVH_LEVEL_GROUP 8
+#define HMB_BVH_LANE_BINS_MIN 64u
+// The most primitives one tree may have: lavapipe stops any invocation's loops after 65535
+// iterations in all, and a root task's lanes loop twice over count / (8 lanes * 8 unrolled).
+#define HMB_BVH_MAX_TREE_PRIMITIVES 2000000u
+// Centroid bins per axis. 16 keep the SAH cost within a few percent of a full sweep.
+#define HMB_BVH_BINS 16
+// Leaves hold at most this many primitives (as the CPU reference builder's default).
+#define HMB_BVH_MAX_LEAF 4u
+
+// triangle_bounds
+#define HMB_TRIANGLE_BOUNDS_BINDING_POSITIONS 0  // vec4 per vertex (xyz)
+#define HMB_TRIANGLE_BOUNDS_BINDING_TRIANGLES 1  // uvec4 (v0, v1, v2, unused) per triangle
+#define HMB_TRIANGLE_BOUNDS_BINDING_BOXES 2      // BvhBox per triangle
+#define HMB_TRIANGLE_BOUNDS_BINDING_COUNT 3
+
+// begin_build, build_level and size_build_dispatch share one binding table.
+#define HMB_BUILD_BINDING_BOXES 0       // BvhBox per primitive
+#define HMB_BUILD_BINDING_ROOTS 1       // uvec2 (first primitive, count) per tree
+#define HMB_BUILD_BINDING_PRIMITIVES 2  // uint[2 * primitiveCount]: the final array, then a scratch copy
+#define HMB_BUILD_BINDING_NODES 3       // BvhNode[]
+#define HMB_BUILD_BINDING_LINKS 4       // uint[8 * node capacity], see HMB_BVH_LINK_*
+#define HMB_BUILD_BINDING_TASKS 5       // BvhBuildTask[2 * taskCapacity]: this level's, the next level's
+#define HMB_BUILD_BINDING_COUNTERS 6    // BvhBuildCounters
+#define HMB_BUILD_BINDING_COUNT 7
+
+HMB_GPU_BEGIN
+
+// A primitive's bounds (w unused). Empty: min > max.
+struct BvhBox {
+  vec4 min;
+  vec4 max;
+};
+
+struct BvhBuildParams {
+  uint primitiveCount;
+  uint treeCount;
+  uint taskCapacity;  // tasks one level can hold (each half of the task buffer)
+  uint level;         // build_level / size_build_dispatch: the level being built (0 = roots)
+};
+
+// A node still to split and the primitives below it; its bounds are already in the node.
+struct BvhBuildTask {
+  uint node;
+  uint first;  // range of the primitive arrays
+  uint count;
+  uint pad0;
+  vec4 centroidMin;  // bounds of the range's box centres (w unused)
+  vec4 centroidMax;
+};
+
+// Indirect dispatch arguments and task counts of two levels in turn (index: level & 1).
+struct BvhBuildCounters {
+  uvec4 dispatch[2];  // xyz: groups of build_level for a level with that parity
+  uint taskCount[2];  // tasks of a level with that parity
+  uint nodeCount;     // nodes allocated (trees' roots included)
+  uint levels;        // deepest level that had tasks, plus one
+  uint leafCount;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+HMB_GPU_END
+
+// Stackless traversal in front-to-back order. Every node has 8 link words, one per ray
+// direction octant (bit a set: the ray's direction is negative along axis a). The low bits
+// are where to go after the node (when its box is missed, or after its leaf's primitives):
+// the node visited next in that octant's order, HMB_BVH_LINK_END after the last. Bit 31 of an
+// interior node's word: visit its right child first in that octant (the child on the ray's
+// side of the split axis).
+#define HMB_BVH_LINK_END 0x7fffffffu
+#define HMB_BVH_LINK_NEXT_MASK 0x7fffffffu
+#define HMB_BVH_LINK_RIGHT_FIRST 0x80000000u
+#define HMB_BVH_OCTANTS 8u
+
+HMB_CHECK_SIZE(BvhBox, 32)
+HMB_CHECK_SIZE(BvhBuildParams, 16)
+HMB_CHECK_SIZE(BvhBuildTask, 48)
+HMB_CHECK_SIZE(BvhBuildCounters, 64)
+
+#endif

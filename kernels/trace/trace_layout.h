@@ -1,0 +1,74 @@
+// Layouts of the ray tracing kernels: rays in, closest hits out, through a two-level BVH (a
+// top level over instances, rebuilt per frame over their motion bounds; a bottom level per
+// mesh, built once). Instances carry their transform at each of the frame's shutter times; a
+// ray names the time it is traced at, and is carried into the instance's space with that
+// time's transform, so any motion, rotation included, is traced exactly at those times.
+#ifndef HMB_KERNELS_TRACE_TRACE_LAYOUT_H
+#define HMB_KERNELS_TRACE_TRACE_LAYOUT_H
+
+#include "../shared/glsl_cpp.h"
+#include "../bvh/bvh_build_layout.h"
+
+#define HMB_TRACE_GROUP 64
+
+// trace_rays
+#define HMB_TRACE_BINDING_RAYS 0             // TraceRay[]
+#define HMB_TRACE_BINDING_HITS 1             // BvhHit[], one per ray
+#define HMB_TRACE_BINDING_TOP_NODES 2        // BvhNode[] over instances
+#define HMB_TRACE_BINDING_TOP_LINKS 3        // uint[8 * nodes]
+#define HMB_TRACE_BINDING_TOP_PRIMITIVES 4   // uint instance[]
+#define HMB_TRACE_BINDING_INSTANCES 5        // TraceInstance[]
+#define HMB_TRACE_BINDING_TRANSFORMS 6       // InstanceTransform[instance * timeCount + time]
+#define HMB_TRACE_BINDING_MESH_NODES 7       // BvhNode[] of every mesh, mesh m's root at node m
+#define HMB_TRACE_BINDING_MESH_LINKS 8       // uint[8 * nodes]
+#define HMB_TRACE_BINDING_MESH_PRIMITIVES 9  // uint triangle[] (indices into the triangle buffer)
+#define HMB_TRACE_BINDING_TRIANGLES 10       // uvec4 (v0, v1, v2, mesh) per triangle of every mesh
+#define HMB_TRACE_BINDING_POSITIONS 11       // vec4 per mesh vertex (object space)
+#define HMB_TRACE_BINDING_COUNT 12
+
+// instance_motion_bounds: the boxes the top level is built over
+#define HMB_MOTION_BOUNDS_BINDING_MESH_NODES 0
+#define HMB_MOTION_BOUNDS_BINDING_INSTANCES 1
+#define HMB_MOTION_BOUNDS_BINDING_TRANSFORMS 2
+#define HMB_MOTION_BOUNDS_BINDING_BOXES 3  // BvhBox per instance
+#define HMB_MOTION_BOUNDS_BINDING_COUNT 4
+
+HMB_GPU_BEGIN
+
+struct TraceParams {
+  uint rayCount;
+  uint instanceCount;
+  uint timeCount;  // shutter times each instance has a transform for
+  uint pad0;
+};
+
+// origin + t * direction for t in [tMin, tMax], at shutter time index `time`.
+struct TraceRay {
+  vec4 originTMin;     // xyz origin, w tMin
+  vec4 directionTMax;  // xyz direction (need not be unit), w tMax
+  uint time;           // index of the shutter time (clamped to the last)
+  uint ignoreObjectId; // hits on this object are skipped (HMB_IGNORE_NONE: none)
+  uint pad0;
+  uint pad1;
+};
+
+struct TraceInstance {
+  uint mesh;      // its bottom-level tree is rooted at mesh node `mesh`
+  uint objectId;
+  uint pad0;
+  uint pad1;
+};
+
+struct InstanceTransform {
+  mat4 worldFromObject;
+  mat4 objectFromWorld;
+};
+
+HMB_GPU_END
+
+HMB_CHECK_SIZE(TraceParams, 16)
+HMB_CHECK_SIZE(TraceRay, 48)
+HMB_CHECK_SIZE(TraceInstance, 16)
+HMB_CHECK_SIZE(InstanceTransform, 128)
+
+#endif

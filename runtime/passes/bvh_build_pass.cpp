@@ -1,0 +1,140 @@
+#include "runtime/passes/bvh_build_pass.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "kernels/bvh/bvh_build_layout.h"
+#include "runtime/error.h"
+#include "runtime/vulkan/context.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+
+BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name)
+    : context_(context),
+      name_(std::move(name)),
+      beginKernel_(context, "bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)),
+      levelKernel_(context, "bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)),
+      sizeDispatchKernel_(context, "bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT,
+                          sizeof(gpu::BvhBuildParams)) {}
+
+void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
+  // A binary tree over n >= 1 primitives has at most 2n - 1 nodes; an empty tree has its root.
+  const uint64_t nodes = 2ull * primitiveCount + treeCount;
+  // Every task holds two or more primitives of its own, or is a root.
+  const uint64_t tasks = std::max<uint64_t>(treeCount, primitiveCount / 2 + 1);
+  if (nodes > HMB_BVH_LINK_NEXT_MASK) throw Error(name_ + ": " + std::to_string(primitiveCount) +
+                                                  " primitives are more than one BVH can index");
+  if (primitiveCount > primitiveCapacity_) {
+    primitiveCapacity_ = primitiveCount;
+    primitives_ = vk::Buffer(context_, 2ull * std::max(primitiveCount, 1u) * sizeof(uint32_t), vk::MemoryUse::Device,
+                             name_ + " primitives");
+  }
+  if (nodes > nodeCapacity_) {
+    nodeCapacity_ = static_cast<uint32_t>(nodes);
+    nodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhNode), vk::MemoryUse::Device, name_ + " nodes");
+    links_ = vk::Buffer(context_, nodes * HMB_BVH_OCTANTS * sizeof(uint32_t), vk::MemoryUse::Device,
+                        name_ + " links");
+  }
+  if (tasks > taskCapacity_) {
+    taskCapacity_ = static_cast<uint32_t>(tasks);
+    tasks_ = vk::Buffer(context_, 2 * tasks * sizeof(gpu::BvhBuildTask), vk::MemoryUse::Device, name_ + " tasks");
+  }
+  if (treeCount > treeCapacity_) {
+    treeCapacity_ = treeCount;
+    rootBuffer_ = vk::Buffer(context_, treeCount * sizeof(glm::uvec2), vk::MemoryUse::Device, name_ + " roots");
+  }
+  if (counters_.size() == 0)
+    counters_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters), vk::MemoryUse::Device, name_ + " counters");
+}
+
+const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
+                                         std::span<const glm::uvec2> roots,
+                                         const std::function<void(vk::FrameRecorder&)>& before) {
+  if (roots.empty()) throw Error(name_ + ": a build needs at least one tree");
+  for (const glm::uvec2& root : roots) {
+    if (uint64_t(root.x) + root.y > primitiveCount)
+      throw Error(name_ + ": a tree's primitive range ends past the primitive count");
+    if (root.y > HMB_BVH_MAX_TREE_PRIMITIVES)
+      throw Error(name_ + ": a tree of " + std::to_string(root.y) + " primitives is more than one tree may hold (" +
+                  std::to_string(HMB_BVH_MAX_TREE_PRIMITIVES) + ")");
+  }
+  const auto treeCount = static_cast<uint32_t>(roots.size());
+  reserve(primitiveCount, treeCount);
+  primitiveCount_ = primitiveCount;
+  roots_.assign(roots.begin(), roots.end());
+  rootBuffer_.write(std::as_bytes(roots));
+
+  gpu::BvhBuildCounters counters{};
+  counters.nodeCount = treeCount;
+  counters.levels = 1;
+  const glm::uvec3 rootGroups = vk::foldedGroups(treeCount);
+  counters.dispatch[0] = glm::uvec4(rootGroups, 0u);
+  counters.dispatch[1] = glm::uvec4(0u, 0u, 1u, 0u);
+  counters_.write(std::as_bytes(std::span(&counters, 1)));
+
+  const std::initializer_list<const vk::Buffer*> buffers = {&boxes,  &rootBuffer_, &primitives_, &nodes_,
+                                                            &links_, &tasks_,      &counters_};
+  gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0};
+  stats_ = {};
+  uint32_t level = 0;
+  for (;;) {
+    frame.begin();
+    if (level == 0) {
+      if (before) before(frame);
+      frame.dispatch(kBegin, beginKernel_, buffers, params, rootGroups);
+    }
+    const uint32_t end = level + kLevelsPerSubmission;
+    for (; level < end; ++level) {
+      params.level = level;
+      frame.dispatchIndirect(kLevel, levelKernel_, buffers, params, counters_,
+                             (level & 1u) * sizeof(glm::uvec4));
+      frame.dispatch(kSizeDispatch, sizeDispatchKernel_, buffers, params, glm::uvec3(1));
+    }
+    const vk::FrameTimings timings = frame.submitAndWait();
+    for (const vk::PassTiming& pass : timings.passes)
+      if (pass.name == kLevel && pass.milliseconds) stats_.levelMilliseconds.push_back(*pass.milliseconds);
+    ++stats_.submissions;
+    stats_.deviceMilliseconds += timings.frameMilliseconds.value_or(0.0);
+    counters_.read(std::as_writable_bytes(std::span(&counters, 1)));
+    if (counters.taskCount[level & 1u] == 0) break;
+    if (stats_.submissions * uint64_t(kLevelsPerSubmission) > uint64_t(primitiveCount) + 2)
+      throw Error(name_ + ": the build did not finish (device fault?)");  // every level splits
+  }
+  stats_.nodes = counters.nodeCount;
+  stats_.leaves = counters.leafCount;
+  stats_.levels = counters.levels;
+  stats_.levelMilliseconds.resize(std::min<size_t>(stats_.levelMilliseconds.size(), stats_.levels));
+  return stats_;
+}
+
+bvh::Bvh BvhBuildPass::download(uint32_t root) const {
+  if (root >= roots_.size()) throw Error(name_ + ": no tree " + std::to_string(root));
+  const std::vector<gpu::BvhNode> nodes = nodes_.download<gpu::BvhNode>();
+  const std::vector<uint32_t> primitives = primitives_.download<uint32_t>();
+  const glm::uvec2 range = roots_[root];
+  bvh::Bvh out;
+  if (range.y == 0) return out;
+  // Breadth-first copy keeps siblings adjacent, as the layout requires.
+  out.nodes.push_back(nodes.at(root));
+  for (size_t i = 0; i < out.nodes.size(); ++i) {
+    bvh::Node& node = out.nodes[i];
+    if (bvh::isLeaf(node)) {
+      const uint32_t first = static_cast<uint32_t>(out.primitiveIndices.size());
+      for (uint32_t k = 0; k < node.count; ++k)
+        out.primitiveIndices.push_back(primitives.at(node.leftOrFirst + k) - range.x);
+      node.leftOrFirst = first;
+      continue;
+    }
+    const uint32_t left = node.leftOrFirst;
+    node.leftOrFirst = static_cast<uint32_t>(out.nodes.size());
+    const gpu::BvhNode l = nodes.at(left), r = nodes.at(left + 1);  // copies: push_back may move `node`
+    out.nodes.push_back(l);
+    out.nodes.push_back(r);
+  }
+  return out;
+}
+
+std::vector<uint32_t> BvhBuildPass::downloadLinks() const { return links_.download<uint32_t>(); }
+
+}  // namespace hmb::passes

@@ -1,0 +1,93 @@
+// Host side of the device BVH builder (kernels/bvh/): begin_build, then build_level and
+// size_build_dispatch once per tree level. Builds one or more trees over one array of
+// primitive boxes; tree r covers primitives roots[r] = (first, count) and is rooted at node r.
+//
+// How deep the trees go is only known on the device, so build() records a batch of levels,
+// submits, and reads the task count back; a tree deeper than the batch gets another batch.
+// A level without tasks dispatches no groups.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bvh/bvh.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb::vk {
+class FrameRecorder;
+struct FrameTimings;
+}
+
+namespace hmb::passes {
+
+struct BvhBuildStats {
+  uint32_t nodes = 0;
+  uint32_t leaves = 0;
+  uint32_t levels = 0;       // tree levels built (the deepest leaf's depth, counting the root as 1)
+  uint32_t submissions = 0;  // batches of levels submitted
+  double deviceMilliseconds = 0.0;  // sum of the batches' frame times (0 without timestamps)
+  std::vector<double> levelMilliseconds;  // build_level's time at each level (empty without timestamps)
+};
+
+class BvhBuildPass {
+ public:
+  static constexpr const char* kBegin = "bvh-begin-build";
+  static constexpr const char* kLevel = "bvh-build-level";
+  static constexpr const char* kSizeDispatch = "bvh-size-build-dispatch";
+  // Levels recorded per submission. Deeper trees take more submissions; a level with no
+  // tasks costs two empty dispatches.
+  static constexpr uint32_t kLevelsPerSubmission = 40;
+
+  BvhBuildPass(const vk::Context& context, std::string name);
+
+  // Builds the trees over `boxes` (BvhBox per primitive, primitiveCount of them) with
+  // the given roots, whose ranges must not overlap. `before` records passes that must run
+  // first in the first submission (those that write the boxes). Returns the stats, which
+  // also stay in stats().
+  const BvhBuildStats& build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
+                             std::span<const glm::uvec2> roots,
+                             const std::function<void(vk::FrameRecorder&)>& before = {});
+
+  const BvhBuildStats& stats() const { return stats_; }
+  // Valid after build(): the nodes (tree r rooted at node r), 8 links per node, and the
+  // primitive order the leaves index (the first primitiveCount entries).
+  const vk::Buffer& nodes() const { return nodes_; }
+  const vk::Buffer& links() const { return links_; }
+  const vk::Buffer& primitives() const { return primitives_; }
+  uint32_t primitiveCount() const { return primitiveCount_; }
+
+  // The built nodes and primitive order on the host, tree `root` re-rooted at node 0 with
+  // primitive indices relative to its range (what bvh::sahCost and the CPU checks take).
+  bvh::Bvh download(uint32_t root = 0) const;
+  std::vector<uint32_t> downloadLinks() const;
+
+ private:
+  void reserve(uint32_t primitiveCount, uint32_t treeCount);
+
+  const vk::Context& context_;
+  std::string name_;
+  vk::ComputeKernel beginKernel_;
+  vk::ComputeKernel levelKernel_;
+  vk::ComputeKernel sizeDispatchKernel_;
+  uint32_t primitiveCapacity_ = 0;
+  uint32_t nodeCapacity_ = 0;
+  uint32_t treeCapacity_ = 0;
+  uint32_t taskCapacity_ = 0;
+  uint32_t primitiveCount_ = 0;
+  std::vector<glm::uvec2> roots_;
+  vk::Buffer rootBuffer_;
+  vk::Buffer primitives_;
+  vk::Buffer nodes_;
+  vk::Buffer links_;
+  vk::Buffer tasks_;
+  vk::Buffer counters_;
+  BvhBuildStats stats_;
+};
+
+}  // namespace hmb::passes

@@ -1,0 +1,32 @@
+// Host side of kernels/trace/trace_rays: the closest hit of each ray through a TraceScene.
+#pragma once
+
+#include <cstdint>
+
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb {
+class TraceScene;
+}
+namespace hmb::vk {
+class Buffer;
+class FrameRecorder;
+}
+
+namespace hmb::passes {
+
+class TraceRaysPass {
+ public:
+  static constexpr const char* kName = "trace-rays";
+
+  explicit TraceRaysPass(const vk::Context& context);
+
+  // rays: TraceRay[rayCount]; hits: BvhHit[rayCount]. The scene needs its shutter times set.
+  void record(vk::FrameRecorder& frame, const TraceScene& scene, const vk::Buffer& rays, const vk::Buffer& hits,
+              uint32_t rayCount) const;
+
+ private:
+  vk::ComputeKernel kernel_;
+};
+
+}  // namespace hmb::passes

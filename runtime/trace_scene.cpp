@@ -1,0 +1,71 @@
+#include "runtime/trace_scene.h"
+
+#include <algorithm>
+#include <string>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb {
+
+TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame)
+    : context_(context),
+      triangleBoundsKernel_(context, "bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t)),
+      motionBoundsKernel_(context, "trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT,
+                          sizeof(gpu::TraceParams)),
+      meshBvh_(context, "mesh BVH"),
+      instanceBvh_(context, "instance BVH") {
+  std::vector<glm::vec4> positions;
+  std::vector<glm::uvec4> triangles;
+  std::vector<glm::uvec2> roots;
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+    const scene::Mesh& mesh = scene.meshes[m];
+    const auto base = static_cast<uint32_t>(positions.size());
+    for (const glm::vec3& p : mesh.positions) positions.emplace_back(p, 1.0f);
+    meshFirstTriangle_.push_back(static_cast<uint32_t>(triangles.size()));
+    roots.emplace_back(static_cast<uint32_t>(triangles.size()), mesh.triangleCount());
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+      triangles.emplace_back(base + mesh.indices[i], base + mesh.indices[i + 1], base + mesh.indices[i + 2], m);
+  }
+  if (triangles.size() > HMB_BVH_LINK_NEXT_MASK / 2) throw Error("the scene has more triangles than a BVH can index");
+  meshCount_ = static_cast<uint32_t>(scene.meshes.size());
+  triangleCount_ = static_cast<uint32_t>(triangles.size());
+  positions_ = vk::uploadedBuffer(context, positions, "trace positions");
+  triangles_ = vk::uploadedBuffer(context, triangles, "trace triangles");
+  triangleBoxes_ = vk::Buffer(context, std::max<size_t>(triangles.size(), 1) * sizeof(gpu::BvhBox),
+                              vk::MemoryUse::Device, "triangle boxes");
+  if (roots.empty()) roots.emplace_back(0u, 0u);  // a scene without meshes: one empty tree
+  const uint32_t count = triangleCount_;
+  meshBvh_.build(frame, triangleBoxes_, count, roots, [&](vk::FrameRecorder& f) {
+    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {&positions_, &triangles_, &triangleBoxes_}, count,
+               vk::foldedGroups(vk::groupsFor(count, HMB_BVH_BUILD_GROUP)));
+  });
+}
+
+void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame) {
+  if (times.empty()) throw Error("a trace needs at least one shutter time");
+  std::vector<gpu::TraceInstance> instances;
+  std::vector<gpu::InstanceTransform> transforms;
+  for (const scene::Instance& instance : scene.instances) {
+    instances.push_back({instance.mesh, instance.objectId, 0u, 0u});
+    for (const float t : times) {
+      const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
+      transforms.push_back({world, glm::inverse(world)});
+    }
+  }
+  instanceCount_ = static_cast<uint32_t>(instances.size());
+  timeCount_ = static_cast<uint32_t>(times.size());
+  instances_ = vk::uploadedBuffer(context_, instances, "trace instances");
+  transforms_ = vk::uploadedBuffer(context_, transforms, "instance transforms");
+  if (instanceBoxes_.size() < std::max<size_t>(instances.size(), 1) * sizeof(gpu::BvhBox))
+    instanceBoxes_ = vk::Buffer(context_, std::max<size_t>(instances.size(), 1) * sizeof(gpu::BvhBox),
+                                vk::MemoryUse::Device, "instance boxes");
+  const gpu::TraceParams params{0u, instanceCount_, timeCount_, 0u};
+  const glm::uvec2 root(0u, instanceCount_);
+  instanceBvh_.build(frame, instanceBoxes_, instanceCount_, std::span(&root, 1), [&](vk::FrameRecorder& f) {
+    f.dispatch(kMotionBounds, motionBoundsKernel_, {&meshBvh_.nodes(), &instances_, &transforms_, &instanceBoxes_},
+               params, vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
+  });
+}
+
+}  // namespace hmb

@@ -1,0 +1,70 @@
+// The scene as the ray tracing kernels see it (kernels/trace/trace_layout.h): every mesh's
+// triangles in its own space under a BVH per mesh, built on the device once; and the instances
+// at a frame's shutter times under a top-level BVH over their motion bounds, rebuilt on the
+// device whenever the shutter times change.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "kernels/trace/trace_layout.h"
+#include "runtime/passes/bvh_build_pass.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/compute_kernel.h"
+#include "scenes/scene.h"
+
+namespace hmb::vk {
+class FrameRecorder;
+}
+
+namespace hmb {
+
+class TraceScene {
+ public:
+  static constexpr const char* kTriangleBounds = "bvh-triangle-bounds";
+  static constexpr const char* kMotionBounds = "bvh-instance-motion-bounds";
+
+  // Uploads the meshes and builds their trees (submits on `frame`).
+  TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame);
+
+  // Transforms of every instance at each shutter time, and the top level over the instances'
+  // boxes merged over those times (submits on `frame`). Rays name a time by its index here.
+  void setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame);
+
+  uint32_t meshCount() const { return meshCount_; }
+  uint32_t instanceCount() const { return instanceCount_; }
+  uint32_t timeCount() const { return timeCount_; }
+  uint32_t triangleCount() const { return triangleCount_; }
+  // The first triangle of each mesh in the triangle buffer: a hit's triangle minus its
+  // mesh's first is the triangle's index in scene::Mesh::indices / 3.
+  const std::vector<uint32_t>& meshFirstTriangle() const { return meshFirstTriangle_; }
+
+  const passes::BvhBuildPass& meshBvh() const { return meshBvh_; }
+  const passes::BvhBuildPass& instanceBvh() const { return instanceBvh_; }
+  const vk::Buffer& positions() const { return positions_; }
+  const vk::Buffer& triangles() const { return triangles_; }
+  const vk::Buffer& instances() const { return instances_; }
+  const vk::Buffer& transforms() const { return transforms_; }
+  const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
+
+ private:
+  const vk::Context& context_;
+  vk::ComputeKernel triangleBoundsKernel_;
+  vk::ComputeKernel motionBoundsKernel_;
+  passes::BvhBuildPass meshBvh_;
+  passes::BvhBuildPass instanceBvh_;
+  uint32_t meshCount_ = 0;
+  uint32_t instanceCount_ = 0;
+  uint32_t timeCount_ = 0;
+  uint32_t triangleCount_ = 0;
+  std::vector<uint32_t> meshFirstTriangle_;
+  vk::Buffer positions_;      // vec4 per vertex of every mesh
+  vk::Buffer triangles_;      // uvec4 (v0, v1, v2, mesh) per triangle of every mesh
+  vk::Buffer triangleBoxes_;  // BvhBox per triangle
+  vk::Buffer instances_;      // TraceInstance per instance
+  vk::Buffer transforms_;     // InstanceTransform per (instance, time)
+  vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
+};
+
+}  // namespace hmb

@@ -1,0 +1,126 @@
+// The device BVH builder (kernels/bvh/) against the CPU yardsticks: every tree is well formed
+// (each primitive in exactly one leaf, every node bounding its children), its links visit every
+// node once in each octant, and its SAH cost is within 1.15x of the full-sweep SAH build.
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "bvh/reference_builder.h"
+#include "runtime/vulkan/frame_recorder.h"
+#include "scenes/reference_scenes.h"
+#include "tests/support/vulkan_test.h"
+#include "tests/trace/trace_harness.h"
+
+namespace hmb::trace::test {
+namespace {
+
+using bvh::test::TriangleMesh;
+
+// The largest SAH cost the device build may have, relative to the CPU full sweep.
+constexpr double kMaxSahRatio = 1.15;
+
+class DeviceBvh : public hmb::test::VulkanTest {
+ protected:
+  // Builds on the device and checks the tree against the mesh; returns its SAH ratio.
+  double checkBuild(const TriangleMesh& mesh, const std::string& what) {
+    const scene::Scene scene = sceneOf(mesh);
+    vk::FrameRecorder frame(context());
+    const auto start = std::chrono::steady_clock::now();
+    const TraceScene traceScene(context(), scene, frame);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const bvh::Bvh device = traceScene.meshBvh().download(0);
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
+    EXPECT_EQ(bvh::test::structuralProblem(device, input.bounds, HMB_BVH_MAX_LEAF), "") << what;
+    const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().nodes().download<gpu::BvhNode>();
+    EXPECT_EQ(linkProblem(nodes, traceScene.meshBvh().downloadLinks(), 0), "") << what;
+    if (mesh.triangleCount() == 0) return 1.0;
+    const bvh::Bvh reference = bvh::buildReferenceSah(input.bounds, input.centroids);
+    const double ratio = bvh::sahCost(device) / bvh::sahCost(reference);
+    const passes::BvhBuildStats& stats = traceScene.meshBvh().stats();
+    std::printf("[ device   ] %-24s %8u triangles: SAH %.3f vs full sweep %.3f (%.3fx), %u levels, %u submissions, "
+                "device %.1f ms, wall %.3f s\n",
+                what.c_str(), mesh.triangleCount(), bvh::sahCost(device), bvh::sahCost(reference), ratio,
+                stats.levels, stats.submissions, stats.deviceMilliseconds, seconds);
+    return ratio;
+  }
+};
+
+TEST_F(DeviceBvh, SmallAndDegenerateMeshesAreWellFormed) {
+  checkBuild(bvh::test::randomSoup(1, 0.1f, 1), "one triangle");
+  checkBuild(bvh::test::randomSoup(2, 0.1f, 2), "two triangles");
+  checkBuild(bvh::test::randomSoup(5, 0.1f, 3), "five triangles");
+  TriangleMesh coincident;  // every centroid equal: only the median fallback can split them
+  for (int i = 0; i < 100; ++i) coincident.addTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);
+  checkBuild(coincident, "100 coincident");
+  TriangleMesh degenerate;  // zero-area triangles: points and segments, some repeated
+  for (int i = 0; i < 50; ++i) {
+    const float x = float(i % 7);
+    degenerate.addTriangle({x, 0, 0}, {x, 0, 0}, {x, 0, 0}, 1);
+    degenerate.addTriangle({x, 1, 0}, {x + 1, 1, 0}, {x + 2, 1, 0}, 1);
+  }
+  checkBuild(degenerate, "degenerate");
+  TriangleMesh line;  // all on one line: the root has no area
+  for (int i = 0; i < 40; ++i) line.addTriangle({float(i), 0, 0}, {float(i) + 0.5f, 0, 0}, {float(i) + 1, 0, 0}, 1);
+  checkBuild(line, "collinear");
+}
+
+TEST_F(DeviceBvh, NonFiniteTrianglesGetEmptyBoxes) {
+  TriangleMesh mesh = bvh::test::randomSoup(200, 0.05f, 4);
+  const float inf = std::numeric_limits<float>::infinity();
+  mesh.addTriangle({std::nanf(""), 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);
+  mesh.addTriangle({inf, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);
+  const scene::Scene scene = sceneOf(mesh);
+  vk::FrameRecorder frame(context());
+  const TraceScene traceScene(context(), scene, frame);
+  const bvh::Bvh device = traceScene.meshBvh().download(0);
+  // Every primitive once, and the root's box finite: the broken triangles widen nothing.
+  std::vector<int> seen(mesh.triangleCount(), 0);
+  for (uint32_t p : device.primitiveIndices) ++seen.at(p);
+  for (int count : seen) EXPECT_EQ(count, 1);
+  const Aabb root = bvh::boundsOf(device.nodes.at(0));
+  EXPECT_TRUE(std::isfinite(root.min.x) && std::isfinite(root.max.x));
+  EXPECT_LE(root.max.x, 1.1f);
+}
+
+TEST_F(DeviceBvh, ManyMeshesBuildTogether) {
+  scene::Scene scene;
+  std::vector<TriangleMesh> meshes = {bvh::test::randomSoup(300, 0.05f, 5), bvh::test::grid(12, 6),
+                                      bvh::test::randomSoup(1, 0.1f, 7), bvh::test::cubeSphere(6)};
+  for (const TriangleMesh& mesh : meshes) {
+    scene::Mesh m;
+    m.positions = mesh.positions;
+    m.indices = mesh.indices;
+    scene.meshes.push_back(m);
+  }
+  scene.meshes.push_back({});  // a mesh without triangles
+  vk::FrameRecorder frame(context());
+  const TraceScene traceScene(context(), scene, frame);
+  const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().nodes().download<gpu::BvhNode>();
+  const std::vector<uint32_t> links = traceScene.meshBvh().downloadLinks();
+  for (uint32_t m = 0; m < meshes.size(); ++m) {
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(meshes[m].view());
+    EXPECT_EQ(bvh::test::structuralProblem(traceScene.meshBvh().download(m), input.bounds, HMB_BVH_MAX_LEAF), "")
+        << "mesh " << m;
+    EXPECT_EQ(linkProblem(nodes, links, m), "") << "mesh " << m;
+  }
+  EXPECT_TRUE(traceScene.meshBvh().download(4).nodes.empty());
+}
+
+TEST_F(DeviceBvh, SahCostWithinBoundOfFullSweepOnReferenceScenes) {
+  for (const std::string& name : scene::referenceSceneNames()) {
+    const scene::Scene scene = scene::makeReferenceScene(name);
+    const TriangleMesh mesh = bvh::test::sceneTriangles(scene, scene.settings.frameTime);
+    EXPECT_LE(checkBuild(mesh, name), kMaxSahRatio) << name;
+  }
+}
+
+TEST_F(DeviceBvh, SahCostWithinBoundOfFullSweepOnAMillionTriangles) {
+  const TriangleMesh mesh = bvh::test::cubeSphere(290);  // 6 * 290^2 * 2 = 1,009,200 triangles
+  ASSERT_GE(mesh.triangleCount(), 1000000u);
+  EXPECT_LE(checkBuild(mesh, "cube sphere"), kMaxSahRatio);
+}
+
+}  // namespace
+}  // namespace hmb::trace::test

@@ -1,0 +1,32 @@
+// What the device BVH and trace tests share: scenes made of test meshes, rays in the kernels'
+// layout, and a trace through a TraceScene on the device.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh_layout.h"
+#include "bvh/ray_intersection.h"
+#include "kernels/trace/trace_layout.h"
+#include "runtime/trace_scene.h"
+#include "runtime/vulkan/context.h"
+#include "tests/bvh/bvh_test_support.h"
+
+namespace hmb::trace::test {
+
+// One mesh, one instance at the identity, object id 1.
+scene::Scene sceneOf(const bvh::test::TriangleMesh& mesh);
+
+gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time = 0, uint32_t ignoreObjectId = HMB_IGNORE_NONE);
+
+// Closest hits of `rays` through the scene (its shutter times must be set).
+std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceScene& scene,
+                                       std::span<const gpu::TraceRay> rays);
+
+// Empty when, in every octant, following the links from `root` with every box hit visits each
+// node of the tree once, children after their parent, and ends; else the first problem.
+std::string linkProblem(std::span<const gpu::BvhNode> nodes, std::span<const uint32_t> links, uint32_t root);
+
+}  // namespace hmb::trace::test

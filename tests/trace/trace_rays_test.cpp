@@ -1,0 +1,324 @@
+// The trace kernel against brute force over every triangle: single meshes with adversarial rays
+// (along axes, grazing, through shared vertices and edges, degenerate and coincident
+// triangles), and a two-level scene with rotating instances traced at several shutter times,
+// with and without an ignored object. Also: the top level's motion bounds hold every instance
+// at every shutter time.
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "runtime/vulkan/frame_recorder.h"
+#include "tests/support/vulkan_test.h"
+#include "tests/trace/trace_harness.h"
+
+namespace hmb::trace::test {
+namespace {
+
+using bvh::Ray;
+using bvh::test::TriangleMesh;
+
+bool near(float a, float b, float tolerance) {
+  return std::abs(a - b) <= tolerance * std::max({std::abs(a), std::abs(b), 1.0f});
+}
+
+// The device and the host agree when both miss, or both hit at the same t (within the float
+// rounding of different instruction orders). The triangle must match too, unless another
+// triangle is hit at that same t (a shared edge or vertex, or coincident triangles).
+struct Comparison {
+  uint32_t rays = 0, hits = 0, mismatches = 0;
+  std::string firstMismatch;
+  void add(size_t ray, const gpu::BvhHit& expected, const gpu::BvhHit& actual, uint32_t expectedInstance,
+           float tolerance) {
+    ++rays;
+    if (expected.triangle != HMB_NO_HIT) ++hits;
+    bool agree;
+    if (expected.triangle == HMB_NO_HIT || actual.triangle == HMB_NO_HIT)
+      agree = expected.triangle == actual.triangle;
+    else
+      agree = near(expected.t, actual.t, tolerance) &&
+              ((actual.triangle == expected.triangle && actual.instance == expectedInstance &&
+                near(expected.u, actual.u, 1e-3f) && near(expected.v, actual.v, 1e-3f)) ||
+               actual.triangle != expected.triangle || actual.instance != expectedInstance);
+    if (agree) return;
+    if (mismatches++ == 0) {
+      std::ostringstream s;
+      s << "ray " << ray << ": host triangle " << expected.triangle << " (instance " << expectedInstance << ") t "
+        << expected.t << ", device triangle " << actual.triangle << " (instance " << actual.instance << ") t "
+        << actual.t;
+      firstMismatch = s.str();
+    }
+  }
+};
+
+class TraceRays : public hmb::test::VulkanTest {
+ protected:
+  // Traces `rays` through `mesh` as a one-instance scene and compares with brute force.
+  Comparison compareOnMesh(const TriangleMesh& mesh, std::span<const Ray> rays) {
+    const scene::Scene scene = sceneOf(mesh);
+    vk::FrameRecorder frame(context());
+    TraceScene traceScene(context(), scene, frame);
+    const float time = 0.0f;
+    traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
+    std::vector<gpu::TraceRay> traceRays;
+    for (const Ray& ray : rays) traceRays.push_back(traceRay(ray));
+    const std::vector<gpu::BvhHit> hits = traceOnDevice(context(), traceScene, traceRays);
+    Comparison comparison;
+    TriangleMesh oneObject = mesh;  // the scene gives the whole mesh object id 1
+    oneObject.objectIds.assign(mesh.triangleCount(), 1u);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      gpu::BvhHit expected = bvh::bruteForceClosestHit(oneObject.view(), rays[i]);
+      comparison.add(i, expected, hits[i], 0u, 1e-5f);
+    }
+    return comparison;
+  }
+};
+
+std::vector<Ray> axisRays(const TriangleMesh& mesh, uint32_t count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  const Aabb box = mesh.bounds();
+  std::vector<Ray> rays;
+  for (uint32_t i = 0; i < count; ++i) {
+    Ray ray;
+    glm::vec3 d(0.0f);
+    d[i % 3] = (i / 3) % 2 ? 1.0f : -1.0f;
+    ray.direction = d;
+    ray.origin = bvh::test::randomPointIn(box, rng);
+    ray.origin[i % 3] = d[i % 3] > 0 ? box.min[i % 3] - 1.0f : box.max[i % 3] + 1.0f;
+    rays.push_back(ray);
+  }
+  return rays;
+}
+
+// Rays aimed exactly at shared interior vertices and edge midpoints of the grid (z = 0 plane).
+std::vector<Ray> vertexAndEdgeRays(uint32_t cells, uint32_t count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<uint32_t> cell(1, cells - 1);
+  std::vector<Ray> rays;
+  for (uint32_t i = 0; i < count; ++i) {
+    const glm::vec3 target(float(cell(rng)) + (i % 3 == 1 ? 0.5f : 0.0f), float(cell(rng)) + (i % 3 == 2 ? 0.5f : 0.0f),
+                           0.0f);
+    const glm::vec3 origin = target + glm::vec3(0.37f * float(i % 5) - 0.7f, 0.21f * float(i % 7) - 0.6f, 3.0f);
+    rays.push_back(Ray{origin, target - origin});
+  }
+  return rays;
+}
+
+TEST_F(TraceRays, RandomSoupMatchesBruteForce) {
+  const TriangleMesh mesh = bvh::test::randomSoup(3000, 0.08f, 11);
+  const std::vector<Ray> rays = bvh::test::mixedRays(mesh, 4000, 12);
+  const Comparison c = compareOnMesh(mesh, rays);
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+  EXPECT_GE(c.hits, 1500u);
+}
+
+TEST_F(TraceRays, AxisAlignedRaysMatchBruteForce) {
+  const TriangleMesh mesh = bvh::test::cubeSphere(12);
+  const Comparison c = compareOnMesh(mesh, axisRays(mesh, 3000, 13));
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+  EXPECT_GE(c.hits, 1000u);
+}
+
+TEST_F(TraceRays, RaysThroughSharedVerticesAndEdgesNeverLeakThrough) {
+  const uint32_t cells = 24;
+  const TriangleMesh mesh = bvh::test::grid(cells, 14);
+  const Comparison c = compareOnMesh(mesh, vertexAndEdgeRays(cells, 3000, 15));
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+  EXPECT_EQ(c.hits, c.rays);  // every ray aims at a point of the closed grid
+}
+
+TEST_F(TraceRays, GrazingRaysInTheMeshPlaneMatchBruteForce) {
+  const TriangleMesh mesh = bvh::test::grid(16, 16);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> along(-1.0f, 17.0f);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 1000; ++i) {
+    const float z = i % 2 ? 0.0f : 1e-6f * float(i % 5);  // in the plane, or just above it
+    rays.push_back(Ray{glm::vec3(-1.0f, along(rng), z), glm::vec3(1.0f, along(rng) * 0.01f, -z)});
+  }
+  const Comparison c = compareOnMesh(mesh, rays);
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+}
+
+// Zero-area triangles (points, segments) are not surfaces: where rounding lets either side hit
+// one, it may, but only in front of the real surface. Coincident copies tie on t.
+TEST_F(TraceRays, DegenerateAndCoincidentTrianglesMatchBruteForce) {
+  TriangleMesh mesh = bvh::test::randomSoup(500, 0.1f, 18);
+  for (int i = 0; i < 20; ++i) mesh.addTriangle({0.2f, 0.2f, 0.5f}, {0.8f, 0.2f, 0.5f}, {0.2f, 0.8f, 0.5f}, 1);
+  mesh.objectIds.assign(mesh.triangleCount(), 1u);  // surfaces are object 1, degenerate ones 2
+  const uint32_t firstDegenerate = mesh.triangleCount();
+  for (int i = 0; i < 50; ++i) {
+    const float x = 0.02f * float(i);
+    mesh.addTriangle({x, 0.5f, 0.5f}, {x, 0.5f, 0.5f}, {x, 0.5f, 0.5f}, 2);                // a point
+    mesh.addTriangle({x, 0.1f, 0.5f}, {x + 0.1f, 0.1f, 0.5f}, {x + 0.2f, 0.1f, 0.5f}, 2);  // a segment
+  }
+  const std::vector<Ray> rays = bvh::test::mixedRays(mesh, 3000, 19);
+  const scene::Scene scene = sceneOf(mesh);
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene, frame);
+  const float time = 0.0f;
+  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
+  std::vector<gpu::TraceRay> traceRays;
+  for (const Ray& ray : rays) traceRays.push_back(traceRay(ray));
+  const std::vector<gpu::BvhHit> hits = traceOnDevice(context(), traceScene, traceRays);
+  Comparison c;
+  bvh::TraceOptions surfacesOnly;
+  surfacesOnly.ignoreObjectId = 2;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const gpu::BvhHit expected = bvh::bruteForceClosestHit(mesh.view(), rays[i], surfacesOnly);
+    if (hits[i].triangle != HMB_NO_HIT && hits[i].triangle >= firstDegenerate) {
+      EXPECT_LE(hits[i].t, expected.t * (1.0f + 1e-5f)) << "ray " << i << " hit a degenerate triangle behind a surface";
+      continue;
+    }
+    c.add(i, expected, hits[i], 0u, 1e-5f);
+  }
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+  EXPECT_GE(c.hits, 1000u);
+}
+
+TEST_F(TraceRays, InvalidRaysMissAndFiniteRangesAreRespected) {
+  const TriangleMesh mesh = bvh::test::cubeSphere(8);
+  const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
+  const std::vector<Ray> rays = {
+      Ray{glm::vec3(0.0f, 0.0f, 5.0f), glm::vec3(0.0f)},                              // zero direction
+      Ray{glm::vec3(0.0f, 0.0f, 5.0f), glm::vec3(nan, 0.0f, -1.0f)},                  // NaN direction
+      Ray{glm::vec3(0.0f, 0.0f, 5.0f), glm::vec3(0.0f, inf, -1.0f)},                  // infinite direction
+      Ray{glm::vec3(0.0f, 0.0f, 5.0f), glm::vec3(0.0f, 0.0f, -1.0f), 0.0f, 3.0f},     // ends before the sphere
+      Ray{glm::vec3(0.0f, 0.0f, 5.0f), glm::vec3(0.0f, 0.0f, -1.0f), 4.5f, inf},      // starts inside it
+      Ray{glm::vec3(0.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, -1e-30f)},               // tiny direction
+      Ray{glm::vec3(0.0f, 0.0f, 5.0f), glm::vec3(0.0f, 0.0f, -1e30f)},                // huge direction
+  };
+  const Comparison c = compareOnMesh(mesh, rays);
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+}
+
+// Two meshes, four instances, two of them rotating and one translating fast; traced at four
+// shutter times. The host reference: every instance's triangles carried into the world at the
+// ray's time, brute force.
+class TwoLevelScene : public TraceRays {
+ protected:
+  void SetUp() override {
+    TraceRays::SetUp();
+    const TriangleMesh sphere = bvh::test::cubeSphere(6), soup = bvh::test::randomSoup(400, 0.15f, 21);
+    for (const TriangleMesh* mesh : {&sphere, &soup}) {
+      scene::Mesh m;
+      m.positions = mesh->positions;
+      m.indices = mesh->indices;
+      scene_.meshes.push_back(m);
+    }
+    scene_.materials.push_back({});
+    const glm::vec3 places[4] = {{0, 0, 0}, {3, 0, 0}, {0, 3, 0}, {-3, -1, 1}};
+    for (uint32_t i = 0; i < 4; ++i) {
+      scene::Node node;
+      node.local.translation = places[i];
+      scene_.nodes.push_back(node);
+      scene_.instances.push_back({i % 2, i, 10 + i});
+    }
+    // Instance 1 spins a half turn about z over the shutter, instance 2 a quarter turn about x,
+    // instance 3 moves 4 units in x.
+    const auto rotation = [](float angle, glm::vec3 axis) {
+      const glm::quat q = glm::angleAxis(angle, axis);
+      return glm::vec4(q.x, q.y, q.z, q.w);
+    };
+    scene_.channels.push_back({1, scene::AnimationPath::Rotation, scene::Interpolation::Linear, {0.0f, 1.0f},
+                               {rotation(0.0f, {0, 0, 1}), rotation(3.14159f, {0, 0, 1})}});
+    scene_.channels.push_back({2, scene::AnimationPath::Rotation, scene::Interpolation::Linear, {0.0f, 1.0f},
+                               {rotation(0.0f, {1, 0, 0}), rotation(1.5708f, {1, 0, 0})}});
+    scene_.channels.push_back({3, scene::AnimationPath::Translation, scene::Interpolation::Linear, {0.0f, 1.0f},
+                               {glm::vec4(-3, -1, 1, 0), glm::vec4(1, -1, 1, 0)}});
+  }
+
+  scene::Scene scene_;
+  const std::vector<float> times_ = {0.0f, 0.3f, 0.65f, 1.0f};
+};
+
+TEST_F(TwoLevelScene, MotionBoundsHoldEveryInstanceAtEveryShutterTime) {
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene_, frame);
+  traceScene.setShutterTimes(scene_, times_, frame);
+  const std::vector<gpu::BvhBox> boxes = traceScene.instanceBoxes().download<gpu::BvhBox>();
+  const std::vector<gpu::BvhNode> topNodes = traceScene.instanceBvh().nodes().download<gpu::BvhNode>();
+  const Aabb root = bvh::boundsOf(topNodes.at(0));
+  std::mt19937 rng(23);
+  for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
+    const Aabb box{glm::vec3(boxes[i].min), glm::vec3(boxes[i].max)};
+    for (int sample = 0; sample < 8; ++sample) {
+      const float t = times_[rng() % times_.size()];
+      const glm::mat4 world = scene_.worldMatrixAt(scene_.instances[i].node, t);
+      for (const glm::vec3& p : scene_.meshes[scene_.instances[i].mesh].positions) {
+        const glm::vec3 w(world * glm::vec4(p, 1.0f));
+        ASSERT_TRUE(box.contains(w)) << "instance " << i << " at t " << t;
+        ASSERT_TRUE(root.contains(w)) << "top-level root, instance " << i << " at t " << t;
+      }
+    }
+  }
+  const bvh::Bvh top = traceScene.instanceBvh().download(0);
+  std::vector<Aabb> instanceBoxes;
+  for (const gpu::BvhBox& b : boxes) instanceBoxes.push_back({glm::vec3(b.min), glm::vec3(b.max)});
+  instanceBoxes.resize(scene_.instances.size());
+  EXPECT_EQ(bvh::test::structuralProblem(top, instanceBoxes, HMB_BVH_MAX_LEAF), "");
+}
+
+TEST_F(TwoLevelScene, RaysAtEachShutterTimeMatchBruteForceWithAndWithoutIgnoredObject) {
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene_, frame);
+  traceScene.setShutterTimes(scene_, times_, frame);
+  std::vector<TriangleMesh> world;  // per time: every instance's triangles, object id = instance
+  std::vector<std::vector<uint32_t>> instanceBase(times_.size());
+  for (size_t k = 0; k < times_.size(); ++k) {
+    TriangleMesh mesh;
+    for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
+      instanceBase[k].push_back(mesh.triangleCount());
+      mesh.append(scene_.meshes[scene_.instances[i].mesh], scene_.worldMatrixAt(scene_.instances[i].node, times_[k]),
+                  i);
+    }
+    world.push_back(std::move(mesh));
+  }
+  std::mt19937 rng(29);
+  std::vector<gpu::TraceRay> rays;
+  std::vector<Ray> hostRays;
+  std::vector<uint32_t> rayTime, rayIgnore;
+  const std::vector<Ray> mixed = bvh::test::mixedRays(world[0], 3000, 31);
+  for (size_t r = 0; r < mixed.size(); ++r) {
+    const auto k = static_cast<uint32_t>(r % times_.size());
+    const uint32_t ignore = r % 3 == 0 ? static_cast<uint32_t>(rng() % scene_.instances.size()) : HMB_IGNORE_NONE;
+    rays.push_back(traceRay(mixed[r], k, ignore == HMB_IGNORE_NONE ? HMB_IGNORE_NONE : 10 + ignore));
+    hostRays.push_back(mixed[r]);
+    rayTime.push_back(k);
+    rayIgnore.push_back(ignore);
+  }
+  const std::vector<gpu::BvhHit> hits = traceOnDevice(context(), traceScene, rays);
+  Comparison c;
+  uint32_t ignoredChecks = 0;
+  for (size_t r = 0; r < rays.size(); ++r) {
+    const uint32_t k = rayTime[r];
+    bvh::TraceOptions options;
+    options.ignoreObjectId = rayIgnore[r];
+    const gpu::BvhHit expected = bvh::bruteForceClosestHit(world[k].view(), hostRays[r], options);
+    // The host's triangle index into the flattened world -> (instance, mesh triangle).
+    gpu::BvhHit expectedLocal = expected;
+    uint32_t expectedInstance = HMB_NO_HIT;
+    if (expected.triangle != HMB_NO_HIT) {
+      expectedInstance = expected.objectId;
+      const uint32_t mesh = scene_.instances[expectedInstance].mesh;
+      expectedLocal.triangle =
+          expected.triangle - instanceBase[k][expectedInstance] + traceScene.meshFirstTriangle()[mesh];
+    }
+    if (rayIgnore[r] != HMB_IGNORE_NONE && hits[r].triangle != HMB_NO_HIT) {
+      ++ignoredChecks;
+      EXPECT_NE(hits[r].instance, rayIgnore[r]) << "ray " << r << " hit the ignored object";
+      EXPECT_EQ(hits[r].objectId, 10 + hits[r].instance);
+    }
+    // World-space triangles against object-space ones: t agrees to the rounding of the transform.
+    c.add(r, expectedLocal, hits[r], expectedInstance, 2e-4f);
+  }
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+  EXPECT_GE(c.hits, 700u);
+  EXPECT_GE(ignoredChecks, 200u);
+}
+
+}  // namespace
+}  // namespace hmb::trace::test
