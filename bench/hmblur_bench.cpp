@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench/bvh_suite.h"
+#include "bench/embree_reference.h"
 #include "bench/raster_suite.h"
 #include "runtime/error.h"
 #include "runtime/report.h"
@@ -34,6 +36,18 @@ struct RasterOptions {
   std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
   int warmup = 3;
   int repeats = 15;
+};
+
+struct BvhOptions {
+  std::string out = "bench/results/bvh-vs-embree.json";
+  std::vector<std::string> scenes = [] {
+    std::vector<std::string> names = hmb::scene::referenceSceneNames();
+    names.push_back("cube-sphere-1m");
+    return names;
+  }();
+  int warmup = 1;
+  int repeats = 3;
+  int embreeThreads = 0;
 };
 
 // The command as typed, for the report (arguments with spaces quoted).
@@ -110,6 +124,62 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
   return kOk;
 }
 
+int bvh(const GlobalOptions& global, const BvhOptions& options, const std::string& command) {
+  hmb::bench::BvhSuiteOptions suite;
+  suite.scenes = options.scenes;
+  suite.warmup = options.warmup;
+  suite.repeats = options.repeats;
+  suite.embreeThreads = options.embreeThreads;
+  const fs::path parent = fs::path(options.out).parent_path();
+  if (!options.out.empty() && !parent.empty() && !fs::is_directory(parent))
+    throw hmb::Error("--out '" + options.out + "': directory '" + parent.string() + "' does not exist");
+  hmb::vk::ContextOptions contextOptions;
+  contextOptions.deviceIndex = global.device;
+  const hmb::vk::Context context(contextOptions);
+  const auto progress = [&](const std::string& message) {
+    if (!global.quiet) std::cerr << "hmblur-bench: " << message << '\n';
+  };
+  progress("device: " + context.info().name);
+  const std::vector<hmb::bench::BvhCase> cases = hmb::bench::runBvhSuite(context, suite, progress);
+  hmb::bench::printBvhTable(std::cout, cases);
+  if (options.out.empty()) return kOk;
+  nlohmann::json report = {
+      {"suite", "bvh"},
+      {"what", "device BVH build (binned SAH, compute) and trace kernel vs the CPU full-sweep SAH build and Embree, "
+               "same world-space triangles and rays"},
+      {"note", "device times are Vulkan timestamps (build: triangle boxes + every level; trace: the trace-rays pass). "
+               "Embree: rtcCommitScene (default quality) for build speed, rtcBuildBVH into our node layout for its SAH "
+               "cost, rtcIntersect over embree_threads threads for rays. SAH costs: traversal 1, intersection 1, "
+               "leaves of at most 4, normalized by the root's area."},
+      {"command", command},
+      {"date", hmb::utcTimestamp()},
+      {"device", hmb::deviceJson(context.info())},
+      {"system", hmb::systemJson(hmb::querySystemInfo())},
+      {"embree", hmb::bench::embreeAvailable() ? hmb::bench::embreeVersion() : "unavailable"},
+      {"settings",
+       {{"warmup", suite.warmup},
+        {"repeats", suite.repeats},
+        {"embree_threads", hmb::bench::embreeThreadCount(suite.embreeThreads)},
+        {"coherent_rays", "one per pixel, 640x360, from the scene camera"},
+        {"incoherent_rays", suite.incoherentRays},
+        {"min_hit_agreement", hmb::bench::kMinHitAgreement}}},
+      {"cases", nlohmann::json::array()},
+  };
+  for (const auto& c : cases) report["cases"].push_back(hmb::bench::bvhCaseJson(c));
+  hmb::writeJson(options.out, report);
+  progress("wrote " + options.out);
+  return kOk;
+}
+
+// --out, --warmup and --repeats, which every suite has.
+void addCommonOptions(CLI::App& command, std::string& out, int& warmup, int& repeats) {
+  command.add_option("--out", out, "JSON results file (empty: none)")->capture_default_str();
+  command.add_option("--warmup", warmup, "Untimed iterations per case")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command.add_option("--repeats", repeats, "Timed iterations per case")->check(CLI::PositiveNumber)->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -124,18 +194,24 @@ int main(int argc, char** argv) {
   RasterOptions rasterOptions;
   CLI::App* rasterCmd =
       app.add_subcommand("raster", "Compute rasterizer vs the device's own graphics pipeline, same triangles");
-  rasterCmd->add_option("--out", rasterOptions.out, "JSON results file (empty: none)")->capture_default_str();
+  addCommonOptions(*rasterCmd, rasterOptions.out, rasterOptions.warmup, rasterOptions.repeats);
   rasterCmd->add_option("--sizes", rasterOptions.sizes, "Image sizes, WIDTHxHEIGHT, comma separated")
       ->delimiter(',')
       ->capture_default_str();
   rasterCmd->add_option("--scenes", rasterOptions.scenes, "Reference scene names or glTF files, comma separated")
       ->delimiter(',')
       ->capture_default_str();
-  rasterCmd->add_option("--warmup", rasterOptions.warmup, "Untimed iterations per case")
-      ->check(CLI::NonNegativeNumber)
+
+  BvhOptions bvhOptions;
+  CLI::App* bvhCmd = app.add_subcommand(
+      "bvh", "Device BVH build and trace vs the CPU full-sweep SAH build and Embree, same triangles and rays");
+  addCommonOptions(*bvhCmd, bvhOptions.out, bvhOptions.warmup, bvhOptions.repeats);
+  bvhCmd->add_option("--scenes", bvhOptions.scenes, "Reference scenes, glTF files or cube-sphere-1m, comma separated")
+      ->delimiter(',')
       ->capture_default_str();
-  rasterCmd->add_option("--repeats", rasterOptions.repeats, "Timed iterations per case")
-      ->check(CLI::PositiveNumber)
+  bvhCmd->add_option("--embree-threads", bvhOptions.embreeThreads,
+                     "Embree's threads (0: LP_NUM_THREADS when set, else every hardware thread)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
 
   try {
@@ -146,6 +222,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*rasterCmd) return raster(global, rasterOptions, commandLine(argc, argv));
+    if (*bvhCmd) return bvh(global, bvhOptions, commandLine(argc, argv));
   } catch (const std::exception& e) {
     std::cerr << "hmblur-bench: error: " << e.what() << '\n';
     return kError;

@@ -90,6 +90,21 @@ bool sampleChannel(const AnimationChannel& ch, float t, glm::vec4& out, bool isR
 
 }  // namespace
 
+Scene singleMeshScene(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
+  Scene scene;
+  scene.name = "triangles";
+  Mesh mesh;
+  mesh.name = "triangles";
+  mesh.positions = positions;
+  mesh.normals.assign(positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+  mesh.indices = indices;
+  scene.meshes.push_back(std::move(mesh));
+  scene.materials.push_back({});
+  scene.nodes.push_back({});
+  scene.instances.push_back({0, 0, 1});
+  return scene;
+}
+
 glm::quat lookRotation(const glm::vec3& forward) {
   const glm::vec3 back = -glm::normalize(forward);
   // Looking straight up or down: any horizontal "up" will do, -Z keeps the result stable.

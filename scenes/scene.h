@@ -137,6 +137,10 @@ struct Scene {
 // close to world up as possible.
 glm::quat lookRotation(const glm::vec3& forward);
 
+// A scene of one mesh (these triangles, flat normals left to the loader's defaults: +z) drawn
+// once at the identity as object 1: how tests and benchmarks trace plain triangle lists.
+Scene singleMeshScene(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices);
+
 // Fills in what the scene left open, from the scene itself (never from fixed constants): a
 // camera framing the bounds when none is given, near/far from the bounds seen from the
 // camera, SOFT_Z_EXTENT from the scene's scale.

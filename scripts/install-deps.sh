@@ -9,6 +9,7 @@ packages=(
   libglm-dev libtinygltf-dev libopenexr-dev libstb-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev
   python3-matplotlib assimp-testmodels
+  libembree-dev  # the CPU anchor of the bvh benchmark (optional: bench/CMakeLists.txt)
 )
 
 missing=()

@@ -7,19 +7,18 @@
 
 namespace hmb::trace::test {
 
-scene::Scene sceneOf(const bvh::test::TriangleMesh& mesh) {
-  scene::Scene scene;
-  scene.name = "test mesh";
-  scene::Mesh m;
-  m.name = "mesh";
-  m.positions = mesh.positions;
-  m.normals.assign(mesh.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
-  m.indices = mesh.indices;
-  scene.meshes.push_back(std::move(m));
-  scene.materials.push_back({});
-  scene.nodes.push_back({});
-  scene.instances.push_back({0, 0, 1});
-  return scene;
+scene::Scene sceneOf(const bvh::test::TriangleMesh& mesh) { return scene::singleMeshScene(mesh.positions, mesh.indices); }
+
+std::vector<gpu::BvhHit> traceMesh(const vk::Context& context, const bvh::test::TriangleMesh& mesh,
+                                   std::span<const bvh::Ray> rays) {
+  const scene::Scene scene = sceneOf(mesh);
+  vk::FrameRecorder frame(context);
+  TraceScene traceScene(context, scene, frame);
+  const float time = 0.0f;
+  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
+  std::vector<gpu::TraceRay> traceRays;
+  for (const bvh::Ray& ray : rays) traceRays.push_back(traceRay(ray));
+  return traceOnDevice(context, traceScene, traceRays);
 }
 
 gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time, uint32_t ignoreObjectId) {

@@ -25,6 +25,10 @@ gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time = 0, uint32_t ignoreOb
 std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceScene& scene,
                                        std::span<const gpu::TraceRay> rays);
 
+// Closest hits of `rays` through `mesh` as a one-instance scene at one shutter time.
+std::vector<gpu::BvhHit> traceMesh(const vk::Context& context, const bvh::test::TriangleMesh& mesh,
+                                   std::span<const bvh::Ray> rays);
+
 // Empty when, in every octant, following the links from `root` with every box hit visits each
 // node of the tree once, children after their parent, and ends; else the first problem.
 std::string linkProblem(std::span<const gpu::BvhNode> nodes, std::span<const uint32_t> links, uint32_t root);

@@ -58,14 +58,7 @@ class TraceRays : public hmb::test::VulkanTest {
  protected:
   // Traces `rays` through `mesh` as a one-instance scene and compares with brute force.
   Comparison compareOnMesh(const TriangleMesh& mesh, std::span<const Ray> rays) {
-    const scene::Scene scene = sceneOf(mesh);
-    vk::FrameRecorder frame(context());
-    TraceScene traceScene(context(), scene, frame);
-    const float time = 0.0f;
-    traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
-    std::vector<gpu::TraceRay> traceRays;
-    for (const Ray& ray : rays) traceRays.push_back(traceRay(ray));
-    const std::vector<gpu::BvhHit> hits = traceOnDevice(context(), traceScene, traceRays);
+    const std::vector<gpu::BvhHit> hits = traceMesh(context(), mesh, rays);
     Comparison comparison;
     TriangleMesh oneObject = mesh;  // the scene gives the whole mesh object id 1
     oneObject.objectIds.assign(mesh.triangleCount(), 1u);
@@ -156,14 +149,7 @@ TEST_F(TraceRays, DegenerateAndCoincidentTrianglesMatchBruteForce) {
     mesh.addTriangle({x, 0.1f, 0.5f}, {x + 0.1f, 0.1f, 0.5f}, {x + 0.2f, 0.1f, 0.5f}, 2);  // a segment
   }
   const std::vector<Ray> rays = bvh::test::mixedRays(mesh, 3000, 19);
-  const scene::Scene scene = sceneOf(mesh);
-  vk::FrameRecorder frame(context());
-  TraceScene traceScene(context(), scene, frame);
-  const float time = 0.0f;
-  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
-  std::vector<gpu::TraceRay> traceRays;
-  for (const Ray& ray : rays) traceRays.push_back(traceRay(ray));
-  const std::vector<gpu::BvhHit> hits = traceOnDevice(context(), traceScene, traceRays);
+  const std::vector<gpu::BvhHit> hits = traceMesh(context(), mesh, rays);
   Comparison c;
   bvh::TraceOptions surfacesOnly;
   surfacesOnly.ignoreObjectId = 2;

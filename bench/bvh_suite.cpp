@@ -1,0 +1,280 @@
+#include "bench/bvh_suite.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <random>
+#include <thread>
+
+#include "bench/embree_reference.h"
+#include "bvh/reference_builder.h"
+#include "runtime/error.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/passes/trace_rays_pass.h"
+#include "runtime/trace_scene.h"
+#include "runtime/vulkan/context.h"
+#include "runtime/vulkan/frame_recorder.h"
+#include "scenes/load_scene.h"
+
+namespace hmb::bench {
+namespace {
+
+constexpr const char* kLargeMesh = "cube-sphere-1m";
+
+// World-space triangles of a scene at its frame time, as one mesh.
+struct Flat {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;
+  bvh::TriangleList view() const { return {positions, indices, {}}; }
+};
+
+Flat flatten(const scene::Scene& scene) {
+  Flat flat;
+  for (const scene::Instance& instance : scene.instances) {
+    const scene::Mesh& mesh = scene.meshes[instance.mesh];
+    const glm::mat4 world = scene.worldMatrixAt(instance.node, scene.settings.frameTime);
+    const auto base = static_cast<uint32_t>(flat.positions.size());
+    for (const glm::vec3& p : mesh.positions) flat.positions.emplace_back(world * glm::vec4(p, 1.0f));
+    for (uint32_t i : mesh.indices) flat.indices.push_back(base + i);
+  }
+  return flat;
+}
+
+// A unit sphere of (6 * cells^2 * 2) triangles: a cube's faces tessellated and pushed out.
+scene::Scene cubeSphere(uint32_t cells) {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;
+  for (int face = 0; face < 6; ++face) {
+    const int axis = face / 2;
+    const float side = face % 2 ? 1.0f : -1.0f;
+    const auto base = static_cast<uint32_t>(positions.size());
+    for (uint32_t j = 0; j <= cells; ++j)
+      for (uint32_t i = 0; i <= cells; ++i) {
+        glm::vec3 p;
+        p[axis] = side;
+        p[(axis + 1) % 3] = 2.0f * float(i) / float(cells) - 1.0f;
+        p[(axis + 2) % 3] = 2.0f * float(j) / float(cells) - 1.0f;
+        positions.push_back(glm::normalize(p));
+      }
+    for (uint32_t j = 0; j < cells; ++j)
+      for (uint32_t i = 0; i < cells; ++i) {
+        const uint32_t v = base + j * (cells + 1) + i;
+        indices.insert(indices.end(), {v, v + 1, v + cells + 2, v, v + cells + 2, v + cells + 1});
+      }
+  }
+  scene::Scene scene = scene::singleMeshScene(positions, indices);
+  scene.name = kLargeMesh;
+  scene::deriveDefaults(scene);  // a camera framing it
+  return scene;
+}
+
+std::vector<bvh::Ray> cameraRays(const scene::Scene& scene, ImageSize size) {
+  const FrameCamera camera = frameCamera(scene, scene.settings.frameTime, size.width, size.height);
+  const glm::mat4 clipToWorld = glm::inverse(camera.viewProjCurrent);
+  std::vector<bvh::Ray> rays;
+  for (uint32_t y = 0; y < size.height; ++y)
+    for (uint32_t x = 0; x < size.width; ++x) {
+      const glm::vec2 ndc(2.0f * (float(x) + 0.5f) / float(size.width) - 1.0f,
+                          2.0f * (float(y) + 0.5f) / float(size.height) - 1.0f);
+      const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f), far = clipToWorld * glm::vec4(ndc, 0.5f, 1.0f);
+      const glm::vec3 a = glm::vec3(near) / near.w, b = glm::vec3(far) / far.w;
+      rays.push_back(bvh::Ray{a, glm::normalize(b - a)});
+    }
+  return rays;
+}
+
+std::vector<bvh::Ray> randomRays(const Flat& flat, uint32_t count) {
+  Aabb box;
+  for (const glm::vec3& p : flat.positions) box.grow(p);
+  std::mt19937 rng(1234);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::normal_distribution<float> gauss;
+  std::vector<bvh::Ray> rays;
+  for (uint32_t i = 0; i < count; ++i) {
+    const glm::vec3 origin = box.min + glm::vec3(unit(rng), unit(rng), unit(rng)) * box.extent();
+    glm::vec3 d(gauss(rng), gauss(rng), gauss(rng));
+    if (glm::length(d) == 0.0f) d = glm::vec3(0.0f, 0.0f, 1.0f);
+    rays.push_back(bvh::Ray{origin, glm::normalize(d)});
+  }
+  return rays;
+}
+
+double agreement(std::span<const gpu::BvhHit> device, std::span<const gpu::BvhHit> embree) {
+  size_t same = 0;
+  for (size_t i = 0; i < device.size(); ++i) {
+    const bool deviceHit = device[i].triangle != HMB_NO_HIT, embreeHit = embree[i].triangle != HMB_NO_HIT;
+    if (deviceHit != embreeHit) continue;
+    if (!deviceHit || std::abs(device[i].t - embree[i].t) <= 1e-4f * std::max(1.0f, std::abs(embree[i].t))) ++same;
+  }
+  return device.empty() ? 1.0 : double(same) / double(device.size());
+}
+
+TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene, const passes::TraceRaysPass& pass,
+                       const Flat& flat, std::span<const bvh::Ray> rays, const BvhSuiteOptions& options,
+                       bool embree) {
+  TraceFigures f;
+  f.rays = static_cast<uint32_t>(rays.size());
+  std::vector<gpu::TraceRay> traceRays;
+  for (const bvh::Ray& r : rays)
+    traceRays.push_back({glm::vec4(r.origin, r.tMin), glm::vec4(r.direction, r.tMax), 0u, HMB_IGNORE_NONE, 0u, 0u});
+  const vk::Buffer rayBuffer = vk::uploadedBuffer(context, traceRays, "bench rays");
+  const vk::Buffer hitBuffer(context, traceRays.size() * sizeof(gpu::BvhHit), vk::MemoryUse::Device, "bench hits");
+  vk::FrameRecorder frame(context);
+  std::vector<double> device;
+  for (int i = 0; i < options.warmup + options.repeats; ++i) {
+    frame.begin();
+    pass.record(frame, traceScene, rayBuffer, hitBuffer, f.rays);
+    const vk::FrameTimings timings = frame.submitAndWait();
+    if (i >= options.warmup) device.push_back(timings.passes.at(0).milliseconds.value_or(NAN));
+  }
+  f.deviceMilliseconds = summarize(device);
+  f.deviceMraysPerSecond = f.rays / (f.deviceMilliseconds.median * 1e3);
+  if (!embree) return f;
+  const EmbreeRun run = runEmbree(flat.view(), rays, embreeThreadCount(options.embreeThreads), options.warmup,
+                                  options.repeats);
+  std::vector<double> ms;
+  for (double s : run.traceSeconds) ms.push_back(s * 1e3);
+  f.embreeMilliseconds = summarize(ms);
+  f.embreeMraysPerSecond = f.rays / (f.embreeMilliseconds.median * 1e3);
+  const std::vector<gpu::BvhHit> hits = hitBuffer.download<gpu::BvhHit>();
+  f.hitAgreement = agreement(std::span(hits).first(rays.size()), run.hits);
+  if (f.hitAgreement < kMinHitAgreement)
+    throw Error("device and Embree hits agree on only " + std::to_string(f.hitAgreement * 100.0) + "% of the rays");
+  return f;
+}
+
+nlohmann::json summaryJson(const Summary& s) {
+  return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"samples", s.samples}};
+}
+
+nlohmann::json traceJson(const TraceFigures& f) {
+  return {{"rays", f.rays},
+          {"device_ms", summaryJson(f.deviceMilliseconds)},
+          {"embree_ms", summaryJson(f.embreeMilliseconds)},
+          {"device_mrays_per_s", f.deviceMraysPerSecond},
+          {"embree_mrays_per_s", f.embreeMraysPerSecond},
+          {"device_over_embree", f.deviceMraysPerSecond / f.embreeMraysPerSecond},
+          {"hit_agreement", f.hitAgreement}};
+}
+
+}  // namespace
+
+int embreeThreadCount(int requested) {
+  if (requested > 0) return requested;
+  if (const char* lp = std::getenv("LP_NUM_THREADS"); lp && std::atoi(lp) > 0) return std::atoi(lp);
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptions& options, const Progress& progress) {
+  if (!context.info().timestamps) throw Error("device " + context.info().name + " has no timestamps");
+  const bool embree = embreeAvailable();
+  if (!embree) progress("built without Embree: its columns stay empty");
+  std::vector<BvhCase> cases;
+  const passes::TraceRaysPass tracePass(context);
+  for (const std::string& name : options.scenes) {
+    progress("scene " + name);
+    const scene::Scene source = name == kLargeMesh ? cubeSphere(290) : scene::loadScene(name);
+    const Flat flat = flatten(source);
+    const scene::Scene scene = scene::singleMeshScene(flat.positions, flat.indices);
+    BvhCase c;
+    c.scene = name;
+    c.triangles = static_cast<uint32_t>(flat.indices.size() / 3);
+
+    progress("  device builds");
+    std::vector<double> builds;
+    std::vector<std::vector<double>> levels;
+    std::unique_ptr<TraceScene> traceScene;
+    for (int i = 0; i < options.warmup + options.repeats; ++i) {
+      vk::FrameRecorder frame(context);
+      traceScene = std::make_unique<TraceScene>(context, scene, frame);
+      if (i < options.warmup) continue;
+      builds.push_back(traceScene->meshBvh().stats().deviceMilliseconds);
+      levels.push_back(traceScene->meshBvh().stats().levelMilliseconds);
+    }
+    c.deviceBuildMilliseconds = summarize(builds);
+    const auto median = std::find(builds.begin(), builds.end(), c.deviceBuildMilliseconds.median);
+    c.deviceLevelMilliseconds = levels.at(median == builds.end() ? 0 : median - builds.begin());
+    c.deviceLevels = traceScene->meshBvh().stats().levels;
+    c.sahDevice = bvh::sahCost(traceScene->meshBvh().download(0));
+
+    progress("  CPU full-sweep build");
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(flat.view());
+    const auto start = std::chrono::steady_clock::now();
+    const bvh::Bvh reference = bvh::buildReferenceSah(input.bounds, input.centroids);
+    c.cpuReferenceBuildMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    c.sahReference = bvh::sahCost(reference);
+
+    vk::FrameRecorder frame(context);
+    const float time = scene.settings.frameTime;
+    traceScene->setShutterTimes(scene, std::span(&time, 1), frame);
+    const std::vector<bvh::Ray> coherent = cameraRays(source, options.coherentSize);
+    const std::vector<bvh::Ray> incoherent = randomRays(flat, options.incoherentRays);
+    if (embree) {
+      progress("  Embree builds");
+      const EmbreeRun run = runEmbree(flat.view(), {}, embreeThreadCount(options.embreeThreads), options.warmup,
+                                      options.repeats);
+      std::vector<double> sceneMs, bvhMs;
+      for (double s : run.sceneBuildSeconds) sceneMs.push_back(s * 1e3);
+      for (double s : run.bvhBuildSeconds) bvhMs.push_back(s * 1e3);
+      c.embreeSceneBuildMilliseconds = summarize(sceneMs);
+      c.embreeBvhBuildMilliseconds = summarize(bvhMs);
+      c.sahEmbree = bvh::sahCost(run.bvh);
+    }
+    progress("  coherent rays");
+    c.coherent = traceCase(context, *traceScene, tracePass, flat, coherent, options, embree);
+    progress("  incoherent rays");
+    c.incoherent = traceCase(context, *traceScene, tracePass, flat, incoherent, options, embree);
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+nlohmann::json bvhCaseJson(const BvhCase& c) {
+  const double mtris = c.triangles / (c.deviceBuildMilliseconds.median * 1e3);
+  const double embreeMtris = c.triangles / (c.embreeSceneBuildMilliseconds.median * 1e3);
+  return {{"scene", c.scene},
+          {"triangles", c.triangles},
+          {"build",
+           {{"device_ms", summaryJson(c.deviceBuildMilliseconds)},
+            {"device_mtris_per_s", mtris},
+            {"device_levels", c.deviceLevels},
+            {"device_level_ms", c.deviceLevelMilliseconds},
+            {"embree_scene_ms", summaryJson(c.embreeSceneBuildMilliseconds)},
+            {"embree_mtris_per_s", embreeMtris},
+            {"embree_build_bvh_ms", summaryJson(c.embreeBvhBuildMilliseconds)},
+            {"device_over_embree_speed", mtris / embreeMtris},
+            {"cpu_full_sweep_ms", c.cpuReferenceBuildMilliseconds}}},
+          {"sah",
+           {{"device", c.sahDevice},
+            {"cpu_full_sweep", c.sahReference},
+            {"embree_build_bvh", c.sahEmbree},
+            {"device_over_full_sweep", c.sahDevice / c.sahReference},
+            {"embree_over_full_sweep", c.sahEmbree / c.sahReference}}},
+          {"coherent", traceJson(c.coherent)},
+          {"incoherent", traceJson(c.incoherent)}};
+}
+
+void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
+  out << std::fixed;
+  out << "| scene | triangles | device build ms (Mtris/s) | Embree build ms (Mtris/s) | build speed ratio | SAH device / "
+         "full sweep (Embree) | coherent Mrays/s device / Embree (ratio) | incoherent Mrays/s device / Embree (ratio) |\n"
+      << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const BvhCase& c : cases) {
+    const double mtris = c.triangles / (c.deviceBuildMilliseconds.median * 1e3);
+    const double embreeMtris = c.triangles / (c.embreeSceneBuildMilliseconds.median * 1e3);
+    out << "| " << c.scene << " | " << c.triangles << " | " << std::setprecision(1) << c.deviceBuildMilliseconds.median
+        << " (" << std::setprecision(3) << mtris << ") | " << std::setprecision(1)
+        << c.embreeSceneBuildMilliseconds.median << " (" << std::setprecision(2) << embreeMtris << ") | "
+        << std::setprecision(3) << mtris / embreeMtris << "x | " << c.sahDevice / c.sahReference << "x ("
+        << c.sahEmbree / c.sahReference << "x) | ";
+    for (const TraceFigures* f : {&c.coherent, &c.incoherent})
+      out << std::setprecision(2) << f->deviceMraysPerSecond << " / " << f->embreeMraysPerSecond << " ("
+          << std::setprecision(3) << f->deviceMraysPerSecond / f->embreeMraysPerSecond << "x) | ";
+    out << "\n";
+  }
+}
+
+}  // namespace hmb::bench

@@ -1,0 +1,64 @@
+// The `bvh` suite: the device BVH builder and trace kernel against the CPU full-sweep SAH
+// build (quality) and Embree (speed) on the same triangles and rays, in one run on the same
+// machine. Every scene is flattened to its world-space triangles at its frame time, so all
+// sides build over the same primitives. Rays: coherent (one primary ray per pixel from the
+// scene's camera) and incoherent (random origins in the scene's bounds, random directions).
+// Every timed trace is also checked against Embree's hits (a fast wrong tracer is no result).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/raster_suite.h"
+
+namespace hmb::vk {
+class Context;
+}
+
+namespace hmb::bench {
+
+// Below this fraction of rays on which the device and Embree agree (both miss, or hit at the
+// same t within 1e-4 relative), the run fails.
+constexpr double kMinHitAgreement = 0.999;
+
+struct BvhSuiteOptions {
+  std::vector<std::string> scenes;  // reference scene names, glTF paths, or "cube-sphere-1m"
+  ImageSize coherentSize{640, 360};
+  uint32_t incoherentRays = 230400;
+  int warmup = 1;
+  int repeats = 3;
+  int embreeThreads = 0;  // 0: LP_NUM_THREADS when set, else every hardware thread
+};
+
+struct TraceFigures {
+  uint32_t rays = 0;
+  Summary deviceMilliseconds;
+  Summary embreeMilliseconds;
+  double deviceMraysPerSecond = 0, embreeMraysPerSecond = 0;
+  double hitAgreement = 0;  // worst repeat
+};
+
+struct BvhCase {
+  std::string scene;
+  uint32_t triangles = 0;
+  Summary deviceBuildMilliseconds;  // triangle boxes + every level, device timestamps
+  std::vector<double> deviceLevelMilliseconds;  // of the median build
+  uint32_t deviceLevels = 0;
+  Summary embreeSceneBuildMilliseconds;  // rtcCommitScene
+  Summary embreeBvhBuildMilliseconds;    // rtcBuildBVH into our layout
+  double cpuReferenceBuildMilliseconds = 0;  // full sweep, one thread
+  double sahDevice = 0, sahReference = 0, sahEmbree = 0;
+  TraceFigures coherent, incoherent;
+};
+
+std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptions& options, const Progress& progress);
+nlohmann::json bvhCaseJson(const BvhCase& c);
+void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases);
+int embreeThreadCount(int requested);
+
+}  // namespace hmb::bench
