@@ -62,15 +62,20 @@ std::string commandLine(int argc, char** argv) {
   return line;
 }
 
+// Fails before any work when --out names a file in a directory that does not exist.
+void checkOutputDirectory(const std::string& out) {
+  const fs::path parent = fs::path(out).parent_path();
+  if (!out.empty() && !parent.empty() && !fs::is_directory(parent))
+    throw hmb::Error("--out '" + out + "': directory '" + parent.string() + "' does not exist");
+}
+
 int raster(const GlobalOptions& global, const RasterOptions& options, const std::string& command) {
   hmb::bench::RasterSuiteOptions suite;
   suite.scenes = options.scenes;
   for (const std::string& size : options.sizes) suite.sizes.push_back(hmb::bench::parseImageSize(size));
   suite.warmup = options.warmup;
   suite.repeats = options.repeats;
-  const fs::path parent = fs::path(options.out).parent_path();
-  if (!options.out.empty() && !parent.empty() && !fs::is_directory(parent))
-    throw hmb::Error("--out '" + options.out + "': directory '" + parent.string() + "' does not exist");
+  checkOutputDirectory(options.out);
 
   hmb::vk::ContextOptions contextOptions;
   contextOptions.deviceIndex = global.device;
@@ -130,9 +135,7 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   suite.warmup = options.warmup;
   suite.repeats = options.repeats;
   suite.embreeThreads = options.embreeThreads;
-  const fs::path parent = fs::path(options.out).parent_path();
-  if (!options.out.empty() && !parent.empty() && !fs::is_directory(parent))
-    throw hmb::Error("--out '" + options.out + "': directory '" + parent.string() + "' does not exist");
+  checkOutputDirectory(options.out);
   hmb::vk::ContextOptions contextOptions;
   contextOptions.deviceIndex = global.device;
   const hmb::vk::Context context(contextOptions);
