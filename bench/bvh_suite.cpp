@@ -145,10 +145,6 @@ TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene,
   return f;
 }
 
-nlohmann::json summaryJson(const Summary& s) {
-  return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"samples", s.samples}};
-}
-
 nlohmann::json traceJson(const TraceFigures& f) {
   return {{"rays", f.rays},
           {"device_ms", summaryJson(f.deviceMilliseconds)},

@@ -212,11 +212,11 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   return result;
 }
 
+}  // namespace
+
 nlohmann::json summaryJson(const Summary& s) {
   return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"q1", s.q1}, {"q3", s.q3}, {"samples", s.samples}};
 }
-
-}  // namespace
 
 ImageSize parseImageSize(const std::string& text) {
   unsigned width = 0, height = 0;

@@ -58,6 +58,8 @@ struct Summary {
 };
 
 Summary summarize(std::vector<double> samples);
+// Its JSON: median, min, max, q1, q3 and every sample.
+nlohmann::json summaryJson(const Summary& s);
 
 struct RasterCase {
   std::string scene;
