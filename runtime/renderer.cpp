@@ -8,6 +8,7 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/reference_stage.h"
 #include "runtime/passes/test_pattern_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
@@ -43,15 +44,17 @@ struct Renderer::Passes {
       : testPattern(context),
         encodeDisplay(context),
         gbuffer(context, passes::defaultVisibilityScheme(context.info())),
+        reference(context),
         recorder(context) {}
   passes::TestPatternPass testPattern;
   passes::EncodeDisplayPass encodeDisplay;
   passes::GBufferStage gbuffer;
+  passes::ReferenceStage reference;
   vk::FrameRecorder recorder;
 };
 
 const std::vector<std::string>& methodNames() {
-  static const std::vector<std::string> names = {"sharp"};
+  static const std::vector<std::string> names = {"sharp", "reference"};
   return names;
 }
 
@@ -76,6 +79,7 @@ void validateRenderSettings(const RenderSettings& settings) {
                 " exceeds the limit of " + std::to_string(kMaxImageSide) + " pixels per side");
   if (settings.frameTime && !std::isfinite(*settings.frameTime))
     throw Error("frame time must be a finite number of seconds");
+  if (settings.method == "reference") passes::validateReferenceSettings(settings.reference);
 }
 
 Renderer::Renderer(vk::Context& context) : context_(context) {}
@@ -105,6 +109,23 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     passes_->testPattern.record(frame, linear, width, height, result.frameTime);
     passes_->encodeDisplay.record(frame, linear, display, width, height);
     timings = frame.submitAndWait();
+    result.image = {width, height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
+  } else if (settings.method == "reference") {
+    // Distributed ray tracing over the shutter: the judge of every other method.
+    GpuScene gpuScene(context_, scene);
+    gpuScene.setFrame(scene, result.frameTime, width, height);
+    vk::Buffer linear(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "beauty (linear RGBA)");
+    passes_->reference.plan(result.plan);
+    result.plan.run(passes::EncodeDisplayPass::kName);
+    timings = passes_->reference.render(frame, scene, gpuScene, result.frameTime, width, height, settings.reference,
+                                        linear, settings.onProgress);
+    frame.begin();
+    passes_->encodeDisplay.record(frame, linear, display, width, height);
+    const vk::FrameTimings encode = frame.submitAndWait();
+    timings.passes.insert(timings.passes.end(), encode.passes.begin(), encode.passes.end());
+    if (encode.frameMilliseconds)
+      timings.frameMilliseconds = timings.frameMilliseconds.value_or(0.0) + *encode.frameMilliseconds;
+    result.reference = passes_->reference.lastProgress();
     result.image = {width, height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
   } else {
     // sharp: the G-buffer's shaded colour, the shutter-close instant without blur.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include "runtime/frame_plan.h"
 #include "runtime/io/image.h"
 #include "runtime/passes/rasterize_pass.h"
+#include "runtime/passes/reference_stage.h"
 #include "scenes/scene.h"
 
 namespace hmb::vk {
@@ -27,6 +29,9 @@ struct RenderSettings {
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;  // seconds; default: the scene's settings.frameTime
+  passes::ReferenceSettings reference;
+  // Long methods (the reference) report how far they are after every submission.
+  std::function<void(const passes::ReferenceProgress&)> onProgress;
 };
 
 struct RenderResult {
@@ -41,6 +46,8 @@ struct RenderResult {
   // The G-buffer rasterizer of the frame (methods without one leave these empty).
   std::string visibilityScheme;
   passes::RasterStats raster;
+  // The reference: samples per pixel in the image (resumed ones included).
+  std::optional<passes::ReferenceProgress> reference;
 };
 
 // The methods this build can render, in the order the demo runs them.

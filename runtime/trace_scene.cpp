@@ -47,7 +47,9 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   std::vector<gpu::TraceInstance> instances;
   std::vector<gpu::InstanceTransform> transforms;
   for (const scene::Instance& instance : scene.instances) {
-    instances.push_back({instance.mesh, instance.objectId, 0u, 0u});
+    const uint32_t material = scene.meshes.at(instance.mesh).material;
+    const bool doubleSided = material < scene.materials.size() && scene.materials[material].doubleSided;
+    instances.push_back({instance.mesh, instance.objectId, doubleSided ? 0u : HMB_TRACE_INSTANCE_SINGLE_SIDED, 0u});
     for (const float t : times) {
       const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
       transforms.push_back({world, glm::inverse(world)});

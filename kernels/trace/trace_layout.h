@@ -11,7 +11,8 @@
 
 #define HMB_TRACE_GROUP 64
 
-// trace_rays
+// trace_rays. Bindings 2-11 are the scene (closest_hit.glsl declares them); every kernel that
+// traces uses these slots for them and its own slots outside 2-11.
 #define HMB_TRACE_BINDING_RAYS 0             // TraceRay[]
 #define HMB_TRACE_BINDING_HITS 1             // BvhHit[], one per ray
 #define HMB_TRACE_BINDING_TOP_NODES 2        // BvhNode[] over instances
@@ -33,13 +34,20 @@
 #define HMB_MOTION_BOUNDS_BINDING_BOXES 3  // BvhBox per instance
 #define HMB_MOTION_BOUNDS_BINDING_COUNT 4
 
+// TraceParams.flags: skip the back faces of single-sided instances, as the rasterizer does
+// (the renderer's rays); without it every face is hit (tests against brute force and Embree).
+#define HMB_TRACE_CULL_BACK_FACES 1u
+
+// TraceInstance.flags
+#define HMB_TRACE_INSTANCE_SINGLE_SIDED 1u  // its material is not double-sided
+
 HMB_GPU_BEGIN
 
 struct TraceParams {
   uint rayCount;
   uint instanceCount;
   uint timeCount;  // shutter times each instance has a transform for
-  uint pad0;
+  uint flags;      // HMB_TRACE_*
 };
 
 // origin + t * direction for t in [tMin, tMax], at shutter time index `time`.
@@ -55,8 +63,8 @@ struct TraceRay {
 struct TraceInstance {
   uint mesh;      // its bottom-level tree is rooted at mesh node `mesh`
   uint objectId;
+  uint flags;     // HMB_TRACE_INSTANCE_*
   uint pad0;
-  uint pad1;
 };
 
 struct InstanceTransform {

@@ -1,7 +1,10 @@
 // hmblur: the command-line front end. Everything it does goes through the library API
 // (runtime/renderer.h); errors are one line on stderr and a non-zero exit.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -38,6 +41,8 @@ struct RenderOptions {
   std::optional<float> frameTime;
   std::string out;
   std::string report;
+  hmb::passes::ReferenceSettings reference;
+  std::string checkpoint;
 };
 
 struct DemoOptions {
@@ -99,6 +104,29 @@ std::string formatMs(const std::optional<double>& ms) {
   return text;
 }
 
+// Progress of the reference on stderr: samples done, rays per second, time left.
+std::function<void(const hmb::passes::ReferenceProgress&)> referenceProgressPrinter(uint32_t width, uint32_t height) {
+  using Clock = std::chrono::steady_clock;
+  auto start = std::make_shared<std::optional<Clock::time_point>>();
+  auto lastPrint = std::make_shared<Clock::time_point>();
+  return [=](const hmb::passes::ReferenceProgress& p) {
+    const Clock::time_point now = Clock::now();
+    if (!*start) *start = now;
+    const bool last = p.samplesDone == p.samplesTotal;
+    if (!last && now - *lastPrint < std::chrono::seconds(2)) return;
+    *lastPrint = now;
+    const double seconds = std::chrono::duration<double>(now - **start).count();
+    const uint32_t rendered = p.samplesDone - p.samplesResumed;
+    char line[160];
+    // The first sample starts the clock, so rates count the samples after it.
+    const double rate = rendered > 1 && seconds > 0.0 ? (rendered - 1) / seconds : 0.0;
+    std::snprintf(line, sizeof(line), "hmblur: reference %u/%u spp, %.2f Mrays/s, %.0f s left", p.samplesDone,
+                  p.samplesTotal, rate * width * height * 1e-6,
+                  rate > 0.0 ? (p.samplesTotal - p.samplesDone) / rate : 0.0);
+    std::cerr << line << '\n';
+  };
+}
+
 int listDevices() {
   const auto devices = hmb::vk::Context::listDevices();
   if (devices.empty()) throw hmb::Error("no Vulkan device found (on Debian, mesa-vulkan-drivers provides lavapipe)");
@@ -130,6 +158,9 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   settings.width = options.width;
   settings.height = options.height;
   settings.frameTime = options.frameTime;
+  settings.reference = options.reference;
+  settings.reference.checkpoint = options.checkpoint;
+  if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
   hmb::validateRenderSettings(settings);
   checkOutputPath(options.out, {".exr", ".png"}, "--out");
   checkOutputPath(options.report, {".json"}, "--report");
@@ -220,6 +251,14 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--frame-time", renderOptions.frameTime, "Time of the frame in seconds (shutter closes then)");
   renderCmd->add_option("--out", renderOptions.out, "Output image: .exr (beauty + AOV layers) or .png (display)");
   renderCmd->add_option("--report", renderOptions.report, "JSON report: device, settings, per-pass times");
+  renderCmd->add_option("--spp", renderOptions.reference.samplesPerPixel, "reference: samples (shutter times) per pixel")
+      ->capture_default_str();
+  renderCmd->add_option("--seed", renderOptions.reference.seed, "Seed of every random choice (reference time jitter)")
+      ->capture_default_str();
+  renderCmd->add_flag("--pixel-jitter", renderOptions.reference.pixelJitter,
+                      "reference: a random point in the pixel per sample instead of its centre");
+  renderCmd->add_option("--checkpoint", renderOptions.checkpoint,
+                        "reference: file to resume from and to save the sum to after every batch");
 
   DemoOptions demoOptions;
   CLI::App* demoCmd = app.add_subcommand("demo", "Render the default scene with every method and write a report");

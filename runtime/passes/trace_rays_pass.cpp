@@ -11,9 +11,9 @@ TraceRaysPass::TraceRaysPass(const vk::Context& context)
     : kernel_(context, "trace/trace_rays", HMB_TRACE_BINDING_COUNT, sizeof(gpu::TraceParams)) {}
 
 void TraceRaysPass::record(vk::FrameRecorder& frame, const TraceScene& scene, const vk::Buffer& rays,
-                           const vk::Buffer& hits, uint32_t rayCount) const {
+                           const vk::Buffer& hits, uint32_t rayCount, uint32_t flags) const {
   if (scene.timeCount() == 0) throw Error("trace-rays: the scene's shutter times are not set");
-  const gpu::TraceParams params{rayCount, scene.instanceCount(), scene.timeCount(), 0u};
+  const gpu::TraceParams params{rayCount, scene.instanceCount(), scene.timeCount(), flags};
   const passes::BvhBuildPass& top = scene.instanceBvh();
   const passes::BvhBuildPass& meshes = scene.meshBvh();
   frame.dispatch(kName, kernel_,

@@ -22,8 +22,9 @@ class TraceRaysPass {
   explicit TraceRaysPass(const vk::Context& context);
 
   // rays: TraceRay[rayCount]; hits: BvhHit[rayCount]. The scene needs its shutter times set.
+  // flags: HMB_TRACE_* (kernels/trace/trace_layout.h), e.g. culling back faces as the rasterizer does.
   void record(vk::FrameRecorder& frame, const TraceScene& scene, const vk::Buffer& rays, const vk::Buffer& hits,
-              uint32_t rayCount) const;
+              uint32_t rayCount, uint32_t flags = 0) const;
 
  private:
   vk::ComputeKernel kernel_;

@@ -9,6 +9,7 @@
 #include "kernels/output/encode_display.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/raster/raster_layout.h"
+#include "kernels/reference/reference_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_registry.h"
@@ -41,6 +42,8 @@ const KernelLayout kLayouts[] = {
     {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
     {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false},
+    {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false},
+    {"reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), false},
 };
 
 using KernelPipelinesTest = VulkanTest;

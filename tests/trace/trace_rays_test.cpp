@@ -181,6 +181,48 @@ TEST_F(TraceRays, InvalidRaysMissAndFiniteRangesAreRespected) {
   EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
 }
 
+// Back faces of single-sided instances are skipped when asked (as the rasterizer culls them),
+// also under a transform that flips handedness; double-sided ones are always hit.
+TEST_F(TraceRays, BackFacesOfSingleSidedInstancesAreCulledOnRequest) {
+  scene::Scene scene;
+  scene::Mesh quad;  // counter-clockwise seen from +z: its front faces +z
+  quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  quad.material = 0;
+  scene.meshes = {quad, quad};
+  scene.meshes[1].material = 1;
+  scene.materials = {scene::Material{}, scene::Material{}};
+  scene.materials[1].doubleSided = true;
+  // Single-sided at z = 0; single-sided and mirrored (scale z = -1) at z = -2; double-sided at
+  // z = -4. The mirror leaves the quad's points in place but makes its object-space winding
+  // clockwise (glTF: a negative determinant flips the winding), so its world front is +z too.
+  scene::Node plain, mirrored, doubleSided;
+  mirrored.local.translation = {0, 0, -2};
+  mirrored.local.scale = {1, 1, -1};
+  doubleSided.local.translation = {0, 0, -4};
+  scene.nodes = {plain, mirrored, doubleSided};
+  scene.instances = {{0, 0, 1}, {0, 1, 2}, {1, 2, 3}};
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene, frame);
+  const float time = 0.0f;
+  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
+  const auto hitObject = [&](glm::vec3 origin, glm::vec3 direction, uint32_t flags) {
+    const std::vector<gpu::TraceRay> ray = {traceRay({origin, direction, 0.0f, 100.0f})};
+    return traceOnDevice(context(), traceScene, ray, flags)[0].objectId;
+  };
+  const glm::vec3 down(0, 0, -1), up(0, 0, 1);
+  // Fronts are hit either way.
+  EXPECT_EQ(hitObject({0.1f, 0.2f, 5.0f}, down, HMB_TRACE_CULL_BACK_FACES), 1u);
+  EXPECT_EQ(hitObject({0.1f, 0.2f, -1.0f}, down, HMB_TRACE_CULL_BACK_FACES), 2u);
+  // Backs: hit without culling, passed through with it.
+  EXPECT_EQ(hitObject({0.1f, 0.2f, -1.0f}, up, 0u), 1u);
+  EXPECT_EQ(hitObject({0.1f, 0.2f, -1.0f}, up, HMB_TRACE_CULL_BACK_FACES), HMB_NO_HIT);
+  EXPECT_EQ(hitObject({0.1f, 0.2f, -3.0f}, up, 0u), 2u);
+  EXPECT_EQ(hitObject({0.1f, 0.2f, -3.0f}, up, HMB_TRACE_CULL_BACK_FACES), HMB_NO_HIT);
+  // The double-sided quad's back is never culled.
+  EXPECT_EQ(hitObject({0.1f, 0.2f, -9.0f}, up, HMB_TRACE_CULL_BACK_FACES), 3u);
+}
+
 // Two meshes, four instances, two of them rotating and one translating fast; traced at four
 // shutter times. The host reference: every instance's triangles carried into the world at the
 // ray's time, brute force.

@@ -1,0 +1,71 @@
+// Layouts of the reference renderer (Cook et al. 1984 distributed ray tracing): for every
+// pixel, rays at stratified shutter times, each traced against the scene at its own time and
+// shaded by the shared shading function, summed per pixel and averaged at the end.
+#ifndef HMB_KERNELS_REFERENCE_REFERENCE_LAYOUT_H
+#define HMB_KERNELS_REFERENCE_REFERENCE_LAYOUT_H
+
+#include "../shared/glsl_cpp.h"
+
+#define HMB_REFERENCE_GROUP_X 8
+#define HMB_REFERENCE_GROUP_Y 8
+#define HMB_REFERENCE_AVERAGE_GROUP 64
+
+// accumulate_sample. Slots 2-11 hold the trace scene (kernels/trace/closest_hit.glsl).
+#define HMB_REFERENCE_BINDING_CAMERAS 0    // ReferenceCamera per shutter time of the batch
+#define HMB_REFERENCE_BINDING_SUM 1        // vec4 per pixel: sum of the shaded samples so far
+#define HMB_REFERENCE_BINDING_VERTICES 12  // GpuVertex per mesh vertex (normals, uvs)
+#define HMB_REFERENCE_BINDING_INSTANCES 13 // GpuInstance per instance (material, flags)
+#define HMB_REFERENCE_BINDING_MATERIALS 14
+#define HMB_REFERENCE_BINDING_TEXELS 15
+#define HMB_REFERENCE_BINDING_CAMERA 16    // GpuCamera of the frame: light, ambient, background
+#define HMB_REFERENCE_BINDING_COUNT 17
+
+// average_samples
+#define HMB_AVERAGE_BINDING_SUM 0    // vec4 per pixel
+#define HMB_AVERAGE_BINDING_COLOR 1  // vec4 per pixel: the mean, linear RGB, a = 1
+#define HMB_AVERAGE_BINDING_COUNT 2
+
+// ReferenceSampleParams.flags
+#define HMB_REFERENCE_PIXEL_JITTER 1u  // a random point in the pixel instead of its centre
+
+HMB_GPU_BEGIN
+
+// The pinhole camera at one shutter time. A pixel's ray is eye + t * (forward + x * right +
+// y * down) with x, y in [-1, 1] across the image, so t is the camera-space depth of a hit and
+// the rasterizer's near and far planes are t limits.
+struct ReferenceCamera {
+  vec4 eye;
+  vec4 right;    // world-space, scaled so x = 1 is the right edge of the image
+  vec4 down;     // world-space, scaled so y = 1 is the bottom edge
+  vec4 forward;  // world-space view direction (unit in camera units)
+};
+
+struct ReferenceSampleParams {
+  uint width;
+  uint height;
+  uint time;         // index of this sample's shutter time in the batch (cameras, transforms)
+  uint sampleIndex;  // global index of the sample: seeds the pixel jitter
+  uint seed;
+  uint flags;        // HMB_REFERENCE_*
+  uint instanceCount;
+  uint timeCount;    // shutter times in the batch
+  float tMin;        // the near plane's depth
+  float tMax;        // the far plane's depth
+  uint pad0;
+  uint pad1;
+};
+
+struct AverageParams {
+  uint pixelCount;
+  uint sampleCount;
+  uint pad0;
+  uint pad1;
+};
+
+HMB_GPU_END
+
+HMB_CHECK_SIZE(ReferenceCamera, 64)
+HMB_CHECK_SIZE(ReferenceSampleParams, 48)
+HMB_CHECK_SIZE(AverageParams, 16)
+
+#endif

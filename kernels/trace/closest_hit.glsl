@@ -1,0 +1,125 @@
+// The closest hit of a ray through the two-level BVH, stackless: each node's link for the
+// ray's direction octant says where to go next (kernels/bvh/bvh_build_layout.h), so no
+// per-ray stack is kept and no tree is too deep. Instances of the ignored object are skipped
+// whole, so a reveal ray finds the first surface behind the object it starts on.
+// Declares the scene's buffers at bindings 2-11 (trace_layout.h); every kernel that traces
+// includes this file and keeps its own bindings outside that range.
+#ifndef HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
+#define HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
+
+#include "trace_layout.h"
+#include "ray_tests.glsl"
+
+layout(std430, binding = HMB_TRACE_BINDING_TOP_NODES) readonly buffer TopNodes { BvhNode topNodes[]; };
+layout(std430, binding = HMB_TRACE_BINDING_TOP_LINKS) readonly buffer TopLinks { uint topLinks[]; };
+layout(std430, binding = HMB_TRACE_BINDING_TOP_PRIMITIVES) readonly buffer TopPrimitives { uint topPrimitives[]; };
+layout(std430, binding = HMB_TRACE_BINDING_INSTANCES) readonly buffer TraceInstances { TraceInstance traceInstances[]; };
+layout(std430, binding = HMB_TRACE_BINDING_TRANSFORMS) readonly buffer Transforms { InstanceTransform transforms[]; };
+layout(std430, binding = HMB_TRACE_BINDING_MESH_NODES) readonly buffer MeshNodes { BvhNode meshNodes[]; };
+layout(std430, binding = HMB_TRACE_BINDING_MESH_LINKS) readonly buffer MeshLinks { uint meshLinks[]; };
+layout(std430, binding = HMB_TRACE_BINDING_MESH_PRIMITIVES) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
+layout(std430, binding = HMB_TRACE_BINDING_TRIANGLES) readonly buffer TraceTriangles { uvec4 traceTriangles[]; };
+layout(std430, binding = HMB_TRACE_BINDING_POSITIONS) readonly buffer Positions { vec4 positions[]; };
+
+// What a trace needs to know of the scene beside its buffers.
+struct TraceSceneInfo {
+  uint instanceCount;
+  uint timeCount;  // transforms per instance
+  uint flags;      // HMB_TRACE_*
+};
+
+vec3 lowerOf(BvhNode n) { return vec3(n.minX, n.minY, n.minZ); }
+vec3 upperOf(BvhNode n) { return vec3(n.maxX, n.maxY, n.maxZ); }
+
+// Where traversal goes after entering interior node n whose link word is `link`.
+uint firstChildOf(BvhNode n, uint link) {
+  return n.leftOrFirst + ((link & HMB_BVH_LINK_RIGHT_FIRST) != 0u ? 1u : 0u);
+}
+
+BvhHit missedHit(float tMax) {
+  BvhHit hit;
+  hit.t = tMax;
+  hit.u = 0.0;
+  hit.v = 0.0;
+  hit.triangle = HMB_NO_HIT;
+  hit.objectId = HMB_NO_HIT;
+  hit.instance = HMB_NO_HIT;
+  hit.pad1 = 0u;
+  hit.pad2 = 0u;
+  return hit;
+}
+
+// Traces the ray, carried into the instance's space at its shutter time, through the
+// instance's mesh tree; keeps a hit that is nearer than `best` (ties: lower instance, then
+// lower triangle, so the answer does not depend on the visiting order).
+void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+  const uint mesh = traceInstances[instance].mesh;
+  const uint time = min(ray.time, scene.timeCount - 1u);
+  const mat4 objectFromWorld = transforms[instance * scene.timeCount + time].objectFromWorld;
+  const vec3 origin = (objectFromWorld * vec4(ray.originTMin.xyz, 1.0)).xyz;
+  const vec3 direction = mat3(objectFromWorld) * ray.directionTMax.xyz;
+  const PreparedRay r = prepareRay(origin, direction);
+  if (!r.valid) return;
+  // A back face is one whose counter-clockwise normal the ray runs along; a transform that
+  // flips handedness flips that in object space.
+  const bool cull = (scene.flags & HMB_TRACE_CULL_BACK_FACES) != 0u &&
+                    (traceInstances[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
+  const float handedness = determinant(mat3(objectFromWorld)) < 0.0 ? -1.0 : 1.0;
+  const float tMin = ray.originTMin.w;
+  uint node = mesh;
+  while (node != HMB_BVH_LINK_END) {
+    const BvhNode n = meshNodes[node];
+    const uint link = meshLinks[node * HMB_BVH_OCTANTS + r.octant];
+    if (intersectBox(r, lowerOf(n), upperOf(n), tMin, best.t)) {
+      if (n.count == 0u) {
+        node = firstChildOf(n, link);
+        continue;
+      }
+      for (uint k = 0; k < n.count; ++k) {
+        const uint triangle = meshPrimitives[n.leftOrFirst + k];
+        const uvec4 tri = traceTriangles[triangle];
+        const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
+        float t, u, v;
+        if (!intersectTriangle(r, p0, p1, p2, t, u, v)) continue;
+        if (!(t >= tMin) || t > best.t) continue;
+        if (cull && handedness * dot(direction, cross(p1 - p0, p2 - p0)) > 0.0) continue;
+        if (t == best.t && (best.triangle != HMB_NO_HIT) &&
+            (instance > best.instance || (instance == best.instance && triangle >= best.triangle)))
+          continue;
+        best.t = t;
+        best.u = u;
+        best.v = v;
+        best.triangle = triangle;
+        best.objectId = traceInstances[instance].objectId;
+        best.instance = instance;
+      }
+    }
+    node = link & HMB_BVH_LINK_NEXT_MASK;
+  }
+}
+
+// The closest hit in [tMin, tMax] of the ray; a miss has triangle == HMB_NO_HIT and t == tMax.
+BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
+  BvhHit best = missedHit(ray.directionTMax.w);
+  const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
+  if (!r.valid || scene.instanceCount == 0u) return best;
+  uint node = HMB_BVH_ROOT;
+  while (node != HMB_BVH_LINK_END) {
+    const BvhNode n = topNodes[node];
+    const uint link = topLinks[node * HMB_BVH_OCTANTS + r.octant];
+    if (intersectBox(r, lowerOf(n), upperOf(n), ray.originTMin.w, best.t)) {
+      if (n.count == 0u) {
+        node = firstChildOf(n, link);
+        continue;
+      }
+      for (uint k = 0; k < n.count; ++k) {
+        const uint instance = topPrimitives[n.leftOrFirst + k];
+        if (traceInstances[instance].objectId != ray.ignoreObjectId) traceInstance(instance, ray, scene, best);
+      }
+    }
+    node = link & HMB_BVH_LINK_NEXT_MASK;
+  }
+  return best;
+}
+
+#endif

@@ -1,0 +1,232 @@
+#include "runtime/passes/reference_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <numeric>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "kernels/reference/reference_layout.h"
+#include "kernels/trace/trace_layout.h"
+#include "runtime/error.h"
+#include "runtime/frame_plan.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/trace_scene.h"
+
+namespace hmb::passes {
+namespace {
+
+constexpr uint32_t kMaxSamplesPerPixel = 1u << 20;
+constexpr char kCheckpointMagic[8] = {'H', 'M', 'B', 'R', 'E', 'F', '1', '\0'};
+
+// SplitMix64: the per-stratum jitter from the seed (host side, shared by all pixels).
+uint64_t splitMix64(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+// A step coprime to n near n / golden ratio: k -> k * step mod n visits every stratum once,
+// and any run of consecutive k is spread over the whole shutter.
+uint32_t spreadingStep(uint32_t n) {
+  if (n <= 2) return 1;
+  uint32_t step = std::max(1u, static_cast<uint32_t>(std::lround(double(n) * 0.6180339887498949)));
+  while (std::gcd(step, n) != 1) ++step;
+  return step;
+}
+
+gpu::ReferenceCamera referenceCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
+  const FrameCamera camera = frameCamera(scene, t, width, height);
+  const glm::mat4 cameraToWorld = glm::inverse(camera.view);
+  // projection[0][0] = 1 / (aspect tan(fov / 2)); projection[1][1] = -1 / tan(fov / 2) (y down).
+  const float tanX = 1.0f / camera.projection[0][0];
+  const float tanY = 1.0f / std::abs(camera.projection[1][1]);
+  gpu::ReferenceCamera r{};
+  r.eye = glm::vec4(camera.eye, 1.0f);
+  r.right = glm::vec4(glm::vec3(cameraToWorld[0]) * tanX, 0.0f);
+  r.down = glm::vec4(-glm::vec3(cameraToWorld[1]) * tanY, 0.0f);
+  r.forward = glm::vec4(-glm::vec3(cameraToWorld[2]), 0.0f);
+  return r;
+}
+
+void appendTimings(vk::FrameTimings& total, const vk::FrameTimings& part) {
+  total.passes.insert(total.passes.end(), part.passes.begin(), part.passes.end());
+  if (part.frameMilliseconds) total.frameMilliseconds = total.frameMilliseconds.value_or(0.0) + *part.frameMilliseconds;
+}
+
+// What a checkpoint must match to be resumed: the scene, the image and every setting that
+// changes which samples are taken.
+nlohmann::json checkpointIdentity(const scene::Scene& scene, float frameTime, uint32_t width, uint32_t height,
+                                  const ReferenceSettings& settings) {
+  return {{"scene", scene.name},
+          {"triangles", scene.triangleCount()},
+          {"instances", scene.instances.size()},
+          {"width", width},
+          {"height", height},
+          {"frame_time", frameTime},
+          {"exposure", scene.settings.exposure},
+          {"spp", settings.samplesPerPixel},
+          {"seed", settings.seed},
+          {"pixel_jitter", settings.pixelJitter}};
+}
+
+// Reads the samples done and the per-pixel sums; 0 when there is no file yet.
+uint32_t readCheckpoint(const std::filesystem::path& path, const nlohmann::json& identity,
+                        std::vector<glm::vec4>& sums) {
+  if (!std::filesystem::exists(path)) return 0;
+  std::ifstream in(path, std::ios::binary);
+  char magic[8] = {};
+  uint64_t headerBytes = 0;
+  in.read(magic, sizeof(magic));
+  in.read(reinterpret_cast<char*>(&headerBytes), sizeof(headerBytes));
+  if (!in || std::memcmp(magic, kCheckpointMagic, sizeof(magic)) != 0 || headerBytes > (1u << 20))
+    throw Error("checkpoint '" + path.string() + "' is not a reference checkpoint");
+  std::string text(headerBytes, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(headerBytes));
+  const nlohmann::json header = nlohmann::json::parse(text, nullptr, false);
+  if (!in || header.is_discarded() || !header.contains("identity") || !header.contains("samples_done"))
+    throw Error("checkpoint '" + path.string() + "' is damaged");
+  if (header["identity"] != identity)
+    throw Error("checkpoint '" + path.string() + "' was made for other settings (" + header["identity"].dump() +
+                "); remove it or pass another --checkpoint");
+  in.read(reinterpret_cast<char*>(sums.data()), static_cast<std::streamsize>(sums.size() * sizeof(glm::vec4)));
+  if (!in) throw Error("checkpoint '" + path.string() + "' is truncated");
+  return header["samples_done"].get<uint32_t>();
+}
+
+// Written beside the target and renamed over it, so an interrupted write never loses the last one.
+void writeCheckpoint(const std::filesystem::path& path, const nlohmann::json& identity, uint32_t samplesDone,
+                     const std::vector<glm::vec4>& sums) {
+  const std::string header = nlohmann::json{{"identity", identity}, {"samples_done", samplesDone}}.dump();
+  const uint64_t headerBytes = header.size();
+  const std::filesystem::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    out.write(kCheckpointMagic, sizeof(kCheckpointMagic));
+    out.write(reinterpret_cast<const char*>(&headerBytes), sizeof(headerBytes));
+    out.write(header.data(), static_cast<std::streamsize>(header.size()));
+    out.write(reinterpret_cast<const char*>(sums.data()), static_cast<std::streamsize>(sums.size() * sizeof(glm::vec4)));
+    if (!out) throw Error("cannot write checkpoint '" + partial.string() + "'");
+  }
+  std::filesystem::rename(partial, path);
+}
+
+}  // namespace
+
+void validateReferenceSettings(const ReferenceSettings& settings) {
+  if (settings.samplesPerPixel == 0 || settings.samplesPerPixel > kMaxSamplesPerPixel)
+    throw Error("--spp " + std::to_string(settings.samplesPerPixel) + " is out of range 1.." +
+                std::to_string(kMaxSamplesPerPixel));
+  if (settings.timesPerBatch == 0 || settings.timesPerBatch > 4096)
+    throw Error("reference batch of " + std::to_string(settings.timesPerBatch) + " times is out of range 1..4096");
+  if (!settings.checkpoint.empty()) {
+    const std::filesystem::path parent = settings.checkpoint.parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      throw Error("--checkpoint '" + settings.checkpoint.string() + "': directory '" + parent.string() +
+                  "' does not exist");
+  }
+}
+
+std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32_t samples, uint32_t seed) {
+  std::vector<float> times(samples);
+  const uint32_t step = spreadingStep(samples);
+  const double open = double(frameTime) - double(exposure);
+  for (uint32_t k = 0; k < samples; ++k) {
+    const uint32_t stratum = static_cast<uint32_t>((uint64_t(k) * step) % samples);
+    const double jitter = double(splitMix64((uint64_t(seed) << 32) | stratum) >> 11) * 0x1.0p-53;
+    times[k] = static_cast<float>(open + (stratum + jitter) / samples * double(exposure));
+  }
+  return times;
+}
+
+ReferenceStage::ReferenceStage(const vk::Context& context)
+    : context_(context),
+      accumulate_(context, "reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT,
+                  sizeof(gpu::ReferenceSampleParams)),
+      average_(context, "reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams)) {}
+
+void ReferenceStage::plan(FramePlan& plan) const {
+  plan.run(kBvhMeshes);
+  plan.run(kBvhInstances);
+  plan.run(kAccumulate);
+  plan.run(kAverage);
+}
+
+vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::Scene& scene, const GpuScene& gpuScene,
+                                        float frameTime, uint32_t width, uint32_t height,
+                                        const ReferenceSettings& settings, const vk::Buffer& color,
+                                        const std::function<void(const ReferenceProgress&)>& progress) {
+  validateReferenceSettings(settings);
+  const uint64_t pixels = uint64_t(width) * height;
+  const nlohmann::json identity = checkpointIdentity(scene, frameTime, width, height, settings);
+  std::vector<glm::vec4> sums(pixels, glm::vec4(0.0f));
+  progress_ = {};
+  progress_.samplesTotal = settings.samplesPerPixel;
+  if (!settings.checkpoint.empty()) progress_.samplesResumed = readCheckpoint(settings.checkpoint, identity, sums);
+  progress_.samplesDone = std::min(progress_.samplesResumed, settings.samplesPerPixel);
+  vk::Buffer sum(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "reference sums");
+  sum.upload(std::span<const glm::vec4>(sums));
+
+  vk::FrameTimings total;
+  const std::vector<float> times =
+      referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
+  if (progress_.samplesDone < settings.samplesPerPixel) {
+    TraceScene traceScene(context_, scene, frame);
+    total.passes.push_back({kBvhMeshes, traceScene.meshBvh().stats().deviceMilliseconds});
+    total.frameMilliseconds = traceScene.meshBvh().stats().deviceMilliseconds;
+    const float tMin = gpuScene.camera().znear, tMax = gpuScene.camera().zfar;
+    while (progress_.samplesDone < settings.samplesPerPixel) {
+      const uint32_t first = progress_.samplesDone;
+      const uint32_t count = std::min(settings.timesPerBatch, settings.samplesPerPixel - first);
+      const std::span<const float> batch(times.data() + first, count);
+      traceScene.setShutterTimes(scene, batch, frame);
+      const double bvhMs = traceScene.instanceBvh().stats().deviceMilliseconds;
+      appendTimings(total, {{{kBvhInstances, bvhMs}}, bvhMs});
+      std::vector<gpu::ReferenceCamera> cameras;
+      for (const float t : batch) cameras.push_back(referenceCamera(scene, t, width, height));
+      const vk::Buffer cameraBuffer = vk::uploadedBuffer(context_, cameras, "reference cameras");
+      for (uint32_t i = 0; i < count; ++i) {
+        const gpu::ReferenceSampleParams params{width,
+                                                height,
+                                                i,
+                                                first + i,
+                                                settings.seed,
+                                                settings.pixelJitter ? HMB_REFERENCE_PIXEL_JITTER : 0u,
+                                                traceScene.instanceCount(),
+                                                traceScene.timeCount(),
+                                                tMin,
+                                                tMax,
+                                                0u,
+                                                0u};
+        const TraceScene& ts = traceScene;
+        frame.begin();
+        frame.dispatch(kAccumulate, accumulate_,
+                       {&cameraBuffer, &sum, &ts.instanceBvh().nodes(), &ts.instanceBvh().links(),
+                        &ts.instanceBvh().primitives(), &ts.instances(), &ts.transforms(), &ts.meshBvh().nodes(),
+                        &ts.meshBvh().links(), &ts.meshBvh().primitives(), &ts.triangles(), &ts.positions(),
+                        &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(),
+                        &gpuScene.cameraBuffer()},
+                       params,
+                       {vk::groupsFor(width, HMB_REFERENCE_GROUP_X), vk::groupsFor(height, HMB_REFERENCE_GROUP_Y), 1});
+        appendTimings(total, frame.submitAndWait());
+        ++progress_.samplesDone;
+        if (progress) progress(progress_);
+      }
+      if (!settings.checkpoint.empty())
+        writeCheckpoint(settings.checkpoint, identity, progress_.samplesDone, sum.download<glm::vec4>());
+    }
+  }
+
+  const gpu::AverageParams params{static_cast<uint32_t>(pixels), progress_.samplesDone, 0u, 0u};
+  frame.begin();
+  frame.dispatch(kAverage, average_, {&sum, &color}, params,
+                 vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_REFERENCE_AVERAGE_GROUP)));
+  appendTimings(total, frame.submitAndWait());
+  return total;
+}
+
+}  // namespace hmb::passes

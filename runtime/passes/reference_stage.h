@@ -1,0 +1,74 @@
+// The reference renderer (Cook et al. 1984): every pixel sampled at N stratified shutter
+// times, each ray traced through the scene at its own time (kernels/reference/). Times are
+// taken in batches: a batch's instance transforms and top-level tree are set up once, then one
+// dispatch per time sample adds every pixel's shaded sample to its sum. The strata are visited
+// in a spread-out order, so the sum after any number of samples covers the whole shutter, and
+// a checkpoint file lets a long render stop after any batch and resume where it stopped.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/frame_recorder.h"
+#include "scenes/scene.h"
+
+namespace hmb {
+class FramePlan;
+class GpuScene;
+}
+
+namespace hmb::passes {
+
+struct ReferenceSettings {
+  uint32_t samplesPerPixel = 256;
+  uint32_t seed = 1;
+  bool pixelJitter = false;       // a random point in the pixel per sample instead of its centre
+  uint32_t timesPerBatch = 64;    // shutter times whose transforms are on the device at once
+  std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten per batch
+};
+
+// Throws hmb::Error (one line) for settings that cannot render.
+void validateReferenceSettings(const ReferenceSettings& settings);
+
+// Shutter time of each stratum, in the order they are rendered: stratum s covers
+// [open + s E / N, open + (s + 1) E / N) and is sampled at a jitter drawn from the seed.
+std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32_t samples, uint32_t seed);
+
+struct ReferenceProgress {
+  uint32_t samplesDone = 0;
+  uint32_t samplesTotal = 0;
+  uint32_t samplesResumed = 0;  // taken from the checkpoint, not rendered by this call
+};
+
+class ReferenceStage {
+ public:
+  static constexpr const char* kBvhMeshes = "reference-bvh-meshes";
+  static constexpr const char* kBvhInstances = "reference-bvh-instances";
+  static constexpr const char* kAccumulate = "reference-accumulate-sample";
+  static constexpr const char* kAverage = "reference-average";
+
+  explicit ReferenceStage(const vk::Context& context);
+
+  void plan(FramePlan& plan) const;
+
+  // Renders the mean of the samples into `color` (vec4 per pixel, row 0 at the top) and
+  // returns the device time of every submission it made, merged. `gpuScene` must have its
+  // frame set (materials, the light). `progress` is called after every submission.
+  vk::FrameTimings render(vk::FrameRecorder& frame, const scene::Scene& scene, const GpuScene& gpuScene,
+                          float frameTime, uint32_t width, uint32_t height, const ReferenceSettings& settings,
+                          const vk::Buffer& color, const std::function<void(const ReferenceProgress&)>& progress);
+
+  const ReferenceProgress& lastProgress() const { return progress_; }
+
+ private:
+  const vk::Context& context_;
+  vk::ComputeKernel accumulate_;
+  vk::ComputeKernel average_;
+  ReferenceProgress progress_;
+};
+
+}  // namespace hmb::passes
