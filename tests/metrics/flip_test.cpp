@@ -51,6 +51,14 @@ TEST(Flip, UniformBlackAgainstWhiteMatchesTheEquationsByHand) {
   for (float value : map.values) EXPECT_NEAR(value, expected, 1e-3);
 }
 
+TEST(Flip, UniformRedAgainstBlackMatchesTheEquationsByHand) {
+  // sRGB red is CIELAB (53.2408, 80.0925, 67.2032); the Hunt adjustment scales a, b by L / 100.
+  const double lightness = 53.2408;
+  const double expected = uniformColourError(lightness, lightness / 100 * 80.0925, lightness / 100 * 67.2032);
+  const ScalarMap map = flipMap(constantImage(24, 24, 1, 0, 0), constantImage(24, 24, 0, 0, 0));
+  for (float value : map.values) EXPECT_NEAR(value, expected, 1e-3);
+}
+
 TEST(Flip, UniformGreyStepMatchesTheEquationsByHand) {
   // Display grey 0.5 -> linear 0.21404 -> L* 53.389; display 0.6 -> linear 0.31855 -> L* 63.222.
   const double expected = uniformColourError(63.2223 - 53.3890, 0.0, 0.0);
