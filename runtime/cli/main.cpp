@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "runtime/cli/compare_command.h"
 #include "runtime/error.h"
 #include "runtime/io/image.h"
 #include "runtime/renderer.h"
@@ -268,6 +269,8 @@ int main(int argc, char** argv) {
 
   CLI::App* listScenesCmd = app.add_subcommand("list-scenes", "List the built-in reference scenes");
   CLI::App* listDevicesCmd = app.add_subcommand("list-devices", "List the Vulkan devices");
+  hmb::cli::CompareOptions compareOptions;
+  CLI::App* compareCmd = hmb::cli::addCompareCommand(app, compareOptions);
 
   try {
     app.parse(argc, argv);
@@ -280,6 +283,7 @@ int main(int argc, char** argv) {
     if (*listScenesCmd) return listScenes();
     if (*renderCmd) return render(global, renderOptions);
     if (*demoCmd) return demo(global, demoOptions);
+    if (*compareCmd) return hmb::cli::runCompare(compareOptions);
   } catch (const std::exception& e) {
     std::cerr << "hmblur: error: " << e.what() << '\n';
     return kError;

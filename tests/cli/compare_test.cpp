@@ -1,0 +1,169 @@
+// hmblur compare as a user meets it: the table, the JSON, error images, one-line errors.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "runtime/io/image.h"
+
+namespace hmb::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CliRun hmblur(const std::string& args) {
+  const std::string command = std::string(HMB_CLI_PATH) + " --validation " + args + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> chunk{};
+  while (size_t n = fread(chunk.data(), 1, chunk.size(), pipe)) run.output.append(chunk.data(), n);
+  const int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+fs::path tempDir(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("hmblur_compare_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void expectOneLineError(const CliRun& run, const std::string& needle) {
+  EXPECT_NE(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find(needle), std::string::npos) << run.output;
+  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+}
+
+// A 32x24 grey frame with a bright square at `squareX`: moving the square is the "motion".
+io::Rgba8Image frame(uint32_t squareX, uint8_t squareValue = 230, uint32_t width = 32, uint32_t height = 24) {
+  io::Rgba8Image image{.width = width, .height = height};
+  image.pixels.resize(size_t(width) * height * 4);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const bool inSquare = x >= squareX && x < squareX + 8 && y >= 8 && y < 16;
+      uint8_t* pixel = image.pixels.data() + (size_t(y) * width + x) * 4;
+      pixel[0] = pixel[1] = inSquare ? squareValue : 60;
+      pixel[2] = inSquare ? 40 : 60;
+      pixel[3] = 255;
+    }
+  return image;
+}
+
+// The reference blurs the square over x in [10, 22); the sharp frame has it at [14, 22).
+io::Rgba8Image blurredFrame() {
+  io::Rgba8Image image = frame(14);
+  for (uint32_t y = 8; y < 16; ++y)
+    for (uint32_t x = 10; x < 14; ++x) {
+      uint8_t* pixel = image.pixels.data() + (size_t(y) * image.width + x) * 4;
+      pixel[0] = pixel[1] = uint8_t(60 + (230 - 60) * (x - 9) / 5);
+      pixel[2] = 50;
+    }
+  return image;
+}
+
+TEST(CompareCli, PrintsATableAndWritesJsonAndErrorImages) {
+  const fs::path dir = tempDir("table");
+  io::writePng(dir / "reference.png", blurredFrame());
+  io::writePng(dir / "sharp.png", frame(14));
+  io::writePng(dir / "method.png", frame(12));
+  const CliRun run = hmblur("--quiet compare " + (dir / "reference.png").string() + " " + (dir / "method.png").string() +
+                            " " + (dir / "sharp.png").string() + " --sharp " + (dir / "sharp.png").string() +
+                            " --json " + (dir / "metrics.json").string() + " --error-images " +
+                            (dir / "errors").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  for (const char* text : {"PSNR dB", "SSIM", "FLIP", "blur region: 32 pixels", "method.png", "sharp.png"})
+    EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
+
+  std::ifstream in(dir / "metrics.json");
+  const nlohmann::json json = nlohmann::json::parse(in);
+  EXPECT_EQ(json["tool"], "hmblur compare");
+  EXPECT_EQ(json["blur_region_pixels"], 32);
+  EXPECT_EQ(json["settings"]["flip"]["pixels_per_degree"], 67.0);
+  ASSERT_EQ(json["images"].size(), 2u);
+  for (const auto& image : json["images"]) {
+    const auto& metrics = image["metrics"];
+    EXPECT_TRUE(metrics["frame"]["psnr_db"].is_number()) << metrics.dump();
+    EXPECT_TRUE(metrics["frame"]["ssim"].is_number()) << metrics.dump();
+    EXPECT_GT(metrics["frame"]["flip"].get<double>(), 0.0);
+    ASSERT_TRUE(metrics["region"].is_object()) << metrics.dump();
+    EXPECT_EQ(metrics["region"]["pixels"], 32);
+    // Both images are wrong where the reference is blurred, worse there than over the frame.
+    EXPECT_LT(metrics["region"]["psnr_db"].get<double>(), metrics["frame"]["psnr_db"].get<double>());
+    const io::Rgba8Image error = io::readPng(image["error_image"].get<std::string>());
+    EXPECT_EQ(error.width, 32u);
+    EXPECT_EQ(error.height, 24u);
+  }
+}
+
+TEST(CompareCli, IdenticalImagesShowAnInfinitePsnrAndWriteNull) {
+  const fs::path dir = tempDir("identical");
+  io::writePng(dir / "a.png", frame(5));
+  const CliRun run = hmblur("--quiet compare " + (dir / "a.png").string() + " " + (dir / "a.png").string() +
+                            " --json " + (dir / "m.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("inf"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("blur region"), std::string::npos) << run.output;  // no --sharp, no region
+  std::ifstream in(dir / "m.json");
+  const nlohmann::json json = nlohmann::json::parse(in);
+  EXPECT_TRUE(json["images"][0]["metrics"]["frame"]["psnr_db"].is_null());
+  EXPECT_EQ(json["images"][0]["metrics"]["frame"]["mse"], 0.0);
+  EXPECT_TRUE(json["images"][0]["metrics"]["region"].is_null());
+  EXPECT_TRUE(json["sharp"].is_null());
+}
+
+TEST(CompareCli, MissingFileIsAOneLineError) {
+  const fs::path dir = tempDir("missing");
+  io::writePng(dir / "a.png", frame(5));
+  expectOneLineError(hmblur("--quiet compare " + (dir / "nope.png").string() + " " + (dir / "a.png").string()),
+                     "no such file");
+  expectOneLineError(hmblur("--quiet compare " + (dir / "a.png").string() + " " + (dir / "nope.exr").string()),
+                     "nope.exr");
+  expectOneLineError(hmblur("--quiet compare " + (dir / "a.png").string() + " " + (dir / "a.png").string() +
+                            " --sharp " + (dir / "nope.png").string()),
+                     "no such file");
+}
+
+TEST(CompareCli, SizeMismatchIsAOneLineError) {
+  const fs::path dir = tempDir("size");
+  io::writePng(dir / "a.png", frame(5));
+  io::writePng(dir / "small.png", frame(5, 230, 16, 24));
+  const CliRun run = hmblur("--quiet compare " + (dir / "a.png").string() + " " + (dir / "small.png").string());
+  expectOneLineError(run, "is 16x24 but the reference");
+  EXPECT_NE(run.output.find("32x24"), std::string::npos) << run.output;
+}
+
+TEST(CompareCli, BadArgumentsFail) {
+  const fs::path dir = tempDir("arguments");
+  io::writePng(dir / "a.png", frame(5));
+  const std::string a = (dir / "a.png").string();
+  expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --json metrics.txt"), "must end in .json");
+  expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --json /nonexistent-dir/m.json"), "does not exist");
+  expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --ppd 0"), "--ppd");
+  EXPECT_NE(hmblur("compare " + a).exitCode, 0);  // no image to measure
+  EXPECT_NE(hmblur("compare").exitCode, 0);
+}
+
+TEST(CompareCli, HelpNamesTheOptions) {
+  const CliRun run = hmblur("compare --help");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  for (const char* option : {"--sharp", "--json", "--error-images", "--ppd"})
+    EXPECT_NE(run.output.find(option), std::string::npos) << option;
+  EXPECT_NE(hmblur("--help").output.find("compare"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hmb::test
