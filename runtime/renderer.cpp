@@ -91,6 +91,8 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
 
   RenderResult result;
   result.method = settings.method;
+  result.settings = settings;
+  result.settings.onProgress = nullptr;
   result.width = settings.width;
   result.height = settings.height;
   result.frameTime = settings.frameTime.value_or(scene.settings.frameTime);

@@ -36,6 +36,7 @@ struct RenderSettings {
 
 struct RenderResult {
   std::string method;
+  RenderSettings settings;  // what it was rendered with (the progress callback left out)
   uint32_t width = 0;
   uint32_t height = 0;
   float frameTime = 0.0f;

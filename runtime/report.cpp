@@ -83,6 +83,23 @@ nlohmann::json rasterJson(const RenderResult& result) {
           {"buffer_regrowths", result.raster.regrowths}};
 }
 
+nlohmann::json methodSettingsJson(const RenderResult& result) {
+  if (result.method == "reference") {
+    const passes::ReferenceSettings& r = result.settings.reference;
+    nlohmann::json json = {{"spp", r.samplesPerPixel},
+                           {"seed", r.seed},
+                           {"pixel_jitter", r.pixelJitter},
+                           {"times_per_batch", r.timesPerBatch},
+                           {"checkpoint", r.checkpoint.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.checkpoint)}};
+    if (result.reference) {
+      json["samples_done"] = result.reference->samplesDone;
+      json["samples_resumed"] = result.reference->samplesResumed;
+    }
+    return json;
+  }
+  return nlohmann::json::object();
+}
+
 nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& system, const scene::Scene& scene,
                             const RenderResult& result) {
   return {
@@ -93,6 +110,7 @@ nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& syst
       {"method", result.method},
       {"resolution", {{"width", result.width}, {"height", result.height}}},
       {"frame_time_s", result.frameTime},
+      {"settings", methodSettingsJson(result)},
       {"scene", sceneJson(scene)},
       {"passes", passesJson(result.plan)},
       {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds) : nlohmann::json(nullptr)},

@@ -21,6 +21,9 @@ nlohmann::json passesJson(const FramePlan& plan);
 // The G-buffer rasterizer of a render (visibility scheme, counts); null for methods without one.
 nlohmann::json rasterJson(const RenderResult& result);
 
+// The settings of the method that was rendered (sample counts, seeds, tile sizes ...).
+nlohmann::json methodSettingsJson(const RenderResult& result);
+
 nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& system, const scene::Scene& scene,
                             const RenderResult& result);
 

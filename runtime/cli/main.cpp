@@ -15,6 +15,8 @@
 #include "runtime/cli/compare_command.h"
 #include "runtime/error.h"
 #include "runtime/io/image.h"
+#include "runtime/metrics/display_image.h"
+#include "runtime/metrics/metrics.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"
 #include "runtime/system_info.h"
@@ -44,6 +46,8 @@ struct RenderOptions {
   std::string report;
   hmb::passes::ReferenceSettings reference;
   std::string checkpoint;
+  std::string referenceImage;  // compare the result with this image (.exr or .png)
+  std::string errorImage;      // FLIP error map of that comparison (.png)
 };
 
 struct DemoOptions {
@@ -128,6 +132,21 @@ std::function<void(const hmb::passes::ReferenceProgress&)> referenceProgressPrin
   };
 }
 
+std::string metricsLine(const hmb::metrics::Comparison& c) {
+  const auto number = [](const std::optional<double>& v, const char* format) {
+    if (!v) return std::string("n/a");
+    char text[32];
+    std::snprintf(text, sizeof(text), format, *v);
+    return std::string(text);
+  };
+  std::string line = "vs reference: PSNR " + number(c.frame.psnr, "%.2f dB") + ", SSIM " + number(c.frame.ssim, "%.4f") +
+                     ", FLIP " + number(c.frame.flip, "%.4f");
+  if (c.region)
+    line += "; blur region (" + std::to_string(c.regionPixels) + " px): PSNR " + number(c.region->psnr, "%.2f dB") +
+            ", SSIM " + number(c.region->ssim, "%.4f") + ", FLIP " + number(c.region->flip, "%.4f");
+  return line + '\n';
+}
+
 int listDevices() {
   const auto devices = hmb::vk::Context::listDevices();
   if (devices.empty()) throw hmb::Error("no Vulkan device found (on Debian, mesa-vulkan-drivers provides lavapipe)");
@@ -165,6 +184,18 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   hmb::validateRenderSettings(settings);
   checkOutputPath(options.out, {".exr", ".png"}, "--out");
   checkOutputPath(options.report, {".json"}, "--report");
+  checkOutputPath(options.errorImage, {".png"}, "--error-image");
+  if (!options.errorImage.empty() && options.referenceImage.empty())
+    throw hmb::Error("--error-image needs --reference");
+  // Read before rendering, so a bad reference fails at once.
+  std::optional<hmb::metrics::DisplayImage> referenceImage;
+  if (!options.referenceImage.empty()) {
+    referenceImage = hmb::metrics::loadDisplayImage(options.referenceImage);
+    if (referenceImage->width != options.width || referenceImage->height != options.height)
+      throw hmb::Error("--reference '" + options.referenceImage + "' is " +
+                       hmb::metrics::sizeText(referenceImage->width, referenceImage->height) + ", the render is " +
+                       hmb::metrics::sizeText(options.width, options.height));
+  }
 
   progress(global, "loading scene " + options.scene);
   const hmb::scene::Scene scene = hmb::scene::loadScene(options.scene);
@@ -176,8 +207,23 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   const hmb::RenderResult result = renderer.render(scene, settings);
 
   if (!options.out.empty()) writeImage(options.out, result);
-  if (!options.report.empty())
-    hmb::writeJson(options.report, hmb::renderReport(context.info(), hmb::querySystemInfo(), scene, result));
+  nlohmann::json report = hmb::renderReport(context.info(), hmb::querySystemInfo(), scene, result);
+  if (referenceImage) {
+    // The blur region is where the reference differs from the sharp frame of the same instant.
+    hmb::RenderSettings sharpSettings = settings;
+    sharpSettings.method = "sharp";
+    sharpSettings.onProgress = nullptr;
+    const hmb::metrics::DisplayImage sharp =
+        hmb::metrics::displayImageFromRgba8(renderer.render(scene, sharpSettings).display);
+    const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*referenceImage, sharp);
+    const hmb::metrics::Comparison comparison = hmb::metrics::compareImages(
+        *referenceImage, hmb::metrics::displayImageFromLayered(result.image), &region);
+    report["metrics"] = hmb::metrics::metricsJson(comparison);
+    report["metrics"]["reference"] = options.referenceImage;
+    if (!options.errorImage.empty()) hmb::io::writePng(options.errorImage, hmb::metrics::errorImage(comparison.flip));
+    if (!global.quiet) std::cout << metricsLine(comparison);
+  }
+  if (!options.report.empty()) hmb::writeJson(options.report, report);
   if (!global.quiet) {
     std::cout << options.method << ": " << formatMs(result.frameMilliseconds) << " on " << context.info().name << '\n';
     for (const auto& pass : result.plan.passes())
@@ -258,6 +304,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   renderCmd->add_flag("--pixel-jitter", renderOptions.reference.pixelJitter,
                       "reference: a random point in the pixel per sample instead of its centre");
+  renderCmd->add_option("--reference", renderOptions.referenceImage,
+                        "Compare the result with this image (.exr or .png): PSNR, SSIM, FLIP in the report");
+  renderCmd->add_option("--error-image", renderOptions.errorImage, "With --reference: write the FLIP error map (.png)");
   renderCmd->add_option("--checkpoint", renderOptions.checkpoint,
                         "reference: file to resume from and to save the sum to after every batch");
 

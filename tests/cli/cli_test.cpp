@@ -149,6 +149,40 @@ TEST(CliTest, DemoWritesImagesAndAReport) {
     for (const auto& image : method["images"]) EXPECT_TRUE(fs::exists(image.get<std::string>())) << image;
 }
 
+// The reference with its settings in the report, and another method measured against it.
+TEST(CliTest, ReferenceRenderAndMetricsAgainstIt) {
+  const fs::path dir = tempDir("reference");
+  const std::string size = " --width 40 --height 24";
+  CliRun run = hmblur("--quiet render --scene living-room --method reference --spp 8 --seed 3" + size + " --out " +
+                      (dir / "reference.exr").string() + " --report " + (dir / "reference.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  nlohmann::json report;
+  std::ifstream(dir / "reference.json") >> report;
+  EXPECT_EQ(report["settings"]["spp"], 8);
+  EXPECT_EQ(report["settings"]["seed"], 3);
+  EXPECT_EQ(report["settings"]["samples_done"], 8);
+
+  run = hmblur("--quiet render --scene living-room --method sharp" + size + " --reference " +
+               (dir / "reference.exr").string() + " --report " + (dir / "sharp.json").string() + " --error-image " +
+               (dir / "error.png").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  std::ifstream(dir / "sharp.json") >> report;
+  ASSERT_TRUE(report.contains("metrics")) << report.dump();
+  EXPECT_GT(report["metrics"]["frame"]["psnr_db"].get<double>(), 10.0);
+  EXPECT_GT(report["metrics"]["region_pixels"].get<int>(), 0);  // the vase moves: a blur region exists
+  EXPECT_EQ(io::readPng(dir / "error.png").width, 40u);
+
+  expectOneLineError(hmblur("--quiet render --scene living-room --method sharp" + size + " --reference " +
+                            (dir / "missing.exr").string()),
+                     "missing.exr");
+  expectOneLineError(hmblur("--quiet render --scene living-room --method sharp --width 41 --height 24 --reference " +
+                            (dir / "reference.exr").string()),
+                     "40x24");
+  expectOneLineError(hmblur("--quiet render --method reference --spp 0" + size), "--spp");
+  expectOneLineError(hmblur("--quiet render --method reference --checkpoint /nonexistent-dir/c.bin" + size),
+                     "does not exist");
+}
+
 TEST(CliTest, HelpListsTheSubcommands) {
   const CliRun run = hmblur("--help");
   EXPECT_EQ(run.exitCode, 0);

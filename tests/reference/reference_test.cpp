@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "runtime/error.h"
+#include "runtime/metrics/display_image.h"
+#include "runtime/metrics/metrics.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 #include "tests/support/vulkan_test.h"
@@ -36,18 +38,11 @@ RenderResult renderWith(const scene::Scene& scene, const std::string& method, ui
   return renderer.render(scene, settings);
 }
 
-// Mean squared error of two display images over RGB, values in [0, 1].
 double displayMse(const io::Rgba8Image& a, const io::Rgba8Image& b) {
-  double sum = 0.0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = (double(a.pixels[i]) - double(b.pixels[i])) / 255.0;
-    sum += d * d;
-  }
-  return sum / double(a.pixels.size() / 4 * 3);
+  return metrics::meanSquaredError(metrics::displayImageFromRgba8(a), metrics::displayImageFromRgba8(b));
 }
 
-double psnr(double mse) { return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity(); }
+double psnr(double mse) { return metrics::psnrFromMse(mse); }
 
 scene::Scene staticCopy(scene::Scene scene) {
   scene.channels.clear();
