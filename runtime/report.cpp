@@ -94,6 +94,9 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
     if (result.reference) {
       json["samples_done"] = result.reference->samplesDone;
       json["samples_resumed"] = result.reference->samplesResumed;
+      // Pixels that took every sample (the rest see one surface all shutter long); null: all.
+      json["moving_pixels"] = result.reference->movingPixels ? nlohmann::json(*result.reference->movingPixels)
+                                                             : nlohmann::json(nullptr);
     }
     return json;
   }

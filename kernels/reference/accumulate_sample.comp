@@ -17,6 +17,7 @@ layout(std430, binding = HMB_REFERENCE_BINDING_INSTANCES) readonly buffer SceneI
 layout(std430, binding = HMB_REFERENCE_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_TEXELS) readonly buffer Texels { uint texels[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_CAMERA) readonly buffer Camera { GpuCamera camera; };
+layout(std430, binding = HMB_REFERENCE_BINDING_PIXELS) readonly buffer Pixels { uint pixelList[]; };
 layout(push_constant) uniform Params { ReferenceSampleParams params; };
 
 #include "../shared/shading.glsl"
@@ -52,7 +53,16 @@ vec3 shadeHit(BvhHit hit, vec3 direction) {
 }
 
 void main() {
-  const uvec2 pixel = gl_GlobalInvocationID.xy;
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if ((params.flags & HMB_REFERENCE_PIXEL_LIST) != 0u) {
+    // List mode: a 1D run of 8x8 groups over the list's entries.
+    const uint entry = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) *
+                           (HMB_REFERENCE_GROUP_X * HMB_REFERENCE_GROUP_Y) +
+                       gl_LocalInvocationID.y * HMB_REFERENCE_GROUP_X + gl_LocalInvocationID.x;
+    if (entry >= params.listLength) return;
+    const uint listed = pixelList[entry];
+    pixel = uvec2(listed % params.width, listed / params.width);
+  }
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
 

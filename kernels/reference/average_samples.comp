@@ -1,5 +1,6 @@
 #version 450
-// The reference's mean: each pixel's sum of samples over their count.
+// The reference's mean: each pixel's sum of samples over their count (in w: pixels that
+// nothing moving crosses were sampled once).
 #extension GL_GOOGLE_include_directive : require
 #include "reference_layout.h"
 #include "../shared/indexing.glsl"
@@ -13,5 +14,6 @@ layout(push_constant) uniform Params { AverageParams params; };
 void main() {
   const uint i = linearInvocationIndex(HMB_REFERENCE_AVERAGE_GROUP);
   if (i >= params.pixelCount) return;
-  color[i] = vec4(sum[i].rgb / float(max(params.sampleCount, 1u)), 1.0);
+  const vec4 s = sum[i];
+  color[i] = vec4(s.w > 0.0 ? s.rgb / s.w : vec3(0.0), 1.0);
 }

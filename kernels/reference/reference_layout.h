@@ -18,7 +18,18 @@
 #define HMB_REFERENCE_BINDING_MATERIALS 14
 #define HMB_REFERENCE_BINDING_TEXELS 15
 #define HMB_REFERENCE_BINDING_CAMERA 16    // GpuCamera of the frame: light, ambient, background
-#define HMB_REFERENCE_BINDING_COUNT 17
+#define HMB_REFERENCE_BINDING_PIXELS 17    // uint pixel index per entry: the pixels to sample (list mode)
+#define HMB_REFERENCE_BINDING_COUNT 18
+
+// find_moving_pixels: pixels whose ray meets the box some moving instance sweeps over the
+// shutter. Only they can change over the shutter when the camera stands still.
+#define HMB_MOVING_PIXELS_GROUP_X 8
+#define HMB_MOVING_PIXELS_GROUP_Y 8
+#define HMB_MOVING_PIXELS_BINDING_CAMERAS 0  // ReferenceCamera (the first is used)
+#define HMB_MOVING_PIXELS_BINDING_BOXES 1    // vec4 lower, vec4 upper per moving instance
+#define HMB_MOVING_PIXELS_BINDING_COUNTER 2  // uint: entries in the list
+#define HMB_MOVING_PIXELS_BINDING_LIST 3     // uint pixel index per entry
+#define HMB_MOVING_PIXELS_BINDING_COUNT 4
 
 // average_samples
 #define HMB_AVERAGE_BINDING_SUM 0    // vec4 per pixel
@@ -27,6 +38,7 @@
 
 // ReferenceSampleParams.flags
 #define HMB_REFERENCE_PIXEL_JITTER 1u  // a random point in the pixel instead of its centre
+#define HMB_REFERENCE_PIXEL_LIST 2u    // sample the pixels of the list (entries: pixelCount), not the image
 
 HMB_GPU_BEGIN
 
@@ -51,8 +63,19 @@ struct ReferenceSampleParams {
   uint timeCount;    // shutter times in the batch
   float tMin;        // the near plane's depth
   float tMax;        // the far plane's depth
+  uint listLength;   // HMB_REFERENCE_PIXEL_LIST: entries in the pixel list
   uint pad0;
+};
+
+struct MovingPixelsParams {
+  uint width;
+  uint height;
+  uint boxCount;
+  uint pad0;
+  float tMin;
+  float tMax;
   uint pad1;
+  uint pad2;
 };
 
 struct AverageParams {
@@ -67,5 +90,6 @@ HMB_GPU_END
 HMB_CHECK_SIZE(ReferenceCamera, 64)
 HMB_CHECK_SIZE(ReferenceSampleParams, 48)
 HMB_CHECK_SIZE(AverageParams, 16)
+HMB_CHECK_SIZE(MovingPixelsParams, 32)
 
 #endif

@@ -125,7 +125,7 @@ std::function<void(const hmb::passes::ReferenceProgress&)> referenceProgressPrin
     char line[160];
     // The first sample starts the clock, so rates count the samples after it.
     const double rate = rendered > 1 && seconds > 0.0 ? (rendered - 1) / seconds : 0.0;
-    std::snprintf(line, sizeof(line), "hmblur: reference %u/%u spp, %.2f Mrays/s, %.0f s left", p.samplesDone,
+    std::snprintf(line, sizeof(line), "hmblur: reference %u/%u spp, %.2f M pixel samples/s, %.0f s left", p.samplesDone,
                   p.samplesTotal, rate * width * height * 1e-6,
                   rate > 0.0 ? (p.samplesTotal - p.samplesDone) / rate : 0.0);
     std::cerr << line << '\n';

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <numeric>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -51,6 +52,41 @@ gpu::ReferenceCamera referenceCamera(const scene::Scene& scene, float t, uint32_
   r.down = glm::vec4(-glm::vec3(cameraToWorld[1]) * tanY, 0.0f);
   r.forward = glm::vec4(-glm::vec3(cameraToWorld[2]), 0.0f);
   return r;
+}
+
+bool sameCamera(const gpu::ReferenceCamera& a, const gpu::ReferenceCamera& b) {
+  return a.eye == b.eye && a.right == b.right && a.down == b.down && a.forward == b.forward;
+}
+
+// World boxes of every animated instance, each the union of its mesh's box carried to the
+// world at every sample time: nothing it shows at those times lies outside.
+std::vector<glm::vec4> sweptBoxesOfMovingInstances(const scene::Scene& scene, std::span<const float> times) {
+  std::vector<glm::vec4> boxes;
+  for (const scene::Instance& instance : scene.instances) {
+    if (!scene.isAnimated(instance.node)) continue;
+    const scene::Mesh& mesh = scene.meshes.at(instance.mesh);
+    if (mesh.positions.empty()) continue;
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : mesh.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    glm::vec3 worldLo(std::numeric_limits<float>::max()), worldHi(-std::numeric_limits<float>::max());
+    for (const float t : times) {
+      const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
+      for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+        const glm::vec3 w = glm::vec3(world * glm::vec4(p, 1.0f));
+        worldLo = glm::min(worldLo, w);
+        worldHi = glm::max(worldHi, w);
+      }
+    }
+    // Widened by a relative margin for the rounding of the transforms and of the box test.
+    const glm::vec3 margin = (glm::abs(worldLo) + glm::abs(worldHi) + (worldHi - worldLo)) * 1e-5f;
+    boxes.emplace_back(worldLo - margin, 0.0f);
+    boxes.emplace_back(worldHi + margin, 0.0f);
+  }
+  return boxes;
 }
 
 void appendTimings(vk::FrameTimings& total, const vk::FrameTimings& part) {
@@ -145,13 +181,71 @@ std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32
 
 ReferenceStage::ReferenceStage(const vk::Context& context)
     : context_(context),
+      findMovingPixels_(context, "reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT,
+                        sizeof(gpu::MovingPixelsParams)),
       accumulate_(context, "reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT,
                   sizeof(gpu::ReferenceSampleParams)),
       average_(context, "reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams)) {}
 
-void ReferenceStage::plan(FramePlan& plan) const {
+namespace {
+
+// Why every pixel must take every sample, or empty when only the pixels that something moving
+// crosses need more than one.
+std::string whyEveryPixelIsSampled(const scene::Scene& scene, std::span<const float> times, uint32_t width,
+                                   uint32_t height, const ReferenceSettings& settings) {
+  if (!settings.sampleStillPixelsOnce) return "turned off in the settings";
+  if (settings.pixelJitter) return "pixel jitter takes a new point of every pixel per sample";
+  if (settings.samplesPerPixel == 1) return "one sample per pixel";
+  const gpu::ReferenceCamera first = referenceCamera(scene, times[0], width, height);
+  for (const float t : times)
+    if (!sameCamera(referenceCamera(scene, t, width, height), first)) return "the camera moves during the shutter";
+  return {};
+}
+
+}  // namespace
+
+vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scene::Scene& scene,
+                                            std::span<const float> times, uint32_t width, uint32_t height,
+                                            const ReferenceSettings& settings, float tMin, float tMax,
+                                            vk::FrameTimings& timings) {
+  if (!whyEveryPixelIsSampled(scene, times, width, height, settings).empty())
+    return vk::Buffer(context_, sizeof(uint32_t), vk::MemoryUse::Device, "reference pixel list (unused)");
+  const std::vector<gpu::ReferenceCamera> cameras = {referenceCamera(scene, times[0], width, height)};
+  const std::vector<glm::vec4> boxes = sweptBoxesOfMovingInstances(scene, times);
+  const uint64_t pixels = uint64_t(width) * height;
+  vk::Buffer list(context_, std::max<uint64_t>(pixels, 1) * sizeof(uint32_t), vk::MemoryUse::Device,
+                  "reference moving pixels");
+  vk::Buffer counter(context_, sizeof(uint32_t), vk::MemoryUse::Device, "reference moving pixel count");
+  const uint32_t zero = 0;
+  counter.upload(std::span(&zero, 1));
+  if (!boxes.empty()) {
+    const vk::Buffer cameraBuffer = vk::uploadedBuffer(context_, cameras, "reference camera");
+    const vk::Buffer boxBuffer = vk::uploadedBuffer(context_, boxes, "moving instance boxes");
+    const gpu::MovingPixelsParams params{width, height, static_cast<uint32_t>(boxes.size() / 2), 0u, tMin, tMax, 0u, 0u};
+    frame.begin();
+    frame.dispatch(kMovingPixels, findMovingPixels_, {&cameraBuffer, &boxBuffer, &counter, &list}, params,
+                   {vk::groupsFor(width, HMB_MOVING_PIXELS_GROUP_X), vk::groupsFor(height, HMB_MOVING_PIXELS_GROUP_Y), 1});
+    appendTimings(timings, frame.submitAndWait());
+  }
+  progress_.movingPixels = counter.download<uint32_t>().at(0);
+  return list;
+}
+
+void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime, uint32_t width,
+                          uint32_t height, const ReferenceSettings& settings) const {
   plan.run(kBvhMeshes);
   plan.run(kBvhInstances);
+  const std::vector<float> times =
+      referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
+  const std::string reason = whyEveryPixelIsSampled(scene, times, width, height, settings);
+  const bool anythingMoves = std::any_of(scene.instances.begin(), scene.instances.end(),
+                                         [&](const scene::Instance& i) { return scene.isAnimated(i.node); });
+  if (!reason.empty())
+    plan.skip(kMovingPixels, reason);
+  else if (!anythingMoves)
+    plan.skip(kMovingPixels, "nothing moves: one sample per pixel is exact");
+  else
+    plan.run(kMovingPixels);
   plan.run(kAccumulate);
   plan.run(kAverage);
 }
@@ -179,6 +273,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     total.passes.push_back({kBvhMeshes, traceScene.meshBvh().stats().deviceMilliseconds});
     total.frameMilliseconds = traceScene.meshBvh().stats().deviceMilliseconds;
     const float tMin = gpuScene.camera().znear, tMax = gpuScene.camera().zfar;
+    const vk::Buffer pixelList = findMovingPixels(frame, scene, times, width, height, settings, tMin, tMax, total);
     while (progress_.samplesDone < settings.samplesPerPixel) {
       const uint32_t first = progress_.samplesDone;
       const uint32_t count = std::min(settings.timesPerBatch, settings.samplesPerPixel - first);
@@ -190,28 +285,36 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
       for (const float t : batch) cameras.push_back(referenceCamera(scene, t, width, height));
       const vk::Buffer cameraBuffer = vk::uploadedBuffer(context_, cameras, "reference cameras");
       for (uint32_t i = 0; i < count; ++i) {
-        const gpu::ReferenceSampleParams params{width,
-                                                height,
-                                                i,
-                                                first + i,
-                                                settings.seed,
-                                                settings.pixelJitter ? HMB_REFERENCE_PIXEL_JITTER : 0u,
-                                                traceScene.instanceCount(),
-                                                traceScene.timeCount(),
-                                                tMin,
-                                                tMax,
-                                                0u,
-                                                0u};
+        // The first sample covers every pixel; later ones only the moving pixels when listed.
+        const bool listed = progress_.movingPixels && first + i > 0;
+        const uint32_t listLength = listed ? static_cast<uint32_t>(*progress_.movingPixels) : 0u;
+        const gpu::ReferenceSampleParams params{
+            width,
+            height,
+            i,
+            first + i,
+            settings.seed,
+            (settings.pixelJitter ? HMB_REFERENCE_PIXEL_JITTER : 0u) | (listed ? HMB_REFERENCE_PIXEL_LIST : 0u),
+            traceScene.instanceCount(),
+            traceScene.timeCount(),
+            tMin,
+            tMax,
+            listLength,
+            0u};
         const TraceScene& ts = traceScene;
+        const glm::uvec3 groups =
+            listed ? vk::foldedGroups(vk::groupsFor(listLength, HMB_REFERENCE_GROUP_X * HMB_REFERENCE_GROUP_Y))
+                   : glm::uvec3(vk::groupsFor(width, HMB_REFERENCE_GROUP_X),
+                                vk::groupsFor(height, HMB_REFERENCE_GROUP_Y), 1);
         frame.begin();
-        frame.dispatch(kAccumulate, accumulate_,
-                       {&cameraBuffer, &sum, &ts.instanceBvh().nodes(), &ts.instanceBvh().links(),
-                        &ts.instanceBvh().primitives(), &ts.instances(), &ts.transforms(), &ts.meshBvh().nodes(),
-                        &ts.meshBvh().links(), &ts.meshBvh().primitives(), &ts.triangles(), &ts.positions(),
-                        &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(),
-                        &gpuScene.cameraBuffer()},
-                       params,
-                       {vk::groupsFor(width, HMB_REFERENCE_GROUP_X), vk::groupsFor(height, HMB_REFERENCE_GROUP_Y), 1});
+        if (groups.x > 0)
+          frame.dispatch(kAccumulate, accumulate_,
+                         {&cameraBuffer, &sum, &ts.instanceBvh().nodes(), &ts.instanceBvh().links(),
+                          &ts.instanceBvh().primitives(), &ts.instances(), &ts.transforms(), &ts.meshBvh().nodes(),
+                          &ts.meshBvh().links(), &ts.meshBvh().primitives(), &ts.triangles(), &ts.positions(),
+                          &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(),
+                          &gpuScene.cameraBuffer(), &pixelList},
+                         params, groups);
         appendTimings(total, frame.submitAndWait());
         ++progress_.samplesDone;
         if (progress) progress(progress_);
@@ -221,7 +324,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     }
   }
 
-  const gpu::AverageParams params{static_cast<uint32_t>(pixels), progress_.samplesDone, 0u, 0u};
+  const gpu::AverageParams params{static_cast<uint32_t>(pixels), 0u, 0u, 0u};
   frame.begin();
   frame.dispatch(kAverage, average_, {&sum, &color}, params,
                  vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_REFERENCE_AVERAGE_GROUP)));

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "runtime/vulkan/buffer.h"
@@ -28,6 +30,7 @@ struct ReferenceSettings {
   uint32_t seed = 1;
   bool pixelJitter = false;       // a random point in the pixel per sample instead of its centre
   uint32_t timesPerBatch = 64;    // shutter times whose transforms are on the device at once
+  bool sampleStillPixelsOnce = true;  // with a still camera: pixels nothing moving crosses take one sample
   std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten per batch
 };
 
@@ -42,18 +45,23 @@ struct ReferenceProgress {
   uint32_t samplesDone = 0;
   uint32_t samplesTotal = 0;
   uint32_t samplesResumed = 0;  // taken from the checkpoint, not rendered by this call
+  // With a still camera, only pixels whose ray meets a moving instance's swept box take more
+  // than one sample (the rest see one surface all shutter long); absent when all pixels do.
+  std::optional<uint64_t> movingPixels;
 };
 
 class ReferenceStage {
  public:
   static constexpr const char* kBvhMeshes = "reference-bvh-meshes";
   static constexpr const char* kBvhInstances = "reference-bvh-instances";
+  static constexpr const char* kMovingPixels = "reference-find-moving-pixels";
   static constexpr const char* kAccumulate = "reference-accumulate-sample";
   static constexpr const char* kAverage = "reference-average";
 
   explicit ReferenceStage(const vk::Context& context);
 
-  void plan(FramePlan& plan) const;
+  void plan(FramePlan& plan, const scene::Scene& scene, float frameTime, uint32_t width, uint32_t height,
+            const ReferenceSettings& settings) const;
 
   // Renders the mean of the samples into `color` (vec4 per pixel, row 0 at the top) and
   // returns the device time of every submission it made, merged. `gpuScene` must have its
@@ -65,7 +73,14 @@ class ReferenceStage {
   const ReferenceProgress& lastProgress() const { return progress_; }
 
  private:
+  // The list of moving pixels when the camera stands still (sets progress_.movingPixels), else
+  // a placeholder buffer.
+  vk::Buffer findMovingPixels(vk::FrameRecorder& frame, const scene::Scene& scene, std::span<const float> times,
+                              uint32_t width, uint32_t height, const ReferenceSettings& settings, float tMin,
+                              float tMax, vk::FrameTimings& timings);
+
   const vk::Context& context_;
+  vk::ComputeKernel findMovingPixels_;
   vk::ComputeKernel accumulate_;
   vk::ComputeKernel average_;
   ReferenceProgress progress_;

@@ -113,6 +113,32 @@ TEST_F(ReferenceTest, ErrorFallsAsSamplesGrow) {
   for (size_t i = 1; i < mse.size(); ++i) EXPECT_LT(mse[i], mse[i - 1] / 2.0) << "step " << i;
 }
 
+// With a still camera, pixels that nothing moving crosses take one sample: the image is the
+// one every pixel sampled at every time gives (up to rounding), at a fraction of the rays.
+TEST_F(ReferenceTest, StillPixelsSampledOnceGiveTheSameImage) {
+  const scene::Scene scene = scene::loadScene("temple");
+  Renderer renderer(context());
+  RenderSettings settings;
+  settings.method = "reference";
+  settings.width = kWidth;
+  settings.height = kHeight;
+  settings.reference.samplesPerPixel = 16;
+  const RenderResult once = renderer.render(scene, settings);
+  settings.reference.sampleStillPixelsOnce = false;
+  const RenderResult every = renderer.render(scene, settings);
+  ASSERT_TRUE(once.reference && once.reference->movingPixels);
+  EXPECT_FALSE(every.reference->movingPixels.has_value());
+  EXPECT_GT(*once.reference->movingPixels, 0u);
+  EXPECT_LT(*once.reference->movingPixels, uint64_t(kWidth) * kHeight);
+  EXPECT_GT(psnr(displayMse(once.display, every.display)), 60.0);
+  std::cout << "[ still    ] temple: " << *once.reference->movingPixels << " of " << kWidth * kHeight
+            << " pixels take every sample\n";
+  // A moving camera needs every pixel every time.
+  settings.reference.sampleStillPixelsOnce = true;
+  const RenderResult bistro = renderer.render(scene::loadScene("bistro"), settings);
+  EXPECT_FALSE(bistro.reference->movingPixels.has_value());
+}
+
 TEST_F(ReferenceTest, CheckpointResumesToTheSameImage) {
   const scene::Scene scene = scene::loadScene("living-room");
   const fs::path checkpoint = fs::path(testing::TempDir()) / "hmb_reference_checkpoint.bin";

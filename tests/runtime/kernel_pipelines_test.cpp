@@ -44,6 +44,7 @@ const KernelLayout kLayouts[] = {
     {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false},
     {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false},
     {"reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), false},
+    {"reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), false},
 };
 
 using KernelPipelinesTest = VulkanTest;
