@@ -6,6 +6,7 @@
 
 #include "kernels/debug/test_pattern.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
+#include "kernels/mblur/mblur_layout.h"
 #include "kernels/output/encode_display.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/raster/raster_layout.h"
@@ -41,6 +42,9 @@ const KernelLayout kLayouts[] = {
     {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
     {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false},
+    {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
+    {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
+    {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
 };
 
 using KernelPipelinesTest = VulkanTest;
