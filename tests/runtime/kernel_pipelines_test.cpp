@@ -45,6 +45,7 @@ const KernelLayout kLayouts[] = {
     {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
     {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
     {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
+    {"mblur/gather_jimenez", HMB_JIMENEZ_BINDING_COUNT, sizeof(gpu::JimenezParams), false},
 };
 
 using KernelPipelinesTest = VulkanTest;
