@@ -35,6 +35,10 @@ void PostProcessStage::prepare(uint32_t width, uint32_t height) {
   if (width == 0 || height == 0) throw Error("post-process: empty image");
   if (width == width_ && height == height_) return;
   grid_ = tileGridFor(width, height, settings_.effectiveTileSize());
+  // tile_max runs one group per tile; 65535 is the smallest group-count limit Vulkan allows.
+  if (grid_.x > 65535 || grid_.y > 65535)
+    throw Error("post-process: " + std::to_string(width) + "x" + std::to_string(height) + " needs more than 65535 tiles " +
+                "in a row at tile size " + std::to_string(settings_.effectiveTileSize()));
   const uint64_t bytes = uint64_t(grid_.count()) * sizeof(glm::vec4);
   tileMax_ = vk::Buffer(context_, bytes, vk::MemoryUse::Device, "tile max");
   neighborMax_ = vk::Buffer(context_, bytes, vk::MemoryUse::Device, "neighbor max");
