@@ -6,6 +6,7 @@
 
 #include "kernels/debug/test_pattern.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
+#include "kernels/mblur/mblur_layout.h"
 #include "kernels/output/encode_display.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/raster/raster_layout.h"
@@ -45,6 +46,10 @@ const KernelLayout kLayouts[] = {
     {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false},
     {"reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), false},
     {"reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), false},
+    {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
+    {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
+    {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
+    {"mblur/gather_jimenez", HMB_JIMENEZ_BINDING_COUNT, sizeof(gpu::JimenezParams), false},
 };
 
 using KernelPipelinesTest = VulkanTest;

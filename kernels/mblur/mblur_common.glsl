@@ -1,0 +1,71 @@
+// Functions every motion blur kernel shares; the C++ reference (tests/mblur/mblur_reference.cpp)
+// mirrors each one. Include after mblur_layout.h.
+#ifndef HMB_KERNELS_MBLUR_MBLUR_COMMON_GLSL
+#define HMB_KERNELS_MBLUR_MBLUR_COMMON_GLSL
+
+// G-buffer velocity q (pixels per frame) -> the velocity a gather uses (pixels per exposure,
+// halved for a centred range: velocityScale says which), its length clamped to maxSpeed.
+// `speed` is min(|v|, maxSpeed), the ranking key of the tile passes. Non-finite velocities, and
+// ones too large to scale, count as zero; so do speeds under 1e-30 px (no device agrees on
+// denormals). The length is taken after dividing by the largest component, so 1e30 px per
+// frame clamps to maxSpeed instead of overflowing to a zero-length vector.
+vec2 gatherVelocity(vec2 q, float velocityScale, float maxSpeed, out float speed) {
+  const vec2 v = q * velocityScale;
+  speed = 0.0;
+  if (any(isnan(v)) || any(isinf(v))) return vec2(0.0);
+  const float largest = max(abs(v.x), abs(v.y));
+  if (!(largest >= 1e-30)) return vec2(0.0);
+  const vec2 unit = v / largest;  // the largest component is +-1
+  const float unitLength = length(unit);
+  const float fullSpeed = largest * unitLength;
+  if (fullSpeed <= maxSpeed) {
+    speed = fullSpeed;
+    return v;
+  }
+  speed = maxSpeed;
+  return unit * (maxSpeed / unitLength);
+}
+
+// Inputs are sanitized so that no NaN or Inf can reach a weighted sum.
+float sanitizeChannel(float x) { return isnan(x) ? 0.0 : clamp(x, -HMB_MBLUR_MAX_COLOR, HMB_MBLUR_MAX_COLOR); }
+
+vec4 sanitizeColor(vec4 c) {
+  return vec4(sanitizeChannel(c.x), sanitizeChannel(c.y), sanitizeChannel(c.z), sanitizeChannel(c.w));
+}
+
+float sanitizeDepth(float z) { return isnan(z) ? HMB_MBLUR_MAX_DEPTH : clamp(z, 0.0, HMB_MBLUR_MAX_DEPTH); }
+
+// Per-pixel jitter: an integer hash of (pixel, seed), the same on every device.
+uint mblurHash(uint x, uint y, uint seed) {
+  uint h = x * 0x9E3779B1u + y * 0x85EBCA77u + seed * 0xC2B2AE3Du + 0x27D4EB2Fu;
+  h ^= h >> 16;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15;
+  h *= 0x846CA68Bu;
+  h ^= h >> 16;
+  return h;
+}
+
+// [0, 1) from the top 24 bits: exact in float.
+float unitFromHash(uint h) { return float(h >> 8) * (1.0 / 16777216.0); }
+
+// The next value of a hash sequence (for a second and third random number per pixel).
+uint nextHash(uint h) { return mblurHash(h, 0x68E31DA4u, 0x1B56C4E9u); }
+
+// Nearest pixel to a position (pixel centres at integer + 0.5), clamped to the image.
+ivec2 nearestPixel(vec2 position, uint width, uint height) {
+  return clamp(ivec2(floor(position)), ivec2(0), ivec2(int(width) - 1, int(height) - 1));
+}
+
+// Paper eq. 6/7's speed falloff saturate(1 - ds / v); a zero speed reaches only ds = 0.
+float cone(float ds, float v) { return clamp(1.0 - ds / max(v, 1e-6), 0.0, 1.0); }
+
+// Paper eq. 10: 1 - smoothstep(0.95 v, 1.05 v, s), written out because smoothstep is undefined
+// for equal edges (v = 0).
+float cylinder(float v, float s) {
+  if (v <= 0.0) return s <= 0.0 ? 1.0 : 0.0;
+  const float t = clamp((s - 0.95 * v) / (0.1 * v), 0.0, 1.0);
+  return 1.0 - t * t * (3.0 - 2.0 * t);
+}
+
+#endif

@@ -1,0 +1,123 @@
+// Layout of the post-process motion blur kernels (kernels/mblur/): tile_max -> neighbor_max ->
+// gather (McGuire et al. 2012 with the paper's appendix weights) or gather_jimenez (Jimenez 2014).
+// Shared by the GLSL kernels and the C++ passes and reference.
+//
+// Tile buffers hold one vec4 per tile: xy the dominant velocity (pixels per exposure, already
+// converted and clamped, see mblur_common.glsl), z its speed min(|v|, tileSize) as the ranking
+// key, w unused. Ranking by the stored key, not by a length recomputed from the clamped vector,
+// keeps every clamped velocity at exactly tileSize, so ties are real ties and their rule (first
+// in row-major order) decides them on every device the same way.
+#ifndef HMB_KERNELS_MBLUR_MBLUR_LAYOUT_H
+#define HMB_KERNELS_MBLUR_MBLUR_LAYOUT_H
+
+#include "../shared/glsl_cpp.h"
+
+// tile_max: one 8 x 8 group per tile; each lane strides over the tile (at most 128 x 128
+// pixels per lane for the largest tile, 1024, well under the 65535 loop iterations lavapipe
+// allows an invocation), then one lane reduces the 64 lane results.
+#define HMB_TILE_MAX_GROUP_X 8
+#define HMB_TILE_MAX_GROUP_Y 8
+#define HMB_TILE_MAX_BINDING_VELOCITY 0  // vec2 per pixel: G-buffer velocity q, pixels per frame
+#define HMB_TILE_MAX_BINDING_TILES 1     // vec4 per tile (see above)
+#define HMB_TILE_MAX_BINDING_COUNT 2
+
+// neighbor_max: one invocation per tile.
+#define HMB_NEIGHBOR_MAX_GROUP_X 8
+#define HMB_NEIGHBOR_MAX_GROUP_Y 8
+#define HMB_NEIGHBOR_MAX_BINDING_TILE_MAX 0      // vec4 per tile
+#define HMB_NEIGHBOR_MAX_BINDING_NEIGHBOR_MAX 1  // vec4 per tile
+#define HMB_NEIGHBOR_MAX_BINDING_COUNT 2
+
+// gather and gather_jimenez: one invocation per pixel.
+#define HMB_GATHER_GROUP_X 8
+#define HMB_GATHER_GROUP_Y 8
+#define HMB_GATHER_BINDING_COLOR 0         // vec4 per pixel, linear
+#define HMB_GATHER_BINDING_NORMAL_DEPTH 1  // vec4 per pixel, w = camera-space depth
+#define HMB_GATHER_BINDING_VELOCITY 2      // vec2 per pixel, pixels per frame
+#define HMB_GATHER_BINDING_NEIGHBOR_MAX 3  // vec4 per tile
+#define HMB_GATHER_BINDING_MASK 4          // uint per pixel (0/1); a one-word dummy without a mask
+#define HMB_GATHER_BINDING_OUTPUT 5        // vec4 per pixel
+#define HMB_GATHER_BINDING_COUNT 6
+
+#define HMB_JIMENEZ_BINDING_COLOR 0
+#define HMB_JIMENEZ_BINDING_NORMAL_DEPTH 1
+#define HMB_JIMENEZ_BINDING_VELOCITY 2
+#define HMB_JIMENEZ_BINDING_NEIGHBOR_MAX 3
+#define HMB_JIMENEZ_BINDING_OUTPUT 4
+#define HMB_JIMENEZ_BINDING_COUNT 5
+
+// GatherParams::flags
+#define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]
+#define HMB_GATHER_FLAG_USE_MASK 2u       // read the mask binding
+
+// Velocities are clamped to the tile size (so the 3x3 neighbourhood sees every pixel that can
+// reach a tile) and the largest tile size is bounded so per-lane loops stay short.
+#define HMB_MBLUR_MAX_TILE_SIZE 1024u
+#define HMB_MBLUR_MAX_SAMPLES 255u
+#define HMB_MBLUR_MAX_NEIGHBORHOOD 31u
+
+// Colour channels are clamped to +-this (the largest half float) so sums of weighted samples
+// stay finite; non-finite channels read as 0.
+#define HMB_MBLUR_MAX_COLOR 65504.0
+// Depths read as clamp(depth, 0, this); NaN reads as this (farthest).
+#define HMB_MBLUR_MAX_DEPTH 3.0e38
+
+HMB_GPU_BEGIN
+struct TileMaxParams {
+  uint width;
+  uint height;
+  uint tileSize;
+  uint tilesX;
+  uint tilesY;
+  float velocityScale;  // q (pixels per frame) -> gather velocity: E * fps, halved for centred ranges
+  uint pad0;
+  uint pad1;
+};
+
+struct NeighborMaxParams {
+  uint tilesX;
+  uint tilesY;
+  uint neighborhood;  // odd
+  uint pad0;
+};
+
+struct GatherParams {
+  uint width;
+  uint height;
+  uint tileSize;
+  uint tilesX;
+  uint tilesY;
+  uint samples;
+  uint seed;
+  uint flags;  // HMB_GATHER_FLAG_*
+  float velocityScale;
+  float softZExtent;
+  float foregroundBoost;       // multiplies w_f where z_t - z_s >= softZExtent
+  float maskBackgroundBoost;   // multiplies w_b inside the mask
+  float maskForegroundDivide;  // divides w_f inside the mask
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+struct JimenezParams {
+  uint width;
+  uint height;
+  uint tileSize;
+  uint tilesX;
+  uint tilesY;
+  uint samples;  // taken as ceil(samples / 2) mirrored pairs
+  uint seed;
+  uint pad0;
+  float velocityScale;  // E * fps / 2: the notes' filter is centred on the pixel
+  float softZExtent;    // depth scale of the soft depth comparison
+  float tileJitter;     // neighbour-max lookup offset, up to +- this many tiles per axis
+  uint pad1;
+};
+HMB_GPU_END
+HMB_CHECK_SIZE(TileMaxParams, 32)
+HMB_CHECK_SIZE(NeighborMaxParams, 16)
+HMB_CHECK_SIZE(GatherParams, 64)
+HMB_CHECK_SIZE(JimenezParams, 48)
+
+#endif

@@ -1,0 +1,64 @@
+#include "runtime/passes/post_process_stage.h"
+
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "runtime/error.h"
+#include "runtime/frame_plan.h"
+
+namespace hmb::passes {
+
+namespace {
+const PostProcessSettings& validated(const PostProcessSettings& settings) {
+  validate(settings);
+  return settings;
+}
+}  // namespace
+
+PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcessSettings& settings)
+    : context_(context), settings_(validated(settings)), tileMaxPass_(context), neighborMaxPass_(context) {
+  // Pipelines compile once each and cost time on CPU devices: only the selected gather is built.
+  if (settings_.filter == PostProcessFilter::Jimenez)
+    jimenezGather_.emplace(context);
+  else
+    gather_.emplace(context);
+}
+
+void PostProcessStage::plan(FramePlan& plan) const {
+  plan.run(TileMaxPass::kName);
+  plan.run(NeighborMaxPass::kName);
+  plan.run(settings_.filter == PostProcessFilter::Jimenez ? JimenezGatherPass::kName : GatherPass::kName);
+}
+
+void PostProcessStage::prepare(uint32_t width, uint32_t height) {
+  if (width == 0 || height == 0) throw Error("post-process: empty image");
+  if (width == width_ && height == height_) return;
+  grid_ = tileGridFor(width, height, settings_.effectiveTileSize());
+  // tile_max runs one group per tile; 65535 is the smallest group-count limit Vulkan allows.
+  if (grid_.x > 65535 || grid_.y > 65535)
+    throw Error("post-process: " + std::to_string(width) + "x" + std::to_string(height) + " needs more than 65535 tiles " +
+                "in a row at tile size " + std::to_string(settings_.effectiveTileSize()));
+  const uint64_t bytes = uint64_t(grid_.count()) * sizeof(glm::vec4);
+  tileMax_ = vk::Buffer(context_, bytes, vk::MemoryUse::Device, "tile max");
+  neighborMax_ = vk::Buffer(context_, bytes, vk::MemoryUse::Device, "neighbor max");
+  width_ = width;
+  height_ = height;
+}
+
+void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output,
+                              const vk::Buffer* mask) const {
+  if (inputs.width != width_ || inputs.height != height_)
+    throw Error("post-process: inputs are " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) +
+                " but the stage was prepared for " + std::to_string(width_) + "x" + std::to_string(height_));
+  if (mask && jimenezGather_) throw Error("post-process: the Jimenez filter takes no mask");
+  tileMaxPass_.record(frame, *inputs.velocity, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
+                      settings_.velocityScale());
+  neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
+  if (jimenezGather_)
+    jimenezGather_->record(frame, inputs, neighborMax_, output, settings_);
+  else
+    gather_->record(frame, inputs, neighborMax_, mask, output, settings_);
+}
+
+}  // namespace hmb::passes

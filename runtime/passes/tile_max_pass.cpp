@@ -1,0 +1,21 @@
+#include "runtime/passes/tile_max_pass.h"
+
+#include "kernels/mblur/mblur_layout.h"
+#include "runtime/passes/post_process_settings.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+
+TileMaxPass::TileMaxPass(const vk::Context& context)
+    : kernel_(context, "mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams)) {}
+
+void TileMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& velocity, const vk::Buffer& tiles,
+                         uint32_t width, uint32_t height, uint32_t tileSize, float velocityScale,
+                         std::string_view passName) const {
+  const TileGrid grid = tileGridFor(width, height, tileSize);
+  const gpu::TileMaxParams params{width, height, tileSize, grid.x, grid.y, velocityScale, 0, 0};
+  // One group per tile.
+  frame.dispatch(passName, kernel_, {&velocity, &tiles}, params, {grid.x, grid.y, 1});
+}
+
+}  // namespace hmb::passes

@@ -1,0 +1,225 @@
+// gather.comp (McGuire 2012 with the paper's appendix weights) against the reference in both
+// ranges, on random layers and adversarial ones; the weight functions against the appendix's
+// definitions; still images left unchanged; mask options; seeds.
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/mblur/mblur_harness.h"
+#include "tests/mblur/mblur_reference.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using namespace mblur;
+using passes::GatherRange;
+using passes::PostProcessSettings;
+
+// A textured background a little in motion, with a few rectangles moving over it at their own
+// depths and velocities.
+Layer randomLayer(uint32_t width, uint32_t height, std::mt19937& rng) {
+  Layer layer = stillLayer(width, height);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), drift(-1.0f, 1.0f), motion(-12.0f, 12.0f);
+  for (size_t i = 0; i < layer.color.size(); ++i) {
+    layer.color[i] = {unit(rng), unit(rng), unit(rng), 1.0f};
+    layer.normalDepth[i].w = 10.0f + 0.01f * unit(rng);
+    layer.velocity[i] = {drift(rng), drift(rng)};
+  }
+  for (int r = 0; r < 3; ++r) {
+    const uint32_t x0 = uint32_t(unit(rng) * width), y0 = uint32_t(unit(rng) * height);
+    const uint32_t x1 = std::min(width, x0 + 1 + uint32_t(unit(rng) * width / 2));
+    const uint32_t y1 = std::min(height, y0 + 1 + uint32_t(unit(rng) * height / 2));
+    const glm::vec2 v(motion(rng), motion(rng));
+    const float depth = 1.0f + 4.0f * unit(rng);
+    for (uint32_t y = y0; y < y1; ++y)
+      for (uint32_t x = x0; x < x1; ++x) {
+        layer.velocity[y * width + x] = v;
+        layer.normalDepth[y * width + x].w = depth;  // equal depths across the rectangle
+      }
+  }
+  return layer;
+}
+
+PostProcessSettings settingsFor(GatherRange range, uint32_t tileSize, uint32_t samples = 15, uint32_t seed = 1) {
+  PostProcessSettings s;
+  s.range = range;
+  s.tileSize = tileSize;
+  s.samples = samples;
+  s.seed = seed;
+  s.softZExtent = 0.05f;
+  return s;
+}
+
+std::vector<glm::vec4> referenceTiles(const Layer& layer, const PostProcessSettings& s) {
+  const auto tiles = tileMax(layer.velocity, layer.width, layer.height, s.tileSize, s.velocityScale());
+  return neighborMax(tiles, passes::tileGridFor(layer.width, layer.height, s.tileSize), s.neighborhood);
+}
+
+// Every output finite; every pixel within `tolerance` of the reference (colours are O(1)),
+// except pixels where a sample position rounds to the other neighbouring pixel on the device
+// (positions a rounding step from a pixel edge): at most 0.5% of them.
+void expectMatchesReference(const std::vector<glm::vec4>& device, const std::vector<glm::vec4>& reference,
+                            float tolerance = 2e-4f) {
+  ASSERT_EQ(device.size(), reference.size());
+  ASSERT_TRUE(allFinite(device));
+  size_t off = 0;
+  for (size_t i = 0; i < device.size(); ++i) {
+    const float scale = std::max({1.0f, std::abs(reference[i].x), std::abs(reference[i].y), std::abs(reference[i].z),
+                                  std::abs(reference[i].w)});
+    if (maxAbsDifference(device[i], reference[i]) > tolerance * scale) ++off;
+  }
+  EXPECT_LE(off, device.size() / 200) << off << " of " << device.size() << " pixels differ from the reference";
+}
+
+void expectGatherMatches(const Layer& layer, const PostProcessSettings& s, const std::vector<uint32_t>* mask = nullptr) {
+  const auto tiles = referenceTiles(layer, s);
+  expectMatchesReference(runGather(VulkanTest::context(), layer, tiles, mask, s), gather(layer, tiles, mask, s));
+}
+
+TEST(MblurWeightsTest, AppendixWeightsFollowTheirDefinitions) {
+  auto smoothstep = [](double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+  };
+  for (float v : {0.3f, 1.0f, 7.5f, 40.0f})
+    for (float s = 0.0f; s < 2.0f * v; s += v / 64.0f) {
+      EXPECT_NEAR(cylinder(v, s), 1.0 - smoothstep(0.95 * v, 1.05 * v, s), 1e-5) << v << " " << s;
+      EXPECT_NEAR(cone(s, v), std::clamp(1.0 - s / v, 0.0, 1.0), 1e-6);
+    }
+  // Zero speed: reaches only its own pixel.
+  EXPECT_EQ(cylinder(0.0f, 0.0f), 1.0f);
+  EXPECT_EQ(cylinder(0.0f, 1.0f), 0.0f);
+  EXPECT_EQ(cone(0.0f, 0.0f), 1.0f);
+  EXPECT_EQ(cone(1.0f, 0.0f), 0.0f);
+
+  const float soft = 0.1f;
+  // Sample well in front of the target (z >= 1): foreground only, by the sample's speed.
+  AppendixWeights w = appendixWeights(5.0f, 1.0f, 10.0f, 8.0f, 2.0f, soft);
+  EXPECT_FLOAT_EQ(w.foreground, 1.0f - 2.0f / 8.0f);
+  EXPECT_EQ(w.background, 0.0f);
+  EXPECT_EQ(w.simultaneous, 2.0f);
+  // Sample well behind: background only, by the target's speed.
+  w = appendixWeights(1.0f, 5.0f, 10.0f, 8.0f, 2.0f, soft);
+  EXPECT_EQ(w.foreground, 0.0f);
+  EXPECT_FLOAT_EQ(w.background, 1.0f - 2.0f / 10.0f);
+  // Equal depths: both sides, and w_s vanishes past the slower one's reach.
+  w = appendixWeights(3.0f, 3.0f, 10.0f, 4.0f, 5.0f, soft);
+  EXPECT_EQ(w.foreground, 0.0f);
+  EXPECT_FLOAT_EQ(w.background, 0.5f);
+  EXPECT_EQ(w.simultaneous, 0.0f);
+  // Half SOFT_Z_EXTENT apart (z = 0.5): the foreground ramp saturates, the background one is half.
+  w = appendixWeights(3.05f, 3.0f, 10.0f, 10.0f, 0.0f, soft);
+  EXPECT_EQ(w.foreground, 1.0f);
+  EXPECT_NEAR(w.background, 0.5f, 1e-5f);
+}
+
+using MblurGatherTest = VulkanTest;
+
+TEST_F(MblurGatherTest, RandomLayersMatchTheReferenceInBothRanges) {
+  std::mt19937 rng(21);
+  const std::pair<uint32_t, uint32_t> sizes[] = {{1, 1}, {3, 5}, {97, 61}};
+  for (auto [width, height] : sizes)
+    for (GatherRange range : {GatherRange::Centered, GatherRange::Adapted})
+      for (uint32_t tileSize : {8u, 40u}) {
+        SCOPED_TRACE(testing::Message() << width << "x" << height << " " << passes::rangeName(range) << " m " << tileSize);
+        expectGatherMatches(randomLayer(width, height, rng), settingsFor(range, tileSize));
+      }
+}
+
+TEST_F(MblurGatherTest, SampleCountsFromOneToTheLargest) {
+  std::mt19937 rng(5);
+  const Layer layer = randomLayer(41, 23, rng);
+  for (GatherRange range : {GatherRange::Centered, GatherRange::Adapted})
+    for (uint32_t samples : {1u, 2u, 4u, 255u}) {
+      SCOPED_TRACE(testing::Message() << passes::rangeName(range) << " S " << samples);
+      expectGatherMatches(layer, settingsFor(range, 8, samples));
+    }
+}
+
+TEST_F(MblurGatherTest, AdversarialInputsStayFiniteAndMatchTheReference) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  std::mt19937 rng(9);
+  const uint32_t width = 37, height = 29;
+  Layer layer = randomLayer(width, height, rng);
+  const float depths[] = {1e-6f, 1e30f, 1e-6f, 1.0f, 1.0f, nan, inf, -1.0f, 0.0f};
+  const glm::vec2 velocities[] = {{1e30f, -1e30f}, {nan, 0.0f}, {0.0f, inf}, {0.2f, 0.1f}, {0.0f, 0.0f},
+                                  {-1e30f, 3.0f},  {40.0f, 0.0f}, {-inf, -inf}};
+  const float colors[] = {nan, inf, -inf, 1e30f, -2.0f, 0.25f};
+  std::uniform_int_distribution<size_t> pick(0, 1000);
+  for (size_t i = 0; i < layer.color.size(); ++i) {
+    if (pick(rng) % 3 == 0) layer.normalDepth[i].w = depths[pick(rng) % std::size(depths)];
+    if (pick(rng) % 3 == 0) layer.velocity[i] = velocities[pick(rng) % std::size(velocities)];
+    if (pick(rng) % 5 == 0) layer.color[i][pick(rng) % 4] = colors[pick(rng) % std::size(colors)];
+  }
+  for (GatherRange range : {GatherRange::Centered, GatherRange::Adapted}) {
+    SCOPED_TRACE(passes::rangeName(range));
+    PostProcessSettings s = settingsFor(range, 6);
+    expectGatherMatches(layer, s);
+    s.softZExtent = 1e-30f;  // every depth difference saturates
+    expectGatherMatches(layer, s);
+  }
+}
+
+TEST_F(MblurGatherTest, StillAndSubPixelMotionLeaveTheImageUnchanged) {
+  std::mt19937 rng(2);
+  Layer layer = randomLayer(23, 17, rng);
+  for (glm::vec2& v : layer.velocity) v = glm::vec2(0.0f);
+  layer.color[5] = {std::numeric_limits<float>::quiet_NaN(), 1e30f, 0.5f, 1.0f};
+  for (GatherRange range : {GatherRange::Centered, GatherRange::Adapted}) {
+    const PostProcessSettings s = settingsFor(range, 5);
+    const auto still = runGather(context(), layer, referenceTiles(layer, s), nullptr, s);
+    for (size_t i = 0; i < still.size(); ++i) ASSERT_EQ(still[i], sanitizeColor(layer.color[i])) << i;
+    // Under half a pixel of blur everywhere (0.2 px/frame * E * fps = 0.4 px): the early out.
+    Layer slow = layer;
+    for (glm::vec2& v : slow.velocity) v = glm::vec2(0.2f, 0.0f);
+    const auto subPixel = runGather(context(), slow, referenceTiles(slow, s), nullptr, s);
+    for (size_t i = 0; i < subPixel.size(); ++i) ASSERT_EQ(subPixel[i], sanitizeColor(layer.color[i])) << i;
+  }
+}
+
+TEST_F(MblurGatherTest, MaskBoostsMatchTheReferenceAndAreOffAtOne) {
+  std::mt19937 rng(4);
+  const Layer layer = randomLayer(53, 31, rng);
+  std::vector<uint32_t> mask(layer.color.size());
+  std::bernoulli_distribution inMask(0.4);
+  for (uint32_t& m : mask) m = inMask(rng) ? 1u : 0u;
+  PostProcessSettings s = settingsFor(GatherRange::Adapted, 8);
+  const auto tiles = referenceTiles(layer, s);
+  const auto withoutMask = runGather(context(), layer, tiles, nullptr, s);
+  const auto maskOff = runGather(context(), layer, tiles, &mask, s);
+  EXPECT_EQ(maskOff, withoutMask) << "boost 1 and divide 1 must leave the gather unchanged";
+
+  s.maskBackgroundBoost = 3.0f;
+  s.maskForegroundDivide = 3.0f;
+  const auto boosted = runGather(context(), layer, tiles, &mask, s);
+  expectMatchesReference(boosted, gather(layer, tiles, &mask, s));
+  size_t changed = 0;
+  for (size_t i = 0; i < boosted.size(); ++i) {
+    if (mask[i] == 0) {
+      EXPECT_EQ(boosted[i], withoutMask[i]) << "pixel " << i << " is outside the mask";
+    }
+    changed += boosted[i] != withoutMask[i];
+  }
+  EXPECT_GT(changed, boosted.size() / 10) << "the boosts changed (almost) nothing inside the mask";
+}
+
+TEST_F(MblurGatherTest, TheSeedDecidesTheJitterAndNothingElse) {
+  std::mt19937 rng(8);
+  const Layer layer = randomLayer(61, 37, rng);
+  const PostProcessSettings a = settingsFor(GatherRange::Adapted, 8, 15, 1), b = settingsFor(GatherRange::Adapted, 8, 15, 2);
+  const auto tiles = referenceTiles(layer, a);
+  const auto first = runGather(context(), layer, tiles, nullptr, a);
+  EXPECT_EQ(runGather(context(), layer, tiles, nullptr, a), first) << "same seed, different result";
+  const auto other = runGather(context(), layer, tiles, nullptr, b);
+  size_t differ = 0;
+  for (size_t i = 0; i < first.size(); ++i) differ += first[i] != other[i];
+  EXPECT_GT(differ, first.size() / 4);
+  expectMatchesReference(other, gather(layer, tiles, nullptr, b));
+}
+
+}  // namespace
+}  // namespace hmb::test

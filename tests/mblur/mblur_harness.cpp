@@ -1,0 +1,147 @@
+#include "tests/mblur/mblur_harness.h"
+
+#include <cmath>
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <span>
+
+#include "runtime/passes/gather_pass.h"
+#include "runtime/passes/jimenez_gather_pass.h"
+#include "runtime/passes/neighbor_max_pass.h"
+#include "runtime/passes/post_process_stage.h"
+#include "runtime/passes/tile_max_pass.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::test::mblur {
+
+namespace {
+
+template <class T>
+vk::Buffer deviceBuffer(vk::Context& context, const std::vector<T>& values, const char* name) {
+  return vk::uploadedBuffer(context, values, name);
+}
+
+vk::Buffer outputBuffer(vk::Context& context, size_t count, const char* name) {
+  return vk::Buffer(context, std::max<size_t>(count, 1) * sizeof(glm::vec4), vk::MemoryUse::Device, name);
+}
+
+template <class T>
+std::vector<T> downloadFirst(const vk::Buffer& buffer, size_t count) {
+  std::vector<T> values = buffer.download<T>();
+  values.resize(count);
+  return values;
+}
+
+struct LayerBuffers {
+  vk::Buffer color, normalDepth, velocity;
+  passes::MotionBlurInputs inputs() const {
+    return {&color, &normalDepth, &velocity, width, height};
+  }
+  uint32_t width = 0, height = 0;
+};
+
+LayerBuffers upload(vk::Context& context, const Layer& layer) {
+  return {deviceBuffer(context, layer.color, "test colour"), deviceBuffer(context, layer.normalDepth, "test depth"),
+          deviceBuffer(context, layer.velocity, "test velocity"), layer.width, layer.height};
+}
+
+}  // namespace
+
+std::vector<glm::vec4> runTileMax(vk::Context& context, const std::vector<glm::vec2>& velocity, uint32_t width,
+                                  uint32_t height, uint32_t tileSize, float velocityScale) {
+  const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
+  const vk::Buffer in = deviceBuffer(context, velocity, "test velocity");
+  const vk::Buffer out = outputBuffer(context, grid.count(), "test tile max");
+  const passes::TileMaxPass pass(context);
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  pass.record(frame, in, out, width, height, tileSize, velocityScale);
+  frame.submitAndWait();
+  return downloadFirst<glm::vec4>(out, grid.count());
+}
+
+std::vector<glm::vec4> runNeighborMax(vk::Context& context, const std::vector<glm::vec4>& tileMax,
+                                      passes::TileGrid grid, uint32_t neighborhood) {
+  const vk::Buffer in = deviceBuffer(context, tileMax, "test tile max");
+  const vk::Buffer out = outputBuffer(context, grid.count(), "test neighbor max");
+  const passes::NeighborMaxPass pass(context);
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  pass.record(frame, in, out, grid, neighborhood);
+  frame.submitAndWait();
+  return downloadFirst<glm::vec4>(out, grid.count());
+}
+
+std::vector<glm::vec4> runGather(vk::Context& context, const Layer& layer, const std::vector<glm::vec4>& neighborMax,
+                                 const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings) {
+  const LayerBuffers buffers = upload(context, layer);
+  const vk::Buffer tiles = deviceBuffer(context, neighborMax, "test neighbor max");
+  std::optional<vk::Buffer> maskBuffer;
+  if (mask) maskBuffer.emplace(deviceBuffer(context, *mask, "test mask"));
+  const size_t pixels = size_t(layer.width) * layer.height;
+  const vk::Buffer out = outputBuffer(context, pixels, "test output");
+  const passes::GatherPass pass(context);
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  pass.record(frame, buffers.inputs(), tiles, maskBuffer ? &*maskBuffer : nullptr, out, settings);
+  frame.submitAndWait();
+  return downloadFirst<glm::vec4>(out, pixels);
+}
+
+std::vector<glm::vec4> runJimenezGather(vk::Context& context, const Layer& layer,
+                                        const std::vector<glm::vec4>& neighborMax,
+                                        const passes::PostProcessSettings& settings) {
+  const LayerBuffers buffers = upload(context, layer);
+  const vk::Buffer tiles = deviceBuffer(context, neighborMax, "test neighbor max");
+  const size_t pixels = size_t(layer.width) * layer.height;
+  const vk::Buffer out = outputBuffer(context, pixels, "test output");
+  const passes::JimenezGatherPass pass(context);
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  pass.record(frame, buffers.inputs(), tiles, out, settings);
+  frame.submitAndWait();
+  return downloadFirst<glm::vec4>(out, pixels);
+}
+
+std::vector<glm::vec4> runStage(vk::Context& context, const Layer& layer, const std::vector<uint32_t>* mask,
+                                const passes::PostProcessSettings& settings) {
+  const LayerBuffers buffers = upload(context, layer);
+  std::optional<vk::Buffer> maskBuffer;
+  if (mask) maskBuffer.emplace(deviceBuffer(context, *mask, "test mask"));
+  const size_t pixels = size_t(layer.width) * layer.height;
+  const vk::Buffer out = outputBuffer(context, pixels, "test output");
+  passes::PostProcessStage stage(context, settings);
+  stage.prepare(layer.width, layer.height);
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  stage.record(frame, buffers.inputs(), out, maskBuffer ? &*maskBuffer : nullptr);
+  frame.submitAndWait();
+  return downloadFirst<glm::vec4>(out, pixels);
+}
+
+Layer stillLayer(uint32_t width, uint32_t height) {
+  const size_t pixels = size_t(width) * height;
+  return {width, height, std::vector<glm::vec4>(pixels, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f)),
+          std::vector<glm::vec4>(pixels, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f)),
+          std::vector<glm::vec2>(pixels, glm::vec2(0.0f))};
+}
+
+float maxAbsDifference(glm::vec4 a, glm::vec4 b) {
+  float worst = 0.0f;
+  for (int i = 0; i < 4; ++i) {
+    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) return std::numeric_limits<float>::infinity();
+    worst = std::max(worst, std::abs(a[i] - b[i]));
+  }
+  return worst;
+}
+
+bool allFinite(const std::vector<glm::vec4>& values) {
+  for (const glm::vec4& v : values)
+    for (int i = 0; i < 4; ++i)
+      if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+}  // namespace hmb::test::mblur

@@ -1,0 +1,40 @@
+// Runs the motion blur passes on the test device on host data and reads the results back.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "runtime/passes/post_process_settings.h"
+#include "tests/mblur/mblur_reference.h"
+
+namespace hmb::vk {
+class Context;
+}
+
+namespace hmb::test::mblur {
+
+std::vector<glm::vec4> runTileMax(vk::Context& context, const std::vector<glm::vec2>& velocity, uint32_t width,
+                                  uint32_t height, uint32_t tileSize, float velocityScale);
+std::vector<glm::vec4> runNeighborMax(vk::Context& context, const std::vector<glm::vec4>& tileMax,
+                                      passes::TileGrid grid, uint32_t neighborhood);
+// The gather alone, on given neighbour-max tiles (grid at settings.tileSize).
+std::vector<glm::vec4> runGather(vk::Context& context, const Layer& layer, const std::vector<glm::vec4>& neighborMax,
+                                 const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings);
+// The Jimenez gather alone (grid at settings.jimenezTileSize).
+std::vector<glm::vec4> runJimenezGather(vk::Context& context, const Layer& layer,
+                                        const std::vector<glm::vec4>& neighborMax,
+                                        const passes::PostProcessSettings& settings);
+// The whole PostProcessStage.
+std::vector<glm::vec4> runStage(vk::Context& context, const Layer& layer, const std::vector<uint32_t>* mask,
+                                const passes::PostProcessSettings& settings);
+
+// A layer of the given size, every pixel at rest: colour 0.5 grey, depth 1.
+Layer stillLayer(uint32_t width, uint32_t height);
+
+// Largest |a - b| over all channels; non-finite values in either count as infinite.
+float maxAbsDifference(glm::vec4 a, glm::vec4 b);
+bool allFinite(const std::vector<glm::vec4>& values);
+
+}  // namespace hmb::test::mblur

@@ -1,0 +1,269 @@
+#include "tests/mblur/mblur_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hmb::test::mblur {
+
+namespace {
+constexpr float kMaxColor = 65504.0f;
+constexpr float kMaxDepth = 3.0e38f;
+
+float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
+bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+float length2(glm::vec2 v) { return std::sqrt(v.x * v.x + v.y * v.y); }
+}  // namespace
+
+glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float& speed) {
+  const glm::vec2 v(q.x * velocityScale, q.y * velocityScale);
+  speed = 0.0f;
+  if (!finite(v)) return glm::vec2(0.0f);
+  const float largest = std::max(std::abs(v.x), std::abs(v.y));
+  if (!(largest >= 1e-30f)) return glm::vec2(0.0f);
+  const glm::vec2 unit(v.x / largest, v.y / largest);
+  const float unitLength = length2(unit);
+  const float fullSpeed = largest * unitLength;
+  if (fullSpeed <= maxSpeed) {
+    speed = fullSpeed;
+    return v;
+  }
+  speed = maxSpeed;
+  const float scale = maxSpeed / unitLength;
+  return {unit.x * scale, unit.y * scale};
+}
+
+glm::vec4 sanitizeColor(glm::vec4 c) {
+  for (int i = 0; i < 4; ++i) c[i] = std::isnan(c[i]) ? 0.0f : std::clamp(c[i], -kMaxColor, kMaxColor);
+  return c;
+}
+
+float sanitizeDepth(float z) { return std::isnan(z) ? kMaxDepth : std::clamp(z, 0.0f, kMaxDepth); }
+
+uint32_t mblurHash(uint32_t x, uint32_t y, uint32_t seed) {
+  uint32_t h = x * 0x9E3779B1u + y * 0x85EBCA77u + seed * 0xC2B2AE3Du + 0x27D4EB2Fu;
+  h ^= h >> 16;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15;
+  h *= 0x846CA68Bu;
+  h ^= h >> 16;
+  return h;
+}
+
+float unitFromHash(uint32_t h) { return float(h >> 8) * (1.0f / 16777216.0f); }
+
+uint32_t nextHash(uint32_t h) { return mblurHash(h, 0x68E31DA4u, 0x1B56C4E9u); }
+
+glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height) {
+  const glm::ivec2 p(int(std::floor(position.x)), int(std::floor(position.y)));
+  return {std::clamp(p.x, 0, int(width) - 1), std::clamp(p.y, 0, int(height) - 1)};
+}
+
+float cone(float ds, float v) { return saturate(1.0f - ds / std::max(v, 1e-6f)); }
+
+float cylinder(float v, float s) {
+  if (v <= 0.0f) return s <= 0.0f ? 1.0f : 0.0f;
+  const float t = saturate((s - 0.95f * v) / (0.1f * v));
+  return 1.0f - t * t * (3.0f - 2.0f * t);
+}
+
+AppendixWeights appendixWeights(float targetDepth, float sampleDepth, float targetSpeed, float sampleSpeed, float ds,
+                                float softZExtent) {
+  const float z = (targetDepth - sampleDepth) / softZExtent;
+  return {saturate(1.0f + z) * cone(ds, sampleSpeed), saturate(1.0f - z) * cone(ds, targetSpeed),
+          cylinder(sampleSpeed, ds) * cylinder(targetSpeed, ds) * 2.0f};
+}
+
+std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& velocity, uint32_t width, uint32_t height,
+                               uint32_t tileSize, float velocityScale) {
+  const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
+  std::vector<glm::vec4> tiles(grid.count());
+  for (uint32_t ty = 0; ty < grid.y; ++ty)
+    for (uint32_t tx = 0; tx < grid.x; ++tx) {
+      glm::vec2 best(0.0f);
+      float bestSpeed = -1.0f;
+      // Row-major order with a strict comparison: the first pixel keeps a tie.
+      for (uint32_t y = ty * tileSize; y < std::min((ty + 1) * tileSize, height); ++y)
+        for (uint32_t x = tx * tileSize; x < std::min((tx + 1) * tileSize, width); ++x) {
+          float speed;
+          const glm::vec2 v = gatherVelocity(velocity[y * width + x], velocityScale, float(tileSize), speed);
+          if (speed > bestSpeed) {
+            best = v;
+            bestSpeed = speed;
+          }
+        }
+      tiles[ty * grid.x + tx] = glm::vec4(best, std::max(bestSpeed, 0.0f), 0.0f);
+    }
+  return tiles;
+}
+
+std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes::TileGrid grid,
+                                   uint32_t neighborhood) {
+  std::vector<glm::vec4> out(grid.count());
+  const int radius = int(neighborhood / 2);
+  for (int ty = 0; ty < int(grid.y); ++ty)
+    for (int tx = 0; tx < int(grid.x); ++tx) {
+      glm::vec4 best(0.0f, 0.0f, -1.0f, 0.0f);
+      for (int y = std::max(ty - radius, 0); y <= std::min(ty + radius, int(grid.y) - 1); ++y)
+        for (int x = std::max(tx - radius, 0); x <= std::min(tx + radius, int(grid.x) - 1); ++x) {
+          const glm::vec4 candidate = tileMax[size_t(y) * grid.x + x];
+          if (candidate.z > best.z) best = candidate;
+        }
+      out[size_t(ty) * grid.x + tx] = best;
+    }
+  return out;
+}
+
+std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& neighborMaxTiles,
+                              const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings) {
+  const uint32_t width = layer.width, height = layer.height, m = settings.tileSize;
+  const passes::TileGrid grid = passes::tileGridFor(width, height, m);
+  const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
+  const bool adapted = settings.range == passes::GatherRange::Adapted;
+  const float foregroundBoost = settings.effectiveForegroundBoost();
+  const float maxSpeed = float(m);
+  std::vector<glm::vec4> out(size_t(width) * height);
+  for (uint32_t py = 0; py < height; ++py)
+    for (uint32_t px = 0; px < width; ++px) {
+      const uint32_t index = py * width + px;
+      const glm::vec4 centreColor = sanitizeColor(layer.color[index]);
+      const glm::vec4 dominant = neighborMaxTiles[(py / m) * grid.x + px / m];
+      if (dominant.z < 0.5f) {
+        out[index] = centreColor;
+        continue;
+      }
+      float centreSpeed;
+      gatherVelocity(layer.velocity[index], velocityScale, maxSpeed, centreSpeed);
+      const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
+      const bool inMask = mask && (*mask)[index] != 0;
+      const float backgroundScale = inMask ? settings.maskBackgroundBoost : 1.0f;
+      const float foregroundScale = inMask ? 1.0f / settings.maskForegroundDivide : 1.0f;
+
+      float weightSum = 1.0f / std::max(centreSpeed, 0.5f);
+      glm::vec4 sum = centreColor * weightSum;
+      const float jitter = unitFromHash(mblurHash(px, py, settings.seed));
+      const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
+      const uint32_t samples = settings.samples;
+      for (uint32_t i = 0; i < samples; ++i) {
+        float t;
+        if (adapted) {
+          t = (float(i) + 1.0f - jitter) / float(samples);
+        } else {
+          if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
+          const float a = (float(i) + jitter + 0.5f) / float(samples + 1u);
+          t = -1.0f * (1.0f - a) + 1.0f * a;
+        }
+        const glm::ivec2 s =
+            nearestPixel({centre.x + t * dominant.x, centre.y + t * dominant.y}, width, height);
+        const uint32_t sampleIndex = uint32_t(s.y) * width + uint32_t(s.x);
+        const float ds = length2(glm::vec2(float(s.x - int(px)), float(s.y - int(py))));
+        float sampleSpeed;
+        gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, sampleSpeed);
+        const float sampleDepth = sanitizeDepth(layer.normalDepth[sampleIndex].w);
+        AppendixWeights w =
+            appendixWeights(centreDepth, sampleDepth, centreSpeed, sampleSpeed, ds, settings.softZExtent);
+        if (centreDepth - sampleDepth >= settings.softZExtent) w.foreground *= foregroundBoost;
+        w.foreground *= foregroundScale;
+        w.background *= backgroundScale;
+        const float weight = w.foreground + w.background + w.simultaneous;
+        weightSum += weight;
+        sum += weight * sanitizeColor(layer.color[sampleIndex]);
+      }
+      out[index] = sum / weightSum;
+    }
+  return out;
+}
+
+namespace {
+
+glm::vec2 depthCompare(float centreDepth, float sampleDepth, float softZExtent) {
+  const float d = (sampleDepth - centreDepth) / softZExtent;
+  return {saturate(0.5f + d), saturate(0.5f - d)};
+}
+
+float spreadCompare(float offset, float spread) { return saturate(spread - std::max(offset - 1.0f, 0.0f)); }
+
+float jimenezWeight(float centreDepth, float sampleDepth, float offset, float centreSpread, float sampleSpread,
+                    float softZExtent) {
+  const glm::vec2 depth = depthCompare(centreDepth, sampleDepth, softZExtent);
+  return depth.x * spreadCompare(offset, centreSpread) + depth.y * spreadCompare(offset, sampleSpread);
+}
+
+}  // namespace
+
+std::vector<glm::vec4> gatherJimenez(const Layer& layer, const std::vector<glm::vec4>& neighborMaxTiles,
+                                     const passes::PostProcessSettings& settings) {
+  const uint32_t width = layer.width, height = layer.height, tileSize = settings.jimenezTileSize;
+  const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
+  const float velocityScale = passes::gatherVelocityScale(passes::GatherRange::Centered, settings.exposure, settings.fps);
+  const float m = float(tileSize);
+  std::vector<glm::vec4> out(size_t(width) * height);
+  for (uint32_t py = 0; py < height; ++py)
+    for (uint32_t px = 0; px < width; ++px) {
+      const uint32_t index = py * width + px;
+      const glm::vec4 centreColor = sanitizeColor(layer.color[index]);
+      uint32_t h = mblurHash(px, py, settings.seed);
+      const float sampleJitter = unitFromHash(h);
+      h = nextHash(h);
+      const float jitterX = unitFromHash(h);
+      h = nextHash(h);
+      const float jitterY = unitFromHash(h);
+      const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
+      const glm::vec2 lookup(centre.x / m + (jitterX * 2.0f - 1.0f) * settings.jimenezTileJitter,
+                             centre.y / m + (jitterY * 2.0f - 1.0f) * settings.jimenezTileJitter);
+      const int tx = std::clamp(int(std::floor(lookup.x)), 0, int(grid.x) - 1);
+      const int ty = std::clamp(int(std::floor(lookup.y)), 0, int(grid.y) - 1);
+      const glm::vec4 dominant = neighborMaxTiles[size_t(ty) * grid.x + tx];
+      if (dominant.z < 0.5f) {
+        out[index] = centreColor;
+        continue;
+      }
+      const uint32_t pairs = (settings.samples + 1u) / 2u;
+      const float pixelsToSampleUnits = float(pairs) / dominant.z;
+      float centreSpeed;
+      gatherVelocity(layer.velocity[index], velocityScale, m, centreSpeed);
+      const float centreSpread = centreSpeed * pixelsToSampleUnits;
+      const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
+
+      glm::vec4 sum(0.0f);
+      float weightSum = 0.0f;
+      for (uint32_t k = 0; k < pairs; ++k) {
+        const float offset = float(k) + 1.0f - sampleJitter;
+        const float along = offset / float(pairs);
+        const glm::vec2 step(along * dominant.x, along * dominant.y);
+        const glm::ivec2 a = nearestPixel({centre.x + step.x, centre.y + step.y}, width, height);
+        const glm::ivec2 b = nearestPixel({centre.x - step.x, centre.y - step.y}, width, height);
+        const uint32_t indexA = uint32_t(a.y) * width + uint32_t(a.x);
+        const uint32_t indexB = uint32_t(b.y) * width + uint32_t(b.x);
+        float speedA, speedB;
+        gatherVelocity(layer.velocity[indexA], velocityScale, m, speedA);
+        gatherVelocity(layer.velocity[indexB], velocityScale, m, speedB);
+        const float depthA = sanitizeDepth(layer.normalDepth[indexA].w);
+        const float depthB = sanitizeDepth(layer.normalDepth[indexB].w);
+        const float spreadA = speedA * pixelsToSampleUnits, spreadB = speedB * pixelsToSampleUnits;
+        float weightA = jimenezWeight(centreDepth, depthA, offset, centreSpread, spreadA, settings.softZExtent);
+        float weightB = jimenezWeight(centreDepth, depthB, offset, centreSpread, spreadB, settings.softZExtent);
+        if (depthA > depthB && spreadB > spreadA)
+          weightA = weightB;
+        else if (depthB > depthA && spreadA > spreadB)
+          weightB = weightA;
+        sum += weightA * sanitizeColor(layer.color[indexA]) + weightB * sanitizeColor(layer.color[indexB]);
+        weightSum += weightA + weightB;
+      }
+      const float sampleCount = float(2u * pairs);
+      out[index] = (sum + std::max(sampleCount - weightSum, 0.0f) * centreColor) / sampleCount;
+    }
+  return out;
+}
+
+std::vector<glm::vec4> postProcess(const Layer& layer, const std::vector<uint32_t>* mask,
+                                   const passes::PostProcessSettings& settings) {
+  const uint32_t tileSize = settings.effectiveTileSize();
+  const std::vector<glm::vec4> tiles =
+      tileMax(layer.velocity, layer.width, layer.height, tileSize, settings.velocityScale());
+  const std::vector<glm::vec4> neighbors =
+      neighborMax(tiles, passes::tileGridFor(layer.width, layer.height, tileSize), settings.neighborhood);
+  if (settings.filter == passes::PostProcessFilter::Jimenez) return gatherJimenez(layer, neighbors, settings);
+  return gather(layer, neighbors, mask, settings);
+}
+
+}  // namespace hmb::test::mblur

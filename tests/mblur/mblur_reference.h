@@ -1,0 +1,59 @@
+// Plain C++ of every motion blur kernel's math (kernels/mblur/), operation for operation, so the
+// kernels can be compared with it on any input.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "runtime/passes/post_process_settings.h"
+
+namespace hmb::test::mblur {
+
+// One G-buffer layer, row 0 at the top.
+struct Layer {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<glm::vec4> color;
+  std::vector<glm::vec4> normalDepth;  // w: camera-space depth
+  std::vector<glm::vec2> velocity;     // pixels per frame
+};
+
+// mblur_common.glsl
+glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float& speed);
+glm::vec4 sanitizeColor(glm::vec4 c);
+float sanitizeDepth(float z);
+uint32_t mblurHash(uint32_t x, uint32_t y, uint32_t seed);
+float unitFromHash(uint32_t h);
+uint32_t nextHash(uint32_t h);
+glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height);
+float cone(float ds, float v);
+float cylinder(float v, float s);
+
+// The paper's appendix, eqs. 6-9, before any boost.
+struct AppendixWeights {
+  float foreground = 0.0f;  // w_f
+  float background = 0.0f;  // w_b
+  float simultaneous = 0.0f;  // w_s
+};
+AppendixWeights appendixWeights(float targetDepth, float sampleDepth, float targetSpeed, float sampleSpeed, float ds,
+                                float softZExtent);
+
+// tile_max.comp: vec4 (velocity, speed, 0) per tile.
+std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& velocity, uint32_t width, uint32_t height,
+                               uint32_t tileSize, float velocityScale);
+// neighbor_max.comp
+std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes::TileGrid grid,
+                                   uint32_t neighborhood);
+// gather.comp (the McGuire fields of settings); mask: width * height or nullptr.
+std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& neighborMax,
+                              const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings);
+// gather_jimenez.comp
+std::vector<glm::vec4> gatherJimenez(const Layer& layer, const std::vector<glm::vec4>& neighborMax,
+                                     const passes::PostProcessSettings& settings);
+// The whole stage: tile-max, neighbour-max and the selected gather.
+std::vector<glm::vec4> postProcess(const Layer& layer, const std::vector<uint32_t>* mask,
+                                   const passes::PostProcessSettings& settings);
+
+}  // namespace hmb::test::mblur
