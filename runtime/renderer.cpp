@@ -8,6 +8,7 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/reference_stage.h"
 #include "runtime/passes/test_pattern_pass.h"
 #include "runtime/vulkan/buffer.h"
@@ -45,22 +46,49 @@ struct Renderer::Passes {
         encodeDisplay(context),
         gbuffer(context, passes::defaultVisibilityScheme(context.info())),
         reference(context),
+        postProcess(context, passes::PostProcessSettings{}),
         recorder(context) {}
   passes::TestPatternPass testPattern;
   passes::EncodeDisplayPass encodeDisplay;
   passes::GBufferStage gbuffer;
   passes::ReferenceStage reference;
+  passes::PostProcessStage postProcess;
   vk::FrameRecorder recorder;
 };
 
 const std::vector<std::string>& methodNames() {
-  static const std::vector<std::string> names = {"sharp", "reference"};
+  static const std::vector<std::string> names = {"sharp", "postprocess", "reference"};
   return names;
 }
 
 const std::vector<std::string>& debugMethodNames() {
   static const std::vector<std::string> names = {"test-pattern"};
   return names;
+}
+
+namespace {
+
+// The user's choices over `s`, validated (hmb::Error names the first absurd value).
+passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const PostProcessChoices& c) {
+  if (c.filter) s.filter = passes::parseFilter(*c.filter);
+  if (c.range) s.range = passes::parseRange(*c.range);
+  if (c.samples) s.samples = *c.samples;
+  if (c.tileSize) {
+    s.tileSize = *c.tileSize;
+    s.jimenezTileSize = *c.tileSize;
+  }
+  if (c.neighborhood) s.neighborhood = *c.neighborhood;
+  if (c.foregroundBoost) s.foregroundBoost = *c.foregroundBoost;
+  if (c.softZExtent) s.softZExtent = *c.softZExtent;
+  if (c.seed) s.seed = *c.seed;
+  passes::validate(s);
+  return s;
+}
+
+}  // namespace
+
+passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
+  return withChoices(passes::PostProcessSettings::fromScene(scene.settings), settings.postprocess);
 }
 
 void validateRenderSettings(const RenderSettings& settings) {
@@ -80,6 +108,7 @@ void validateRenderSettings(const RenderSettings& settings) {
   if (settings.frameTime && !std::isfinite(*settings.frameTime))
     throw Error("frame time must be a finite number of seconds");
   if (settings.method == "reference") passes::validateReferenceSettings(settings.reference);
+  if (settings.method == "postprocess") withChoices(passes::PostProcessSettings{}, settings.postprocess);
 }
 
 Renderer::Renderer(vk::Context& context) : context_(context) {}
@@ -131,15 +160,29 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     result.image = {width, height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
   } else {
     // sharp: the G-buffer's shaded colour, the shutter-close instant without blur.
+    // postprocess: that colour blurred along the G-buffer's velocities (tile-max, neighbour-max, gather).
     GpuScene gpuScene(context_, scene);
     gpuScene.setFrame(scene, result.frameTime, width, height);
     passes::GBufferStage& gbuffer = passes_->gbuffer;
     gbuffer.prepare(gpuScene, width, height);
     gbuffer.plan(result.plan);
+    const bool blur = settings.method == "postprocess";
+    vk::Buffer blurred;
+    if (blur) {
+      result.postprocess = postProcessSettingsFor(scene, settings);
+      passes_->postProcess.configure(*result.postprocess);
+      passes_->postProcess.prepare(width, height);
+      passes_->postProcess.plan(result.plan);
+      blurred = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "post-process colour");
+    }
+    const vk::Buffer& beauty = blur ? blurred : gbuffer.color();
     result.plan.run(passes::EncodeDisplayPass::kName);
     timings = passes::submitUntilRasterFits(frame, gbuffer.rasterizer(), [&](vk::FrameRecorder& f) {
       gbuffer.record(f, gpuScene);
-      passes_->encodeDisplay.record(f, gbuffer.color(), display, width, height);
+      if (blur)
+        passes_->postProcess.record(f, {&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), width, height},
+                                    blurred);
+      passes_->encodeDisplay.record(f, beauty, display, width, height);
     });
     result.visibilityScheme = passes::visibilitySchemeName(gbuffer.rasterizer().scheme());
     result.raster = gbuffer.rasterizer().stats();
@@ -153,7 +196,7 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     objectId.ids.resize(pixels);
     result.image = {width,
                     height,
-                    {vec4Layer("", {"R", "G", "B", "A"}, gbuffer.color().download<glm::vec4>()),
+                    {vec4Layer("", {"R", "G", "B", "A"}, beauty.download<glm::vec4>()),
                      vec4Layer("depth", {"Z"}, depth), vec4Layer("normal", {"X", "Y", "Z"}, normalDepth),
                      vec4Layer("velocity", {"X", "Y"}, velocity), std::move(objectId)}};
   }

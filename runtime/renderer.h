@@ -11,6 +11,7 @@
 
 #include "runtime/frame_plan.h"
 #include "runtime/io/image.h"
+#include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/reference_stage.h"
 #include "scenes/scene.h"
@@ -24,12 +25,26 @@ namespace hmb {
 // The largest image side accepted; larger requests fail before any allocation.
 inline constexpr uint32_t kMaxImageSide = 16384;
 
+// The post-process settings a user chose; the rest come from the scene (exposure, frame rate,
+// SOFT_Z_EXTENT) and the defaults of passes::PostProcessSettings.
+struct PostProcessChoices {
+  std::optional<std::string> filter;  // mcguire | jimenez
+  std::optional<std::string> range;   // centered | adapted
+  std::optional<uint32_t> samples;
+  std::optional<uint32_t> tileSize;
+  std::optional<uint32_t> neighborhood;
+  std::optional<float> foregroundBoost;
+  std::optional<float> softZExtent;
+  std::optional<uint32_t> seed;
+};
+
 struct RenderSettings {
   std::string method = "sharp";
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;  // seconds; default: the scene's settings.frameTime
   passes::ReferenceSettings reference;
+  PostProcessChoices postprocess;
   // Long methods (the reference) report how far they are after every submission.
   std::function<void(const passes::ReferenceProgress&)> onProgress;
 };
@@ -47,6 +62,8 @@ struct RenderResult {
   // The G-buffer rasterizer of the frame (methods without one leave these empty).
   std::string visibilityScheme;
   passes::RasterStats raster;
+  // The post-process methods: the settings they ran with.
+  std::optional<passes::PostProcessSettings> postprocess;
   // The reference: samples per pixel in the image (resumed ones included).
   std::optional<passes::ReferenceProgress> reference;
 };
@@ -55,6 +72,9 @@ struct RenderResult {
 const std::vector<std::string>& methodNames();
 // Methods that prove the runtime rather than render the scene (accepted, not in the demo).
 const std::vector<std::string>& debugMethodNames();
+
+// The post-process settings of a render of this scene (throws hmb::Error for bad names).
+passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings);
 
 // Throws hmb::Error (one line) for an unknown method or an unusable size.
 void validateRenderSettings(const RenderSettings& settings);

@@ -100,6 +100,19 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
     }
     return json;
   }
+  if (result.postprocess) {
+    const passes::PostProcessSettings& p = *result.postprocess;
+    return {{"filter", passes::filterName(p.filter)},
+            {"range", passes::rangeName(p.effectiveRange())},
+            {"samples", p.samples},
+            {"tile_size", p.effectiveTileSize()},
+            {"neighborhood", p.neighborhood},
+            {"foreground_boost", p.effectiveForegroundBoost()},
+            {"soft_z_extent", p.softZExtent},
+            {"exposure_s", p.exposure},
+            {"fps", p.fps},
+            {"seed", p.seed}};
+  }
   return nlohmann::json::object();
 }
 

@@ -45,6 +45,7 @@ struct RenderOptions {
   std::string out;
   std::string report;
   hmb::passes::ReferenceSettings reference;
+  hmb::PostProcessChoices postprocess;
   std::string checkpoint;
   std::string referenceImage;  // compare the result with this image (.exr or .png)
   std::string errorImage;      // FLIP error map of that comparison (.png)
@@ -179,6 +180,8 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   settings.height = options.height;
   settings.frameTime = options.frameTime;
   settings.reference = options.reference;
+  settings.postprocess = options.postprocess;
+  settings.postprocess.seed = options.reference.seed;
   settings.reference.checkpoint = options.checkpoint;
   if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
   hmb::validateRenderSettings(settings);
@@ -298,6 +301,18 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--frame-time", renderOptions.frameTime, "Time of the frame in seconds (shutter closes then)");
   renderCmd->add_option("--out", renderOptions.out, "Output image: .exr (beauty + AOV layers) or .png (display)");
   renderCmd->add_option("--report", renderOptions.report, "JSON report: device, settings, per-pass times");
+  renderCmd->add_option("--filter", renderOptions.postprocess.filter, "postprocess: mcguire (default) or jimenez");
+  renderCmd->add_option("--range", renderOptions.postprocess.range,
+                        "postprocess: adapted (default: the pixel at the end of its range) or centered");
+  renderCmd->add_option("--samples", renderOptions.postprocess.samples, "postprocess: gather samples (default 15)");
+  renderCmd->add_option("--tile-size", renderOptions.postprocess.tileSize,
+                        "postprocess: tile size m in pixels (default 40; jimenez 20)");
+  renderCmd->add_option("--neighborhood", renderOptions.postprocess.neighborhood,
+                        "postprocess: neighbour-max over n x n tiles (default 3)");
+  renderCmd->add_option("--foreground-boost", renderOptions.postprocess.foregroundBoost,
+                        "postprocess: w_f factor past SOFT_Z_EXTENT (default 30 adapted, 1 centered)");
+  renderCmd->add_option("--soft-z-extent", renderOptions.postprocess.softZExtent,
+                        "postprocess: SOFT_Z_EXTENT in scene units (default: the scene's)");
   renderCmd->add_option("--spp", renderOptions.reference.samplesPerPixel, "reference: samples (shutter times) per pixel")
       ->capture_default_str();
   renderCmd->add_option("--seed", renderOptions.reference.seed, "Seed of every random choice (reference time jitter)")

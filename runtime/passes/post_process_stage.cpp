@@ -9,20 +9,18 @@
 
 namespace hmb::passes {
 
-namespace {
-const PostProcessSettings& validated(const PostProcessSettings& settings) {
-  validate(settings);
-  return settings;
-}
-}  // namespace
-
 PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcessSettings& settings)
-    : context_(context), settings_(validated(settings)), tileMaxPass_(context), neighborMaxPass_(context) {
-  // Pipelines compile once each and cost time on CPU devices: only the selected gather is built.
-  if (settings_.filter == PostProcessFilter::Jimenez)
-    jimenezGather_.emplace(context);
-  else
-    gather_.emplace(context);
+    : context_(context), tileMaxPass_(context), neighborMaxPass_(context) {
+  configure(settings);
+}
+
+void PostProcessStage::configure(const PostProcessSettings& settings) {
+  validate(settings);
+  settings_ = settings;
+  // Pipelines compile once each and cost time on CPU devices: a gather is built when first used.
+  if (settings_.filter == PostProcessFilter::Jimenez && !jimenezGather_) jimenezGather_.emplace(context_);
+  if (settings_.filter == PostProcessFilter::McGuire && !gather_) gather_.emplace(context_);
+  width_ = height_ = 0;  // the tile grid follows the tile size: prepare() sizes it again
 }
 
 void PostProcessStage::plan(FramePlan& plan) const {
@@ -51,11 +49,12 @@ void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& 
   if (inputs.width != width_ || inputs.height != height_)
     throw Error("post-process: inputs are " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) +
                 " but the stage was prepared for " + std::to_string(width_) + "x" + std::to_string(height_));
-  if (mask && jimenezGather_) throw Error("post-process: the Jimenez filter takes no mask");
+  const bool jimenez = settings_.filter == PostProcessFilter::Jimenez;
+  if (mask && jimenez) throw Error("post-process: the Jimenez filter takes no mask");
   tileMaxPass_.record(frame, *inputs.velocity, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
                       settings_.velocityScale());
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
-  if (jimenezGather_)
+  if (jimenez)
     jimenezGather_->record(frame, inputs, neighborMax_, output, settings_);
   else
     gather_->record(frame, inputs, neighborMax_, mask, output, settings_);

@@ -23,6 +23,8 @@ class PostProcessStage {
  public:
   // Validates the settings (hmb::Error on absurd values) and builds the selected filter's kernels.
   PostProcessStage(const vk::Context& context, const PostProcessSettings& settings);
+  // Validates and takes new settings (throws hmb::Error); call prepare() again after it.
+  void configure(const PostProcessSettings& settings);
 
   void plan(FramePlan& plan) const;
 
