@@ -88,7 +88,14 @@ passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const Pos
 }  // namespace
 
 passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
-  return withChoices(passes::PostProcessSettings::fromScene(scene.settings), settings.postprocess);
+  passes::PostProcessSettings base = passes::PostProcessSettings::fromScene(scene.settings);
+  // The paper's tile sizes are pixels of a 720-line image; velocities in pixels scale with the
+  // image, so the tiles do too (else a small image is a handful of tiles and every blur spills
+  // over the whole frame).
+  const float linesScale = float(settings.height) / 720.0f;
+  base.tileSize = std::max(1u, static_cast<uint32_t>(std::lround(float(base.tileSize) * linesScale)));
+  base.jimenezTileSize = std::max(1u, static_cast<uint32_t>(std::lround(float(base.jimenezTileSize) * linesScale)));
+  return withChoices(base, settings.postprocess);
 }
 
 void validateRenderSettings(const RenderSettings& settings) {

@@ -306,7 +306,7 @@ int main(int argc, char** argv) {
                         "postprocess: adapted (default: the pixel at the end of its range) or centered");
   renderCmd->add_option("--samples", renderOptions.postprocess.samples, "postprocess: gather samples (default 15)");
   renderCmd->add_option("--tile-size", renderOptions.postprocess.tileSize,
-                        "postprocess: tile size m in pixels (default 40; jimenez 20)");
+                        "postprocess: tile size m in pixels (default 40, jimenez 20, per 720 image lines)");
   renderCmd->add_option("--neighborhood", renderOptions.postprocess.neighborhood,
                         "postprocess: neighbour-max over n x n tiles (default 3)");
   renderCmd->add_option("--foreground-boost", renderOptions.postprocess.foregroundBoost,

@@ -183,6 +183,24 @@ TEST(CliTest, ReferenceRenderAndMetricsAgainstIt) {
                      "does not exist");
 }
 
+TEST(CliTest, PostProcessSettingsReachTheReportAndBadOnesFailInOneLine) {
+  const fs::path dir = tempDir("postprocess");
+  const CliRun run = hmblur("--quiet render --scene temple --method postprocess --range centered --samples 9 "
+                            "--tile-size 16 --width 50 --height 30 --report " + (dir / "report.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  nlohmann::json report;
+  std::ifstream(dir / "report.json") >> report;
+  EXPECT_EQ(report["settings"]["range"], "centered");
+  EXPECT_EQ(report["settings"]["samples"], 9);
+  EXPECT_EQ(report["settings"]["tile_size"], 16);
+  EXPECT_EQ(report["settings"]["foreground_boost"], 1.0);
+  EXPECT_FLOAT_EQ(report["settings"]["soft_z_extent"].get<float>(), 0.03f);  // the temple's own
+  expectOneLineError(hmblur("--quiet render --method postprocess --filter magic --width 8 --height 8"), "magic");
+  expectOneLineError(hmblur("--quiet render --method postprocess --samples 0 --width 8 --height 8"), "samples");
+  expectOneLineError(hmblur("--quiet render --method postprocess --neighborhood 2 --width 8 --height 8"),
+                     "neighbo");
+}
+
 TEST(CliTest, HelpListsTheSubcommands) {
   const CliRun run = hmblur("--help");
   EXPECT_EQ(run.exitCode, 0);
