@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <memory>
 #include <filesystem>
 #include <iostream>
@@ -55,6 +56,7 @@ struct DemoOptions {
   std::string outDir = "out";
   uint32_t width = 640;
   uint32_t height = 360;
+  uint32_t referenceSpp = 256;
 };
 
 void progress(const GlobalOptions& global, const std::string& message) {
@@ -253,24 +255,62 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
                            {"system", hmb::systemJson(system)},
                            {"scene", hmb::sceneJson(scene)},
                            {"methods", nlohmann::json::array()}};
-  for (const std::string& method : hmb::methodNames()) {
+  // The reference first: it is the judge every other method is measured against.
+  std::vector<std::string> methods = hmb::methodNames();
+  std::stable_partition(methods.begin(), methods.end(), [](const std::string& m) { return m == "reference"; });
+  std::optional<hmb::metrics::DisplayImage> judge, sharp;
+  std::map<std::string, hmb::io::Rgba8Image> stripImages;
+  for (const std::string& method : methods) {
     hmb::RenderSettings settings;
     settings.method = method;
     settings.width = options.width;
     settings.height = options.height;
+    settings.reference.samplesPerPixel = options.referenceSpp;
+    if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
     progress(global, "rendering " + method);
     const hmb::RenderResult result = renderer.render(scene, settings);
     const fs::path stem = fs::path(options.outDir) / (sceneName + "-" + method);
     hmb::io::writePng(stem.string() + ".png", result.display);
     hmb::io::writeExr(stem.string() + ".exr", result.image);
-    report["methods"].push_back({{"method", method},
-                                 {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds)
-                                                                       : nlohmann::json(nullptr)},
-                                 {"passes", hmb::passesJson(result.plan)},
-                                 {"raster", hmb::rasterJson(result)},
-                                 {"images", {stem.string() + ".png", stem.string() + ".exr"}}});
-    std::cout << method << ": " << formatMs(result.frameMilliseconds) << " -> " << stem.string() << ".png\n";
+    stripImages[method] = result.display;
+    const hmb::metrics::DisplayImage display = hmb::metrics::displayImageFromLayered(result.image);
+    if (method == "reference") judge = display;
+    if (method == "sharp") sharp = display;
+    nlohmann::json entry = {{"method", method},
+                            {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds)
+                                                                  : nlohmann::json(nullptr)},
+                            {"settings", hmb::methodSettingsJson(result)},
+                            {"passes", hmb::passesJson(result.plan)},
+                            {"raster", hmb::rasterJson(result)},
+                            {"images", {stem.string() + ".png", stem.string() + ".exr"}}};
+    std::string line = method + ": " + formatMs(result.frameMilliseconds);
+    if (judge && method != "reference") {
+      const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*judge, sharp.value_or(display));
+      const hmb::metrics::Comparison comparison = hmb::metrics::compareImages(*judge, display, &region);
+      entry["metrics"] = hmb::metrics::metricsJson(comparison);
+      hmb::io::writePng(stem.string() + "-error.png", hmb::metrics::errorImage(comparison.flip));
+      line += ", " + metricsLine(comparison).substr(0, metricsLine(comparison).size() - 1);
+    }
+    report["methods"].push_back(entry);
+    std::cout << line << " -> " << stem.string() << ".png\n";
   }
+  // Side by side, sharp to reference: what a newcomer looks at first.
+  std::vector<hmb::io::Rgba8Image> strip;
+  for (const std::string& m : hmb::methodNames()) strip.push_back(stripImages.at(m));
+  hmb::io::Rgba8Image side{options.width * uint32_t(strip.size()), options.height, {}};
+  side.pixels.resize(size_t(side.width) * side.height * 4);
+  for (size_t i = 0; i < strip.size(); ++i)
+    for (uint32_t y = 0; y < options.height; ++y)
+      std::copy_n(strip[i].pixels.begin() + size_t(y) * options.width * 4, size_t(options.width) * 4,
+                  side.pixels.begin() + (size_t(y) * side.width + i * options.width) * 4);
+  const fs::path stripPath = fs::path(options.outDir) / (sceneName + "-strip.png");
+  hmb::io::writePng(stripPath, side);
+  report["strip"] = {{"image", stripPath.string()}, {"order", hmb::methodNames()}};
+  std::cout << "strip (" << [&] {
+    std::string names;
+    for (const std::string& m : hmb::methodNames()) names += (names.empty() ? "" : ", ") + m;
+    return names;
+  }() << "): " << stripPath.string() << '\n';
   const fs::path reportPath = fs::path(options.outDir) / "report.json";
   hmb::writeJson(reportPath, report);
   std::cout << "report: " << reportPath.string() << '\n';
@@ -330,6 +370,7 @@ int main(int argc, char** argv) {
   demoCmd->add_option("--out-dir", demoOptions.outDir, "Output folder")->capture_default_str();
   demoCmd->add_option("--width", demoOptions.width, "Image width in pixels")->capture_default_str();
   demoCmd->add_option("--height", demoOptions.height, "Image height in pixels")->capture_default_str();
+  demoCmd->add_option("--spp", demoOptions.referenceSpp, "Samples per pixel of the reference")->capture_default_str();
 
   CLI::App* listScenesCmd = app.add_subcommand("list-scenes", "List the built-in reference scenes");
   CLI::App* listDevicesCmd = app.add_subcommand("list-devices", "List the Vulkan devices");

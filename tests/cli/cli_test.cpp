@@ -145,8 +145,13 @@ TEST(CliTest, DemoWritesImagesAndAReport) {
   std::ifstream in(dir / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
   ASSERT_FALSE(report["methods"].empty());
-  for (const auto& method : report["methods"])
+  for (const auto& method : report["methods"]) {
     for (const auto& image : method["images"]) EXPECT_TRUE(fs::exists(image.get<std::string>())) << image;
+    // Every method but the judge is measured against the reference.
+    EXPECT_EQ(method.contains("metrics"), method["method"] != "reference") << method["method"];
+  }
+  EXPECT_EQ(io::readPng(report["strip"]["image"].get<std::string>()).width,
+            32u * report["strip"]["order"].size());
 }
 
 // The reference with its settings in the report, and another method measured against it.
