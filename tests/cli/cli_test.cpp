@@ -12,43 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "runtime/io/image.h"
+#include "tests/cli/cli_harness.h"
 
 namespace hmb::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CliRun hmblur(const std::string& args) {
-  const std::string command = std::string(HMB_CLI_PATH) + " --validation " + args + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> chunk{};
-  while (size_t n = fread(chunk.data(), 1, chunk.size(), pipe)) run.output.append(chunk.data(), n);
-  const int status = pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-fs::path tempDir(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("hmblur_cli_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-// A user error is one line on stderr naming the problem, and a non-zero exit (commands
-// checked with this run --quiet, so progress lines do not count).
-void expectOneLineError(const CliRun& run, const std::string& needle) {
-  EXPECT_NE(run.exitCode, 0) << run.output;
-  EXPECT_NE(run.output.find(needle), std::string::npos) << run.output;
-  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
-}
 
 TEST(CliTest, ListDevicesNamesAComputeDevice) {
   const CliRun run = hmblur("list-devices");

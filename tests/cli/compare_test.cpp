@@ -12,41 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "runtime/io/image.h"
+#include "tests/cli/cli_harness.h"
 
 namespace hmb::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CliRun hmblur(const std::string& args) {
-  const std::string command = std::string(HMB_CLI_PATH) + " --validation " + args + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> chunk{};
-  while (size_t n = fread(chunk.data(), 1, chunk.size(), pipe)) run.output.append(chunk.data(), n);
-  const int status = pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-fs::path tempDir(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("hmblur_compare_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-void expectOneLineError(const CliRun& run, const std::string& needle) {
-  EXPECT_NE(run.exitCode, 0) << run.output;
-  EXPECT_NE(run.output.find(needle), std::string::npos) << run.output;
-  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
-}
 
 // A 32x24 grey frame with a bright square at `squareX`: moving the square is the "motion".
 io::Rgba8Image frame(uint32_t squareX, uint8_t squareValue = 230, uint32_t width = 32, uint32_t height = 24) {
@@ -76,7 +47,7 @@ io::Rgba8Image blurredFrame() {
 }
 
 TEST(CompareCli, PrintsATableAndWritesJsonAndErrorImages) {
-  const fs::path dir = tempDir("table");
+  const fs::path dir = tempDir("compare_table");
   io::writePng(dir / "reference.png", blurredFrame());
   io::writePng(dir / "sharp.png", frame(14));
   io::writePng(dir / "method.png", frame(12));
@@ -110,7 +81,7 @@ TEST(CompareCli, PrintsATableAndWritesJsonAndErrorImages) {
 }
 
 TEST(CompareCli, IdenticalImagesShowAnInfinitePsnrAndWriteNull) {
-  const fs::path dir = tempDir("identical");
+  const fs::path dir = tempDir("compare_identical");
   io::writePng(dir / "a.png", frame(5));
   const CliRun run = hmblur("--quiet compare " + (dir / "a.png").string() + " " + (dir / "a.png").string() +
                             " --json " + (dir / "m.json").string());
@@ -126,7 +97,7 @@ TEST(CompareCli, IdenticalImagesShowAnInfinitePsnrAndWriteNull) {
 }
 
 TEST(CompareCli, MissingFileIsAOneLineError) {
-  const fs::path dir = tempDir("missing");
+  const fs::path dir = tempDir("compare_missing");
   io::writePng(dir / "a.png", frame(5));
   expectOneLineError(hmblur("--quiet compare " + (dir / "nope.png").string() + " " + (dir / "a.png").string()),
                      "no such file");
@@ -138,7 +109,7 @@ TEST(CompareCli, MissingFileIsAOneLineError) {
 }
 
 TEST(CompareCli, SizeMismatchIsAOneLineError) {
-  const fs::path dir = tempDir("size");
+  const fs::path dir = tempDir("compare_size");
   io::writePng(dir / "a.png", frame(5));
   io::writePng(dir / "small.png", frame(5, 230, 16, 24));
   const CliRun run = hmblur("--quiet compare " + (dir / "a.png").string() + " " + (dir / "small.png").string());
@@ -147,7 +118,7 @@ TEST(CompareCli, SizeMismatchIsAOneLineError) {
 }
 
 TEST(CompareCli, BadArgumentsFail) {
-  const fs::path dir = tempDir("arguments");
+  const fs::path dir = tempDir("compare_arguments");
   io::writePng(dir / "a.png", frame(5));
   const std::string a = (dir / "a.png").string();
   expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --json metrics.txt"), "must end in .json");

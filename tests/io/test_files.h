@@ -10,6 +10,7 @@
 #include <string>
 
 #include "runtime/error.h"
+#include "tests/support/expect_error.h"
 
 namespace hmb::io::testing {
 
@@ -50,17 +51,6 @@ inline std::string readBytes(const std::filesystem::path& path) {
   return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
 }
 
-// Runs `action`, which must throw hmb::Error with a one-line message containing `needle`.
-template <typename Action>
-void expectError(Action&& action, const std::string& needle) {
-  try {
-    action();
-    ADD_FAILURE() << "expected hmb::Error containing '" << needle << "'";
-  } catch (const hmb::Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(needle), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
-}
+using hmb::test::expectError;
 
 }  // namespace hmb::io::testing

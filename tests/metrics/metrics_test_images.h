@@ -11,6 +11,7 @@
 #include <string>
 
 #include "runtime/error.h"
+#include "tests/support/expect_error.h"
 #include "runtime/metrics/display_image.h"
 
 namespace hmb::metrics::testing {
@@ -61,17 +62,6 @@ inline std::filesystem::path scratchPath(const std::string& suffix) {
   return path;
 }
 
-// Runs `action`, which must throw hmb::Error with a one-line message containing `needle`.
-template <typename Action>
-void expectError(Action&& action, const std::string& needle) {
-  try {
-    action();
-    ADD_FAILURE() << "expected hmb::Error containing '" << needle << "'";
-  } catch (const hmb::Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(needle), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
-}
+using hmb::test::expectError;
 
 }  // namespace hmb::metrics::testing
