@@ -159,10 +159,7 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
                                         linear, settings.onProgress);
     frame.begin();
     passes_->encodeDisplay.record(frame, linear, display, width, height);
-    const vk::FrameTimings encode = frame.submitAndWait();
-    timings.passes.insert(timings.passes.end(), encode.passes.begin(), encode.passes.end());
-    if (encode.frameMilliseconds)
-      timings.frameMilliseconds = timings.frameMilliseconds.value_or(0.0) + *encode.frameMilliseconds;
+    vk::appendTimings(timings, frame.submitAndWait());
     result.reference = passes_->reference.lastProgress();
     result.image = {width, height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
   } else {

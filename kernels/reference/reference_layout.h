@@ -79,10 +79,10 @@ struct MovingPixelsParams {
 };
 
 struct AverageParams {
-  uint pixelCount;
-  uint sampleCount;
+  uint pixelCount;  // each pixel's sample count is its sum's w
   uint pad0;
   uint pad1;
+  uint pad2;
 };
 
 HMB_GPU_END

@@ -289,7 +289,8 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
       const hmb::metrics::Comparison comparison = hmb::metrics::compareImages(*judge, display, &region);
       entry["metrics"] = hmb::metrics::metricsJson(comparison);
       hmb::io::writePng(stem.string() + "-error.png", hmb::metrics::errorImage(comparison.flip));
-      line += ", " + metricsLine(comparison).substr(0, metricsLine(comparison).size() - 1);
+      const std::string metrics = metricsLine(comparison);
+      line += ", " + metrics.substr(0, metrics.size() - 1);
     }
     report["methods"].push_back(entry);
     std::cout << line << " -> " << stem.string() << ".png\n";

@@ -89,10 +89,6 @@ std::vector<glm::vec4> sweptBoxesOfMovingInstances(const scene::Scene& scene, st
   return boxes;
 }
 
-void appendTimings(vk::FrameTimings& total, const vk::FrameTimings& part) {
-  total.passes.insert(total.passes.end(), part.passes.begin(), part.passes.end());
-  if (part.frameMilliseconds) total.frameMilliseconds = total.frameMilliseconds.value_or(0.0) + *part.frameMilliseconds;
-}
 
 // What a checkpoint must match to be resumed: the scene, the image and every setting that
 // changes which samples are taken.
@@ -225,7 +221,7 @@ vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scen
     frame.begin();
     frame.dispatch(kMovingPixels, findMovingPixels_, {&cameraBuffer, &boxBuffer, &counter, &list}, params,
                    {vk::groupsFor(width, HMB_MOVING_PIXELS_GROUP_X), vk::groupsFor(height, HMB_MOVING_PIXELS_GROUP_Y), 1});
-    appendTimings(timings, frame.submitAndWait());
+    vk::appendTimings(timings, frame.submitAndWait());
   }
   progress_.movingPixels = counter.download<uint32_t>().at(0);
   return list;
@@ -280,7 +276,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
       const std::span<const float> batch(times.data() + first, count);
       traceScene.setShutterTimes(scene, batch, frame);
       const double bvhMs = traceScene.instanceBvh().stats().deviceMilliseconds;
-      appendTimings(total, {{{kBvhInstances, bvhMs}}, bvhMs});
+      vk::appendTimings(total, {{{kBvhInstances, bvhMs}}, bvhMs});
       std::vector<gpu::ReferenceCamera> cameras;
       for (const float t : batch) cameras.push_back(referenceCamera(scene, t, width, height));
       const vk::Buffer cameraBuffer = vk::uploadedBuffer(context_, cameras, "reference cameras");
@@ -315,7 +311,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
                           &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(),
                           &gpuScene.cameraBuffer(), &pixelList},
                          params, groups);
-        appendTimings(total, frame.submitAndWait());
+        vk::appendTimings(total, frame.submitAndWait());
         ++progress_.samplesDone;
         if (progress) progress(progress_);
       }
@@ -328,7 +324,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
   frame.begin();
   frame.dispatch(kAverage, average_, {&sum, &color}, params,
                  vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_REFERENCE_AVERAGE_GROUP)));
-  appendTimings(total, frame.submitAndWait());
+  vk::appendTimings(total, frame.submitAndWait());
   return total;
 }
 

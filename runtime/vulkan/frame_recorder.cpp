@@ -9,6 +9,11 @@
 #include "runtime/vulkan/context.h"
 
 namespace hmb::vk {
+
+void appendTimings(FrameTimings& total, const FrameTimings& part) {
+  total.passes.insert(total.passes.end(), part.passes.begin(), part.passes.end());
+  if (part.frameMilliseconds) total.frameMilliseconds = total.frameMilliseconds.value_or(0.0) + *part.frameMilliseconds;
+}
 namespace {
 
 constexpr uint32_t kMaxBindingsPerPass = 16;

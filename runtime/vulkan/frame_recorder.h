@@ -31,6 +31,9 @@ struct FrameTimings {
   std::optional<double> frameMilliseconds;  // first pass start to last pass end
 };
 
+// Adds the passes and device time of a later submission to those of a frame made of several.
+void appendTimings(FrameTimings& total, const FrameTimings& part);
+
 // Work groups needed to cover `items` with groups of `groupSize`.
 inline uint32_t groupsFor(uint32_t items, uint32_t groupSize) {
   return static_cast<uint32_t>((uint64_t(items) + groupSize - 1) / groupSize);

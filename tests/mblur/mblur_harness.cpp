@@ -128,6 +128,35 @@ Layer stillLayer(uint32_t width, uint32_t height) {
           std::vector<glm::vec2>(pixels, glm::vec2(0.0f))};
 }
 
+Layer randomLayer(uint32_t width, uint32_t height, std::mt19937& rng) {
+  Layer layer = stillLayer(width, height);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), drift(-1.0f, 1.0f), motion(-12.0f, 12.0f);
+  for (size_t i = 0; i < layer.color.size(); ++i) {
+    layer.color[i] = {unit(rng), unit(rng), unit(rng), 1.0f};
+    layer.normalDepth[i].w = 10.0f + 0.01f * unit(rng);
+    layer.velocity[i] = {drift(rng), drift(rng)};
+  }
+  for (int r = 0; r < 3; ++r) {
+    const uint32_t x0 = uint32_t(unit(rng) * width), y0 = uint32_t(unit(rng) * height);
+    const uint32_t x1 = std::min(width, x0 + 1 + uint32_t(unit(rng) * width / 2));
+    const uint32_t y1 = std::min(height, y0 + 1 + uint32_t(unit(rng) * height / 2));
+    const glm::vec2 v(motion(rng), motion(rng));
+    const float depth = 1.0f + 4.0f * unit(rng);
+    for (uint32_t y = y0; y < y1; ++y)
+      for (uint32_t x = x0; x < x1; ++x) {
+        layer.velocity[y * width + x] = v;
+        layer.normalDepth[y * width + x].w = depth;  // equal depths across the rectangle
+      }
+  }
+  return layer;
+}
+
+std::vector<glm::vec4> referenceTiles(const Layer& layer, const passes::PostProcessSettings& settings) {
+  const uint32_t tileSize = settings.effectiveTileSize();
+  const auto tiles = tileMax(layer.velocity, layer.width, layer.height, tileSize, settings.velocityScale());
+  return neighborMax(tiles, passes::tileGridFor(layer.width, layer.height, tileSize), settings.neighborhood);
+}
+
 float maxAbsDifference(glm::vec4 a, glm::vec4 b) {
   float worst = 0.0f;
   for (int i = 0; i < 4; ++i) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -32,6 +33,13 @@ std::vector<glm::vec4> runStage(vk::Context& context, const Layer& layer, const 
 
 // A layer of the given size, every pixel at rest: colour 0.5 grey, depth 1.
 Layer stillLayer(uint32_t width, uint32_t height);
+
+// A textured background a little in motion, with a few rectangles moving over it at their own
+// depths and velocities.
+Layer randomLayer(uint32_t width, uint32_t height, std::mt19937& rng);
+
+// The C++ reference's neighbour-max tiles of a layer, at the selected filter's tile size.
+std::vector<glm::vec4> referenceTiles(const Layer& layer, const passes::PostProcessSettings& settings);
 
 // Largest |a - b| over all channels; non-finite values in either count as infinite.
 float maxAbsDifference(glm::vec4 a, glm::vec4 b);
