@@ -1,12 +1,29 @@
 #include "runtime/trace_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "runtime/error.h"
+#include "runtime/gpu_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {
+
+gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
+  const FrameCamera camera = frameCamera(scene, t, width, height);
+  const glm::mat4 cameraToWorld = glm::inverse(camera.view);
+  // projection[0][0] = 1 / (aspect tan(fov / 2)); projection[1][1] = -1 / tan(fov / 2) (y down).
+  const float tanX = 1.0f / camera.projection[0][0];
+  const float tanY = 1.0f / std::abs(camera.projection[1][1]);
+  gpu::PinholeCamera r{};
+  r.eye = glm::vec4(camera.eye, 1.0f);
+  r.right = glm::vec4(glm::vec3(cameraToWorld[0]) * tanX, 0.0f);
+  r.down = glm::vec4(-glm::vec3(cameraToWorld[1]) * tanY, 0.0f);
+  r.forward = glm::vec4(-glm::vec3(cameraToWorld[2]), 0.0f);
+  return r;
+}
+
 
 TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame)
     : context_(context),

@@ -20,6 +20,10 @@ class FrameRecorder;
 
 namespace hmb {
 
+// The camera at time t as rays (kernels/trace/trace_layout.h): the same pinhole the
+// rasterizer projects with, so a ray through a pixel centre meets what the raster sees there.
+gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
+
 class TraceScene {
  public:
   static constexpr const char* kTriangleBounds = "bvh-triangle-bounds";

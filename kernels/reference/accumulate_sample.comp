@@ -10,7 +10,7 @@
 
 layout(local_size_x = HMB_REFERENCE_GROUP_X, local_size_y = HMB_REFERENCE_GROUP_Y) in;
 
-layout(std430, binding = HMB_REFERENCE_BINDING_CAMERAS) readonly buffer Cameras { ReferenceCamera cameras[]; };
+layout(std430, binding = HMB_REFERENCE_BINDING_CAMERAS) readonly buffer Cameras { PinholeCamera cameras[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_SUM) buffer Sum { vec4 sum[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_VERTICES) readonly buffer Vertices { GpuVertex vertices[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_INSTANCES) readonly buffer SceneInstances { GpuInstance sceneInstances[]; };
@@ -21,6 +21,7 @@ layout(std430, binding = HMB_REFERENCE_BINDING_PIXELS) readonly buffer Pixels { 
 layout(push_constant) uniform Params { ReferenceSampleParams params; };
 
 #include "../shared/shading.glsl"
+#include "../trace/shade_hit.glsl"
 
 // PCG hash (O'Neill 2014 output function): decorrelates pixels and samples for the jitter.
 uint pcgHash(uint x) {
@@ -30,27 +31,6 @@ uint pcgHash(uint x) {
 }
 
 float unitFloat(uint bits) { return float(bits >> 8) * (1.0 / 16777216.0); }
-
-// Colour of the surface hit by the ray: normal and uv interpolated from the mesh's vertices,
-// the normal carried to world space with the instance's transform at the ray's time and
-// turned to the viewer when a (double-sided) back face is seen, as the G-buffer resolve does.
-vec3 shadeHit(BvhHit hit, vec3 direction) {
-  const uvec4 tri = traceTriangles[hit.triangle];
-  const vec3 b = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
-  const vec3 objectNormal = b.x * vertices[tri.x].normal.xyz + b.y * vertices[tri.y].normal.xyz +
-                            b.z * vertices[tri.z].normal.xyz;
-  const vec2 uv = b.x * vertices[tri.x].uv + b.y * vertices[tri.y].uv + b.z * vertices[tri.z].uv;
-  const mat3 objectFromWorld = mat3(transforms[hit.instance * params.timeCount + params.time].objectFromWorld);
-  const mat3 normalToWorld = transpose(objectFromWorld);
-  vec3 n = normalToWorld * objectNormal;
-  n = dot(n, n) > 0.0 && !any(isinf(n)) ? normalize(n) : vec3(0.0, 0.0, 1.0);
-  // cross(M a, M b) = det(M) M^-T cross(a, b): the world counter-clockwise normal.
-  const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
-  const float handedness = determinant(objectFromWorld) < 0.0 ? -1.0 : 1.0;
-  const vec3 geometric = handedness * (normalToWorld * cross(p1 - p0, p2 - p0));
-  if (dot(geometric, direction) > 0.0) n = -n;
-  return shadeSurface(sceneInstances[hit.instance].material, uv, n);
-}
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -72,7 +52,7 @@ void main() {
     offset = vec2(unitFloat(h), unitFloat(pcgHash(h)));
   }
   const vec2 ndc = (vec2(pixel) + offset) / vec2(params.width, params.height) * 2.0 - 1.0;
-  const ReferenceCamera cam = cameras[params.time];
+  const PinholeCamera cam = cameras[params.time];
   TraceRay ray;
   ray.originTMin = vec4(cam.eye.xyz, params.tMin);
   ray.directionTMax = vec4(cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.down.xyz, params.tMax);
@@ -82,7 +62,7 @@ void main() {
   ray.pad1 = 0u;
 
   const BvhHit hit = closestHit(ray, TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES));
-  vec3 color = hit.triangle == HMB_NO_HIT ? camera.background.rgb : shadeHit(hit, ray.directionTMax.xyz);
+  vec3 color = hit.triangle == HMB_NO_HIT ? camera.background.rgb : shadeHit(hit, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time);
   if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
   sum[index] += vec4(color, 1.0);
 }

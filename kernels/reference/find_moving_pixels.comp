@@ -8,7 +8,7 @@
 
 layout(local_size_x = HMB_MOVING_PIXELS_GROUP_X, local_size_y = HMB_MOVING_PIXELS_GROUP_Y) in;
 
-layout(std430, binding = HMB_MOVING_PIXELS_BINDING_CAMERAS) readonly buffer Cameras { ReferenceCamera cameras[]; };
+layout(std430, binding = HMB_MOVING_PIXELS_BINDING_CAMERAS) readonly buffer Cameras { PinholeCamera cameras[]; };
 layout(std430, binding = HMB_MOVING_PIXELS_BINDING_BOXES) readonly buffer Boxes { vec4 boxes[]; };
 layout(std430, binding = HMB_MOVING_PIXELS_BINDING_COUNTER) buffer Counter { uint listLength; };
 layout(std430, binding = HMB_MOVING_PIXELS_BINDING_LIST) writeonly buffer List { uint list[]; };
@@ -18,7 +18,7 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const vec2 ndc = (vec2(pixel) + 0.5) / vec2(params.width, params.height) * 2.0 - 1.0;
-  const ReferenceCamera cam = cameras[0];
+  const PinholeCamera cam = cameras[0];
   const PreparedRay r = prepareRay(cam.eye.xyz, cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.down.xyz);
   bool moving = false;
   for (uint b = 0; b < params.boxCount && !moving; ++b)

@@ -5,13 +5,14 @@
 #define HMB_KERNELS_REFERENCE_REFERENCE_LAYOUT_H
 
 #include "../shared/glsl_cpp.h"
+#include "../trace/trace_layout.h"
 
 #define HMB_REFERENCE_GROUP_X 8
 #define HMB_REFERENCE_GROUP_Y 8
 #define HMB_REFERENCE_AVERAGE_GROUP 64
 
 // accumulate_sample. Slots 2-11 hold the trace scene (kernels/trace/closest_hit.glsl).
-#define HMB_REFERENCE_BINDING_CAMERAS 0    // ReferenceCamera per shutter time of the batch
+#define HMB_REFERENCE_BINDING_CAMERAS 0    // PinholeCamera per shutter time of the batch
 #define HMB_REFERENCE_BINDING_SUM 1        // vec4 per pixel: sum of the shaded samples so far
 #define HMB_REFERENCE_BINDING_VERTICES 12  // GpuVertex per mesh vertex (normals, uvs)
 #define HMB_REFERENCE_BINDING_INSTANCES 13 // GpuInstance per instance (material, flags)
@@ -25,7 +26,7 @@
 // shutter. Only they can change over the shutter when the camera stands still.
 #define HMB_MOVING_PIXELS_GROUP_X 8
 #define HMB_MOVING_PIXELS_GROUP_Y 8
-#define HMB_MOVING_PIXELS_BINDING_CAMERAS 0  // ReferenceCamera (the first is used)
+#define HMB_MOVING_PIXELS_BINDING_CAMERAS 0  // PinholeCamera (the first is used)
 #define HMB_MOVING_PIXELS_BINDING_BOXES 1    // vec4 lower, vec4 upper per moving instance
 #define HMB_MOVING_PIXELS_BINDING_COUNTER 2  // uint: entries in the list
 #define HMB_MOVING_PIXELS_BINDING_LIST 3     // uint pixel index per entry
@@ -41,16 +42,6 @@
 #define HMB_REFERENCE_PIXEL_LIST 2u    // sample the pixels of the list (entries: pixelCount), not the image
 
 HMB_GPU_BEGIN
-
-// The pinhole camera at one shutter time. A pixel's ray is eye + t * (forward + x * right +
-// y * down) with x, y in [-1, 1] across the image, so t is the camera-space depth of a hit and
-// the rasterizer's near and far planes are t limits.
-struct ReferenceCamera {
-  vec4 eye;
-  vec4 right;    // world-space, scaled so x = 1 is the right edge of the image
-  vec4 down;     // world-space, scaled so y = 1 is the bottom edge
-  vec4 forward;  // world-space view direction (unit in camera units)
-};
 
 struct ReferenceSampleParams {
   uint width;
@@ -87,7 +78,6 @@ struct AverageParams {
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(ReferenceCamera, 64)
 HMB_CHECK_SIZE(ReferenceSampleParams, 48)
 HMB_CHECK_SIZE(AverageParams, 16)
 HMB_CHECK_SIZE(MovingPixelsParams, 32)

@@ -60,6 +60,16 @@ struct TraceRay {
   uint pad1;
 };
 
+// The pinhole camera at one shutter time (the reference and the ray reveal). A pixel's ray is eye + t * (forward + x * right +
+// y * down) with x, y in [-1, 1] across the image, so t is the camera-space depth of a hit and
+// the rasterizer's near and far planes are t limits.
+struct PinholeCamera {
+  vec4 eye;
+  vec4 right;    // world-space, scaled so x = 1 is the right edge of the image
+  vec4 down;     // world-space, scaled so y = 1 is the bottom edge
+  vec4 forward;  // world-space view direction (unit in camera units)
+};
+
 struct TraceInstance {
   uint mesh;      // its bottom-level tree is rooted at mesh node `mesh`
   uint objectId;
@@ -78,5 +88,6 @@ HMB_CHECK_SIZE(TraceParams, 16)
 HMB_CHECK_SIZE(TraceRay, 48)
 HMB_CHECK_SIZE(TraceInstance, 16)
 HMB_CHECK_SIZE(InstanceTransform, 128)
+HMB_CHECK_SIZE(PinholeCamera, 64)
 
 #endif

@@ -40,21 +40,7 @@ uint32_t spreadingStep(uint32_t n) {
   return step;
 }
 
-gpu::ReferenceCamera referenceCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
-  const FrameCamera camera = frameCamera(scene, t, width, height);
-  const glm::mat4 cameraToWorld = glm::inverse(camera.view);
-  // projection[0][0] = 1 / (aspect tan(fov / 2)); projection[1][1] = -1 / tan(fov / 2) (y down).
-  const float tanX = 1.0f / camera.projection[0][0];
-  const float tanY = 1.0f / std::abs(camera.projection[1][1]);
-  gpu::ReferenceCamera r{};
-  r.eye = glm::vec4(camera.eye, 1.0f);
-  r.right = glm::vec4(glm::vec3(cameraToWorld[0]) * tanX, 0.0f);
-  r.down = glm::vec4(-glm::vec3(cameraToWorld[1]) * tanY, 0.0f);
-  r.forward = glm::vec4(-glm::vec3(cameraToWorld[2]), 0.0f);
-  return r;
-}
-
-bool sameCamera(const gpu::ReferenceCamera& a, const gpu::ReferenceCamera& b) {
+bool sameCamera(const gpu::PinholeCamera& a, const gpu::PinholeCamera& b) {
   return a.eye == b.eye && a.right == b.right && a.down == b.down && a.forward == b.forward;
 }
 
@@ -192,9 +178,9 @@ std::string whyEveryPixelIsSampled(const scene::Scene& scene, std::span<const fl
   if (!settings.sampleStillPixelsOnce) return "turned off in the settings";
   if (settings.pixelJitter) return "pixel jitter takes a new point of every pixel per sample";
   if (settings.samplesPerPixel == 1) return "one sample per pixel";
-  const gpu::ReferenceCamera first = referenceCamera(scene, times[0], width, height);
+  const gpu::PinholeCamera first = pinholeCamera(scene, times[0], width, height);
   for (const float t : times)
-    if (!sameCamera(referenceCamera(scene, t, width, height), first)) return "the camera moves during the shutter";
+    if (!sameCamera(pinholeCamera(scene, t, width, height), first)) return "the camera moves during the shutter";
   return {};
 }
 
@@ -206,7 +192,7 @@ vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scen
                                             vk::FrameTimings& timings) {
   if (!whyEveryPixelIsSampled(scene, times, width, height, settings).empty())
     return vk::Buffer(context_, sizeof(uint32_t), vk::MemoryUse::Device, "reference pixel list (unused)");
-  const std::vector<gpu::ReferenceCamera> cameras = {referenceCamera(scene, times[0], width, height)};
+  const std::vector<gpu::PinholeCamera> cameras = {pinholeCamera(scene, times[0], width, height)};
   const std::vector<glm::vec4> boxes = sweptBoxesOfMovingInstances(scene, times);
   const uint64_t pixels = uint64_t(width) * height;
   vk::Buffer list(context_, std::max<uint64_t>(pixels, 1) * sizeof(uint32_t), vk::MemoryUse::Device,
@@ -277,8 +263,8 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
       traceScene.setShutterTimes(scene, batch, frame);
       const double bvhMs = traceScene.instanceBvh().stats().deviceMilliseconds;
       vk::appendTimings(total, {{{kBvhInstances, bvhMs}}, bvhMs});
-      std::vector<gpu::ReferenceCamera> cameras;
-      for (const float t : batch) cameras.push_back(referenceCamera(scene, t, width, height));
+      std::vector<gpu::PinholeCamera> cameras;
+      for (const float t : batch) cameras.push_back(pinholeCamera(scene, t, width, height));
       const vk::Buffer cameraBuffer = vk::uploadedBuffer(context_, cameras, "reference cameras");
       for (uint32_t i = 0; i < count; ++i) {
         // The first sample covers every pixel; later ones only the moving pixels when listed.
