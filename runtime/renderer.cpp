@@ -8,6 +8,7 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/reference_stage.h"
 #include "runtime/passes/test_pattern_pass.h"
@@ -47,17 +48,19 @@ struct Renderer::Passes {
         gbuffer(context, passes::defaultVisibilityScheme(context.info())),
         reference(context),
         postProcess(context, passes::PostProcessSettings{}),
+        hybrid(context, postProcess),
         recorder(context) {}
   passes::TestPatternPass testPattern;
   passes::EncodeDisplayPass encodeDisplay;
   passes::GBufferStage gbuffer;
   passes::ReferenceStage reference;
   passes::PostProcessStage postProcess;
+  passes::HybridStage hybrid;
   vk::FrameRecorder recorder;
 };
 
 const std::vector<std::string>& methodNames() {
-  static const std::vector<std::string> names = {"sharp", "postprocess", "reference"};
+  static const std::vector<std::string> names = {"sharp", "postprocess", "hybrid", "reference"};
   return names;
 }
 
@@ -98,6 +101,20 @@ passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, co
   return withChoices(base, settings.postprocess);
 }
 
+passes::HybridSettings hybridSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
+  passes::HybridSettings s = passes::HybridSettings::fromScene(scene.settings);
+  const HybridChoices& c = settings.hybrid;
+  if (c.edgeThreshold) s.edgeThreshold = *c.edgeThreshold;
+  if (c.stop) s.stop = passes::parseRevealStop(*c.stop);
+  if (c.maxRecursion) s.maxRecursion = *c.maxRecursion;
+  if (c.luminanceThreshold) s.luminanceThreshold = *c.luminanceThreshold;
+  if (c.composite) s.composite = passes::parseComposite(*c.composite);
+  if (c.maskBackgroundBoost) s.maskBackgroundBoost = *c.maskBackgroundBoost;
+  if (c.maskForegroundDivide) s.maskForegroundDivide = *c.maskForegroundDivide;
+  passes::validate(s);
+  return s;
+}
+
 void validateRenderSettings(const RenderSettings& settings) {
   std::vector<std::string> names = methodNames();
   names.insert(names.end(), debugMethodNames().begin(), debugMethodNames().end());
@@ -115,7 +132,13 @@ void validateRenderSettings(const RenderSettings& settings) {
   if (settings.frameTime && !std::isfinite(*settings.frameTime))
     throw Error("frame time must be a finite number of seconds");
   if (settings.method == "reference") passes::validateReferenceSettings(settings.reference);
-  if (settings.method == "postprocess") withChoices(passes::PostProcessSettings{}, settings.postprocess);
+  if (settings.method == "postprocess" || settings.method == "hybrid")
+    withChoices(passes::PostProcessSettings{}, settings.postprocess);
+  if (settings.method == "hybrid") {
+    if (settings.postprocess.filter && *settings.postprocess.filter != "mcguire")
+      throw Error("the hybrid method blurs with the McGuire filter (--filter mcguire)");
+    hybridSettingsFor(scene::Scene{}, settings);
+  }
 }
 
 Renderer::Renderer(vk::Context& context) : context_(context) {}
@@ -170,24 +193,45 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     passes::GBufferStage& gbuffer = passes_->gbuffer;
     gbuffer.prepare(gpuScene, width, height);
     gbuffer.plan(result.plan);
-    const bool blur = settings.method == "postprocess";
+    const bool hybrid = settings.method == "hybrid";
+    const bool blur = settings.method == "postprocess" || hybrid;
     vk::Buffer blurred;
     if (blur) {
       result.postprocess = postProcessSettingsFor(scene, settings);
+      if (hybrid) {
+        result.postprocess->maskBackgroundBoost = hybridSettingsFor(scene, settings).maskBackgroundBoost;
+        result.postprocess->maskForegroundDivide = hybridSettingsFor(scene, settings).maskForegroundDivide;
+      }
       passes_->postProcess.configure(*result.postprocess);
       passes_->postProcess.prepare(width, height);
-      passes_->postProcess.plan(result.plan);
+      if (hybrid)
+        passes_->hybrid.plan(result.plan);
+      else
+        passes_->postProcess.plan(result.plan);
       blurred = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "post-process colour");
+    }
+    if (hybrid) {
+      result.hybrid.emplace();
+      result.hybrid->settings = hybridSettingsFor(scene, settings);
+      // The trace scene's mesh trees are built once per scene (setup, reported apart); the
+      // instance tree at the frame time is part of every frame.
+      const auto prepared =
+          passes_->hybrid.prepare(frame, scene, result.frameTime, width, height, result.hybrid->settings);
+      result.hybrid->setupMilliseconds = prepared.setup.frameMilliseconds;
+      timings = prepared.frame;
     }
     const vk::Buffer& beauty = blur ? blurred : gbuffer.color();
     result.plan.run(passes::EncodeDisplayPass::kName);
-    timings = passes::submitUntilRasterFits(frame, gbuffer.rasterizer(), [&](vk::FrameRecorder& f) {
+    vk::appendTimings(timings, passes::submitUntilRasterFits(frame, gbuffer.rasterizer(), [&](vk::FrameRecorder& f) {
       gbuffer.record(f, gpuScene);
-      if (blur)
-        passes_->postProcess.record(f, {&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), width, height},
-                                    blurred);
+      const passes::MotionBlurInputs layer{&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), width,
+                                           height};
+      if (hybrid)
+        passes_->hybrid.record(f, gbuffer, gpuScene, blurred);
+      else if (blur)
+        passes_->postProcess.record(f, layer, blurred);
       passes_->encodeDisplay.record(f, beauty, display, width, height);
-    });
+    }));
     result.visibilityScheme = passes::visibilitySchemeName(gbuffer.rasterizer().scheme());
     result.raster = gbuffer.rasterizer().stats();
 
@@ -203,6 +247,17 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
                     {vec4Layer("", {"R", "G", "B", "A"}, beauty.download<glm::vec4>()),
                      vec4Layer("depth", {"Z"}, depth), vec4Layer("normal", {"X", "Y", "Z"}, normalDepth),
                      vec4Layer("velocity", {"X", "Y"}, velocity), std::move(objectId)}};
+    if (hybrid) {
+      const passes::RayMaskCounts counts = passes_->hybrid.rayMask().counts();
+      result.hybrid->maskPixels = counts.maskPixels;
+      result.hybrid->revealRays = counts.revealRays;
+      io::ImageLayer mask{"rayMask", {"mask"}, true, {}, passes_->hybrid.rayMask().mask().download<uint32_t>()};
+      mask.ids.resize(pixels);
+      result.image.layers.push_back(std::move(mask));
+      // The background layer: what the reveal found behind the mask pixels (the raster elsewhere).
+      result.image.layers.push_back(
+          vec4Layer("revealed", {"R", "G", "B"}, passes_->hybrid.backgroundColor().download<glm::vec4>()));
+    }
   }
 
   result.plan.attachTimings(timings);

@@ -11,6 +11,7 @@
 
 #include "runtime/frame_plan.h"
 #include "runtime/io/image.h"
+#include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/reference_stage.h"
@@ -38,13 +39,26 @@ struct PostProcessChoices {
   std::optional<uint32_t> seed;
 };
 
+// The hybrid settings a user chose; the rest come from the scene (edge threshold) and the
+// defaults of passes::HybridSettings.
+struct HybridChoices {
+  std::optional<float> edgeThreshold;
+  std::optional<std::string> stop;  // object-id | luminance
+  std::optional<uint32_t> maxRecursion;
+  std::optional<float> luminanceThreshold;
+  std::optional<std::string> composite;  // coverage | weights
+  std::optional<float> maskBackgroundBoost;
+  std::optional<float> maskForegroundDivide;
+};
+
 struct RenderSettings {
   std::string method = "sharp";
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;  // seconds; default: the scene's settings.frameTime
   passes::ReferenceSettings reference;
-  PostProcessChoices postprocess;
+  PostProcessChoices postprocess;  // postprocess and hybrid
+  HybridChoices hybrid;
   // Long methods (the reference) report how far they are after every submission.
   std::function<void(const passes::ReferenceProgress&)> onProgress;
 };
@@ -64,6 +78,14 @@ struct RenderResult {
   passes::RasterStats raster;
   // The post-process methods: the settings they ran with.
   std::optional<passes::PostProcessSettings> postprocess;
+  // The hybrid method: its settings, the ray mask's size and the reveal's rays.
+  struct Hybrid {
+    passes::HybridSettings settings;
+    uint64_t maskPixels = 0;
+    uint64_t revealRays = 0;
+    std::optional<double> setupMilliseconds;  // the trace scene's mesh trees: per scene, not per frame
+  };
+  std::optional<Hybrid> hybrid;
   // The reference: samples per pixel in the image (resumed ones included).
   std::optional<passes::ReferenceProgress> reference;
 };
@@ -75,6 +97,9 @@ const std::vector<std::string>& debugMethodNames();
 
 // The post-process settings of a render of this scene (throws hmb::Error for bad names).
 passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings);
+
+// The hybrid settings of a render of this scene (throws hmb::Error for bad names or values).
+passes::HybridSettings hybridSettingsFor(const scene::Scene& scene, const RenderSettings& settings);
 
 // Throws hmb::Error (one line) for an unknown method or an unusable size.
 void validateRenderSettings(const RenderSettings& settings);

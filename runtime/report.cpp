@@ -102,7 +102,7 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
   }
   if (result.postprocess) {
     const passes::PostProcessSettings& p = *result.postprocess;
-    return {{"filter", passes::filterName(p.filter)},
+    nlohmann::json json = {{"filter", passes::filterName(p.filter)},
             {"range", passes::rangeName(p.effectiveRange())},
             {"samples", p.samples},
             {"tile_size", p.effectiveTileSize()},
@@ -112,6 +112,22 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
             {"exposure_s", p.exposure},
             {"fps", p.fps},
             {"seed", p.seed}};
+    if (result.hybrid) {
+      const passes::HybridSettings& h = result.hybrid->settings;
+      json["edge_threshold"] = h.edgeThreshold;
+      json["reveal_stop"] = passes::revealStopName(h.stop);
+      json["max_recursion"] = h.maxRecursion;
+      json["luminance_threshold"] = h.luminanceThreshold;
+      json["composite"] = passes::compositeName(h.composite);
+      json["mask_background_boost"] = h.maskBackgroundBoost;
+      json["mask_foreground_divide"] = h.maskForegroundDivide;
+      json["mask_pixels"] = result.hybrid->maskPixels;
+      json["reveal_rays"] = result.hybrid->revealRays;
+      // The trace scene's mesh trees: built once per scene, so not in the frame time.
+      json["scene_setup_ms"] =
+          result.hybrid->setupMilliseconds ? nlohmann::json(*result.hybrid->setupMilliseconds) : nlohmann::json(nullptr);
+    }
+    return json;
   }
   return nlohmann::json::object();
 }

@@ -24,6 +24,22 @@
 // maskForegroundDivide (x3 and /3 in the paper), so that revealed background shows through the
 // silhouettes of foreground objects; the hybrid method runs this same kernel on its raster and
 // revealed layers.
+//
+// The hybrid composite (paper, section 3: both layers blurred, then composited; the paper
+// leaves the form open). At a mask pixel X the raster holds the moving object, and the samples
+// the gather takes behind X (other objects deeper than X) are the wrong background: what lies
+// beyond the silhouette, not behind X. The background layer (the raster with the revealed
+// surfaces written in at mask pixels), blurred by this kernel in pixel-list mode, gives B, the
+// right background at X. Two forms:
+//  - weights: each sample's colour becomes mix(c_s, B, b), b its share behind X, inside the
+//    usual weighted sum, with the mask boosts (x3 background, /3 foreground) as in the paper.
+//  - coverage (default): under the linear-motion convention X is covered by its object at
+//    shutter fraction s exactly when X + (1 - s) v_X lies on that object now, so the share of
+//    samples X + u v_X, u in (0, 1], that are on it (or not behind X) estimates the coverage
+//    alpha, and the object's blurred colour F is the plain mean of those samples (and X):
+//    C = alpha F + (1 - alpha) B. v_X is the pixel's own velocity, clamped only to the image
+//    (coverageMaxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
+//    even where the gather's tiles clamp its outer blur. The README gives the measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "mblur_layout.h"
 
@@ -35,12 +51,50 @@ layout(std430, binding = HMB_GATHER_BINDING_VELOCITY) readonly buffer Velocity {
 layout(std430, binding = HMB_GATHER_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
 layout(std430, binding = HMB_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_GATHER_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
+layout(std430, binding = HMB_GATHER_BINDING_LIST) readonly buffer List { uint pixelList[]; };
+layout(std430, binding = HMB_GATHER_BINDING_LIST_LENGTH) readonly buffer ListLength { uint listLength; };
+layout(std430, binding = HMB_GATHER_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
+layout(std430, binding = HMB_GATHER_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
 layout(push_constant) uniform Params { GatherParams params; };
 
 #include "mblur_common.glsl"
 
+// Share of sample `sampleIndex` that is background to the pixel (object `centreObject` at
+// `centreDepth`): none on the pixel's own object, else saturate(-z).
+float behindShare(uint sampleIndex, uint centreObject, float centreDepth) {
+  if (objectId[sampleIndex] == centreObject) return 0.0;
+  return clamp((sanitizeDepth(normalDepth[sampleIndex].w) - centreDepth) / params.softZExtent, 0.0, 1.0);
+}
+
+// The coverage composite at a mask pixel (see above).
+vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
+  float speed;
+  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.coverageMaxSpeed, speed);
+  const uint centreObject = objectId[index];
+  vec4 foregroundSum = centreColor;
+  float foregroundCount = 0.0;
+  const vec2 centre = vec2(pixel) + 0.5;
+  for (uint i = 0u; i < params.samples; ++i) {
+    const float u = (float(i) + 1.0 - jitter) / float(params.samples);
+    const ivec2 samplePixel = nearestPixel(centre + u * v, params.width, params.height);
+    const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
+    const float onObject = 1.0 - behindShare(sampleIndex, centreObject, centreDepth);
+    foregroundSum += onObject * sanitizeColor(color[sampleIndex]);
+    foregroundCount += onObject;
+  }
+  const float alpha = foregroundCount / float(params.samples);
+  return alpha * (foregroundSum / (1.0 + foregroundCount)) + (1.0 - alpha) * sanitizeColor(background[index]);
+}
+
 void main() {
-  const uvec2 pixel = gl_GlobalInvocationID.xy;
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if ((params.flags & HMB_GATHER_FLAG_PIXEL_LIST) != 0u) {
+    const uint entry = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y) +
+                       gl_LocalInvocationID.y * HMB_GATHER_GROUP_X + gl_LocalInvocationID.x;
+    if (entry >= listLength) return;
+    const uint listed = pixelList[entry];
+    pixel = uvec2(listed % params.width, listed / params.width);
+  }
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   const vec4 centreColor = sanitizeColor(color[index]);
@@ -59,11 +113,18 @@ void main() {
   const bool inMask = (params.flags & HMB_GATHER_FLAG_USE_MASK) != 0u && mask[index] != 0u;
   const float backgroundScale = inMask ? params.maskBackgroundBoost : 1.0;
   const float foregroundScale = inMask ? 1.0 / params.maskForegroundDivide : 1.0;
+  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
+  if (inMask && (params.flags & HMB_GATHER_FLAG_COMPOSITE_COVERAGE) != 0u) {
+    outColor[index] = coverageComposite(pixel, index, centreColor, centreDepth, jitter);
+    return;
+  }
+  const bool compositeWeights = inMask && (params.flags & HMB_GATHER_FLAG_COMPOSITE_WEIGHTS) != 0u;
+  const vec4 revealed = compositeWeights ? sanitizeColor(background[index]) : vec4(0.0);
+  const uint centreObject = compositeWeights ? objectId[index] : 0u;
 
   float weightSum = 1.0 / max(centreSpeed, 0.5);
   vec4 sum = centreColor * weightSum;
 
-  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
   const vec2 centre = vec2(pixel) + 0.5;
   const uint samples = params.samples;
   for (uint i = 0u; i < samples; ++i) {
@@ -89,8 +150,10 @@ void main() {
     wf *= foregroundScale;
     wb *= backgroundScale;
     const float w = wf + wb + ws;
+    const vec4 sampleColor = sanitizeColor(color[sampleIndex]);
     weightSum += w;
-    sum += w * sanitizeColor(color[sampleIndex]);
+    sum += w * (compositeWeights ? mix(sampleColor, revealed, behindShare(sampleIndex, centreObject, centreDepth))
+                                 : sampleColor);
   }
   outColor[index] = sum / weightSum;
 }

@@ -47,6 +47,7 @@ struct RenderOptions {
   std::string report;
   hmb::passes::ReferenceSettings reference;
   hmb::PostProcessChoices postprocess;
+  hmb::HybridChoices hybrid;
   std::string checkpoint;
   std::string referenceImage;  // compare the result with this image (.exr or .png)
   std::string errorImage;      // FLIP error map of that comparison (.png)
@@ -183,6 +184,7 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   settings.frameTime = options.frameTime;
   settings.reference = options.reference;
   settings.postprocess = options.postprocess;
+  settings.hybrid = options.hybrid;
   settings.postprocess.seed = options.reference.seed;
   settings.reference.checkpoint = options.checkpoint;
   if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
@@ -354,6 +356,20 @@ int main(int argc, char** argv) {
                         "postprocess: w_f factor past SOFT_Z_EXTENT (default 30 adapted, 1 centered)");
   renderCmd->add_option("--soft-z-extent", renderOptions.postprocess.softZExtent,
                         "postprocess: SOFT_Z_EXTENT in scene units (default: the scene's)");
+  renderCmd->add_option("--edge-threshold", renderOptions.hybrid.edgeThreshold,
+                        "hybrid: ray-mask edge threshold e in [0, 1) (default: the scene's)");
+  renderCmd->add_option("--reveal-stop", renderOptions.hybrid.stop,
+                        "hybrid: reveal rays stop on another object-id (default) or a luminance change");
+  renderCmd->add_option("--max-recursion", renderOptions.hybrid.maxRecursion,
+                        "hybrid: luminance stop: hits stepped past at most (default 5)");
+  renderCmd->add_option("--luminance-threshold", renderOptions.hybrid.luminanceThreshold,
+                        "hybrid: luminance stop: relative difference that ends a reveal (default 0.1)");
+  renderCmd->add_option("--composite", renderOptions.hybrid.composite,
+                        "hybrid: coverage (default) or weights (see README)");
+  renderCmd->add_option("--mask-background-boost", renderOptions.hybrid.maskBackgroundBoost,
+                        "hybrid: weights composite: background weight factor in the mask (default 3)");
+  renderCmd->add_option("--mask-foreground-divide", renderOptions.hybrid.maskForegroundDivide,
+                        "hybrid: weights composite: foreground weight divisor in the mask (default 3)");
   renderCmd->add_option("--spp", renderOptions.reference.samplesPerPixel, "reference: samples (shutter times) per pixel")
       ->capture_default_str();
   renderCmd->add_option("--seed", renderOptions.reference.seed, "Seed of every random choice (reference time jitter)")

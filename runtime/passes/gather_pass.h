@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -25,6 +26,20 @@ struct MotionBlurInputs {
   uint32_t height = 0;
 };
 
+// What a gather may read beside its layer; all optional.
+struct GatherOptions {
+  const vk::Buffer* mask = nullptr;  // width * height uint (0/1): the mask boosts apply inside
+  // The hybrid composite inside the mask (needs mask): width * height vec4, the blurred
+  // revealed background, read at mask pixels.
+  const vk::Buffer* background = nullptr;
+  const vk::Buffer* objectId = nullptr;  // composite: width * height uint, the layer's object ids
+  HybridComposite composite = HybridComposite::Coverage;
+  // Pixel-list mode: only these pixels are gathered (and written), dispatched indirectly from
+  // a RayMaskCounters buffer (kernels/hybrid/hybrid_layout.h: length, then the dispatch).
+  const vk::Buffer* pixelList = nullptr;
+  const vk::Buffer* listCounters = nullptr;
+};
+
 class GatherPass {
  public:
   static constexpr const char* kName = "gather";
@@ -34,11 +49,16 @@ class GatherPass {
   // output: width * height vec4. Uses the McGuire fields of settings whatever settings.filter.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
               const vk::Buffer* mask, const vk::Buffer& output, const PostProcessSettings& settings,
+              std::string_view passName = kName) const {
+    record(frame, inputs, neighborMax, GatherOptions{mask}, output, settings, passName);
+  }
+  void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
+              const GatherOptions& options, const vk::Buffer& output, const PostProcessSettings& settings,
               std::string_view passName = kName) const;
 
  private:
   vk::ComputeKernel kernel_;
-  vk::Buffer dummyMask_;
+  vk::Buffer dummy_;  // bound where an option is not used
 };
 
 }  // namespace hmb::passes

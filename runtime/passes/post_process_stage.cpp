@@ -23,9 +23,13 @@ void PostProcessStage::configure(const PostProcessSettings& settings) {
   width_ = height_ = 0;  // the tile grid follows the tile size: prepare() sizes it again
 }
 
-void PostProcessStage::plan(FramePlan& plan) const {
+void PostProcessStage::planTiles(FramePlan& plan) const {
   plan.run(TileMaxPass::kName);
   plan.run(NeighborMaxPass::kName);
+}
+
+void PostProcessStage::plan(FramePlan& plan) const {
+  planTiles(plan);
   plan.run(settings_.filter == PostProcessFilter::Jimenez ? JimenezGatherPass::kName : GatherPass::kName);
 }
 
@@ -44,16 +48,28 @@ void PostProcessStage::prepare(uint32_t width, uint32_t height) {
   height_ = height;
 }
 
-void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output,
-                              const vk::Buffer* mask) const {
+void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {
   if (inputs.width != width_ || inputs.height != height_)
     throw Error("post-process: inputs are " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) +
                 " but the stage was prepared for " + std::to_string(width_) + "x" + std::to_string(height_));
-  const bool jimenez = settings_.filter == PostProcessFilter::Jimenez;
-  if (mask && jimenez) throw Error("post-process: the Jimenez filter takes no mask");
   tileMaxPass_.record(frame, *inputs.velocity, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
                       settings_.velocityScale());
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
+}
+
+void PostProcessStage::recordGather(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
+                                    const GatherOptions& options, const vk::Buffer& output,
+                                    std::string_view passName) const {
+  if (!gather_) throw Error("post-process: gathers with options need the McGuire filter");
+  if (inputs.width != width_ || inputs.height != height_) throw Error("post-process: the layer's size differs");
+  gather_->record(frame, inputs, neighborMax_, options, output, settings_, passName);
+}
+
+void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output,
+                              const vk::Buffer* mask) const {
+  const bool jimenez = settings_.filter == PostProcessFilter::Jimenez;
+  if (mask && jimenez) throw Error("post-process: the Jimenez filter takes no mask");
+  recordTiles(frame, inputs);
   if (jimenez)
     jimenezGather_->record(frame, inputs, neighborMax_, output, settings_);
   else

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string_view>
 
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/jimenez_gather_pass.h"
@@ -27,6 +28,8 @@ class PostProcessStage {
   void configure(const PostProcessSettings& settings);
 
   void plan(FramePlan& plan) const;
+  // The tile passes alone (for stages that run their own gathers).
+  void planTiles(FramePlan& plan) const;
 
   // Sizes the tile buffers for this resolution (reuses them when it is unchanged).
   void prepare(uint32_t width, uint32_t height);
@@ -34,6 +37,11 @@ class PostProcessStage {
   // mask: width * height uint (0/1) for the McGuire gather's mask options, or nullptr.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output,
               const vk::Buffer* mask = nullptr) const;
+  // The same in parts, for layers that share one set of tiles (the hybrid method): the tile
+  // passes over `inputs`' velocities, then McGuire gathers of any layer with any options.
+  void recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const;
+  void recordGather(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const GatherOptions& options,
+                    const vk::Buffer& output, std::string_view passName) const;
 
   const PostProcessSettings& settings() const { return settings_; }
   TileGrid tileGrid() const { return grid_; }

@@ -6,6 +6,7 @@
 
 #include "kernels/debug/test_pattern.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
+#include "kernels/hybrid/hybrid_layout.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "kernels/output/encode_display.h"
 #include "kernels/bvh/bvh_build_layout.h"
@@ -50,6 +51,10 @@ const KernelLayout kLayouts[] = {
     {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
     {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
     {"mblur/gather_jimenez", HMB_JIMENEZ_BINDING_COUNT, sizeof(gpu::JimenezParams), false},
+    {"hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::EdgeMaskParams), false},
+    {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RangeCheckParams), false},
+    {"hybrid/size_reveal_dispatch", HMB_SIZE_REVEAL_BINDING_COUNT, 0, false},
+    {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false},
 };
 
 using KernelPipelinesTest = VulkanTest;

@@ -1,0 +1,67 @@
+#version 450
+// Ray mask, first pass (paper, eqs. 1-4): a moving pixel enters the edge mask when the end of
+// its displacement lies on a different, deeper object (eqs. 1, 2) and the 5x5 Sobel of depth
+// and normal around it passes the edge threshold e (eqs. 3, 4):
+//   x = delta_d + delta_n, x_n = saturate(1 - 1 / (x + 1)), edge when x_n > e.
+// delta_d is the Sobel gradient's length of depth divided by the pixel's own depth: a
+// relative depth step, so the same threshold marks the same silhouettes whether the scene is
+// modelled in millimetres or kilometres. delta_n is the length of the normal's Sobel
+// derivatives (both directions, all three components). Image borders clamp.
+#extension GL_GOOGLE_include_directive : require
+#include "hybrid_layout.h"
+#include "../mblur/mblur_layout.h"
+
+layout(local_size_x = HMB_EDGE_MASK_GROUP_X, local_size_y = HMB_EDGE_MASK_GROUP_Y) in;
+
+layout(std430, binding = HMB_EDGE_MASK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) writeonly buffer Edges { uint edges[]; };
+layout(push_constant) uniform Params { EdgeMaskParams params; };
+
+#include "../mblur/mblur_common.glsl"
+#include "ray_mask_common.glsl"
+
+vec3 sanitizeNormal(vec3 n) { return any(isnan(n)) || any(isinf(n)) ? vec3(0.0) : clamp(n, vec3(-1.0), vec3(1.0)); }
+
+// Eq. 3's x at the pixel.
+float edgeStrength(ivec2 pixel, float depthHere) {
+  vec2 depthGradient = vec2(0.0);
+  vec3 normalX = vec3(0.0), normalY = vec3(0.0);
+  const ivec2 last = ivec2(int(params.width) - 1, int(params.height) - 1);
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      const ivec2 p = clamp(pixel + ivec2(dx, dy), ivec2(0), last);
+      const vec4 nd = normalDepth[uint(p.y) * params.width + uint(p.x)];
+      const float wx = sobelDerivative(dx) * sobelSmooth(dy);
+      const float wy = sobelSmooth(dx) * sobelDerivative(dy);
+      const float z = sanitizeDepth(nd.w);
+      depthGradient += vec2(wx, wy) * z;
+      const vec3 n = sanitizeNormal(nd.xyz);
+      normalX += wx * n;
+      normalY += wy * n;
+    }
+  }
+  const float deltaD = length(depthGradient) / max(depthHere, 1e-30);
+  const float deltaN = sqrt(dot(normalX, normalX) + dot(normalY, normalY));
+  return deltaD + deltaN;
+}
+
+void main() {
+  const uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= params.width || pixel.y >= params.height) return;
+  const uint index = pixel.y * params.width + pixel.x;
+  float speed;
+  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
+  uint edge = 0u;
+  if (speed > 0.0) {
+    const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.width, params.height);
+    const uint endIndex = uint(end.y) * params.width + uint(end.x);
+    const float depthHere = sanitizeDepth(normalDepth[index].w);
+    if (endsOnDeeperObject(objectId[index], depthHere, objectId[endIndex], normalDepth[endIndex].w,
+                           params.softZExtent) &&
+        normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)
+      edge = 1u;
+  }
+  edges[index] = edge;
+}

@@ -1,0 +1,28 @@
+// The ray mask's per-pixel tests (paper, section 3.2.1), shared by edge_mask and range_check;
+// the C++ reference (tests/hybrid/hybrid_reference.cpp) mirrors each function. Include after
+// hybrid_layout.h and kernels/mblur/mblur_common.glsl (velocities are read as the gather reads
+// them, so the mask covers exactly the range the gather blurs over).
+#ifndef HMB_KERNELS_HYBRID_RAY_MASK_COMMON_GLSL
+#define HMB_KERNELS_HYBRID_RAY_MASK_COMMON_GLSL
+
+// Eqs. 1 and 2: the pixel's predicted position at the other end of its displacement lies on
+// another object (m_n != m_t) that is deeper by more than SOFT_Z_EXTENT (z_n - z_t > S).
+// Under the shutter convention the pixel sees the points now at X + u v, u in [0, 1], so
+// X + v is where its range ends.
+bool endsOnDeeperObject(uint idHere, float depthHere, uint idEnd, float depthEnd, float softZExtent) {
+  return idEnd != idHere && sanitizeDepth(depthEnd) - sanitizeDepth(depthHere) > softZExtent;
+}
+
+// The 5x5 Sobel operator, separable: smoothing (1 4 6 4 1) across, derivative (-1 -2 0 2 1) along.
+float sobelSmooth(int k) { return k == 0 ? 6.0 : (abs(k) == 1 ? 4.0 : 1.0); }
+float sobelDerivative(int k) { return k == 0 ? 0.0 : float(sign(k)) * (abs(k) == 1 ? 2.0 : 1.0); }
+
+// Eq. 4: x_n = saturate(1 - 1 / (x + 1)) for x = delta_d + delta_n (eq. 3); an infinite x (a
+// depth step to an infinitely far background) is the strongest edge, 1.
+float normalizedEdge(float x) {
+  if (isnan(x)) return 0.0;
+  if (isinf(x)) return x > 0.0 ? 1.0 : 0.0;
+  return clamp(1.0 - 1.0 / (max(x, 0.0) + 1.0), 0.0, 1.0);
+}
+
+#endif

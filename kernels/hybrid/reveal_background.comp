@@ -1,0 +1,116 @@
+#version 450
+// Ray reveal (paper, section 3.2.2): for each pixel of the ray mask, the camera ray through
+// the pixel centre at the frame time, continued behind the object the raster sees there.
+//  - object-id stop (default): the traversal skips that object's instances whole, so one
+//    trace finds the first surface of any other object (the paper's future work: our
+//    traversal knows object ids).
+//  - luminance stop (the paper's mode): step past hits, up to maxRecursion times, until a hit's
+//    shaded luminance differs from the first hit's by more than the relative threshold; the
+//    last hit is kept when none does.
+// The revealed surface is shaded with the shading function every method shares and written
+// as a G-buffer entry: colour, normal and camera-space depth, screen velocity (the same
+// surface point at t and t - 1/fps, as the resolve computes it) and object id. Nothing behind
+// reads as the background colour at the far depth.
+#extension GL_GOOGLE_include_directive : require
+#include "hybrid_layout.h"
+#include "../shared/scene_layout.h"
+#include "../shared/indexing.glsl"
+#include "../trace/closest_hit.glsl"
+
+layout(local_size_x = HMB_MASK_LIST_GROUP) in;
+
+layout(std430, binding = HMB_REVEAL_BINDING_CAMERA_RAYS) readonly buffer CameraRays { PinholeCamera cameraRays; };
+layout(std430, binding = HMB_REVEAL_BINDING_LIST) readonly buffer List { uint list[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_VERTICES) readonly buffer Vertices { GpuVertex vertices[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_INSTANCES) readonly buffer SceneInstances { GpuInstance sceneInstances[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_TEXELS) readonly buffer Texels { uint texels[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_CAMERA) readonly buffer Camera { GpuCamera camera; };
+layout(std430, binding = HMB_REVEAL_BINDING_RASTER_ID) readonly buffer RasterId { uint rasterId[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
+layout(std430, binding = HMB_REVEAL_BINDING_COLOR) writeonly buffer Color { vec4 color[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_NORMAL_DEPTH) writeonly buffer NormalDepth { vec4 normalDepth[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_VELOCITY) writeonly buffer Velocity { vec2 velocity[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_OBJECT_ID) writeonly buffer ObjectId { uint objectId[]; };
+layout(push_constant) uniform Params { RevealParams params; };
+
+#include "../shared/shading.glsl"
+#include "../trace/shade_hit.glsl"
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+// The smallest t past a hit at t: a few ulps on, so the same triangle is not met again.
+float pastHit(float t) { return uintBitsToFloat(floatBitsToUint(max(t, 1e-30)) + 16u); }
+
+bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+void main() {
+  const uint entry = linearInvocationIndex(HMB_MASK_LIST_GROUP);
+  if (entry >= counters.maskCount) return;
+  const uint index = list[entry];
+  const uvec2 pixel = uvec2(index % params.width, index / params.width);
+  const vec2 centre = vec2(pixel) + 0.5;
+  const vec2 ndc = centre / vec2(params.width, params.height) * 2.0 - 1.0;
+
+  TraceRay ray;
+  ray.originTMin = vec4(cameraRays.eye.xyz, params.tMin);
+  ray.directionTMax = vec4(cameraRays.forward.xyz + ndc.x * cameraRays.right.xyz + ndc.y * cameraRays.down.xyz,
+                           params.tMax);
+  ray.time = 0u;
+  ray.ignoreObjectId = HMB_IGNORE_NONE;
+  ray.pad0 = 0u;
+  ray.pad1 = 0u;
+  const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, 1u, HMB_TRACE_CULL_BACK_FACES);
+  const vec3 direction = ray.directionTMax.xyz;
+
+  BvhHit hit;
+  uint traces = 1u;
+  vec3 shaded = camera.background.rgb;
+  if (params.stop == HMB_REVEAL_STOP_OBJECT_ID) {
+    ray.ignoreObjectId = rasterId[index];
+    hit = closestHit(ray, scene);
+    if (hit.triangle != HMB_NO_HIT) shaded = shadeHit(hit, direction, hit.instance);
+  } else {
+    hit = closestHit(ray, scene);
+    if (hit.triangle != HMB_NO_HIT) {
+      const float firstLuminance = luminance(shadeHit(hit, direction, hit.instance));
+      for (uint step = 0u; step < params.maxRecursion; ++step) {
+        ray.originTMin.w = pastHit(hit.t);
+        const BvhHit next = closestHit(ray, scene);
+        ++traces;
+        if (next.triangle == HMB_NO_HIT) {
+          hit = next;
+          break;
+        }
+        hit = next;
+        shaded = shadeHit(hit, direction, hit.instance);
+        const float difference = abs(luminance(shaded) - firstLuminance);
+        if (difference > params.luminanceThreshold * max(firstLuminance, 1e-3)) break;
+      }
+      if (hit.triangle == HMB_NO_HIT) shaded = camera.background.rgb;
+    }
+  }
+
+  atomicAdd(counters.rayCount, traces);
+  if (hit.triangle == HMB_NO_HIT) {
+    color[index] = vec4(camera.background.rgb, 1.0);
+    normalDepth[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
+    velocity[index] = vec2(0.0);
+    objectId[index] = 0u;
+    return;
+  }
+  // The hit point now and at the previous frame: carried into the instance's space with the
+  // frame-time transform and out again with the previous one.
+  const vec3 world = ray.originTMin.xyz + hit.t * direction;
+  const vec4 objectPoint = transforms[hit.instance].objectFromWorld * vec4(world, 1.0);
+  const vec4 previousClip = camera.viewProjPrevious * (sceneInstances[hit.instance].worldPrevious * objectPoint);
+  vec2 motion = vec2(0.0);
+  if (previousClip.w > 0.0) motion = centre - (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(params.width, params.height);
+  if (any(isnan(motion)) || any(isinf(motion))) motion = vec2(0.0);
+
+  const HitSurface surface = hitSurface(hit, direction, hit.instance);
+  color[index] = vec4(finite3(shaded) ? shaded : vec3(0.0), 1.0);
+  normalDepth[index] = vec4(surface.normal, hit.t);
+  velocity[index] = motion;
+  objectId[index] = traceInstances[hit.instance].objectId;
+}

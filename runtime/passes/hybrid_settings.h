@@ -1,0 +1,47 @@
+// Settings of the hybrid method (paper, sections 3.2 and 4): the ray mask, the ray reveal and
+// the composite. The blur itself takes passes::PostProcessSettings (McGuire filter, adapted range).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+namespace hmb::scene {
+struct Settings;
+}
+
+namespace hmb::passes {
+
+enum class RevealStop {
+  ObjectId,   // the first surface of another object (default; one trace)
+  Luminance,  // the paper's mode: step past hits until the shaded luminance differs
+};
+
+enum class HybridComposite {
+  Coverage,  // C = alpha F + (1 - alpha) B, alpha the foreground share of the range (default)
+  Weights,   // background samples' colours replaced by B inside McGuire's weighted sum
+};
+
+struct HybridSettings {
+  float edgeThreshold = 0.9f;          // e of eq. 4 (the scene's: 0.90 / 0.98 / 0.96 in the paper)
+  RevealStop stop = RevealStop::ObjectId;
+  uint32_t maxRecursion = 5;           // luminance stop: hits stepped past at most, 1..64
+  float luminanceThreshold = 0.1f;     // luminance stop: relative difference that ends the recursion
+  HybridComposite composite = HybridComposite::Coverage;
+  // Inside the mask (paper, section 4): background weight x3, foreground weight /3. Only the
+  // weights composite uses McGuire's weights there.
+  float maskBackgroundBoost = 3.0f;
+  float maskForegroundDivide = 3.0f;
+
+  // The edge threshold from a scene's settings, the rest at their defaults.
+  static HybridSettings fromScene(const scene::Settings& sceneSettings);
+};
+
+// Throws hmb::Error with a one-line message naming the first absurd value.
+void validate(const HybridSettings& settings);
+
+std::string_view revealStopName(RevealStop stop);                 // "object-id" | "luminance"
+std::string_view compositeName(HybridComposite composite);        // "coverage" | "weights"
+RevealStop parseRevealStop(std::string_view name);
+HybridComposite parseComposite(std::string_view name);
+
+}  // namespace hmb::passes

@@ -1,0 +1,78 @@
+// The hybrid method (paper, section 3; DESIGN.md's frame): on top of the G-buffer,
+//   ray mask (RayMaskStage) -> the background layer: the G-buffer copied, the ray reveal
+//   (RevealPass) written in at mask pixels -> tile-max, neighbour-max of the raster's
+//   velocities -> gather of the background layer at mask pixels only (indirect) -> gather of
+//   the raster layer with the mask boosts and the composite (gather.comp's header says how).
+// Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
+// mask and the background layer.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "runtime/passes/gather_pass.h"
+#include "runtime/passes/hybrid_settings.h"
+#include "runtime/passes/ray_mask_stage.h"
+#include "runtime/passes/reveal_pass.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/frame_recorder.h"
+#include "scenes/scene.h"
+
+namespace hmb {
+class FramePlan;
+class GpuScene;
+class TraceScene;
+}
+
+namespace hmb::passes {
+
+class GBufferStage;
+class PostProcessStage;
+
+class HybridStage {
+ public:
+  static constexpr const char* kBvhMeshes = "hybrid-bvh-meshes";        // scene setup: not in the frame time
+  static constexpr const char* kBvhInstances = "hybrid-bvh-instances";  // per frame
+  static constexpr const char* kCopyLayer = "background-layer-copy";
+  static constexpr const char* kGatherBackground = "gather-background";
+  static constexpr const char* kGatherComposite = "gather-composite";
+
+  // postProcess: the stage whose tiles and gather both layers use (configured for the
+  // McGuire filter and the adapted range by the caller).
+  HybridStage(const vk::Context& context, PostProcessStage& postProcess);
+  ~HybridStage();
+
+  void plan(FramePlan& plan) const;
+  // Builds the trace scene of `scene` (its mesh trees: returned as setup time) and its
+  // instance tree at the frame time (returned as frame time), sizes the buffers.
+  struct PrepareTimings {
+    vk::FrameTimings setup;
+    vk::FrameTimings frame;
+  };
+  PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, float frameTime, uint32_t width,
+                         uint32_t height, const HybridSettings& settings);
+  // After the G-buffer in the same frame: writes the blurred, composited colour to `output`.
+  void record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
+              const vk::Buffer& output) const;
+
+  const HybridSettings& settings() const { return settings_; }
+  const RayMaskStage& rayMask() const { return rayMask_; }
+  // The background layer: the G-buffer with revealed surfaces at mask pixels.
+  const vk::Buffer& backgroundColor() const { return backgroundColor_; }
+  const vk::Buffer& backgroundNormalDepth() const { return backgroundNormalDepth_; }
+  const vk::Buffer& backgroundObjectId() const { return backgroundObjectId_; }
+
+ private:
+  const vk::Context& context_;
+  PostProcessStage& postProcess_;
+  RayMaskStage rayMask_;
+  RevealPass reveal_;
+  HybridSettings settings_;
+  std::unique_ptr<TraceScene> traceScene_;
+  uint32_t width_ = 0, height_ = 0;
+  vk::Buffer cameraRays_;
+  vk::Buffer backgroundColor_, backgroundNormalDepth_, backgroundVelocity_, backgroundObjectId_;
+  vk::Buffer backgroundBlurred_;
+};
+
+}  // namespace hmb::passes

@@ -1,0 +1,59 @@
+// The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): edge_mask (eqs. 1-4)
+// -> range_check (the mask as a 0/1 image and a compacted pixel list) -> size_reveal_dispatch
+// (the list's length as an indirect dispatch). Owns those buffers.
+#pragma once
+
+#include <cstdint>
+
+#include "runtime/passes/gather_pass.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb {
+class FramePlan;
+}
+
+namespace hmb::passes {
+
+struct RayMaskParameters {
+  float velocityScale = 1.0f;  // q (pixels per frame) -> per-exposure displacement
+  float maxSpeed = 40.0f;      // the gather's tile size: no blur reaches farther
+  float softZExtent = 0.03f;
+  float edgeThreshold = 0.9f;
+};
+
+struct RayMaskCounts {
+  uint64_t maskPixels = 0;
+  uint64_t revealRays = 0;
+};
+
+class RayMaskStage {
+ public:
+  static constexpr const char* kClear = "ray-mask-clear";
+  static constexpr const char* kEdges = "ray-mask-edges";
+  static constexpr const char* kRangeCheck = "ray-mask-range-check";
+  static constexpr const char* kSizeDispatch = "ray-mask-size-dispatch";
+
+  explicit RayMaskStage(const vk::Context& context);
+  void plan(FramePlan& plan) const;
+  // Sizes the buffers for this resolution (reuses them when it is unchanged).
+  void prepare(uint32_t width, uint32_t height);
+  // layer: the G-buffer (colour unused); objectId: uint per pixel.
+  void record(vk::FrameRecorder& frame, const MotionBlurInputs& layer, const vk::Buffer& objectId,
+              const RayMaskParameters& parameters) const;
+
+  const vk::Buffer& edges() const { return edges_; }        // uint per pixel
+  const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
+  const vk::Buffer& list() const { return list_; }          // uint pixel index per entry
+  const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
+  // After the frame: the mask's size and the reveal's traces.
+  RayMaskCounts counts() const;
+
+ private:
+  const vk::Context& context_;
+  vk::ComputeKernel edgeKernel_, rangeKernel_, sizeKernel_;
+  uint32_t width_ = 0, height_ = 0;
+  vk::Buffer edges_, mask_, list_, counters_;
+};
+
+}  // namespace hmb::passes

@@ -1,0 +1,47 @@
+#include "runtime/passes/reveal_pass.h"
+
+#include <cstddef>
+
+#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/trace/trace_layout.h"
+#include "runtime/error.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/trace_scene.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+
+RevealPass::RevealPass(const vk::Context& context)
+    : kernel_(context, "hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams)) {}
+
+void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
+                        const vk::Buffer& cameraRays, const vk::Buffer& rasterObjectId, const vk::Buffer& list,
+                        const vk::Buffer& counters, const RevealedLayer& output, uint32_t width, uint32_t height,
+                        const HybridSettings& settings) const {
+  if (ts.timeCount() != 1) throw Error("ray reveal: the trace scene must hold the frame time alone");
+  const FrameCamera& camera = gpuScene.camera();
+  const gpu::RevealParams params{width,
+                                 height,
+                                 ts.instanceCount(),
+                                 settings.stop == RevealStop::Luminance ? HMB_REVEAL_STOP_LUMINANCE
+                                                                        : HMB_REVEAL_STOP_OBJECT_ID,
+                                 settings.maxRecursion,
+                                 settings.luminanceThreshold,
+                                 camera.znear,
+                                 camera.zfar,
+                                 camera.zfar,
+                                 0u,
+                                 0u,
+                                 0u};
+  const passes::BvhBuildPass& top = ts.instanceBvh();
+  const passes::BvhBuildPass& meshes = ts.meshBvh();
+  frame.dispatchIndirect(kName, kernel_,
+                         {&cameraRays, &list, &top.nodes(), &top.links(), &top.primitives(), &ts.instances(),
+                          &ts.transforms(), &meshes.nodes(), &meshes.links(), &meshes.primitives(), &ts.triangles(),
+                          &ts.positions(), &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(),
+                          &gpuScene.texels(), &gpuScene.cameraBuffer(), &rasterObjectId, &counters, output.color,
+                          output.normalDepth, output.velocity, output.objectId},
+                         params, counters, offsetof(gpu::RayMaskCounters, dispatchX));
+}
+
+}  // namespace hmb::passes

@@ -1,0 +1,45 @@
+// Host side of kernels/hybrid/reveal_background.comp: the ray reveal (paper, section 3.2.2)
+// of every pixel in the ray mask's list, dispatched indirectly from the list's length.
+#pragma once
+
+#include <cstdint>
+
+#include "runtime/passes/hybrid_settings.h"
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb {
+class GpuScene;
+class TraceScene;
+}
+
+namespace hmb::vk {
+class Buffer;
+class FrameRecorder;
+}
+
+namespace hmb::passes {
+
+// A G-buffer layer the reveal writes into at the listed pixels.
+struct RevealedLayer {
+  const vk::Buffer* color = nullptr;        // vec4
+  const vk::Buffer* normalDepth = nullptr;  // vec4
+  const vk::Buffer* velocity = nullptr;     // vec2
+  const vk::Buffer* objectId = nullptr;     // uint
+};
+
+class RevealPass {
+ public:
+  static constexpr const char* kName = "ray-reveal";
+  explicit RevealPass(const vk::Context& context);
+  // traceScene: shutter times set to the frame time alone. cameraRays: one gpu::PinholeCamera
+  // at the frame time. rasterObjectId: the G-buffer's ids. list, counters: RayMaskStage's.
+  void record(vk::FrameRecorder& frame, const TraceScene& traceScene, const GpuScene& gpuScene,
+              const vk::Buffer& cameraRays, const vk::Buffer& rasterObjectId, const vk::Buffer& list,
+              const vk::Buffer& counters, const RevealedLayer& output, uint32_t width, uint32_t height,
+              const HybridSettings& settings) const;
+
+ private:
+  vk::ComputeKernel kernel_;
+};
+
+}  // namespace hmb::passes
