@@ -1,17 +1,27 @@
 #!/usr/bin/env bash
-# Renders a scene with the sharp frame and every post-process filter, measures each against a
-# reference image, and writes per scene: the images, FLIP error maps, a comparison strip, the
-# JSON reports and a Markdown table. The strip (images on top, FLIP error maps below, the
-# reference at the right) is written at half size. Usage:
-#   bench/scripts/compare_with_reference.sh SCENE REFERENCE.exr REFERENCE.png OUT_DIR [WIDTH HEIGHT]
+# Renders a scene with a set of methods, measures each against a reference image, and writes
+# per scene: the images, FLIP error maps, a comparison strip, the JSON reports and a Markdown
+# table. The strip (images on top, FLIP error maps below, the reference at the right) is
+# written at half size. Usage:
+#   bench/scripts/compare_with_reference.sh SCENE REFERENCE.exr REFERENCE.png OUT_DIR [WIDTH HEIGHT [SET]]
+# SET: postprocess (the sharp frame and every post-process filter, the default) or hybrid
+# (the sharp frame, adapted post-process, hybrid with each composite).
 set -euo pipefail
-scene=$1 reference=$2 reference_png=$3 out=$4 width=${5:-1280} height=${6:-720}
+scene=$1 reference=$2 reference_png=$3 out=$4 width=${5:-1280} height=${6:-720} set=${7:-postprocess}
 hmblur=${HMBLUR:-build/hmblur}
 mkdir -p "$out"
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
-declare -a names=(sharp postprocess-adapted postprocess-centered postprocess-jimenez)
-declare -a args=("--method sharp" "--method postprocess --range adapted" "--method postprocess --range centered"
-                 "--method postprocess --filter jimenez")
+case "$set" in
+  postprocess)
+    declare -a names=(sharp postprocess-adapted postprocess-centered postprocess-jimenez)
+    declare -a args=("--method sharp" "--method postprocess --range adapted" "--method postprocess --range centered"
+                     "--method postprocess --filter jimenez") ;;
+  hybrid)
+    declare -a names=(sharp postprocess-adapted hybrid hybrid-weights)
+    declare -a args=("--method sharp" "--method postprocess --range adapted" "--method hybrid"
+                     "--method hybrid --composite weights") ;;
+  *) echo "unknown set '$set' (postprocess|hybrid)" >&2; exit 2 ;;
+esac
 for i in "${!names[@]}"; do
   "$hmblur" --quiet render --scene "$scene" ${args[$i]} --width "$width" --height "$height" \
     --out "$out/$scene-${names[$i]}.png" --reference "$reference" --error-image "$out/$scene-${names[$i]}-error.png" \
