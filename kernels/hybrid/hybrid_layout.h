@@ -76,7 +76,7 @@ struct EdgeMaskParams {
   uint width;
   uint height;
   float velocityScale;  // q (pixels per frame) -> per-exposure displacement: E * fps
-  float maxSpeed;       // displacements are clamped to this length (the gather's tile size)
+  float maxSpeed;       // displacements are clamped to this length (the image's larger side)
   float softZExtent;    // eq. 2: the end position must be deeper by more than this
   float edgeThreshold;  // e: eq. 4's x_n must exceed it
   uint pad0;

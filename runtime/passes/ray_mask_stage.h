@@ -17,7 +17,7 @@ namespace hmb::passes {
 
 struct RayMaskParameters {
   float velocityScale = 1.0f;  // q (pixels per frame) -> per-exposure displacement
-  float maxSpeed = 40.0f;      // the gather's tile size: no blur reaches farther
+  float maxSpeed = 1280.0f;    // displacements are clamped to this length (px)
   float softZExtent = 0.03f;
   float edgeThreshold = 0.9f;
 };
