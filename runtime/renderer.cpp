@@ -253,10 +253,26 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
       result.hybrid->revealRays = counts.revealRays;
       io::ImageLayer mask{"rayMask", {"mask"}, true, {}, passes_->hybrid.rayMask().mask().download<uint32_t>()};
       mask.ids.resize(pixels);
+      // What the reveal found behind the mask pixels (black elsewhere), and its depth and object.
+      std::vector<glm::vec4> revealed = passes_->hybrid.revealedColor().download<glm::vec4>();
+      std::vector<glm::vec4> revealedDepth = passes_->hybrid.revealedNormalDepth().download<glm::vec4>();
+      std::vector<uint32_t> revealedId = passes_->hybrid.revealedObjectId().download<uint32_t>();
+      revealed.resize(pixels);
+      revealedDepth.resize(pixels);
+      revealedId.resize(pixels);
+      for (size_t i = 0; i < pixels; ++i) {
+        if (mask.ids[i] != 0) {
+          revealedDepth[i] = glm::vec4(revealedDepth[i].w, 0.0f, 0.0f, 0.0f);
+          continue;
+        }
+        revealed[i] = glm::vec4(0.0f);
+        revealedDepth[i] = glm::vec4(0.0f);
+        revealedId[i] = 0;
+      }
       result.image.layers.push_back(std::move(mask));
-      // The background layer: what the reveal found behind the mask pixels (the raster elsewhere).
-      result.image.layers.push_back(
-          vec4Layer("revealed", {"R", "G", "B"}, passes_->hybrid.backgroundColor().download<glm::vec4>()));
+      result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));
+      result.image.layers.push_back(vec4Layer("revealedDepth", {"Z"}, revealedDepth));
+      result.image.layers.push_back(io::ImageLayer{"revealedObjectId", {"id"}, true, {}, std::move(revealedId)});
     }
   }
 

@@ -6,16 +6,18 @@
 // delta_d is the Sobel gradient's length of depth divided by the pixel's own depth: a
 // relative depth step, so the same threshold marks the same silhouettes whether the scene is
 // modelled in millimetres or kilometres. delta_n is the length of the normal's Sobel
-// derivatives (both directions, all three components). Image borders clamp.
+// derivatives (both directions, all three components). Image borders clamp. Runs over the
+// moving tiles only (list_moving_tiles); the edge buffer is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 
-layout(local_size_x = HMB_EDGE_MASK_GROUP_X, local_size_y = HMB_EDGE_MASK_GROUP_Y) in;
+layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
 layout(std430, binding = HMB_EDGE_MASK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) writeonly buffer Edges { uint edges[]; };
 layout(push_constant) uniform Params { EdgeMaskParams params; };
 
@@ -47,21 +49,22 @@ float edgeStrength(ivec2 pixel, float depthHere) {
   return deltaD + deltaN;
 }
 
-void main() {
-  const uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= params.width || pixel.y >= params.height) return;
+// Eqs. 1-4 at one pixel.
+uint edgeAt(uvec2 pixel) {
   const uint index = pixel.y * params.width + pixel.x;
   float speed;
   const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
-  uint edge = 0u;
-  if (speed > 0.0) {
-    const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.width, params.height);
-    const uint endIndex = uint(end.y) * params.width + uint(end.x);
-    const float depthHere = sanitizeDepth(normalDepth[index].w);
-    if (endsOnDeeperObject(objectId[index], depthHere, objectId[endIndex], normalDepth[endIndex].w,
-                           params.softZExtent) &&
-        normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)
-      edge = 1u;
-  }
-  edges[index] = edge;
+  if (!(speed > 0.0)) return 0u;
+  const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.width, params.height);
+  const uint endIndex = uint(end.y) * params.width + uint(end.x);
+  const float depthHere = sanitizeDepth(normalDepth[index].w);
+  if (!endsOnDeeperObject(objectId[index], depthHere, objectId[endIndex], normalDepth[endIndex].w, params.softZExtent))
+    return 0u;
+  return normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold ? 1u : 0u;
+}
+
+void main() {
+  const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.tilesX, params.tileSize);
+  if (pixel.x >= params.width || pixel.y >= params.height) return;
+  edges[pixel.y * params.width + pixel.x] = edgeAt(pixel);
 }

@@ -1,11 +1,14 @@
 // Layout of the hybrid method's kernels (kernels/hybrid/), the paper's section 3.2:
+//   list_moving_tiles     tiles of the gather's tile-max whose fastest pixel moves half a
+//                  pixel or more: only there can a pixel's displacement end on another pixel,
+//                  so the mask passes run on those tiles alone (a still scene costs two fills)
 //   edge_mask      eqs. 1-4: moving pixels whose predicted end position lies on a different,
 //                  deeper object, and whose 5x5 Sobel of depth and normal passes the edge
 //                  threshold e
 //   range_check    moving pixels whose range along their velocity meets the edge mask: the ray
 //                  mask, as a 0/1 image (for the gathers) and a compacted pixel list
-//   size_reveal_dispatch  the list's length -> the indirect dispatch of the list passes, so an
-//                  empty mask dispatches nothing
+//   size_list_dispatch    a list's length -> the indirect dispatch of the passes over it, so
+//                  an empty list dispatches nothing
 //   reveal_background     per listed pixel, the first surface behind the object the raster sees
 //                  there: its colour, depth, normal, velocity and object id
 // Shared by the GLSL kernels and the C++ passes and reference.
@@ -14,25 +17,40 @@
 
 #include "../shared/glsl_cpp.h"
 
-#define HMB_EDGE_MASK_GROUP_X 8
-#define HMB_EDGE_MASK_GROUP_Y 8
+// list_moving_tiles: one invocation per tile.
+#define HMB_MOVING_TILES_GROUP 64
+#define HMB_MOVING_TILES_BINDING_TILE_MAX 0  // vec4 per tile (kernels/mblur/mblur_layout.h), z the speed
+#define HMB_MOVING_TILES_BINDING_COUNTERS 1  // RayMaskCounters
+#define HMB_MOVING_TILES_BINDING_LIST 2      // uint tile index per moving tile, in no order
+#define HMB_MOVING_TILES_BINDING_COUNT 3
+
+// edge_mask and range_check: one invocation per pixel of the listed tiles, in 8 x 8 blocks:
+// group (x, y) names the listed tile, group z the block within it (an invocation's loops stay
+// under the 65535 iterations llvmpipe allows). Pixels of other tiles keep the 0 their buffers
+// are filled with.
+#define HMB_MASK_TILE_GROUP_X 8
+#define HMB_MASK_TILE_GROUP_Y 8
+
 #define HMB_EDGE_MASK_BINDING_NORMAL_DEPTH 0  // vec4 per pixel: world normal, w camera-space depth
 #define HMB_EDGE_MASK_BINDING_VELOCITY 1      // vec2 per pixel: pixels per frame
 #define HMB_EDGE_MASK_BINDING_OBJECT_ID 2     // uint per pixel
-#define HMB_EDGE_MASK_BINDING_EDGES 3         // uint per pixel: 1 in the edge mask, else 0
-#define HMB_EDGE_MASK_BINDING_COUNT 4
+#define HMB_EDGE_MASK_BINDING_TILES 3         // uint tile index per moving tile
+#define HMB_EDGE_MASK_BINDING_EDGES 4         // uint per pixel: 1 in the edge mask, else 0
+#define HMB_EDGE_MASK_BINDING_COUNT 5
 
-#define HMB_RANGE_CHECK_GROUP_X 8
-#define HMB_RANGE_CHECK_GROUP_Y 8
 #define HMB_RANGE_CHECK_BINDING_VELOCITY 0  // vec2 per pixel
 #define HMB_RANGE_CHECK_BINDING_EDGES 1     // uint per pixel (edge_mask)
-#define HMB_RANGE_CHECK_BINDING_MASK 2      // uint per pixel: 1 in the ray mask, else 0
-#define HMB_RANGE_CHECK_BINDING_COUNTERS 3  // RayMaskCounters
-#define HMB_RANGE_CHECK_BINDING_LIST 4      // uint pixel index per masked pixel, in no order
-#define HMB_RANGE_CHECK_BINDING_COUNT 5
+#define HMB_RANGE_CHECK_BINDING_TILES 2     // uint tile index per moving tile
+#define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: 1 in the ray mask, else 0
+#define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
+#define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel, in no order
+#define HMB_RANGE_CHECK_BINDING_COUNT 6
 
-#define HMB_SIZE_REVEAL_BINDING_COUNTERS 0
-#define HMB_SIZE_REVEAL_BINDING_COUNT 1
+#define HMB_SIZE_LIST_BINDING_COUNTERS 0
+#define HMB_SIZE_LIST_BINDING_COUNT 1
+// SizeListParams.list
+#define HMB_SIZE_LIST_MOVING_TILES 0u  // one group per moving tile
+#define HMB_SIZE_LIST_MASK 1u          // HMB_MASK_LIST_GROUP mask pixels per group
 
 // The list passes (reveal_background and the gather's list mode) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
@@ -59,15 +77,34 @@
 
 HMB_GPU_BEGIN
 
-// Cleared each frame; maskCount written by range_check, the dispatch by size_reveal_dispatch
-// (a VkDispatchIndirectCommand at byte offset 4), rayCount by reveal_background.
+// Cleared each frame. maskCount: range_check; maskDispatch (a VkDispatchIndirectCommand at
+// byte offset 4) and tileDispatch (at byte offset 24): size_list_dispatch; rayCount:
+// reveal_background; tileCount: list_moving_tiles.
 struct RayMaskCounters {
   uint maskCount;
-  uint dispatchX;
-  uint dispatchY;
-  uint dispatchZ;
+  uint maskDispatchX;
+  uint maskDispatchY;
+  uint maskDispatchZ;
   uint rayCount;  // closest-hit traces the reveal made
+  uint tileCount;
+  uint tileDispatchX;
+  uint tileDispatchY;
+  uint tileDispatchZ;
   uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+struct MovingTilesParams {
+  uint tileCount;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+struct SizeListParams {
+  uint list;           // HMB_SIZE_LIST_*
+  uint blocksPerTile;  // moving tiles: 8 x 8 blocks per tile (the dispatch's z)
   uint pad1;
   uint pad2;
 };
@@ -75,19 +112,23 @@ struct RayMaskCounters {
 struct EdgeMaskParams {
   uint width;
   uint height;
+  uint tileSize;  // the gather's tile grid, which the tile list indexes
+  uint tilesX;
   float velocityScale;  // q (pixels per frame) -> per-exposure displacement: E * fps
   float maxSpeed;       // displacements are clamped to this length (the image's larger side)
   float softZExtent;    // eq. 2: the end position must be deeper by more than this
   float edgeThreshold;  // e: eq. 4's x_n must exceed it
-  uint pad0;
-  uint pad1;
 };
 
 struct RangeCheckParams {
   uint width;
   uint height;
+  uint tileSize;
+  uint tilesX;
   float velocityScale;
   float maxSpeed;
+  uint pad0;
+  uint pad1;
 };
 
 struct RevealParams {
@@ -107,9 +148,11 @@ struct RevealParams {
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(RayMaskCounters, 32)
+HMB_CHECK_SIZE(RayMaskCounters, 48)
+HMB_CHECK_SIZE(MovingTilesParams, 16)
+HMB_CHECK_SIZE(SizeListParams, 16)
 HMB_CHECK_SIZE(EdgeMaskParams, 32)
-HMB_CHECK_SIZE(RangeCheckParams, 16)
+HMB_CHECK_SIZE(RangeCheckParams, 32)
 HMB_CHECK_SIZE(RevealParams, 48)
 
 #endif

@@ -45,9 +45,9 @@
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 
-layout(std430, binding = HMB_GATHER_BINDING_COLOR) readonly buffer Color { vec4 color[]; };
-layout(std430, binding = HMB_GATHER_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
-layout(std430, binding = HMB_GATHER_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
+layout(std430, binding = HMB_GATHER_BINDING_COLOR) readonly buffer Color { vec4 baseColor[]; };
+layout(std430, binding = HMB_GATHER_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 baseNormalDepth[]; };
+layout(std430, binding = HMB_GATHER_BINDING_VELOCITY) readonly buffer Velocity { vec2 baseVelocity[]; };
 layout(std430, binding = HMB_GATHER_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
 layout(std430, binding = HMB_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_GATHER_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
@@ -55,21 +55,32 @@ layout(std430, binding = HMB_GATHER_BINDING_LIST) readonly buffer List { uint pi
 layout(std430, binding = HMB_GATHER_BINDING_LIST_LENGTH) readonly buffer ListLength { uint listLength; };
 layout(std430, binding = HMB_GATHER_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
 layout(std430, binding = HMB_GATHER_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
+layout(std430, binding = HMB_GATHER_BINDING_OVERLAY_COLOR) readonly buffer OverlayColor { vec4 overlayColor[]; };
+layout(std430, binding = HMB_GATHER_BINDING_OVERLAY_NORMAL_DEPTH) readonly buffer OverlayNormalDepth {
+  vec4 overlayNormalDepth[];
+};
+layout(std430, binding = HMB_GATHER_BINDING_OVERLAY_VELOCITY) readonly buffer OverlayVelocity { vec2 overlayVelocity[]; };
 layout(push_constant) uniform Params { GatherParams params; };
 
 #include "mblur_common.glsl"
+
+// The layer at pixel i: its own buffers, or the overlay's where the overlay flag and mask say.
+bool overlaid(uint i) { return (params.flags & HMB_GATHER_FLAG_OVERLAY) != 0u && mask[i] != 0u; }
+vec4 layerColor(uint i) { return overlaid(i) ? overlayColor[i] : baseColor[i]; }
+float layerDepth(uint i) { return overlaid(i) ? overlayNormalDepth[i].w : baseNormalDepth[i].w; }
+vec2 layerVelocity(uint i) { return overlaid(i) ? overlayVelocity[i] : baseVelocity[i]; }
 
 // Share of sample `sampleIndex` that is background to the pixel (object `centreObject` at
 // `centreDepth`): none on the pixel's own object, else saturate(-z).
 float behindShare(uint sampleIndex, uint centreObject, float centreDepth) {
   if (objectId[sampleIndex] == centreObject) return 0.0;
-  return clamp((sanitizeDepth(normalDepth[sampleIndex].w) - centreDepth) / params.softZExtent, 0.0, 1.0);
+  return clamp((sanitizeDepth(layerDepth(sampleIndex)) - centreDepth) / params.softZExtent, 0.0, 1.0);
 }
 
 // The coverage composite at a mask pixel (see above).
 vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
   float speed;
-  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.coverageMaxSpeed, speed);
+  const vec2 v = gatherVelocity(layerVelocity(index), params.velocityScale, params.coverageMaxSpeed, speed);
   const uint centreObject = objectId[index];
   vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0;
@@ -79,7 +90,7 @@ vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDe
     const ivec2 samplePixel = nearestPixel(centre + u * v, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float onObject = 1.0 - behindShare(sampleIndex, centreObject, centreDepth);
-    foregroundSum += onObject * sanitizeColor(color[sampleIndex]);
+    foregroundSum += onObject * sanitizeColor(layerColor(sampleIndex));
     foregroundCount += onObject;
   }
   const float alpha = foregroundCount / float(params.samples);
@@ -97,7 +108,7 @@ void main() {
   }
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const vec4 centreColor = sanitizeColor(color[index]);
+  const vec4 centreColor = sanitizeColor(layerColor(index));
 
   const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
   if (dominant.z < 0.5) {  // under half a pixel of blur in the whole neighbourhood
@@ -107,10 +118,10 @@ void main() {
 
   const float maxSpeed = float(params.tileSize);
   float centreSpeed;
-  gatherVelocity(velocity[index], params.velocityScale, maxSpeed, centreSpeed);
-  const float centreDepth = sanitizeDepth(normalDepth[index].w);
+  gatherVelocity(layerVelocity(index), params.velocityScale, maxSpeed, centreSpeed);
+  const float centreDepth = sanitizeDepth(layerDepth(index));
   const bool adapted = (params.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u;
-  const bool inMask = (params.flags & HMB_GATHER_FLAG_USE_MASK) != 0u && mask[index] != 0u;
+  const bool inMask = (params.flags & HMB_GATHER_FLAG_USE_MASK) != 0u && mask[index] != 0u;  // boosts, composite
   const float backgroundScale = inMask ? params.maskBackgroundBoost : 1.0;
   const float foregroundScale = inMask ? 1.0 / params.maskForegroundDivide : 1.0;
   const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
@@ -139,8 +150,8 @@ void main() {
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float ds = length(vec2(samplePixel - ivec2(pixel)));
     float sampleSpeed;
-    gatherVelocity(velocity[sampleIndex], params.velocityScale, maxSpeed, sampleSpeed);
-    const float sampleDepth = sanitizeDepth(normalDepth[sampleIndex].w);
+    gatherVelocity(layerVelocity(sampleIndex), params.velocityScale, maxSpeed, sampleSpeed);
+    const float sampleDepth = sanitizeDepth(layerDepth(sampleIndex));
 
     const float z = (centreDepth - sampleDepth) / params.softZExtent;
     float wf = clamp(1.0 + z, 0.0, 1.0) * cone(ds, sampleSpeed);
@@ -150,7 +161,7 @@ void main() {
     wf *= foregroundScale;
     wb *= backgroundScale;
     const float w = wf + wb + ws;
-    const vec4 sampleColor = sanitizeColor(color[sampleIndex]);
+    const vec4 sampleColor = sanitizeColor(layerColor(sampleIndex));
     weightSum += w;
     sum += w * (compositeWeights ? mix(sampleColor, revealed, behindShare(sampleIndex, centreObject, centreDepth))
                                  : sampleColor);

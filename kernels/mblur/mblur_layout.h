@@ -41,7 +41,13 @@
 #define HMB_GATHER_BINDING_LIST_LENGTH 7   // uint: the list's length in its first word (RayMaskCounters)
 #define HMB_GATHER_BINDING_BACKGROUND 8    // vec4 per pixel: the blurred revealed background (composite; else a dummy)
 #define HMB_GATHER_BINDING_OBJECT_ID 9     // uint per pixel: the layer's object ids (composite; else a dummy)
-#define HMB_GATHER_BINDING_COUNT 10
+// Overlay layer (HMB_GATHER_FLAG_OVERLAY): where the mask is set, these replace the layer's own
+// colour, normal-depth and velocity (the hybrid's background layer: the revealed surfaces over
+// the raster, without copying the raster).
+#define HMB_GATHER_BINDING_OVERLAY_COLOR 10
+#define HMB_GATHER_BINDING_OVERLAY_NORMAL_DEPTH 11
+#define HMB_GATHER_BINDING_OVERLAY_VELOCITY 12
+#define HMB_GATHER_BINDING_COUNT 13
 
 #define HMB_JIMENEZ_BINDING_COLOR 0
 #define HMB_JIMENEZ_BINDING_NORMAL_DEPTH 1
@@ -61,6 +67,7 @@
 // blurred, takes their place. How (see gather.comp):
 #define HMB_GATHER_FLAG_COMPOSITE_WEIGHTS 8u    // their colour, in the weighted sum, becomes the revealed one
 #define HMB_GATHER_FLAG_COMPOSITE_COVERAGE 16u  // foreground share of the range blends foreground and revealed
+#define HMB_GATHER_FLAG_OVERLAY 32u  // read the overlay layer where the mask is set (the mask boosts stay off)
 
 // Velocities are clamped to the tile size (so the 3x3 neighbourhood sees every pixel that can
 // reach a tile) and the largest tile size is bounded so per-lane loops stay short.

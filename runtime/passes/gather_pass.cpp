@@ -22,12 +22,19 @@ void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs
     throw Error("gather: the composite needs the mask and the object ids");
   if (options.background && options.composite == HybridComposite::Coverage && settings.range != GatherRange::Adapted)
     throw Error("gather: the coverage composite needs the adapted range");
+  const bool overlay = options.overlayColor || options.overlayNormalDepth || options.overlayVelocity;
+  if (overlay && !(options.overlayColor && options.overlayNormalDepth && options.overlayVelocity && options.mask))
+    throw Error("gather: the overlay needs its colour, normal-depth and velocity and the mask");
+  if (overlay && options.background) throw Error("gather: the overlay and the composite do not mix");
   if (bool(options.pixelList) != bool(options.listCounters))
     throw Error("gather: pixel-list mode needs both the list and its counters");
   const TileGrid grid = tileGridFor(inputs.width, inputs.height, settings.tileSize);
   uint32_t flags = 0;
   if (settings.range == GatherRange::Adapted) flags |= HMB_GATHER_FLAG_ADAPTED_RANGE;
-  if (options.mask) flags |= HMB_GATHER_FLAG_USE_MASK;
+  if (overlay)
+    flags |= HMB_GATHER_FLAG_OVERLAY;
+  else if (options.mask)
+    flags |= HMB_GATHER_FLAG_USE_MASK;
   if (options.pixelList) flags |= HMB_GATHER_FLAG_PIXEL_LIST;
   if (options.background)
     flags |= options.composite == HybridComposite::Weights ? HMB_GATHER_FLAG_COMPOSITE_WEIGHTS
@@ -59,13 +66,16 @@ void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs
                                  orDummy(options.pixelList),
                                  orDummy(options.listCounters),
                                  orDummy(options.background),
-                                 orDummy(options.objectId)};
+                                 orDummy(options.objectId),
+                                 orDummy(options.overlayColor),
+                                 orDummy(options.overlayNormalDepth),
+                                 orDummy(options.overlayVelocity)};
   static_assert(sizeof(buffers) / sizeof(buffers[0]) == HMB_GATHER_BINDING_COUNT);
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
   const auto push = std::as_bytes(std::span<const gpu::GatherParams>(&params, 1));
   if (options.pixelList)
     frame.dispatchIndirect(passName, kernel_, buffers, push, *options.listCounters,
-                           offsetof(gpu::RayMaskCounters, dispatchX));
+                           offsetof(gpu::RayMaskCounters, maskDispatchX));
   else
     frame.dispatch(passName, kernel_, buffers, push,
                    {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});

@@ -28,7 +28,7 @@ struct MotionBlurInputs {
 
 // What a gather may read beside its layer; all optional.
 struct GatherOptions {
-  const vk::Buffer* mask = nullptr;  // width * height uint (0/1): the mask boosts apply inside
+  const vk::Buffer* mask = nullptr;  // width * height uint (0/1): the mask boosts apply inside (or the overlay)
   // The hybrid composite inside the mask (needs mask): width * height vec4, the blurred
   // revealed background, read at mask pixels.
   const vk::Buffer* background = nullptr;
@@ -38,6 +38,11 @@ struct GatherOptions {
   // a RayMaskCounters buffer (kernels/hybrid/hybrid_layout.h: length, then the dispatch).
   const vk::Buffer* pixelList = nullptr;
   const vk::Buffer* listCounters = nullptr;
+  // Overlay (needs mask; no mask boosts): where the mask is set, the layer reads these instead
+  // of its own colour, normal-depth and velocity.
+  const vk::Buffer* overlayColor = nullptr;
+  const vk::Buffer* overlayNormalDepth = nullptr;
+  const vk::Buffer* overlayVelocity = nullptr;
 };
 
 class GatherPass {

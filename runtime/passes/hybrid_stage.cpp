@@ -22,10 +22,9 @@ HybridStage::~HybridStage() = default;
 void HybridStage::plan(FramePlan& plan) const {
   plan.run(kBvhMeshes);
   plan.run(kBvhInstances);
-  rayMask_.plan(plan);
-  plan.run(kCopyLayer);
-  plan.run(RevealPass::kName);
   postProcess_.planTiles(plan);
+  rayMask_.plan(plan);
+  plan.run(RevealPass::kName);
   plan.run(kGatherBackground);
   plan.run(kGatherComposite);
 }
@@ -53,11 +52,11 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   rayMask_.prepare(width, height);
   if (width != width_ || height != height_) {
     const uint64_t pixels = uint64_t(width) * height;
-    backgroundColor_ = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "background colour");
-    backgroundNormalDepth_ =
-        vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "background normal-depth");
-    backgroundVelocity_ = vk::Buffer(context_, pixels * sizeof(glm::vec2), vk::MemoryUse::Device, "background velocity");
-    backgroundObjectId_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "background object id");
+    revealedColor_ = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "revealed colour");
+    revealedNormalDepth_ =
+        vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "revealed normal-depth");
+    revealedVelocity_ = vk::Buffer(context_, pixels * sizeof(glm::vec2), vk::MemoryUse::Device, "revealed velocity");
+    revealedObjectId_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "revealed object id");
     backgroundBlurred_ =
         vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "background blurred (mask pixels)");
     width_ = width;
@@ -71,27 +70,32 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
   const PostProcessSettings& blur = postProcess_.settings();
   const MotionBlurInputs raster{&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), width_, height_};
+  postProcess_.recordTiles(frame, raster);
   // The mask walks each pixel's whole displacement (clamped to the image, not to the tile), as
   // the coverage composite does: a fast object's inner blur is wider than the gather's tiles
   // (at 1280x720 the living room's vase gains 2.6 dB more over the blur region this way).
-  rayMask_.record(frame, raster, gbuffer.objectId(),
-                  {blur.velocityScale(), float(std::max(width_, height_)), blur.softZExtent, settings_.edgeThreshold});
-
-  // The background layer is the raster everywhere but at mask pixels, where the reveal writes.
-  frame.copy(kCopyLayer, {{&gbuffer.color(), &backgroundColor_},
-                          {&gbuffer.normalDepth(), &backgroundNormalDepth_},
-                          {&gbuffer.velocity(), &backgroundVelocity_},
-                          {&gbuffer.objectId(), &backgroundObjectId_}});
+  RayMaskParameters maskParameters;
+  maskParameters.tileMax = &postProcess_.tileMax();
+  maskParameters.tileSize = blur.tileSize;
+  maskParameters.grid = postProcess_.tileGrid();
+  maskParameters.velocityScale = blur.velocityScale();
+  maskParameters.maxSpeed = float(std::max(width_, height_));
+  maskParameters.softZExtent = blur.softZExtent;
+  maskParameters.edgeThreshold = settings_.edgeThreshold;
+  rayMask_.record(frame, raster, gbuffer.objectId(), maskParameters);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.objectId(), rayMask_.list(), rayMask_.counters(),
-                 {&backgroundColor_, &backgroundNormalDepth_, &backgroundVelocity_, &backgroundObjectId_}, width_,
-                 height_, settings_);
+                 {&revealedColor_, &revealedNormalDepth_, &revealedVelocity_, &revealedObjectId_}, width_, height_,
+                 settings_);
 
-  postProcess_.recordTiles(frame, raster);
-  const MotionBlurInputs background{&backgroundColor_, &backgroundNormalDepth_, &backgroundVelocity_, width_, height_};
-  GatherOptions listed;
-  listed.pixelList = &rayMask_.list();
-  listed.listCounters = &rayMask_.counters();
-  postProcess_.recordGather(frame, background, listed, backgroundBlurred_, kGatherBackground);
+  // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
+  GatherOptions background;
+  background.mask = &rayMask_.mask();
+  background.overlayColor = &revealedColor_;
+  background.overlayNormalDepth = &revealedNormalDepth_;
+  background.overlayVelocity = &revealedVelocity_;
+  background.pixelList = &rayMask_.list();
+  background.listCounters = &rayMask_.counters();
+  postProcess_.recordGather(frame, raster, background, backgroundBlurred_, kGatherBackground);
   GatherOptions composite;
   composite.mask = &rayMask_.mask();
   composite.background = &backgroundBlurred_;

@@ -1,7 +1,7 @@
 // The hybrid method (paper, section 3; DESIGN.md's frame): on top of the G-buffer,
-//   ray mask (RayMaskStage) -> the background layer: the G-buffer copied, the ray reveal
-//   (RevealPass) written in at mask pixels -> tile-max, neighbour-max of the raster's
-//   velocities -> gather of the background layer at mask pixels only (indirect) -> gather of
+//   ray mask (RayMaskStage) -> ray reveal (RevealPass) at mask pixels -> tile-max,
+//   neighbour-max of the raster's velocities -> gather of the background layer (the revealed
+//   surfaces over the raster, read as an overlay) at mask pixels only (indirect) -> gather of
 //   the raster layer with the mask boosts and the composite (gather.comp's header says how).
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
 // mask and the background layer.
@@ -33,7 +33,6 @@ class HybridStage {
  public:
   static constexpr const char* kBvhMeshes = "hybrid-bvh-meshes";        // scene setup: not in the frame time
   static constexpr const char* kBvhInstances = "hybrid-bvh-instances";  // per frame
-  static constexpr const char* kCopyLayer = "background-layer-copy";
   static constexpr const char* kGatherBackground = "gather-background";
   static constexpr const char* kGatherComposite = "gather-composite";
 
@@ -57,10 +56,10 @@ class HybridStage {
 
   const HybridSettings& settings() const { return settings_; }
   const RayMaskStage& rayMask() const { return rayMask_; }
-  // The background layer: the G-buffer with revealed surfaces at mask pixels.
-  const vk::Buffer& backgroundColor() const { return backgroundColor_; }
-  const vk::Buffer& backgroundNormalDepth() const { return backgroundNormalDepth_; }
-  const vk::Buffer& backgroundObjectId() const { return backgroundObjectId_; }
+  // What the reveal found, written at mask pixels only (the rest is stale).
+  const vk::Buffer& revealedColor() const { return revealedColor_; }
+  const vk::Buffer& revealedNormalDepth() const { return revealedNormalDepth_; }
+  const vk::Buffer& revealedObjectId() const { return revealedObjectId_; }
 
  private:
   const vk::Context& context_;
@@ -71,7 +70,7 @@ class HybridStage {
   std::unique_ptr<TraceScene> traceScene_;
   uint32_t width_ = 0, height_ = 0;
   vk::Buffer cameraRays_;
-  vk::Buffer backgroundColor_, backgroundNormalDepth_, backgroundVelocity_, backgroundObjectId_;
+  vk::Buffer revealedColor_, revealedNormalDepth_, revealedVelocity_, revealedObjectId_;
   vk::Buffer backgroundBlurred_;
 };
 

@@ -1,5 +1,6 @@
 #include "runtime/passes/ray_mask_stage.h"
 
+#include <cstddef>
 #include <string>
 
 #include "kernels/hybrid/hybrid_layout.h"
@@ -11,12 +12,14 @@ namespace hmb::passes {
 
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
+      tilesKernel_(context, "hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams)),
       edgeKernel_(context, "hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::EdgeMaskParams)),
       rangeKernel_(context, "hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RangeCheckParams)),
-      sizeKernel_(context, "hybrid/size_reveal_dispatch", HMB_SIZE_REVEAL_BINDING_COUNT, 0) {}
+      sizeKernel_(context, "hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan) const {
   plan.run(kClear);
+  plan.run(kMovingTiles);
   plan.run(kEdges);
   plan.run(kRangeCheck);
   plan.run(kSizeDispatch);
@@ -29,6 +32,7 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   edges_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge mask");
   mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
+  tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
   counters_ = vk::Buffer(context_, sizeof(gpu::RayMaskCounters), vk::MemoryUse::Device, "ray mask counters");
   width_ = width;
   height_ = height;
@@ -39,18 +43,29 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   if (layer.width != width_ || layer.height != height_)
     throw Error("ray mask: inputs are " + std::to_string(layer.width) + "x" + std::to_string(layer.height) +
                 " but the stage was prepared for " + std::to_string(width_) + "x" + std::to_string(height_));
-  const glm::uvec3 groups{vk::groupsFor(width_, HMB_EDGE_MASK_GROUP_X), vk::groupsFor(height_, HMB_EDGE_MASK_GROUP_Y),
-                          1};
+  if (!p.tileMax || p.tileSize == 0 || p.grid.count() == 0) throw Error("ray mask: no tile-max to start from");
+  if (uint64_t(p.grid.x) * p.tileSize < width_ || uint64_t(p.grid.y) * p.tileSize < height_)
+    throw Error("ray mask: the tile grid does not cover the image");
+  // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
-  const gpu::EdgeMaskParams edgeParams{width_, height_, p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold,
-                                       0u, 0u};
-  frame.dispatch(kEdges, edgeKernel_, {layer.normalDepth, layer.velocity, &objectId, &edges_}, edgeParams, groups);
-  const gpu::RangeCheckParams rangeParams{width_, height_, p.velocityScale, p.maxSpeed};
-  frame.dispatch(kRangeCheck, rangeKernel_, {layer.velocity, &edges_, &mask_, &counters_, &list_}, rangeParams,
-                 glm::uvec3{vk::groupsFor(width_, HMB_RANGE_CHECK_GROUP_X),
-                            vk::groupsFor(height_, HMB_RANGE_CHECK_GROUP_Y), 1});
-  const vk::Buffer* sizeBuffers[] = {&counters_};
-  frame.dispatch(kSizeDispatch, sizeKernel_, sizeBuffers, {}, {1, 1, 1});
+  frame.fill(kClear, edges_, 0u);
+  frame.fill(kClear, mask_, 0u);
+  const gpu::MovingTilesParams tileParams{p.grid.count(), 0u, 0u, 0u};
+  frame.dispatch(kMovingTiles, tilesKernel_, {p.tileMax, &counters_, &tiles_}, tileParams,
+                 vk::foldedGroups(vk::groupsFor(p.grid.count(), HMB_MOVING_TILES_GROUP)));
+  const uint32_t blocksPerSide = vk::groupsFor(p.tileSize, HMB_MASK_TILE_GROUP_X);
+  frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_},
+                 gpu::SizeListParams{HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide, 0u, 0u}, {1, 1, 1});
+  const VkDeviceSize tileDispatch = offsetof(gpu::RayMaskCounters, tileDispatchX);
+  const gpu::EdgeMaskParams edgeParams{width_,      height_,         p.tileSize,     p.grid.x,
+                                       p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold};
+  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, layer.velocity, &objectId, &tiles_, &edges_},
+                         edgeParams, counters_, tileDispatch);
+  const gpu::RangeCheckParams rangeParams{width_, height_, p.tileSize, p.grid.x, p.velocityScale, p.maxSpeed, 0u, 0u};
+  frame.dispatchIndirect(kRangeCheck, rangeKernel_, {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_},
+                         rangeParams, counters_, tileDispatch);
+  frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_}, gpu::SizeListParams{HMB_SIZE_LIST_MASK, 0u, 0u, 0u},
+                 {1, 1, 1});
 }
 
 RayMaskCounts RayMaskStage::counts() const {

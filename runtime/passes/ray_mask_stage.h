@@ -1,6 +1,7 @@
-// The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): edge_mask (eqs. 1-4)
-// -> range_check (the mask as a 0/1 image and a compacted pixel list) -> size_reveal_dispatch
-// (the list's length as an indirect dispatch). Owns those buffers.
+// The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): list_moving_tiles (from
+// the gather's tile-max) -> edge_mask (eqs. 1-4) -> range_check (the mask as a 0/1 image and a
+// compacted pixel list), both over the moving tiles only, with size_list_dispatch turning each
+// list's length into an indirect dispatch. Owns those buffers.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +17,9 @@ class FramePlan;
 namespace hmb::passes {
 
 struct RayMaskParameters {
+  const vk::Buffer* tileMax = nullptr;  // the gather's tile-max (PostProcessStage::tileMax())
+  uint32_t tileSize = 40;               // its tile size
+  TileGrid grid;                        // its tile grid
   float velocityScale = 1.0f;  // q (pixels per frame) -> per-exposure displacement
   float maxSpeed = 1280.0f;    // displacements are clamped to this length (px)
   float softZExtent = 0.03f;
@@ -30,6 +34,7 @@ struct RayMaskCounts {
 class RayMaskStage {
  public:
   static constexpr const char* kClear = "ray-mask-clear";
+  static constexpr const char* kMovingTiles = "ray-mask-moving-tiles";
   static constexpr const char* kEdges = "ray-mask-edges";
   static constexpr const char* kRangeCheck = "ray-mask-range-check";
   static constexpr const char* kSizeDispatch = "ray-mask-size-dispatch";
@@ -38,7 +43,7 @@ class RayMaskStage {
   void plan(FramePlan& plan) const;
   // Sizes the buffers for this resolution (reuses them when it is unchanged).
   void prepare(uint32_t width, uint32_t height);
-  // layer: the G-buffer (colour unused); objectId: uint per pixel.
+  // layer: the G-buffer (colour unused); objectId: uint per pixel. After the tile passes.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& layer, const vk::Buffer& objectId,
               const RayMaskParameters& parameters) const;
 
@@ -51,9 +56,10 @@ class RayMaskStage {
 
  private:
   const vk::Context& context_;
-  vk::ComputeKernel edgeKernel_, rangeKernel_, sizeKernel_;
+  vk::ComputeKernel tilesKernel_, edgeKernel_, rangeKernel_, sizeKernel_;
   uint32_t width_ = 0, height_ = 0;
   vk::Buffer edges_, mask_, list_, counters_;
+  vk::Buffer tiles_;  // moving tiles: at most one per pixel, whatever the tile size
 };
 
 }  // namespace hmb::passes

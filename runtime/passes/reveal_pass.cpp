@@ -41,7 +41,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                           &ts.positions(), &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(),
                           &gpuScene.texels(), &gpuScene.cameraBuffer(), &rasterObjectId, &counters, output.color,
                           output.normalDepth, output.velocity, output.objectId},
-                         params, counters, offsetof(gpu::RayMaskCounters, dispatchX));
+                         params, counters, offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 
 }  // namespace hmb::passes

@@ -53,7 +53,8 @@ const KernelLayout kLayouts[] = {
     {"mblur/gather_jimenez", HMB_JIMENEZ_BINDING_COUNT, sizeof(gpu::JimenezParams), false},
     {"hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::EdgeMaskParams), false},
     {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RangeCheckParams), false},
-    {"hybrid/size_reveal_dispatch", HMB_SIZE_REVEAL_BINDING_COUNT, 0, false},
+    {"hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
+    {"hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
     {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false},
 };
 

@@ -1,0 +1,30 @@
+#version 450
+// A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
+// 65535 groups: the moving tiles (a group per 8 x 8 block of each: edge_mask, range_check) or the ray mask's
+// pixels (HMB_MASK_LIST_GROUP each: reveal_background, the background layer's gather). An
+// empty list dispatches no group.
+#extension GL_GOOGLE_include_directive : require
+#include "hybrid_layout.h"
+
+layout(local_size_x = 1) in;
+
+layout(std430, binding = HMB_SIZE_LIST_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
+layout(push_constant) uniform Params { SizeListParams params; };
+
+uvec3 folded(uint groups) {
+  return groups == 0u ? uvec3(0u, 0u, 1u) : uvec3(min(groups, 65535u), (groups + 65534u) / 65535u, 1u);
+}
+
+void main() {
+  if (params.list == HMB_SIZE_LIST_MOVING_TILES) {
+    const uvec3 g = folded(counters.tileCount);
+    counters.tileDispatchX = g.x;
+    counters.tileDispatchY = g.y;
+    counters.tileDispatchZ = g.x == 0u ? 1u : params.blocksPerTile;
+    return;
+  }
+  const uvec3 g = folded((counters.maskCount + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP);
+  counters.maskDispatchX = g.x;
+  counters.maskDispatchY = g.y;
+  counters.maskDispatchZ = g.z;
+}
