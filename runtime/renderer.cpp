@@ -137,7 +137,10 @@ void validateRenderSettings(const RenderSettings& settings) {
   if (settings.method == "hybrid") {
     if (settings.postprocess.filter && *settings.postprocess.filter != "mcguire")
       throw Error("the hybrid method blurs with the McGuire filter (--filter mcguire)");
-    hybridSettingsFor(scene::Scene{}, settings);
+    const passes::HybridSettings hybrid = hybridSettingsFor(scene::Scene{}, settings);
+    if (hybrid.composite == passes::HybridComposite::Coverage && settings.postprocess.range &&
+        passes::parseRange(*settings.postprocess.range) != passes::GatherRange::Adapted)
+      throw Error("the hybrid method's coverage composite needs the adapted range (--range adapted)");
   }
 }
 
@@ -199,8 +202,9 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     if (blur) {
       result.postprocess = postProcessSettingsFor(scene, settings);
       if (hybrid) {
-        result.postprocess->maskBackgroundBoost = hybridSettingsFor(scene, settings).maskBackgroundBoost;
-        result.postprocess->maskForegroundDivide = hybridSettingsFor(scene, settings).maskForegroundDivide;
+        const passes::HybridSettings h = hybridSettingsFor(scene, settings);
+        result.postprocess->maskBackgroundBoost = h.maskBackgroundBoost;
+        result.postprocess->maskForegroundDivide = h.maskForegroundDivide;
       }
       passes_->postProcess.configure(*result.postprocess);
       passes_->postProcess.prepare(width, height);

@@ -2,11 +2,13 @@
 // Every command runs with --validation, so a validation error fails it with exit code 3.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -173,6 +175,35 @@ TEST(CliTest, PostProcessSettingsReachTheReportAndBadOnesFailInOneLine) {
   expectOneLineError(hmblur("--quiet render --method postprocess --samples 0 --width 8 --height 8"), "samples");
   expectOneLineError(hmblur("--quiet render --method postprocess --neighborhood 2 --width 8 --height 8"),
                      "neighbo");
+}
+
+TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
+  const fs::path dir = tempDir("hybrid");
+  const CliRun run = hmblur("--quiet render --scene living-room --method hybrid --edge-threshold 0.5 "
+                            "--reveal-stop luminance --max-recursion 3 --composite weights --width 64 --height 36 "
+                            "--out " + (dir / "hybrid.exr").string() + " --report " + (dir / "report.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  nlohmann::json report;
+  std::ifstream(dir / "report.json") >> report;
+  const auto& settings = report["settings"];
+  EXPECT_FLOAT_EQ(settings["edge_threshold"].get<float>(), 0.5f);
+  EXPECT_EQ(settings["reveal_stop"], "luminance");
+  EXPECT_EQ(settings["max_recursion"], 3);
+  EXPECT_EQ(settings["composite"], "weights");
+  // The vase moves across the sofa: some pixels are masked, and each traces at least one ray.
+  EXPECT_GT(settings["mask_pixels"].get<uint64_t>(), 0u);
+  EXPECT_GE(settings["reveal_rays"].get<uint64_t>(), settings["mask_pixels"].get<uint64_t>());
+  const io::LayeredImage image = io::readExr((dir / "hybrid.exr").string());
+  std::vector<std::string> names;
+  for (const auto& layer : image.layers) names.push_back(layer.name);
+  for (const char* layer : {"rayMask", "revealed", "revealedDepth", "revealedObjectId"})
+    EXPECT_NE(std::find(names.begin(), names.end(), layer), names.end()) << layer;
+  expectOneLineError(hmblur("--quiet render --method hybrid --composite magic --width 8 --height 8"), "magic");
+  expectOneLineError(hmblur("--quiet render --method hybrid --edge-threshold 1.5 --width 8 --height 8"),
+                     "edge threshold");
+  expectOneLineError(hmblur("--quiet render --method hybrid --max-recursion 0 --width 8 --height 8"), "recursion");
+  expectOneLineError(hmblur("--quiet render --method hybrid --filter jimenez --width 8 --height 8"), "McGuire");
+  expectOneLineError(hmblur("--quiet render --method hybrid --range centered --width 8 --height 8"), "adapted");
 }
 
 TEST(CliTest, HelpListsTheSubcommands) {
