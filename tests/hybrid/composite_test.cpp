@@ -1,0 +1,283 @@
+// The hybrid composites of gather.comp (coverage and weights, at mask pixels) against the C++
+// reference on random and adversarial layers, and the gather's pixel-list mode: exactly the
+// listed pixels written, each as the full-frame gather writes it, also with more groups than
+// one row of a dispatch holds.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/hybrid/hybrid_harness.h"
+#include "tests/hybrid/hybrid_reference.h"
+#include "tests/mblur/mblur_harness.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using namespace hybrid;
+using mblur::Layer;
+using passes::GatherRange;
+using passes::HybridComposite;
+using passes::PostProcessSettings;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+PostProcessSettings compositeSettings(uint32_t tileSize, uint32_t samples, uint32_t seed) {
+  PostProcessSettings s;
+  s.range = GatherRange::Adapted;
+  s.tileSize = tileSize;
+  s.samples = samples;
+  s.seed = seed;
+  s.softZExtent = 0.05f;
+  s.maskBackgroundBoost = 3.0f;
+  s.maskForegroundDivide = 3.0f;
+  return s;
+}
+
+// The composite's inputs beside the layer: a mask, a background and object ids.
+struct CompositeCase {
+  Layer layer;
+  std::vector<uint32_t> mask;
+  std::vector<glm::vec4> background;
+  std::vector<uint32_t> objectId;
+};
+
+// mblur's random layer (rectangles at one depth each over a noisy far background): each
+// rectangle is one object (its depth names it), the background another; a few pixels carry
+// a stray id so that samples of another object at the same depth occur. A third of the pixels
+// are in the mask.
+CompositeCase randomCase(uint32_t width, uint32_t height, std::mt19937& rng) {
+  CompositeCase c;
+  c.layer = mblur::randomLayer(width, height, rng);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const size_t pixels = c.layer.color.size();
+  for (size_t i = 0; i < pixels; ++i) {
+    const float depth = c.layer.normalDepth[i].w;
+    c.objectId.push_back(depth < 9.0f ? 2u + uint32_t(depth * 1000.0f) : 1u);
+    if (unit(rng) < 0.03f) c.objectId.back() = 7u;
+    c.mask.push_back(unit(rng) < 0.33f ? 1u : 0u);
+    c.background.emplace_back(unit(rng), unit(rng), unit(rng), 1.0f);
+  }
+  return c;
+}
+
+// Values no G-buffer should hold, in colour, background, depth and velocity.
+void makeAdversarial(CompositeCase& c, std::mt19937& rng) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float colours[] = {kNaN, kInf, -kInf, 1e30f, -5.0f, 70000.0f};
+  const float depths[] = {kNaN, kInf, -kInf, 0.0f, 1e30f, 3e38f};
+  const float velocities[] = {kNaN, kInf, 1e30f, -1e30f, 1e-31f, 0.3f};
+  auto pick = [&](const auto& values) { return values[size_t(unit(rng) * std::size(values)) % std::size(values)]; };
+  for (size_t i = 0; i < c.layer.color.size(); ++i) {
+    if (unit(rng) < 0.05f) c.layer.color[i][int(unit(rng) * 4.0f) % 4] = pick(colours);
+    if (unit(rng) < 0.05f) c.background[i][int(unit(rng) * 4.0f) % 4] = pick(colours);
+    if (unit(rng) < 0.05f) c.layer.normalDepth[i].w = pick(depths);
+    if (unit(rng) < 0.05f) c.layer.velocity[i] = {pick(velocities), pick(velocities)};
+  }
+}
+
+std::vector<glm::vec4> runComposite(const CompositeCase& c, const std::vector<glm::vec4>& tiles,
+                                    const PostProcessSettings& s, HybridComposite composite) {
+  GatherRun run;
+  run.mask = &c.mask;
+  run.background = &c.background;
+  run.objectId = &c.objectId;
+  run.composite = composite;
+  return runGather(VulkanTest::context(), c.layer, tiles, run, s);
+}
+
+// Every output finite and within 1e-5 relative (colours are O(1)) of the reference, except
+// pixels where a sample position rounds to the other neighbouring pixel on the device (a
+// position a rounding step from a pixel edge): at most 0.1% of them. Returns how many mask
+// pixels the composite changed from the plain gather (so a case can show it tested something).
+size_t expectCompositeMatches(const CompositeCase& c, const PostProcessSettings& s, HybridComposite composite,
+                              const std::string& what) {
+  const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
+  const std::vector<glm::vec4> device = runComposite(c, tiles, s, composite);
+  const std::vector<glm::vec4> reference =
+      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, composite);
+  const std::vector<glm::vec4> plain = mblur::gather(c.layer, tiles, &c.mask, s);
+  EXPECT_TRUE(mblur::allFinite(device)) << what;
+  size_t off = 0, changed = 0, maskPixels = 0;
+  for (size_t i = 0; i < device.size(); ++i) {
+    const float scale = std::max(
+        {1.0f, std::abs(reference[i].x), std::abs(reference[i].y), std::abs(reference[i].z), std::abs(reference[i].w)});
+    if (mblur::maxAbsDifference(device[i], reference[i]) > 1e-5f * scale) ++off;
+    if (c.mask[i] != 0u) {
+      ++maskPixels;
+      if (mblur::maxAbsDifference(plain[i], reference[i]) > 1e-3f) ++changed;
+    }
+  }
+  EXPECT_LE(off, device.size() / 1000) << what << ": " << off << " of " << device.size() << " pixels differ";
+  EXPECT_GT(maskPixels, 0u) << what;
+  return changed;
+}
+
+using HybridCompositeTest = VulkanTest;
+
+TEST_F(HybridCompositeTest, CoverageMatchesReferenceOnRandomLayers) {
+  std::mt19937 rng(17);
+  size_t changed = 0;
+  for (const uint32_t tileSize : {8u, 20u})
+    for (const uint32_t samples : {1u, 8u, 15u}) {
+      const CompositeCase c = randomCase(71, 43, rng);
+      changed +=
+          expectCompositeMatches(c, compositeSettings(tileSize, samples, samples + tileSize), HybridComposite::Coverage,
+                                 "tile " + std::to_string(tileSize) + " S " + std::to_string(samples));
+    }
+  EXPECT_GT(changed, 1000u) << "the composite should change most moving mask pixels";
+}
+
+TEST_F(HybridCompositeTest, WeightsMatchReferenceOnRandomLayers) {
+  std::mt19937 rng(19);
+  size_t changed = 0;
+  for (const uint32_t tileSize : {8u, 20u})
+    for (const uint32_t samples : {1u, 15u}) {
+      const CompositeCase c = randomCase(71, 43, rng);
+      changed += expectCompositeMatches(c, compositeSettings(tileSize, samples, 3u), HybridComposite::Weights,
+                                        "tile " + std::to_string(tileSize) + " S " + std::to_string(samples));
+    }
+  EXPECT_GT(changed, 150u);
+}
+
+TEST_F(HybridCompositeTest, WeightsMatchReferenceWithTheCentredRange) {
+  std::mt19937 rng(29);
+  PostProcessSettings s = compositeSettings(12u, 15u, 9u);
+  s.range = GatherRange::Centered;
+  const CompositeCase c = randomCase(57, 39, rng);
+  EXPECT_GT(expectCompositeMatches(c, s, HybridComposite::Weights, "centred"), 100u);
+}
+
+TEST_F(HybridCompositeTest, CompositesMatchReferenceOnAdversarialLayers) {
+  std::mt19937 rng(31);
+  for (int round = 0; round < 3; ++round) {
+    CompositeCase c = randomCase(53, 37, rng);
+    makeAdversarial(c, rng);
+    for (const HybridComposite composite : {HybridComposite::Coverage, HybridComposite::Weights})
+      expectCompositeMatches(c, compositeSettings(10u, 15u, uint32_t(round)), composite,
+                             "round " + std::to_string(round) + " " + std::string(passes::compositeName(composite)));
+  }
+}
+
+// The coverage composite by hand: a pixel of object 2 (depth 1) moving 4 px right, its range
+// covering two more pixels of object 2 and then object 1, far behind. With one sample per
+// pixel at u = (i + 1 - j) / S the share on object 2 is known: alpha = (samples on it) / S and
+// C = alpha (mean of the pixel and those samples) + (1 - alpha) B.
+TEST_F(HybridCompositeTest, CoverageByHand) {
+  const uint32_t width = 12, height = 1;
+  CompositeCase c;
+  c.layer = mblur::stillLayer(width, height);
+  for (uint32_t x = 0; x < width; ++x) {
+    const bool front = x >= 2 && x <= 4;
+    c.layer.color[x] = front ? glm::vec4(1.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+    c.layer.normalDepth[x].w = front ? 1.0f : 10.0f;
+    c.layer.velocity[x] = front ? glm::vec2(4.0f, 0.0f) : glm::vec2(0.0f);
+    c.objectId.push_back(front ? 2u : 1u);
+    c.mask.push_back(x == 2 ? 1u : 0u);
+    c.background.emplace_back(0.0f, 1.0f, 0.0f, 1.0f);
+  }
+  PostProcessSettings s = compositeSettings(4u, 8u, 0u);
+  s.exposure = 1.0f / 120.0f;  // velocityScale E * fps = 1: 4 px per exposure
+  const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
+  const std::vector<glm::vec4> device = runComposite(c, tiles, s, HybridComposite::Coverage);
+  // Pixel 2's samples at 2.5 + 4u land on pixels 2 to 4 (object 2) for u < 0.625, and on 5
+  // or 6 (object 1, far behind: none of them foreground) from there on.
+  const float jitter = mblur::unitFromHash(mblur::mblurHash(2, 0, s.seed));
+  uint32_t onObject = 0;
+  for (uint32_t i = 0; i < s.samples; ++i) {
+    const float u = (float(i) + 1.0f - jitter) / float(s.samples);
+    if (std::floor(2.5f + 4.0f * u) <= 4.0f) ++onObject;
+  }
+  ASSERT_GT(onObject, 0u);
+  ASSERT_LT(onObject, s.samples);
+  const float alpha = float(onObject) / float(s.samples);
+  // Foreground: the pixel and its samples on object 2 are all red.
+  const glm::vec4 expected = alpha * glm::vec4(1, 0, 0, 1) + (1.0f - alpha) * glm::vec4(0, 1, 0, 1);
+  EXPECT_LT(mblur::maxAbsDifference(device[2], expected), 1e-6f)
+      << device[2].x << " " << device[2].y << " " << device[2].z << " alpha " << alpha;
+  const std::vector<glm::vec4> reference =
+      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, HybridComposite::Coverage);
+  EXPECT_LT(mblur::maxAbsDifference(reference[2], expected), 1e-6f);
+}
+
+// A random subset of the pixels, in random order.
+std::vector<uint32_t> randomList(size_t pixels, float share, std::mt19937& rng) {
+  std::vector<uint32_t> all(pixels);
+  std::iota(all.begin(), all.end(), 0u);
+  std::shuffle(all.begin(), all.end(), rng);
+  all.resize(size_t(float(pixels) * share));
+  return all;
+}
+
+void expectListGather(const std::vector<glm::vec4>& listed, const std::vector<glm::vec4>& full,
+                      const std::vector<uint32_t>& list, glm::vec4 sentinel, const std::string& what) {
+  std::vector<bool> inList(full.size(), false);
+  for (const uint32_t i : list) inList[i] = true;
+  size_t wrong = 0;
+  for (size_t i = 0; i < full.size(); ++i) {
+    const glm::vec4 expected = inList[i] ? full[i] : sentinel;
+    if (listed[i] != expected && ++wrong <= 5)
+      ADD_FAILURE() << what << ": pixel " << i << (inList[i] ? " (listed)" : " (not listed)") << " is " << listed[i].x
+                    << "," << listed[i].y << "," << listed[i].z << "," << listed[i].w;
+  }
+  EXPECT_EQ(wrong, 0u) << what;
+}
+
+TEST_F(HybridCompositeTest, PixelListGathersExactlyTheListedPixels) {
+  std::mt19937 rng(37);
+  const glm::vec4 sentinel(-3.0f, 123.0f, kInf, -0.0f);
+  for (const float share : {0.0f, 0.01f, 0.37f, 1.0f}) {
+    CompositeCase c = randomCase(67, 45, rng);
+    const PostProcessSettings s = compositeSettings(10u, 15u, 4u);
+    const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
+    const std::vector<uint32_t> list = randomList(c.layer.color.size(), share, rng);
+    // The background gather of the hybrid stage: the list alone.
+    GatherRun run;
+    run.sentinel = sentinel;
+    const std::vector<glm::vec4> full = runGather(context(), c.layer, tiles, run, s);
+    run.list = &list;
+    expectListGather(runGather(context(), c.layer, tiles, run, s), full, list, sentinel,
+                     "share " + std::to_string(share));
+    // With the mask and the composite too.
+    GatherRun composite;
+    composite.mask = &c.mask;
+    composite.background = &c.background;
+    composite.objectId = &c.objectId;
+    composite.sentinel = sentinel;
+    const std::vector<glm::vec4> fullComposite = runGather(context(), c.layer, tiles, composite, s);
+    composite.list = &list;
+    expectListGather(runGather(context(), c.layer, tiles, composite, s), fullComposite, list, sentinel,
+                     "composite, share " + std::to_string(share));
+  }
+}
+
+// More than 65535 groups of 64: the dispatch folds into two rows, and every listed pixel is
+// still written once with its own colour (a still layer: the gather copies the pixel).
+TEST_F(HybridCompositeTest, PixelListFoldedIntoTwoRowsOfGroups) {
+  const uint32_t width = 2100, height = 2100;
+  const size_t pixels = size_t(width) * height;
+  Layer layer{width, height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels, glm::vec4(0, 0, 1, 1)),
+              std::vector<glm::vec2>(pixels, glm::vec2(0.0f))};
+  for (size_t i = 0; i < pixels; ++i) layer.color[i] = glm::vec4(float(i % width), float(i / width), 0.5f, 1.0f);
+  std::vector<uint32_t> list;
+  for (uint32_t i = 0; i < pixels; ++i)
+    if (i % 64 != 5) list.push_back(i);
+  ASSERT_GT(list.size(), size_t(65535) * 64);
+  const PostProcessSettings s = compositeSettings(40u, 15u, 0u);
+  const passes::TileGrid grid = passes::tileGridFor(width, height, s.tileSize);
+  const std::vector<glm::vec4> tiles(grid.count(), glm::vec4(0.0f));
+  GatherRun run;
+  run.sentinel = glm::vec4(-1.0f);
+  run.list = &list;
+  expectListGather(runGather(context(), layer, tiles, run, s), layer.color, list, run.sentinel, "folded");
+}
+
+}  // namespace
+}  // namespace hmb::test

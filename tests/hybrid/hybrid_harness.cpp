@@ -1,0 +1,182 @@
+#include "tests/hybrid/hybrid_harness.h"
+
+#include <algorithm>
+#include <iterator>
+#include <limits>
+#include <optional>
+
+#include "runtime/passes/gather_pass.h"
+#include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/rasterize_pass.h"
+#include "runtime/passes/reveal_pass.h"
+#include "runtime/trace_scene.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/context.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::test::hybrid {
+
+namespace {
+
+template <class T>
+std::vector<T> downloadFirst(const vk::Buffer& buffer, size_t count) {
+  std::vector<T> values = buffer.download<T>();
+  values.resize(count);
+  return values;
+}
+
+template <class T>
+vk::Buffer filledBuffer(vk::Context& context, size_t count, T value, const char* name) {
+  return vk::uploadedBuffer(context, std::vector<T>(std::max<size_t>(count, 1), value), name);
+}
+
+}  // namespace
+
+RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters) {
+  const size_t pixels = size_t(layer.width) * layer.height;
+  const vk::Buffer normalDepth = vk::uploadedBuffer(context, layer.normalDepth, "test normal-depth");
+  const vk::Buffer velocity = vk::uploadedBuffer(context, layer.velocity, "test velocity");
+  const vk::Buffer objectId = vk::uploadedBuffer(context, layer.objectId, "test object id");
+  passes::RayMaskStage stage(context);
+  stage.prepare(layer.width, layer.height);
+  const passes::MotionBlurInputs inputs{nullptr, &normalDepth, &velocity, layer.width, layer.height};
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  stage.record(frame, inputs, objectId, parameters);
+  frame.submitAndWait();
+
+  RayMaskReadback out;
+  out.edges = downloadFirst<uint32_t>(stage.edges(), pixels);
+  out.mask = downloadFirst<uint32_t>(stage.mask(), pixels);
+  out.counters = stage.counters().download<gpu::RayMaskCounters>().at(0);
+  out.list = downloadFirst<uint32_t>(stage.list(), std::min<size_t>(out.counters.maskCount, pixels));
+  return out;
+}
+
+std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer,
+                                 const std::vector<glm::vec4>& neighborMax, const GatherRun& run,
+                                 const passes::PostProcessSettings& settings) {
+  const size_t pixels = size_t(layer.width) * layer.height;
+  const vk::Buffer color = vk::uploadedBuffer(context, layer.color, "test colour");
+  const vk::Buffer normalDepth = vk::uploadedBuffer(context, layer.normalDepth, "test normal-depth");
+  const vk::Buffer velocity = vk::uploadedBuffer(context, layer.velocity, "test velocity");
+  const vk::Buffer tiles = vk::uploadedBuffer(context, neighborMax, "test neighbor max");
+  const vk::Buffer output = filledBuffer(context, pixels, run.sentinel, "test output");
+  std::optional<vk::Buffer> mask, background, objectId, list, counters;
+  passes::GatherOptions options;
+  if (run.mask) options.mask = &mask.emplace(vk::uploadedBuffer(context, *run.mask, "test mask"));
+  if (run.background)
+    options.background = &background.emplace(vk::uploadedBuffer(context, *run.background, "test background"));
+  if (run.objectId) options.objectId = &objectId.emplace(vk::uploadedBuffer(context, *run.objectId, "test object id"));
+  options.composite = run.composite;
+  if (run.list) {
+    options.pixelList = &list.emplace(vk::uploadedBuffer(context, *run.list, "test pixel list"));
+    const std::vector<gpu::RayMaskCounters> c{dispatchFor(uint32_t(run.list->size()))};
+    options.listCounters = &counters.emplace(vk::uploadedBuffer(context, c, "test list counters"));
+  }
+  const passes::GatherPass pass(context);
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  pass.record(frame, {&color, &normalDepth, &velocity, layer.width, layer.height}, tiles, options, output, settings);
+  frame.submitAndWait();
+  return downloadFirst<glm::vec4>(output, pixels);
+}
+
+RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
+                         uint32_t height, const std::vector<uint32_t>& list, const passes::HybridSettings& settings) {
+  const size_t pixels = size_t(width) * height;
+  GpuScene gpuScene(context, scene);
+  gpuScene.setFrame(scene, frameTime, width, height);
+  passes::GBufferStage gbuffer(context, passes::defaultVisibilityScheme(context.info()));
+  gbuffer.prepare(gpuScene, width, height);
+  vk::FrameRecorder frame(context);
+  passes::submitUntilRasterFits(frame, gbuffer.rasterizer(),
+                                [&](vk::FrameRecorder& f) { gbuffer.record(f, gpuScene); });
+
+  TraceScene traceScene(context, scene, frame);
+  const float times[] = {frameTime};
+  traceScene.setShutterTimes(scene, times, frame);
+  const vk::Buffer cameraRays = vk::uploadedBuffer(
+      context, std::vector<gpu::PinholeCamera>{pinholeCamera(scene, frameTime, width, height)}, "test camera rays");
+  const vk::Buffer listBuffer = vk::uploadedBuffer(context, list, "test pixel list");
+  const vk::Buffer counters = vk::uploadedBuffer(
+      context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(list.size()))}, "test counters");
+  const vk::Buffer color = filledBuffer(context, pixels, kSentinelColor, "test revealed colour");
+  const vk::Buffer normalDepth = filledBuffer(context, pixels, kSentinelColor, "test revealed normal-depth");
+  const vk::Buffer velocity = filledBuffer(context, pixels, kSentinelVelocity, "test revealed velocity");
+  const vk::Buffer objectId = filledBuffer(context, pixels, kSentinelId, "test revealed object id");
+
+  const passes::RevealPass reveal(context);
+  frame.begin();
+  reveal.record(frame, traceScene, gpuScene, cameraRays, gbuffer.objectId(), listBuffer, counters,
+                {&color, &normalDepth, &velocity, &objectId}, width, height, settings);
+  frame.submitAndWait();
+
+  RevealReadback out;
+  out.camera = gpuScene.camera();
+  out.raster = {
+      downloadFirst<glm::vec4>(gbuffer.color(), pixels), downloadFirst<glm::vec4>(gbuffer.normalDepth(), pixels),
+      downloadFirst<glm::vec2>(gbuffer.velocity(), pixels), downloadFirst<uint32_t>(gbuffer.objectId(), pixels)};
+  out.revealed = {downloadFirst<glm::vec4>(color, pixels), downloadFirst<glm::vec4>(normalDepth, pixels),
+                  downloadFirst<glm::vec2>(velocity, pixels), downloadFirst<uint32_t>(objectId, pixels)};
+  out.counters = counters.download<gpu::RayMaskCounters>().at(0);
+  return out;
+}
+
+MaskLayer randomMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng) {
+  const size_t pixels = size_t(width) * height;
+  MaskLayer layer{width, height, std::vector<glm::vec4>(pixels), std::vector<glm::vec2>(pixels),
+                  std::vector<uint32_t>(pixels, 1u)};
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), signed1(-1.0f, 1.0f), motion(-14.0f, 14.0f);
+  auto randomNormal = [&] {
+    const glm::vec3 n(signed1(rng), signed1(rng), 1.0f + unit(rng));
+    return glm::normalize(n);
+  };
+  const glm::vec3 backgroundNormal = randomNormal();
+  for (size_t i = 0; i < pixels; ++i) {
+    // A far, slightly bumpy background; a quarter of its pixels drift.
+    layer.normalDepth[i] =
+        glm::vec4(glm::normalize(backgroundNormal + 0.05f * glm::vec3(signed1(rng), signed1(rng), 0.0f)),
+                  20.0f + 2.0f * unit(rng));
+    layer.velocity[i] = unit(rng) < 0.25f ? glm::vec2(signed1(rng), signed1(rng)) : glm::vec2(0.0f);
+  }
+  const int rectangles = 2 + int(unit(rng) * 4.0f);
+  for (int r = 0; r < rectangles; ++r) {
+    const auto x0 = uint32_t(unit(rng) * float(width)), y0 = uint32_t(unit(rng) * float(height));
+    const uint32_t x1 = std::min(width, x0 + 1 + uint32_t(unit(rng) * float(width) / 2.0f));
+    const uint32_t y1 = std::min(height, y0 + 1 + uint32_t(unit(rng) * float(height) / 2.0f));
+    const glm::vec2 v = unit(rng) < 0.8f ? glm::vec2(motion(rng), motion(rng)) : glm::vec2(0.0f);
+    const float depth = 1.0f + 15.0f * unit(rng);
+    const float slope = 0.05f * signed1(rng);  // a tilted surface: depth varies across it
+    const glm::vec3 n = randomNormal();
+    const uint32_t id = 2u + uint32_t(r);
+    for (uint32_t y = y0; y < y1; ++y)
+      for (uint32_t x = x0; x < x1; ++x) {
+        const size_t i = size_t(y) * width + x;
+        layer.normalDepth[i] = glm::vec4(n, depth + slope * float(x - x0));
+        layer.velocity[i] = v;
+        layer.objectId[i] = id;
+      }
+  }
+  return layer;
+}
+
+MaskLayer adversarialMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng) {
+  constexpr float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  MaskLayer layer = randomMaskLayer(width, height, rng);
+  const float velocities[] = {0.0f, 1e-31f, 1e-30f, 0.3f, -0.7f, 0.5f, 1e30f, -1e30f, 3e38f, nan, inf, -inf};
+  const float depths[] = {0.0f, -1.0f, 1e-30f, 1e30f, 3e38f, 3.4e38f, nan, inf, -inf, 0.03f, 1.0f};
+  const float normals[] = {nan, inf, -inf, 1e30f, -1e30f, 0.0f, 2.0f, -1.0f};
+  std::uniform_int_distribution<size_t> pickV(0, std::size(velocities) - 1), pickD(0, std::size(depths) - 1),
+      pickN(0, std::size(normals) - 1);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (size_t i = 0; i < layer.velocity.size(); ++i) {
+    if (unit(rng) < 0.15f) layer.velocity[i] = {velocities[pickV(rng)], velocities[pickV(rng)]};
+    if (unit(rng) < 0.15f) layer.normalDepth[i].w = depths[pickD(rng)];
+    if (unit(rng) < 0.05f) layer.normalDepth[i][int(unit(rng) * 3.0f) % 3] = normals[pickN(rng)];
+    if (unit(rng) < 0.05f) layer.objectId[i] = 0u;
+  }
+  return layer;
+}
+
+}  // namespace hmb::test::hybrid

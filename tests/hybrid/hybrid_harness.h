@@ -1,0 +1,83 @@
+// Runs the hybrid method's passes on the test device on host data and reads the results back:
+// the ray mask (RayMaskStage), the gather with the composite and in pixel-list mode
+// (GatherPass), and the ray reveal (RevealPass) of a scene's G-buffer.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernels/hybrid/hybrid_layout.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/passes/hybrid_settings.h"
+#include "runtime/passes/post_process_settings.h"
+#include "runtime/passes/ray_mask_stage.h"
+#include "scenes/scene.h"
+#include "tests/hybrid/hybrid_reference.h"
+#include "tests/mblur/mblur_reference.h"
+
+namespace hmb::vk {
+class Context;
+}
+
+namespace hmb::test::hybrid {
+
+struct RayMaskReadback {
+  std::vector<uint32_t> edges;  // per pixel
+  std::vector<uint32_t> mask;   // per pixel
+  std::vector<uint32_t> list;   // the list's first counters.maskCount entries
+  gpu::RayMaskCounters counters{};
+};
+
+// RayMaskStage on `layer` (edge mask, range check, compaction, dispatch size).
+RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters);
+
+// One GatherPass run. With `list`, pixel-list mode: only the listed pixels are gathered, the
+// dispatch sized on the host as size_reveal_dispatch sizes it. The output buffer starts as
+// `sentinel` everywhere.
+struct GatherRun {
+  const std::vector<uint32_t>* mask = nullptr;
+  const std::vector<glm::vec4>* background = nullptr;  // composite (with mask and objectId)
+  const std::vector<uint32_t>* objectId = nullptr;
+  passes::HybridComposite composite = passes::HybridComposite::Coverage;
+  const std::vector<uint32_t>* list = nullptr;
+  glm::vec4 sentinel{0.0f};
+};
+std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer,
+                                 const std::vector<glm::vec4>& neighborMax, const GatherRun& run,
+                                 const passes::PostProcessSettings& settings);
+
+// One G-buffer layer as read back.
+struct GLayer {
+  std::vector<glm::vec4> color;
+  std::vector<glm::vec4> normalDepth;
+  std::vector<glm::vec2> velocity;
+  std::vector<uint32_t> objectId;
+};
+
+// The G-buffer of `scene` at `frameTime`, and the ray reveal of the listed pixels written into
+// buffers that start as the sentinels everywhere.
+struct RevealReadback {
+  FrameCamera camera;
+  GLayer raster;
+  GLayer revealed;
+  gpu::RayMaskCounters counters{};
+};
+inline constexpr glm::vec4 kSentinelColor{-7.0f, -7.0f, -7.0f, -7.0f};
+inline constexpr glm::vec2 kSentinelVelocity{-7.0f, -7.0f};
+inline constexpr uint32_t kSentinelId = 0xDEADBEEFu;
+RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
+                         uint32_t height, const std::vector<uint32_t>& list, const passes::HybridSettings& settings);
+
+// Random mask inputs: a few rectangles (objects with their own id, depth, normal and motion)
+// over a background object with noisy depth and normals, some pixels of it moving too.
+MaskLayer randomMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng);
+
+// A random mask layer with a share of its pixels replaced by values a G-buffer should never
+// hold (NaN and infinite velocities, depths and normals, huge and negative ones) and some it
+// may (zero and sub-pixel motion, the background's id 0).
+MaskLayer adversarialMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng);
+
+}  // namespace hmb::test::hybrid

@@ -1,0 +1,261 @@
+#include "tests/hybrid/hybrid_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hmb::test::hybrid {
+
+namespace {
+
+using mblur::gatherVelocity;
+using mblur::nearestPixel;
+using mblur::sanitizeColor;
+using mblur::sanitizeDepth;
+
+float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
+float length2(glm::vec2 v) { return std::sqrt(v.x * v.x + v.y * v.y); }
+float dot3(glm::vec3 a, glm::vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+size_t indexOf(uint32_t width, glm::ivec2 p) { return size_t(uint32_t(p.y)) * width + uint32_t(p.x); }
+
+}  // namespace
+
+bool endsOnDeeperObject(uint32_t idHere, float depthHere, uint32_t idEnd, float depthEnd, float softZExtent) {
+  return idEnd != idHere && sanitizeDepth(depthEnd) - sanitizeDepth(depthHere) > softZExtent;
+}
+
+float sobelSmooth(int k) { return k == 0 ? 6.0f : (std::abs(k) == 1 ? 4.0f : 1.0f); }
+
+float sobelDerivative(int k) {
+  if (k == 0) return 0.0f;
+  return float(k > 0 ? 1 : -1) * (std::abs(k) == 1 ? 2.0f : 1.0f);
+}
+
+float normalizedEdge(float x) {
+  if (std::isnan(x)) return 0.0f;
+  if (std::isinf(x)) return x > 0.0f ? 1.0f : 0.0f;
+  return std::clamp(1.0f - 1.0f / (std::max(x, 0.0f) + 1.0f), 0.0f, 1.0f);
+}
+
+glm::vec3 sanitizeNormal(glm::vec3 n) {
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(n[i])) return glm::vec3(0.0f);
+  return {std::clamp(n.x, -1.0f, 1.0f), std::clamp(n.y, -1.0f, 1.0f), std::clamp(n.z, -1.0f, 1.0f)};
+}
+
+float edgeStrength(const MaskLayer& layer, int x, int y, float depthHere) {
+  glm::vec2 depthGradient(0.0f);
+  glm::vec3 normalX(0.0f), normalY(0.0f);
+  const int lastX = int(layer.width) - 1, lastY = int(layer.height) - 1;
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      const glm::ivec2 p(std::clamp(x + dx, 0, lastX), std::clamp(y + dy, 0, lastY));
+      const glm::vec4 nd = layer.normalDepth[indexOf(layer.width, p)];
+      const float wx = sobelDerivative(dx) * sobelSmooth(dy);
+      const float wy = sobelSmooth(dx) * sobelDerivative(dy);
+      const float z = sanitizeDepth(nd.w);
+      depthGradient.x += wx * z;
+      depthGradient.y += wy * z;
+      const glm::vec3 n = sanitizeNormal(glm::vec3(nd));
+      normalX += glm::vec3(wx * n.x, wx * n.y, wx * n.z);
+      normalY += glm::vec3(wy * n.x, wy * n.y, wy * n.z);
+    }
+  const float deltaD = length2(depthGradient) / std::max(depthHere, 1e-30f);
+  const float deltaN = std::sqrt(dot3(normalX, normalX) + dot3(normalY, normalY));
+  return deltaD + deltaN;
+}
+
+std::vector<float> normalizedEdges(const MaskLayer& layer) {
+  std::vector<float> out(size_t(layer.width) * layer.height);
+  for (uint32_t y = 0; y < layer.height; ++y)
+    for (uint32_t x = 0; x < layer.width; ++x) {
+      const size_t index = size_t(y) * layer.width + x;
+      out[index] = normalizedEdge(edgeStrength(layer, int(x), int(y), sanitizeDepth(layer.normalDepth[index].w)));
+    }
+  return out;
+}
+
+std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskParameters& p) {
+  std::vector<bool> out(size_t(layer.width) * layer.height, false);
+  for (uint32_t y = 0; y < layer.height; ++y)
+    for (uint32_t x = 0; x < layer.width; ++x) {
+      const size_t index = size_t(y) * layer.width + x;
+      float speed;
+      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.velocityScale, p.maxSpeed, speed);
+      if (!(speed > 0.0f)) continue;
+      const glm::ivec2 end = nearestPixel({float(x) + 0.5f + v.x, float(y) + 0.5f + v.y}, layer.width, layer.height);
+      const size_t endIndex = indexOf(layer.width, end);
+      out[index] = endsOnDeeperObject(layer.objectId[index], sanitizeDepth(layer.normalDepth[index].w),
+                                      layer.objectId[endIndex], layer.normalDepth[endIndex].w, p.softZExtent);
+    }
+  return out;
+}
+
+std::vector<uint32_t> edgeMask(const MaskLayer& layer, const passes::RayMaskParameters& p) {
+  const std::vector<bool> candidates = edgeCandidates(layer, p);
+  std::vector<uint32_t> out(candidates.size(), 0u);
+  for (uint32_t y = 0; y < layer.height; ++y)
+    for (uint32_t x = 0; x < layer.width; ++x) {
+      const size_t index = size_t(y) * layer.width + x;
+      if (!candidates[index]) continue;
+      const float depthHere = sanitizeDepth(layer.normalDepth[index].w);
+      if (normalizedEdge(edgeStrength(layer, int(x), int(y), depthHere)) > p.edgeThreshold) out[index] = 1u;
+    }
+  return out;
+}
+
+std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const std::vector<uint32_t>& edges,
+                                 uint32_t width, uint32_t height, const passes::RayMaskParameters& p) {
+  std::vector<uint32_t> out(size_t(width) * height, 0u);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const size_t index = size_t(y) * width + x;
+      float speed;
+      const glm::vec2 v = gatherVelocity(velocity[index], p.velocityScale, p.maxSpeed, speed);
+      if (!(speed > 0.0f)) continue;
+      const auto steps = uint32_t(std::ceil(speed));
+      const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+      for (uint32_t i = 0; i <= steps; ++i) {
+        const float u = float(i) / float(steps);
+        const glm::ivec2 q = nearestPixel({centre.x + v.x * u, centre.y + v.y * u}, width, height);
+        if (edges[indexOf(width, q)] != 0u) {
+          out[index] = 1u;
+          break;
+        }
+      }
+    }
+  return out;
+}
+
+gpu::RayMaskCounters dispatchFor(uint32_t maskCount) {
+  const uint32_t groups = (maskCount + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP;
+  gpu::RayMaskCounters c{};
+  c.maskCount = maskCount;
+  c.dispatchX = groups == 0u ? 0u : std::min(groups, 65535u);
+  c.dispatchY = groups == 0u ? 0u : (groups + 65534u) / 65535u;
+  c.dispatchZ = 1u;
+  return c;
+}
+
+namespace {
+
+struct CompositeInputs {
+  const mblur::Layer& layer;
+  const std::vector<glm::vec4>& background;
+  const std::vector<uint32_t>& objectId;
+  float softZExtent;
+};
+
+// gather.comp's behindShare.
+float behindShare(const CompositeInputs& in, size_t sampleIndex, uint32_t centreObject, float centreDepth) {
+  if (in.objectId[sampleIndex] == centreObject) return 0.0f;
+  return saturate((sanitizeDepth(in.layer.normalDepth[sampleIndex].w) - centreDepth) / in.softZExtent);
+}
+
+glm::vec4 coverageComposite(const CompositeInputs& in, uint32_t px, uint32_t py, glm::vec4 centreColor,
+                            float centreDepth, float jitter, float velocityScale, float coverageMaxSpeed,
+                            uint32_t samples) {
+  const mblur::Layer& layer = in.layer;
+  const size_t index = size_t(py) * layer.width + px;
+  float speed;
+  const glm::vec2 v = gatherVelocity(layer.velocity[index], velocityScale, coverageMaxSpeed, speed);
+  const uint32_t centreObject = in.objectId[index];
+  glm::vec4 foregroundSum = centreColor;
+  float foregroundCount = 0.0f;
+  const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
+  for (uint32_t i = 0; i < samples; ++i) {
+    const float u = (float(i) + 1.0f - jitter) / float(samples);
+    const glm::ivec2 s = nearestPixel({centre.x + u * v.x, centre.y + u * v.y}, layer.width, layer.height);
+    const size_t sampleIndex = indexOf(layer.width, s);
+    const float onObject = 1.0f - behindShare(in, sampleIndex, centreObject, centreDepth);
+    foregroundSum += onObject * sanitizeColor(layer.color[sampleIndex]);
+    foregroundCount += onObject;
+  }
+  const float alpha = foregroundCount / float(samples);
+  return alpha * (foregroundSum / (1.0f + foregroundCount)) + (1.0f - alpha) * sanitizeColor(in.background[index]);
+}
+
+glm::vec4 mixColor(glm::vec4 a, glm::vec4 b, float t) { return a * (1.0f - t) + b * t; }
+
+// The weighted sum of gather.comp at a mask pixel with the weights composite.
+glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, glm::vec4 dominant,
+                           glm::vec4 centreColor, float centreDepth, float jitter,
+                           const passes::PostProcessSettings& settings) {
+  const mblur::Layer& layer = in.layer;
+  const size_t index = size_t(py) * layer.width + px;
+  const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
+  const float maxSpeed = float(settings.tileSize);
+  const bool adapted = settings.range == passes::GatherRange::Adapted;
+  float centreSpeed;
+  gatherVelocity(layer.velocity[index], velocityScale, maxSpeed, centreSpeed);
+  const glm::vec4 revealed = sanitizeColor(in.background[index]);
+  const uint32_t centreObject = in.objectId[index];
+  const float backgroundScale = settings.maskBackgroundBoost;
+  const float foregroundScale = 1.0f / settings.maskForegroundDivide;
+  const float foregroundBoost = settings.effectiveForegroundBoost();
+
+  float weightSum = 1.0f / std::max(centreSpeed, 0.5f);
+  glm::vec4 sum = centreColor * weightSum;
+  const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
+  const uint32_t samples = settings.samples;
+  for (uint32_t i = 0; i < samples; ++i) {
+    float t;
+    if (adapted) {
+      t = (float(i) + 1.0f - jitter) / float(samples);
+    } else {
+      if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
+      const float a = (float(i) + jitter + 0.5f) / float(samples + 1u);
+      t = -1.0f * (1.0f - a) + 1.0f * a;
+    }
+    const glm::ivec2 s =
+        nearestPixel({centre.x + t * dominant.x, centre.y + t * dominant.y}, layer.width, layer.height);
+    const size_t sampleIndex = indexOf(layer.width, s);
+    const float ds = length2(glm::vec2(float(s.x - int(px)), float(s.y - int(py))));
+    float sampleSpeed;
+    gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, sampleSpeed);
+    const float sampleDepth = sanitizeDepth(layer.normalDepth[sampleIndex].w);
+    mblur::AppendixWeights w =
+        mblur::appendixWeights(centreDepth, sampleDepth, centreSpeed, sampleSpeed, ds, settings.softZExtent);
+    if (centreDepth - sampleDepth >= settings.softZExtent) w.foreground *= foregroundBoost;
+    w.foreground *= foregroundScale;
+    w.background *= backgroundScale;
+    const float weight = w.foreground + w.background + w.simultaneous;
+    const glm::vec4 sampleColor = sanitizeColor(layer.color[sampleIndex]);
+    weightSum += weight;
+    sum += weight * mixColor(sampleColor, revealed, behindShare(in, sampleIndex, centreObject, centreDepth));
+  }
+  return sum / weightSum;
+}
+
+}  // namespace
+
+std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
+                                       const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,
+                                       const std::vector<uint32_t>& objectId,
+                                       const passes::PostProcessSettings& settings, passes::HybridComposite composite) {
+  // Outside the mask (and inside it where the neighbourhood is still) the kernel is the plain
+  // gather with the mask flag on.
+  std::vector<glm::vec4> out = mblur::gather(layer, neighborMax, &mask, settings);
+  const CompositeInputs in{layer, background, objectId, settings.softZExtent};
+  const uint32_t m = settings.tileSize;
+  const passes::TileGrid grid = passes::tileGridFor(layer.width, layer.height, m);
+  const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
+  const float coverageMaxSpeed = float(std::max(layer.width, layer.height));
+  for (uint32_t py = 0; py < layer.height; ++py)
+    for (uint32_t px = 0; px < layer.width; ++px) {
+      const size_t index = size_t(py) * layer.width + px;
+      if (mask[index] == 0u) continue;
+      const glm::vec4 dominant = neighborMax[size_t(py / m) * grid.x + px / m];
+      if (dominant.z < 0.5f) continue;
+      const glm::vec4 centreColor = sanitizeColor(layer.color[index]);
+      const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
+      const float jitter = mblur::unitFromHash(mblur::mblurHash(px, py, settings.seed));
+      out[index] = composite == passes::HybridComposite::Coverage
+                       ? coverageComposite(in, px, py, centreColor, centreDepth, jitter, velocityScale,
+                                           coverageMaxSpeed, settings.samples)
+                       : weightsComposite(in, px, py, dominant, centreColor, centreDepth, jitter, settings);
+    }
+  return out;
+}
+
+}  // namespace hmb::test::hybrid

@@ -1,0 +1,62 @@
+// Plain C++ of the hybrid method's kernel math (kernels/hybrid/ray_mask_common.glsl,
+// edge_mask.comp, range_check.comp, size_reveal_dispatch.comp, and the composites of
+// kernels/mblur/gather.comp), operation for operation, so the kernels can be compared with it
+// on any input. The motion blur functions they share come from tests/mblur/mblur_reference.h.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernels/hybrid/hybrid_layout.h"
+#include "runtime/passes/hybrid_settings.h"
+#include "runtime/passes/post_process_settings.h"
+#include "runtime/passes/ray_mask_stage.h"
+#include "tests/mblur/mblur_reference.h"
+
+namespace hmb::test::hybrid {
+
+// What the ray mask reads: the G-buffer's normal-depth, velocity and object id, row 0 at the top.
+struct MaskLayer {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<glm::vec4> normalDepth;  // world normal, w camera-space depth
+  std::vector<glm::vec2> velocity;     // pixels per frame
+  std::vector<uint32_t> objectId;
+};
+
+// ray_mask_common.glsl
+bool endsOnDeeperObject(uint32_t idHere, float depthHere, uint32_t idEnd, float depthEnd, float softZExtent);
+float sobelSmooth(int k);
+float sobelDerivative(int k);
+float normalizedEdge(float x);
+
+// edge_mask.comp
+glm::vec3 sanitizeNormal(glm::vec3 n);
+// Eq. 3's x at pixel (x, y): delta_d + delta_n. depthHere: the pixel's sanitized depth.
+float edgeStrength(const MaskLayer& layer, int x, int y, float depthHere);
+// Eq. 4's x_n at every pixel (whether or not it moves).
+std::vector<float> normalizedEdges(const MaskLayer& layer);
+// The edge mask (0/1 per pixel).
+std::vector<uint32_t> edgeMask(const MaskLayer& layer, const passes::RayMaskParameters& parameters);
+// Per pixel: true where eqs. 1 and 2 hold (the pixel moves and its end lies on a deeper object),
+// that is, where the edge mask is decided by x_n > e.
+std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskParameters& parameters);
+
+// range_check.comp: the ray mask (0/1 per pixel) from the velocities and an edge mask.
+std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const std::vector<uint32_t>& edges,
+                                 uint32_t width, uint32_t height, const passes::RayMaskParameters& parameters);
+
+// size_reveal_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
+gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
+
+// gather.comp with the composite flags: every pixel as the kernel writes it with
+// GatherOptions{mask, background, objectId, composite} (non-mask pixels are the plain gather
+// with the mask boosts off there).
+std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
+                                       const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,
+                                       const std::vector<uint32_t>& objectId,
+                                       const passes::PostProcessSettings& settings, passes::HybridComposite composite);
+
+}  // namespace hmb::test::hybrid

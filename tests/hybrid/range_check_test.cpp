@@ -1,0 +1,202 @@
+// range_check.comp and size_reveal_dispatch.comp: the ray mask against the reference (walked
+// over the device's own edge mask, so edge pixels near the threshold cannot blur the
+// comparison), the compacted list holding each masked pixel once, the count, and the indirect
+// dispatch it sizes, down to an empty mask dispatching nothing and a list too long for one row
+// of groups.
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/hybrid/hybrid_harness.h"
+#include "tests/hybrid/hybrid_reference.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using namespace hybrid;
+using passes::RayMaskParameters;
+
+RayMaskParameters parametersWith(float edgeThreshold, float maxSpeed = 40.0f, float velocityScale = 1.0f) {
+  RayMaskParameters p;
+  p.velocityScale = velocityScale;
+  p.maxSpeed = maxSpeed;
+  p.softZExtent = 0.03f;
+  p.edgeThreshold = edgeThreshold;
+  return p;
+}
+
+// The dispatch of `count` listed pixels, 64 per group in rows of at most 65535 groups, written
+// out here rather than taken from the reference.
+void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std::string& what) {
+  const uint64_t groups = (count + 63) / 64;
+  EXPECT_EQ(c.maskCount, count) << what;
+  EXPECT_EQ(c.dispatchX, std::min<uint64_t>(groups, 65535)) << what;
+  EXPECT_EQ(c.dispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
+  EXPECT_EQ(c.dispatchZ, 1u) << what;
+  EXPECT_EQ(c.rayCount, 0u) << what << ": no reveal ran";
+  const gpu::RayMaskCounters mirror = dispatchFor(uint32_t(count));
+  EXPECT_EQ(c.dispatchX, mirror.dispatchX) << what;
+  EXPECT_EQ(c.dispatchY, mirror.dispatchY) << what;
+}
+
+// Mask equal to the reference's range check over the device's edges, every edge pixel in the
+// mask (its range starts at itself), the list the masked pixels each once, counters to match.
+// Returns the mask's size.
+size_t expectRayMaskMatches(const MaskLayer& layer, const RayMaskParameters& p, const std::string& what) {
+  const RayMaskReadback device = runRayMask(VulkanTest::context(), layer, p);
+  const std::vector<uint32_t> reference = rangeCheck(layer.velocity, device.edges, layer.width, layer.height, p);
+  EXPECT_EQ(device.mask, reference) << what;
+  std::vector<uint32_t> masked;
+  for (uint32_t i = 0; i < reference.size(); ++i) {
+    if (reference[i] != 0u) masked.push_back(i);
+    if (device.edges[i] != 0u) {
+      EXPECT_EQ(device.mask[i], 1u) << what << ": edge pixel " << i << " not in the mask";
+    }
+  }
+  std::vector<uint32_t> list = device.list;
+  std::sort(list.begin(), list.end());
+  EXPECT_EQ(list, masked) << what << ": the list must hold each masked pixel exactly once";
+  expectDispatchFor(device.counters, masked.size(), what);
+  return masked.size();
+}
+
+using HybridRangeCheckTest = VulkanTest;
+
+TEST_F(HybridRangeCheckTest, MaskListAndCountersMatchReferenceOnRandomLayers) {
+  std::mt19937 rng(5);
+  struct Case {
+    uint32_t width, height;
+    RayMaskParameters p;
+  };
+  const Case cases[] = {{37, 23, parametersWith(0.9f)},
+                        {64, 64, parametersWith(0.5f)},
+                        {129, 71, parametersWith(0.9f)},
+                        {1, 41, parametersWith(0.5f)},
+                        {53, 1, parametersWith(0.5f)},
+                        {1, 1, parametersWith(0.0f)},
+                        {61, 47, parametersWith(0.8f, 5.0f)},  // clamped to 5 px
+                        {61, 47, parametersWith(0.8f, 40.0f, 2.5f)},
+                        {61, 47, parametersWith(0.8f, 40.0f, 0.1f)}};  // mostly sub-pixel
+  size_t total = 0, pixels = 0;
+  for (const Case& c : cases) {
+    const MaskLayer layer = randomMaskLayer(c.width, c.height, rng);
+    total += expectRayMaskMatches(layer, c.p, std::to_string(c.width) + "x" + std::to_string(c.height));
+    pixels += layer.objectId.size();
+  }
+  EXPECT_GT(total, 100u);
+  EXPECT_LT(total, pixels / 2);
+}
+
+TEST_F(HybridRangeCheckTest, MaskListAndCountersMatchReferenceOnAdversarialLayers) {
+  std::mt19937 rng(41);
+  size_t total = 0;
+  for (int round = 0; round < 5; ++round) {
+    const MaskLayer layer = adversarialMaskLayer(43, 37, rng);
+    for (const float velocityScale : {1.0f, 2.0f})
+      total += expectRayMaskMatches(layer, parametersWith(0.9f, 40.0f, velocityScale),
+                                    "round " + std::to_string(round) + " scale " + std::to_string(velocityScale));
+  }
+  EXPECT_GT(total, 100u);
+}
+
+// A range of several pixels meets a thin edge band far from the pixel: only a walk over every
+// pixel of the range finds it. Object 2 (depth 1) moves 9 px right onto a deeper object 3
+// whose left column alone is an edge; pixels up to 9 px left of it reach it.
+TEST_F(HybridRangeCheckTest, LongRangesFindAnEdgeOnePixelWide) {
+  const uint32_t width = 40, height = 5;
+  MaskLayer layer{width, height, {}, {}, {}};
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const bool front = x < 20;
+      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
+      layer.velocity.emplace_back(front ? glm::vec2(9.0f, 0.0f) : glm::vec2(0.0f));
+      layer.objectId.push_back(front ? 2u : 3u);
+    }
+  const RayMaskParameters p = parametersWith(0.9f);
+  const RayMaskReadback device = runRayMask(context(), layer, p);
+  expectRayMaskMatches(layer, p, "long ranges");
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      // Edges: columns 18 and 19 (the step inside their window, ending on object 3).
+      EXPECT_EQ(device.edges[y * width + x], x == 18 || x == 19 ? 1u : 0u) << x << "," << y;
+      // Mask: every pixel whose range [x, x + 9] meets column 18 or 19, that is 9..19.
+      EXPECT_EQ(device.mask[y * width + x], x >= 9 && x <= 19 ? 1u : 0u) << x << "," << y;
+    }
+}
+
+TEST_F(HybridRangeCheckTest, StillLayerMasksNothingAndDispatchesNothing) {
+  const uint32_t width = 33, height = 17;
+  std::mt19937 rng(3);
+  MaskLayer layer = randomMaskLayer(width, height, rng);
+  layer.velocity.assign(layer.velocity.size(), glm::vec2(0.0f));
+  layer.velocity[5] = glm::vec2(1e-31f, 0.0f);  // under 1e-30 px: still
+  const RayMaskReadback device = runRayMask(context(), layer, parametersWith(0.0f));
+  for (size_t i = 0; i < device.mask.size(); ++i) {
+    EXPECT_EQ(device.edges[i], 0u);
+    EXPECT_EQ(device.mask[i], 0u);
+  }
+  EXPECT_TRUE(device.list.empty());
+  expectDispatchFor(device.counters, 0, "still");
+  EXPECT_EQ(device.counters.dispatchX, 0u);
+  EXPECT_EQ(device.counters.dispatchY, 0u);
+}
+
+// A row whose first n pixels each move 1 px right onto the next, deeper, object: each is an
+// edge (threshold 0; the depth ramp is in every window) and the mask is exactly those n. The
+// counts around multiples of 64 size the dispatch.
+MaskLayer rampRow(uint32_t n) {
+  MaskLayer layer{n + 1, 1, {}, {}, {}};
+  for (uint32_t x = 0; x <= n; ++x) {
+    layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, 1.0f + 0.1f * float(x));
+    layer.velocity.emplace_back(x < n ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f));
+    layer.objectId.push_back(x + 1);
+  }
+  return layer;
+}
+
+TEST_F(HybridRangeCheckTest, DispatchIsTheCountInGroupsOf64) {
+  for (const uint32_t n : {1u, 63u, 64u, 65u, 128u, 129u, 1000u}) {
+    const MaskLayer layer = rampRow(n);
+    EXPECT_EQ(expectRayMaskMatches(layer, parametersWith(0.0f), "n " + std::to_string(n)), n);
+    EXPECT_EQ(runRayMask(context(), layer, parametersWith(0.0f)).counters.dispatchX, (n + 63) / 64) << n;
+  }
+}
+
+// Over 65535 * 64 masked pixels: the groups fold into a second row. Every column of a ramp
+// image but the last moves 1 px right onto the next, deeper, object.
+TEST_F(HybridRangeCheckTest, LongListFoldsIntoASecondRowOfGroups) {
+  const uint32_t width = 2100, height = 2048;
+  MaskLayer layer{width, height, {}, {}, {}};
+  const size_t pixels = size_t(width) * height;
+  layer.normalDepth.reserve(pixels);
+  layer.velocity.reserve(pixels);
+  layer.objectId.reserve(pixels);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, 1.0f + 0.1f * float(x));
+      layer.velocity.emplace_back(x + 1 < width ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f));
+      layer.objectId.push_back(x + 1);
+    }
+  const RayMaskReadback device = runRayMask(context(), layer, parametersWith(0.0f));
+  const uint64_t expected = uint64_t(width - 1) * height;
+  ASSERT_GT(expected, 65535u * 64u);
+  expectDispatchFor(device.counters, expected, "folded");
+  EXPECT_EQ(device.counters.dispatchX, 65535u);
+  EXPECT_EQ(device.counters.dispatchY, 2u);
+  std::vector<uint32_t> list = device.list;
+  std::sort(list.begin(), list.end());
+  EXPECT_EQ(std::adjacent_find(list.begin(), list.end()), list.end()) << "a pixel listed twice";
+  for (const uint32_t index : list) {
+    if (index % width == width - 1) {
+      ADD_FAILURE() << "still pixel " << index << " listed";
+      break;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hmb::test
