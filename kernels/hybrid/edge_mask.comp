@@ -26,25 +26,31 @@ layout(push_constant) uniform Params { EdgeMaskParams params; };
 
 vec3 sanitizeNormal(vec3 n) { return any(isnan(n)) || any(isinf(n)) ? vec3(0.0) : clamp(n, vec3(-1.0), vec3(1.0)); }
 
-// Eq. 3's x at the pixel.
+// Eq. 3's x at the pixel. Depths enter relative to the window's largest, so no sum overflows
+// (a far plane of 1e30 or a NaN read as the farthest depth is still an edge, and a scene
+// modelled at 1e20 units is measured as one at 1).
 float edgeStrength(ivec2 pixel, float depthHere) {
+  const ivec2 last = ivec2(int(params.width) - 1, int(params.height) - 1);
+  vec4 window[25];
+  float largest = 0.0;
+  for (int k = 0; k < 25; ++k) {
+    const ivec2 p = clamp(pixel + ivec2(k % 5 - 2, k / 5 - 2), ivec2(0), last);
+    const vec4 nd = normalDepth[uint(p.y) * params.width + uint(p.x)];
+    window[k] = vec4(sanitizeNormal(nd.xyz), sanitizeDepth(nd.w));
+    largest = max(largest, window[k].w);
+  }
   vec2 depthGradient = vec2(0.0);
   vec3 normalX = vec3(0.0), normalY = vec3(0.0);
-  const ivec2 last = ivec2(int(params.width) - 1, int(params.height) - 1);
-  for (int dy = -2; dy <= 2; ++dy) {
-    for (int dx = -2; dx <= 2; ++dx) {
-      const ivec2 p = clamp(pixel + ivec2(dx, dy), ivec2(0), last);
-      const vec4 nd = normalDepth[uint(p.y) * params.width + uint(p.x)];
-      const float wx = sobelDerivative(dx) * sobelSmooth(dy);
-      const float wy = sobelSmooth(dx) * sobelDerivative(dy);
-      const float z = sanitizeDepth(nd.w);
-      depthGradient += vec2(wx, wy) * z;
-      const vec3 n = sanitizeNormal(nd.xyz);
-      normalX += wx * n;
-      normalY += wy * n;
-    }
+  for (int k = 0; k < 25; ++k) {
+    const int dx = k % 5 - 2, dy = k / 5 - 2;
+    const float wx = sobelDerivative(dx) * sobelSmooth(dy);
+    const float wy = sobelSmooth(dx) * sobelDerivative(dy);
+    if (largest > 0.0) depthGradient += vec2(wx, wy) * (window[k].w / largest);
+    normalX += wx * window[k].xyz;
+    normalY += wy * window[k].xyz;
   }
-  const float deltaD = length(depthGradient) / max(depthHere, 1e-30);
+  const float gradient = length(depthGradient);
+  const float deltaD = gradient > 0.0 ? gradient * (largest / max(depthHere, 1e-30)) : 0.0;
   const float deltaN = sqrt(dot(normalX, normalX) + dot(normalY, normalY));
   return deltaD + deltaN;
 }

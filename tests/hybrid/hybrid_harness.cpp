@@ -9,6 +9,7 @@
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/reveal_pass.h"
+#include "runtime/passes/tile_max_pass.h"
 #include "runtime/trace_scene.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
@@ -40,9 +41,17 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   passes::RayMaskStage stage(context);
   stage.prepare(layer.width, layer.height);
   const passes::MotionBlurInputs inputs{nullptr, &normalDepth, &velocity, layer.width, layer.height};
+  // The mask passes start from the gather's tile-max, run here at the parameters' tile size.
+  const passes::TileMaxPass tileMax(context);
+  passes::RayMaskParameters withTiles = parameters;
+  withTiles.grid = passes::tileGridFor(layer.width, layer.height, parameters.tileSize);
+  const vk::Buffer tiles(context, uint64_t(withTiles.grid.count()) * sizeof(glm::vec4), vk::MemoryUse::Device,
+                         "test tile max");
+  withTiles.tileMax = &tiles;
   vk::FrameRecorder frame(context);
   frame.begin();
-  stage.record(frame, inputs, objectId, parameters);
+  tileMax.record(frame, velocity, tiles, layer.width, layer.height, parameters.tileSize, parameters.velocityScale);
+  stage.record(frame, inputs, objectId, withTiles);
   frame.submitAndWait();
 
   RayMaskReadback out;

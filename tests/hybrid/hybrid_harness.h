@@ -35,7 +35,7 @@ struct RayMaskReadback {
 RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters);
 
 // One GatherPass run. With `list`, pixel-list mode: only the listed pixels are gathered, the
-// dispatch sized on the host as size_reveal_dispatch sizes it. The output buffer starts as
+// dispatch sized on the host as size_list_dispatch sizes it. The output buffer starts as
 // `sentinel` everywhere.
 struct GatherRun {
   const std::vector<uint32_t>* mask = nullptr;

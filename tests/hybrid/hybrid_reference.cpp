@@ -44,23 +44,32 @@ glm::vec3 sanitizeNormal(glm::vec3 n) {
 }
 
 float edgeStrength(const MaskLayer& layer, int x, int y, float depthHere) {
+  const int lastX = int(layer.width) - 1, lastY = int(layer.height) - 1;
+  glm::vec4 window[25];
+  float largest = 0.0f;
+  for (int k = 0; k < 25; ++k) {
+    const glm::ivec2 p(std::clamp(x + k % 5 - 2, 0, lastX), std::clamp(y + k / 5 - 2, 0, lastY));
+    const glm::vec4 nd = layer.normalDepth[indexOf(layer.width, p)];
+    window[k] = glm::vec4(sanitizeNormal(glm::vec3(nd)), sanitizeDepth(nd.w));
+    largest = std::max(largest, window[k].w);
+  }
   glm::vec2 depthGradient(0.0f);
   glm::vec3 normalX(0.0f), normalY(0.0f);
-  const int lastX = int(layer.width) - 1, lastY = int(layer.height) - 1;
-  for (int dy = -2; dy <= 2; ++dy)
-    for (int dx = -2; dx <= 2; ++dx) {
-      const glm::ivec2 p(std::clamp(x + dx, 0, lastX), std::clamp(y + dy, 0, lastY));
-      const glm::vec4 nd = layer.normalDepth[indexOf(layer.width, p)];
-      const float wx = sobelDerivative(dx) * sobelSmooth(dy);
-      const float wy = sobelSmooth(dx) * sobelDerivative(dy);
-      const float z = sanitizeDepth(nd.w);
-      depthGradient.x += wx * z;
-      depthGradient.y += wy * z;
-      const glm::vec3 n = sanitizeNormal(glm::vec3(nd));
-      normalX += glm::vec3(wx * n.x, wx * n.y, wx * n.z);
-      normalY += glm::vec3(wy * n.x, wy * n.y, wy * n.z);
+  for (int k = 0; k < 25; ++k) {
+    const int dx = k % 5 - 2, dy = k / 5 - 2;
+    const float wx = sobelDerivative(dx) * sobelSmooth(dy);
+    const float wy = sobelSmooth(dx) * sobelDerivative(dy);
+    if (largest > 0.0f) {
+      const float relative = window[k].w / largest;
+      depthGradient.x += wx * relative;
+      depthGradient.y += wy * relative;
     }
-  const float deltaD = length2(depthGradient) / std::max(depthHere, 1e-30f);
+    const glm::vec3 n(window[k]);
+    normalX += glm::vec3(wx * n.x, wx * n.y, wx * n.z);
+    normalY += glm::vec3(wy * n.x, wy * n.y, wy * n.z);
+  }
+  const float gradient = length2(depthGradient);
+  const float deltaD = gradient > 0.0f ? gradient * (largest / std::max(depthHere, 1e-30f)) : 0.0f;
   const float deltaN = std::sqrt(dot3(normalX, normalX) + dot3(normalY, normalY));
   return deltaD + deltaN;
 }
@@ -131,9 +140,9 @@ gpu::RayMaskCounters dispatchFor(uint32_t maskCount) {
   const uint32_t groups = (maskCount + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP;
   gpu::RayMaskCounters c{};
   c.maskCount = maskCount;
-  c.dispatchX = groups == 0u ? 0u : std::min(groups, 65535u);
-  c.dispatchY = groups == 0u ? 0u : (groups + 65534u) / 65535u;
-  c.dispatchZ = 1u;
+  c.maskDispatchX = groups == 0u ? 0u : std::min(groups, 65535u);
+  c.maskDispatchY = groups == 0u ? 0u : (groups + 65534u) / 65535u;
+  c.maskDispatchZ = 1u;
   return c;
 }
 

@@ -1,5 +1,5 @@
 // Plain C++ of the hybrid method's kernel math (kernels/hybrid/ray_mask_common.glsl,
-// edge_mask.comp, range_check.comp, size_reveal_dispatch.comp, and the composites of
+// edge_mask.comp, range_check.comp, size_list_dispatch.comp, and the composites of
 // kernels/mblur/gather.comp), operation for operation, so the kernels can be compared with it
 // on any input. The motion blur functions they share come from tests/mblur/mblur_reference.h.
 #pragma once
@@ -48,7 +48,7 @@ std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskPa
 std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const std::vector<uint32_t>& edges,
                                  uint32_t width, uint32_t height, const passes::RayMaskParameters& parameters);
 
-// size_reveal_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
+// size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
 
 // gather.comp with the composite flags: every pixel as the kernel writes it with

@@ -1,4 +1,4 @@
-// range_check.comp and size_reveal_dispatch.comp: the ray mask against the reference (walked
+// range_check.comp and size_list_dispatch.comp: the ray mask against the reference (walked
 // over the device's own edge mask, so edge pixels near the threshold cannot blur the
 // comparison), the compacted list holding each masked pixel once, the count, and the indirect
 // dispatch it sizes, down to an empty mask dispatching nothing and a list too long for one row
@@ -22,6 +22,7 @@ using passes::RayMaskParameters;
 
 RayMaskParameters parametersWith(float edgeThreshold, float maxSpeed = 40.0f, float velocityScale = 1.0f) {
   RayMaskParameters p;
+  p.tileSize = 13;  // the moving-tile list's tiles: odd, partial 8x8 blocks and partial border tiles
   p.velocityScale = velocityScale;
   p.maxSpeed = maxSpeed;
   p.softZExtent = 0.03f;
@@ -34,13 +35,13 @@ RayMaskParameters parametersWith(float edgeThreshold, float maxSpeed = 40.0f, fl
 void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std::string& what) {
   const uint64_t groups = (count + 63) / 64;
   EXPECT_EQ(c.maskCount, count) << what;
-  EXPECT_EQ(c.dispatchX, std::min<uint64_t>(groups, 65535)) << what;
-  EXPECT_EQ(c.dispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
-  EXPECT_EQ(c.dispatchZ, 1u) << what;
+  EXPECT_EQ(c.maskDispatchX, std::min<uint64_t>(groups, 65535)) << what;
+  EXPECT_EQ(c.maskDispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
+  EXPECT_EQ(c.maskDispatchZ, 1u) << what;
   EXPECT_EQ(c.rayCount, 0u) << what << ": no reveal ran";
   const gpu::RayMaskCounters mirror = dispatchFor(uint32_t(count));
-  EXPECT_EQ(c.dispatchX, mirror.dispatchX) << what;
-  EXPECT_EQ(c.dispatchY, mirror.dispatchY) << what;
+  EXPECT_EQ(c.maskDispatchX, mirror.maskDispatchX) << what;
+  EXPECT_EQ(c.maskDispatchY, mirror.maskDispatchY) << what;
 }
 
 // Mask equal to the reference's range check over the device's edges, every edge pixel in the
@@ -141,8 +142,8 @@ TEST_F(HybridRangeCheckTest, StillLayerMasksNothingAndDispatchesNothing) {
   }
   EXPECT_TRUE(device.list.empty());
   expectDispatchFor(device.counters, 0, "still");
-  EXPECT_EQ(device.counters.dispatchX, 0u);
-  EXPECT_EQ(device.counters.dispatchY, 0u);
+  EXPECT_EQ(device.counters.maskDispatchX, 0u);
+  EXPECT_EQ(device.counters.maskDispatchY, 0u);
 }
 
 // A row whose first n pixels each move 1 px right onto the next, deeper, object: each is an
@@ -162,7 +163,7 @@ TEST_F(HybridRangeCheckTest, DispatchIsTheCountInGroupsOf64) {
   for (const uint32_t n : {1u, 63u, 64u, 65u, 128u, 129u, 1000u}) {
     const MaskLayer layer = rampRow(n);
     EXPECT_EQ(expectRayMaskMatches(layer, parametersWith(0.0f), "n " + std::to_string(n)), n);
-    EXPECT_EQ(runRayMask(context(), layer, parametersWith(0.0f)).counters.dispatchX, (n + 63) / 64) << n;
+    EXPECT_EQ(runRayMask(context(), layer, parametersWith(0.0f)).counters.maskDispatchX, (n + 63) / 64) << n;
   }
 }
 
@@ -185,8 +186,8 @@ TEST_F(HybridRangeCheckTest, LongListFoldsIntoASecondRowOfGroups) {
   const uint64_t expected = uint64_t(width - 1) * height;
   ASSERT_GT(expected, 65535u * 64u);
   expectDispatchFor(device.counters, expected, "folded");
-  EXPECT_EQ(device.counters.dispatchX, 65535u);
-  EXPECT_EQ(device.counters.dispatchY, 2u);
+  EXPECT_EQ(device.counters.maskDispatchX, 65535u);
+  EXPECT_EQ(device.counters.maskDispatchY, 2u);
   std::vector<uint32_t> list = device.list;
   std::sort(list.begin(), list.end());
   EXPECT_EQ(std::adjacent_find(list.begin(), list.end()), list.end()) << "a pixel listed twice";

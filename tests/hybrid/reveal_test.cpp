@@ -345,7 +345,7 @@ TEST_F(HybridRevealTest, OnlyListedPixelsAreWritten) {
 }
 
 // The whole hybrid render: the ray mask marks pixels of B near its leading edge (it moves
-// left, onto A), and the revealed layer holds A's colour there and the raster's elsewhere.
+// left, onto A), and the revealed layer holds A's colour there and nothing (0) elsewhere.
 TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
   const RevealScene s = revealScene();
   Renderer renderer(context());
@@ -369,7 +369,7 @@ TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
       const glm::vec3 color(revealed->values[i * 3], revealed->values[i * 3 + 1], revealed->values[i * 3 + 2]);
       const glm::vec3 sharpColor(raster->values[i * 4], raster->values[i * 4 + 1], raster->values[i * 4 + 2]);
       if (mask->ids[i] == 0u) {
-        EXPECT_EQ(color, sharpColor) << "unmasked pixel " << x << "," << y << " changed";
+        EXPECT_EQ(color, glm::vec3(0.0f)) << "unmasked pixel " << x << "," << y << " has a revealed colour";
         continue;
       }
       ++masked;
@@ -378,6 +378,7 @@ TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
         continue;
       const glm::dvec3 expected = shadedA(s.scene, hitQuad(s.scene, camera, s.a, x + 0.5, y + 0.5, kTime).worldNormal);
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(color[c], expected[c], 1e-5) << x << "," << y;
+      EXPECT_NE(color, sharpColor) << "the raster sees B at " << x << "," << y << ", the reveal must not";
       ++checked;
     }
   EXPECT_EQ(masked, hybrid.hybrid->maskPixels);
