@@ -29,7 +29,7 @@ for i in "${!names[@]}"; do
 done
 cp "$reference_png" "$out/$scene-reference.png"
 /usr/bin/python3 - "$scene" "$reference" "$out" "${names[@]}" <<'PY'
-import json, sys
+import json, os, sys
 import numpy as np
 import matplotlib
 matplotlib.use("Agg")
@@ -37,7 +37,14 @@ import matplotlib.pyplot as plt
 scene, reference, out, names = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
 rows = []
 for name in names:
-    report = json.load(open(f"{out}/{scene}-{name}.json"))
+    path = f"{out}/{scene}-{name}.json"
+    report = json.load(open(path))
+    # The reports are committed: name the reference by its file name, not where it lay.
+    if isinstance(report.get("metrics"), dict) and report["metrics"].get("reference"):
+        report["metrics"]["reference"] = os.path.basename(report["metrics"]["reference"])
+    if report.get("reference"):
+        report["reference"] = os.path.basename(report["reference"])
+    json.dump(report, open(path, "w"), indent=2)
     m = report["metrics"]
     rows.append((name, report["frame_ms"], m["frame"], m["region"], m["region_pixels"]))
 # Strip: the images on top, their FLIP error maps below, the reference at the right.
