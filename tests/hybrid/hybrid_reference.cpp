@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace hmb::test::hybrid {
 
@@ -208,14 +209,9 @@ glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, 
   const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
   const uint32_t samples = settings.samples;
   for (uint32_t i = 0; i < samples; ++i) {
-    float t;
-    if (adapted) {
-      t = (float(i) + 1.0f - jitter) / float(samples);
-    } else {
-      if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
-      const float a = (float(i) + jitter + 0.5f) / float(samples + 1u);
-      t = -1.0f * (1.0f - a) + 1.0f * a;
-    }
+    const std::optional<float> parameter = mblur::gatherSampleParameter(i, samples, jitter, adapted);
+    if (!parameter) continue;
+    const float t = *parameter;
     const glm::ivec2 s =
         nearestPixel({centre.x + t * dominant.x, centre.y + t * dominant.y}, layer.width, layer.height);
     const size_t sampleIndex = indexOf(layer.width, s);

@@ -60,6 +60,13 @@ glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height) {
 
 float cone(float ds, float v) { return saturate(1.0f - ds / std::max(v, 1e-6f)); }
 
+std::optional<float> gatherSampleParameter(uint32_t i, uint32_t samples, float jitter, bool adapted) {
+  if (adapted) return (float(i) + 1.0f - jitter) / float(samples);
+  if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) return std::nullopt;
+  const float a = (float(i) + jitter + 0.5f) / float(samples + 1u);
+  return -1.0f * (1.0f - a) + 1.0f * a;  // mix(-1, 1, a) as GLSL evaluates it
+}
+
 float cylinder(float v, float s) {
   if (v <= 0.0f) return s <= 0.0f ? 1.0f : 0.0f;
   const float t = saturate((s - 0.95f * v) / (0.1f * v));
@@ -144,14 +151,9 @@ std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& 
       const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
       const uint32_t samples = settings.samples;
       for (uint32_t i = 0; i < samples; ++i) {
-        float t;
-        if (adapted) {
-          t = (float(i) + 1.0f - jitter) / float(samples);
-        } else {
-          if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
-          const float a = (float(i) + jitter + 0.5f) / float(samples + 1u);
-          t = -1.0f * (1.0f - a) + 1.0f * a;
-        }
+        const std::optional<float> parameter = gatherSampleParameter(i, samples, jitter, adapted);
+        if (!parameter) continue;
+        const float t = *parameter;
         const glm::ivec2 s =
             nearestPixel({centre.x + t * dominant.x, centre.y + t * dominant.y}, width, height);
         const uint32_t sampleIndex = uint32_t(s.y) * width + uint32_t(s.x);

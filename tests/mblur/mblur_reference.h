@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -29,6 +30,10 @@ float unitFromHash(uint32_t h);
 uint32_t nextHash(uint32_t h);
 glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height);
 float cone(float ds, float v);
+// gather.comp's sample i of `samples` along v_N: u in (0, 1] for the adapted range, t in
+// [-1, 1] for the centred one; none for the centred range's middle sample of an odd count
+// (it lands on the pixel itself).
+std::optional<float> gatherSampleParameter(uint32_t i, uint32_t samples, float jitter, bool adapted);
 float cylinder(float v, float s);
 
 // The paper's appendix, eqs. 6-9, before any boost.
