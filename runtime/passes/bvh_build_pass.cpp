@@ -25,7 +25,7 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
   const uint64_t tasks = std::max<uint64_t>(treeCount, primitiveCount / 2 + 1);
   if (nodes > HMB_BVH_LINK_NEXT_MASK) throw Error(name_ + ": " + std::to_string(primitiveCount) +
                                                   " primitives are more than one BVH can index");
-  if (primitiveCount > primitiveCapacity_) {
+  if (primitiveCount > primitiveCapacity_ || primitives_.size() == 0) {  // an empty build still binds it
     primitiveCapacity_ = primitiveCount;
     primitives_ = vk::Buffer(context_, 2ull * std::max(primitiveCount, 1u) * sizeof(uint32_t), vk::MemoryUse::Device,
                              name_ + " primitives");

@@ -1,6 +1,7 @@
 // Every real glTF 2.0 file of the assimp test models (Debian assimp-testmodels) either renders
-// a finite sharp frame that shows its geometry, or is refused with a one-line hmb::Error while
-// loading. Skipped when the package is not installed.
+// a finite sharp frame that shows its geometry and a finite hybrid frame (every pass of the
+// project on it: raster, BVH, mask, reveal, gathers), or is refused with a one-line hmb::Error
+// while loading. Skipped when the package is not installed.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -59,6 +60,10 @@ TEST_F(RealFilesRenderTest, EveryLoadableFileRendersAFiniteFrameThatShowsItsGeom
     if (scene.triangleCount() > 0) {
       EXPECT_GT(covered, 0) << "the default or given camera should see the scene";
     }
+    RenderSettings hybrid = settings;
+    hybrid.method = "hybrid";
+    const RenderResult blurred = renderer.render(scene, hybrid);
+    for (float v : blurred.image.find("")->values) ASSERT_TRUE(std::isfinite(v)) << "hybrid";
     ++rendered;
   }
   EXPECT_GT(rendered, files.size() / 2);
