@@ -1,10 +1,11 @@
 // The hybrid method (paper, section 3; DESIGN.md's frame): on top of the G-buffer,
-//   ray mask (RayMaskStage) -> ray reveal (RevealPass) at mask pixels -> tile-max,
-//   neighbour-max of the raster's velocities -> gather of the background layer (the revealed
-//   surfaces over the raster, read as an overlay) at mask pixels only (indirect) -> gather of
-//   the raster layer with the mask boosts and the composite (gather.comp's header says how).
+//   tile-max, neighbour-max of the raster's velocities -> ray mask (RayMaskStage, over the
+//   moving tiles) -> ray reveal (RevealPass) at mask pixels -> gather of the background layer
+//   (the revealed surfaces over the raster, read as an overlay) at mask pixels only (indirect)
+//   -> gather of the raster layer with the mask boosts and the composite (gather.comp's header
+//   says how).
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
-// mask and the background layer.
+// mask and the revealed surfaces.
 #pragma once
 
 #include <cstdint>
