@@ -223,6 +223,8 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
           passes_->hybrid.prepare(frame, scene, result.frameTime, width, height, result.hybrid->settings);
       result.hybrid->setupMilliseconds = prepared.setup.frameMilliseconds;
       timings = prepared.frame;
+      // The setup passes are listed with their times, but not added to the frame's.
+      timings.passes.insert(timings.passes.begin(), prepared.setup.passes.begin(), prepared.setup.passes.end());
     }
     const vk::Buffer& beauty = blur ? blurred : gbuffer.color();
     result.plan.run(passes::EncodeDisplayPass::kName);
