@@ -256,24 +256,23 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     if (hybrid) {
       const passes::RayMaskCounts counts = passes_->hybrid.rayMask().counts();
       result.hybrid->maskPixels = counts.maskPixels;
+      result.hybrid->revealedPixels = counts.listedPixels;
       result.hybrid->revealRays = counts.revealRays;
       io::ImageLayer mask{"rayMask", {"mask"}, true, {}, passes_->hybrid.rayMask().mask().download<uint32_t>()};
       mask.ids.resize(pixels);
-      // What the reveal found behind the mask pixels (black elsewhere), and its depth and object.
-      std::vector<glm::vec4> revealed = passes_->hybrid.revealedColor().download<glm::vec4>();
-      std::vector<glm::vec4> revealedDepth = passes_->hybrid.revealedNormalDepth().download<glm::vec4>();
-      std::vector<uint32_t> revealedId = passes_->hybrid.revealedObjectId().download<uint32_t>();
-      revealed.resize(pixels);
-      revealedDepth.resize(pixels);
-      revealedId.resize(pixels);
-      for (size_t i = 0; i < pixels; ++i) {
-        if (mask.ids[i] != 0) {
-          revealedDepth[i] = glm::vec4(revealedDepth[i].w, 0.0f, 0.0f, 0.0f);
-          continue;
-        }
-        revealed[i] = glm::vec4(0.0f);
-        revealedDepth[i] = glm::vec4(0.0f);
-        revealedId[i] = 0;
+      // What the reveal found behind the pixels it traced (black elsewhere), its depth and object.
+      const std::vector<glm::vec4> revealedAll = passes_->hybrid.revealedColor().download<glm::vec4>();
+      const std::vector<glm::vec4> normalDepthAll = passes_->hybrid.revealedNormalDepth().download<glm::vec4>();
+      const std::vector<uint32_t> idAll = passes_->hybrid.revealedObjectId().download<uint32_t>();
+      std::vector<uint32_t> traced = passes_->hybrid.rayMask().list().download<uint32_t>();
+      traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
+      std::vector<glm::vec4> revealed(pixels, glm::vec4(0.0f)), revealedDepth(pixels, glm::vec4(0.0f));
+      std::vector<uint32_t> revealedId(pixels, 0u);
+      for (const uint32_t i : traced) {
+        if (i >= pixels) continue;
+        revealed[i] = revealedAll[i];
+        revealedDepth[i] = glm::vec4(normalDepthAll[i].w, 0.0f, 0.0f, 0.0f);
+        revealedId[i] = idAll[i];
       }
       result.image.layers.push_back(std::move(mask));
       result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));

@@ -82,6 +82,7 @@ struct RenderResult {
   struct Hybrid {
     passes::HybridSettings settings;
     uint64_t maskPixels = 0;
+    uint64_t revealedPixels = 0;  // mask pixels whose composite needs the background, traced
     uint64_t revealRays = 0;
     std::optional<double> setupMilliseconds;  // the trace scene's mesh trees: per scene, not per frame
   };

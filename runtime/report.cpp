@@ -122,6 +122,7 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
       json["mask_background_boost"] = h.maskBackgroundBoost;
       json["mask_foreground_divide"] = h.maskForegroundDivide;
       json["mask_pixels"] = result.hybrid->maskPixels;
+      json["revealed_pixels"] = result.hybrid->revealedPixels;
       json["reveal_rays"] = result.hybrid->revealRays;
       // The trace scene's mesh trees: built once per scene, so not in the frame time.
       json["scene_setup_ms"] =

@@ -41,10 +41,23 @@
 #define HMB_RANGE_CHECK_BINDING_VELOCITY 0  // vec2 per pixel
 #define HMB_RANGE_CHECK_BINDING_EDGES 1     // uint per pixel (edge_mask)
 #define HMB_RANGE_CHECK_BINDING_TILES 2     // uint tile index per moving tile
-#define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: 1 in the ray mask, else 0
+#define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
-#define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel, in no order
-#define HMB_RANGE_CHECK_BINDING_COUNT 6
+#define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel to reveal, in no order
+#define HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH 6  // vec4 per pixel (the coverage test)
+#define HMB_RANGE_CHECK_BINDING_OBJECT_ID 7     // uint per pixel (the coverage test)
+#define HMB_RANGE_CHECK_BINDING_COUNT 8
+
+// Ray mask values: a mask pixel is revealed (listed for the reveal, its revealed surface then
+// written) or not (the coverage composite gives its background no weight).
+#define HMB_MASK_NONE 0u
+#define HMB_MASK_UNREVEALED 1u
+#define HMB_MASK_REVEALED 2u
+
+// RangeCheckParams.flags: list only the mask pixels whose coverage composite samples (the
+// gather's, same positions and jitter) meet the background; the others blend it with weight
+// exactly 0, so their reveal would change nothing.
+#define HMB_RANGE_CHECK_LIST_UNCOVERED 1u
 
 #define HMB_SIZE_LIST_BINDING_COUNTERS 0
 #define HMB_SIZE_LIST_BINDING_COUNT 1
@@ -77,7 +90,7 @@
 
 HMB_GPU_BEGIN
 
-// Cleared each frame. maskCount: range_check; maskDispatch (a VkDispatchIndirectCommand at
+// Cleared each frame. maskCount (the list's length) and maskPixels: range_check; maskDispatch (a VkDispatchIndirectCommand at
 // byte offset 4) and tileDispatch (at byte offset 24): size_list_dispatch; rayCount:
 // reveal_background; tileCount: list_moving_tiles.
 struct RayMaskCounters {
@@ -90,9 +103,9 @@ struct RayMaskCounters {
   uint tileDispatchX;
   uint tileDispatchY;
   uint tileDispatchZ;
+  uint maskPixels;  // every pixel of the ray mask (maskCount: those listed for the reveal)
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
 struct MovingTilesParams {
@@ -127,6 +140,10 @@ struct RangeCheckParams {
   uint tilesX;
   float velocityScale;
   float maxSpeed;
+  uint flags;        // HMB_RANGE_CHECK_*
+  uint samples;      // the coverage composite's samples
+  uint seed;         // and its per-pixel jitter's seed (the gather's)
+  float softZExtent;
   uint pad0;
   uint pad1;
 };
@@ -152,7 +169,7 @@ HMB_CHECK_SIZE(RayMaskCounters, 48)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
 HMB_CHECK_SIZE(SizeListParams, 16)
 HMB_CHECK_SIZE(EdgeMaskParams, 32)
-HMB_CHECK_SIZE(RangeCheckParams, 32)
+HMB_CHECK_SIZE(RangeCheckParams, 48)
 HMB_CHECK_SIZE(RevealParams, 48)
 
 #endif

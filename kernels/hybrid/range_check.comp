@@ -3,7 +3,9 @@
 // mask when its range X + u v, u in [0, 1], meets the edge mask: it is then in the inner blur
 // of a silhouette, where the raster holds no background. The range is walked one pixel at a
 // time (ceil |v| + 1 positions), so an edge band of any width is found. Masked pixels are
-// appended to a list (compaction) whose length sizes the ray reveal's indirect dispatch. Runs
+// appended to a list (compaction) whose length sizes the ray reveal's indirect dispatch; with
+// the coverage composite, only those whose composite samples meet the background (the others
+// give the revealed background a weight of exactly 0). Runs
 // over the moving tiles only (list_moving_tiles); the mask is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
@@ -17,6 +19,8 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_TILES) readonly buffer Tiles { 
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) writeonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
 layout(push_constant) uniform Params { RangeCheckParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -36,11 +40,37 @@ uint maskedAt(uvec2 pixel) {
   return 0u;
 }
 
+// Whether any of the coverage composite's samples of this pixel lies behind it, i.e. whether
+// the composite gives the revealed background a weight above 0.
+bool meetsBackground(uvec2 pixel, uint index) {
+  float speed;
+  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
+  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
+  const uint centreObject = objectId[index];
+  const float centreDepth = sanitizeDepth(normalDepth[index].w);
+  for (uint i = 0u; i < params.samples; ++i) {
+    const ivec2 p = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
+    const uint sampleIndex = uint(p.y) * params.width + uint(p.x);
+    if (behindShareOf(objectId[sampleIndex], sanitizeDepth(normalDepth[sampleIndex].w), centreObject, centreDepth,
+                      params.softZExtent) > 0.0)
+      return true;
+  }
+  return false;
+}
+
 void main() {
   const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.tilesX, params.tileSize);
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const uint masked = maskedAt(pixel);
-  mask[index] = masked;
-  if (masked != 0u) list[atomicAdd(counters.maskCount, 1u)] = index;
+  if (maskedAt(pixel) == 0u) {
+    mask[index] = HMB_MASK_NONE;
+    return;
+  }
+  atomicAdd(counters.maskPixels, 1u);
+  if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index)) {
+    mask[index] = HMB_MASK_UNREVEALED;
+    return;
+  }
+  mask[index] = HMB_MASK_REVEALED;
+  list[atomicAdd(counters.maskCount, 1u)] = index;
 }

@@ -42,6 +42,7 @@
 //    even where the gather's tiles clamp its outer blur. The README gives the measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "mblur_layout.h"
+#include "../hybrid/hybrid_layout.h"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 
@@ -65,16 +66,16 @@ layout(push_constant) uniform Params { GatherParams params; };
 #include "mblur_common.glsl"
 
 // The layer at pixel i: its own buffers, or the overlay's where the overlay flag and mask say.
-bool overlaid(uint i) { return (params.flags & HMB_GATHER_FLAG_OVERLAY) != 0u && mask[i] != 0u; }
+bool overlaid(uint i) { return (params.flags & HMB_GATHER_FLAG_OVERLAY) != 0u && mask[i] == HMB_MASK_REVEALED; }
 vec4 layerColor(uint i) { return overlaid(i) ? overlayColor[i] : baseColor[i]; }
 float layerDepth(uint i) { return overlaid(i) ? overlayNormalDepth[i].w : baseNormalDepth[i].w; }
 vec2 layerVelocity(uint i) { return overlaid(i) ? overlayVelocity[i] : baseVelocity[i]; }
 
 // Share of sample `sampleIndex` that is background to the pixel (object `centreObject` at
-// `centreDepth`): none on the pixel's own object, else saturate(-z).
+// `centreDepth`).
 float behindShare(uint sampleIndex, uint centreObject, float centreDepth) {
-  if (objectId[sampleIndex] == centreObject) return 0.0;
-  return clamp((sanitizeDepth(layerDepth(sampleIndex)) - centreDepth) / params.softZExtent, 0.0, 1.0);
+  return behindShareOf(objectId[sampleIndex], sanitizeDepth(layerDepth(sampleIndex)), centreObject, centreDepth,
+                       params.softZExtent);
 }
 
 // The coverage composite at a mask pixel (see above).
@@ -84,16 +85,16 @@ vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDe
   const uint centreObject = objectId[index];
   vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0;
-  const vec2 centre = vec2(pixel) + 0.5;
   for (uint i = 0u; i < params.samples; ++i) {
-    const float u = (float(i) + 1.0 - jitter) / float(params.samples);
-    const ivec2 samplePixel = nearestPixel(centre + u * v, params.width, params.height);
+    const ivec2 samplePixel = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float onObject = 1.0 - behindShare(sampleIndex, centreObject, centreDepth);
     foregroundSum += onObject * sanitizeColor(layerColor(sampleIndex));
     foregroundCount += onObject;
   }
   const float alpha = foregroundCount / float(params.samples);
+  // alpha is exactly 1 where no sample is behind: range_check leaves those pixels unrevealed
+  // (their background entry is stale, and sanitized, then weighted by exactly 0).
   return alpha * (foregroundSum / (1.0 + foregroundCount)) + (1.0 - alpha) * sanitizeColor(background[index]);
 }
 

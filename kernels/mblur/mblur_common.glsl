@@ -57,6 +57,21 @@ ivec2 nearestPixel(vec2 position, uint width, uint height) {
   return clamp(ivec2(floor(position)), ivec2(0), ivec2(int(width) - 1, int(height) - 1));
 }
 
+// Share of a sample that is background to a pixel (the hybrid composite): none on the pixel's
+// own object, else saturate((z_s - z_t) / SOFT_Z_EXTENT). Depths already sanitized.
+float behindShareOf(uint sampleObject, float sampleDepth, uint centreObject, float centreDepth, float softZExtent) {
+  if (sampleObject == centreObject) return 0.0;
+  return clamp((sampleDepth - centreDepth) / softZExtent, 0.0, 1.0);
+}
+
+// The coverage composite's sample i of `samples` along the pixel's own displacement v:
+// the same positions in gather.comp (which blends) and range_check.comp (which decides
+// whether the pixel needs the revealed background at all).
+ivec2 coverageSamplePixel(uvec2 pixel, vec2 v, uint i, uint samples, float jitter, uint width, uint height) {
+  const float u = (float(i) + 1.0 - jitter) / float(samples);
+  return nearestPixel(vec2(pixel) + 0.5 + u * v, width, height);
+}
+
 // Paper eq. 6/7's speed falloff saturate(1 - ds / v); a zero speed reaches only ds = 0.
 float cone(float ds, float v) { return clamp(1.0 - ds / max(v, 1e-6), 0.0, 1.0); }
 

@@ -35,13 +35,14 @@
 #define HMB_GATHER_BINDING_NORMAL_DEPTH 1  // vec4 per pixel, w = camera-space depth
 #define HMB_GATHER_BINDING_VELOCITY 2      // vec2 per pixel, pixels per frame
 #define HMB_GATHER_BINDING_NEIGHBOR_MAX 3  // vec4 per tile
-#define HMB_GATHER_BINDING_MASK 4          // uint per pixel (0/1); a one-word dummy without a mask
+#define HMB_GATHER_BINDING_MASK 4          // uint per pixel (0: outside); a one-word dummy without a mask
 #define HMB_GATHER_BINDING_OUTPUT 5        // vec4 per pixel
 #define HMB_GATHER_BINDING_LIST 6          // uint pixel index per entry (pixel-list mode; else a dummy)
 #define HMB_GATHER_BINDING_LIST_LENGTH 7   // uint: the list's length in its first word (RayMaskCounters)
 #define HMB_GATHER_BINDING_BACKGROUND 8    // vec4 per pixel: the blurred revealed background (composite; else a dummy)
 #define HMB_GATHER_BINDING_OBJECT_ID 9     // uint per pixel: the layer's object ids (composite; else a dummy)
-// Overlay layer (HMB_GATHER_FLAG_OVERLAY): where the mask is set, these replace the layer's own
+// Overlay layer (HMB_GATHER_FLAG_OVERLAY): where the mask says HMB_MASK_REVEALED
+// (kernels/hybrid/hybrid_layout.h), these replace the layer's own
 // colour, normal-depth and velocity (the hybrid's background layer: the revealed surfaces over
 // the raster, without copying the raster).
 #define HMB_GATHER_BINDING_OVERLAY_COLOR 10

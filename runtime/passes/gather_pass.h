@@ -38,8 +38,8 @@ struct GatherOptions {
   // a RayMaskCounters buffer (kernels/hybrid/hybrid_layout.h: length, then the dispatch).
   const vk::Buffer* pixelList = nullptr;
   const vk::Buffer* listCounters = nullptr;
-  // Overlay (needs mask; no mask boosts): where the mask is set, the layer reads these instead
-  // of its own colour, normal-depth and velocity.
+  // Overlay (needs mask; no mask boosts): where the mask is HMB_MASK_REVEALED, the layer reads
+  // these instead of its own colour, normal-depth and velocity.
   const vk::Buffer* overlayColor = nullptr;
   const vk::Buffer* overlayNormalDepth = nullptr;
   const vk::Buffer* overlayVelocity = nullptr;

@@ -82,6 +82,11 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   maskParameters.maxSpeed = float(std::max(width_, height_));
   maskParameters.softZExtent = blur.softZExtent;
   maskParameters.edgeThreshold = settings_.edgeThreshold;
+  // The coverage composite weights the revealed background by 1 - alpha: pixels whose samples
+  // all stay on their object (alpha exactly 1) need no reveal (38% of bistro's mask at 1280x720).
+  maskParameters.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
+  maskParameters.samples = blur.samples;
+  maskParameters.seed = blur.seed;
   rayMask_.record(frame, raster, gbuffer.objectId(), maskParameters);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.objectId(), rayMask_.list(), rayMask_.counters(),
                  {&revealedColor_, &revealedNormalDepth_, &revealedVelocity_, &revealedObjectId_}, width_, height_,

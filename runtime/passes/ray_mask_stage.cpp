@@ -61,8 +61,20 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                                        p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold};
   frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, layer.velocity, &objectId, &tiles_, &edges_},
                          edgeParams, counters_, tileDispatch);
-  const gpu::RangeCheckParams rangeParams{width_, height_, p.tileSize, p.grid.x, p.velocityScale, p.maxSpeed, 0u, 0u};
-  frame.dispatchIndirect(kRangeCheck, rangeKernel_, {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_},
+  const gpu::RangeCheckParams rangeParams{width_,
+                                          height_,
+                                          p.tileSize,
+                                          p.grid.x,
+                                          p.velocityScale,
+                                          p.maxSpeed,
+                                          p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u,
+                                          p.samples,
+                                          p.seed,
+                                          p.softZExtent,
+                                          0u,
+                                          0u};
+  frame.dispatchIndirect(kRangeCheck, rangeKernel_,
+                         {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId},
                          rangeParams, counters_, tileDispatch);
   frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_}, gpu::SizeListParams{HMB_SIZE_LIST_MASK, 0u, 0u, 0u},
                  {1, 1, 1});
@@ -70,7 +82,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
 
 RayMaskCounts RayMaskStage::counts() const {
   const auto c = counters_.download<gpu::RayMaskCounters>();
-  return {c.at(0).maskCount, c.at(0).rayCount};
+  return {c.at(0).maskPixels, c.at(0).maskCount, c.at(0).rayCount};
 }
 
 }  // namespace hmb::passes

@@ -24,10 +24,16 @@ struct RayMaskParameters {
   float maxSpeed = 1280.0f;    // displacements are clamped to this length (px)
   float softZExtent = 0.03f;
   float edgeThreshold = 0.9f;
+  // List only the mask pixels whose coverage composite samples (the gather's: its sample count
+  // and seed) meet the background: the composite gives the others' reveal a weight of 0.
+  bool listOnlyUncovered = false;
+  uint32_t samples = 15;
+  uint32_t seed = 0;
 };
 
 struct RayMaskCounts {
   uint64_t maskPixels = 0;
+  uint64_t listedPixels = 0;  // the mask pixels the reveal traced
   uint64_t revealRays = 0;
 };
 
@@ -49,7 +55,7 @@ class RayMaskStage {
 
   const vk::Buffer& edges() const { return edges_; }        // uint per pixel
   const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
-  const vk::Buffer& list() const { return list_; }          // uint pixel index per entry
+  const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal
   const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
   // After the frame: the mask's size and the reveal's traces.
   RayMaskCounts counts() const;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "kernels/hybrid/hybrid_layout.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
@@ -56,7 +57,9 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
 
   RayMaskReadback out;
   out.edges = downloadFirst<uint32_t>(stage.edges(), pixels);
-  out.mask = downloadFirst<uint32_t>(stage.mask(), pixels);
+  out.maskValues = downloadFirst<uint32_t>(stage.mask(), pixels);
+  out.mask.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) out.mask[i] = out.maskValues[i] != HMB_MASK_NONE ? 1u : 0u;
   out.counters = stage.counters().download<gpu::RayMaskCounters>().at(0);
   out.list = downloadFirst<uint32_t>(stage.list(), std::min<size_t>(out.counters.maskCount, pixels));
   return out;

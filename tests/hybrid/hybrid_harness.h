@@ -26,7 +26,8 @@ namespace hmb::test::hybrid {
 
 struct RayMaskReadback {
   std::vector<uint32_t> edges;  // per pixel
-  std::vector<uint32_t> mask;   // per pixel
+  std::vector<uint32_t> mask;        // per pixel: 1 in the ray mask, else 0
+  std::vector<uint32_t> maskValues;  // per pixel as the device wrote it (HMB_MASK_*)
   std::vector<uint32_t> list;   // the list's first counters.maskCount entries
   gpu::RayMaskCounters counters{};
 };

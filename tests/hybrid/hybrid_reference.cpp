@@ -137,6 +137,31 @@ std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const s
   return out;
 }
 
+std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint32_t>& mask,
+                                 const passes::RayMaskParameters& p) {
+  std::vector<bool> out(mask.size(), false);
+  for (uint32_t y = 0; y < layer.height; ++y)
+    for (uint32_t x = 0; x < layer.width; ++x) {
+      const size_t index = size_t(y) * layer.width + x;
+      if (mask[index] == 0u) continue;
+      float speed;
+      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.velocityScale, p.maxSpeed, speed);
+      const float jitter = mblur::unitFromHash(mblur::mblurHash(x, y, p.seed));
+      const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
+      for (uint32_t i = 0; i < p.samples && !out[index]; ++i) {
+        const float u = (float(i) + 1.0f - jitter) / float(p.samples);
+        const glm::ivec2 q = nearestPixel({float(x) + 0.5f + u * v.x, float(y) + 0.5f + u * v.y}, layer.width,
+                                          layer.height);
+        const size_t sample = indexOf(layer.width, q);
+        if (layer.objectId[sample] == layer.objectId[index]) continue;
+        const float share =
+            std::clamp((sanitizeDepth(layer.normalDepth[sample].w) - centreDepth) / p.softZExtent, 0.0f, 1.0f);
+        out[index] = share > 0.0f;
+      }
+    }
+  return out;
+}
+
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount) {
   const uint32_t groups = (maskCount + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP;
   gpu::RayMaskCounters c{};

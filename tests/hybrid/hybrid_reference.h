@@ -48,6 +48,12 @@ std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskPa
 std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const std::vector<uint32_t>& edges,
                                  uint32_t width, uint32_t height, const passes::RayMaskParameters& parameters);
 
+// range_check.comp with HMB_RANGE_CHECK_LIST_UNCOVERED: true for the mask pixels whose coverage
+// composite samples (parameters.samples, jitter from parameters.seed, along the displacement
+// clamped to parameters.maxSpeed) meet another object deeper than the pixel.
+std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint32_t>& mask,
+                                 const passes::RayMaskParameters& parameters);
+
 // size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
 

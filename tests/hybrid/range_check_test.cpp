@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "kernels/hybrid/hybrid_layout.h"
 #include "tests/hybrid/hybrid_harness.h"
 #include "tests/hybrid/hybrid_reference.h"
 #include "tests/support/vulkan_test.h"
@@ -127,6 +128,42 @@ TEST_F(HybridRangeCheckTest, LongRangesFindAnEdgeOnePixelWide) {
       // Mask: every pixel whose range [x, x + 9] meets column 18 or 19, that is 9..19.
       EXPECT_EQ(device.mask[y * width + x], x >= 9 && x <= 19 ? 1u : 0u) << x << "," << y;
     }
+}
+
+// With the coverage composite, only the mask pixels whose composite samples meet the background
+// are listed for the reveal (the others' background gets weight 0): the mask is unchanged, the
+// list is the reference's selection, and the mask values say which pixels were listed.
+TEST_F(HybridRangeCheckTest, OnlyPixelsWhoseCoverageMeetsTheBackgroundAreListed) {
+  size_t listed = 0, unlisted = 0;
+  for (uint32_t round = 0; round < 4; ++round) {
+    std::mt19937 rng(100 + round);
+    const uint32_t width = 37 + 11 * round, height = 23 + 5 * round;
+    const MaskLayer layer = randomMaskLayer(width, height, rng);
+    RayMaskParameters p = parametersWith(0.5f);
+    p.listOnlyUncovered = true;
+    p.samples = 3 + 4 * round;
+    p.seed = round;
+    const RayMaskReadback device = runRayMask(context(), layer, p);
+    EXPECT_EQ(device.mask, rangeCheck(layer.velocity, device.edges, width, height, p)) << round;
+    const std::vector<bool> reveal = revealedPixels(layer, device.mask, p);
+    std::vector<uint32_t> expected;
+    uint32_t maskPixels = 0;
+    for (uint32_t i = 0; i < device.mask.size(); ++i) {
+      maskPixels += device.mask[i];
+      if (reveal[i]) expected.push_back(i);
+      const uint32_t value = device.mask[i] == 0u ? HMB_MASK_NONE : (reveal[i] ? HMB_MASK_REVEALED : HMB_MASK_UNREVEALED);
+      EXPECT_EQ(device.maskValues[i], value) << round << " pixel " << i;
+    }
+    std::vector<uint32_t> list = device.list;
+    std::sort(list.begin(), list.end());
+    EXPECT_EQ(list, expected) << round;
+    EXPECT_EQ(device.counters.maskPixels, maskPixels) << round;
+    listed += expected.size();
+    unlisted += maskPixels - expected.size();
+  }
+  // Both kinds occur, so the test tells the selection from listing all or none.
+  EXPECT_GT(listed, 20u);
+  EXPECT_GT(unlisted, 20u);
 }
 
 TEST_F(HybridRangeCheckTest, StillLayerMasksNothingAndDispatchesNothing) {

@@ -14,6 +14,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "kernels/hybrid/hybrid_layout.h"
 #include "runtime/renderer.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
@@ -345,7 +346,8 @@ TEST_F(HybridRevealTest, OnlyListedPixelsAreWritten) {
 }
 
 // The whole hybrid render: the ray mask marks pixels of B near its leading edge (it moves
-// left, onto A), and the revealed layer holds A's colour there and nothing (0) elsewhere.
+// left, onto A), and the revealed layer holds A's colour at the mask pixels whose coverage
+// samples leave B (the ones revealed) and nothing (0) elsewhere.
 TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
   const RevealScene s = revealScene();
   Renderer renderer(context());
@@ -362,17 +364,20 @@ TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
   ASSERT_TRUE(mask && revealed && raster);
   ASSERT_TRUE(hybrid.hybrid.has_value());
   const FrameCamera camera = frameCamera(s.scene, kTime, kWidth, kHeight);
-  size_t masked = 0, checked = 0;
+  size_t masked = 0, traced = 0, checked = 0;
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth; ++x) {
       const size_t i = size_t(y) * kWidth + x;
       const glm::vec3 color(revealed->values[i * 3], revealed->values[i * 3 + 1], revealed->values[i * 3 + 2]);
       const glm::vec3 sharpColor(raster->values[i * 4], raster->values[i * 4 + 1], raster->values[i * 4 + 2]);
-      if (mask->ids[i] == 0u) {
-        EXPECT_EQ(color, glm::vec3(0.0f)) << "unmasked pixel " << x << "," << y << " has a revealed colour";
+      if (mask->ids[i] != HMB_MASK_REVEALED) {
+        // Outside the mask, or in it with every coverage sample on B (no weight for a reveal).
+        EXPECT_EQ(color, glm::vec3(0.0f)) << "untraced pixel " << x << "," << y << " has a revealed colour";
+        masked += mask->ids[i] == HMB_MASK_UNREVEALED ? 1u : 0u;
         continue;
       }
       ++masked;
+      ++traced;
       if (coverage(s.scene, camera, s.a, x, y) != Coverage::Inside ||
           coverage(s.scene, camera, s.b, x, y) != Coverage::Inside)
         continue;
@@ -382,7 +387,8 @@ TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
       ++checked;
     }
   EXPECT_EQ(masked, hybrid.hybrid->maskPixels);
-  EXPECT_EQ(hybrid.hybrid->revealRays, masked);  // one trace each with the object-id stop
+  EXPECT_EQ(traced, hybrid.hybrid->revealedPixels);
+  EXPECT_EQ(hybrid.hybrid->revealRays, traced);  // one trace each with the object-id stop
   EXPECT_GT(checked, 20u);
 }
 
