@@ -199,12 +199,15 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     const bool hybrid = settings.method == "hybrid";
     const bool blur = settings.method == "postprocess" || hybrid;
     vk::Buffer blurred;
+    if (hybrid) {
+      result.hybrid.emplace();
+      result.hybrid->settings = hybridSettingsFor(scene, settings);
+    }
     if (blur) {
       result.postprocess = postProcessSettingsFor(scene, settings);
       if (hybrid) {
-        const passes::HybridSettings h = hybridSettingsFor(scene, settings);
-        result.postprocess->maskBackgroundBoost = h.maskBackgroundBoost;
-        result.postprocess->maskForegroundDivide = h.maskForegroundDivide;
+        result.postprocess->maskBackgroundBoost = result.hybrid->settings.maskBackgroundBoost;
+        result.postprocess->maskForegroundDivide = result.hybrid->settings.maskForegroundDivide;
       }
       passes_->postProcess.configure(*result.postprocess);
       passes_->postProcess.prepare(width, height);
@@ -215,8 +218,6 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
       blurred = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "post-process colour");
     }
     if (hybrid) {
-      result.hybrid.emplace();
-      result.hybrid->settings = hybridSettingsFor(scene, settings);
       // The trace scene's mesh trees are built once per scene (setup, reported apart); the
       // instance tree at the frame time is part of every frame.
       const auto prepared =

@@ -167,16 +167,6 @@ void FrameRecorder::fill(std::string_view pass, const Buffer& buffer, uint32_t v
   endPass(index);
 }
 
-void FrameRecorder::copy(std::string_view pass, std::initializer_list<std::pair<const Buffer*, const Buffer*>> copies) {
-  const uint32_t index = beginPass(pass);
-  for (const auto& [from, to] : copies) {
-    if (from->size() > to->size()) throw Error("copy into a smaller buffer");
-    const VkBufferCopy region{0, 0, from->size()};
-    vkCmdCopyBuffer(commandBuffer_, from->handle(), to->handle(), 1, &region);
-  }
-  endPass(index);
-}
-
 FrameTimings FrameRecorder::submitAndWait() {
   if (!recording_) throw Error("submitAndWait() without begin()");
   recording_ = false;

@@ -10,7 +10,6 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -80,9 +79,6 @@ class FrameRecorder {
 
   // Fills a whole buffer with a 32-bit value (clears, sentinels).
   void fill(std::string_view pass, const Buffer& buffer, uint32_t value);
-
-  // Copies whole buffers (each source into the start of its destination) as one pass.
-  void copy(std::string_view pass, std::initializer_list<std::pair<const Buffer*, const Buffer*>> copies);
 
   // Ends the command buffer, submits it, waits, and reads the timestamps.
   FrameTimings submitAndWait();
