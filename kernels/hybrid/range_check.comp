@@ -26,25 +26,20 @@ layout(push_constant) uniform Params { RangeCheckParams params; };
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
 
-// The range check at one pixel.
-uint maskedAt(uvec2 pixel) {
-  float speed;
-  const vec2 v = gatherVelocity(velocity[pixel.y * params.width + pixel.x], params.velocityScale, params.maxSpeed, speed);
-  if (!(speed > 0.0)) return 0u;
+// The range check at one pixel moving by v (speed > 0).
+bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   const uint steps = uint(ceil(speed));  // <= maxSpeed, the image's larger side
   const vec2 centre = vec2(pixel) + 0.5;
   for (uint i = 0u; i <= steps; ++i) {
     const ivec2 p = nearestPixel(centre + v * (float(i) / float(steps)), params.width, params.height);
-    if (edges[uint(p.y) * params.width + uint(p.x)] != 0u) return 1u;
+    if (edges[uint(p.y) * params.width + uint(p.x)] != 0u) return true;
   }
-  return 0u;
+  return false;
 }
 
 // Whether any of the coverage composite's samples of this pixel lies behind it, i.e. whether
 // the composite gives the revealed background a weight above 0.
-bool meetsBackground(uvec2 pixel, uint index) {
-  float speed;
-  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
+bool meetsBackground(uvec2 pixel, uint index, vec2 v) {
   const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
   const uint centreObject = objectId[index];
   const float centreDepth = sanitizeDepth(normalDepth[index].w);
@@ -62,12 +57,14 @@ void main() {
   const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.tilesX, params.tileSize);
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  if (maskedAt(pixel) == 0u) {
+  float speed;
+  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
+  if (!(speed > 0.0) || !meetsEdge(pixel, v, speed)) {
     mask[index] = HMB_MASK_NONE;
     return;
   }
   atomicAdd(counters.maskPixels, 1u);
-  if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index)) {
+  if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index, v)) {
     mask[index] = HMB_MASK_UNREVEALED;
     return;
   }

@@ -65,29 +65,21 @@ void main() {
 
   BvhHit hit;
   uint traces = 1u;
-  vec3 shaded = camera.background.rgb;
   if (params.stop == HMB_REVEAL_STOP_OBJECT_ID) {
     ray.ignoreObjectId = rasterId[index];
     hit = closestHit(ray, scene);
-    if (hit.triangle != HMB_NO_HIT) shaded = shadeHit(hit, direction, hit.instance);
   } else {
     hit = closestHit(ray, scene);
     if (hit.triangle != HMB_NO_HIT) {
       const float firstLuminance = luminance(shadeHit(hit, direction, hit.instance));
       for (uint step = 0u; step < params.maxRecursion; ++step) {
         ray.originTMin.w = pastHit(hit.t);
-        const BvhHit next = closestHit(ray, scene);
+        hit = closestHit(ray, scene);
         ++traces;
-        if (next.triangle == HMB_NO_HIT) {
-          hit = next;
-          break;
-        }
-        hit = next;
-        shaded = shadeHit(hit, direction, hit.instance);
-        const float difference = abs(luminance(shaded) - firstLuminance);
+        if (hit.triangle == HMB_NO_HIT) break;
+        const float difference = abs(luminance(shadeHit(hit, direction, hit.instance)) - firstLuminance);
         if (difference > params.luminanceThreshold * max(firstLuminance, 1e-3)) break;
       }
-      if (hit.triangle == HMB_NO_HIT) shaded = camera.background.rgb;
     }
   }
 
@@ -109,6 +101,7 @@ void main() {
   if (any(isnan(motion)) || any(isinf(motion))) motion = vec2(0.0);
 
   const HitSurface surface = hitSurface(hit, direction, hit.instance);
+  const vec3 shaded = shadeSurface(sceneInstances[hit.instance].material, surface.uv, surface.normal);
   color[index] = vec4(finite3(shaded) ? shaded : vec3(0.0), 1.0);
   normalDepth[index] = vec4(surface.normal, hit.t);
   velocity[index] = motion;
