@@ -244,19 +244,21 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
   };
   for (const Claim claim : {Claim{"living-room", 1.5}, Claim{"temple", 1.5}, Claim{"bistro", 0.3}}) {
     const JudgedScene& j = judged(claim.scene);
-    const auto error = [&](const char* method, const char* composite) {
+    const auto error = [&](const char* method, const char* composite, const char* stop = nullptr) {
       RenderSettings settings;
       settings.method = method;
       settings.width = kClaimWidth;
       settings.height = kClaimHeight;
       if (composite) settings.hybrid.composite = composite;
+      if (stop) settings.hybrid.stop = stop;
       static Renderer renderer(VulkanTest::context());
       return metrics::compareImages(j.judge, displayOf(renderer.render(j.scene, settings)), &j.region);
     };
     const metrics::Comparison post = error("postprocess", nullptr);
     const metrics::Comparison hybrid = error("hybrid", nullptr);
     const metrics::Comparison weights = error("hybrid", "weights");
-    ASSERT_TRUE(post.region && hybrid.region && weights.region) << claim.scene;
+    const metrics::Comparison luminance = error("hybrid", nullptr, "luminance");  // printed only (README)
+    ASSERT_TRUE(post.region && hybrid.region && weights.region && luminance.region) << claim.scene;
     ASSERT_TRUE(post.frame.ssim && hybrid.frame.ssim && post.region->ssim && hybrid.region->ssim) << claim.scene;
     EXPECT_GT(hybrid.region->psnr, post.region->psnr + claim.regionMarginDb) << claim.scene;
     EXPECT_GE(hybrid.frame.psnr, post.frame.psnr) << claim.scene;
@@ -264,7 +266,8 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
     EXPECT_GT(*hybrid.region->ssim, *post.region->ssim) << claim.scene;
     std::cout << "[ hybrid ] " << claim.scene << ": blur region (" << j.region.pixelCount
               << " px) PSNR post-process " << post.region->psnr << " dB, hybrid " << hybrid.region->psnr
-              << " dB (weights composite " << weights.region->psnr << " dB); frame " << post.frame.psnr << " / "
+              << " dB (weights composite " << weights.region->psnr << " dB, luminance stop "
+              << luminance.region->psnr << " dB); frame " << post.frame.psnr << " / "
               << hybrid.frame.psnr << " dB; SSIM " << *post.frame.ssim << " / " << *hybrid.frame.ssim << "\n";
   }
 }
