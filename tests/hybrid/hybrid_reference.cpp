@@ -14,6 +14,20 @@ using mblur::sanitizeColor;
 using mblur::sanitizeDepth;
 
 float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
+
+// mblur_common.glsl's behindShareOf.
+float behindShareOf(uint32_t sampleObject, float sampleDepth, uint32_t centreObject, float centreDepth,
+                    float softZExtent) {
+  if (sampleObject == centreObject) return 0.0f;
+  return saturate((sampleDepth - centreDepth) / softZExtent);
+}
+
+// mblur_common.glsl's coverageSamplePixel.
+glm::ivec2 coverageSamplePixel(uint32_t px, uint32_t py, glm::vec2 v, uint32_t i, uint32_t samples, float jitter,
+                               uint32_t width, uint32_t height) {
+  const float u = (float(i) + 1.0f - jitter) / float(samples);
+  return nearestPixel({float(px) + 0.5f + u * v.x, float(py) + 0.5f + u * v.y}, width, height);
+}
 float length2(glm::vec2 v) { return std::sqrt(v.x * v.x + v.y * v.y); }
 float dot3(glm::vec3 a, glm::vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
@@ -149,14 +163,10 @@ std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint3
       const float jitter = mblur::unitFromHash(mblur::mblurHash(x, y, p.seed));
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
       for (uint32_t i = 0; i < p.samples && !out[index]; ++i) {
-        const float u = (float(i) + 1.0f - jitter) / float(p.samples);
-        const glm::ivec2 q = nearestPixel({float(x) + 0.5f + u * v.x, float(y) + 0.5f + u * v.y}, layer.width,
-                                          layer.height);
-        const size_t sample = indexOf(layer.width, q);
-        if (layer.objectId[sample] == layer.objectId[index]) continue;
-        const float share =
-            std::clamp((sanitizeDepth(layer.normalDepth[sample].w) - centreDepth) / p.softZExtent, 0.0f, 1.0f);
-        out[index] = share > 0.0f;
+        const size_t sample =
+            indexOf(layer.width, coverageSamplePixel(x, y, v, i, p.samples, jitter, layer.width, layer.height));
+        out[index] = behindShareOf(layer.objectId[sample], sanitizeDepth(layer.normalDepth[sample].w),
+                                   layer.objectId[index], centreDepth, p.softZExtent) > 0.0f;
       }
     }
   return out;
@@ -183,8 +193,8 @@ struct CompositeInputs {
 
 // gather.comp's behindShare.
 float behindShare(const CompositeInputs& in, size_t sampleIndex, uint32_t centreObject, float centreDepth) {
-  if (in.objectId[sampleIndex] == centreObject) return 0.0f;
-  return saturate((sanitizeDepth(in.layer.normalDepth[sampleIndex].w) - centreDepth) / in.softZExtent);
+  return behindShareOf(in.objectId[sampleIndex], sanitizeDepth(in.layer.normalDepth[sampleIndex].w), centreObject,
+                       centreDepth, in.softZExtent);
 }
 
 glm::vec4 coverageComposite(const CompositeInputs& in, uint32_t px, uint32_t py, glm::vec4 centreColor,
@@ -197,11 +207,9 @@ glm::vec4 coverageComposite(const CompositeInputs& in, uint32_t px, uint32_t py,
   const uint32_t centreObject = in.objectId[index];
   glm::vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0f;
-  const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
   for (uint32_t i = 0; i < samples; ++i) {
-    const float u = (float(i) + 1.0f - jitter) / float(samples);
-    const glm::ivec2 s = nearestPixel({centre.x + u * v.x, centre.y + u * v.y}, layer.width, layer.height);
-    const size_t sampleIndex = indexOf(layer.width, s);
+    const size_t sampleIndex =
+        indexOf(layer.width, coverageSamplePixel(px, py, v, i, samples, jitter, layer.width, layer.height));
     const float onObject = 1.0f - behindShare(in, sampleIndex, centreObject, centreDepth);
     foregroundSum += onObject * sanitizeColor(layer.color[sampleIndex]);
     foregroundCount += onObject;
