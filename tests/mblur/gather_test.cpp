@@ -29,22 +29,6 @@ PostProcessSettings settingsFor(GatherRange range, uint32_t tileSize, uint32_t s
   return s;
 }
 
-// Every output finite; every pixel within `tolerance` of the reference (colours are O(1)),
-// except pixels where a sample position rounds to the other neighbouring pixel on the device
-// (positions a rounding step from a pixel edge): at most 0.5% of them.
-void expectMatchesReference(const std::vector<glm::vec4>& device, const std::vector<glm::vec4>& reference,
-                            float tolerance = 2e-4f) {
-  ASSERT_EQ(device.size(), reference.size());
-  ASSERT_TRUE(allFinite(device));
-  size_t off = 0;
-  for (size_t i = 0; i < device.size(); ++i) {
-    const float scale = std::max({1.0f, std::abs(reference[i].x), std::abs(reference[i].y), std::abs(reference[i].z),
-                                  std::abs(reference[i].w)});
-    if (maxAbsDifference(device[i], reference[i]) > tolerance * scale) ++off;
-  }
-  EXPECT_LE(off, device.size() / 200) << off << " of " << device.size() << " pixels differ from the reference";
-}
-
 void expectGatherMatches(const Layer& layer, const PostProcessSettings& s, const std::vector<uint32_t>* mask = nullptr) {
   const auto tiles = referenceTiles(layer, s);
   expectMatchesReference(runGather(VulkanTest::context(), layer, tiles, mask, s), gather(layer, tiles, mask, s));

@@ -1,10 +1,12 @@
 #include "tests/mblur/mblur_harness.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <span>
+
+#include <gtest/gtest.h>
 
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/jimenez_gather_pass.h"
@@ -171,6 +173,19 @@ bool allFinite(const std::vector<glm::vec4>& values) {
     for (int i = 0; i < 4; ++i)
       if (!std::isfinite(v[i])) return false;
   return true;
+}
+
+void expectMatchesReference(const std::vector<glm::vec4>& device, const std::vector<glm::vec4>& reference,
+                            float tolerance) {
+  ASSERT_EQ(device.size(), reference.size());
+  ASSERT_TRUE(allFinite(device));
+  size_t off = 0;
+  for (size_t i = 0; i < device.size(); ++i) {
+    const float scale = std::max({1.0f, std::abs(reference[i].x), std::abs(reference[i].y), std::abs(reference[i].z),
+                                  std::abs(reference[i].w)});
+    if (maxAbsDifference(device[i], reference[i]) > tolerance * scale) ++off;
+  }
+  EXPECT_LE(off, device.size() / 200) << off << " of " << device.size() << " pixels differ from the reference";
 }
 
 }  // namespace hmb::test::mblur

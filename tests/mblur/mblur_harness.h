@@ -45,4 +45,10 @@ std::vector<glm::vec4> referenceTiles(const Layer& layer, const passes::PostProc
 float maxAbsDifference(glm::vec4 a, glm::vec4 b);
 bool allFinite(const std::vector<glm::vec4>& values);
 
+// Every output finite; every pixel within `tolerance` of the reference (colours are O(1)),
+// except pixels where a sample position rounds to the other neighbouring pixel on the device
+// (positions a rounding step from a pixel edge): at most 0.5% of them. Gtest expectations.
+void expectMatchesReference(const std::vector<glm::vec4>& device, const std::vector<glm::vec4>& reference,
+                            float tolerance = 2e-4f);
+
 }  // namespace hmb::test::mblur
