@@ -208,6 +208,8 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
       if (hybrid) {
         result.postprocess->maskBackgroundBoost = result.hybrid->settings.maskBackgroundBoost;
         result.postprocess->maskForegroundDivide = result.hybrid->settings.maskForegroundDivide;
+        if (!settings.postprocess.foregroundBoost)
+          result.postprocess->foregroundBoost = result.hybrid->settings.foregroundBoost;
       }
       passes_->postProcess.configure(*result.postprocess);
       passes_->postProcess.prepare(width, height);

@@ -353,7 +353,7 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--neighborhood", renderOptions.postprocess.neighborhood,
                         "postprocess: neighbour-max over n x n tiles (default 3)");
   renderCmd->add_option("--foreground-boost", renderOptions.postprocess.foregroundBoost,
-                        "postprocess: w_f factor past SOFT_Z_EXTENT (default 30 adapted, 1 centered)");
+                        "postprocess, hybrid: w_f factor past SOFT_Z_EXTENT (default 30 adapted, 1 centered, 3 hybrid)");
   renderCmd->add_option("--soft-z-extent", renderOptions.postprocess.softZExtent,
                         "postprocess: SOFT_Z_EXTENT in scene units (default: the scene's)");
   renderCmd->add_option("--edge-threshold", renderOptions.hybrid.edgeThreshold,

@@ -29,9 +29,9 @@ void validate(const HybridSettings& s) {
           "max recursion must be 1..64 (got " + std::to_string(s.maxRecursion) + ")");
   require(std::isfinite(s.luminanceThreshold) && s.luminanceThreshold > 0.0f && s.luminanceThreshold <= 1e6f,
           "luminance threshold must be finite and > 0 (got " + std::to_string(s.luminanceThreshold) + ")");
-  for (const float factor : {s.maskBackgroundBoost, s.maskForegroundDivide})
+  for (const float factor : {s.maskBackgroundBoost, s.maskForegroundDivide, s.foregroundBoost})
     require(std::isfinite(factor) && factor > 0.0f && factor <= 1e6f,
-            "mask boosts must be finite, > 0 and <= 1e6 (got " + std::to_string(factor) + ")");
+            "boosts must be finite, > 0 and <= 1e6 (got " + std::to_string(factor) + ")");
 }
 
 std::string_view revealStopName(RevealStop stop) {

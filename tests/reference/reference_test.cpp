@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -230,13 +231,15 @@ TEST_F(ReferenceTest, PostProcessIsCloserToTheReferenceThanTheSharpFrame) {
   }
 }
 
-// The paper's claim (section 5.1, Table 1: 25.69 vs 24.20 dB, SSIM 0.92 vs 0.91): at the
-// paper's settings the hybrid method is closer to the reference than adapted post-process,
-// over the blur region, over the whole frame and in SSIM, on every reference scene. The
-// issue's margin, 1.5 dB over the blur region, holds where the blur is the inner blur of
-// moving objects (living room, temple: +7.2 and +3.0 dB at this size). Bistro's blur region
-// is mostly the camera's dolly and pan over static geometry, which the hybrid method leaves to
-// the same gather as post-process; its gain is +0.6 dB here, so only a gain is asserted there.
+// The paper's claim (section 5.1, Table 1: 25.69 vs 24.20 dB, SSIM 0.92 vs 0.91): the hybrid
+// method (its defaults: coverage composite, foreground boost 3) is closer to the reference than
+// adapted post-process (the paper's settings, boost 30), over the blur region, over the whole
+// frame and in SSIM, on every reference scene. The margin, 1.5 dB over the blur region,
+// is asserted for living room and temple (+6.6 and +5.4 dB at this size). Bistro's blur region
+// is mostly the camera's dolly and pan over static geometry, left to the same gather in both
+// methods, and its gain grows with the image (+0.66 dB here, +0.87 at 320x180, +1.38 at
+// 640x360, +1.75 at 1280x720: bench/results/hybrid-vs-reference), so only a gain is asserted
+// at this size. The hybrid at the paper's boost of 30 is printed beside it.
 TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
   struct Claim {
     const char* scene;
@@ -244,21 +247,26 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
   };
   for (const Claim claim : {Claim{"living-room", 1.5}, Claim{"temple", 1.5}, Claim{"bistro", 0.3}}) {
     const JudgedScene& j = judged(claim.scene);
-    const auto error = [&](const char* method, const char* composite, const char* stop = nullptr) {
+    const auto error = [&](const char* method, const char* composite, const char* stop = nullptr,
+                           std::optional<float> foregroundBoost = std::nullopt) {
       RenderSettings settings;
       settings.method = method;
       settings.width = kClaimWidth;
       settings.height = kClaimHeight;
       if (composite) settings.hybrid.composite = composite;
       if (stop) settings.hybrid.stop = stop;
+      settings.postprocess.foregroundBoost = foregroundBoost;
       static Renderer renderer(VulkanTest::context());
       return metrics::compareImages(j.judge, displayOf(renderer.render(j.scene, settings)), &j.region);
     };
     const metrics::Comparison post = error("postprocess", nullptr);
     const metrics::Comparison hybrid = error("hybrid", nullptr);
     const metrics::Comparison weights = error("hybrid", "weights");
-    const metrics::Comparison luminance = error("hybrid", nullptr, "luminance");  // printed only (README)
-    ASSERT_TRUE(post.region && hybrid.region && weights.region && luminance.region) << claim.scene;
+    // Printed only (README): the paper's reveal stop, and the paper's foreground boost.
+    const metrics::Comparison luminance = error("hybrid", nullptr, "luminance");
+    const metrics::Comparison paperBoost = error("hybrid", nullptr, nullptr, 30.0f);
+    ASSERT_TRUE(post.region && hybrid.region && weights.region && luminance.region && paperBoost.region)
+        << claim.scene;
     ASSERT_TRUE(post.frame.ssim && hybrid.frame.ssim && post.region->ssim && hybrid.region->ssim) << claim.scene;
     EXPECT_GT(hybrid.region->psnr, post.region->psnr + claim.regionMarginDb) << claim.scene;
     EXPECT_GE(hybrid.frame.psnr, post.frame.psnr) << claim.scene;
@@ -267,7 +275,7 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
     std::cout << "[ hybrid ] " << claim.scene << ": blur region (" << j.region.pixelCount
               << " px) PSNR post-process " << post.region->psnr << " dB, hybrid " << hybrid.region->psnr
               << " dB (weights composite " << weights.region->psnr << " dB, luminance stop "
-              << luminance.region->psnr << " dB); frame " << post.frame.psnr << " / "
+              << luminance.region->psnr << " dB, boost 30 " << paperBoost.region->psnr << " dB); frame " << post.frame.psnr << " / "
               << hybrid.frame.psnr << " dB; SSIM " << *post.frame.ssim << " / " << *hybrid.frame.ssim << "\n";
   }
 }
