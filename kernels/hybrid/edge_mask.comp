@@ -19,6 +19,7 @@ layout(std430, binding = HMB_EDGE_MASK_BINDING_VELOCITY) readonly buffer Velocit
 layout(std430, binding = HMB_EDGE_MASK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) writeonly buffer Edges { uint edges[]; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGE_BLOCKS) writeonly buffer EdgeBlocks { uint edgeBlocks[]; };
 layout(push_constant) uniform Params { EdgeMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -72,5 +73,13 @@ uint edgeAt(uvec2 pixel) {
 void main() {
   const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.tilesX, params.tileSize);
   if (pixel.x >= params.width || pixel.y >= params.height) return;
-  edges[pixel.y * params.width + pixel.x] = edgeAt(pixel);
+  const uint edge = edgeAt(pixel);
+  edges[pixel.y * params.width + pixel.x] = edge;
+  if (edge == 0u) return;
+  // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
+  const uint blocksX = (params.width + HMB_EDGE_BLOCK - 1u) / HMB_EDGE_BLOCK;
+  const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;
+  const uvec2 last = min(pixel + 1u, uvec2(params.width, params.height) - 1u) / HMB_EDGE_BLOCK;
+  for (uint y = first.y; y <= last.y; ++y)
+    for (uint x = first.x; x <= last.x; ++x) edgeBlocks[y * blocksX + x] = 1u;
 }

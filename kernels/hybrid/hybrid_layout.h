@@ -36,7 +36,13 @@
 #define HMB_EDGE_MASK_BINDING_OBJECT_ID 2     // uint per pixel
 #define HMB_EDGE_MASK_BINDING_TILES 3         // uint tile index per moving tile
 #define HMB_EDGE_MASK_BINDING_EDGES 4         // uint per pixel: 1 in the edge mask, else 0
-#define HMB_EDGE_MASK_BINDING_COUNT 5
+#define HMB_EDGE_MASK_BINDING_EDGE_BLOCKS 5   // uint per HMB_EDGE_BLOCK^2 block: 1 near an edge
+#define HMB_EDGE_MASK_BINDING_COUNT 6
+
+// Side of the blocks of the coarse edge image, in pixels. A block is flagged when an edge
+// pixel lies within one pixel of it, so a segment passing through no flagged block passes
+// farther than a pixel from every edge pixel (range_check's early out).
+#define HMB_EDGE_BLOCK 4u
 
 #define HMB_RANGE_CHECK_BINDING_VELOCITY 0  // vec2 per pixel
 #define HMB_RANGE_CHECK_BINDING_EDGES 1     // uint per pixel (edge_mask)
@@ -46,7 +52,8 @@
 #define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel to reveal, in no order
 #define HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH 6  // vec4 per pixel (the coverage test)
 #define HMB_RANGE_CHECK_BINDING_OBJECT_ID 7     // uint per pixel (the coverage test)
-#define HMB_RANGE_CHECK_BINDING_COUNT 8
+#define HMB_RANGE_CHECK_BINDING_EDGE_BLOCKS 8   // uint per block (edge_mask)
+#define HMB_RANGE_CHECK_BINDING_COUNT 9
 
 // Ray mask values: a mask pixel is revealed (listed for the reveal, its revealed surface then
 // written) or not (the coverage composite gives its background no weight).

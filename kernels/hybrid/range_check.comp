@@ -21,15 +21,54 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { Ray
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGE_BLOCKS) readonly buffer EdgeBlocks { uint edgeBlocks[]; };
 layout(push_constant) uniform Params { RangeCheckParams params; };
 
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
 
+// Whether the segment a -> b (both inside the image) passes through a flagged block of the
+// coarse edge image: a grid walk over the blocks it crosses, ~|b - a| / 2 steps where the fine
+// walk takes |b - a|. Every fine-walk pixel lies on the segment (up to rounding), and a block
+// is flagged when an edge pixel lies within a pixel of it, so "no" here means the fine walk
+// meets no edge. The walk moves one block per step towards the last block, so it ends there.
+bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
+  const float side = float(HMB_EDGE_BLOCK);
+  const uint blocksX = (params.width + HMB_EDGE_BLOCK - 1u) / HMB_EDGE_BLOCK;
+  ivec2 block = ivec2(floor(a / side));
+  const ivec2 last = ivec2(floor(b / side));
+  const vec2 d = b - a;
+  const ivec2 stepSign = ivec2(sign(d));
+  const vec2 inverse = vec2(d.x != 0.0 ? 1.0 / abs(d.x) : 0.0, d.y != 0.0 ? 1.0 / abs(d.y) : 0.0);
+  // Segment parameter at the next block boundary on each axis, and between boundaries.
+  const vec2 boundary = vec2(block + max(stepSign, ivec2(0))) * side;
+  vec2 tNext = vec2(d.x != 0.0 ? abs(boundary.x - a.x) * inverse.x : 2.0, d.y != 0.0 ? abs(boundary.y - a.y) * inverse.y : 2.0);
+  const vec2 tStep = side * inverse;
+  const uint moves = uint(abs(last.x - block.x) + abs(last.y - block.y));
+  for (uint i = 0u;; ++i) {
+    if (edgeBlocks[uint(block.y) * blocksX + uint(block.x)] != 0u) return true;
+    if (i == moves) return false;
+    const bool stepX = block.y == last.y || (block.x != last.x && tNext.x < tNext.y);
+    if (stepX) {
+      block.x += stepSign.x;
+      tNext.x += tStep.x;
+    } else {
+      block.y += stepSign.y;
+      tNext.y += tStep.y;
+    }
+  }
+  return false;
+}
+
 // The range check at one pixel moving by v (speed > 0).
 bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   const uint steps = uint(ceil(speed));  // <= maxSpeed, the image's larger side
   const vec2 centre = vec2(pixel) + 0.5;
+  // Ranges that leave the image are clamped pixel by pixel; those take the fine walk alone.
+  const vec2 end = centre + v;
+  if (all(greaterThanEqual(end, vec2(0.0))) && end.x < float(params.width) && end.y < float(params.height) &&
+      !segmentMeetsEdgeBlock(centre, end))
+    return false;
   for (uint i = 0u; i <= steps; ++i) {
     const ivec2 p = nearestPixel(centre + v * (float(i) / float(steps)), params.width, params.height);
     if (edges[uint(p.y) * params.width + uint(p.x)] != 0u) return true;

@@ -33,6 +33,8 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
   tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
+  const uint64_t blocks = uint64_t((width + HMB_EDGE_BLOCK - 1) / HMB_EDGE_BLOCK) * ((height + HMB_EDGE_BLOCK - 1) / HMB_EDGE_BLOCK);
+  edgeBlocks_ = vk::Buffer(context_, blocks * sizeof(uint32_t), vk::MemoryUse::Device, "coarse edge mask");
   counters_ = vk::Buffer(context_, sizeof(gpu::RayMaskCounters), vk::MemoryUse::Device, "ray mask counters");
   width_ = width;
   height_ = height;
@@ -49,6 +51,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
   frame.fill(kClear, edges_, 0u);
+  frame.fill(kClear, edgeBlocks_, 0u);
   frame.fill(kClear, mask_, 0u);
   const gpu::MovingTilesParams tileParams{p.grid.count(), 0u, 0u, 0u};
   frame.dispatch(kMovingTiles, tilesKernel_, {p.tileMax, &counters_, &tiles_}, tileParams,
@@ -59,7 +62,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   const VkDeviceSize tileDispatch = offsetof(gpu::RayMaskCounters, tileDispatchX);
   const gpu::EdgeMaskParams edgeParams{width_,      height_,         p.tileSize,     p.grid.x,
                                        p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold};
-  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, layer.velocity, &objectId, &tiles_, &edges_},
+  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, layer.velocity, &objectId, &tiles_, &edges_, &edgeBlocks_},
                          edgeParams, counters_, tileDispatch);
   const gpu::RangeCheckParams rangeParams{width_,
                                           height_,
@@ -74,7 +77,8 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                                           0u,
                                           0u};
   frame.dispatchIndirect(kRangeCheck, rangeKernel_,
-                         {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId},
+                         {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId,
+                          &edgeBlocks_},
                          rangeParams, counters_, tileDispatch);
   frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_}, gpu::SizeListParams{HMB_SIZE_LIST_MASK, 0u, 0u, 0u},
                  {1, 1, 1});

@@ -65,7 +65,8 @@ class RayMaskStage {
   vk::ComputeKernel tilesKernel_, edgeKernel_, rangeKernel_, sizeKernel_;
   uint32_t width_ = 0, height_ = 0;
   vk::Buffer edges_, mask_, list_, counters_;
-  vk::Buffer tiles_;  // moving tiles: at most one per pixel, whatever the tile size
+  vk::Buffer tiles_;       // moving tiles: at most one per pixel, whatever the tile size
+  vk::Buffer edgeBlocks_;  // coarse edge mask: uint per HMB_EDGE_BLOCK^2 block
 };
 
 }  // namespace hmb::passes
