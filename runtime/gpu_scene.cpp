@@ -52,6 +52,14 @@ FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint
   return camera;
 }
 
+bool anythingMovesOnScreen(const scene::Scene& scene, float t) {
+  const float previous = t - 1.0f / scene.settings.fps;
+  if (cameraWorld(scene, t) != cameraWorld(scene, previous)) return true;
+  return std::any_of(scene.instances.begin(), scene.instances.end(), [&](const scene::Instance& instance) {
+    return scene.worldMatrixAt(instance.node, t) != scene.worldMatrixAt(instance.node, previous);
+  });
+}
+
 GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   std::vector<gpu::GpuVertex> vertices;
   std::vector<uint32_t> meshVertexBase;

@@ -26,6 +26,11 @@ struct FrameCamera {
 // The camera at frame time t for an image of the given size; the previous frame is t - 1/fps.
 FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
 
+// Whether anything can move on screen between the previous frame (t - 1/fps) and t: the
+// camera or any instance's world transform differs. When nothing does, every screen velocity
+// is 0 and the blur passes return the sharp colour.
+bool anythingMovesOnScreen(const scene::Scene& scene, float t);
+
 class GpuScene {
  public:
   GpuScene(const vk::Context& context, const scene::Scene& scene);

@@ -196,21 +196,36 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     passes::GBufferStage& gbuffer = passes_->gbuffer;
     gbuffer.prepare(gpuScene, width, height);
     gbuffer.plan(result.plan);
-    const bool hybrid = settings.method == "hybrid";
-    const bool blur = settings.method == "postprocess" || hybrid;
+    // With nothing moving on screen every velocity is 0: the gather returns each pixel's own
+    // colour and the hybrid's mask is empty, so the blur's passes are left out.
+    const bool blurMethod = settings.method == "postprocess" || settings.method == "hybrid";
+    const bool still = blurMethod && settings.skipUnneededPasses && !anythingMovesOnScreen(scene, result.frameTime);
+    const bool hybrid = settings.method == "hybrid" && !still;
+    const bool blur = blurMethod && !still;
     vk::Buffer blurred;
-    if (hybrid) {
+    if (settings.method == "hybrid") {
       result.hybrid.emplace();
       result.hybrid->settings = hybridSettingsFor(scene, settings);
     }
-    if (blur) {
-      result.postprocess = postProcessSettingsFor(scene, settings);
-      if (hybrid) {
-        result.postprocess->maskBackgroundBoost = result.hybrid->settings.maskBackgroundBoost;
-        result.postprocess->maskForegroundDivide = result.hybrid->settings.maskForegroundDivide;
-        if (!settings.postprocess.foregroundBoost)
-          result.postprocess->foregroundBoost = result.hybrid->settings.foregroundBoost;
+    if (blurMethod) result.postprocess = postProcessSettingsFor(scene, settings);
+    if (result.hybrid) {
+      result.postprocess->maskBackgroundBoost = result.hybrid->settings.maskBackgroundBoost;
+      result.postprocess->maskForegroundDivide = result.hybrid->settings.maskForegroundDivide;
+      if (!settings.postprocess.foregroundBoost) result.postprocess->foregroundBoost = result.hybrid->settings.foregroundBoost;
+    }
+    if (still) {
+      FramePlan blurPlan;
+      if (settings.method == "hybrid") {
+        passes_->hybrid.plan(blurPlan);
+      } else {
+        passes_->postProcess.configure(*result.postprocess);
+        passes_->postProcess.plan(blurPlan);
       }
+      for (const PlannedPass& pass : blurPlan.passes())
+        result.plan.skip(pass.name, "nothing moves on screen at this frame: every velocity is 0, so the blur "
+                                    "returns the sharp colour");
+    }
+    if (blur) {
       passes_->postProcess.configure(*result.postprocess);
       passes_->postProcess.prepare(width, height);
       if (hybrid)
@@ -256,6 +271,13 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
                     {vec4Layer("", {"R", "G", "B", "A"}, beauty.download<glm::vec4>()),
                      vec4Layer("depth", {"Z"}, depth), vec4Layer("normal", {"X", "Y", "Z"}, normalDepth),
                      vec4Layer("velocity", {"X", "Y"}, velocity), std::move(objectId)}};
+    if (settings.method == "hybrid" && still) {
+      // The same layers as a frame that ran the hybrid's passes: an empty mask, nothing revealed.
+      result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::vector<uint32_t>(pixels, 0u)});
+      result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, std::vector<glm::vec4>(pixels, glm::vec4(0.0f))));
+      result.image.layers.push_back(vec4Layer("revealedDepth", {"Z"}, std::vector<glm::vec4>(pixels, glm::vec4(0.0f))));
+      result.image.layers.push_back(io::ImageLayer{"revealedObjectId", {"id"}, true, {}, std::vector<uint32_t>(pixels, 0u)});
+    }
     if (hybrid) {
       const passes::RayMaskCounts counts = passes_->hybrid.rayMask().counts();
       result.hybrid->maskPixels = counts.maskPixels;

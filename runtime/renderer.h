@@ -59,6 +59,9 @@ struct RenderSettings {
   passes::ReferenceSettings reference;
   PostProcessChoices postprocess;  // postprocess and hybrid
   HybridChoices hybrid;
+  // Leave out the passes that cannot change the image (the plan lists them as skipped, with
+  // why); false runs every pass, to check that leaving them out changes nothing.
+  bool skipUnneededPasses = true;
   // Long methods (the reference) report how far they are after every submission.
   std::function<void(const passes::ReferenceProgress&)> onProgress;
 };

@@ -43,6 +43,7 @@ struct RenderOptions {
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;
+  bool runEveryPass = false;
   std::string out;
   std::string report;
   hmb::passes::ReferenceSettings reference;
@@ -182,6 +183,7 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   settings.width = options.width;
   settings.height = options.height;
   settings.frameTime = options.frameTime;
+  settings.skipUnneededPasses = !options.runEveryPass;
   settings.reference = options.reference;
   settings.postprocess = options.postprocess;
   settings.hybrid = options.hybrid;
@@ -342,6 +344,9 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--width", renderOptions.width, "Image width in pixels")->capture_default_str();
   renderCmd->add_option("--height", renderOptions.height, "Image height in pixels")->capture_default_str();
   renderCmd->add_option("--frame-time", renderOptions.frameTime, "Time of the frame in seconds (shutter closes then)");
+  renderCmd->add_flag("--run-every-pass", renderOptions.runEveryPass,
+                      "Run the passes that cannot change this frame too (by default they are skipped; the report "
+                      "says which and why)");
   renderCmd->add_option("--out", renderOptions.out, "Output image: .exr (beauty + AOV layers) or .png (display)");
   renderCmd->add_option("--report", renderOptions.report, "JSON report: device, settings, per-pass times");
   renderCmd->add_option("--filter", renderOptions.postprocess.filter, "postprocess: mcguire (default) or jimenez");

@@ -1,0 +1,103 @@
+// The frame plan leaves out the passes that cannot change the frame, and says why. Each skip
+// is checked against the same frame with every pass run: the images must be identical.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "runtime/gpu_scene.h"
+#include "runtime/renderer.h"
+#include "scenes/load_scene.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using FramePlanSkipsTest = VulkanTest;
+
+// The living room's vase slides over [0, 0.4] s; at 0.45 s (previous frame 0.4417 s) nothing moves.
+constexpr float kMovingTime = 0.2f;
+constexpr float kStillTime = 0.45f;
+
+RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::string& method, float time,
+                      bool skip) {
+  RenderSettings settings;
+  settings.method = method;
+  settings.width = 64;
+  settings.height = 36;
+  settings.frameTime = time;
+  settings.skipUnneededPasses = skip;
+  return renderer.render(scene, settings);
+}
+
+std::vector<std::string> skippedPasses(const RenderResult& result) {
+  std::vector<std::string> names;
+  for (const PlannedPass& pass : result.plan.passes())
+    if (!pass.run) names.push_back(pass.name);
+  return names;
+}
+
+TEST(AnythingMovesOnScreenTest, FollowsTheSceneAnimation) {
+  const scene::Scene room = scene::loadScene("living-room");
+  EXPECT_TRUE(anythingMovesOnScreen(room, kMovingTime));
+  EXPECT_FALSE(anythingMovesOnScreen(room, kStillTime));
+  EXPECT_TRUE(anythingMovesOnScreen(room, 0.4f + 0.5f / room.settings.fps));  // the previous frame still moved
+  EXPECT_TRUE(anythingMovesOnScreen(scene::loadScene("bistro"), 1.0f));       // the camera moves
+  EXPECT_FALSE(anythingMovesOnScreen(scene::Scene{}, 0.0f));
+}
+
+TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
+  Renderer renderer(context());
+  const scene::Scene room = scene::loadScene("living-room");
+  for (const char* method : {"postprocess", "hybrid"}) {
+    const RenderResult skipped = renderAt(renderer, room, method, kStillTime, true);
+    const RenderResult everything = renderAt(renderer, room, method, kStillTime, false);
+    EXPECT_TRUE(skippedPasses(everything).empty()) << method;
+    const std::vector<std::string> names = skippedPasses(skipped);
+    for (const char* pass : {"tile-max", "neighbor-max"})
+      EXPECT_NE(std::find(names.begin(), names.end(), pass), names.end()) << method << " " << pass;
+    const std::vector<std::string> blur = std::string(method) == "hybrid"
+                                              ? std::vector<std::string>{"hybrid-bvh-meshes", "ray-reveal", "gather-composite"}
+                                              : std::vector<std::string>{"gather"};
+    for (const std::string& pass : blur)
+      EXPECT_NE(std::find(names.begin(), names.end(), pass), names.end()) << method << " " << pass;
+    for (const PlannedPass& pass : skipped.plan.passes())
+      if (!pass.run) {
+        EXPECT_FALSE(pass.reason.empty()) << pass.name;
+        EXPECT_FALSE(pass.milliseconds.has_value()) << pass.name;
+      }
+    EXPECT_TRUE(skipped.plan.runs("resolve-gbuffer")) << method;
+
+    // Every layer, bit for bit, and the display image.
+    ASSERT_EQ(skipped.image.layers.size(), everything.image.layers.size()) << method;
+    for (size_t i = 0; i < skipped.image.layers.size(); ++i) {
+      const io::ImageLayer& a = skipped.image.layers[i];
+      const io::ImageLayer& b = everything.image.layers[i];
+      EXPECT_EQ(a.name, b.name) << method;
+      EXPECT_EQ(a.values, b.values) << method << " layer '" << a.name << "'";
+      EXPECT_EQ(a.ids, b.ids) << method << " layer '" << a.name << "'";
+    }
+    EXPECT_EQ(skipped.display.pixels, everything.display.pixels) << method;
+    if (skipped.hybrid) {
+      EXPECT_EQ(skipped.hybrid->maskPixels, 0u);
+      EXPECT_EQ(everything.hybrid->maskPixels, 0u);
+      EXPECT_EQ(everything.hybrid->revealRays, 0u);
+      EXPECT_EQ(skipped.hybrid->settings.foregroundBoost, everything.hybrid->settings.foregroundBoost);
+    }
+    EXPECT_EQ(skipped.postprocess->effectiveForegroundBoost(), everything.postprocess->effectiveForegroundBoost());
+  }
+}
+
+TEST_F(FramePlanSkipsTest, AMovingFrameRunsTheBlur) {
+  Renderer renderer(context());
+  const scene::Scene room = scene::loadScene("living-room");
+  for (const char* method : {"postprocess", "hybrid"}) {
+    const RenderResult result = renderAt(renderer, room, method, kMovingTime, true);
+    EXPECT_TRUE(skippedPasses(result).empty()) << method;
+    EXPECT_TRUE(result.plan.runs("tile-max")) << method;
+  }
+}
+
+}  // namespace
+}  // namespace hmb::test
