@@ -3,7 +3,9 @@
 // device, driver, CPU, LP_NUM_THREADS and git revision (bench/README.md). Errors are one line
 // on stderr and a non-zero exit.
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 
 #include "bench/bvh_suite.h"
 #include "bench/embree_reference.h"
+#include "bench/error_time_suite.h"
 #include "bench/raster_suite.h"
 #include "runtime/error.h"
 #include "runtime/report.h"
@@ -48,6 +51,18 @@ struct BvhOptions {
   int warmup = 1;
   int repeats = 3;
   int embreeThreads = 0;
+};
+
+struct ErrorTimeOptions {
+  std::string out = "bench/results/error-vs-time/error-vs-time.json";
+  std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
+  std::string size = "1280x720";
+  std::string referenceDir;
+  uint32_t judgeSpp = 1024;
+  std::vector<uint32_t> referenceSpp = {1, 2, 4, 8, 16, 32, 64, 128, 256};
+  int warmup = 1;
+  int repeats = 3;
+  int referenceRepeats = 1;
 };
 
 // The command as typed, for the report (arguments with spaces quoted).
@@ -174,6 +189,66 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   return kOk;
 }
 
+int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, const std::string& command) {
+  hmb::bench::ErrorTimeSuiteOptions suite;
+  suite.scenes = options.scenes;
+  suite.size = hmb::bench::parseImageSize(options.size);
+  suite.referenceDir = options.referenceDir;
+  suite.judgeSpp = options.judgeSpp;
+  suite.referenceSpp = options.referenceSpp;
+  suite.warmup = options.warmup;
+  suite.repeats = options.repeats;
+  suite.referenceRepeats = options.referenceRepeats;
+  checkOutputDirectory(options.out);
+  if (!suite.referenceDir.empty() && !fs::is_directory(suite.referenceDir))
+    throw hmb::Error("--reference-dir '" + suite.referenceDir + "' is not a directory");
+  hmb::vk::ContextOptions contextOptions;
+  contextOptions.deviceIndex = global.device;
+  hmb::vk::Context context(contextOptions);
+  const auto progress = [&](const std::string& message) {
+    if (!global.quiet) std::cerr << "hmblur-bench: " << message << '\n';
+  };
+  progress("device: " + context.info().name);
+  const std::vector<hmb::bench::ErrorTimeScene> scenes = hmb::bench::runErrorTimeSuite(context, suite, progress);
+
+  const hmb::SystemInfo system = hmb::querySystemInfo();
+  std::ostringstream header;
+  header << "Device " << context.info().name << " (" << context.info().driverInfo << "), CPU " << system.cpu << ", "
+         << system.hardwareThreads << " hardware threads, LP_NUM_THREADS "
+         << system.lpNumThreads << ", revision " << system.gitRevision
+         << ". " << suite.size.width << "x" << suite.size.height << "; median device time (timestamp queries) of "
+         << suite.repeats << " renders after " << suite.warmup << " warm-up (reference: " << suite.referenceRepeats
+         << ", no warm-up). Command: `" << command << "`";
+  hmb::bench::writeErrorTimeMarkdown(std::cout, scenes, header.str());
+  if (options.out.empty()) return kOk;
+  nlohmann::json report = {
+      {"suite", "error-vs-time"},
+      {"what", "error (PSNR, SSIM; frame and blur region) against a high-spp judge, and median frame time, of every "
+               "method over a range of settings"},
+      {"command", command},
+      {"date", hmb::utcTimestamp()},
+      {"device", hmb::deviceJson(context.info())},
+      {"system", hmb::systemJson(system)},
+      {"settings",
+       {{"size", options.size},
+        {"warmup", suite.warmup},
+        {"repeats", suite.repeats},
+        {"reference_repeats", suite.referenceRepeats},
+        {"judge_spp", suite.referenceDir.empty() ? nlohmann::json(suite.judgeSpp) : nlohmann::json(nullptr)},
+        {"reference_spp", suite.referenceSpp}}},
+      {"scenes", nlohmann::json::array()},
+  };
+  for (const auto& s : scenes) report["scenes"].push_back(hmb::bench::errorTimeSceneJson(s));
+  hmb::writeJson(options.out, report);
+  const fs::path stem = fs::path(options.out).replace_extension();
+  std::ofstream csv(stem.string() + ".csv"), markdown(stem.string() + ".md");
+  hmb::bench::writeErrorTimeCsv(csv, scenes);
+  hmb::bench::writeErrorTimeMarkdown(markdown, scenes, header.str());
+  if (!csv || !markdown) throw hmb::Error("could not write " + stem.string() + ".csv / .md");
+  progress("wrote " + options.out + ", " + stem.string() + ".csv and .md");
+  return kOk;
+}
+
 // --out, --warmup and --repeats, which every suite has.
 void addCommonOptions(CLI::App& command, std::string& out, int& warmup, int& repeats) {
   command.add_option("--out", out, "JSON results file (empty: none)")->capture_default_str();
@@ -217,6 +292,27 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
 
+  ErrorTimeOptions errorTimeOptions;
+  CLI::App* errorTimeCmd = app.add_subcommand(
+      "error-vs-time", "Error against a high-spp judge and median frame time of every method over its settings");
+  addCommonOptions(*errorTimeCmd, errorTimeOptions.out, errorTimeOptions.warmup, errorTimeOptions.repeats);
+  errorTimeCmd->add_option("--scenes", errorTimeOptions.scenes, "Reference scene names or glTF files, comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  errorTimeCmd->add_option("--size", errorTimeOptions.size, "Image size, WIDTHxHEIGHT")->capture_default_str();
+  errorTimeCmd->add_option("--reference-dir", errorTimeOptions.referenceDir,
+                           "Judges from DIR/SCENE-reference.exr (default: rendered here at --judge-spp)");
+  errorTimeCmd->add_option("--judge-spp", errorTimeOptions.judgeSpp, "Samples per pixel of a judge rendered here")
+      ->check(CLI::Range(1u, 65536u))
+      ->capture_default_str();
+  errorTimeCmd->add_option("--reference-spp", errorTimeOptions.referenceSpp, "The reference's spp series, comma separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 65536u))
+      ->capture_default_str();
+  errorTimeCmd->add_option("--reference-repeats", errorTimeOptions.referenceRepeats, "Timed renders per reference spp")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -226,6 +322,7 @@ int main(int argc, char** argv) {
   try {
     if (*rasterCmd) return raster(global, rasterOptions, commandLine(argc, argv));
     if (*bvhCmd) return bvh(global, bvhOptions, commandLine(argc, argv));
+    if (*errorTimeCmd) return errorTime(global, errorTimeOptions, commandLine(argc, argv));
   } catch (const std::exception& e) {
     std::cerr << "hmblur-bench: error: " << e.what() << '\n';
     return kError;

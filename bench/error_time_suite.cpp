@@ -1,0 +1,254 @@
+#include "bench/error_time_suite.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "runtime/error.h"
+#include "runtime/metrics/display_image.h"
+#include "runtime/metrics/metrics.h"
+#include "runtime/vulkan/context.h"
+#include "scenes/load_scene.h"
+
+namespace fs = std::filesystem;
+
+namespace hmb::bench {
+namespace {
+
+struct Config {
+  std::string label, series;
+  double parameter = 0;
+  RenderSettings settings;
+};
+
+std::string fixed(double value, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << value;
+  return s.str();
+}
+
+// Every configuration of one scene, in plot order: sharp, the post-process and hybrid series,
+// then the reference's spp series.
+std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
+  std::vector<Config> configs;
+  const auto add = [&](std::string label, std::string series, double parameter, const std::string& method) {
+    Config c{std::move(label), std::move(series), parameter, {}};
+    c.settings.method = method;
+    c.settings.width = o.size.width;
+    c.settings.height = o.size.height;
+    configs.push_back(std::move(c));
+    return &configs.back().settings;
+  };
+  add("sharp", "sharp", 0, "sharp");
+  for (const char* range : {"centered", "adapted"})
+    for (const uint32_t s : o.samples) {
+      RenderSettings* settings = add(std::string("postprocess ") + range + " S" + std::to_string(s),
+                                     std::string("postprocess ") + range, s, "postprocess");
+      settings->postprocess.range = range;
+      settings->postprocess.samples = s;
+    }
+  for (const uint32_t s : o.samples) add("hybrid S" + std::to_string(s), "hybrid", s, "hybrid")->postprocess.samples = s;
+  for (const uint32_t r : o.recursionLimits) {
+    RenderSettings* settings = add("hybrid luminance stop R" + std::to_string(r), "hybrid luminance stop", r, "hybrid");
+    settings->hybrid.stop = "luminance";
+    settings->hybrid.maxRecursion = r;
+  }
+  for (const float e : o.edgeThresholds)
+    add("hybrid e" + fixed(e, 2), "hybrid edge threshold", e, "hybrid")->hybrid.edgeThreshold = e;
+  for (const uint32_t spp : o.referenceSpp) {
+    RenderSettings* settings = add("reference " + std::to_string(spp) + " spp", "reference", spp, "reference");
+    settings->reference.samplesPerPixel = spp;
+    settings->reference.seed = 2;
+  }
+  return configs;
+}
+
+metrics::DisplayImage displayOf(const RenderResult& r) { return metrics::displayImageFromRgba8(r.display); }
+
+// The frame's device time without the per-scene setup (the meshes' BVHs, built once per scene):
+// the hybrid's frame time leaves it out already, the reference's counts it, so it is taken out
+// here for both to be timed alike.
+double frameMillisecondsWithoutSetup(const RenderResult& r) {
+  double ms = *r.frameMilliseconds;
+  if (r.method == "reference")
+    for (const PlannedPass& pass : r.plan.passes())
+      if (pass.name == passes::ReferenceStage::kBvhMeshes && pass.milliseconds) ms -= *pass.milliseconds;
+  return ms;
+}
+
+std::string sceneStem(const std::string& scene) {
+  const fs::path path(scene);
+  return path.has_extension() ? path.stem().string() : scene;
+}
+
+ErrorTimeScene runScene(Renderer& renderer, const std::string& name, const ErrorTimeSuiteOptions& o,
+                        const Progress& progress) {
+  const scene::Scene scene = scene::loadScene(name);
+  ErrorTimeScene result;
+  result.scene = name;
+  metrics::DisplayImage judge;
+  if (!o.referenceDir.empty()) {
+    const fs::path path = fs::path(o.referenceDir) / (sceneStem(name) + "-reference.exr");
+    judge = metrics::loadDisplayImage(path);
+    if (judge.width != o.size.width || judge.height != o.size.height)
+      throw Error("judge " + path.string() + " is " + metrics::sizeText(judge.width, judge.height) + ", not " +
+                  metrics::sizeText(o.size.width, o.size.height));
+    result.judge = path.filename().string();
+  } else {
+    RenderSettings settings;
+    settings.method = "reference";
+    settings.width = o.size.width;
+    settings.height = o.size.height;
+    settings.reference.samplesPerPixel = o.judgeSpp;
+    settings.reference.seed = 1;
+    settings.onProgress = [&](const passes::ReferenceProgress& p) {
+      if (p.samplesDone % 64 == 0 || p.samplesDone == p.samplesTotal)
+        progress(name + ": judge " + std::to_string(p.samplesDone) + "/" + std::to_string(p.samplesTotal) + " spp");
+    };
+    judge = displayOf(renderer.render(scene, settings));
+    result.judge = "rendered here, " + std::to_string(o.judgeSpp) + " spp, seed 1";
+  }
+
+  std::optional<metrics::BlurRegion> region;
+  for (const Config& config : configurations(o)) {
+    const bool reference = config.settings.method == "reference";
+    const int warmup = reference ? 0 : o.warmup;
+    const int repeats = reference ? o.referenceRepeats : o.repeats;
+    progress(name + ": " + config.label);
+    std::vector<double> times;
+    RenderResult last;
+    for (int i = 0; i < warmup + repeats; ++i) {
+      last = renderer.render(scene, config.settings);
+      if (!last.frameMilliseconds) throw Error("the device gives no timestamps: frame times cannot be measured");
+      if (i >= warmup) times.push_back(frameMillisecondsWithoutSetup(last));
+    }
+    const metrics::DisplayImage image = displayOf(last);
+    if (!region) region = metrics::blurRegion(judge, image);  // the first case is the sharp frame
+    const metrics::Comparison error = metrics::compareImages(judge, image, &*region);
+    ErrorTimeCase c;
+    c.scene = name;
+    c.method = config.settings.method;
+    c.label = config.label;
+    c.series = config.series;
+    c.parameter = config.parameter;
+    c.frameMilliseconds = summarize(times);
+    c.framePsnr = error.frame.psnr;
+    c.frameSsim = error.frame.ssim.value_or(NAN);
+    if (error.region) {
+      c.regionPsnr = error.region->psnr;
+      c.regionSsim = error.region->ssim;
+    }
+    if (last.hybrid) {
+      c.maskPixels = last.hybrid->maskPixels;
+      c.revealRays = last.hybrid->revealRays;
+    }
+    result.cases.push_back(std::move(c));
+  }
+  result.regionPixels = region ? region->pixelCount : 0;
+
+  // Hybrid at its defaults: the samples series' case at the default sample count.
+  const uint32_t defaultSamples = passes::PostProcessSettings{}.samples;
+  const auto hybrid = std::find_if(result.cases.begin(), result.cases.end(), [&](const ErrorTimeCase& c) {
+    return c.series == "hybrid" && c.parameter == defaultSamples;
+  });
+  if (hybrid != result.cases.end() && hybrid->regionPsnr) {
+    ErrorTimeScene::Match m;
+    m.hybridRegionPsnr = *hybrid->regionPsnr;
+    m.hybridMilliseconds = hybrid->frameMilliseconds.median;
+    for (const ErrorTimeCase& c : result.cases) {
+      if (c.series != "reference" || !c.regionPsnr) continue;
+      m.referenceMilliseconds = c.frameMilliseconds.median;
+      if (*c.regionPsnr >= m.hybridRegionPsnr) {
+        m.spp = static_cast<uint32_t>(c.parameter);
+        break;
+      }
+    }
+    m.timeRatio = m.hybridMilliseconds > 0 ? m.referenceMilliseconds / m.hybridMilliseconds : NAN;
+    result.match = m;
+  }
+  return result;
+}
+
+nlohmann::json optionalJson(const std::optional<double>& value) {
+  return value && std::isfinite(*value) ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+std::string optionalText(const std::optional<double>& value, int digits) {
+  return value && std::isfinite(*value) ? fixed(*value, digits) : "-";
+}
+
+}  // namespace
+
+std::vector<ErrorTimeScene> runErrorTimeSuite(vk::Context& context, const ErrorTimeSuiteOptions& options,
+                                              const Progress& progress) {
+  if (options.repeats < 1 || options.referenceRepeats < 1) throw Error("error-vs-time: repeats must be at least 1");
+  if (options.scenes.empty()) throw Error("error-vs-time: no scenes");
+  Renderer renderer(context);
+  std::vector<ErrorTimeScene> scenes;
+  for (const std::string& scene : options.scenes) scenes.push_back(runScene(renderer, scene, options, progress));
+  return scenes;
+}
+
+nlohmann::json errorTimeSceneJson(const ErrorTimeScene& s) {
+  nlohmann::json j = {{"scene", s.scene}, {"judge", s.judge}, {"region_pixels", s.regionPixels},
+                      {"cases", nlohmann::json::array()}, {"hybrid_vs_reference", nullptr}};
+  for (const ErrorTimeCase& c : s.cases) {
+    nlohmann::json entry = {{"method", c.method},
+                            {"label", c.label},
+                            {"series", c.series},
+                            {"parameter", c.parameter},
+                            {"frame_ms", summaryJson(c.frameMilliseconds)},
+                            {"frame", {{"psnr_db", optionalJson(c.framePsnr)}, {"ssim", optionalJson(c.frameSsim)}}},
+                            {"region", {{"psnr_db", optionalJson(c.regionPsnr)}, {"ssim", optionalJson(c.regionSsim)}}}};
+    if (c.method == "hybrid") {
+      entry["mask_pixels"] = c.maskPixels;
+      entry["reveal_rays"] = c.revealRays;
+    }
+    j["cases"].push_back(std::move(entry));
+  }
+  if (s.match)
+    j["hybrid_vs_reference"] = {{"hybrid_region_psnr_db", s.match->hybridRegionPsnr},
+                                {"hybrid_ms", s.match->hybridMilliseconds},
+                                {"matching_spp", s.match->spp ? nlohmann::json(*s.match->spp) : nlohmann::json(nullptr)},
+                                {"reference_ms", s.match->referenceMilliseconds},
+                                {"time_ratio", optionalJson(s.match->timeRatio)}};
+  return j;
+}
+
+void writeErrorTimeCsv(std::ostream& out, const std::vector<ErrorTimeScene>& scenes) {
+  out << "scene,method,label,series,parameter,median_ms,frame_psnr_db,frame_ssim,region_psnr_db,region_ssim\n";
+  for (const ErrorTimeScene& s : scenes)
+    for (const ErrorTimeCase& c : s.cases)
+      out << s.scene << ',' << c.method << ',' << c.label << ',' << c.series << ',' << c.parameter << ','
+          << fixed(c.frameMilliseconds.median, 3) << ',' << optionalText(c.framePsnr, 3) << ','
+          << optionalText(c.frameSsim, 4) << ',' << optionalText(c.regionPsnr, 3) << ','
+          << optionalText(c.regionSsim, 4) << '\n';
+}
+
+void writeErrorTimeMarkdown(std::ostream& out, const std::vector<ErrorTimeScene>& scenes, const std::string& context) {
+  out << "# Error against run time\n\n" << context << "\n";
+  for (const ErrorTimeScene& s : scenes) {
+    out << "\n## " << s.scene << "\n\nJudge: " << s.judge << "; blur region " << s.regionPixels << " pixels.\n\n";
+    if (s.match) {
+      const auto& m = *s.match;
+      out << "Hybrid (defaults) reaches " << fixed(m.hybridRegionPsnr, 2) << " dB over the blur region in "
+          << fixed(m.hybridMilliseconds, 1) << " ms. ";
+      if (m.spp)
+        out << "The reference first matches it at " << *m.spp << " spp, in " << fixed(m.referenceMilliseconds, 1)
+            << " ms: **" << fixed(m.timeRatio, 1) << "x** hybrid's time.\n\n";
+      else
+        out << "No reference tried matches it; the largest took " << fixed(m.referenceMilliseconds, 1)
+            << " ms: more than **" << fixed(m.timeRatio, 1) << "x** hybrid's time.\n\n";
+    }
+    out << "| case | median ms | frame PSNR dB | frame SSIM | region PSNR dB | region SSIM |\n"
+        << "|---|---:|---:|---:|---:|---:|\n";
+    for (const ErrorTimeCase& c : s.cases)
+      out << "| " << c.label << " | " << fixed(c.frameMilliseconds.median, 1) << " | " << optionalText(c.framePsnr, 2)
+          << " | " << optionalText(c.frameSsim, 4) << " | " << optionalText(c.regionPsnr, 2) << " | "
+          << optionalText(c.regionSsim, 4) << " |\n";
+  }
+}
+
+}  // namespace hmb::bench

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Error against run time, one PNG per scene, from hmblur-bench error-vs-time's JSON.
+
+Blur-region PSNR (higher is better) against median frame time (log axis); one curve per
+series (post-process centred and adapted over sample counts, hybrid over sample counts,
+recursion limits and edge thresholds, the reference over spp), the sharp frame as a point, and
+the Pareto front (no other case both faster and closer) drawn through the cases on it.
+
+Usage: bench/scripts/plot_error_vs_time.py RESULTS.json [OUT_DIR]   (default: beside the JSON)
+"""
+import json
+import os
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+path = sys.argv[1]
+out_dir = sys.argv[2] if len(sys.argv) > 2 else os.path.dirname(os.path.abspath(path))
+with open(path) as f:
+    results = json.load(f)
+
+styles = {
+    "sharp": dict(marker="s", color="black"),
+    "postprocess centered": dict(marker="v", color="tab:orange"),
+    "postprocess adapted": dict(marker="^", color="tab:red"),
+    "hybrid": dict(marker="o", color="tab:blue"),
+    "hybrid luminance stop": dict(marker="D", color="tab:cyan"),
+    "hybrid edge threshold": dict(marker="P", color="tab:purple"),
+    "reference": dict(marker="*", color="tab:green"),
+}
+
+for scene in results["scenes"]:
+    cases = [c for c in scene["cases"] if c["region"]["psnr_db"] is not None]
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for series in dict.fromkeys(c["series"] for c in cases):
+        members = [c for c in cases if c["series"] == series]
+        xs = [c["frame_ms"]["median"] for c in members]
+        ys = [c["region"]["psnr_db"] for c in members]
+        style = styles.get(series, dict(marker="x", color="grey"))
+        ax.plot(xs, ys, linestyle="-" if len(members) > 1 else "none", linewidth=1, label=series, **style)
+        if series == "reference":
+            for c, x, y in zip(members, xs, ys):
+                ax.annotate(f"{c['parameter']:g}", (x, y), textcoords="offset points", xytext=(4, -10), fontsize=7)
+    # Pareto front: sorted by time, each case closer than every faster one.
+    front, best = [], float("-inf")
+    for c in sorted(cases, key=lambda c: (c["frame_ms"]["median"], -c["region"]["psnr_db"])):
+        if c["region"]["psnr_db"] > best:
+            front.append(c)
+            best = c["region"]["psnr_db"]
+    ax.step([c["frame_ms"]["median"] for c in front], [c["region"]["psnr_db"] for c in front], where="post",
+            color="grey", linewidth=2.5, alpha=0.35, label="Pareto front")
+    ax.scatter([c["frame_ms"]["median"] for c in front], [c["region"]["psnr_db"] for c in front], s=120,
+               facecolors="none", edgecolors="grey", linewidths=1.2)
+    ax.set_xscale("log")
+    ax.set_xlabel("median frame time (ms, device timestamps; log scale)")
+    ax.set_ylabel("blur-region PSNR against the judge (dB)")
+    title = f"{scene['scene']}: error against run time ({results['settings']['size']})"
+    match = scene.get("hybrid_vs_reference")
+    if match and match.get("time_ratio") is not None:
+        spp = match["matching_spp"]
+        title += (f"\nreference matches hybrid at {spp} spp, {match['time_ratio']:.1f}x its time" if spp
+                  else f"\nno reference tried matches hybrid (largest: {match['time_ratio']:.1f}x its time)")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="best")
+    fig.tight_layout()
+    target = os.path.join(out_dir, f"{os.path.basename(scene['scene']).split('.')[0]}-error-vs-time.png")
+    fig.savefig(target, dpi=100)
+    plt.close(fig)
+    print(target)
