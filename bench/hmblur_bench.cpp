@@ -249,6 +249,12 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
   return kOk;
 }
 
+// A comma-separated list of scenes.
+void addScenesOption(CLI::App& command, std::vector<std::string>& scenes,
+                     const std::string& what = "Reference scene names or glTF files") {
+  command.add_option("--scenes", scenes, what + ", comma separated")->delimiter(',')->capture_default_str();
+}
+
 // --out, --warmup and --repeats, which every suite has.
 void addCommonOptions(CLI::App& command, std::string& out, int& warmup, int& repeats) {
   command.add_option("--out", out, "JSON results file (empty: none)")->capture_default_str();
@@ -276,17 +282,13 @@ int main(int argc, char** argv) {
   rasterCmd->add_option("--sizes", rasterOptions.sizes, "Image sizes, WIDTHxHEIGHT, comma separated")
       ->delimiter(',')
       ->capture_default_str();
-  rasterCmd->add_option("--scenes", rasterOptions.scenes, "Reference scene names or glTF files, comma separated")
-      ->delimiter(',')
-      ->capture_default_str();
+  addScenesOption(*rasterCmd, rasterOptions.scenes);
 
   BvhOptions bvhOptions;
   CLI::App* bvhCmd = app.add_subcommand(
       "bvh", "Device BVH build and trace vs the CPU full-sweep SAH build and Embree, same triangles and rays");
   addCommonOptions(*bvhCmd, bvhOptions.out, bvhOptions.warmup, bvhOptions.repeats);
-  bvhCmd->add_option("--scenes", bvhOptions.scenes, "Reference scenes, glTF files or cube-sphere-1m, comma separated")
-      ->delimiter(',')
-      ->capture_default_str();
+  addScenesOption(*bvhCmd, bvhOptions.scenes, "Reference scenes, glTF files or cube-sphere-1m");
   bvhCmd->add_option("--embree-threads", bvhOptions.embreeThreads,
                      "Embree's threads (0: LP_NUM_THREADS when set, else every hardware thread)")
       ->check(CLI::NonNegativeNumber)
@@ -296,9 +298,7 @@ int main(int argc, char** argv) {
   CLI::App* errorTimeCmd = app.add_subcommand(
       "error-vs-time", "Error against a high-spp judge and median frame time of every method over its settings");
   addCommonOptions(*errorTimeCmd, errorTimeOptions.out, errorTimeOptions.warmup, errorTimeOptions.repeats);
-  errorTimeCmd->add_option("--scenes", errorTimeOptions.scenes, "Reference scene names or glTF files, comma separated")
-      ->delimiter(',')
-      ->capture_default_str();
+  addScenesOption(*errorTimeCmd, errorTimeOptions.scenes);
   errorTimeCmd->add_option("--size", errorTimeOptions.size, "Image size, WIDTHxHEIGHT")->capture_default_str();
   errorTimeCmd->add_option("--reference-dir", errorTimeOptions.referenceDir,
                            "Judges from DIR/SCENE-reference.exr (default: rendered here at --judge-spp)");
