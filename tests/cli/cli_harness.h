@@ -1,6 +1,6 @@
-// Running the hmblur executable as a user does (HMB_CLI_PATH): its output, exit code and the
-// shape of its errors. Every command runs with --validation, so a validation error fails it
-// with exit code 3.
+// Running the hmblur executable (HMB_CLI_PATH) and the example programs as a user does: their
+// output, exit code and the shape of their errors. Every hmblur command runs with
+// --validation, so a validation error fails it with exit code 3.
 #pragma once
 
 #include <sys/wait.h>
@@ -20,8 +20,9 @@ struct CliRun {
   std::string output;  // stdout and stderr together
 };
 
-inline CliRun hmblur(const std::string& args) {
-  const std::string command = std::string(HMB_CLI_PATH) + " --validation " + args + " 2>&1";
+// Runs `program args` through the shell, stdout and stderr together.
+inline CliRun runProgram(const std::string& program, const std::string& args) {
+  const std::string command = program + " " + args + " 2>&1";
   CliRun run;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return run;
@@ -31,6 +32,8 @@ inline CliRun hmblur(const std::string& args) {
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
 }
+
+inline CliRun hmblur(const std::string& args) { return runProgram(HMB_CLI_PATH, "--validation " + args); }
 
 // An empty folder of the test's own under the test temp dir.
 inline std::filesystem::path tempDir(const std::string& name) {

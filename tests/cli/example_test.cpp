@@ -1,0 +1,48 @@
+// The example program (examples/render_frame.cpp) renders through the library API alone; run
+// as a user would, with validation on (a validation error is exit code 3).
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "runtime/io/image.h"
+#include "tests/cli/cli_harness.h"
+
+namespace hmb::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+CliRun example(const std::string& args) { return runProgram(HMB_EXAMPLE_PATH, "--validation " + args); }
+
+TEST(LibraryExampleTest, RendersEachMethodAndReportsItsPasses) {
+  const fs::path dir = tempDir("example");
+  for (const char* method : {"postprocess", "hybrid"}) {
+    const fs::path out = dir / (std::string(method) + ".png");
+    const CliRun run = example(std::string("living-room ") + method + " " + out.string() + " 48 27");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const io::Rgba8Image png = io::readPng(out);
+    EXPECT_EQ(png.width, 48u);
+    EXPECT_EQ(png.height, 27u);
+    EXPECT_NE(run.output.find(std::string(method) + " 48x27 on "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("  resolve-gbuffer: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("  tile-max: "), std::string::npos) << run.output;
+  }
+  const CliRun hybrid = example("living-room hybrid " + (dir / "h.png").string() + " 48 27");
+  EXPECT_NE(hybrid.output.find("reveal rays"), std::string::npos) << hybrid.output;
+}
+
+TEST(LibraryExampleTest, BadInputIsAOneLineErrorAndANonZeroExit) {
+  const fs::path dir = tempDir("example-errors");
+  const CliRun usage = example("living-room");
+  EXPECT_EQ(usage.exitCode, 2) << usage.output;
+  const CliRun missing = example("no-such-scene.gltf hybrid " + (dir / "x.png").string());
+  EXPECT_EQ(missing.exitCode, 1) << missing.output;
+  EXPECT_NE(missing.output.find("render_frame: error: "), std::string::npos) << missing.output;
+  const CliRun method = example("living-room magic " + (dir / "x.png").string());
+  EXPECT_EQ(method.exitCode, 1) << method.output;
+  EXPECT_NE(method.output.find("unknown method 'magic'"), std::string::npos) << method.output;
+}
+
+}  // namespace
+}  // namespace hmb::test
