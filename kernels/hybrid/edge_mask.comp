@@ -77,7 +77,7 @@ void main() {
   edges[pixel.y * params.width + pixel.x] = edge;
   if (edge == 0u) return;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
-  const uint blocksX = (params.width + HMB_EDGE_BLOCK - 1u) / HMB_EDGE_BLOCK;
+  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.width);
   const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;
   const uvec2 last = min(pixel + 1u, uvec2(params.width, params.height) - 1u) / HMB_EDGE_BLOCK;
   for (uint y = first.y; y <= last.y; ++y)

@@ -43,6 +43,8 @@
 // pixel lies within one pixel of it, so a segment passing through no flagged block passes
 // farther than a pixel from every edge pixel (range_check's early out).
 #define HMB_EDGE_BLOCK 4u
+// Blocks across a side of n pixels (the coarse image is row-major, this many per row).
+#define HMB_EDGE_BLOCKS_ACROSS(n) (((n) + HMB_EDGE_BLOCK - 1u) / HMB_EDGE_BLOCK)
 
 #define HMB_RANGE_CHECK_BINDING_VELOCITY 0  // vec2 per pixel
 #define HMB_RANGE_CHECK_BINDING_EDGES 1     // uint per pixel (edge_mask)

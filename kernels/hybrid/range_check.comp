@@ -31,10 +31,10 @@ layout(push_constant) uniform Params { RangeCheckParams params; };
 // coarse edge image: a grid walk over the blocks it crosses, ~|b - a| / 2 steps where the fine
 // walk takes |b - a|. Every fine-walk pixel lies on the segment (up to rounding), and a block
 // is flagged when an edge pixel lies within a pixel of it, so "no" here means the fine walk
-// meets no edge. The walk moves one block per step towards the last block, so it ends there.
+// meets no edge. Each move steps one block towards the last one, so `moves` moves end there.
 bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   const float side = float(HMB_EDGE_BLOCK);
-  const uint blocksX = (params.width + HMB_EDGE_BLOCK - 1u) / HMB_EDGE_BLOCK;
+  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.width);
   ivec2 block = ivec2(floor(a / side));
   const ivec2 last = ivec2(floor(b / side));
   const vec2 d = b - a;
@@ -45,9 +45,8 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   vec2 tNext = vec2(d.x != 0.0 ? abs(boundary.x - a.x) * inverse.x : 2.0, d.y != 0.0 ? abs(boundary.y - a.y) * inverse.y : 2.0);
   const vec2 tStep = side * inverse;
   const uint moves = uint(abs(last.x - block.x) + abs(last.y - block.y));
-  for (uint i = 0u;; ++i) {
+  for (uint i = 0u; i < moves; ++i) {
     if (edgeBlocks[uint(block.y) * blocksX + uint(block.x)] != 0u) return true;
-    if (i == moves) return false;
     const bool stepX = block.y == last.y || (block.x != last.x && tNext.x < tNext.y);
     if (stepX) {
       block.x += stepSign.x;
@@ -57,7 +56,7 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
       tNext.y += tStep.y;
     }
   }
-  return false;
+  return edgeBlocks[uint(last.y) * blocksX + uint(last.x)] != 0u;
 }
 
 // The range check at one pixel moving by v (speed > 0).

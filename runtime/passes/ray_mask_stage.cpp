@@ -33,7 +33,7 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
   tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
-  const uint64_t blocks = uint64_t((width + HMB_EDGE_BLOCK - 1) / HMB_EDGE_BLOCK) * ((height + HMB_EDGE_BLOCK - 1) / HMB_EDGE_BLOCK);
+  const uint64_t blocks = uint64_t(HMB_EDGE_BLOCKS_ACROSS(width)) * HMB_EDGE_BLOCKS_ACROSS(height);
   edgeBlocks_ = vk::Buffer(context_, blocks * sizeof(uint32_t), vk::MemoryUse::Device, "coarse edge mask");
   counters_ = vk::Buffer(context_, sizeof(gpu::RayMaskCounters), vk::MemoryUse::Device, "ray mask counters");
   width_ = width;
