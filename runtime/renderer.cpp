@@ -213,25 +213,23 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
       result.postprocess->maskForegroundDivide = result.hybrid->settings.maskForegroundDivide;
       if (!settings.postprocess.foregroundBoost) result.postprocess->foregroundBoost = result.hybrid->settings.foregroundBoost;
     }
-    if (still) {
+    if (blurMethod) {
+      passes_->postProcess.configure(*result.postprocess);
       FramePlan blurPlan;
-      if (settings.method == "hybrid") {
+      if (settings.method == "hybrid")
         passes_->hybrid.plan(blurPlan);
-      } else {
-        passes_->postProcess.configure(*result.postprocess);
+      else
         passes_->postProcess.plan(blurPlan);
+      for (const PlannedPass& pass : blurPlan.passes()) {
+        if (still)
+          result.plan.skip(pass.name, "nothing moves on screen at this frame: every velocity is 0, so the blur "
+                                      "returns the sharp colour");
+        else
+          result.plan.run(pass.name);
       }
-      for (const PlannedPass& pass : blurPlan.passes())
-        result.plan.skip(pass.name, "nothing moves on screen at this frame: every velocity is 0, so the blur "
-                                    "returns the sharp colour");
     }
     if (blur) {
-      passes_->postProcess.configure(*result.postprocess);
       passes_->postProcess.prepare(width, height);
-      if (hybrid)
-        passes_->hybrid.plan(result.plan);
-      else
-        passes_->postProcess.plan(result.plan);
       blurred = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "post-process colour");
     }
     if (hybrid) {
@@ -271,35 +269,31 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
                     {vec4Layer("", {"R", "G", "B", "A"}, beauty.download<glm::vec4>()),
                      vec4Layer("depth", {"Z"}, depth), vec4Layer("normal", {"X", "Y", "Z"}, normalDepth),
                      vec4Layer("velocity", {"X", "Y"}, velocity), std::move(objectId)}};
-    if (settings.method == "hybrid" && still) {
-      // The same layers as a frame that ran the hybrid's passes: an empty mask, nothing revealed.
-      result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::vector<uint32_t>(pixels, 0u)});
-      result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, std::vector<glm::vec4>(pixels, glm::vec4(0.0f))));
-      result.image.layers.push_back(vec4Layer("revealedDepth", {"Z"}, std::vector<glm::vec4>(pixels, glm::vec4(0.0f))));
-      result.image.layers.push_back(io::ImageLayer{"revealedObjectId", {"id"}, true, {}, std::vector<uint32_t>(pixels, 0u)});
-    }
-    if (hybrid) {
-      const passes::RayMaskCounts counts = passes_->hybrid.rayMask().counts();
-      result.hybrid->maskPixels = counts.maskPixels;
-      result.hybrid->revealedPixels = counts.listedPixels;
-      result.hybrid->revealRays = counts.revealRays;
-      io::ImageLayer mask{"rayMask", {"mask"}, true, {}, passes_->hybrid.rayMask().mask().download<uint32_t>()};
-      mask.ids.resize(pixels);
-      // What the reveal found behind the pixels it traced (black elsewhere), its depth and object.
-      const std::vector<glm::vec4> revealedAll = passes_->hybrid.revealedColor().download<glm::vec4>();
-      const std::vector<glm::vec4> normalDepthAll = passes_->hybrid.revealedNormalDepth().download<glm::vec4>();
-      const std::vector<uint32_t> idAll = passes_->hybrid.revealedObjectId().download<uint32_t>();
-      std::vector<uint32_t> traced = passes_->hybrid.rayMask().list().download<uint32_t>();
-      traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
+    if (settings.method == "hybrid") {
+      // The ray mask, and what the reveal found behind the pixels it traced (black elsewhere),
+      // its depth and object; all empty when the frame is still and the passes were skipped.
+      std::vector<uint32_t> mask(pixels, 0u), revealedId(pixels, 0u);
       std::vector<glm::vec4> revealed(pixels, glm::vec4(0.0f)), revealedDepth(pixels, glm::vec4(0.0f));
-      std::vector<uint32_t> revealedId(pixels, 0u);
-      for (const uint32_t i : traced) {
-        if (i >= pixels) continue;
-        revealed[i] = revealedAll[i];
-        revealedDepth[i] = glm::vec4(normalDepthAll[i].w, 0.0f, 0.0f, 0.0f);
-        revealedId[i] = idAll[i];
+      if (hybrid) {
+        const passes::RayMaskCounts counts = passes_->hybrid.rayMask().counts();
+        result.hybrid->maskPixels = counts.maskPixels;
+        result.hybrid->revealedPixels = counts.listedPixels;
+        result.hybrid->revealRays = counts.revealRays;
+        mask = passes_->hybrid.rayMask().mask().download<uint32_t>();
+        mask.resize(pixels);
+        const std::vector<glm::vec4> revealedAll = passes_->hybrid.revealedColor().download<glm::vec4>();
+        const std::vector<glm::vec4> normalDepthAll = passes_->hybrid.revealedNormalDepth().download<glm::vec4>();
+        const std::vector<uint32_t> idAll = passes_->hybrid.revealedObjectId().download<uint32_t>();
+        std::vector<uint32_t> traced = passes_->hybrid.rayMask().list().download<uint32_t>();
+        traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
+        for (const uint32_t i : traced) {
+          if (i >= pixels) continue;
+          revealed[i] = revealedAll[i];
+          revealedDepth[i] = glm::vec4(normalDepthAll[i].w, 0.0f, 0.0f, 0.0f);
+          revealedId[i] = idAll[i];
+        }
       }
-      result.image.layers.push_back(std::move(mask));
+      result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::move(mask)});
       result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));
       result.image.layers.push_back(vec4Layer("revealedDepth", {"Z"}, revealedDepth));
       result.image.layers.push_back(io::ImageLayer{"revealedObjectId", {"id"}, true, {}, std::move(revealedId)});
