@@ -1,23 +1,23 @@
 #version 450
-// Ray mask, first pass (paper, eqs. 1-4): a moving pixel enters the edge mask when the end of
-// its displacement lies on a different, deeper object (eqs. 1, 2) and the 5x5 Sobel of depth
-// and normal around it passes the edge threshold e (eqs. 3, 4):
+// Ray mask, second pass (paper, eqs. 3, 4): an edge candidate (edge_candidates: eqs. 1, 2
+// hold) enters the edge mask when the 5x5 Sobel of depth and normal around it passes the
+// edge threshold e:
 //   x = delta_d + delta_n, x_n = saturate(1 - 1 / (x + 1)), edge when x_n > e.
 // delta_d is the Sobel gradient's length of depth divided by the pixel's own depth: a
 // relative depth step, so the same threshold marks the same silhouettes whether the scene is
 // modelled in millimetres or kilometres. delta_n is the length of the normal's Sobel
-// derivatives (both directions, all three components). Image borders clamp. Runs over the
-// moving tiles only (list_moving_tiles); the edge buffer is 0 elsewhere.
+// derivatives (both directions, all three components). Image borders clamp. Writes 1 at edge
+// pixels only; the edge buffer is filled with 0 before.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
+#include "../shared/indexing.glsl"
 
-layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
+layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
 layout(std430, binding = HMB_EDGE_MASK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
-layout(std430, binding = HMB_EDGE_MASK_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
-layout(std430, binding = HMB_EDGE_MASK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
-layout(std430, binding = HMB_EDGE_MASK_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) writeonly buffer Edges { uint edges[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGE_BLOCKS) writeonly buffer EdgeBlocks { uint edgeBlocks[]; };
 layout(push_constant) uniform Params { EdgeMaskParams params; };
@@ -56,26 +56,14 @@ float edgeStrength(ivec2 pixel, float depthHere) {
   return deltaD + deltaN;
 }
 
-// Eqs. 1-4 at one pixel.
-uint edgeAt(uvec2 pixel) {
-  const uint index = pixel.y * params.width + pixel.x;
-  float speed;
-  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
-  if (!(speed > 0.0)) return 0u;
-  const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.width, params.height);
-  const uint endIndex = uint(end.y) * params.width + uint(end.x);
-  const float depthHere = sanitizeDepth(normalDepth[index].w);
-  if (!endsOnDeeperObject(objectId[index], depthHere, objectId[endIndex], normalDepth[endIndex].w, params.softZExtent))
-    return 0u;
-  return normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold ? 1u : 0u;
-}
-
 void main() {
-  const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.tilesX, params.tileSize);
-  if (pixel.x >= params.width || pixel.y >= params.height) return;
-  const uint edge = edgeAt(pixel);
-  edges[pixel.y * params.width + pixel.x] = edge;
-  if (edge == 0u) return;
+  const uint entry = linearInvocationIndex(HMB_MASK_LIST_GROUP);
+  if (entry >= counters.candidateCount) return;
+  const uint index = candidates[entry];
+  const uvec2 pixel = uvec2(index % params.width, index / params.width);
+  const float depthHere = sanitizeDepth(normalDepth[index].w);
+  if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
+  edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
   const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.width);
   const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;

@@ -2,9 +2,10 @@
 //   list_moving_tiles     tiles of the gather's tile-max whose fastest pixel moves half a
 //                  pixel or more: only there can a pixel's displacement end on another pixel,
 //                  so the mask passes run on those tiles alone (a still scene costs two fills)
-//   edge_mask      eqs. 1-4: moving pixels whose predicted end position lies on a different,
-//                  deeper object, and whose 5x5 Sobel of depth and normal passes the edge
-//                  threshold e
+//   edge_candidates    eqs. 1, 2: moving pixels whose predicted end position lies on a
+//                  different, deeper object, listed (a few percent of the pixels)
+//   edge_mask      eqs. 3, 4: the listed candidates whose 5x5 Sobel of depth and normal passes
+//                  the edge threshold e (listing first keeps the Sobel's lanes busy)
 //   range_check    moving pixels whose range along their velocity meets the edge mask: the ray
 //                  mask, as a 0/1 image (for the gathers) and a compacted pixel list
 //   size_list_dispatch    a list's length -> the indirect dispatch of the passes over it, so
@@ -24,20 +25,29 @@
 #define HMB_MOVING_TILES_BINDING_LIST 2      // uint tile index per moving tile, in no order
 #define HMB_MOVING_TILES_BINDING_COUNT 3
 
-// edge_mask and range_check: one invocation per pixel of the listed tiles, in 8 x 8 blocks:
-// group (x, y) names the listed tile, group z the block within it (an invocation's loops stay
-// under the 65535 iterations llvmpipe allows). Pixels of other tiles keep the 0 their buffers
-// are filled with.
+// range_check: one invocation per pixel of the listed tiles, in 8 x 8 blocks: group (x, y)
+// names the listed tile, group z the block within it (an invocation's loops stay under the
+// 65535 iterations llvmpipe allows). edge_candidates: one 8 x 8 group per listed tile, its
+// lanes striding over the tile (at most HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU
+// device pays per invocation, and most pixels only need a few reads there. Pixels of other
+// tiles keep the 0 their buffers are filled with.
 #define HMB_MASK_TILE_GROUP_X 8
 #define HMB_MASK_TILE_GROUP_Y 8
 
-#define HMB_EDGE_MASK_BINDING_NORMAL_DEPTH 0  // vec4 per pixel: world normal, w camera-space depth
-#define HMB_EDGE_MASK_BINDING_VELOCITY 1      // vec2 per pixel: pixels per frame
-#define HMB_EDGE_MASK_BINDING_OBJECT_ID 2     // uint per pixel
-#define HMB_EDGE_MASK_BINDING_TILES 3         // uint tile index per moving tile
-#define HMB_EDGE_MASK_BINDING_EDGES 4         // uint per pixel: 1 in the edge mask, else 0
-#define HMB_EDGE_MASK_BINDING_EDGE_BLOCKS 5   // uint per HMB_EDGE_BLOCK^2 block: 1 near an edge
-#define HMB_EDGE_MASK_BINDING_COUNT 6
+#define HMB_EDGE_CANDIDATES_BINDING_NORMAL_DEPTH 0  // vec4 per pixel: world normal, w camera-space depth
+#define HMB_EDGE_CANDIDATES_BINDING_VELOCITY 1      // vec2 per pixel: pixels per frame
+#define HMB_EDGE_CANDIDATES_BINDING_OBJECT_ID 2     // uint per pixel
+#define HMB_EDGE_CANDIDATES_BINDING_TILES 3         // uint tile index per moving tile
+#define HMB_EDGE_CANDIDATES_BINDING_COUNTERS 4      // RayMaskCounters: candidateCount
+#define HMB_EDGE_CANDIDATES_BINDING_LIST 5          // uint pixel index per candidate, in no order
+#define HMB_EDGE_CANDIDATES_BINDING_COUNT 6
+
+#define HMB_EDGE_MASK_BINDING_NORMAL_DEPTH 0  // vec4 per pixel
+#define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
+#define HMB_EDGE_MASK_BINDING_CANDIDATES 2    // edge_candidates' list
+#define HMB_EDGE_MASK_BINDING_EDGES 3         // uint per pixel: 1 in the edge mask (written there only)
+#define HMB_EDGE_MASK_BINDING_EDGE_BLOCKS 4   // uint per HMB_EDGE_BLOCK^2 block: 1 near an edge
+#define HMB_EDGE_MASK_BINDING_COUNT 5
 
 // Side of the blocks of the coarse edge image, in pixels. A block is flagged when an edge
 // pixel lies within one pixel of it, so a segment passing through no flagged block passes
@@ -71,10 +81,11 @@
 #define HMB_SIZE_LIST_BINDING_COUNTERS 0
 #define HMB_SIZE_LIST_BINDING_COUNT 1
 // SizeListParams.list
-#define HMB_SIZE_LIST_MOVING_TILES 0u  // one group per moving tile
-#define HMB_SIZE_LIST_MASK 1u          // HMB_MASK_LIST_GROUP mask pixels per group
+#define HMB_SIZE_LIST_MOVING_TILES 0u     // per moving tile: one group, and one per 8 x 8 block
+#define HMB_SIZE_LIST_MASK 1u             // HMB_MASK_LIST_GROUP mask pixels per group
+#define HMB_SIZE_LIST_EDGE_CANDIDATES 2u  // HMB_MASK_LIST_GROUP edge candidates per group
 
-// The list passes (reveal_background and the gather's list mode) run 64 lanes per group.
+// The list passes (edge_mask, reveal_background and the gather's list mode) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
 
 // reveal_background. Slots 2-11 hold the trace scene (kernels/trace/closest_hit.glsl).
@@ -99,22 +110,28 @@
 
 HMB_GPU_BEGIN
 
-// Cleared each frame. maskCount (the list's length) and maskPixels: range_check; maskDispatch (a VkDispatchIndirectCommand at
-// byte offset 4) and tileDispatch (at byte offset 24): size_list_dispatch; rayCount:
-// reveal_background; tileCount: list_moving_tiles.
+// Cleared each frame. maskCount (the list's length) and maskPixels: range_check; the
+// *Dispatch triples (VkDispatchIndirectCommands): size_list_dispatch; rayCount:
+// reveal_background; tileCount: list_moving_tiles; candidateCount: edge_candidates.
 struct RayMaskCounters {
   uint maskCount;
-  uint maskDispatchX;
+  uint maskDispatchX;  // the mask list's passes
   uint maskDispatchY;
   uint maskDispatchZ;
   uint rayCount;  // closest-hit traces the reveal made
   uint tileCount;
-  uint tileDispatchX;
+  uint tileDispatchX;  // a group per 8 x 8 block of each moving tile (range_check)
   uint tileDispatchY;
   uint tileDispatchZ;
   uint maskPixels;  // every pixel of the ray mask (maskCount: those listed for the reveal)
+  uint candidateCount;
+  uint candidateDispatchX;  // edge_mask over the candidates
+  uint candidateDispatchY;
+  uint candidateDispatchZ;
+  uint tileGroupDispatchX;  // a group per moving tile (edge_candidates)
+  uint tileGroupDispatchY;
+  uint tileGroupDispatchZ;
   uint pad0;
-  uint pad1;
 };
 
 struct MovingTilesParams {
@@ -126,11 +143,12 @@ struct MovingTilesParams {
 
 struct SizeListParams {
   uint list;           // HMB_SIZE_LIST_*
-  uint blocksPerTile;  // moving tiles: 8 x 8 blocks per tile (the dispatch's z)
+  uint blocksPerTile;  // moving tiles: 8 x 8 blocks per tile (the block dispatch's z)
   uint pad1;
   uint pad2;
 };
 
+// edge_candidates and edge_mask (each reads its own fields).
 struct EdgeMaskParams {
   uint width;
   uint height;
@@ -174,7 +192,7 @@ struct RevealParams {
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(RayMaskCounters, 48)
+HMB_CHECK_SIZE(RayMaskCounters, 72)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
 HMB_CHECK_SIZE(SizeListParams, 16)
 HMB_CHECK_SIZE(EdgeMaskParams, 32)

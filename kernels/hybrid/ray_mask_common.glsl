@@ -1,4 +1,4 @@
-// The ray mask's per-pixel tests (paper, section 3.2.1), shared by edge_mask and range_check;
+// The ray mask's per-pixel tests (paper, section 3.2.1), shared by its kernels;
 // the C++ reference (tests/hybrid/hybrid_reference.cpp) mirrors each function. Include after
 // hybrid_layout.h and kernels/mblur/mblur_common.glsl (velocities are read as the gather reads
 // them, so the mask covers exactly the range the gather blurs over).

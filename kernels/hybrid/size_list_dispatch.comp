@@ -1,8 +1,9 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
-// 65535 groups: the moving tiles (a group per 8 x 8 block of each: edge_mask, range_check) or the ray mask's
-// pixels (HMB_MASK_LIST_GROUP each: reveal_background, the background layer's gather). An
-// empty list dispatches no group.
+// 65535 groups: the moving tiles (a group per tile: edge_candidates; a group per 8 x 8 block
+// of each: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask) or the ray
+// mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background, the background layer's gather).
+// An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 
@@ -15,15 +16,27 @@ uvec3 folded(uint groups) {
   return groups == 0u ? uvec3(0u, 0u, 1u) : uvec3(min(groups, 65535u), (groups + 65534u) / 65535u, 1u);
 }
 
+uvec3 listGroups(uint count) { return folded((count + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP); }
+
 void main() {
   if (params.list == HMB_SIZE_LIST_MOVING_TILES) {
     const uvec3 g = folded(counters.tileCount);
+    counters.tileGroupDispatchX = g.x;
+    counters.tileGroupDispatchY = g.y;
+    counters.tileGroupDispatchZ = g.z;
     counters.tileDispatchX = g.x;
     counters.tileDispatchY = g.y;
     counters.tileDispatchZ = g.x == 0u ? 1u : params.blocksPerTile;
     return;
   }
-  const uvec3 g = folded((counters.maskCount + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP);
+  if (params.list == HMB_SIZE_LIST_EDGE_CANDIDATES) {
+    const uvec3 g = listGroups(counters.candidateCount);
+    counters.candidateDispatchX = g.x;
+    counters.candidateDispatchY = g.y;
+    counters.candidateDispatchZ = g.z;
+    return;
+  }
+  const uvec3 g = listGroups(counters.maskCount);
   counters.maskDispatchX = g.x;
   counters.maskDispatchY = g.y;
   counters.maskDispatchZ = g.z;

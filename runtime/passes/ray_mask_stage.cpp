@@ -13,6 +13,8 @@ namespace hmb::passes {
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
       tilesKernel_(context, "hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams)),
+      candidatesKernel_(context, "hybrid/edge_candidates", HMB_EDGE_CANDIDATES_BINDING_COUNT,
+                        sizeof(gpu::EdgeMaskParams)),
       edgeKernel_(context, "hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::EdgeMaskParams)),
       rangeKernel_(context, "hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RangeCheckParams)),
       sizeKernel_(context, "hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams)) {}
@@ -20,6 +22,7 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
 void RayMaskStage::plan(FramePlan& plan) const {
   plan.run(kClear);
   plan.run(kMovingTiles);
+  plan.run(kEdgeCandidates);
   plan.run(kEdges);
   plan.run(kRangeCheck);
   plan.run(kSizeDispatch);
@@ -32,6 +35,7 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   edges_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge mask");
   mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
+  candidates_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge candidates");
   tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
   const uint64_t blocks = uint64_t(HMB_EDGE_BLOCKS_ACROSS(width)) * HMB_EDGE_BLOCKS_ACROSS(height);
   edgeBlocks_ = vk::Buffer(context_, blocks * sizeof(uint32_t), vk::MemoryUse::Device, "coarse edge mask");
@@ -62,8 +66,13 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   const VkDeviceSize tileDispatch = offsetof(gpu::RayMaskCounters, tileDispatchX);
   const gpu::EdgeMaskParams edgeParams{width_,      height_,         p.tileSize,     p.grid.x,
                                        p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold};
-  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, layer.velocity, &objectId, &tiles_, &edges_, &edgeBlocks_},
-                         edgeParams, counters_, tileDispatch);
+  frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
+                         {layer.normalDepth, layer.velocity, &objectId, &tiles_, &counters_, &candidates_}, edgeParams,
+                         counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
+  frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_},
+                 gpu::SizeListParams{HMB_SIZE_LIST_EDGE_CANDIDATES, 0u, 0u, 0u}, {1, 1, 1});
+  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, &counters_, &candidates_, &edges_, &edgeBlocks_},
+                         edgeParams, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
   const gpu::RangeCheckParams rangeParams{width_,
                                           height_,
                                           p.tileSize,

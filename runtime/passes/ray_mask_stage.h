@@ -1,7 +1,8 @@
 // The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): list_moving_tiles (from
-// the gather's tile-max) -> edge_mask (eqs. 1-4) -> range_check (the mask as a 0/1 image and a
-// compacted pixel list), both over the moving tiles only, with size_list_dispatch turning each
-// list's length into an indirect dispatch. Owns those buffers.
+// the gather's tile-max) -> edge_candidates (eqs. 1, 2, listed) -> edge_mask (eqs. 3, 4 over
+// that list) -> range_check (the mask as a 0/1 image and a compacted pixel list), over the
+// moving tiles only, with size_list_dispatch turning each list's length into an indirect
+// dispatch. Owns those buffers.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +42,7 @@ class RayMaskStage {
  public:
   static constexpr const char* kClear = "ray-mask-clear";
   static constexpr const char* kMovingTiles = "ray-mask-moving-tiles";
+  static constexpr const char* kEdgeCandidates = "ray-mask-edge-candidates";
   static constexpr const char* kEdges = "ray-mask-edges";
   static constexpr const char* kRangeCheck = "ray-mask-range-check";
   static constexpr const char* kSizeDispatch = "ray-mask-size-dispatch";
@@ -56,15 +58,17 @@ class RayMaskStage {
   const vk::Buffer& edges() const { return edges_; }        // uint per pixel
   const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
   const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal
+  const vk::Buffer& candidates() const { return candidates_; }  // uint pixel index per edge candidate
   const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
   // After the frame: the mask's size and the reveal's traces.
   RayMaskCounts counts() const;
 
  private:
   const vk::Context& context_;
-  vk::ComputeKernel tilesKernel_, edgeKernel_, rangeKernel_, sizeKernel_;
+  vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, rangeKernel_, sizeKernel_;
   uint32_t width_ = 0, height_ = 0;
   vk::Buffer edges_, mask_, list_, counters_;
+  vk::Buffer candidates_;  // edge candidates: uint pixel index each
   vk::Buffer tiles_;       // moving tiles: at most one per pixel, whatever the tile size
   vk::Buffer edgeBlocks_;  // coarse edge mask: uint per HMB_EDGE_BLOCK^2 block
 };

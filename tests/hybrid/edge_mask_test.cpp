@@ -1,6 +1,7 @@
-// edge_mask.comp (paper, eqs. 1-4) against the C++ reference on random layers of several
+// edge_candidates.comp and edge_mask.comp (paper, eqs. 1-4) against the C++ reference on random layers of several
 // sizes and on adversarial ones (degenerate velocities, depths and normals), and the 5x5 Sobel
 // against values worked out by hand, with thresholds just either side of them.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -33,6 +34,20 @@ RayMaskParameters parametersWith(float edgeThreshold, float softZExtent = 0.03f,
   return p;
 }
 
+// The device's candidate list holds each pixel where eqs. 1 and 2 hold, once, and its
+// dispatch covers it in groups of HMB_MASK_LIST_GROUP.
+void expectCandidatesMatch(const RayMaskReadback& device, const std::vector<bool>& reference, const std::string& what) {
+  std::vector<uint32_t> expected;
+  for (size_t i = 0; i < reference.size(); ++i)
+    if (reference[i]) expected.push_back(uint32_t(i));
+  std::vector<uint32_t> listed = device.candidates;
+  std::sort(listed.begin(), listed.end());
+  EXPECT_EQ(listed, expected) << what << ": edge candidates";
+  const uint32_t groups = (device.counters.candidateCount + HMB_MASK_LIST_GROUP - 1) / HMB_MASK_LIST_GROUP;
+  EXPECT_EQ(device.counters.candidateDispatchX, std::min(groups, 65535u)) << what << ": candidate dispatch";
+  EXPECT_EQ(device.counters.candidateDispatchY, (groups + 65534) / 65535) << what << ": candidate dispatch";
+}
+
 // The device's edge mask equals the reference's, except at pixels whose x_n lies within 1e-5
 // of the threshold (float rounding may order the Sobel sums differently): at most 0.2% of the
 // pixels. A flat window (x_n exactly 0) must match exactly, even at threshold 0. Returns how
@@ -43,6 +58,7 @@ size_t expectEdgesMatch(const MaskLayer& layer, const RayMaskParameters& p, cons
   const std::vector<uint32_t> reference = edgeMask(layer, p);
   const std::vector<float> xn = normalizedEdges(layer);
   const std::vector<bool> candidates = edgeCandidates(layer, p);
+  expectCandidatesMatch(device, candidates, what);
   EXPECT_EQ(device.edges.size(), reference.size());
   if (device.edges.size() != reference.size()) return 0;
   size_t nearThreshold = 0, wrong = 0, edges = 0;

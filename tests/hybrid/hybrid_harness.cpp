@@ -62,6 +62,7 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   for (size_t i = 0; i < pixels; ++i) out.mask[i] = out.maskValues[i] != HMB_MASK_NONE ? 1u : 0u;
   out.counters = stage.counters().download<gpu::RayMaskCounters>().at(0);
   out.list = downloadFirst<uint32_t>(stage.list(), std::min<size_t>(out.counters.maskCount, pixels));
+  out.candidates = downloadFirst<uint32_t>(stage.candidates(), std::min<size_t>(out.counters.candidateCount, pixels));
   return out;
 }
 
