@@ -15,6 +15,7 @@
 #include "bench/bvh_suite.h"
 #include "bench/embree_reference.h"
 #include "bench/error_time_suite.h"
+#include "bench/passes_suite.h"
 #include "bench/raster_suite.h"
 #include "runtime/error.h"
 #include "runtime/report.h"
@@ -63,6 +64,15 @@ struct ErrorTimeOptions {
   int warmup = 1;
   int repeats = 3;
   int referenceRepeats = 1;
+};
+
+struct PassesOptions {
+  std::string out = "bench/results/passes/passes.json";
+  std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
+  std::vector<std::string> sizes = {"640x360", "1280x720", "1920x1080"};
+  std::vector<std::string> methods = {"sharp", "postprocess", "hybrid"};
+  int warmup = 1;
+  int repeats = 3;
 };
 
 // The command as typed, for the report (arguments with spaces quoted).
@@ -249,6 +259,56 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
   return kOk;
 }
 
+int passes(const GlobalOptions& global, const PassesOptions& options, const std::string& command) {
+  hmb::bench::PassesSuiteOptions suite;
+  suite.scenes = options.scenes;
+  suite.sizes.clear();
+  for (const std::string& size : options.sizes) suite.sizes.push_back(hmb::bench::parseImageSize(size));
+  suite.methods = options.methods;
+  suite.warmup = options.warmup;
+  suite.repeats = options.repeats;
+  checkOutputDirectory(options.out);
+  hmb::vk::ContextOptions contextOptions;
+  contextOptions.deviceIndex = global.device;
+  hmb::vk::Context context(contextOptions);
+  const auto progress = [&](const std::string& message) {
+    if (!global.quiet) std::cerr << "hmblur-bench: " << message << '\n';
+  };
+  progress("device: " + context.info().name);
+  const std::vector<hmb::bench::PassesCase> cases = hmb::bench::runPassesSuite(context, suite, progress);
+
+  const hmb::SystemInfo system = hmb::querySystemInfo();
+  std::ostringstream header;
+  header << "Device " << context.info().name << " (" << context.info().driverInfo << "), CPU " << system.cpu << ", "
+         << system.hardwareThreads << " hardware threads, LP_NUM_THREADS " << system.lpNumThreads << ", revision "
+         << system.gitRevision << ". Median device time (timestamp queries) of " << suite.repeats
+         << " renders after " << suite.warmup << " warm-up; the hybrid's mesh trees are scene setup, listed but "
+         << "not in its frame. Peak device memory: the most the renderer's buffers held at once during a render. "
+         << "Command: `" << command << "`";
+  hmb::bench::writePassesMarkdown(std::cout, cases, header.str());
+  if (options.out.empty()) return kOk;
+  nlohmann::json report = {
+      {"suite", "passes"},
+      {"what", "per-pass device time of each method, scene and image size, and each render's device memory"},
+      {"command", command},
+      {"date", hmb::utcTimestamp()},
+      {"device", hmb::deviceJson(context.info())},
+      {"system", hmb::systemJson(system)},
+      {"settings",
+       {{"sizes", options.sizes}, {"methods", options.methods}, {"warmup", suite.warmup}, {"repeats", suite.repeats}}},
+      {"cases", nlohmann::json::array()},
+  };
+  for (const auto& c : cases) report["cases"].push_back(hmb::bench::passesCaseJson(c));
+  hmb::writeJson(options.out, report);
+  const fs::path stem = fs::path(options.out).replace_extension();
+  std::ofstream csv(stem.string() + ".csv"), markdown(stem.string() + ".md");
+  hmb::bench::writePassesCsv(csv, cases);
+  hmb::bench::writePassesMarkdown(markdown, cases, header.str());
+  if (!csv || !markdown) throw hmb::Error("could not write " + stem.string() + ".csv / .md");
+  progress("wrote " + options.out + ", " + stem.string() + ".csv and .md");
+  return kOk;
+}
+
 // A comma-separated list of scenes.
 void addScenesOption(CLI::App& command, std::vector<std::string>& scenes,
                      const std::string& what = "Reference scene names or glTF files") {
@@ -313,6 +373,19 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
 
+  PassesOptions passesOptions;
+  CLI::App* passesCmd = app.add_subcommand(
+      "passes", "Per-pass device time of each method, scene and image size, and each render's device memory");
+  addCommonOptions(*passesCmd, passesOptions.out, passesOptions.warmup, passesOptions.repeats);
+  addScenesOption(*passesCmd, passesOptions.scenes);
+  passesCmd->add_option("--sizes", passesOptions.sizes, "Image sizes, WIDTHxHEIGHT, comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  passesCmd->add_option("--methods", passesOptions.methods, "Methods (sharp, postprocess, hybrid), comma separated")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"sharp", "postprocess", "hybrid"}))
+      ->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -323,6 +396,7 @@ int main(int argc, char** argv) {
     if (*rasterCmd) return raster(global, rasterOptions, commandLine(argc, argv));
     if (*bvhCmd) return bvh(global, bvhOptions, commandLine(argc, argv));
     if (*errorTimeCmd) return errorTime(global, errorTimeOptions, commandLine(argc, argv));
+    if (*passesCmd) return passes(global, passesOptions, commandLine(argc, argv));
   } catch (const std::exception& e) {
     std::cerr << "hmblur-bench: error: " << e.what() << '\n';
     return kError;

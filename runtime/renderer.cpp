@@ -151,6 +151,7 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
   validateRenderSettings(settings);
   if (!passes_) passes_ = std::make_unique<Passes>(context_);
 
+  context_.resetMemoryPeak();
   RenderResult result;
   result.method = settings.method;
   result.settings = settings;
@@ -254,6 +255,11 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
         passes_->postProcess.record(f, layer, blurred);
       passes_->encodeDisplay.record(f, beauty, display, width, height);
     }));
+    result.memory.gbufferBytesPerPixel = gbuffer.bytesPerPixel(width, height);
+    if (const auto trees = hybrid ? passes_->hybrid.meshTreeBytes() : std::nullopt) {
+      result.memory.bvhAllocatedBytesPerTriangle = trees->allocatedPerTriangle;
+      result.memory.bvhBuiltBytesPerTriangle = trees->usedPerTriangle;
+    }
     result.visibilityScheme = passes::visibilitySchemeName(gbuffer.rasterizer().scheme());
     result.raster = gbuffer.rasterizer().stats();
 
@@ -302,6 +308,7 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
 
   result.plan.attachTimings(timings);
   result.frameMilliseconds = timings.frameMilliseconds;
+  result.memory.peakBytes = context_.memoryPeak();
   result.display = downloadDisplay(display, width, height);
   return result;
 }

@@ -76,6 +76,15 @@ struct RenderResult {
   io::Rgba8Image display;    // the display transform of the beauty layer
   FramePlan plan;
   std::optional<double> frameMilliseconds;
+  // Device memory (every vk::Buffer of the context): the most held at once during the render,
+  // the G-buffer's bytes per pixel, and (hybrid) the mesh trees' bytes per mesh triangle as
+  // allocated (for the worst case) and as built.
+  struct Memory {
+    uint64_t peakBytes = 0;
+    double gbufferBytesPerPixel = 0;
+    std::optional<double> bvhAllocatedBytesPerTriangle, bvhBuiltBytesPerTriangle;
+  };
+  Memory memory;
   // The G-buffer rasterizer of the frame (methods without one leave these empty).
   std::string visibilityScheme;
   passes::RasterStats raster;

@@ -60,6 +60,11 @@ nlohmann::json sceneJson(const scene::Scene& scene) {
   };
 }
 
+// A number, or null when there is none.
+nlohmann::json optionalNumber(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
 nlohmann::json passesJson(const FramePlan& plan) {
   nlohmann::json passes = nlohmann::json::array();
   for (const PlannedPass& pass : plan.passes()) {
@@ -148,6 +153,11 @@ nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& syst
       {"passes", passesJson(result.plan)},
       {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds) : nlohmann::json(nullptr)},
       {"raster", rasterJson(result)},
+      {"device_memory",
+       {{"peak_bytes", result.memory.peakBytes},
+        {"gbuffer_bytes_per_pixel", result.memory.gbufferBytesPerPixel},
+        {"bvh_allocated_bytes_per_triangle", optionalNumber(result.memory.bvhAllocatedBytesPerTriangle)},
+        {"bvh_built_bytes_per_triangle", optionalNumber(result.memory.bvhBuiltBytesPerTriangle)}}},
   };
 }
 

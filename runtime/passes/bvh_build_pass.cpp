@@ -108,6 +108,11 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   return stats_;
 }
 
+uint64_t BvhBuildPass::usedTreeBytes() const {
+  return uint64_t(stats_.nodes) * (sizeof(gpu::BvhNode) + HMB_BVH_OCTANTS * sizeof(uint32_t)) +
+         uint64_t(primitiveCount_) * sizeof(uint32_t);
+}
+
 bvh::Bvh BvhBuildPass::download(uint32_t root) const {
   if (root >= roots_.size()) throw Error(name_ + ": no tree " + std::to_string(root));
   const std::vector<gpu::BvhNode> nodes = nodes_.download<gpu::BvhNode>();

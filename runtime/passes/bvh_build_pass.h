@@ -55,6 +55,11 @@ class BvhBuildPass {
                              const std::function<void(vk::FrameRecorder&)>& before = {});
 
   const BvhBuildStats& stats() const { return stats_; }
+  // The trees' buffers on the device: nodes, links and primitive indices, allocated for the
+  // worst case (a leaf per primitive, primitive indices twice for the partitions).
+  uint64_t allocatedTreeBytes() const { return nodes_.size() + links_.size() + primitives_.size(); }
+  // What the last build filled of them: its nodes with their links, one index per primitive.
+  uint64_t usedTreeBytes() const;
   // Valid after build(): the nodes (tree r rooted at node r), 8 links per node, and the
   // primitive order the leaves index (the first primitiveCount entries).
   const vk::Buffer& nodes() const { return nodes_; }

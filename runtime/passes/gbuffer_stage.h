@@ -40,6 +40,11 @@ class GBufferStage {
   const vk::Buffer& normalDepth() const { return normalDepth_; }
   const vk::Buffer& velocity() const { return velocity_; }
   const vk::Buffer& objectId() const { return objectId_; }
+  // Bytes per pixel of the per-pixel buffers: visibility, colour, normal-depth, velocity, id.
+  double bytesPerPixel(uint32_t width, uint32_t height) const {
+    return double(visibility_.size() + color_.size() + normalDepth_.size() + velocity_.size() + objectId_.size()) /
+           (double(width) * height);
+  }
 
  private:
   const vk::Context& context_;

@@ -19,6 +19,13 @@ HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProce
 
 HybridStage::~HybridStage() = default;
 
+std::optional<HybridStage::TreeBytes> HybridStage::meshTreeBytes() const {
+  if (!traceScene_ || traceScene_->triangleCount() == 0) return std::nullopt;
+  const double triangles = traceScene_->triangleCount();
+  const passes::BvhBuildPass& trees = traceScene_->meshBvh();
+  return TreeBytes{double(trees.allocatedTreeBytes()) / triangles, double(trees.usedTreeBytes()) / triangles};
+}
+
 void HybridStage::plan(FramePlan& plan) const {
   plan.run(kBvhMeshes);
   plan.run(kBvhInstances);

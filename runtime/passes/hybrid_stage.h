@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/hybrid_settings.h"
@@ -57,6 +58,13 @@ class HybridStage {
 
   const HybridSettings& settings() const { return settings_; }
   const RayMaskStage& rayMask() const { return rayMask_; }
+  // After prepare(): the meshes' trees (nodes, links, triangle indices) in bytes per mesh
+  // triangle (each mesh's tree is built once, however many instances it has), as allocated
+  // and as built; none without triangles.
+  struct TreeBytes {
+    double allocatedPerTriangle = 0, usedPerTriangle = 0;
+  };
+  std::optional<TreeBytes> meshTreeBytes() const;
   // What the reveal found, written at mask pixels only (the rest is stale).
   const vk::Buffer& revealedColor() const { return revealedColor_; }
   const vk::Buffer& revealedNormalDepth() const { return revealedNormalDepth_; }

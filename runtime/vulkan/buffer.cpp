@@ -63,6 +63,8 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = type;
     HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory_));
+    allocated_ = req.size;
+    context.countAllocation(allocated_);
     HMB_VK_CHECK(vkBindBufferMemory(device, buffer_, memory_, 0));
 
     if ((memory.memoryTypes[type].propertyFlags & hostFlags) == hostFlags)
@@ -84,6 +86,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
+    allocated_ = std::exchange(other.allocated_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
     name_ = std::move(other.name_);
   }
@@ -96,6 +99,8 @@ void Buffer::release() {
   if (mapped_) vkUnmapMemory(device, memory_);
   if (buffer_) vkDestroyBuffer(device, buffer_, nullptr);
   if (memory_) vkFreeMemory(device, memory_, nullptr);
+  if (allocated_) context_->countRelease(allocated_);
+  allocated_ = 0;
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;

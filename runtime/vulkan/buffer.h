@@ -62,6 +62,7 @@ class Buffer {
   VkBuffer buffer_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkDeviceSize size_ = 0;
+  VkDeviceSize allocated_ = 0;  // the memory's size (at least size_), counted in the context
   void* mapped_ = nullptr;
   std::string name_;
 };

@@ -422,4 +422,11 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onDebugMessage(VkDebugUtilsMessageSeveri
   return VK_FALSE;
 }
 
+void Context::countAllocation(uint64_t bytes) const {
+  const uint64_t now = memoryInUse_.fetch_add(bytes) + bytes;
+  uint64_t peak = memoryPeak_.load();
+  while (now > peak && !memoryPeak_.compare_exchange_weak(peak, now)) {
+  }
+}
+
 }  // namespace hmb::vk

@@ -67,6 +67,14 @@ class Context {
                           VkMemoryPropertyFlags preferred = 0) const;
   const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
 
+  // Device memory the buffers of this context hold now, and the most they held at once since
+  // creation or the last resetMemoryPeak() (vk::Buffer reports its allocations here).
+  uint64_t memoryInUse() const { return memoryInUse_.load(); }
+  uint64_t memoryPeak() const { return memoryPeak_.load(); }
+  void resetMemoryPeak() const { memoryPeak_.store(memoryInUse_.load()); }
+  void countAllocation(uint64_t bytes) const;
+  void countRelease(uint64_t bytes) const { memoryInUse_.fetch_sub(bytes); }
+
   // Records commands into a one-time command buffer, submits it and waits.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
   void submitAndWait(VkCommandBuffer commandBuffer) const;
@@ -94,6 +102,7 @@ class Context {
   DeviceInfo info_;
   bool validationEnabled_ = false;
 
+  mutable std::atomic<uint64_t> memoryInUse_{0}, memoryPeak_{0};
   std::atomic<uint32_t> validationErrors_{0};
   std::atomic<uint32_t> validationWarnings_{0};
   mutable std::mutex messagesMutex_;

@@ -1,0 +1,171 @@
+#include "bench/passes_suite.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "runtime/error.h"
+#include "runtime/renderer.h"
+#include "scenes/load_scene.h"
+
+namespace hmb::bench {
+namespace {
+
+std::string fixed(double value, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", digits, value);
+  return text;
+}
+
+std::string sizeText(const ImageSize& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+
+double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+
+nlohmann::json optionalJson(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+PassesCase runCase(Renderer& renderer, const scene::Scene& scene, const std::string& name, const std::string& method,
+                   const ImageSize& size, const PassesSuiteOptions& o) {
+  RenderSettings settings;
+  settings.method = method;
+  settings.width = size.width;
+  settings.height = size.height;
+  std::vector<double> frames;
+  std::map<std::string, std::vector<double>> passTimes;
+  std::vector<std::string> order;
+  RenderResult last;
+  for (int i = 0; i < o.warmup + o.repeats; ++i) {
+    last = renderer.render(scene, settings);
+    if (!last.frameMilliseconds) throw Error("the device gives no timestamps: pass times cannot be measured");
+    if (i < o.warmup) continue;
+    // The hybrid's mesh trees (scene setup) are listed as a pass but not counted in its frame.
+    for (const PlannedPass& pass : last.plan.passes()) {
+      if (!pass.run || !pass.milliseconds) continue;
+      if (!passTimes.count(pass.name)) order.push_back(pass.name);
+      passTimes[pass.name].push_back(*pass.milliseconds);
+    }
+    frames.push_back(*last.frameMilliseconds);
+  }
+  PassesCase c;
+  c.scene = name;
+  c.method = method;
+  c.size = size;
+  c.triangles = scene.triangleCount();
+  c.frameMilliseconds = summarize(frames);  // setup left out, as the renderer reports it
+  for (const std::string& pass : order) c.passes.emplace_back(pass, summarize(passTimes[pass]));
+  for (const PlannedPass& pass : last.plan.passes())
+    if (!pass.run) c.skipped.emplace_back(pass.name, pass.reason);
+  c.peakBytes = last.memory.peakBytes;
+  c.gbufferBytesPerPixel = last.memory.gbufferBytesPerPixel;
+  c.bvhAllocatedBytesPerTriangle = last.memory.bvhAllocatedBytesPerTriangle;
+  c.bvhBuiltBytesPerTriangle = last.memory.bvhBuiltBytesPerTriangle;
+  if (last.hybrid) {
+    c.maskPixels = last.hybrid->maskPixels;
+    c.revealRays = last.hybrid->revealRays;
+  }
+  return c;
+}
+
+}  // namespace
+
+std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOptions& options,
+                                       const Progress& progress) {
+  if (options.repeats < 1) throw Error("passes: repeats must be at least 1");
+  if (options.scenes.empty() || options.sizes.empty() || options.methods.empty())
+    throw Error("passes: no scenes, sizes or methods");
+  for (const std::string& method : options.methods)
+    if (method != "sharp" && method != "postprocess" && method != "hybrid")
+      throw Error("passes: method '" + method + "' is not one of sharp, postprocess, hybrid");
+  std::vector<PassesCase> cases;
+  for (const std::string& name : options.scenes) {
+    const scene::Scene scene = scene::loadScene(name);
+    for (const ImageSize& size : options.sizes)
+      for (const std::string& method : options.methods) {
+        progress(name + " " + sizeText(size) + " " + method);
+        // A renderer of its own: the peak then counts what this case needs, not what an
+        // earlier case left allocated.
+        Renderer renderer(context);
+        cases.push_back(runCase(renderer, scene, name, method, size, options));
+      }
+  }
+  return cases;
+}
+
+nlohmann::json passesCaseJson(const PassesCase& c) {
+  nlohmann::json passes = nlohmann::json::array(), skipped = nlohmann::json::array();
+  for (const auto& [name, times] : c.passes) passes.push_back({{"name", name}, {"ms", summaryJson(times)}});
+  for (const auto& [name, reason] : c.skipped) skipped.push_back({{"name", name}, {"reason", reason}});
+  return {{"scene", c.scene},
+          {"method", c.method},
+          {"width", c.size.width},
+          {"height", c.size.height},
+          {"triangles", c.triangles},
+          {"frame_ms", summaryJson(c.frameMilliseconds)},
+          {"passes", passes},
+          {"skipped", skipped},
+          {"device_memory",
+           {{"peak_bytes", c.peakBytes},
+            {"gbuffer_bytes_per_pixel", c.gbufferBytesPerPixel},
+            {"bvh_allocated_bytes_per_triangle", optionalJson(c.bvhAllocatedBytesPerTriangle)},
+            {"bvh_built_bytes_per_triangle", optionalJson(c.bvhBuiltBytesPerTriangle)}}},
+          {"mask_pixels", c.maskPixels},
+          {"reveal_rays", c.revealRays}};
+}
+
+void writePassesCsv(std::ostream& out, const std::vector<PassesCase>& cases) {
+  out << "scene,method,width,height,pass,median_ms,q1_ms,q3_ms\n";
+  for (const PassesCase& c : cases) {
+    out << c.scene << ',' << c.method << ',' << c.size.width << ',' << c.size.height << ",frame,"
+        << c.frameMilliseconds.median << ',' << c.frameMilliseconds.q1 << ',' << c.frameMilliseconds.q3 << '\n';
+    for (const auto& [name, t] : c.passes)
+      out << c.scene << ',' << c.method << ',' << c.size.width << ',' << c.size.height << ',' << name << ','
+          << t.median << ',' << t.q1 << ',' << t.q3 << '\n';
+  }
+}
+
+void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases, const std::string& context) {
+  out << context << "\n\n";
+  out << "| scene | size | method | frame ms | peak device MiB | G-buffer B/pixel | BVH B/triangle (allocated / built) "
+         "| mask pixels | reveal rays |\n|---|---|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const PassesCase& c : cases) {
+    const std::string bvh = c.bvhAllocatedBytesPerTriangle
+                                ? fixed(*c.bvhAllocatedBytesPerTriangle, 1) + " / " + fixed(*c.bvhBuiltBytesPerTriangle, 1)
+                                : "-";
+    out << "| " << c.scene << " | " << sizeText(c.size) << " | " << c.method << " | "
+        << fixed(c.frameMilliseconds.median, 1) << " | " << fixed(mib(c.peakBytes), 1) << " | "
+        << fixed(c.gbufferBytesPerPixel, 0) << " | " << bvh << " | " << c.maskPixels << " | " << c.revealRays << " |\n";
+  }
+  std::vector<std::string> scenes;
+  for (const PassesCase& c : cases)
+    if (std::find(scenes.begin(), scenes.end(), c.scene) == scenes.end()) scenes.push_back(c.scene);
+  for (const std::string& scene : scenes) {
+    std::vector<const PassesCase*> columns;
+    std::vector<std::string> rows;
+    for (const PassesCase& c : cases) {
+      if (c.scene != scene) continue;
+      columns.push_back(&c);
+      for (const auto& [name, t] : c.passes)
+        if (std::find(rows.begin(), rows.end(), name) == rows.end()) rows.push_back(name);
+    }
+    out << "\n### " << scene << " (" << columns.front()->triangles << " triangles): median ms per pass\n\n| pass |";
+    for (const PassesCase* c : columns) out << ' ' << c->method << ' ' << sizeText(c->size) << " |";
+    out << "\n|---|";
+    for (size_t i = 0; i < columns.size(); ++i) out << "---:|";
+    out << '\n';
+    for (const std::string& row : rows) {
+      out << "| " << row << " |";
+      for (const PassesCase* c : columns) {
+        const auto it = std::find_if(c->passes.begin(), c->passes.end(), [&](const auto& p) { return p.first == row; });
+        out << ' ' << (it == c->passes.end() ? std::string() : fixed(it->second.median, 2)) << " |";
+      }
+      out << '\n';
+    }
+    for (const PassesCase* c : columns)
+      for (const auto& [name, reason] : c->skipped)
+        out << "\n- " << c->method << ' ' << sizeText(c->size) << ": " << name << " skipped (" << reason << ')';
+    out << '\n';
+  }
+}
+
+}  // namespace hmb::bench

@@ -1,0 +1,61 @@
+// Device memory accounting: every vk::Buffer's allocation is counted in its context while it
+// lives, the peak holds the most counted at once, and a render reports its peak, the G-buffer's
+// bytes per pixel and the mesh trees' bytes per triangle.
+#include <string>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "runtime/renderer.h"
+#include "runtime/vulkan/buffer.h"
+#include "scenes/load_scene.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using DeviceMemoryTest = VulkanTest;
+
+TEST_F(DeviceMemoryTest, BuffersAreCountedWhileTheyLive) {
+  const vk::Context& c = context();
+  const uint64_t before = c.memoryInUse();
+  c.resetMemoryPeak();
+  {
+    vk::Buffer a(c, 1 << 20, vk::MemoryUse::Device, "test a");
+    EXPECT_GE(c.memoryInUse(), before + (1 << 20));
+    vk::Buffer b(c, 3 << 20, vk::MemoryUse::Device, "test b");
+    EXPECT_GE(c.memoryInUse(), before + (4 << 20));
+    vk::Buffer moved = std::move(b);  // counted once, released once
+    EXPECT_GE(c.memoryInUse(), before + (4 << 20));
+    EXPECT_LT(c.memoryInUse(), before + (5 << 20));
+  }
+  EXPECT_EQ(c.memoryInUse(), before);
+  EXPECT_GE(c.memoryPeak(), before + (4 << 20));
+  c.resetMemoryPeak();
+  EXPECT_EQ(c.memoryPeak(), before);
+}
+
+TEST_F(DeviceMemoryTest, RenderReportsItsPeakAndPerPixelAndPerTriangleBytes) {
+  Renderer renderer(context());
+  const scene::Scene scene = scene::loadScene("living-room");
+  RenderSettings settings;
+  settings.width = 96;
+  settings.height = 54;
+  for (const char* method : {"postprocess", "hybrid"}) {
+    settings.method = method;
+    const RenderResult result = renderer.render(scene, settings);
+    // Visibility (8), colour (16), normal-depth (16), velocity (8) and object id (4).
+    EXPECT_EQ(result.memory.gbufferBytesPerPixel, 52.0) << method;
+    EXPECT_GE(result.memory.peakBytes, uint64_t(52 * 96 * 54)) << method;
+    EXPECT_GE(result.memory.peakBytes, context().memoryInUse()) << method;
+    EXPECT_EQ(result.memory.bvhAllocatedBytesPerTriangle.has_value(), std::string(method) == "hybrid") << method;
+    if (result.memory.bvhBuiltBytesPerTriangle) {
+      // A tree holds at least one index per triangle and its root; it fits what was allocated.
+      EXPECT_GT(*result.memory.bvhBuiltBytesPerTriangle, 4.0);
+      EXPECT_LE(*result.memory.bvhBuiltBytesPerTriangle, *result.memory.bvhAllocatedBytesPerTriangle);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hmb::test
