@@ -24,7 +24,7 @@ run: build
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# The benchmark suites at a reduced size (about 10 minutes on 2 cores); full runs and their
+# The benchmark suites at a reduced size (about a minute on 2 cores); full runs and their
 # commands: bench/README.md and bench/results/.
 BENCH_OUT ?= out/bench
 PYTHON ?= /usr/bin/python3
