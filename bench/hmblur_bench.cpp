@@ -4,6 +4,7 @@
 // on stderr and a non-zero exit.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -94,6 +95,32 @@ void checkOutputDirectory(const std::string& out) {
     throw hmb::Error("--out '" + out + "': directory '" + parent.string() + "' does not exist");
 }
 
+// Progress lines on stderr unless --quiet.
+std::function<void(const std::string&)> progressPrinter(const GlobalOptions& global) {
+  return [quiet = global.quiet](const std::string& message) {
+    if (!quiet) std::cerr << "hmblur-bench: " << message << '\n';
+  };
+}
+
+// The report header's first sentence: device, driver, CPU, threads and revision.
+std::string machineLine(const hmb::vk::Context& context, const hmb::SystemInfo& system) {
+  std::ostringstream line;
+  line << "Device " << context.info().name << " (" << context.info().driverInfo << "), CPU " << system.cpu << ", "
+       << system.hardwareThreads << " hardware threads, LP_NUM_THREADS " << system.lpNumThreads << ", revision "
+       << system.gitRevision << ".";
+  return line.str();
+}
+
+// Writes the CSV and Markdown files beside the JSON file `out` (same stem).
+void writeBeside(const std::string& out, const std::function<void(std::ostream&)>& csv,
+                 const std::function<void(std::ostream&)>& markdown) {
+  const fs::path stem = fs::path(out).replace_extension();
+  std::ofstream csvFile(stem.string() + ".csv"), markdownFile(stem.string() + ".md");
+  csv(csvFile);
+  markdown(markdownFile);
+  if (!csvFile || !markdownFile) throw hmb::Error("could not write " + stem.string() + ".csv / .md");
+}
+
 int raster(const GlobalOptions& global, const RasterOptions& options, const std::string& command) {
   hmb::bench::RasterSuiteOptions suite;
   suite.scenes = options.scenes;
@@ -109,9 +136,7 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
   // its render passes cannot disturb the compute queue's timestamps (bench/raster_suite.h).
   contextOptions.deviceIndex = static_cast<int>(context.info().index);
   const hmb::vk::Context graphicsContext(contextOptions);
-  const auto progress = [&](const std::string& message) {
-    if (!global.quiet) std::cerr << "hmblur-bench: " << message << '\n';
-  };
+  const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::RasterCase> cases =
       hmb::bench::runRasterSuite(context, graphicsContext, suite, progress);
@@ -164,9 +189,7 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   hmb::vk::ContextOptions contextOptions;
   contextOptions.deviceIndex = global.device;
   const hmb::vk::Context context(contextOptions);
-  const auto progress = [&](const std::string& message) {
-    if (!global.quiet) std::cerr << "hmblur-bench: " << message << '\n';
-  };
+  const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::BvhCase> cases = hmb::bench::runBvhSuite(context, suite, progress);
   hmb::bench::printBvhTable(std::cout, cases);
@@ -215,18 +238,13 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
   hmb::vk::ContextOptions contextOptions;
   contextOptions.deviceIndex = global.device;
   hmb::vk::Context context(contextOptions);
-  const auto progress = [&](const std::string& message) {
-    if (!global.quiet) std::cerr << "hmblur-bench: " << message << '\n';
-  };
+  const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::ErrorTimeScene> scenes = hmb::bench::runErrorTimeSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
   std::ostringstream header;
-  header << "Device " << context.info().name << " (" << context.info().driverInfo << "), CPU " << system.cpu << ", "
-         << system.hardwareThreads << " hardware threads, LP_NUM_THREADS "
-         << system.lpNumThreads << ", revision " << system.gitRevision
-         << ". " << suite.size.width << "x" << suite.size.height << "; median device time (timestamp queries) of "
+  header << machineLine(context, system) << ' ' << suite.size.width << "x" << suite.size.height << "; median device time (timestamp queries) of "
          << suite.repeats << " renders after " << suite.warmup << " warm-up (reference: " << suite.referenceRepeats
          << ", no warm-up). Command: `" << command << "`";
   hmb::bench::writeErrorTimeMarkdown(std::cout, scenes, header.str());
@@ -250,12 +268,10 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
   };
   for (const auto& s : scenes) report["scenes"].push_back(hmb::bench::errorTimeSceneJson(s));
   hmb::writeJson(options.out, report);
-  const fs::path stem = fs::path(options.out).replace_extension();
-  std::ofstream csv(stem.string() + ".csv"), markdown(stem.string() + ".md");
-  hmb::bench::writeErrorTimeCsv(csv, scenes);
-  hmb::bench::writeErrorTimeMarkdown(markdown, scenes, header.str());
-  if (!csv || !markdown) throw hmb::Error("could not write " + stem.string() + ".csv / .md");
-  progress("wrote " + options.out + ", " + stem.string() + ".csv and .md");
+  writeBeside(
+      options.out, [&](std::ostream& out) { hmb::bench::writeErrorTimeCsv(out, scenes); },
+      [&](std::ostream& out) { hmb::bench::writeErrorTimeMarkdown(out, scenes, header.str()); });
+  progress("wrote " + options.out + " and the .csv and .md beside it");
   return kOk;
 }
 
@@ -271,17 +287,13 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   hmb::vk::ContextOptions contextOptions;
   contextOptions.deviceIndex = global.device;
   hmb::vk::Context context(contextOptions);
-  const auto progress = [&](const std::string& message) {
-    if (!global.quiet) std::cerr << "hmblur-bench: " << message << '\n';
-  };
+  const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::PassesCase> cases = hmb::bench::runPassesSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
   std::ostringstream header;
-  header << "Device " << context.info().name << " (" << context.info().driverInfo << "), CPU " << system.cpu << ", "
-         << system.hardwareThreads << " hardware threads, LP_NUM_THREADS " << system.lpNumThreads << ", revision "
-         << system.gitRevision << ". Median device time (timestamp queries) of " << suite.repeats
+  header << machineLine(context, system) << " Median device time (timestamp queries) of " << suite.repeats
          << " renders after " << suite.warmup << " warm-up; the hybrid's mesh trees are scene setup, listed but "
          << "not in its frame. Peak device memory: the most the renderer's buffers held at once during a render. "
          << "Command: `" << command << "`";
@@ -300,12 +312,10 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   };
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::passesCaseJson(c));
   hmb::writeJson(options.out, report);
-  const fs::path stem = fs::path(options.out).replace_extension();
-  std::ofstream csv(stem.string() + ".csv"), markdown(stem.string() + ".md");
-  hmb::bench::writePassesCsv(csv, cases);
-  hmb::bench::writePassesMarkdown(markdown, cases, header.str());
-  if (!csv || !markdown) throw hmb::Error("could not write " + stem.string() + ".csv / .md");
-  progress("wrote " + options.out + ", " + stem.string() + ".csv and .md");
+  writeBeside(
+      options.out, [&](std::ostream& out) { hmb::bench::writePassesCsv(out, cases); },
+      [&](std::ostream& out) { hmb::bench::writePassesMarkdown(out, cases, header.str()); });
+  progress("wrote " + options.out + " and the .csv and .md beside it");
   return kOk;
 }
 
