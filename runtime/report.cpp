@@ -6,6 +6,10 @@
 
 namespace hmb {
 
+nlohmann::json optionalNumber(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
 nlohmann::json deviceJson(const vk::DeviceInfo& device) {
   return {
       {"index", device.index},
@@ -60,17 +64,12 @@ nlohmann::json sceneJson(const scene::Scene& scene) {
   };
 }
 
-// A number, or null when there is none.
-nlohmann::json optionalNumber(const std::optional<double>& value) {
-  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
-}
-
 nlohmann::json passesJson(const FramePlan& plan) {
   nlohmann::json passes = nlohmann::json::array();
   for (const PlannedPass& pass : plan.passes()) {
     nlohmann::json entry = {{"name", pass.name}, {"status", pass.run ? "run" : "skipped"}};
     if (pass.run)
-      entry["ms"] = pass.milliseconds ? nlohmann::json(*pass.milliseconds) : nlohmann::json(nullptr);
+      entry["ms"] = optionalNumber(pass.milliseconds);
     else
       entry["reason"] = pass.reason;
     passes.push_back(std::move(entry));
@@ -130,8 +129,7 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
       json["revealed_pixels"] = result.hybrid->revealedPixels;
       json["reveal_rays"] = result.hybrid->revealRays;
       // The trace scene's mesh trees: built once per scene, so not in the frame time.
-      json["scene_setup_ms"] =
-          result.hybrid->setupMilliseconds ? nlohmann::json(*result.hybrid->setupMilliseconds) : nlohmann::json(nullptr);
+      json["scene_setup_ms"] = optionalNumber(result.hybrid->setupMilliseconds);
     }
     return json;
   }
@@ -151,7 +149,7 @@ nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& syst
       {"settings", methodSettingsJson(result)},
       {"scene", sceneJson(scene)},
       {"passes", passesJson(result.plan)},
-      {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds) : nlohmann::json(nullptr)},
+      {"frame_ms", optionalNumber(result.frameMilliseconds)},
       {"raster", rasterJson(result)},
       {"device_memory",
        {{"peak_bytes", result.memory.peakBytes},

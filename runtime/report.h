@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +15,8 @@
 
 namespace hmb {
 
+// A number, or null when there is none.
+nlohmann::json optionalNumber(const std::optional<double>& value);
 nlohmann::json deviceJson(const vk::DeviceInfo& device);
 nlohmann::json systemJson(const SystemInfo& system);
 nlohmann::json sceneJson(const scene::Scene& scene);

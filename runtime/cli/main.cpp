@@ -281,8 +281,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     if (method == "reference") judge = display;
     if (method == "sharp") sharp = display;
     nlohmann::json entry = {{"method", method},
-                            {"frame_ms", result.frameMilliseconds ? nlohmann::json(*result.frameMilliseconds)
-                                                                  : nlohmann::json(nullptr)},
+                            {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
                             {"settings", hmb::methodSettingsJson(result)},
                             {"passes", hmb::passesJson(result.plan)},
                             {"raster", hmb::rasterJson(result)},
