@@ -24,7 +24,6 @@ gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t wi
   return r;
 }
 
-
 TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame)
     : context_(context),
       triangleBoundsKernel_(context, "bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t)),

@@ -60,17 +60,19 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   const gpu::MovingTilesParams tileParams{p.grid.count(), 0u, 0u, 0u};
   frame.dispatch(kMovingTiles, tilesKernel_, {p.tileMax, &counters_, &tiles_}, tileParams,
                  vk::foldedGroups(vk::groupsFor(p.grid.count(), HMB_MOVING_TILES_GROUP)));
+  // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
+  const auto sizeDispatch = [&](uint32_t list, uint32_t blocksPerTile) {
+    frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_}, gpu::SizeListParams{list, blocksPerTile, 0u, 0u},
+                   {1, 1, 1});
+  };
   const uint32_t blocksPerSide = vk::groupsFor(p.tileSize, HMB_MASK_TILE_GROUP_X);
-  frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_},
-                 gpu::SizeListParams{HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide, 0u, 0u}, {1, 1, 1});
-  const VkDeviceSize tileDispatch = offsetof(gpu::RayMaskCounters, tileDispatchX);
+  sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide);
   const gpu::EdgeMaskParams edgeParams{width_,      height_,         p.tileSize,     p.grid.x,
                                        p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold};
   frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
                          {layer.normalDepth, layer.velocity, &objectId, &tiles_, &counters_, &candidates_}, edgeParams,
                          counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
-  frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_},
-                 gpu::SizeListParams{HMB_SIZE_LIST_EDGE_CANDIDATES, 0u, 0u, 0u}, {1, 1, 1});
+  sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, &counters_, &candidates_, &edges_, &edgeBlocks_},
                          edgeParams, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
   const gpu::RangeCheckParams rangeParams{width_,
@@ -88,9 +90,8 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   frame.dispatchIndirect(kRangeCheck, rangeKernel_,
                          {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId,
                           &edgeBlocks_},
-                         rangeParams, counters_, tileDispatch);
-  frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_}, gpu::SizeListParams{HMB_SIZE_LIST_MASK, 0u, 0u, 0u},
-                 {1, 1, 1});
+                         rangeParams, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
+  sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }
 
 RayMaskCounts RayMaskStage::counts() const {
