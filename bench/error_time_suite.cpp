@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
-#include <sstream>
 
 #include "runtime/error.h"
 #include "runtime/metrics/display_image.h"
@@ -22,12 +20,6 @@ struct Config {
   double parameter = 0;
   RenderSettings settings;
 };
-
-std::string fixed(double value, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << value;
-  return s.str();
-}
 
 // Every configuration of one scene, in plot order: sharp, the post-process and hybrid series,
 // then the reference's spp series.

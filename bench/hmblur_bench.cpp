@@ -111,6 +111,25 @@ std::string machineLine(const hmb::vk::Context& context, const hmb::SystemInfo& 
   return line.str();
 }
 
+// The fields every suite's JSON report starts with: the suite, what it measures, the command,
+// the date, and the device and machine it ran on.
+nlohmann::json reportHead(const std::string& suite, const std::string& what, const std::string& command,
+                          const hmb::vk::Context& context, const hmb::SystemInfo& system) {
+  return {{"suite", suite},
+          {"what", what},
+          {"command", command},
+          {"date", hmb::utcTimestamp()},
+          {"device", hmb::deviceJson(context.info())},
+          {"system", hmb::systemJson(system)}};
+}
+
+// The device --device names (default: the preferred one).
+hmb::vk::Context openContext(const GlobalOptions& global) {
+  hmb::vk::ContextOptions options;
+  options.deviceIndex = global.device;
+  return hmb::vk::Context(options);
+}
+
 // Writes the CSV and Markdown files beside the JSON file `out` (same stem).
 void writeBeside(const std::string& out, const std::function<void(std::ostream&)>& csv,
                  const std::function<void(std::ostream&)>& markdown) {
@@ -152,27 +171,23 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
       std::cerr << "hmblur-bench: warning: " << c.scene << " " << c.size.width << "x" << c.size.height
                 << ": other processes kept " << c.otherCpuLoad << " cores busy; its times are disturbed\n";
   if (options.out.empty()) return kOk;
-  nlohmann::json report = {
-      {"suite", "raster"},
-      {"what", "compute rasterizer (G-buffer stage) vs the device's graphics pipeline on the same clip-space "
-               "triangles"},
-      {"note", "compute_visibility sums the rasterizer's passes (clears through rasterize) and excludes "
-               "transform_vertices: the graphics pipeline is handed already-transformed clip-space vertices. "
-               "graphics_draw is its render pass (clear, draws, store). Ratios are paired per iteration. The "
-               "graphics pipeline runs on a second logical device of the same physical device: on lavapipe a "
-               "render pass on the compute queue would defer that queue's later timestamps."},
-      {"command", command},
-      {"date", hmb::utcTimestamp()},
-      {"device", hmb::deviceJson(context.info())},
-      {"system", hmb::systemJson(hmb::querySystemInfo())},
-      {"settings",
-       {{"warmup", suite.warmup},
-        {"repeats", suite.repeats},
-        {"sizes", options.sizes},
-        {"scenes", options.scenes},
-        {"min_id_agreement", hmb::bench::kMinIdAgreement}}},
-      {"cases", nlohmann::json::array()},
-  };
+  nlohmann::json report =
+      reportHead("raster",
+                 "compute rasterizer (G-buffer stage) vs the device's graphics pipeline on the same clip-space "
+                 "triangles",
+                 command, context, hmb::querySystemInfo());
+  report["note"] =
+      "compute_visibility sums the rasterizer's passes (clears through rasterize) and excludes "
+      "transform_vertices: the graphics pipeline is handed already-transformed clip-space vertices. "
+      "graphics_draw is its render pass (clear, draws, store). Ratios are paired per iteration. The "
+      "graphics pipeline runs on a second logical device of the same physical device: on lavapipe a "
+      "render pass on the compute queue would defer that queue's later timestamps.";
+  report["settings"] = {{"warmup", suite.warmup},
+                        {"repeats", suite.repeats},
+                        {"sizes", options.sizes},
+                        {"scenes", options.scenes},
+                        {"min_id_agreement", hmb::bench::kMinIdAgreement}};
+  report["cases"] = nlohmann::json::array();
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::rasterCaseJson(c));
   hmb::writeJson(options.out, report);
   progress("wrote " + options.out);
@@ -186,36 +201,30 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   suite.repeats = options.repeats;
   suite.embreeThreads = options.embreeThreads;
   checkOutputDirectory(options.out);
-  hmb::vk::ContextOptions contextOptions;
-  contextOptions.deviceIndex = global.device;
-  const hmb::vk::Context context(contextOptions);
+  const hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::BvhCase> cases = hmb::bench::runBvhSuite(context, suite, progress);
   hmb::bench::printBvhTable(std::cout, cases);
   if (options.out.empty()) return kOk;
-  nlohmann::json report = {
-      {"suite", "bvh"},
-      {"what", "device BVH build (binned SAH, compute) and trace kernel vs the CPU full-sweep SAH build and Embree, "
-               "same world-space triangles and rays"},
-      {"note", "device times are Vulkan timestamps (build: triangle boxes + every level; trace: the trace-rays pass). "
-               "Embree: rtcCommitScene (default quality) for build speed, rtcBuildBVH into our node layout for its SAH "
-               "cost, rtcIntersect over embree_threads threads for rays. SAH costs: traversal 1, intersection 1, "
-               "leaves of at most 4, normalized by the root's area."},
-      {"command", command},
-      {"date", hmb::utcTimestamp()},
-      {"device", hmb::deviceJson(context.info())},
-      {"system", hmb::systemJson(hmb::querySystemInfo())},
-      {"embree", hmb::bench::embreeAvailable() ? hmb::bench::embreeVersion() : "unavailable"},
-      {"settings",
-       {{"warmup", suite.warmup},
-        {"repeats", suite.repeats},
-        {"embree_threads", hmb::bench::embreeThreadCount(suite.embreeThreads)},
-        {"coherent_rays", "one per pixel, 640x360, from the scene camera"},
-        {"incoherent_rays", suite.incoherentRays},
-        {"min_hit_agreement", hmb::bench::kMinHitAgreement}}},
-      {"cases", nlohmann::json::array()},
-  };
+  nlohmann::json report =
+      reportHead("bvh",
+                 "device BVH build (binned SAH, compute) and trace kernel vs the CPU full-sweep SAH build and Embree, "
+                 "same world-space triangles and rays",
+                 command, context, hmb::querySystemInfo());
+  report["note"] =
+      "device times are Vulkan timestamps (build: triangle boxes + every level; trace: the trace-rays pass). "
+      "Embree: rtcCommitScene (default quality) for build speed, rtcBuildBVH into our node layout for its SAH "
+      "cost, rtcIntersect over embree_threads threads for rays. SAH costs: traversal 1, intersection 1, "
+      "leaves of at most 4, normalized by the root's area.";
+  report["embree"] = hmb::bench::embreeAvailable() ? hmb::bench::embreeVersion() : "unavailable";
+  report["settings"] = {{"warmup", suite.warmup},
+                        {"repeats", suite.repeats},
+                        {"embree_threads", hmb::bench::embreeThreadCount(suite.embreeThreads)},
+                        {"coherent_rays", "one per pixel, 640x360, from the scene camera"},
+                        {"incoherent_rays", suite.incoherentRays},
+                        {"min_hit_agreement", hmb::bench::kMinHitAgreement}};
+  report["cases"] = nlohmann::json::array();
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::bvhCaseJson(c));
   hmb::writeJson(options.out, report);
   progress("wrote " + options.out);
@@ -235,37 +244,31 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
   checkOutputDirectory(options.out);
   if (!suite.referenceDir.empty() && !fs::is_directory(suite.referenceDir))
     throw hmb::Error("--reference-dir '" + suite.referenceDir + "' is not a directory");
-  hmb::vk::ContextOptions contextOptions;
-  contextOptions.deviceIndex = global.device;
-  hmb::vk::Context context(contextOptions);
+  hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::ErrorTimeScene> scenes = hmb::bench::runErrorTimeSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
   std::ostringstream header;
-  header << machineLine(context, system) << ' ' << suite.size.width << "x" << suite.size.height << "; median device time (timestamp queries) of "
-         << suite.repeats << " renders after " << suite.warmup << " warm-up (reference: " << suite.referenceRepeats
-         << ", no warm-up). Command: `" << command << "`";
+  header << machineLine(context, system) << ' ' << suite.size.width << "x" << suite.size.height
+         << "; median device time (timestamp queries) of " << suite.repeats << " renders after " << suite.warmup
+         << " warm-up (reference: " << suite.referenceRepeats << ", no warm-up). Command: `" << command << "`";
   hmb::bench::writeErrorTimeMarkdown(std::cout, scenes, header.str());
   if (options.out.empty()) return kOk;
-  nlohmann::json report = {
-      {"suite", "error-vs-time"},
-      {"what", "error (PSNR, SSIM; frame and blur region) against a high-spp judge, and median frame time, of every "
-               "method over a range of settings"},
-      {"command", command},
-      {"date", hmb::utcTimestamp()},
-      {"device", hmb::deviceJson(context.info())},
-      {"system", hmb::systemJson(system)},
-      {"settings",
-       {{"size", options.size},
-        {"warmup", suite.warmup},
-        {"repeats", suite.repeats},
-        {"reference_repeats", suite.referenceRepeats},
-        {"judge_spp", suite.referenceDir.empty() ? nlohmann::json(suite.judgeSpp) : nlohmann::json(nullptr)},
-        {"reference_spp", suite.referenceSpp}}},
-      {"scenes", nlohmann::json::array()},
-  };
+  nlohmann::json report =
+      reportHead("error-vs-time",
+                 "error (PSNR, SSIM; frame and blur region) against a high-spp judge, and median frame time, of every "
+                 "method over a range of settings",
+                 command, context, system);
+  report["settings"] = {
+      {"size", options.size},
+      {"warmup", suite.warmup},
+      {"repeats", suite.repeats},
+      {"reference_repeats", suite.referenceRepeats},
+      {"judge_spp", suite.referenceDir.empty() ? nlohmann::json(suite.judgeSpp) : nlohmann::json(nullptr)},
+      {"reference_spp", suite.referenceSpp}};
+  report["scenes"] = nlohmann::json::array();
   for (const auto& s : scenes) report["scenes"].push_back(hmb::bench::errorTimeSceneJson(s));
   hmb::writeJson(options.out, report);
   writeBeside(
@@ -284,9 +287,7 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   suite.warmup = options.warmup;
   suite.repeats = options.repeats;
   checkOutputDirectory(options.out);
-  hmb::vk::ContextOptions contextOptions;
-  contextOptions.deviceIndex = global.device;
-  hmb::vk::Context context(contextOptions);
+  hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::PassesCase> cases = hmb::bench::runPassesSuite(context, suite, progress);
@@ -299,17 +300,12 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
          << "Command: `" << command << "`";
   hmb::bench::writePassesMarkdown(std::cout, cases, header.str());
   if (options.out.empty()) return kOk;
-  nlohmann::json report = {
-      {"suite", "passes"},
-      {"what", "per-pass device time of each method, scene and image size, and each render's device memory"},
-      {"command", command},
-      {"date", hmb::utcTimestamp()},
-      {"device", hmb::deviceJson(context.info())},
-      {"system", hmb::systemJson(system)},
-      {"settings",
-       {{"sizes", options.sizes}, {"methods", options.methods}, {"warmup", suite.warmup}, {"repeats", suite.repeats}}},
-      {"cases", nlohmann::json::array()},
-  };
+  nlohmann::json report =
+      reportHead("passes", "per-pass device time of each method, scene and image size, and each render's device memory",
+                 command, context, system);
+  report["settings"] = {
+      {"sizes", options.sizes}, {"methods", options.methods}, {"warmup", suite.warmup}, {"repeats", suite.repeats}};
+  report["cases"] = nlohmann::json::array();
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::passesCaseJson(c));
   hmb::writeJson(options.out, report);
   writeBeside(

@@ -1,29 +1,17 @@
 #include "bench/passes_suite.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <map>
 
 #include "runtime/error.h"
+#include "runtime/report.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 
 namespace hmb::bench {
 namespace {
 
-std::string fixed(double value, int digits) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", digits, value);
-  return text;
-}
-
-std::string sizeText(const ImageSize& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
-
 double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
-
-nlohmann::json optionalJson(const std::optional<double>& value) {
-  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
-}
 
 PassesCase runCase(Renderer& renderer, const scene::Scene& scene, const std::string& name, const std::string& method,
                    const ImageSize& size, const PassesSuiteOptions& o) {
@@ -82,7 +70,7 @@ std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOp
     const scene::Scene scene = scene::loadScene(name);
     for (const ImageSize& size : options.sizes)
       for (const std::string& method : options.methods) {
-        progress(name + " " + sizeText(size) + " " + method);
+        progress(name + " " + sizeName(size) + " " + method);
         // A renderer of its own: the peak then counts what this case needs, not what an
         // earlier case left allocated.
         Renderer renderer(context);
@@ -107,8 +95,8 @@ nlohmann::json passesCaseJson(const PassesCase& c) {
           {"device_memory",
            {{"peak_bytes", c.peakBytes},
             {"gbuffer_bytes_per_pixel", c.gbufferBytesPerPixel},
-            {"bvh_allocated_bytes_per_triangle", optionalJson(c.bvhAllocatedBytesPerTriangle)},
-            {"bvh_built_bytes_per_triangle", optionalJson(c.bvhBuiltBytesPerTriangle)}}},
+            {"bvh_allocated_bytes_per_triangle", optionalNumber(c.bvhAllocatedBytesPerTriangle)},
+            {"bvh_built_bytes_per_triangle", optionalNumber(c.bvhBuiltBytesPerTriangle)}}},
           {"mask_pixels", c.maskPixels},
           {"reveal_rays", c.revealRays}};
 }
@@ -132,7 +120,7 @@ void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases
     const std::string bvh = c.bvhAllocatedBytesPerTriangle
                                 ? fixed(*c.bvhAllocatedBytesPerTriangle, 1) + " / " + fixed(*c.bvhBuiltBytesPerTriangle, 1)
                                 : "-";
-    out << "| " << c.scene << " | " << sizeText(c.size) << " | " << c.method << " | "
+    out << "| " << c.scene << " | " << sizeName(c.size) << " | " << c.method << " | "
         << fixed(c.frameMilliseconds.median, 1) << " | " << fixed(mib(c.peakBytes), 1) << " | "
         << fixed(c.gbufferBytesPerPixel, 0) << " | " << bvh << " | " << c.maskPixels << " | " << c.revealRays << " |\n";
   }
@@ -149,7 +137,7 @@ void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases
         if (std::find(rows.begin(), rows.end(), name) == rows.end()) rows.push_back(name);
     }
     out << "\n### " << scene << " (" << columns.front()->triangles << " triangles): median ms per pass\n\n| pass |";
-    for (const PassesCase* c : columns) out << ' ' << c->method << ' ' << sizeText(c->size) << " |";
+    for (const PassesCase* c : columns) out << ' ' << c->method << ' ' << sizeName(c->size) << " |";
     out << "\n|---|";
     for (size_t i = 0; i < columns.size(); ++i) out << "---:|";
     out << '\n';
@@ -163,7 +151,7 @@ void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases
     }
     for (const PassesCase* c : columns)
       for (const auto& [name, reason] : c->skipped)
-        out << "\n- " << c->method << ' ' << sizeText(c->size) << ": " << name << " skipped (" << reason << ')';
+        out << "\n- " << c->method << ' ' << sizeName(c->size) << ": " << name << " skipped (" << reason << ')';
     out << '\n';
   }
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <optional>
 #include <span>
@@ -25,15 +26,15 @@
 #include "tests/oracle/graphics_raster.h"
 
 namespace hmb::bench {
-namespace {
-
 std::string sizeName(ImageSize size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
 
 std::string fixed(double value, int digits) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.*f", digits, value);
-  return text;
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << value;
+  return s.str();
 }
+
+namespace {
 
 // Busy CPU seconds of the whole host and of this process (lavapipe's threads included), from
 // /proc; valid is false where /proc is missing.

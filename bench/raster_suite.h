@@ -43,6 +43,11 @@ struct ImageSize {
 
 // "1280x720" -> {1280, 720}; throws hmb::Error on anything else.
 ImageSize parseImageSize(const std::string& text);
+// {1280, 720} -> "1280x720".
+std::string sizeName(ImageSize size);
+
+// A number with `digits` decimals, for the suites' tables.
+std::string fixed(double value, int digits);
 
 struct RasterSuiteOptions {
   std::vector<std::string> scenes;  // reference scene names or glTF paths
