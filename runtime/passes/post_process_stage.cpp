@@ -48,10 +48,14 @@ void PostProcessStage::prepare(uint32_t width, uint32_t height) {
   height_ = height;
 }
 
-void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {
+void PostProcessStage::requirePreparedSize(const MotionBlurInputs& inputs) const {
   if (inputs.width != width_ || inputs.height != height_)
     throw Error("post-process: inputs are " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) +
                 " but the stage was prepared for " + std::to_string(width_) + "x" + std::to_string(height_));
+}
+
+void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {
+  requirePreparedSize(inputs);
   tileMaxPass_.record(frame, *inputs.velocity, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
                       settings_.velocityScale());
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
@@ -61,7 +65,7 @@ void PostProcessStage::recordGather(vk::FrameRecorder& frame, const MotionBlurIn
                                     const GatherOptions& options, const vk::Buffer& output,
                                     std::string_view passName) const {
   if (!gather_) throw Error("post-process: gathers with options need the McGuire filter");
-  if (inputs.width != width_ || inputs.height != height_) throw Error("post-process: the layer's size differs");
+  requirePreparedSize(inputs);
   gather_->record(frame, inputs, neighborMax_, options, output, settings_, passName);
 }
 

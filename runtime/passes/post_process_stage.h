@@ -49,6 +49,9 @@ class PostProcessStage {
   const vk::Buffer& neighborMax() const { return neighborMax_; }
 
  private:
+  // Throws hmb::Error when the inputs are not the size prepare() was given.
+  void requirePreparedSize(const MotionBlurInputs& inputs) const;
+
   const vk::Context& context_;
   PostProcessSettings settings_;
   TileMaxPass tileMaxPass_;
