@@ -282,6 +282,7 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
       std::vector<glm::vec4> revealed(pixels, glm::vec4(0.0f)), revealedDepth(pixels, glm::vec4(0.0f));
       if (hybrid) {
         const passes::RayMaskCounts counts = passes_->hybrid.rayMask().counts();
+        result.hybrid->edgeCandidates = counts.edgeCandidates;
         result.hybrid->maskPixels = counts.maskPixels;
         result.hybrid->revealedPixels = counts.listedPixels;
         result.hybrid->revealRays = counts.revealRays;

@@ -93,6 +93,7 @@ struct RenderResult {
   // The hybrid method: its settings, the ray mask's size and the reveal's rays.
   struct Hybrid {
     passes::HybridSettings settings;
+    uint64_t edgeCandidates = 0;  // pixels whose end lies on a deeper object (eqs. 1-2)
     uint64_t maskPixels = 0;
     uint64_t revealedPixels = 0;  // mask pixels whose composite needs the background, traced
     uint64_t revealRays = 0;

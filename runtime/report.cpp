@@ -125,6 +125,7 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
       json["composite"] = passes::compositeName(h.composite);
       json["mask_background_boost"] = h.maskBackgroundBoost;
       json["mask_foreground_divide"] = h.maskForegroundDivide;
+      json["edge_candidates"] = result.hybrid->edgeCandidates;
       json["mask_pixels"] = result.hybrid->maskPixels;
       json["revealed_pixels"] = result.hybrid->revealedPixels;
       json["reveal_rays"] = result.hybrid->revealRays;

@@ -96,7 +96,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
 
 RayMaskCounts RayMaskStage::counts() const {
   const auto c = counters_.download<gpu::RayMaskCounters>();
-  return {c.at(0).maskPixels, c.at(0).maskCount, c.at(0).rayCount};
+  return {c.at(0).candidateCount, c.at(0).maskPixels, c.at(0).maskCount, c.at(0).rayCount};
 }
 
 }  // namespace hmb::passes

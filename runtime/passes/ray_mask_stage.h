@@ -33,6 +33,7 @@ struct RayMaskParameters {
 };
 
 struct RayMaskCounts {
+  uint64_t edgeCandidates = 0;  // pixels where eqs. 1-2 hold (the Sobel ran there)
   uint64_t maskPixels = 0;
   uint64_t listedPixels = 0;  // the mask pixels the reveal traced
   uint64_t revealRays = 0;

@@ -387,6 +387,7 @@ TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
       ++checked;
     }
   EXPECT_EQ(masked, hybrid.hybrid->maskPixels);
+  EXPECT_GT(hybrid.hybrid->edgeCandidates, 0u);  // a mask needs edges, and edges are candidates
   EXPECT_EQ(traced, hybrid.hybrid->revealedPixels);
   EXPECT_EQ(hybrid.hybrid->revealRays, traced);  // one trace each with the object-id stop
   EXPECT_GT(checked, 20u);
