@@ -28,6 +28,8 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
   const auto add = [&](std::string label, std::string series, double parameter, const std::string& method) {
     Config c{std::move(label), std::move(series), parameter, {}};
     c.settings.method = method;
+    // Each repeat is timed as a new frame of the animation: nothing kept from the last one.
+    c.settings.reuseAcrossFrames = false;
     c.settings.width = o.size.width;
     c.settings.height = o.size.height;
     configs.push_back(std::move(c));

@@ -217,16 +217,20 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     if (blurMethod) {
       passes_->postProcess.configure(*result.postprocess);
       FramePlan blurPlan;
+      if (settings.method == "hybrid" && !(settings.skipUnneededPasses && settings.reuseAcrossFrames))
+        passes_->hybrid.forgetTraceScene();
       if (settings.method == "hybrid")
-        passes_->hybrid.plan(blurPlan);
+        passes_->hybrid.plan(blurPlan, scene, result.frameTime);
       else
         passes_->postProcess.plan(blurPlan);
       for (const PlannedPass& pass : blurPlan.passes()) {
         if (still)
           result.plan.skip(pass.name, "nothing moves on screen at this frame: every velocity is 0, so the blur "
                                       "returns the sharp colour");
-        else
+        else if (pass.run)
           result.plan.run(pass.name);
+        else
+          result.plan.skip(pass.name, pass.reason);
       }
     }
     if (blur) {

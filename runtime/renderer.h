@@ -62,6 +62,11 @@ struct RenderSettings {
   // Leave out the passes that cannot change the image (the plan lists them as skipped, with
   // why); false runs every pass, to check that leaving them out changes nothing.
   bool skipUnneededPasses = true;
+  // Keep what the last render built that still serves this frame (the hybrid's mesh trees for
+  // the same meshes, its top-level tree when no instance moved). A benchmark that renders one
+  // frame over and over turns this off, so each repeat pays what a new frame of an animation
+  // does. Off as well when skipUnneededPasses is.
+  bool reuseAcrossFrames = true;
   // Long methods (the reference) report how far they are after every submission.
   std::function<void(const passes::ReferenceProgress&)> onProgress;
 };

@@ -1,6 +1,7 @@
 #include "runtime/trace_scene.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 
@@ -9,6 +10,51 @@
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {
+namespace {
+
+// FNV-1a over 32-bit words: what a mesh tree depends on (positions and triangles), so a
+// change to any of them gives another fingerprint.
+uint64_t fingerprintOf(const scene::Scene& scene) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  const auto mix = [&](uint32_t word) { hash = (hash ^ word) * 0x100000001b3ull; };
+  mix(static_cast<uint32_t>(scene.meshes.size()));
+  for (const scene::Mesh& mesh : scene.meshes) {
+    mix(static_cast<uint32_t>(mesh.positions.size()));
+    for (const glm::vec3& p : mesh.positions)
+      for (int a = 0; a < 3; ++a) mix(std::bit_cast<uint32_t>(p[a]));
+    mix(static_cast<uint32_t>(mesh.indices.size()));
+    for (const uint32_t index : mesh.indices) mix(index);
+  }
+  return hash;
+}
+
+// The instances and their transforms at each shutter time, as the top level is built from.
+void instancesAt(const scene::Scene& scene, std::span<const float> times, std::vector<gpu::TraceInstance>& instances,
+                 std::vector<gpu::InstanceTransform>& transforms) {
+  for (const scene::Instance& instance : scene.instances) {
+    const uint32_t material = scene.meshes.at(instance.mesh).material;
+    const bool doubleSided = material < scene.materials.size() && scene.materials[material].doubleSided;
+    instances.push_back({instance.mesh, instance.objectId, doubleSided ? 0u : HMB_TRACE_INSTANCE_SINGLE_SIDED, 0u});
+    for (const float t : times) {
+      const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
+      transforms.push_back({world, glm::inverse(world)});
+    }
+  }
+}
+
+bool sameInstances(const std::vector<gpu::TraceInstance>& a, const std::vector<gpu::TraceInstance>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+           return x.mesh == y.mesh && x.objectId == y.objectId && x.flags == y.flags;
+         });
+}
+
+bool sameTransforms(const std::vector<gpu::InstanceTransform>& a, const std::vector<gpu::InstanceTransform>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+           return x.worldFromObject == y.worldFromObject && x.objectFromWorld == y.objectFromWorld;
+         });
+}
+
+}  // namespace
 
 gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
   const FrameCamera camera = frameCamera(scene, t, width, height);
@@ -45,6 +91,7 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   }
   if (triangles.size() > HMB_BVH_LINK_NEXT_MASK / 2) throw Error("the scene has more triangles than a BVH can index");
   meshCount_ = static_cast<uint32_t>(scene.meshes.size());
+  meshFingerprint_ = fingerprintOf(scene);
   triangleCount_ = static_cast<uint32_t>(triangles.size());
   positions_ = vk::uploadedBuffer(context, positions, "trace positions");
   triangles_ = vk::uploadedBuffer(context, triangles, "trace triangles");
@@ -58,19 +105,22 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   });
 }
 
+bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
+
+bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const float> times) const {
+  if (builtTransforms_.empty() && builtInstances_.empty()) return false;
+  std::vector<gpu::TraceInstance> instances;
+  std::vector<gpu::InstanceTransform> transforms;
+  instancesAt(scene, times, instances, transforms);
+  return timeCount_ == times.size() && sameInstances(instances, builtInstances_) &&
+         sameTransforms(transforms, builtTransforms_);
+}
+
 void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame) {
   if (times.empty()) throw Error("a trace needs at least one shutter time");
   std::vector<gpu::TraceInstance> instances;
   std::vector<gpu::InstanceTransform> transforms;
-  for (const scene::Instance& instance : scene.instances) {
-    const uint32_t material = scene.meshes.at(instance.mesh).material;
-    const bool doubleSided = material < scene.materials.size() && scene.materials[material].doubleSided;
-    instances.push_back({instance.mesh, instance.objectId, doubleSided ? 0u : HMB_TRACE_INSTANCE_SINGLE_SIDED, 0u});
-    for (const float t : times) {
-      const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
-      transforms.push_back({world, glm::inverse(world)});
-    }
-  }
+  instancesAt(scene, times, instances, transforms);
   instanceCount_ = static_cast<uint32_t>(instances.size());
   timeCount_ = static_cast<uint32_t>(times.size());
   instances_ = vk::uploadedBuffer(context_, instances, "trace instances");
@@ -84,6 +134,8 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
     f.dispatch(kMotionBounds, motionBoundsKernel_, {&meshBvh_.nodes(), &instances_, &transforms_, &instanceBoxes_},
                params, vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
   });
+  builtInstances_ = std::move(instances);
+  builtTransforms_ = std::move(transforms);
 }
 
 }  // namespace hmb

@@ -1,7 +1,9 @@
 // The scene as the ray tracing kernels see it (kernels/trace/trace_layout.h): every mesh's
 // triangles in its own space under a BVH per mesh, built on the device once; and the instances
 // at a frame's shutter times under a top-level BVH over their motion bounds, rebuilt on the
-// device whenever the shutter times change.
+// device whenever an instance's transform at those times changes. A renderer keeps one trace
+// scene across frames: its mesh trees serve every frame of the same meshes, and its top
+// level every frame in which no instance moved.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +38,13 @@ class TraceScene {
   // boxes merged over those times (submits on `frame`). Rays name a time by its index here.
   void setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame);
 
+  // Whether this trace scene was built from meshes with the same positions and triangles as
+  // `scene`'s (a 64-bit fingerprint of them), so its mesh trees serve that scene.
+  bool hasMeshesOf(const scene::Scene& scene) const;
+  // Whether the top level was last built for the same instances with the same transforms at
+  // each of these shutter times, so setShutterTimes would rebuild the same tree.
+  bool hasShutterTimes(const scene::Scene& scene, std::span<const float> times) const;
+
   uint32_t meshCount() const { return meshCount_; }
   uint32_t instanceCount() const { return instanceCount_; }
   uint32_t timeCount() const { return timeCount_; }
@@ -63,6 +72,10 @@ class TraceScene {
   uint32_t timeCount_ = 0;
   uint32_t triangleCount_ = 0;
   std::vector<uint32_t> meshFirstTriangle_;
+  uint64_t meshFingerprint_ = 0;
+  // What the top level was last built from, to tell whether a frame can keep it.
+  std::vector<gpu::TraceInstance> builtInstances_;
+  std::vector<gpu::InstanceTransform> builtTransforms_;
   vk::Buffer positions_;      // vec4 per vertex of every mesh
   vk::Buffer triangles_;      // uvec4 (v0, v1, v2, mesh) per triangle of every mesh
   vk::Buffer triangleBoxes_;  // BvhBox per triangle

@@ -43,6 +43,7 @@ struct RenderOptions {
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;
+  std::string frames;  // "A:B": frames A to B at times frame / fps, an image each
   bool runEveryPass = false;
   std::string out;
   std::string report;
@@ -177,6 +178,81 @@ int listScenes() {
   return kOk;
 }
 
+struct FrameRange {
+  uint32_t first = 0, last = 0;
+};
+
+// The largest animation one command renders: enough for minutes of film at 240 fps.
+constexpr uint32_t kMaxFrames = 100000;
+
+// "A:B" (0 <= A <= B) -> {A, B}; throws hmb::Error on anything else.
+FrameRange parseFrames(const std::string& text) {
+  const size_t colon = text.find(':');
+  const auto number = [&](const std::string& part) {
+    if (part.empty() || part.size() > 9 || !std::all_of(part.begin(), part.end(), ::isdigit))
+      throw hmb::Error("--frames '" + text + "' must be FIRST:LAST, two frame numbers");
+    return static_cast<uint32_t>(std::stoul(part));
+  };
+  if (colon == std::string::npos) throw hmb::Error("--frames '" + text + "' must be FIRST:LAST, two frame numbers");
+  const FrameRange range{number(text.substr(0, colon)), number(text.substr(colon + 1))};
+  if (range.last < range.first) throw hmb::Error("--frames '" + text + "': the last frame is before the first");
+  if (range.last - range.first >= kMaxFrames)
+    throw hmb::Error("--frames '" + text + "': at most " + std::to_string(kMaxFrames) + " frames per command");
+  return range;
+}
+
+// out.png, frame 7 of frames up to 120 -> out.0007.png (at least four digits, as many as the
+// last frame needs).
+fs::path framePath(const fs::path& out, uint32_t frame, uint32_t lastFrame) {
+  const size_t digits = std::max<size_t>(4, std::to_string(lastFrame).size());
+  std::string number = std::to_string(frame);
+  number.insert(0, digits - number.size(), '0');
+  return out.parent_path() / (out.stem().string() + "." + number + out.extension().string());
+}
+
+// --frames A:B: an image sequence, one renderer for all frames so that what a frame built and
+// the next can use (the hybrid's trees) is kept. One report lists every frame's passes.
+int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb::RenderSettings settings) {
+  const FrameRange range = parseFrames(options.frames);
+  if (options.frameTime)
+    throw hmb::Error("--frames and --frame-time exclude each other: a frame's time is frame / fps");
+  if (!options.referenceImage.empty() || !options.checkpoint.empty())
+    throw hmb::Error("--frames renders a sequence: --reference and --checkpoint take one frame");
+  progress(global, "loading scene " + options.scene);
+  const hmb::scene::Scene scene = hmb::scene::loadScene(options.scene);
+  hmb::vk::Context context(contextOptions(global));
+  progress(global, "device: " + context.info().name);
+  hmb::Renderer renderer(context);
+  nlohmann::json report = {{"tool", "hmblur render --frames"},
+                           {"date", hmb::utcTimestamp()},
+                           {"device", hmb::deviceJson(context.info())},
+                           {"system", hmb::systemJson(hmb::querySystemInfo())},
+                           {"scene", hmb::sceneJson(scene)},
+                           {"method", options.method},
+                           {"resolution", {options.width, options.height}},
+                           {"fps", scene.settings.fps},
+                           {"frames", nlohmann::json::array()}};
+  for (uint32_t frame = range.first; frame <= range.last; ++frame) {
+    settings.frameTime = static_cast<float>(frame / double(scene.settings.fps));
+    const hmb::RenderResult result = renderer.render(scene, settings);
+    nlohmann::json entry = {{"frame", frame},
+                            {"time_s", *settings.frameTime},
+                            {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
+                            {"passes", hmb::passesJson(result.plan)}};
+    std::string line = "frame " + std::to_string(frame) + ": " + formatMs(result.frameMilliseconds);
+    if (!options.out.empty()) {
+      const fs::path path = framePath(options.out, frame, range.last);
+      writeImage(path, result);
+      entry["image"] = path.string();
+      line += " -> " + path.string();
+    }
+    report["frames"].push_back(entry);
+    progress(global, line);
+  }
+  if (!options.report.empty()) hmb::writeJson(options.report, report);
+  return validationVerdict(context);
+}
+
 int render(const GlobalOptions& global, const RenderOptions& options) {
   hmb::RenderSettings settings;
   settings.method = options.method;
@@ -196,6 +272,7 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   checkOutputPath(options.errorImage, {".png"}, "--error-image");
   if (!options.errorImage.empty() && options.referenceImage.empty())
     throw hmb::Error("--error-image needs --reference");
+  if (!options.frames.empty()) return renderFrames(global, options, settings);
   // Read before rendering, so a bad reference fails at once.
   std::optional<hmb::metrics::DisplayImage> referenceImage;
   if (!options.referenceImage.empty()) {
@@ -343,6 +420,9 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--width", renderOptions.width, "Image width in pixels")->capture_default_str();
   renderCmd->add_option("--height", renderOptions.height, "Image height in pixels")->capture_default_str();
   renderCmd->add_option("--frame-time", renderOptions.frameTime, "Time of the frame in seconds (shutter closes then)");
+  renderCmd->add_option("--frames", renderOptions.frames,
+                        "Render frames FIRST:LAST (at frame / fps) as an image sequence: --out NAME.png writes "
+                        "NAME.0001.png ...; the report lists every frame");
   renderCmd->add_flag("--run-every-pass", renderOptions.runEveryPass,
                       "Run the passes that cannot change this frame too (by default they are skipped; the report "
                       "says which and why)");

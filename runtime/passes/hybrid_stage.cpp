@@ -26,9 +26,19 @@ std::optional<HybridStage::TreeBytes> HybridStage::meshTreeBytes() const {
   return TreeBytes{double(trees.allocatedTreeBytes()) / triangles, double(trees.usedTreeBytes()) / triangles};
 }
 
-void HybridStage::plan(FramePlan& plan) const {
-  plan.run(kBvhMeshes);
-  plan.run(kBvhInstances);
+void HybridStage::forgetTraceScene() { traceScene_.reset(); }
+
+void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const {
+  const bool sameMeshes = traceScene_ && traceScene_->hasMeshesOf(scene);
+  if (sameMeshes)
+    plan.skip(kBvhMeshes, "the mesh trees of an earlier frame serve this one: same meshes (positions and triangles)");
+  else
+    plan.run(kBvhMeshes);
+  const float times[] = {frameTime};
+  if (sameMeshes && traceScene_->hasShutterTimes(scene, times))
+    plan.skip(kBvhInstances, "the top-level tree of the last frame serves this one: no instance moved since");
+  else
+    plan.run(kBvhInstances);
   postProcess_.planTiles(plan);
   rayMask_.plan(plan);
   plan.run(RevealPass::kName);
@@ -46,13 +56,18 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
     throw Error("hybrid: the coverage composite needs the adapted range");
   settings_ = settings;
   PrepareTimings timings;
-  traceScene_ = std::make_unique<TraceScene>(context_, scene, frame);
-  const double meshMs = traceScene_->meshBvh().stats().deviceMilliseconds;
-  timings.setup = {{{kBvhMeshes, meshMs}}, meshMs};
+  // The same decisions as plan(): a tree is rebuilt only when what it was built from changed.
+  if (!traceScene_ || !traceScene_->hasMeshesOf(scene)) {
+    traceScene_ = std::make_unique<TraceScene>(context_, scene, frame);
+    const double meshMs = traceScene_->meshBvh().stats().deviceMilliseconds;
+    timings.setup = {{{kBvhMeshes, meshMs}}, meshMs};
+  }
   const float times[] = {frameTime};
-  traceScene_->setShutterTimes(scene, times, frame);
-  const double instanceMs = traceScene_->instanceBvh().stats().deviceMilliseconds;
-  timings.frame = {{{kBvhInstances, instanceMs}}, instanceMs};
+  if (!traceScene_->hasShutterTimes(scene, times)) {
+    traceScene_->setShutterTimes(scene, times, frame);
+    const double instanceMs = traceScene_->instanceBvh().stats().deviceMilliseconds;
+    timings.frame = {{{kBvhInstances, instanceMs}}, instanceMs};
+  }
   cameraRays_ = vk::uploadedBuffer(context_, std::vector<gpu::PinholeCamera>{pinholeCamera(scene, frameTime, width, height)},
                                    "reveal camera rays");
 

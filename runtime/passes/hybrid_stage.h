@@ -43,9 +43,12 @@ class HybridStage {
   HybridStage(const vk::Context& context, PostProcessStage& postProcess);
   ~HybridStage();
 
-  void plan(FramePlan& plan) const;
+  // The hybrid's passes for a frame of `scene` at `frameTime`: the trace scene's trees are
+  // skipped when the last frame's serve (same meshes; no instance moved), as prepare() does.
+  void plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const;
   // Builds the trace scene of `scene` (its mesh trees: returned as setup time) and its
-  // instance tree at the frame time (returned as frame time), sizes the buffers.
+  // instance tree at the frame time (returned as frame time), keeping either when the last
+  // frame's serves this one; sizes the buffers.
   struct PrepareTimings {
     vk::FrameTimings setup;
     vk::FrameTimings frame;
@@ -55,6 +58,9 @@ class HybridStage {
   // After the G-buffer in the same frame: writes the blurred, composited colour to `output`.
   void record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
               const vk::Buffer& output) const;
+
+  // The next frame builds its trees anew, whatever the last frame built.
+  void forgetTraceScene();
 
   const HybridSettings& settings() const { return settings_; }
   const RayMaskStage& rayMask() const { return rayMask_; }

@@ -59,6 +59,41 @@ TEST(CliTest, RenderWritesPngExrAndAReportThatNamesEveryPass) {
   ASSERT_NE(image.find(""), nullptr);
 }
 
+TEST(CliTest, FramesRenderAnImageSequenceWithOneReport) {
+  const fs::path dir = tempDir("frames");
+  const CliRun run = hmblur("--quiet render --scene temple --method hybrid --width 48 --height 27 --frames 239:241 " +
+                            ("--out " + (dir / "temple.png").string()) + " --report " + (dir / "frames.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  for (const char* name : {"temple.0239.png", "temple.0240.png", "temple.0241.png"}) {
+    ASSERT_TRUE(fs::exists(dir / name)) << name;
+    EXPECT_EQ(io::readPng(dir / name).width, 48u);
+  }
+  EXPECT_FALSE(fs::exists(dir / "temple.0242.png"));
+  std::ifstream in(dir / "frames.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  ASSERT_EQ(report["frames"].size(), 3u);
+  const double fps = report["fps"];
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(report["frames"][i]["frame"], 239 + i);
+    EXPECT_NEAR(double(report["frames"][i]["time_s"]), (239 + i) / fps, 1e-6);
+  }
+  // The first frame builds the mesh trees; the later ones keep them and say why.
+  const auto meshTrees = [&](size_t frame) {
+    for (const auto& pass : report["frames"][frame]["passes"])
+      if (pass["name"] == "hybrid-bvh-meshes") return pass;
+    return nlohmann::json();
+  };
+  EXPECT_EQ(meshTrees(0)["status"], "run");
+  EXPECT_EQ(meshTrees(2)["status"], "skipped");
+  EXPECT_FALSE(meshTrees(2)["reason"].get<std::string>().empty());
+
+  expectOneLineError(hmblur("--quiet render --frames 5:2"), "before the first");
+  expectOneLineError(hmblur("--quiet render --frames 5"), "FIRST:LAST");
+  expectOneLineError(hmblur("--quiet render --frames a:b"), "FIRST:LAST");
+  expectOneLineError(hmblur("--quiet render --frames 0:100000"), "at most");
+  expectOneLineError(hmblur("--quiet render --frames 1:2 --frame-time 0.5"), "exclude");
+}
+
 TEST(CliTest, MissingFileIsAOneLineError) {
   expectOneLineError(hmblur("--quiet render --scene /nonexistent/scene.gltf --method test-pattern"), "no such file");
 }

@@ -1,0 +1,109 @@
+// A renderer keeps what one frame built while it still serves the next (the hybrid's mesh
+// trees and top-level tree), says so in the plan, and the frame it renders is bit for bit the
+// frame a fresh renderer makes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "runtime/renderer.h"
+#include "scenes/load_scene.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using FrameReuseTest = VulkanTest;
+
+constexpr const char* kMeshes = "hybrid-bvh-meshes";
+constexpr const char* kInstances = "hybrid-bvh-instances";
+
+RenderResult renderHybrid(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
+  RenderSettings settings;
+  settings.method = "hybrid";
+  settings.width = 96;
+  settings.height = 54;
+  settings.frameTime = time;
+  settings.reuseAcrossFrames = reuse;
+  return renderer.render(scene, settings);
+}
+
+const PlannedPass& passNamed(const RenderResult& result, const std::string& name) {
+  const auto& passes = result.plan.passes();
+  const auto it = std::find_if(passes.begin(), passes.end(), [&](const PlannedPass& p) { return p.name == name; });
+  if (it == passes.end()) throw std::runtime_error("no pass " + name);
+  return *it;
+}
+
+void expectSameImage(const RenderResult& a, const RenderResult& b) {
+  ASSERT_EQ(a.image.layers.size(), b.image.layers.size());
+  for (size_t i = 0; i < a.image.layers.size(); ++i) {
+    EXPECT_EQ(a.image.layers[i].values, b.image.layers[i].values) << "layer '" << a.image.layers[i].name << "'";
+    EXPECT_EQ(a.image.layers[i].ids, b.image.layers[i].ids) << "layer '" << a.image.layers[i].name << "'";
+  }
+  EXPECT_EQ(a.display.pixels, b.display.pixels);
+}
+
+// Bistro with its camera's animation only: the tray and the fan stay where they are.
+scene::Scene bistroWithOnlyTheCameraMoving() {
+  scene::Scene scene = scene::loadScene("bistro");
+  const int32_t cameraNode = scene.camera.value().node;
+  std::erase_if(scene.channels, [&](const scene::AnimationChannel& c) { return int32_t(c.node) != cameraNode; });
+  return scene;
+}
+
+TEST_F(FrameReuseTest, MovingInstancesRebuildTheTopLevelOnly) {
+  const scene::Scene temple = scene::loadScene("temple");
+  const float first = 1.0f, second = 1.0f + 1.0f / temple.settings.fps;
+  Renderer sequence(context());
+  const RenderResult before = renderHybrid(sequence, temple, first);
+  EXPECT_TRUE(passNamed(before, kMeshes).run);
+  EXPECT_TRUE(passNamed(before, kInstances).run);
+  const RenderResult after = renderHybrid(sequence, temple, second);
+  EXPECT_FALSE(passNamed(after, kMeshes).run);
+  EXPECT_FALSE(passNamed(after, kMeshes).reason.empty());
+  EXPECT_FALSE(passNamed(after, kMeshes).milliseconds.has_value());
+  EXPECT_TRUE(passNamed(after, kInstances).run);
+  EXPECT_FALSE(after.hybrid->setupMilliseconds.has_value());
+  ASSERT_GT(after.hybrid->revealRays, 0u);
+
+  Renderer fresh(context());
+  expectSameImage(after, renderHybrid(fresh, temple, second));
+}
+
+TEST_F(FrameReuseTest, AMovingCameraOverStillInstancesKeepsBothTrees) {
+  const scene::Scene bistro = bistroWithOnlyTheCameraMoving();
+  const float first = 1.0f, second = 1.0f + 1.0f / bistro.settings.fps;
+  Renderer sequence(context());
+  renderHybrid(sequence, bistro, first);
+  const RenderResult after = renderHybrid(sequence, bistro, second);
+  EXPECT_FALSE(passNamed(after, kMeshes).run);
+  EXPECT_FALSE(passNamed(after, kInstances).run);
+  EXPECT_FALSE(passNamed(after, kInstances).reason.empty());
+  ASSERT_GT(after.hybrid->revealRays, 0u);
+
+  Renderer fresh(context());
+  const RenderResult alone = renderHybrid(fresh, bistro, second);
+  EXPECT_TRUE(passNamed(alone, kInstances).run);
+  expectSameImage(after, alone);
+}
+
+TEST_F(FrameReuseTest, ChangedMeshesOrReuseOffBuildEverything) {
+  scene::Scene bistro = bistroWithOnlyTheCameraMoving();
+  Renderer renderer(context());
+  renderHybrid(renderer, bistro, 1.0f);
+  const RenderResult off = renderHybrid(renderer, bistro, 1.0f, false);
+  EXPECT_TRUE(passNamed(off, kMeshes).run);
+  EXPECT_TRUE(passNamed(off, kInstances).run);
+
+  // One vertex of one mesh moved: another fingerprint, so the trees are built again.
+  bistro.meshes.back().positions.front().x += 0.01f;
+  const RenderResult changed = renderHybrid(renderer, bistro, 1.0f);
+  EXPECT_TRUE(passNamed(changed, kMeshes).run);
+  EXPECT_TRUE(passNamed(changed, kInstances).run);
+  Renderer fresh(context());
+  expectSameImage(changed, renderHybrid(fresh, bistro, 1.0f));
+}
+
+}  // namespace
+}  // namespace hmb::test
