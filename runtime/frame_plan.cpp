@@ -30,4 +30,10 @@ void FramePlan::attachTimings(const vk::FrameTimings& timings) {
   }
 }
 
+void FramePlan::noteNoWork(std::string_view name, std::string reason) {
+  auto it = std::find_if(passes_.begin(), passes_.end(), [&](const PlannedPass& p) { return p.run && p.name == name; });
+  if (it == passes_.end()) throw Error("pass '" + std::string(name) + "' did not run");
+  it->noWork = std::move(reason);
+}
+
 }  // namespace hmb

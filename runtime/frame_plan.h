@@ -18,6 +18,9 @@ struct PlannedPass {
   bool run = true;
   std::string reason;                  // why it is skipped (empty for a pass that runs)
   std::optional<double> milliseconds;  // device time, once measured
+  // A pass that ran but found no work on the device (an indirect dispatch of no groups: what
+  // it would have read was decided on the device during the frame), and why.
+  std::string noWork;
 };
 
 class FramePlan {
@@ -30,6 +33,8 @@ class FramePlan {
   // Copies measured times onto the passes of the same name (a pass dispatched more than once
   // accumulates its dispatches).
   void attachTimings(const vk::FrameTimings& timings);
+  // After the frame: the pass ran with nothing to do, for this reason (it must have run).
+  void noteNoWork(std::string_view name, std::string reason);
 
  private:
   std::vector<PlannedPass> passes_;

@@ -312,6 +312,19 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
   }
 
   result.plan.attachTimings(timings);
+  if (result.hybrid && result.plan.runs(passes::RevealPass::kName)) {
+    // The mask is made on the device, so these passes are recorded every frame and sized from
+    // it: when it is empty they dispatch no groups, and the report says so.
+    if (result.hybrid->edgeCandidates == 0)
+      result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");
+    if (result.hybrid->revealedPixels == 0) {
+      const std::string reason = result.hybrid->maskPixels == 0
+                                     ? "the ray mask is empty: no ray traced"
+                                     : "no mask pixel's composite meets the background: no ray traced";
+      result.plan.noteNoWork(passes::RevealPass::kName, reason);
+      result.plan.noteNoWork(passes::HybridStage::kGatherBackground, reason);
+    }
+  }
   result.frameMilliseconds = timings.frameMilliseconds;
   result.memory.peakBytes = context_.memoryPeak();
   result.display = downloadDisplay(display, width, height);

@@ -68,9 +68,10 @@ nlohmann::json passesJson(const FramePlan& plan) {
   nlohmann::json passes = nlohmann::json::array();
   for (const PlannedPass& pass : plan.passes()) {
     nlohmann::json entry = {{"name", pass.name}, {"status", pass.run ? "run" : "skipped"}};
-    if (pass.run)
+    if (pass.run) {
       entry["ms"] = optionalNumber(pass.milliseconds);
-    else
+      if (!pass.noWork.empty()) entry["no_work"] = pass.noWork;
+    } else
       entry["reason"] = pass.reason;
     passes.push_back(std::move(entry));
   }

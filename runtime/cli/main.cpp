@@ -313,7 +313,9 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   if (!global.quiet) {
     std::cout << options.method << ": " << formatMs(result.frameMilliseconds) << " on " << context.info().name << '\n';
     for (const auto& pass : result.plan.passes())
-      std::cout << "  " << pass.name << ": " << (pass.run ? formatMs(pass.milliseconds) : "skipped (" + pass.reason + ")")
+      std::cout << "  " << pass.name << ": "
+                << (pass.run ? formatMs(pass.milliseconds) + (pass.noWork.empty() ? "" : " (no work: " + pass.noWork + ")")
+                             : "skipped (" + pass.reason + ")")
                 << '\n';
   }
   return validationVerdict(context);

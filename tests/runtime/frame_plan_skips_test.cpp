@@ -6,9 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
+#include <glm/gtc/quaternion.hpp>
+
 #include "runtime/gpu_scene.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
+#include "scenes/procedural/mesh_builders.h"
+#include "scenes/procedural/scene_builder.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -97,6 +103,46 @@ TEST_F(FramePlanSkipsTest, AMovingFrameRunsTheBlur) {
     EXPECT_TRUE(skippedPasses(result).empty()) << method;
     EXPECT_TRUE(result.plan.runs("tile-max")) << method;
   }
+}
+
+// A wall that fills the view sliding along itself: every pixel moves, none has a silhouette.
+scene::Scene slidingWall() {
+  scene::procedural::SceneBuilder builder("sliding wall");
+  const uint32_t material = builder.material("wall", glm::vec3(0.6f, 0.5f, 0.4f));
+  const uint32_t mesh = builder.mesh(scene::procedural::makePlane(glm::vec2(400.0f, 400.0f), material));
+  const glm::quat facingCamera = glm::angleAxis(std::numbers::pi_v<float> / 2.0f, glm::vec3(1, 0, 0));
+  const uint32_t node = builder.object("wall", mesh, scene::procedural::makeTrs(glm::vec3(0, 0, -10), facingCamera));
+  builder.translationKeys(node, {0.0f, 2.0f}, {glm::vec3(-10, 0, -10), glm::vec3(10, 0, -10)});
+  builder.camera(glm::vec3(0.0f), glm::vec3(0, 0, -1), 0.9f);
+  scene::Scene scene = builder.finish();
+  scene.settings.frameTime = 1.0f;
+  scene::deriveDefaults(scene);
+  return scene;
+}
+
+std::string noWorkOf(const RenderResult& result, const std::string& name) {
+  for (const PlannedPass& pass : result.plan.passes())
+    if (pass.name == name) return pass.noWork;
+  return "(no such pass)";
+}
+
+TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
+  Renderer renderer(context());
+  const scene::Scene wall = slidingWall();
+  ASSERT_TRUE(anythingMovesOnScreen(wall, 1.0f));
+  const RenderResult result = renderAt(renderer, wall, "hybrid", 1.0f, true);
+  EXPECT_TRUE(skippedPasses(result).empty());
+  EXPECT_EQ(result.hybrid->edgeCandidates, 0u);
+  EXPECT_EQ(result.hybrid->maskPixels, 0u);
+  EXPECT_EQ(result.hybrid->revealRays, 0u);
+  for (const char* pass : {"ray-mask-edges", "ray-reveal", "gather-background"})
+    EXPECT_FALSE(noWorkOf(result, pass).empty()) << pass;
+  EXPECT_TRUE(noWorkOf(result, "gather-composite").empty());
+
+  // A frame with silhouettes has work in every pass.
+  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid", kMovingTime, true);
+  ASSERT_GT(room.hybrid->revealRays, 0u);
+  for (const PlannedPass& pass : room.plan.passes()) EXPECT_TRUE(pass.noWork.empty()) << pass.name;
 }
 
 }  // namespace
