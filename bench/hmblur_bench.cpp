@@ -16,6 +16,7 @@
 #include "bench/bvh_suite.h"
 #include "bench/embree_reference.h"
 #include "bench/error_time_suite.h"
+#include "bench/kernels_suite.h"
 #include "bench/passes_suite.h"
 #include "bench/raster_suite.h"
 #include "runtime/error.h"
@@ -28,11 +29,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum ExitCode { kOk = 0, kError = 1 };
+enum ExitCode { kOk = 0, kError = 1, kValidationFailed = 3 };
 
 struct GlobalOptions {
   bool quiet = false;
   int device = -1;
+  bool validation = false;
 };
 
 struct RasterOptions {
@@ -74,6 +76,17 @@ struct PassesOptions {
   std::vector<std::string> methods = {"sharp", "postprocess", "hybrid"};
   int warmup = 1;
   int repeats = 3;
+};
+
+struct KernelsOptions {
+  std::string out = "bench/results/kernels/kernels.json";
+  hmb::bench::KernelsSuiteOptions suite;
+  std::vector<std::string> sizes = [] {
+    std::vector<std::string> names;
+    for (const hmb::bench::ImageSize& size : hmb::bench::KernelsSuiteOptions().sizes)
+      names.push_back(hmb::bench::sizeName(size));
+    return names;
+  }();
 };
 
 // The command as typed, for the report (arguments with spaces quoted).
@@ -123,11 +136,26 @@ nlohmann::json reportHead(const std::string& suite, const std::string& what, con
           {"system", hmb::systemJson(system)}};
 }
 
-// The device --device names (default: the preferred one).
-hmb::vk::Context openContext(const GlobalOptions& global) {
+// The options of the device --device names (default: the preferred one).
+hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
   hmb::vk::ContextOptions options;
   options.deviceIndex = global.device;
-  return hmb::vk::Context(options);
+  options.validation = global.validation;
+  return options;
+}
+
+hmb::vk::Context openContext(const GlobalOptions& global) { return hmb::vk::Context(contextOptions(global)); }
+
+// With --validation, any validation error fails the suite after its work is done.
+int validationVerdict(std::initializer_list<const hmb::vk::Context*> contexts) {
+  int verdict = kOk;
+  for (const hmb::vk::Context* context : contexts) {
+    if (!context->validationEnabled() || context->validationErrors() == 0) continue;
+    std::cerr << "hmblur-bench: error: " << context->validationErrors() << " Vulkan validation error(s)\n";
+    for (const std::string& message : context->validationMessages()) std::cerr << "  " << message << '\n';
+    verdict = kValidationFailed;
+  }
+  return verdict;
 }
 
 // Writes the CSV and Markdown files beside the JSON file `out` (same stem).
@@ -148,13 +176,12 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
   suite.repeats = options.repeats;
   checkOutputDirectory(options.out);
 
-  hmb::vk::ContextOptions contextOptions;
-  contextOptions.deviceIndex = global.device;
-  const hmb::vk::Context context(contextOptions);
+  hmb::vk::ContextOptions deviceOptions = contextOptions(global);
+  const hmb::vk::Context context(deviceOptions);
   // The graphics pipeline gets its own logical device on the same physical device, so that
   // its render passes cannot disturb the compute queue's timestamps (bench/raster_suite.h).
-  contextOptions.deviceIndex = static_cast<int>(context.info().index);
-  const hmb::vk::Context graphicsContext(contextOptions);
+  deviceOptions.deviceIndex = static_cast<int>(context.info().index);
+  const hmb::vk::Context graphicsContext(deviceOptions);
   const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::RasterCase> cases =
@@ -170,7 +197,7 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
     if (c.otherCpuLoad > hmb::bench::kMaxOtherCpuLoad)
       std::cerr << "hmblur-bench: warning: " << c.scene << " " << c.size.width << "x" << c.size.height
                 << ": other processes kept " << c.otherCpuLoad << " cores busy; its times are disturbed\n";
-  if (options.out.empty()) return kOk;
+  if (options.out.empty()) return validationVerdict({&context, &graphicsContext});
   nlohmann::json report =
       reportHead("raster",
                  "compute rasterizer (G-buffer stage) vs the device's graphics pipeline on the same clip-space "
@@ -191,7 +218,7 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::rasterCaseJson(c));
   hmb::writeJson(options.out, report);
   progress("wrote " + options.out);
-  return kOk;
+  return validationVerdict({&context, &graphicsContext});
 }
 
 int bvh(const GlobalOptions& global, const BvhOptions& options, const std::string& command) {
@@ -206,7 +233,7 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   progress("device: " + context.info().name);
   const std::vector<hmb::bench::BvhCase> cases = hmb::bench::runBvhSuite(context, suite, progress);
   hmb::bench::printBvhTable(std::cout, cases);
-  if (options.out.empty()) return kOk;
+  if (options.out.empty()) return validationVerdict({&context});
   nlohmann::json report =
       reportHead("bvh",
                  "device BVH build (binned SAH, compute) and trace kernel vs the CPU full-sweep SAH build and Embree, "
@@ -228,7 +255,7 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::bvhCaseJson(c));
   hmb::writeJson(options.out, report);
   progress("wrote " + options.out);
-  return kOk;
+  return validationVerdict({&context});
 }
 
 int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, const std::string& command) {
@@ -255,7 +282,7 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
          << "; median device time (timestamp queries) of " << suite.repeats << " renders after " << suite.warmup
          << " warm-up (reference: " << suite.referenceRepeats << ", no warm-up). Command: `" << command << "`";
   hmb::bench::writeErrorTimeMarkdown(std::cout, scenes, header.str());
-  if (options.out.empty()) return kOk;
+  if (options.out.empty()) return validationVerdict({&context});
   nlohmann::json report =
       reportHead("error-vs-time",
                  "error (PSNR, SSIM; frame and blur region) against a high-spp judge, and median frame time, of every "
@@ -275,7 +302,7 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
       options.out, [&](std::ostream& out) { hmb::bench::writeErrorTimeCsv(out, scenes); },
       [&](std::ostream& out) { hmb::bench::writeErrorTimeMarkdown(out, scenes, header.str()); });
   progress("wrote " + options.out + " and the .csv and .md beside it");
-  return kOk;
+  return validationVerdict({&context});
 }
 
 int passes(const GlobalOptions& global, const PassesOptions& options, const std::string& command) {
@@ -299,7 +326,7 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
          << "not in its frame. Peak device memory: the most the renderer's buffers held at once during a render. "
          << "Command: `" << command << "`";
   hmb::bench::writePassesMarkdown(std::cout, cases, header.str());
-  if (options.out.empty()) return kOk;
+  if (options.out.empty()) return validationVerdict({&context});
   nlohmann::json report =
       reportHead("passes", "per-pass device time of each method, scene and image size, and each render's device memory",
                  command, context, system);
@@ -312,7 +339,57 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
       options.out, [&](std::ostream& out) { hmb::bench::writePassesCsv(out, cases); },
       [&](std::ostream& out) { hmb::bench::writePassesMarkdown(out, cases, header.str()); });
   progress("wrote " + options.out + " and the .csv and .md beside it");
-  return kOk;
+  return validationVerdict({&context});
+}
+
+int kernels(const GlobalOptions& global, const KernelsOptions& options, const std::string& command) {
+  hmb::bench::KernelsSuiteOptions suite = options.suite;
+  suite.sizes.clear();
+  for (const std::string& size : options.sizes) suite.sizes.push_back(hmb::bench::parseImageSize(size));
+  checkOutputDirectory(options.out);
+  const hmb::vk::Context context = openContext(global);
+  const auto progress = progressPrinter(global);
+  progress("device: " + context.info().name);
+  const std::vector<hmb::bench::KernelCase> cases = hmb::bench::runKernelsSuite(context, suite, progress);
+
+  const hmb::SystemInfo system = hmb::querySystemInfo();
+  std::ostringstream header;
+  header << machineLine(context, system) << " Median device time (timestamp queries) of " << suite.repeats
+         << " runs after " << suite.warmup << " warm-up, each kernel alone on synthetic inputs drawn from seed "
+         << hmb::bench::kKernelsSeed << ". Command: `" << command << "`";
+  hmb::bench::writeKernelsMarkdown(std::cout, cases, header.str());
+  if (options.out.empty()) return validationVerdict({&context});
+  nlohmann::json report =
+      reportHead("kernels",
+                 "device time and throughput of single kernels (raster, BVH build, trace, tile-max, gather) on "
+                 "synthetic inputs of chosen sizes",
+                 command, context, system);
+  report["note"] =
+      "raster: the rasterizer's visibility passes (clears through rasterize, summed) over random clip-space "
+      "triangles, each vertex within raster_triangle_radius_pixels of a random centre, one double-sided instance. "
+      "bvh-build: the builder's submissions (begin and every level; frame times summed) over the boxes of random "
+      "triangles in the unit cube, each about N^-1/3 across, boxes uploaded from the host. trace: the trace-rays "
+      "pass, rays from random points in the unit cube in random directions through the BVH over those triangles. "
+      "tile-max and gather: one pass each over a G-buffer of random colours, depths and velocities (each component "
+      "uniform in +-max_velocity_pixels), post-process defaults (m = 40, n = 3, 15 samples, adapted range). "
+      "Throughput: items over the median time.";
+  report["settings"] = {{"sizes", options.sizes},
+                        {"triangles", suite.triangles},
+                        {"rays", suite.rays},
+                        {"kernels", suite.kernels},
+                        {"warmup", suite.warmup},
+                        {"repeats", suite.repeats},
+                        {"seed", hmb::bench::kKernelsSeed},
+                        {"raster_triangle_radius_pixels", hmb::bench::kRasterTriangleRadiusPixels},
+                        {"max_velocity_pixels", hmb::bench::kMaxVelocityPixels}};
+  report["cases"] = nlohmann::json::array();
+  for (const auto& c : cases) report["cases"].push_back(hmb::bench::kernelCaseJson(c));
+  hmb::writeJson(options.out, report);
+  writeBeside(
+      options.out, [&](std::ostream& out) { hmb::bench::writeKernelsCsv(out, cases); },
+      [&](std::ostream& out) { hmb::bench::writeKernelsMarkdown(out, cases, header.str()); });
+  progress("wrote " + options.out + " and the .csv and .md beside it");
+  return validationVerdict({&context});
 }
 
 // A comma-separated list of scenes.
@@ -321,13 +398,24 @@ void addScenesOption(CLI::App& command, std::vector<std::string>& scenes,
   command.add_option("--scenes", scenes, what + ", comma separated")->delimiter(',')->capture_default_str();
 }
 
+// The options before any suite's.
+void addGlobalOptions(CLI::App& app, GlobalOptions& global) {
+  app.add_flag("-q,--quiet", global.quiet, "No progress on stderr (the table and errors still print)");
+  app.add_option("--device", global.device, "Vulkan device index (hmblur list-devices); default: best compute device")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--validation", global.validation,
+               "Enable the Khronos validation layer; any validation error fails the suite (exit code 3)");
+}
+
 // --out, --warmup and --repeats, which every suite has.
 void addCommonOptions(CLI::App& command, std::string& out, int& warmup, int& repeats) {
   command.add_option("--out", out, "JSON results file (empty: none)")->capture_default_str();
   command.add_option("--warmup", warmup, "Untimed iterations per case")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command.add_option("--repeats", repeats, "Timed iterations per case")->check(CLI::PositiveNumber)->capture_default_str();
+  command.add_option("--repeats", repeats, "Timed iterations per case")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -337,9 +425,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();
   GlobalOptions global;
-  app.add_flag("-q,--quiet", global.quiet, "No progress on stderr (the table and errors still print)");
-  app.add_option("--device", global.device, "Vulkan device index (hmblur list-devices); default: best compute device")
-      ->check(CLI::NonNegativeNumber);
+  addGlobalOptions(app, global);
 
   RasterOptions rasterOptions;
   CLI::App* rasterCmd =
@@ -392,6 +478,28 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"sharp", "postprocess", "hybrid"}))
       ->capture_default_str();
 
+  KernelsOptions kernelsOptions;
+  CLI::App* kernelsCmd = app.add_subcommand(
+      "kernels", "Single kernels (raster, BVH build, trace, tile-max, gather) on synthetic inputs of chosen sizes");
+  addCommonOptions(*kernelsCmd, kernelsOptions.out, kernelsOptions.suite.warmup, kernelsOptions.suite.repeats);
+  kernelsCmd->add_option("--sizes", kernelsOptions.sizes, "Image sizes (raster, tile-max, gather), comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  kernelsCmd
+      ->add_option("--triangles", kernelsOptions.suite.triangles,
+                   "Triangle counts (raster, bvh-build, trace), comma separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 2000000u))
+      ->capture_default_str();
+  kernelsCmd->add_option("--rays", kernelsOptions.suite.rays, "Ray counts (trace), comma separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 1u << 26))
+      ->capture_default_str();
+  kernelsCmd->add_option("--kernels", kernelsOptions.suite.kernels, "Kernels to run, comma separated")
+      ->delimiter(',')
+      ->check(CLI::IsMember(hmb::bench::kernelNames()))
+      ->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -403,6 +511,7 @@ int main(int argc, char** argv) {
     if (*bvhCmd) return bvh(global, bvhOptions, commandLine(argc, argv));
     if (*errorTimeCmd) return errorTime(global, errorTimeOptions, commandLine(argc, argv));
     if (*passesCmd) return passes(global, passesOptions, commandLine(argc, argv));
+    if (*kernelsCmd) return kernels(global, kernelsOptions, commandLine(argc, argv));
   } catch (const std::exception& e) {
     std::cerr << "hmblur-bench: error: " << e.what() << '\n';
     return kError;
