@@ -1,7 +1,7 @@
 // hmblur-bench: the benchmark driver, one subcommand per suite. Device time comes from
 // timestamp queries; each suite warms up, repeats, and reports medians and spread, with the
 // device, driver, CPU, LP_NUM_THREADS and git revision (bench/README.md). Errors are one line
-// on stderr and a non-zero exit.
+// on stderr and a non-zero exit. `--suite NAME` is another spelling of the subcommand NAME.
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -395,10 +395,10 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
 // A comma-separated list of scenes.
 void addScenesOption(CLI::App& command, std::vector<std::string>& scenes,
                      const std::string& what = "Reference scene names or glTF files") {
-  command.add_option("--scenes", scenes, what + ", comma separated")->delimiter(',')->capture_default_str();
+  command.add_option("--scenes,--scene", scenes, what + ", comma separated")->delimiter(',')->capture_default_str();
 }
 
-// The options before any suite's.
+// The options before any suite's, on the whole command line and on the --suite pre-parse alike.
 void addGlobalOptions(CLI::App& app, GlobalOptions& global) {
   app.add_flag("-q,--quiet", global.quiet, "No progress on stderr (the table and errors still print)");
   app.add_option("--device", global.device, "Vulkan device index (hmblur list-devices); default: best compute device")
@@ -413,7 +413,7 @@ void addCommonOptions(CLI::App& command, std::string& out, int& warmup, int& rep
   command.add_option("--warmup", warmup, "Untimed iterations per case")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command.add_option("--repeats", repeats, "Timed iterations per case")
+  command.add_option("--repeats,--repeat", repeats, "Timed iterations per case")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
 }
@@ -426,6 +426,8 @@ int main(int argc, char** argv) {
   app.fallthrough();
   GlobalOptions global;
   addGlobalOptions(app, global);
+  std::string suiteName;
+  app.add_option("--suite", suiteName, "The suite to run, as the subcommand of that name: --suite NAME [its options]");
 
   RasterOptions rasterOptions;
   CLI::App* rasterCmd =
@@ -500,10 +502,34 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(hmb::bench::kernelNames()))
       ->capture_default_str();
 
+  // `--suite NAME [options]` is the subcommand NAME spelled as an option. A first parse takes
+  // the global options and --suite and leaves the rest, which the named suite's own parser
+  // then takes. Its values can be suite names (--kernels raster), so they must not reach the
+  // full parser, which would read them as subcommands.
+  CLI::App suiteSpelling;
+  suiteSpelling.set_help_flag();  // --help goes to the suite's parser (or to the full one)
+  suiteSpelling.allow_extras();
+  addGlobalOptions(suiteSpelling, global);
+  suiteSpelling.add_option("--suite", suiteName);
+  CLI::App* suite = nullptr;
   try {
-    app.parse(argc, argv);
+    suiteSpelling.parse(argc, argv);
+    if (suiteSpelling.count("--suite") == 0) {
+      app.parse(argc, argv);
+    } else {
+      std::string names;
+      for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+        names += (names.empty() ? "" : ", ") + command->get_name();
+        if (command->get_name() == suiteName) suite = command;
+      }
+      if (!suite) {
+        std::cerr << "hmblur-bench: error: unknown suite '" << suiteName << "' (suites: " << names << ")\n";
+        return kError;
+      }
+      suite->parse(suiteSpelling.remaining_for_passthrough());
+    }
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return suite ? suite->exit(e) : app.exit(e);
   }
 
   try {
