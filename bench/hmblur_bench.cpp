@@ -358,6 +358,10 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
          << " runs after " << suite.warmup << " warm-up, each kernel alone on synthetic inputs drawn from seed "
          << hmb::bench::kKernelsSeed << ". Command: `" << command << "`";
   hmb::bench::writeKernelsMarkdown(std::cout, cases, header.str());
+  for (const auto& c : cases)
+    if (c.otherCpuLoad > hmb::bench::kMaxOtherCpuLoad)
+      std::cerr << "hmblur-bench: warning: " << c.kernel << ": other processes kept " << c.otherCpuLoad
+                << " cores busy; its times are disturbed\n";
   if (options.out.empty()) return validationVerdict({&context});
   nlohmann::json report =
       reportHead("kernels",
@@ -372,7 +376,8 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
       "pass, rays from random points in the unit cube in random directions through the BVH over those triangles. "
       "tile-max and gather: one pass each over a G-buffer of random colours, depths and velocities (each component "
       "uniform in +-max_velocity_pixels), post-process defaults (m = 40, n = 3, 15 samples, adapted range). "
-      "Throughput: items over the median time.";
+      "Throughput: items over the median time. other_cpu_load_cores: cores busy with other processes during the "
+      "case (on a CPU device they compete with the kernel).";
   report["settings"] = {{"sizes", options.sizes},
                         {"triangles", suite.triangles},
                         {"rays", suite.rays},

@@ -65,6 +65,7 @@ void timeCase(KernelCase& c, const KernelsSuiteOptions& options, const std::func
   std::vector<double> totals;
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> passTimes;
+  const CpuSample cpuBefore = sampleCpu();
   for (int i = 0; i < options.warmup + options.repeats; ++i) {
     const RunTime time = run();
     if (i < options.warmup) continue;
@@ -77,6 +78,7 @@ void timeCase(KernelCase& c, const KernelsSuiteOptions& options, const std::func
     }
     for (const auto& [name, ms] : runPasses) passTimes[name].push_back(ms);
   }
+  c.otherCpuLoad = otherLoad(cpuBefore, sampleCpu());
   c.milliseconds = summarize(totals);
   for (const std::string& name : order) c.passes.emplace_back(name, summarize(passTimes[name]));
   c.throughput = c.milliseconds.median > 0 ? double(c.items) / (c.milliseconds.median * 1e3) : 0.0;
@@ -391,6 +393,8 @@ std::vector<KernelCase> runKernelsSuite(const vk::Context& context, const Kernel
 nlohmann::json kernelCaseJson(const KernelCase& c) {
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& [name, times] : c.passes) passes.push_back({{"name", name}, {"ms", summaryJson(times)}});
+  const nlohmann::json otherCpuLoad =
+      std::isnan(c.otherCpuLoad) ? nlohmann::json(nullptr) : nlohmann::json(c.otherCpuLoad);
   return {{"kernel", c.kernel},
           {"width", c.width},
           {"height", c.height},
@@ -401,25 +405,28 @@ nlohmann::json kernelCaseJson(const KernelCase& c) {
           {"throughput", c.throughput},
           {"throughput_unit", c.unit},
           {"passes", passes},
-          {"details", c.details}};
+          {"details", c.details},
+          {"other_cpu_load_cores", otherCpuLoad}};
 }
 
 void writeKernelsCsv(std::ostream& out, const std::vector<KernelCase>& cases) {
-  out << "kernel,width,height,triangles,rays,median_ms,q1_ms,q3_ms,min_ms,max_ms,throughput,throughput_unit\n";
+  out << "kernel,width,height,triangles,rays,median_ms,q1_ms,q3_ms,min_ms,max_ms,throughput,throughput_unit,"
+         "other_cpu_load_cores\n";
   for (const KernelCase& c : cases)
     out << c.kernel << ',' << c.width << ',' << c.height << ',' << c.triangles << ',' << c.rays << ','
         << c.milliseconds.median << ',' << c.milliseconds.q1 << ',' << c.milliseconds.q3 << ',' << c.milliseconds.min
-        << ',' << c.milliseconds.max << ',' << c.throughput << ',' << c.unit << '\n';
+        << ',' << c.milliseconds.max << ',' << c.throughput << ',' << c.unit << ',' << c.otherCpuLoad << '\n';
 }
 
 void writeKernelsMarkdown(std::ostream& out, const std::vector<KernelCase>& cases, const std::string& context) {
-  out << context << "\n\n| kernel | input | median ms | interquartile ms | min - max ms | throughput |\n"
-      << "|---|---|---:|---:|---:|---:|\n";
+  out << context
+      << "\n\n| kernel | input | median ms | interquartile ms | min - max ms | throughput | other cores busy |\n"
+      << "|---|---|---:|---:|---:|---:|---:|\n";
   for (const KernelCase& c : cases) {
     const Summary& t = c.milliseconds;
     out << "| " << c.kernel << " | " << inputName(c) << " | " << fixed(t.median, 2) << " | " << fixed(t.q1, 2) << " - "
         << fixed(t.q3, 2) << " | " << fixed(t.min, 2) << " - " << fixed(t.max, 2) << " | " << fixed(c.throughput, 2)
-        << ' ' << c.unit << " |\n";
+        << ' ' << c.unit << " | " << fixed(c.otherCpuLoad, 2) << " |\n";
   }
 }
 

@@ -10,6 +10,7 @@
 //   gather     the post-process gather (McGuire, adapted range) over a random G-buffer
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <ostream>
 #include <string>
@@ -56,6 +57,7 @@ struct KernelCase {
   double throughput = 0.0;                              // items / median time, millions per second
   std::vector<std::pair<std::string, Summary>> passes;  // each pass in it, in dispatch order
   nlohmann::json details = nlohmann::json::object();    // what the kernel did (counters of the last run)
+  double otherCpuLoad = NAN;  // cores busy with other processes while it ran (NaN without /proc)
 };
 
 // Runs each selected kernel over its sizes: raster for every size and triangle count, bvh-build
@@ -66,7 +68,7 @@ std::vector<KernelCase> runKernelsSuite(const vk::Context& context, const Kernel
                                         const Progress& progress);
 
 nlohmann::json kernelCaseJson(const KernelCase& c);
-// One row per case: kernel, sizes, median, quartiles, min, max, throughput and its unit.
+// One row per case: kernel, sizes, median, quartiles, min, max, throughput and its unit, other CPU load.
 void writeKernelsCsv(std::ostream& out, const std::vector<KernelCase>& cases);
 // `context` (device, settings, command) and then one table of every case.
 void writeKernelsMarkdown(std::ostream& out, const std::vector<KernelCase>& cases, const std::string& context);

@@ -34,16 +34,6 @@ std::string fixed(double value, int digits) {
   return s.str();
 }
 
-namespace {
-
-// Busy CPU seconds of the whole host and of this process (lavapipe's threads included), from
-// /proc; valid is false where /proc is missing.
-struct CpuSample {
-  double hostBusy = 0, self = 0;
-  std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
-  bool valid = false;
-};
-
 CpuSample sampleCpu() {
   CpuSample sample;
   const double tick = 1.0 / double(sysconf(_SC_CLK_TCK));
@@ -68,12 +58,13 @@ CpuSample sampleCpu() {
   return sample;
 }
 
-// Cores busy with other processes between two samples.
 double otherLoad(const CpuSample& from, const CpuSample& to) {
   const double wall = std::chrono::duration<double>(to.wall - from.wall).count();
   if (!from.valid || !to.valid || wall <= 0) return NAN;
   return std::max(0.0, ((to.hostBusy - from.hostBusy) - (to.self - from.self)) / wall);
 }
+
+namespace {
 
 // Linear interpolation between order statistics (the common "type 7" quantile).
 double quantile(const std::vector<double>& sorted, double q) {

@@ -10,6 +10,7 @@
 // compute queue that never draws keeps exact per-pass times.
 #pragma once
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -36,6 +37,19 @@ constexpr double kMinPassCoverage = 0.9;
 
 // Above this many cores busy with other processes during a case, the driver warns.
 constexpr double kMaxOtherCpuLoad = 0.1;
+
+// Busy CPU seconds of the whole host and of this process (lavapipe's threads included), from
+// /proc; valid is false where /proc is missing.
+struct CpuSample {
+  double hostBusy = 0, self = 0;
+  std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
+  bool valid = false;
+};
+
+CpuSample sampleCpu();
+// Cores busy with other processes between two samples (NaN without /proc). On a CPU device
+// anything else running competes with the kernels and slows them.
+double otherLoad(const CpuSample& from, const CpuSample& to);
 
 struct ImageSize {
   uint32_t width = 0, height = 0;
