@@ -2,6 +2,7 @@
 // timestamp queries; each suite warms up, repeats, and reports medians and spread, with the
 // device, driver, CPU, LP_NUM_THREADS and git revision (bench/README.md). Errors are one line
 // on stderr and a non-zero exit. `--suite NAME` is another spelling of the subcommand NAME.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -350,14 +351,20 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
   const hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);
+  const hmb::bench::CpuSample cpuBefore = hmb::bench::sampleCpu();
   const std::vector<hmb::bench::KernelCase> cases = hmb::bench::runKernelsSuite(context, suite, progress);
+  const double otherCpuLoad = hmb::bench::otherLoad(cpuBefore, hmb::bench::sampleCpu());
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
   std::ostringstream header;
   header << machineLine(context, system) << " Median device time (timestamp queries) of " << suite.repeats
          << " runs after " << suite.warmup << " warm-up, each kernel alone on synthetic inputs drawn from seed "
-         << hmb::bench::kKernelsSeed << ". Command: `" << command << "`";
+         << hmb::bench::kKernelsSeed << "; other processes kept " << hmb::bench::fixed(otherCpuLoad, 2)
+         << " cores busy over the run (per case: only those of a second or more). Command: `" << command << "`";
   hmb::bench::writeKernelsMarkdown(std::cout, cases, header.str());
+  if (otherCpuLoad > hmb::bench::kMaxOtherCpuLoad)
+    std::cerr << "hmblur-bench: warning: other processes kept " << otherCpuLoad
+              << " cores busy during the run; its times are disturbed\n";
   for (const auto& c : cases)
     if (c.otherCpuLoad > hmb::bench::kMaxOtherCpuLoad)
       std::cerr << "hmblur-bench: warning: " << c.kernel << ": other processes kept " << c.otherCpuLoad
@@ -377,7 +384,7 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
       "tile-max and gather: one pass each over a G-buffer of random colours, depths and velocities (each component "
       "uniform in +-max_velocity_pixels), post-process defaults (m = 40, n = 3, 15 samples, adapted range). "
       "Throughput: items over the median time. other_cpu_load_cores: cores busy with other processes during the "
-      "case (on a CPU device they compete with the kernel).";
+      "run, and during each case of a second or more (on a CPU device they compete with the kernels).";
   report["settings"] = {{"sizes", options.sizes},
                         {"triangles", suite.triangles},
                         {"rays", suite.rays},
@@ -387,6 +394,7 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
                         {"seed", hmb::bench::kKernelsSeed},
                         {"raster_triangle_radius_pixels", hmb::bench::kRasterTriangleRadiusPixels},
                         {"max_velocity_pixels", hmb::bench::kMaxVelocityPixels}};
+  report["other_cpu_load_cores"] = std::isnan(otherCpuLoad) ? nlohmann::json(nullptr) : nlohmann::json(otherCpuLoad);
   report["cases"] = nlohmann::json::array();
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::kernelCaseJson(c));
   hmb::writeJson(options.out, report);

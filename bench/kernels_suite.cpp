@@ -1,6 +1,7 @@
 #include "bench/kernels_suite.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -78,7 +79,10 @@ void timeCase(KernelCase& c, const KernelsSuiteOptions& options, const std::func
     }
     for (const auto& [name, ms] : runPasses) passTimes[name].push_back(ms);
   }
-  c.otherCpuLoad = otherLoad(cpuBefore, sampleCpu());
+  // /proc counts CPU time in ticks of about 10 ms: over a shorter case the load would be mostly rounding.
+  const CpuSample cpuAfter = sampleCpu();
+  const double seconds = std::chrono::duration<double>(cpuAfter.wall - cpuBefore.wall).count();
+  c.otherCpuLoad = seconds >= kMinLoadSeconds ? otherLoad(cpuBefore, cpuAfter) : NAN;
   c.milliseconds = summarize(totals);
   for (const std::string& name : order) c.passes.emplace_back(name, summarize(passTimes[name]));
   c.throughput = c.milliseconds.median > 0 ? double(c.items) / (c.milliseconds.median * 1e3) : 0.0;
@@ -426,7 +430,7 @@ void writeKernelsMarkdown(std::ostream& out, const std::vector<KernelCase>& case
     const Summary& t = c.milliseconds;
     out << "| " << c.kernel << " | " << inputName(c) << " | " << fixed(t.median, 2) << " | " << fixed(t.q1, 2) << " - "
         << fixed(t.q3, 2) << " | " << fixed(t.min, 2) << " - " << fixed(t.max, 2) << " | " << fixed(c.throughput, 2)
-        << ' ' << c.unit << " | " << fixed(c.otherCpuLoad, 2) << " |\n";
+        << ' ' << c.unit << " | " << (std::isnan(c.otherCpuLoad) ? "-" : fixed(c.otherCpuLoad, 2)) << " |\n";
   }
 }
 

@@ -35,6 +35,8 @@ const std::vector<std::string>& kernelNames();
 constexpr float kRasterTriangleRadiusPixels = 16.0f;
 // Synthetic G-buffer velocities: each component uniform in +-this many pixels per frame.
 constexpr float kMaxVelocityPixels = 16.0f;
+// Cases that run shorter than this get no other-process load (/proc's ticks are too coarse).
+constexpr double kMinLoadSeconds = 1.0;
 // Inputs are drawn from this seed: the same on every machine.
 constexpr uint32_t kKernelsSeed = 1;
 
@@ -57,7 +59,9 @@ struct KernelCase {
   double throughput = 0.0;                              // items / median time, millions per second
   std::vector<std::pair<std::string, Summary>> passes;  // each pass in it, in dispatch order
   nlohmann::json details = nlohmann::json::object();    // what the kernel did (counters of the last run)
-  double otherCpuLoad = NAN;  // cores busy with other processes while it ran (NaN without /proc)
+  // Cores busy with other processes while it ran; NaN without /proc or when it ran under
+  // kMinLoadSeconds.
+  double otherCpuLoad = NAN;
 };
 
 // Runs each selected kernel over its sizes: raster for every size and triangle count, bvh-build
