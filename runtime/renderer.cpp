@@ -238,10 +238,10 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
       blurred = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "post-process colour");
     }
     if (hybrid) {
-      // The trace scene's mesh trees are built once per scene (setup, reported apart); the
-      // instance tree at the frame time is part of every frame.
+      // The trace scene's mesh trees (setup, reported apart) and its instance tree at the frame
+      // time (part of the frame) are built where the plan runs them, kept where it skips them.
       const auto prepared =
-          passes_->hybrid.prepare(frame, scene, result.frameTime, width, height, result.hybrid->settings);
+          passes_->hybrid.prepare(frame, scene, result.frameTime, width, height, result.hybrid->settings, result.plan);
       result.hybrid->setupMilliseconds = prepared.setup.frameMilliseconds;
       timings = prepared.frame;
       // The setup passes are listed with their times, but not added to the frame's.

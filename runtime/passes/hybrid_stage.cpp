@@ -48,7 +48,7 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
 
 HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene,
                                                  float frameTime, uint32_t width, uint32_t height,
-                                                 const HybridSettings& settings) {
+                                                 const HybridSettings& settings, const FramePlan& plan) {
   validate(settings);
   const PostProcessSettings& blur = postProcess_.settings();
   if (blur.filter != PostProcessFilter::McGuire) throw Error("hybrid: the blur must be the McGuire filter");
@@ -56,14 +56,15 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
     throw Error("hybrid: the coverage composite needs the adapted range");
   settings_ = settings;
   PrepareTimings timings;
-  // The same decisions as plan(): a tree is rebuilt only when what it was built from changed.
-  if (!traceScene_ || !traceScene_->hasMeshesOf(scene)) {
+  // plan() decided what the last frame's trees still serve; only the others are built.
+  if (!plan.runs(kBvhMeshes) && !traceScene_) throw Error("hybrid: the plan keeps mesh trees never built");
+  if (plan.runs(kBvhMeshes)) {
     traceScene_ = std::make_unique<TraceScene>(context_, scene, frame);
     const double meshMs = traceScene_->meshBvh().stats().deviceMilliseconds;
     timings.setup = {{{kBvhMeshes, meshMs}}, meshMs};
   }
   const float times[] = {frameTime};
-  if (!traceScene_->hasShutterTimes(scene, times)) {
+  if (plan.runs(kBvhInstances)) {
     traceScene_->setShutterTimes(scene, times, frame);
     const double instanceMs = traceScene_->instanceBvh().stats().deviceMilliseconds;
     timings.frame = {{{kBvhInstances, instanceMs}}, instanceMs};

@@ -47,14 +47,15 @@ class HybridStage {
   // skipped when the last frame's serve (same meshes; no instance moved), as prepare() does.
   void plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const;
   // Builds the trace scene of `scene` (its mesh trees: returned as setup time) and its
-  // instance tree at the frame time (returned as frame time), keeping either when the last
-  // frame's serves this one; sizes the buffers.
+  // instance tree at the frame time (returned as frame time) where `plan` (this stage's
+  // plan() for the same frame) runs them, keeping the last frame's where it skips them;
+  // sizes the buffers.
   struct PrepareTimings {
     vk::FrameTimings setup;
     vk::FrameTimings frame;
   };
   PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, float frameTime, uint32_t width,
-                         uint32_t height, const HybridSettings& settings);
+                         uint32_t height, const HybridSettings& settings, const FramePlan& plan);
   // After the G-buffer in the same frame: writes the blurred, composited colour to `output`.
   void record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
               const vk::Buffer& output) const;
