@@ -6,6 +6,13 @@
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {
+namespace {
+
+auto runningNamed(std::string_view name) {
+  return [name](const PlannedPass& p) { return p.run && p.name == name; };
+}
+
+}  // namespace
 
 void FramePlan::run(std::string name) {
   if (runs(name)) throw Error("pass '" + name + "' planned twice");
@@ -17,23 +24,26 @@ void FramePlan::skip(std::string name, std::string reason) {
 }
 
 bool FramePlan::runs(std::string_view name) const {
-  return std::any_of(passes_.begin(), passes_.end(), [&](const PlannedPass& p) { return p.run && p.name == name; });
+  return std::any_of(passes_.begin(), passes_.end(), runningNamed(name));
+}
+
+PlannedPass* FramePlan::runningPass(std::string_view name) {
+  auto it = std::find_if(passes_.begin(), passes_.end(), runningNamed(name));
+  return it == passes_.end() ? nullptr : &*it;
 }
 
 void FramePlan::attachTimings(const vk::FrameTimings& timings) {
   for (const vk::PassTiming& timing : timings.passes) {
-    auto it = std::find_if(passes_.begin(), passes_.end(),
-                           [&](const PlannedPass& p) { return p.run && p.name == timing.name; });
-    if (it == passes_.end())
-      throw Error("pass '" + timing.name + "' was recorded but not planned");
-    if (timing.milliseconds) it->milliseconds = it->milliseconds.value_or(0.0) + *timing.milliseconds;
+    PlannedPass* pass = runningPass(timing.name);
+    if (!pass) throw Error("pass '" + timing.name + "' was recorded but not planned");
+    if (timing.milliseconds) pass->milliseconds = pass->milliseconds.value_or(0.0) + *timing.milliseconds;
   }
 }
 
 void FramePlan::noteNoWork(std::string_view name, std::string reason) {
-  auto it = std::find_if(passes_.begin(), passes_.end(), [&](const PlannedPass& p) { return p.run && p.name == name; });
-  if (it == passes_.end()) throw Error("pass '" + std::string(name) + "' did not run");
-  it->noWork = std::move(reason);
+  PlannedPass* pass = runningPass(name);
+  if (!pass) throw Error("pass '" + std::string(name) + "' did not run");
+  pass->noWork = std::move(reason);
 }
 
 }  // namespace hmb

@@ -37,6 +37,8 @@ class FramePlan {
   void noteNoWork(std::string_view name, std::string reason);
 
  private:
+  PlannedPass* runningPass(std::string_view name);  // the planned pass of that name that runs, or null
+
   std::vector<PlannedPass> passes_;
 };
 
