@@ -1,6 +1,7 @@
 // hmblur: the command-line front end. Everything it does goes through the library API
 // (runtime/renderer.h); errors are one line on stderr and a non-zero exit.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -189,7 +190,8 @@ constexpr uint32_t kMaxFrames = 100000;
 FrameRange parseFrames(const std::string& text) {
   const size_t colon = text.find(':');
   const auto number = [&](const std::string& part) {
-    if (part.empty() || part.size() > 9 || !std::all_of(part.begin(), part.end(), ::isdigit))
+    const auto digit = [](unsigned char c) { return std::isdigit(c) != 0; };
+    if (part.empty() || part.size() > 9 || !std::all_of(part.begin(), part.end(), digit))
       throw hmb::Error("--frames '" + text + "' must be FIRST:LAST, two frame numbers");
     return static_cast<uint32_t>(std::stoul(part));
   };
