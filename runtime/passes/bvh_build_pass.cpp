@@ -1,6 +1,7 @@
 #include "runtime/passes/bvh_build_pass.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "kernels/bvh/bvh_build_layout.h"
@@ -48,6 +49,11 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
     counters_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters), vk::MemoryUse::Device, name_ + " counters");
 }
 
+uint32_t BvhBuildPass::firstSubmissionLevels(uint32_t largestTree) {
+  const auto log2Ceil = static_cast<uint32_t>(std::bit_width(std::max(largestTree, 1u) - 1u));
+  return std::min(kMaxLevelsPerSubmission, log2Ceil + kLevelMargin);
+}
+
 const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
                                          std::span<const glm::uvec2> roots,
                                          const std::function<void(vk::FrameRecorder&)>& before) {
@@ -77,6 +83,8 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
                                                             &links_, &tasks_,      &counters_};
   gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0};
   stats_ = {};
+  uint32_t largestTree = 0;
+  for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);
   uint32_t level = 0;
   for (;;) {
     frame.begin();
@@ -84,7 +92,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
       if (before) before(frame);
       frame.dispatch(kBegin, beginKernel_, buffers, params, rootGroups);
     }
-    const uint32_t end = level + kLevelsPerSubmission;
+    const uint32_t end = level + (level == 0 ? firstSubmissionLevels(largestTree) : kLevelsPerLaterSubmission);
     for (; level < end; ++level) {
       params.level = level;
       frame.dispatchIndirect(kLevel, levelKernel_, buffers, params, counters_,
@@ -98,7 +106,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
     stats_.deviceMilliseconds += timings.frameMilliseconds.value_or(0.0);
     counters_.read(std::as_writable_bytes(std::span(&counters, 1)));
     if (counters.taskCount[level & 1u] == 0) break;
-    if (stats_.submissions * uint64_t(kLevelsPerSubmission) > uint64_t(primitiveCount) + 2)
+    if (level > uint64_t(primitiveCount) + 2)
       throw Error(name_ + ": the build did not finish (device fault?)");  // every level splits
   }
   stats_.nodes = counters.nodeCount;

@@ -2,6 +2,7 @@
 // (each primitive in exactly one leaf, every node bounding its children), its links visit every
 // node once in each octant, and its SAH cost is within 1.15x of the full-sweep SAH build.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -70,6 +71,24 @@ TEST_F(DeviceBvh, SmallAndDegenerateMeshesAreWellFormed) {
   TriangleMesh line;  // all on one line: the root has no area
   for (int i = 0; i < 40; ++i) line.addTriangle({float(i), 0, 0}, {float(i) + 0.5f, 0, 0}, {float(i) + 1, 0, 0}, 1);
   checkBuild(line, "collinear");
+}
+
+TEST_F(DeviceBvh, ATreeDeeperThanTheFirstBatchOfLevelsIsFinishedInLaterSubmissions) {
+  // Triangles at x = 2^i: binned over the centroids' span, each split peels off the largest
+  // few, so the tree is far deeper than log2 of its size and outgrows the first submission.
+  TriangleMesh spread;
+  for (int i = 0; i < 60; ++i) {
+    const float x = std::ldexp(1.0f, i);
+    spread.addTriangle({x, 0, 0}, {x, 1, 0}, {x, 0, 1}, 1);
+  }
+  checkBuild(spread, "exponentially spread");
+  const scene::Scene scene = sceneOf(spread);
+  vk::FrameRecorder frame(context());
+  const TraceScene traceScene(context(), scene, frame);
+  const passes::BvhBuildStats& stats = traceScene.meshBvh().stats();
+  EXPECT_GT(stats.levels, passes::BvhBuildPass::firstSubmissionLevels(spread.triangleCount()));
+  EXPECT_GE(stats.submissions, 2u);
+  EXPECT_EQ(stats.leaves, traceScene.meshBvh().download(0).nodes.size() / 2 + 1);
 }
 
 TEST_F(DeviceBvh, NonFiniteTrianglesGetEmptyBoxes) {
