@@ -183,7 +183,7 @@ KernelCase bvhBuildCase(const vk::Context& context, const TriangleSoup& soup, co
     boxes.push_back({glm::vec4(glm::min(a, glm::min(b, d)), 0.0f), glm::vec4(glm::max(a, glm::max(b, d)), 0.0f)});
   }
   const vk::Buffer boxBuffer = vk::uploadedBuffer(context, boxes, "bench triangle boxes");
-  passes::BvhBuildPass builder(context, "bench BVH");
+  passes::BvhBuildPass builder(context, "bench BVH", HMB_BVH_MAX_LEAF);
   vk::FrameRecorder frame(context);
   const glm::uvec2 root(0u, count);
 

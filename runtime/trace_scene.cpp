@@ -75,8 +75,8 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
       triangleBoundsKernel_(context, "bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t)),
       motionBoundsKernel_(context, "trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT,
                           sizeof(gpu::TraceParams)),
-      meshBvh_(context, "mesh BVH"),
-      instanceBvh_(context, "instance BVH") {
+      meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF),
+      instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF) {
   std::vector<glm::vec4> positions;
   std::vector<glm::uvec4> triangles;
   std::vector<glm::uvec2> roots;

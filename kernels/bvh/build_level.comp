@@ -2,7 +2,7 @@
 // One level of the top-down binned SAH build, one workgroup per task. The workgroup bins the
 // task's primitives by centroid on each axis (up to HMB_BVH_BINS bins across the centroid
 // bounds), costs every bin boundary by the surface area heuristic, and either makes the node a
-// leaf (at most HMB_BVH_MAX_LEAF primitives and no split cheaper) or partitions the range into
+// leaf (at most params.maxLeaf primitives and no split cheaper) or partitions the range into
 // two child nodes. A child of one primitive becomes a leaf at once; others are the next
 // level's tasks. Primitive ranges alternate between the two halves of the primitive buffer by
 // level parity; every leaf leaves its primitives in the first half, the final order.
@@ -199,7 +199,7 @@ void main() {
     float bestCost = kInfinity;
     for (int a = 0; a < 3; ++a)
       if (axisCost[a] < bestCost) best = a, bestCost = axisCost[a];
-    const bool mayBeLeaf = task.count <= HMB_BVH_MAX_LEAF;
+    const bool mayBeLeaf = task.count <= params.maxLeaf;
     if (mayBeLeaf && (best == LEAF_SPLIT || float(task.count) <= bestCost)) best = LEAF_SPLIT;
     else if (best == LEAF_SPLIT) best = MEDIAN_SPLIT;  // centroids coincide: halve the range
     chosenSplit = best;

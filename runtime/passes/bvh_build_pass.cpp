@@ -11,13 +11,15 @@
 
 namespace hmb::passes {
 
-BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name)
+BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf)
     : context_(context),
       name_(std::move(name)),
+      maxLeaf_(maxLeaf),
       beginKernel_(context, "bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)),
       levelKernel_(context, "bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)),
-      sizeDispatchKernel_(context, "bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT,
-                          sizeof(gpu::BvhBuildParams)) {}
+      sizeDispatchKernel_(context, "bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)) {
+  if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
+}
 
 void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
   // A binary tree over n >= 1 primitives has at most 2n - 1 nodes; an empty tree has its root.
@@ -81,7 +83,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
 
   const std::initializer_list<const vk::Buffer*> buffers = {&boxes,  &rootBuffer_, &primitives_, &nodes_,
                                                             &links_, &tasks_,      &counters_};
-  gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0};
+  gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, 0, 0, 0};
   stats_ = {};
   uint32_t largestTree = 0;
   for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);

@@ -51,7 +51,9 @@ class BvhBuildPass {
   static constexpr uint32_t kLevelsPerLaterSubmission = 16;
   static uint32_t firstSubmissionLevels(uint32_t largestTree);
 
-  BvhBuildPass(const vk::Context& context, std::string name);
+  // Leaves hold at most maxLeaf primitives (HMB_BVH_MAX_LEAF for triangles,
+  // HMB_BVH_MAX_INSTANCE_LEAF for instances).
+  BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf);
 
   // Builds the trees over `boxes` (BvhBox per primitive, primitiveCount of them) with
   // the given roots, whose ranges must not overlap. `before` records passes that must run
@@ -84,6 +86,7 @@ class BvhBuildPass {
 
   const vk::Context& context_;
   std::string name_;
+  uint32_t maxLeaf_;
   vk::ComputeKernel beginKernel_;
   vk::ComputeKernel levelKernel_;
   vk::ComputeKernel sizeDispatchKernel_;

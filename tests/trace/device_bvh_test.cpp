@@ -91,6 +91,26 @@ TEST_F(DeviceBvh, ATreeDeeperThanTheFirstBatchOfLevelsIsFinishedInLaterSubmissio
   EXPECT_EQ(stats.leaves, traceScene.meshBvh().download(0).nodes.size() / 2 + 1);
 }
 
+TEST_F(DeviceBvh, LeavesHoldNoMorePrimitivesThanTheBuildAllows) {
+  // Six coincident boxes: no split is cheaper than a leaf, so only the limit divides them
+  // (median splits: 3 + 3 under a limit of 4, down to single boxes under a limit of 1).
+  const std::vector<gpu::BvhBox> boxes(6, gpu::BvhBox{glm::vec4(0.0f), glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)});
+  const std::vector<Aabb> bounds(boxes.size(), Aabb{glm::vec3(0.0f), glm::vec3(1.0f)});
+  const vk::Buffer buffer = vk::uploadedBuffer(context(), boxes, "coincident boxes");
+  for (const uint32_t maxLeaf : {HMB_BVH_MAX_INSTANCE_LEAF, HMB_BVH_MAX_LEAF}) {
+    passes::BvhBuildPass builder(context(), "limited leaves", maxLeaf);
+    vk::FrameRecorder frame(context());
+    const glm::uvec2 root(0u, 6u);
+    builder.build(frame, buffer, 6u, std::span(&root, 1));
+    const bvh::Bvh tree = builder.download(0);
+    EXPECT_EQ(bvh::test::structuralProblem(tree, bounds, maxLeaf), "") << "leaves of " << maxLeaf;
+    uint32_t largest = 0;
+    for (const bvh::Node& node : tree.nodes)
+      if (bvh::isLeaf(node)) largest = std::max(largest, node.count);
+    EXPECT_EQ(largest, std::min(maxLeaf, 3u)) << "leaves of " << maxLeaf;
+  }
+}
+
 TEST_F(DeviceBvh, NonFiniteTrianglesGetEmptyBoxes) {
   TriangleMesh mesh = bvh::test::randomSoup(200, 0.05f, 4);
   const float inf = std::numeric_limits<float>::infinity();

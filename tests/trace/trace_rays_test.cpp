@@ -287,7 +287,7 @@ TEST_F(TwoLevelScene, MotionBoundsHoldEveryInstanceAtEveryShutterTime) {
   std::vector<Aabb> instanceBoxes;
   for (const gpu::BvhBox& b : boxes) instanceBoxes.push_back({glm::vec3(b.min), glm::vec3(b.max)});
   instanceBoxes.resize(scene_.instances.size());
-  EXPECT_EQ(bvh::test::structuralProblem(top, instanceBoxes, HMB_BVH_MAX_LEAF), "");
+  EXPECT_EQ(bvh::test::structuralProblem(top, instanceBoxes, HMB_BVH_MAX_INSTANCE_LEAF), "");
 }
 
 TEST_F(TwoLevelScene, RaysAtEachShutterTimeMatchBruteForceWithAndWithoutIgnoredObject) {
