@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include "bench/bench_scenes.h"
 #include "bench/embree_reference.h"
 #include "bvh/reference_builder.h"
 #include "runtime/error.h"
@@ -16,12 +17,9 @@
 #include "runtime/trace_scene.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "scenes/load_scene.h"
 
 namespace hmb::bench {
 namespace {
-
-constexpr const char* kLargeMesh = "cube-sphere-1m";
 
 // World-space triangles of a scene at its frame time, as one mesh.
 struct Flat {
@@ -40,34 +38,6 @@ Flat flatten(const scene::Scene& scene) {
     for (uint32_t i : mesh.indices) flat.indices.push_back(base + i);
   }
   return flat;
-}
-
-// A unit sphere of (6 * cells^2 * 2) triangles: a cube's faces tessellated and pushed out.
-scene::Scene cubeSphere(uint32_t cells) {
-  std::vector<glm::vec3> positions;
-  std::vector<uint32_t> indices;
-  for (int face = 0; face < 6; ++face) {
-    const int axis = face / 2;
-    const float side = face % 2 ? 1.0f : -1.0f;
-    const auto base = static_cast<uint32_t>(positions.size());
-    for (uint32_t j = 0; j <= cells; ++j)
-      for (uint32_t i = 0; i <= cells; ++i) {
-        glm::vec3 p;
-        p[axis] = side;
-        p[(axis + 1) % 3] = 2.0f * float(i) / float(cells) - 1.0f;
-        p[(axis + 2) % 3] = 2.0f * float(j) / float(cells) - 1.0f;
-        positions.push_back(glm::normalize(p));
-      }
-    for (uint32_t j = 0; j < cells; ++j)
-      for (uint32_t i = 0; i < cells; ++i) {
-        const uint32_t v = base + j * (cells + 1) + i;
-        indices.insert(indices.end(), {v, v + 1, v + cells + 2, v, v + cells + 2, v + cells + 1});
-      }
-  }
-  scene::Scene scene = scene::singleMeshScene(positions, indices);
-  scene.name = kLargeMesh;
-  scene::deriveDefaults(scene);  // a camera framing it
-  return scene;
 }
 
 std::vector<bvh::Ray> cameraRays(const scene::Scene& scene, ImageSize size) {
@@ -171,7 +141,7 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
   const passes::TraceRaysPass tracePass(context);
   for (const std::string& name : options.scenes) {
     progress("scene " + name);
-    const scene::Scene source = name == kLargeMesh ? cubeSphere(290) : scene::loadScene(name);
+    const scene::Scene source = loadBenchScene(name);
     const Flat flat = flatten(source);
     const scene::Scene scene = scene::singleMeshScene(flat.positions, flat.indices);
     BvhCase c;

@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench/bench_scenes.h"
 #include "bench/bvh_suite.h"
 #include "bench/embree_reference.h"
 #include "bench/error_time_suite.h"
@@ -50,7 +51,7 @@ struct BvhOptions {
   std::string out = "bench/results/bvh-vs-embree.json";
   std::vector<std::string> scenes = [] {
     std::vector<std::string> names = hmb::scene::referenceSceneNames();
-    names.push_back("cube-sphere-1m");
+    names.push_back(hmb::bench::kCubeSphere1m);
     return names;
   }();
   int warmup = 1;
@@ -455,7 +456,8 @@ int main(int argc, char** argv) {
   CLI::App* bvhCmd = app.add_subcommand(
       "bvh", "Device BVH build and trace vs the CPU full-sweep SAH build and Embree, same triangles and rays");
   addCommonOptions(*bvhCmd, bvhOptions.out, bvhOptions.warmup, bvhOptions.repeats);
-  addScenesOption(*bvhCmd, bvhOptions.scenes, "Reference scenes, glTF files or cube-sphere-1m");
+  addScenesOption(*bvhCmd, bvhOptions.scenes,
+                  "Reference scenes, glTF files or " + std::string(hmb::bench::kCubeSphere1m));
   bvhCmd->add_option("--embree-threads", bvhOptions.embreeThreads,
                      "Embree's threads (0: LP_NUM_THREADS when set, else every hardware thread)")
       ->check(CLI::NonNegativeNumber)
@@ -484,7 +486,8 @@ int main(int argc, char** argv) {
   CLI::App* passesCmd = app.add_subcommand(
       "passes", "Per-pass device time of each method, scene and image size, and each render's device memory");
   addCommonOptions(*passesCmd, passesOptions.out, passesOptions.warmup, passesOptions.repeats);
-  addScenesOption(*passesCmd, passesOptions.scenes);
+  addScenesOption(*passesCmd, passesOptions.scenes,
+                  "Reference scenes, glTF files or " + std::string(hmb::bench::kMillionTriangles));
   passesCmd->add_option("--sizes", passesOptions.sizes, "Image sizes, WIDTHxHEIGHT, comma separated")
       ->delimiter(',')
       ->capture_default_str();

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <map>
 
+#include "bench/bench_scenes.h"
 #include "runtime/error.h"
-#include "runtime/report.h"
 #include "runtime/renderer.h"
-#include "scenes/load_scene.h"
+#include "runtime/report.h"
 
 namespace hmb::bench {
 namespace {
@@ -68,7 +68,7 @@ std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOp
       throw Error("passes: method '" + method + "' is not one of sharp, postprocess, hybrid");
   std::vector<PassesCase> cases;
   for (const std::string& name : options.scenes) {
-    const scene::Scene scene = scene::loadScene(name);
+    const scene::Scene scene = loadBenchScene(name);
     for (const ImageSize& size : options.sizes)
       for (const std::string& method : options.methods) {
         progress(name + " " + sizeName(size) + " " + method);

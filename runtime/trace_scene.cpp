@@ -103,6 +103,7 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
     f.dispatch(kTriangleBounds, triangleBoundsKernel_, {&positions_, &triangles_, &triangleBoxes_}, count,
                vk::foldedGroups(vk::groupsFor(count, HMB_BVH_BUILD_GROUP)));
   });
+  meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
 }
 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }

@@ -28,13 +28,12 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
   const uint64_t tasks = std::max<uint64_t>(treeCount, primitiveCount / 2 + 1);
   if (nodes > HMB_BVH_LINK_NEXT_MASK) throw Error(name_ + ": " + std::to_string(primitiveCount) +
                                                   " primitives are more than one BVH can index");
-  if (primitiveCount > primitiveCapacity_ || primitives_.size() == 0) {  // an empty build still binds it
-    primitiveCapacity_ = primitiveCount;
-    primitives_ = vk::Buffer(context_, 2ull * std::max(primitiveCount, 1u) * sizeof(uint32_t), vk::MemoryUse::Device,
-                             name_ + " primitives");
-  }
-  if (nodes > nodeCapacity_) {
-    nodeCapacity_ = static_cast<uint32_t>(nodes);
+  // Each buffer grows to what this build needs (an empty build still binds one primitive;
+  // compacted buffers are too small for any build's partitions).
+  const uint64_t primitiveBytes = 2ull * std::max(primitiveCount, 1u) * sizeof(uint32_t);
+  if (primitives_.size() < primitiveBytes)
+    primitives_ = vk::Buffer(context_, primitiveBytes, vk::MemoryUse::Device, name_ + " primitives");
+  if (nodes_.size() < nodes * sizeof(gpu::BvhNode)) {
     nodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhNode), vk::MemoryUse::Device, name_ + " nodes");
     links_ = vk::Buffer(context_, nodes * HMB_BVH_OCTANTS * sizeof(uint32_t), vk::MemoryUse::Device,
                         name_ + " links");
@@ -43,10 +42,8 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
     taskCapacity_ = static_cast<uint32_t>(tasks);
     tasks_ = vk::Buffer(context_, 2 * tasks * sizeof(gpu::BvhBuildTask), vk::MemoryUse::Device, name_ + " tasks");
   }
-  if (treeCount > treeCapacity_) {
-    treeCapacity_ = treeCount;
+  if (rootBuffer_.size() < treeCount * sizeof(glm::uvec2))
     rootBuffer_ = vk::Buffer(context_, treeCount * sizeof(glm::uvec2), vk::MemoryUse::Device, name_ + " roots");
-  }
   if (counters_.size() == 0)
     counters_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters), vk::MemoryUse::Device, name_ + " counters");
 }
@@ -116,6 +113,28 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   stats_.levels = counters.levels;
   stats_.levelMilliseconds.resize(std::min<size_t>(stats_.levelMilliseconds.size(), stats_.levels));
   return stats_;
+}
+
+void BvhBuildPass::compact(vk::FrameRecorder& frame) {
+  if (stats_.nodes == 0) throw Error(name_ + ": compact() before a build");
+  // The scratch goes first, so the copies below add less to the peak.
+  tasks_ = {};
+  rootBuffer_ = {};
+  taskCapacity_ = 0;
+  const uint64_t nodeBytes = uint64_t(stats_.nodes) * sizeof(gpu::BvhNode);
+  const uint64_t linkBytes = uint64_t(stats_.nodes) * HMB_BVH_OCTANTS * sizeof(uint32_t);
+  const uint64_t primitiveBytes = uint64_t(std::max(primitiveCount_, 1u)) * sizeof(uint32_t);
+  vk::Buffer nodes(context_, nodeBytes, vk::MemoryUse::Device, name_ + " nodes");
+  vk::Buffer links(context_, linkBytes, vk::MemoryUse::Device, name_ + " links");
+  vk::Buffer primitives(context_, primitiveBytes, vk::MemoryUse::Device, name_ + " primitives");
+  frame.begin();
+  frame.copy(kCompact, nodes_, nodes, nodeBytes);
+  frame.copy(kCompact, links_, links, linkBytes);
+  frame.copy(kCompact, primitives_, primitives, primitiveBytes);
+  stats_.deviceMilliseconds += frame.submitAndWait().frameMilliseconds.value_or(0.0);
+  nodes_ = std::move(nodes);
+  links_ = std::move(links);
+  primitives_ = std::move(primitives);
 }
 
 uint64_t BvhBuildPass::usedTreeBytes() const {

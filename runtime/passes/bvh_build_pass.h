@@ -40,6 +40,7 @@ class BvhBuildPass {
   static constexpr const char* kBegin = "bvh-begin-build";
   static constexpr const char* kLevel = "bvh-build-level";
   static constexpr const char* kSizeDispatch = "bvh-size-build-dispatch";
+  static constexpr const char* kCompact = "bvh-compact";
   // Levels recorded in the first submission: what a tree of the largest root's size needs
   // when its splits are not too uneven (log2 of its primitives, plus a margin), at most
   // kMaxLevelsPerSubmission. A deeper tree takes more submissions of kLevelsPerLaterSubmission
@@ -63,9 +64,16 @@ class BvhBuildPass {
                              std::span<const glm::uvec2> roots,
                              const std::function<void(vk::FrameRecorder&)>& before = {});
 
+  // Moves the trees of the last build into buffers of their own size and frees the build's
+  // scratch (the primitive array's second half, the task lists): for trees built once and
+  // kept, which then hold about half the worst case allocated for a build. The next build
+  // allocates afresh. Adds its copy time to stats().deviceMilliseconds.
+  void compact(vk::FrameRecorder& frame);
+
   const BvhBuildStats& stats() const { return stats_; }
   // The trees' buffers on the device: nodes, links and primitive indices, allocated for the
-  // worst case (a leaf per primitive, primitive indices twice for the partitions).
+  // worst case (a leaf per primitive, primitive indices twice for the partitions) until
+  // compact() fits them to the trees.
   uint64_t allocatedTreeBytes() const { return nodes_.size() + links_.size() + primitives_.size(); }
   // What the last build filled of them: its nodes with their links, one index per primitive.
   uint64_t usedTreeBytes() const;
@@ -90,9 +98,6 @@ class BvhBuildPass {
   vk::ComputeKernel beginKernel_;
   vk::ComputeKernel levelKernel_;
   vk::ComputeKernel sizeDispatchKernel_;
-  uint32_t primitiveCapacity_ = 0;
-  uint32_t nodeCapacity_ = 0;
-  uint32_t treeCapacity_ = 0;
   uint32_t taskCapacity_ = 0;
   uint32_t primitiveCount_ = 0;
   std::vector<glm::uvec2> roots_;

@@ -167,6 +167,16 @@ void FrameRecorder::fill(std::string_view pass, const Buffer& buffer, uint32_t v
   endPass(index);
 }
 
+void FrameRecorder::copy(std::string_view pass, const Buffer& from, const Buffer& to, VkDeviceSize bytes) {
+  if (bytes > from.size() || bytes > to.size())
+    throw Error("copy of " + std::to_string(bytes) + " bytes past a buffer's end");
+  if (bytes == 0) return;
+  const uint32_t index = beginPass(pass);
+  const VkBufferCopy region{0, 0, bytes};
+  vkCmdCopyBuffer(commandBuffer_, from.handle(), to.handle(), 1, &region);
+  endPass(index);
+}
+
 FrameTimings FrameRecorder::submitAndWait() {
   if (!recording_) throw Error("submitAndWait() without begin()");
   recording_ = false;

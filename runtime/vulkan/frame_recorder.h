@@ -79,6 +79,8 @@ class FrameRecorder {
 
   // Fills a whole buffer with a 32-bit value (clears, sentinels).
   void fill(std::string_view pass, const Buffer& buffer, uint32_t value);
+  // Copies the first `bytes` of `from` to the start of `to`.
+  void copy(std::string_view pass, const Buffer& from, const Buffer& to, VkDeviceSize bytes);
 
   // Ends the command buffer, submits it, waits, and reads the timestamps.
   FrameTimings submitAndWait();

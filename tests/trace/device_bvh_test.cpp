@@ -111,6 +111,36 @@ TEST_F(DeviceBvh, LeavesHoldNoMorePrimitivesThanTheBuildAllows) {
   }
 }
 
+TEST_F(DeviceBvh, CompactingKeepsTheTreesInBuffersOfTheirSizeAndABuildMayFollow) {
+  const TriangleMesh mesh = bvh::test::randomSoup(500, 0.05f, 11);
+  const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
+  std::vector<gpu::BvhBox> boxes;
+  for (const Aabb& b : input.bounds) boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
+  const vk::Buffer buffer = vk::uploadedBuffer(context(), boxes, "soup boxes");
+  const auto count = static_cast<uint32_t>(boxes.size());
+  const glm::uvec2 roots[] = {{0u, count / 2}, {count / 2, count - count / 2}};
+  passes::BvhBuildPass builder(context(), "compacted", HMB_BVH_MAX_LEAF);
+  vk::FrameRecorder frame(context());
+  builder.build(frame, buffer, count, roots);
+  const bvh::Bvh before = builder.download(1);
+  const std::vector<uint32_t> linksBefore = builder.downloadLinks();
+  builder.compact(frame);
+  EXPECT_EQ(builder.allocatedTreeBytes(), builder.usedTreeBytes());
+  const bvh::Bvh after = builder.download(1);
+  ASSERT_EQ(after.nodes.size(), before.nodes.size());
+  for (size_t i = 0; i < after.nodes.size(); ++i) {
+    EXPECT_EQ(bvh::boundsOf(after.nodes[i]).min, bvh::boundsOf(before.nodes[i]).min) << "node " << i;
+    EXPECT_EQ(bvh::boundsOf(after.nodes[i]).max, bvh::boundsOf(before.nodes[i]).max) << "node " << i;
+  }
+  EXPECT_EQ(after.primitiveIndices, before.primitiveIndices);
+  const std::vector<uint32_t> linksAfter = builder.downloadLinks();
+  EXPECT_TRUE(std::equal(linksAfter.begin(), linksAfter.end(), linksBefore.begin()));
+  // The buffers were fitted to these trees; a build over all the boxes as one tree regrows them.
+  const glm::uvec2 whole(0u, count);
+  builder.build(frame, buffer, count, std::span(&whole, 1));
+  EXPECT_EQ(bvh::test::structuralProblem(builder.download(0), input.bounds, HMB_BVH_MAX_LEAF), "");
+}
+
 TEST_F(DeviceBvh, NonFiniteTrianglesGetEmptyBoxes) {
   TriangleMesh mesh = bvh::test::randomSoup(200, 0.05f, 4);
   const float inf = std::numeric_limits<float>::infinity();
