@@ -95,14 +95,16 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   triangleCount_ = static_cast<uint32_t>(triangles.size());
   positions_ = vk::uploadedBuffer(context, positions, "trace positions");
   triangles_ = vk::uploadedBuffer(context, triangles, "trace triangles");
-  triangleBoxes_ = vk::Buffer(context, std::max<size_t>(triangles.size(), 1) * sizeof(gpu::BvhBox),
-                              vk::MemoryUse::Device, "triangle boxes");
+  // The boxes serve the build alone: freed before the trees are compacted, to lower the peak.
+  vk::Buffer triangleBoxes(context, std::max<size_t>(triangles.size(), 1) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
+                           "triangle boxes");
   if (roots.empty()) roots.emplace_back(0u, 0u);  // a scene without meshes: one empty tree
   const uint32_t count = triangleCount_;
-  meshBvh_.build(frame, triangleBoxes_, count, roots, [&](vk::FrameRecorder& f) {
-    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {&positions_, &triangles_, &triangleBoxes_}, count,
+  meshBvh_.build(frame, triangleBoxes, count, roots, [&](vk::FrameRecorder& f) {
+    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {&positions_, &triangles_, &triangleBoxes}, count,
                vk::foldedGroups(vk::groupsFor(count, HMB_BVH_BUILD_GROUP)));
   });
+  triangleBoxes = {};
   meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
 }
 

@@ -78,7 +78,6 @@ class TraceScene {
   std::vector<gpu::InstanceTransform> builtTransforms_;
   vk::Buffer positions_;      // vec4 per vertex of every mesh
   vk::Buffer triangles_;      // uvec4 (v0, v1, v2, mesh) per triangle of every mesh
-  vk::Buffer triangleBoxes_;  // BvhBox per triangle
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
