@@ -59,6 +59,7 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   // plan() decided what the last frame's trees still serve; only the others are built.
   if (!plan.runs(kBvhMeshes) && !traceScene_) throw Error("hybrid: the plan keeps mesh trees never built");
   if (plan.runs(kBvhMeshes)) {
+    traceScene_.reset();  // the last frame's trees go first: the two never take memory at once
     traceScene_ = std::make_unique<TraceScene>(context_, scene, frame);
     const double meshMs = traceScene_->meshBvh().stats().deviceMilliseconds;
     timings.setup = {{{kBvhMeshes, meshMs}}, meshMs};
