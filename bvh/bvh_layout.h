@@ -16,6 +16,15 @@
 // Value of the "ignore this object id" query option that ignores nothing.
 #define HMB_IGNORE_NONE 0xffffffffu
 
+// Packed nodes (what traversal reads): each bound is a 16-bit step count in its tree's frame,
+// and the last word holds leftOrFirst above the count. A leaf holds at most
+// HMB_BVH_PACKED_MAX_COUNT primitives, and node and primitive indices stay below
+// HMB_BVH_PACKED_INDEX_LIMIT.
+#define HMB_BVH_QUANTUM_MAX 65535u
+#define HMB_BVH_PACKED_COUNT_BITS 3u
+#define HMB_BVH_PACKED_MAX_COUNT 7u
+#define HMB_BVH_PACKED_INDEX_LIMIT 0x20000000u
+
 HMB_GPU_BEGIN
 
 // 32 bytes. Bounds are scalars, not vec3: glsl_cpp.h shares no vec3 (its std430 alignment of
@@ -31,6 +40,23 @@ struct BvhNode {
   float maxY;
   float maxZ;
   uint count;        // 0: interior; > 0: number of primitives in the leaf
+};
+
+// A node as traversal reads it, 16 bytes: x, y, z hold the box's lower step count in bits
+// 0-15 and its upper one in bits 16-31 (bound = frame origin + steps * frame step, see
+// kernels/bvh/packed_node.glsl); w holds leftOrFirst << 3 | count. An empty box (a tree or a
+// leaf with nothing to hit) is lower 65535, upper 0 on every axis: never entered.
+struct BvhPackedNode {
+  uint x;
+  uint y;
+  uint z;
+  uint leftOrFirstCount;
+};
+
+// The frame a tree's packed bounds count steps in: its root box, 65535 steps across each axis.
+struct BvhFrame {
+  vec4 origin;  // xyz: the root box's lower corner (w unused)
+  vec4 step;    // xyz: the length of one step (w unused)
 };
 
 // Closest hit of one ray. The hit point is (1 - u - v) * v0 + u * v1 + v * v2.
@@ -49,5 +75,7 @@ HMB_GPU_END
 
 HMB_CHECK_SIZE(BvhNode, 32)
 HMB_CHECK_SIZE(BvhHit, 32)
+HMB_CHECK_SIZE(BvhPackedNode, 16)
+HMB_CHECK_SIZE(BvhFrame, 32)
 
 #endif

@@ -89,7 +89,8 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
       triangles.emplace_back(base + mesh.indices[i], base + mesh.indices[i + 1], base + mesh.indices[i + 2], m);
   }
-  if (triangles.size() > HMB_BVH_LINK_NEXT_MASK / 2) throw Error("the scene has more triangles than a BVH can index");
+  if (triangles.size() >= HMB_BVH_PACKED_INDEX_LIMIT / 2)
+    throw Error("the scene has more triangles than a BVH can index");
   meshCount_ = static_cast<uint32_t>(scene.meshes.size());
   meshFingerprint_ = fingerprintOf(scene);
   triangleCount_ = static_cast<uint32_t>(triangles.size());
@@ -134,8 +135,9 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   const gpu::TraceParams params{0u, instanceCount_, timeCount_, 0u};
   const glm::uvec2 root(0u, instanceCount_);
   instanceBvh_.build(frame, instanceBoxes_, instanceCount_, std::span(&root, 1), [&](vk::FrameRecorder& f) {
-    f.dispatch(kMotionBounds, motionBoundsKernel_, {&meshBvh_.nodes(), &instances_, &transforms_, &instanceBoxes_},
-               params, vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
+    f.dispatch(kMotionBounds, motionBoundsKernel_,
+               {&meshBvh_.nodes(), &instances_, &transforms_, &instanceBoxes_, &meshBvh_.frames()}, params,
+               vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
   });
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);

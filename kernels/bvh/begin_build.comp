@@ -1,7 +1,8 @@
 #version 450
 // One workgroup per tree: the root's bounds and centroid bounds over its primitive range,
-// the identity order of that range, and the root's task for level 0. Roots are nodes
-// 0..treeCount-1; their links all end the traversal.
+// the identity order of that range, the tree's frame (the root box: its packed bounds count
+// steps across it), and the root's task for level 0. Roots are nodes 0..treeCount-1; their
+// links all end the traversal.
 #extension GL_GOOGLE_include_directive : require
 #include "bvh_build_common.glsl"
 #include "../shared/indexing.glsl"
@@ -59,6 +60,11 @@ void main() {
   root.leftOrFirst = range.y <= 1u ? range.x : HMB_BVH_LINK_END;
   root.count = range.y == 1u ? 1u : 0u;
   nodes[tree] = root;
+  const vec3 rootLo = vec3(root.minX, root.minY, root.minZ), rootHi = vec3(root.maxX, root.maxY, root.maxZ);
+  const BvhFrame frame = frameOf(rootLo, rootHi);
+  frames[tree] = frame;
+  // A root with children gets its index word from its task.
+  packedNodes[tree] = uvec4(packBox(rootLo, rootHi, frame), packLeftOrFirstCount(range.x, root.count));
   if (range.y <= 1u) {
     if (range.y == 1u) atomicAdd(counters.leafCount, 1u);
     return;
@@ -67,7 +73,7 @@ void main() {
   task.node = tree;
   task.first = range.x;
   task.count = range.y;
-  task.pad0 = 0u;
+  task.tree = tree;
   task.centroidMin = vec4(orderedFloat(centroidMin[0]), orderedFloat(centroidMin[1]), orderedFloat(centroidMin[2]), 0.0);
   task.centroidMax = vec4(orderedFloat(centroidMax[0]), orderedFloat(centroidMax[1]), orderedFloat(centroidMax[2]), 0.0);
   tasks[atomicAdd(counters.taskCount[0], 1u)] = task;

@@ -218,6 +218,7 @@ void main() {
     if (lane == 0) {
       nodes[task.node].leftOrFirst = task.first;
       nodes[task.node].count = task.count;
+      packedNodes[task.node].w = packLeftOrFirstCount(task.first, task.count);
       atomicAdd(counters.leafCount, 1u);
     }
     return;
@@ -282,6 +283,7 @@ void main() {
     if (job == HMB_BVH_OCTANTS) {
       nodes[task.node].leftOrFirst = left;
       nodes[task.node].count = 0u;
+      packedNodes[task.node].w = packLeftOrFirstCount(left, 0u);
       continue;
     }
     const uint side = job - (HMB_BVH_OCTANTS + 1u);
@@ -298,6 +300,8 @@ void main() {
     child.leftOrFirst = first;
     child.count = count == 1u ? 1u : 0u;
     nodes[left + side] = child;
+    const vec3 lo = vec3(child.minX, child.minY, child.minZ), hi = vec3(child.maxX, child.maxY, child.maxZ);
+    packedNodes[left + side] = uvec4(packBox(lo, hi, frames[task.tree]), packLeftOrFirstCount(first, child.count));
     if (count == 1u) {
       atomicAdd(counters.leafCount, 1u);
       continue;
@@ -306,7 +310,7 @@ void main() {
     next.node = left + side;
     next.first = first;
     next.count = count;
-    next.pad0 = 0u;
+    next.tree = task.tree;
     next.centroidMin = vec4(childBounds[b + 6], childBounds[b + 7], childBounds[b + 8], 0.0);
     next.centroidMax = vec4(childBounds[b + 9], childBounds[b + 10], childBounds[b + 11], 0.0);
     const uint slot = atomicAdd(counters.taskCount[1u - parity], 1u);

@@ -4,6 +4,7 @@
 #define HMB_KERNELS_BVH_BVH_BUILD_COMMON_GLSL
 
 #include "bvh_build_layout.h"
+#include "packed_node.glsl"
 
 layout(std430, binding = HMB_BUILD_BINDING_BOXES) readonly buffer Boxes { BvhBox boxes[]; };
 layout(std430, binding = HMB_BUILD_BINDING_ROOTS) readonly buffer Roots { uvec2 roots[]; };
@@ -12,6 +13,8 @@ layout(std430, binding = HMB_BUILD_BINDING_NODES) buffer Nodes { BvhNode nodes[]
 layout(std430, binding = HMB_BUILD_BINDING_LINKS) buffer Links { uint links[]; };
 layout(std430, binding = HMB_BUILD_BINDING_TASKS) buffer Tasks { BvhBuildTask tasks[]; };
 layout(std430, binding = HMB_BUILD_BINDING_COUNTERS) buffer Counters { BvhBuildCounters counters; };
+layout(std430, binding = HMB_BUILD_BINDING_PACKED_NODES) buffer PackedNodes { uvec4 packedNodes[]; };
+layout(std430, binding = HMB_BUILD_BINDING_FRAMES) buffer Frames { BvhFrame frames[]; };
 layout(push_constant) uniform Params { BvhBuildParams params; };
 
 // The centre of an empty box (a primitive with no area to hit) is the origin, as on the host

@@ -5,7 +5,9 @@
 // The build is top-down binned SAH, level by level: one workgroup per task (a node and its
 // primitive range) bins the range's centroids, picks the cheapest split on any axis, and
 // partitions the range into its two children, which become the next level's tasks. Several
-// trees (one per mesh) build in the same levels; tree r's root is node r.
+// trees (one per mesh) build in the same levels; tree r's root is node r. Each node is
+// written twice: with exact float bounds, which the build reads, and packed in its tree's
+// frame (kernels/bvh/packed_node.glsl), which traversal reads.
 #ifndef HMB_KERNELS_BVH_BVH_BUILD_LAYOUT_H
 #define HMB_KERNELS_BVH_BVH_BUILD_LAYOUT_H
 
@@ -43,11 +45,13 @@
 #define HMB_BUILD_BINDING_BOXES 0       // BvhBox per primitive
 #define HMB_BUILD_BINDING_ROOTS 1       // uvec2 (first primitive, count) per tree
 #define HMB_BUILD_BINDING_PRIMITIVES 2  // uint[2 * primitiveCount]: the final array, then a scratch copy
-#define HMB_BUILD_BINDING_NODES 3       // BvhNode[]
+#define HMB_BUILD_BINDING_NODES 3       // BvhNode[]: exact bounds, the build's working copy
 #define HMB_BUILD_BINDING_LINKS 4       // uint[8 * node capacity], see HMB_BVH_LINK_*
 #define HMB_BUILD_BINDING_TASKS 5       // BvhBuildTask[2 * taskCapacity]: this level's, the next level's
 #define HMB_BUILD_BINDING_COUNTERS 6    // BvhBuildCounters
-#define HMB_BUILD_BINDING_COUNT 7
+#define HMB_BUILD_BINDING_PACKED_NODES 7  // BvhPackedNode[]: the nodes as traversal reads them
+#define HMB_BUILD_BINDING_FRAMES 8        // BvhFrame per tree: what its packed bounds count steps in
+#define HMB_BUILD_BINDING_COUNT 9
 
 HMB_GPU_BEGIN
 
@@ -73,7 +77,7 @@ struct BvhBuildTask {
   uint node;
   uint first;  // range of the primitive arrays
   uint count;
-  uint pad0;
+  uint tree;         // whose frame the node's children are packed in
   vec4 centroidMin;  // bounds of the range's box centres (w unused)
   vec4 centroidMax;
 };

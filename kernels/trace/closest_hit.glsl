@@ -2,24 +2,27 @@
 // ray's direction octant says where to go next (kernels/bvh/bvh_build_layout.h), so no
 // per-ray stack is kept and no tree is too deep. Instances of the ignored object are skipped
 // whole, so a reveal ray finds the first surface behind the object it starts on.
-// Declares the scene's buffers at bindings 2-11 (trace_layout.h); every kernel that traces
+// Declares the scene's buffers at bindings 2-13 (trace_layout.h); every kernel that traces
 // includes this file and keeps its own bindings outside that range.
 #ifndef HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
 #define HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
 
 #include "trace_layout.h"
 #include "ray_tests.glsl"
+#include "../bvh/packed_node.glsl"
 
-layout(std430, binding = HMB_TRACE_BINDING_TOP_NODES) readonly buffer TopNodes { BvhNode topNodes[]; };
+layout(std430, binding = HMB_TRACE_BINDING_TOP_NODES) readonly buffer TopNodes { uvec4 topNodes[]; };
 layout(std430, binding = HMB_TRACE_BINDING_TOP_LINKS) readonly buffer TopLinks { uint topLinks[]; };
 layout(std430, binding = HMB_TRACE_BINDING_TOP_PRIMITIVES) readonly buffer TopPrimitives { uint topPrimitives[]; };
 layout(std430, binding = HMB_TRACE_BINDING_INSTANCES) readonly buffer TraceInstances { TraceInstance traceInstances[]; };
 layout(std430, binding = HMB_TRACE_BINDING_TRANSFORMS) readonly buffer Transforms { InstanceTransform transforms[]; };
-layout(std430, binding = HMB_TRACE_BINDING_MESH_NODES) readonly buffer MeshNodes { BvhNode meshNodes[]; };
+layout(std430, binding = HMB_TRACE_BINDING_MESH_NODES) readonly buffer MeshNodes { uvec4 meshNodes[]; };
 layout(std430, binding = HMB_TRACE_BINDING_MESH_LINKS) readonly buffer MeshLinks { uint meshLinks[]; };
 layout(std430, binding = HMB_TRACE_BINDING_MESH_PRIMITIVES) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
 layout(std430, binding = HMB_TRACE_BINDING_TRIANGLES) readonly buffer TraceTriangles { uvec4 traceTriangles[]; };
 layout(std430, binding = HMB_TRACE_BINDING_POSITIONS) readonly buffer Positions { vec4 positions[]; };
+layout(std430, binding = HMB_TRACE_BINDING_TOP_FRAME) readonly buffer TopFrame { BvhFrame topFrame; };
+layout(std430, binding = HMB_TRACE_BINDING_MESH_FRAMES) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
 
 // What a trace needs to know of the scene beside its buffers.
 struct TraceSceneInfo {
@@ -28,12 +31,9 @@ struct TraceSceneInfo {
   uint flags;      // HMB_TRACE_*
 };
 
-vec3 lowerOf(BvhNode n) { return vec3(n.minX, n.minY, n.minZ); }
-vec3 upperOf(BvhNode n) { return vec3(n.maxX, n.maxY, n.maxZ); }
-
 // Where traversal goes after entering interior node n whose link word is `link`.
-uint firstChildOf(BvhNode n, uint link) {
-  return n.leftOrFirst + ((link & HMB_BVH_LINK_RIGHT_FIRST) != 0u ? 1u : 0u);
+uint firstChildOf(uvec4 n, uint link) {
+  return packedLeftOrFirst(n) + ((link & HMB_BVH_LINK_RIGHT_FIRST) != 0u ? 1u : 0u);
 }
 
 BvhHit missedHit(float tMax) {
@@ -66,17 +66,20 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
                     (traceInstances[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
   const float handedness = determinant(mat3(objectFromWorld)) < 0.0 ? -1.0 : 1.0;
   const float tMin = ray.originTMin.w;
+  const BvhFrame frame = meshFrames[mesh];
   uint node = mesh;
   while (node != HMB_BVH_LINK_END) {
-    const BvhNode n = meshNodes[node];
+    const uvec4 n = meshNodes[node];
     const uint link = meshLinks[node * HMB_BVH_OCTANTS + r.octant];
-    if (intersectBox(r, lowerOf(n), upperOf(n), tMin, best.t)) {
-      if (n.count == 0u) {
+    if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), tMin, best.t)) {
+      const uint count = packedCount(n);
+      if (count == 0u) {
         node = firstChildOf(n, link);
         continue;
       }
-      for (uint k = 0; k < n.count; ++k) {
-        const uint triangle = meshPrimitives[n.leftOrFirst + k];
+      const uint first = packedLeftOrFirst(n);
+      for (uint k = 0; k < count; ++k) {
+        const uint triangle = meshPrimitives[first + k];
         const uvec4 tri = traceTriangles[triangle];
         const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
         float t, u, v;
@@ -103,17 +106,20 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
   BvhHit best = missedHit(ray.directionTMax.w);
   const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
   if (!r.valid || scene.instanceCount == 0u) return best;
+  const BvhFrame frame = topFrame;
   uint node = HMB_BVH_ROOT;
   while (node != HMB_BVH_LINK_END) {
-    const BvhNode n = topNodes[node];
+    const uvec4 n = topNodes[node];
     const uint link = topLinks[node * HMB_BVH_OCTANTS + r.octant];
-    if (intersectBox(r, lowerOf(n), upperOf(n), ray.originTMin.w, best.t)) {
-      if (n.count == 0u) {
+    if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), ray.originTMin.w, best.t)) {
+      const uint count = packedCount(n);
+      if (count == 0u) {
         node = firstChildOf(n, link);
         continue;
       }
-      for (uint k = 0; k < n.count; ++k) {
-        const uint instance = topPrimitives[n.leftOrFirst + k];
+      const uint first = packedLeftOrFirst(n);
+      for (uint k = 0; k < count; ++k) {
+        const uint instance = topPrimitives[first + k];
         if (traceInstances[instance].objectId != ray.ignoreObjectId) traceInstance(instance, ray, scene, best);
       }
     }

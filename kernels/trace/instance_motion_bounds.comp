@@ -1,13 +1,16 @@
 #version 450
 // The box the top level holds for each instance: its mesh's root box carried into the world
-// at every shutter time, merged, so that a ray traced at any of those times finds it.
+// at every shutter time, merged, so that a ray traced at any of those times finds it. The root
+// box is the packed one traversal tests (it holds the exact one).
 #extension GL_GOOGLE_include_directive : require
 #include "trace_layout.h"
 #include "../shared/indexing.glsl"
+#include "../bvh/packed_node.glsl"
 
 layout(local_size_x = HMB_TRACE_GROUP) in;
 
-layout(std430, binding = HMB_MOTION_BOUNDS_BINDING_MESH_NODES) readonly buffer MeshNodes { BvhNode meshNodes[]; };
+layout(std430, binding = HMB_MOTION_BOUNDS_BINDING_MESH_NODES) readonly buffer MeshNodes { uvec4 meshNodes[]; };
+layout(std430, binding = HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
 layout(std430, binding = HMB_MOTION_BOUNDS_BINDING_INSTANCES) readonly buffer Instances { TraceInstance instances[]; };
 layout(std430, binding = HMB_MOTION_BOUNDS_BINDING_TRANSFORMS) readonly buffer Transforms { InstanceTransform transforms[]; };
 layout(std430, binding = HMB_MOTION_BOUNDS_BINDING_BOXES) writeonly buffer Boxes { BvhBox boxes[]; };
@@ -16,8 +19,8 @@ layout(push_constant) uniform Params { TraceParams params; };
 void main() {
   const uint i = linearInvocationIndex(HMB_TRACE_GROUP);
   if (i >= params.instanceCount) return;
-  const BvhNode root = meshNodes[instances[i].mesh];
-  const vec3 lo = vec3(root.minX, root.minY, root.minZ), hi = vec3(root.maxX, root.maxY, root.maxZ);
+  const uint mesh = instances[i].mesh;
+  const vec3 lo = packedLower(meshNodes[mesh], meshFrames[mesh]), hi = packedUpper(meshNodes[mesh], meshFrames[mesh]);
   vec3 worldLo = vec3(uintBitsToFloat(0x7f800000u)), worldHi = -worldLo;
   if (all(lessThanEqual(lo, hi))) {
     // An affine map of a box: the centre moves, the half extent goes through |M|.

@@ -11,28 +11,31 @@
 
 #define HMB_TRACE_GROUP 64
 
-// trace_rays. Bindings 2-11 are the scene (closest_hit.glsl declares them); every kernel that
-// traces uses these slots for them and its own slots outside 2-11.
+// trace_rays. Bindings 2-13 are the scene (closest_hit.glsl declares them); every kernel that
+// traces uses these slots for them and its own slots outside 2-13.
 #define HMB_TRACE_BINDING_RAYS 0             // TraceRay[]
 #define HMB_TRACE_BINDING_HITS 1             // BvhHit[], one per ray
-#define HMB_TRACE_BINDING_TOP_NODES 2        // BvhNode[] over instances
+#define HMB_TRACE_BINDING_TOP_NODES 2        // BvhPackedNode[] over instances
 #define HMB_TRACE_BINDING_TOP_LINKS 3        // uint[8 * nodes]
 #define HMB_TRACE_BINDING_TOP_PRIMITIVES 4   // uint instance[]
 #define HMB_TRACE_BINDING_INSTANCES 5        // TraceInstance[]
 #define HMB_TRACE_BINDING_TRANSFORMS 6       // InstanceTransform[instance * timeCount + time]
-#define HMB_TRACE_BINDING_MESH_NODES 7       // BvhNode[] of every mesh, mesh m's root at node m
+#define HMB_TRACE_BINDING_MESH_NODES 7       // BvhPackedNode[] of every mesh, mesh m's root at node m
 #define HMB_TRACE_BINDING_MESH_LINKS 8       // uint[8 * nodes]
 #define HMB_TRACE_BINDING_MESH_PRIMITIVES 9  // uint triangle[] (indices into the triangle buffer)
 #define HMB_TRACE_BINDING_TRIANGLES 10       // uvec4 (v0, v1, v2, mesh) per triangle of every mesh
 #define HMB_TRACE_BINDING_POSITIONS 11       // vec4 per mesh vertex (object space)
-#define HMB_TRACE_BINDING_COUNT 12
+#define HMB_TRACE_BINDING_TOP_FRAME 12       // BvhFrame of the top level
+#define HMB_TRACE_BINDING_MESH_FRAMES 13     // BvhFrame per mesh
+#define HMB_TRACE_BINDING_COUNT 14
 
 // instance_motion_bounds: the boxes the top level is built over
 #define HMB_MOTION_BOUNDS_BINDING_MESH_NODES 0
 #define HMB_MOTION_BOUNDS_BINDING_INSTANCES 1
 #define HMB_MOTION_BOUNDS_BINDING_TRANSFORMS 2
 #define HMB_MOTION_BOUNDS_BINDING_BOXES 3  // BvhBox per instance
-#define HMB_MOTION_BOUNDS_BINDING_COUNT 4
+#define HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES 4
+#define HMB_MOTION_BOUNDS_BINDING_COUNT 5
 
 // TraceParams.flags: skip the back faces of single-sided instances, as the rasterizer does
 // (the renderer's rays); without it every face is hit (tests against brute force and Embree).

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstring>
 
+#include "bvh/packed_node.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/context.h"
@@ -19,6 +20,8 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       levelKernel_(context, "bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)),
       sizeDispatchKernel_(context, "bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)) {
   if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
+  if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
+    throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
 }
 
 void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
@@ -26,18 +29,22 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
   const uint64_t nodes = 2ull * primitiveCount + treeCount;
   // Every task holds two or more primitives of its own, or is a root.
   const uint64_t tasks = std::max<uint64_t>(treeCount, primitiveCount / 2 + 1);
-  if (nodes > HMB_BVH_LINK_NEXT_MASK) throw Error(name_ + ": " + std::to_string(primitiveCount) +
-                                                  " primitives are more than one BVH can index");
+  if (nodes >= HMB_BVH_PACKED_INDEX_LIMIT)
+    throw Error(name_ + ": " + std::to_string(primitiveCount) + " primitives are more than one BVH can index");
   // Each buffer grows to what this build needs (an empty build still binds one primitive;
   // compacted buffers are too small for any build's partitions).
   const uint64_t primitiveBytes = 2ull * std::max(primitiveCount, 1u) * sizeof(uint32_t);
   if (primitives_.size() < primitiveBytes)
     primitives_ = vk::Buffer(context_, primitiveBytes, vk::MemoryUse::Device, name_ + " primitives");
-  if (nodes_.size() < nodes * sizeof(gpu::BvhNode)) {
-    nodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhNode), vk::MemoryUse::Device, name_ + " nodes");
+  if (nodes_.size() < nodes * sizeof(gpu::BvhNode))
+    nodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhNode), vk::MemoryUse::Device, name_ + " exact nodes");
+  if (packedNodes_.size() < nodes * sizeof(gpu::BvhPackedNode)) {
+    packedNodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhPackedNode), vk::MemoryUse::Device, name_ + " nodes");
     links_ = vk::Buffer(context_, nodes * HMB_BVH_OCTANTS * sizeof(uint32_t), vk::MemoryUse::Device,
                         name_ + " links");
   }
+  if (frames_.size() < treeCount * sizeof(gpu::BvhFrame))
+    frames_ = vk::Buffer(context_, treeCount * sizeof(gpu::BvhFrame), vk::MemoryUse::Device, name_ + " frames");
   if (tasks > taskCapacity_) {
     taskCapacity_ = static_cast<uint32_t>(tasks);
     tasks_ = vk::Buffer(context_, 2 * tasks * sizeof(gpu::BvhBuildTask), vk::MemoryUse::Device, name_ + " tasks");
@@ -78,8 +85,8 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   counters.dispatch[1] = glm::uvec4(0u, 0u, 1u, 0u);
   counters_.write(std::as_bytes(std::span(&counters, 1)));
 
-  const std::initializer_list<const vk::Buffer*> buffers = {&boxes,  &rootBuffer_, &primitives_, &nodes_,
-                                                            &links_, &tasks_,      &counters_};
+  const std::initializer_list<const vk::Buffer*> buffers = {&boxes,  &rootBuffer_, &primitives_,  &nodes_, &links_,
+                                                            &tasks_, &counters_,   &packedNodes_, &frames_};
   gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, 0, 0, 0};
   stats_ = {};
   uint32_t largestTree = 0;
@@ -117,34 +124,59 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
 
 void BvhBuildPass::compact(vk::FrameRecorder& frame) {
   if (stats_.nodes == 0) throw Error(name_ + ": compact() before a build");
-  // The scratch goes first, so the copies below add less to the peak.
+  // The scratch goes first, so the copies below add less to the peak: the tasks, and the
+  // exact nodes, which only the build reads.
   tasks_ = {};
   rootBuffer_ = {};
+  nodes_ = {};
   taskCapacity_ = 0;
-  const uint64_t nodeBytes = uint64_t(stats_.nodes) * sizeof(gpu::BvhNode);
+  const uint64_t nodeBytes = uint64_t(stats_.nodes) * sizeof(gpu::BvhPackedNode);
   const uint64_t linkBytes = uint64_t(stats_.nodes) * HMB_BVH_OCTANTS * sizeof(uint32_t);
   const uint64_t primitiveBytes = uint64_t(std::max(primitiveCount_, 1u)) * sizeof(uint32_t);
   vk::Buffer nodes(context_, nodeBytes, vk::MemoryUse::Device, name_ + " nodes");
   vk::Buffer links(context_, linkBytes, vk::MemoryUse::Device, name_ + " links");
   vk::Buffer primitives(context_, primitiveBytes, vk::MemoryUse::Device, name_ + " primitives");
+  const uint64_t frameBytes = roots_.size() * sizeof(gpu::BvhFrame);
+  vk::Buffer frames(context_, frameBytes, vk::MemoryUse::Device, name_ + " frames");
   frame.begin();
-  frame.copy(kCompact, nodes_, nodes, nodeBytes);
+  frame.copy(kCompact, packedNodes_, nodes, nodeBytes);
   frame.copy(kCompact, links_, links, linkBytes);
   frame.copy(kCompact, primitives_, primitives, primitiveBytes);
+  frame.copy(kCompact, frames_, frames, frameBytes);
   stats_.deviceMilliseconds += frame.submitAndWait().frameMilliseconds.value_or(0.0);
-  nodes_ = std::move(nodes);
+  packedNodes_ = std::move(nodes);
   links_ = std::move(links);
   primitives_ = std::move(primitives);
+  frames_ = std::move(frames);
 }
 
 uint64_t BvhBuildPass::usedTreeBytes() const {
-  return uint64_t(stats_.nodes) * (sizeof(gpu::BvhNode) + HMB_BVH_OCTANTS * sizeof(uint32_t)) +
-         uint64_t(primitiveCount_) * sizeof(uint32_t);
+  return uint64_t(stats_.nodes) * (sizeof(gpu::BvhPackedNode) + HMB_BVH_OCTANTS * sizeof(uint32_t)) +
+         uint64_t(primitiveCount_) * sizeof(uint32_t) + roots_.size() * sizeof(gpu::BvhFrame);
+}
+
+std::vector<gpu::BvhNode> BvhBuildPass::downloadNodes() const {
+  const std::vector<gpu::BvhPackedNode> packed = packedNodes_.download<gpu::BvhPackedNode>();
+  const std::vector<gpu::BvhFrame> frames = frames_.download<gpu::BvhFrame>();
+  std::vector<gpu::BvhNode> nodes(stats_.nodes);
+  // A node unpacks in its tree's frame: walk each tree from its root (an empty tree's root
+  // has no children, whatever its index word says).
+  for (uint32_t tree = 0; tree < roots_.size(); ++tree) {
+    std::vector<uint32_t> stack{tree};
+    while (!stack.empty()) {
+      const uint32_t index = stack.back();
+      stack.pop_back();
+      const gpu::BvhNode node = bvh::unpackNode(packed.at(index), frames.at(tree));
+      nodes.at(index) = node;
+      if (node.count == 0 && roots_[tree].y > 1) stack.insert(stack.end(), {node.leftOrFirst, node.leftOrFirst + 1});
+    }
+  }
+  return nodes;
 }
 
 bvh::Bvh BvhBuildPass::download(uint32_t root) const {
   if (root >= roots_.size()) throw Error(name_ + ": no tree " + std::to_string(root));
-  const std::vector<gpu::BvhNode> nodes = nodes_.download<gpu::BvhNode>();
+  const std::vector<gpu::BvhNode> nodes = downloadNodes();
   const std::vector<uint32_t> primitives = primitives_.download<uint32_t>();
   const glm::uvec2 range = roots_[root];
   bvh::Bvh out;

@@ -65,28 +65,37 @@ class BvhBuildPass {
                              const std::function<void(vk::FrameRecorder&)>& before = {});
 
   // Moves the trees of the last build into buffers of their own size and frees the build's
-  // scratch (the primitive array's second half, the task lists): for trees built once and
+  // scratch (the primitive array's second half, the task lists, the exact nodes): for trees built once and
   // kept, which then hold about half the worst case allocated for a build. The next build
   // allocates afresh. Adds its copy time to stats().deviceMilliseconds.
   void compact(vk::FrameRecorder& frame);
 
   const BvhBuildStats& stats() const { return stats_; }
-  // The trees' buffers on the device: nodes, links and primitive indices, allocated for the
-  // worst case (a leaf per primitive, primitive indices twice for the partitions) until
-  // compact() fits them to the trees.
-  uint64_t allocatedTreeBytes() const { return nodes_.size() + links_.size() + primitives_.size(); }
-  // What the last build filled of them: its nodes with their links, one index per primitive.
+  // The trees' buffers on the device: exact and packed nodes, links, primitive indices and
+  // frames, allocated for the worst case (a leaf per primitive, primitive indices twice for the
+  // partitions) until compact() fits them to the trees and frees the exact nodes.
+  uint64_t allocatedTreeBytes() const {
+    return nodes_.size() + packedNodes_.size() + links_.size() + primitives_.size() + frames_.size();
+  }
+  // What the last build filled of them: its packed nodes with their links, one index per
+  // primitive, a frame per tree.
   uint64_t usedTreeBytes() const;
-  // Valid after build(): the nodes (tree r rooted at node r), 8 links per node, and the
-  // primitive order the leaves index (the first primitiveCount entries).
-  const vk::Buffer& nodes() const { return nodes_; }
+  // Valid after build(): the packed nodes (tree r rooted at node r), each tree's frame, 8
+  // links per node, and the primitive order the leaves index (the first primitiveCount entries).
+  const vk::Buffer& nodes() const { return packedNodes_; }
+  const vk::Buffer& frames() const { return frames_; }
   const vk::Buffer& links() const { return links_; }
   const vk::Buffer& primitives() const { return primitives_; }
   uint32_t primitiveCount() const { return primitiveCount_; }
 
   // The built nodes and primitive order on the host, tree `root` re-rooted at node 0 with
-  // primitive indices relative to its range (what bvh::sahCost and the CPU checks take).
+  // primitive indices relative to its range (what bvh::sahCost and the CPU checks take). The
+  // bounds are the packed ones, as traversal sees them.
   bvh::Bvh download(uint32_t root = 0) const;
+  // Every node unpacked, as indexed on the device.
+  std::vector<gpu::BvhNode> downloadNodes() const;
+  // The exact float nodes the build kept before packing (tests); gone after compact().
+  const vk::Buffer& exactNodes() const { return nodes_; }
   std::vector<uint32_t> downloadLinks() const;
 
  private:
@@ -103,7 +112,9 @@ class BvhBuildPass {
   std::vector<glm::uvec2> roots_;
   vk::Buffer rootBuffer_;
   vk::Buffer primitives_;
-  vk::Buffer nodes_;
+  vk::Buffer nodes_;  // exact bounds: the build's working copy, freed by compact()
+  vk::Buffer packedNodes_;
+  vk::Buffer frames_;
   vk::Buffer links_;
   vk::Buffer tasks_;
   vk::Buffer counters_;

@@ -294,8 +294,9 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
                          {&cameraBuffer, &sum, &ts.instanceBvh().nodes(), &ts.instanceBvh().links(),
                           &ts.instanceBvh().primitives(), &ts.instances(), &ts.transforms(), &ts.meshBvh().nodes(),
                           &ts.meshBvh().links(), &ts.meshBvh().primitives(), &ts.triangles(), &ts.positions(),
-                          &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(),
-                          &gpuScene.cameraBuffer(), &pixelList},
+                          &ts.instanceBvh().frames(), &ts.meshBvh().frames(), &gpuScene.vertices(),
+                          &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(), &gpuScene.cameraBuffer(),
+                          &pixelList},
                          params, groups);
         vk::appendTimings(total, frame.submitAndWait());
         ++progress_.samplesDone;

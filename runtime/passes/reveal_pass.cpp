@@ -38,9 +38,10 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
   frame.dispatchIndirect(kName, kernel_,
                          {&cameraRays, &list, &top.nodes(), &top.links(), &top.primitives(), &ts.instances(),
                           &ts.transforms(), &meshes.nodes(), &meshes.links(), &meshes.primitives(), &ts.triangles(),
-                          &ts.positions(), &gpuScene.vertices(), &gpuScene.instances(), &gpuScene.materials(),
-                          &gpuScene.texels(), &gpuScene.cameraBuffer(), &rasterObjectId, &counters, output.color,
-                          output.normalDepth, output.velocity, output.objectId},
+                          &ts.positions(), &top.frames(), &meshes.frames(), &gpuScene.vertices(),
+                          &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(), &gpuScene.cameraBuffer(),
+                          &rasterObjectId, &counters, output.color, output.normalDepth, output.velocity,
+                          output.objectId},
                          params, counters, offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 

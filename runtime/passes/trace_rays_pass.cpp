@@ -17,9 +17,9 @@ void TraceRaysPass::record(vk::FrameRecorder& frame, const TraceScene& scene, co
   const passes::BvhBuildPass& top = scene.instanceBvh();
   const passes::BvhBuildPass& meshes = scene.meshBvh();
   frame.dispatch(kName, kernel_,
-                 {&rays, &hits, &top.nodes(), &top.links(), &top.primitives(), &scene.instances(),
-                  &scene.transforms(), &meshes.nodes(), &meshes.links(), &meshes.primitives(), &scene.triangles(),
-                  &scene.positions()},
+                 {&rays, &hits, &top.nodes(), &top.links(), &top.primitives(), &scene.instances(), &scene.transforms(),
+                  &meshes.nodes(), &meshes.links(), &meshes.primitives(), &scene.triangles(), &scene.positions(),
+                  &top.frames(), &meshes.frames()},
                  params, vk::foldedGroups(vk::groupsFor(rayCount, HMB_TRACE_GROUP)));
 }
 

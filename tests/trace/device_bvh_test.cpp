@@ -1,13 +1,14 @@
 // The device BVH builder (kernels/bvh/) against the CPU yardsticks: every tree is well formed
 // (each primitive in exactly one leaf, every node bounding its children), its links visit every
 // node once in each octant, and its SAH cost is within 1.15x of the full-sweep SAH build.
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include <gtest/gtest.h>
-
+#include "bvh/packed_node.h"
 #include "bvh/reference_builder.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/reference_scenes.h"
@@ -33,14 +34,14 @@ class DeviceBvh : public hmb::test::VulkanTest {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (mesh.triangleCount() == 0) {
       // An empty tree is its root alone, with an empty box: traversal never enters it.
-      const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().nodes().download<gpu::BvhNode>();
+      const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().downloadNodes();
       EXPECT_GT(nodes.at(0).minX, nodes.at(0).maxX) << what;
       return 1.0;
     }
     const bvh::Bvh device = traceScene.meshBvh().download(0);
     const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
     EXPECT_EQ(bvh::test::structuralProblem(device, input.bounds, HMB_BVH_MAX_LEAF), "") << what;
-    const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().nodes().download<gpu::BvhNode>();
+    const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().downloadNodes();
     EXPECT_EQ(linkProblem(nodes, traceScene.meshBvh().downloadLinks(), 0), "") << what;
     const bvh::Bvh reference = bvh::buildReferenceSah(input.bounds, input.centroids);
     const double ratio = bvh::sahCost(device) / bvh::sahCost(reference);
@@ -141,6 +142,47 @@ TEST_F(DeviceBvh, CompactingKeepsTheTreesInBuffersOfTheirSizeAndABuildMayFollow)
   EXPECT_EQ(bvh::test::structuralProblem(builder.download(0), input.bounds, HMB_BVH_MAX_LEAF), "");
 }
 
+TEST_F(DeviceBvh, PackedNodesAreTheHostsPackingOfTheExactNodes) {
+  // Trees far from the origin, tiny, flat, of one triangle and of none, built together: each
+  // frame and every packed node must be what bvh/packed_node.cpp makes of the exact node.
+  std::vector<TriangleMesh> meshes;
+  TriangleMesh far = bvh::test::randomSoup(300, 0.05f, 21), tiny = bvh::test::randomSoup(200, 0.05f, 22);
+  for (glm::vec3& p : far.positions) p = p * 8.0f + glm::vec3(1e7f, -3e7f, 5e6f);
+  for (glm::vec3& p : tiny.positions) p *= 1e-4f;
+  meshes = {far, tiny, bvh::test::grid(10, 23), bvh::test::randomSoup(1, 0.1f, 24), TriangleMesh{}};
+  std::vector<gpu::BvhBox> boxes;
+  std::vector<glm::uvec2> roots;
+  for (const TriangleMesh& mesh : meshes) {
+    roots.emplace_back(uint32_t(boxes.size()), mesh.triangleCount());
+    for (const Aabb& b : bvh::triangleBounds(mesh.view()).bounds)
+      boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
+  }
+  const vk::Buffer buffer = vk::uploadedBuffer(context(), boxes, "packing boxes");
+  passes::BvhBuildPass builder(context(), "packed", HMB_BVH_MAX_LEAF);
+  vk::FrameRecorder frame(context());
+  builder.build(frame, buffer, uint32_t(boxes.size()), roots);
+  const auto exact = builder.exactNodes().download<gpu::BvhNode>();
+  const auto packed = builder.nodes().download<gpu::BvhPackedNode>();
+  const auto frames = builder.frames().download<gpu::BvhFrame>();
+  uint32_t visited = 0;
+  for (uint32_t tree = 0; tree < roots.size(); ++tree) {
+    const gpu::BvhFrame expected = bvh::frameOf(bvh::boundsOf(exact.at(tree)));
+    EXPECT_EQ(frames.at(tree).origin, expected.origin) << "tree " << tree;
+    EXPECT_EQ(frames.at(tree).step, expected.step) << "tree " << tree;
+    for (std::vector<uint32_t> stack{tree}; !stack.empty(); ++visited) {
+      const uint32_t index = stack.back();
+      stack.pop_back();
+      const gpu::BvhNode node = exact.at(index);
+      const gpu::BvhPackedNode want = bvh::packNode(node, expected), got = packed.at(index);
+      ASSERT_TRUE(got.x == want.x && got.y == want.y && got.z == want.z &&
+                  got.leftOrFirstCount == want.leftOrFirstCount)
+          << "tree " << tree << ", node " << index;
+      if (node.count == 0 && roots[tree].y > 1) stack.insert(stack.end(), {node.leftOrFirst, node.leftOrFirst + 1});
+    }
+  }
+  EXPECT_EQ(visited, builder.stats().nodes);  // every node checked
+}
+
 TEST_F(DeviceBvh, NonFiniteTrianglesGetEmptyBoxes) {
   TriangleMesh mesh = bvh::test::randomSoup(200, 0.05f, 4);
   const float inf = std::numeric_limits<float>::infinity();
@@ -172,7 +214,7 @@ TEST_F(DeviceBvh, ManyMeshesBuildTogether) {
   scene.meshes.push_back({});  // a mesh without triangles
   vk::FrameRecorder frame(context());
   const TraceScene traceScene(context(), scene, frame);
-  const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().nodes().download<gpu::BvhNode>();
+  const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().downloadNodes();
   const std::vector<uint32_t> links = traceScene.meshBvh().downloadLinks();
   for (uint32_t m = 0; m < meshes.size(); ++m) {
     const bvh::PrimitiveBounds input = bvh::triangleBounds(meshes[m].view());

@@ -268,7 +268,7 @@ TEST_F(TwoLevelScene, MotionBoundsHoldEveryInstanceAtEveryShutterTime) {
   TraceScene traceScene(context(), scene_, frame);
   traceScene.setShutterTimes(scene_, times_, frame);
   const std::vector<gpu::BvhBox> boxes = traceScene.instanceBoxes().download<gpu::BvhBox>();
-  const std::vector<gpu::BvhNode> topNodes = traceScene.instanceBvh().nodes().download<gpu::BvhNode>();
+  const std::vector<gpu::BvhNode> topNodes = traceScene.instanceBvh().downloadNodes();
   const Aabb root = bvh::boundsOf(topNodes.at(0));
   std::mt19937 rng(23);
   for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
