@@ -180,10 +180,11 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     GpuScene gpuScene(context_, scene);
     gpuScene.setFrame(scene, result.frameTime, width, height);
     vk::Buffer linear(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "beauty (linear RGBA)");
+    if (!(settings.skipUnneededPasses && settings.reuseAcrossFrames)) passes_->reference.forgetTraceScene();
     passes_->reference.plan(result.plan, scene, result.frameTime, width, height, settings.reference);
     result.plan.run(passes::EncodeDisplayPass::kName);
     timings = passes_->reference.render(frame, scene, gpuScene, result.frameTime, width, height, settings.reference,
-                                        linear, settings.onProgress);
+                                        result.plan, linear, settings.onProgress);
     frame.begin();
     passes_->encodeDisplay.record(frame, linear, display, width, height);
     vk::appendTimings(timings, frame.submitAndWait());

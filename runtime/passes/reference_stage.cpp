@@ -169,6 +169,10 @@ ReferenceStage::ReferenceStage(const vk::Context& context)
                   sizeof(gpu::ReferenceSampleParams)),
       average_(context, "reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams)) {}
 
+ReferenceStage::~ReferenceStage() = default;
+
+void ReferenceStage::forgetTraceScene() { traceScene_.reset(); }
+
 namespace {
 
 // Why every pixel must take every sample, or empty when only the pixels that something moving
@@ -215,7 +219,10 @@ vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scen
 
 void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime, uint32_t width,
                           uint32_t height, const ReferenceSettings& settings) const {
-  plan.run(kBvhMeshes);
+  if (traceScene_ && traceScene_->hasMeshesOf(scene))
+    plan.skip(kBvhMeshes, "the mesh trees of an earlier frame serve this one: same meshes (positions and triangles)");
+  else
+    plan.run(kBvhMeshes);
   plan.run(kBvhInstances);
   const std::vector<float> times =
       referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
@@ -234,7 +241,8 @@ void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float fram
 
 vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::Scene& scene, const GpuScene& gpuScene,
                                         float frameTime, uint32_t width, uint32_t height,
-                                        const ReferenceSettings& settings, const vk::Buffer& color,
+                                        const ReferenceSettings& settings, const FramePlan& plan,
+                                        const vk::Buffer& color,
                                         const std::function<void(const ReferenceProgress&)>& progress) {
   validateReferenceSettings(settings);
   const uint64_t pixels = uint64_t(width) * height;
@@ -251,9 +259,14 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
   const std::vector<float> times =
       referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
   if (progress_.samplesDone < settings.samplesPerPixel) {
-    TraceScene traceScene(context_, scene, frame);
-    total.passes.push_back({kBvhMeshes, traceScene.meshBvh().stats().deviceMilliseconds});
-    total.frameMilliseconds = traceScene.meshBvh().stats().deviceMilliseconds;
+    if (!plan.runs(kBvhMeshes) && !traceScene_) throw Error("reference: the plan keeps mesh trees never built");
+    if (plan.runs(kBvhMeshes)) {
+      traceScene_.reset();  // the last frame's trees go first: the two never take memory at once
+      traceScene_ = std::make_unique<TraceScene>(context_, scene, frame);
+      total.passes.push_back({kBvhMeshes, traceScene_->meshBvh().stats().deviceMilliseconds});
+      total.frameMilliseconds = traceScene_->meshBvh().stats().deviceMilliseconds;
+    }
+    TraceScene& traceScene = *traceScene_;
     const float tMin = gpuScene.camera().znear, tMax = gpuScene.camera().zfar;
     const vk::Buffer pixelList = findMovingPixels(frame, scene, times, width, height, settings, tMin, tMax, total);
     while (progress_.samplesDone < settings.samplesPerPixel) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -21,6 +22,7 @@
 namespace hmb {
 class FramePlan;
 class GpuScene;
+class TraceScene;
 }
 
 namespace hmb::passes {
@@ -59,16 +61,23 @@ class ReferenceStage {
   static constexpr const char* kAverage = "reference-average";
 
   explicit ReferenceStage(const vk::Context& context);
+  ~ReferenceStage();
 
+  // The mesh trees of the last render are kept, and serve the next one when its meshes are
+  // the same (an animation's frames): the plan then skips kBvhMeshes.
   void plan(FramePlan& plan, const scene::Scene& scene, float frameTime, uint32_t width, uint32_t height,
             const ReferenceSettings& settings) const;
+  // Drops the kept trees: the next plan builds them.
+  void forgetTraceScene();
 
   // Renders the mean of the samples into `color` (vec4 per pixel, row 0 at the top) and
   // returns the device time of every submission it made, merged. `gpuScene` must have its
-  // frame set (materials, the light). `progress` is called after every submission.
+  // frame set (materials, the light); `plan` is this frame's, from plan(). `progress` is
+  // called after every submission.
   vk::FrameTimings render(vk::FrameRecorder& frame, const scene::Scene& scene, const GpuScene& gpuScene,
                           float frameTime, uint32_t width, uint32_t height, const ReferenceSettings& settings,
-                          const vk::Buffer& color, const std::function<void(const ReferenceProgress&)>& progress);
+                          const FramePlan& plan, const vk::Buffer& color,
+                          const std::function<void(const ReferenceProgress&)>& progress);
 
   const ReferenceProgress& lastProgress() const { return progress_; }
 
@@ -84,6 +93,7 @@ class ReferenceStage {
   vk::ComputeKernel accumulate_;
   vk::ComputeKernel average_;
   ReferenceProgress progress_;
+  std::unique_ptr<TraceScene> traceScene_;
 };
 
 }  // namespace hmb::passes

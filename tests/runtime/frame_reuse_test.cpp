@@ -1,6 +1,6 @@
 // A renderer keeps what one frame built while it still serves the next (the hybrid's mesh
-// trees and top-level tree), says so in the plan, and the frame it renders is bit for bit the
-// frame a fresh renderer makes.
+// trees and top-level tree, the reference's mesh trees), says so in the plan, and the frame it
+// renders is bit for bit the frame a fresh renderer makes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -103,6 +103,34 @@ TEST_F(FrameReuseTest, ChangedMeshesOrReuseOffBuildEverything) {
   EXPECT_TRUE(passNamed(changed, kInstances).run);
   Renderer fresh(context());
   expectSameImage(changed, renderHybrid(fresh, bistro, 1.0f));
+}
+
+RenderResult renderReference(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
+  RenderSettings settings;
+  settings.method = "reference";
+  settings.width = 64;
+  settings.height = 36;
+  settings.frameTime = time;
+  settings.reference.samplesPerPixel = 4;
+  settings.reuseAcrossFrames = reuse;
+  return renderer.render(scene, settings);
+}
+
+TEST_F(FrameReuseTest, TheReferenceKeepsItsMeshTreesAcrossFrames) {
+  constexpr const char* kReferenceMeshes = "reference-bvh-meshes";
+  const scene::Scene temple = scene::loadScene("temple");
+  const float first = 1.0f, second = 1.0f + 1.0f / temple.settings.fps;
+  Renderer sequence(context());
+  EXPECT_TRUE(passNamed(renderReference(sequence, temple, first), kReferenceMeshes).run);
+  const RenderResult after = renderReference(sequence, temple, second);
+  EXPECT_FALSE(passNamed(after, kReferenceMeshes).run);
+  EXPECT_FALSE(passNamed(after, kReferenceMeshes).reason.empty());
+  EXPECT_FALSE(passNamed(after, kReferenceMeshes).milliseconds.has_value());
+  EXPECT_TRUE(passNamed(after, "reference-bvh-instances").run);
+
+  Renderer fresh(context());
+  expectSameImage(after, renderReference(fresh, temple, second));
+  EXPECT_TRUE(passNamed(renderReference(sequence, temple, second, false), kReferenceMeshes).run);
 }
 
 }  // namespace
