@@ -18,14 +18,23 @@ using FrameReuseTest = VulkanTest;
 constexpr const char* kMeshes = "hybrid-bvh-meshes";
 constexpr const char* kInstances = "hybrid-bvh-instances";
 
-RenderResult renderHybrid(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
+RenderResult renderWith(const std::string& method, Renderer& renderer, const scene::Scene& scene, float time,
+                        bool reuse = true) {
   RenderSettings settings;
-  settings.method = "hybrid";
+  settings.method = method;
   settings.width = 96;
   settings.height = 54;
   settings.frameTime = time;
+  settings.reference.samplesPerPixel = 4;
   settings.reuseAcrossFrames = reuse;
   return renderer.render(scene, settings);
+}
+
+RenderResult renderHybrid(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
+  return renderWith("hybrid", renderer, scene, time, reuse);
+}
+RenderResult renderReference(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
+  return renderWith("reference", renderer, scene, time, reuse);
 }
 
 const PlannedPass& passNamed(const RenderResult& result, const std::string& name) {
@@ -103,17 +112,6 @@ TEST_F(FrameReuseTest, ChangedMeshesOrReuseOffBuildEverything) {
   EXPECT_TRUE(passNamed(changed, kInstances).run);
   Renderer fresh(context());
   expectSameImage(changed, renderHybrid(fresh, bistro, 1.0f));
-}
-
-RenderResult renderReference(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
-  RenderSettings settings;
-  settings.method = "reference";
-  settings.width = 64;
-  settings.height = 36;
-  settings.frameTime = time;
-  settings.reference.samplesPerPixel = 4;
-  settings.reuseAcrossFrames = reuse;
-  return renderer.render(scene, settings);
 }
 
 TEST_F(FrameReuseTest, TheReferenceKeepsItsMeshTreesAcrossFrames) {
