@@ -1,5 +1,6 @@
-// A BVH on the host: the node array kernels read and the primitive indices its leaves point
-// into, plus the SAH cost every builder is judged by.
+// A BVH on the host: its nodes (with exact bounds; the device packs them for traversal, see
+// bvh/packed_node.h) and the primitive indices its leaves point into, plus the SAH cost every
+// builder is judged by.
 #pragma once
 
 #include <cstdint>

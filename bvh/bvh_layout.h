@@ -27,10 +27,10 @@
 
 HMB_GPU_BEGIN
 
-// 32 bytes. Bounds are scalars, not vec3: glsl_cpp.h shares no vec3 (its std430 alignment of
-// 16 differs from glm's 4). All eight members are 4-byte scalars at offsets 0..28, so both
-// languages agree; a kernel wanting 128-bit loads may view the same buffer as uvec4[2 * n]
-// (x, y, z = min, w = leftOrFirst; then max, count) with uintBitsToFloat.
+// A node with exact bounds, 32 bytes: the host's trees and the device builder's working copy
+// (traversal reads BvhPackedNode). Bounds are scalars, not vec3: glsl_cpp.h shares no vec3
+// (its std430 alignment of 16 differs from glm's 4). All eight members are 4-byte scalars at
+// offsets 0..28, so both languages agree.
 struct BvhNode {
   float minX;
   float minY;
