@@ -6,6 +6,7 @@
 #include <string>
 
 #include "runtime/error.h"
+#include "runtime/frame_plan.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 
@@ -141,6 +142,28 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   });
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
+}
+
+bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene) {
+  const bool serves = kept && kept->hasMeshesOf(scene);
+  if (serves)
+    plan.skip(std::string(buildPass),
+              "the mesh trees of an earlier frame serve this one: same meshes (positions and triangles)");
+  else
+    plan.run(std::string(buildPass));
+  return serves;
+}
+
+std::optional<double> prepareKeptMeshTrees(std::unique_ptr<TraceScene>& kept, std::string_view buildPass,
+                                           const FramePlan& plan, const vk::Context& context, const scene::Scene& scene,
+                                           vk::FrameRecorder& frame) {
+  if (!plan.runs(buildPass)) {
+    if (!kept) throw Error(std::string(buildPass) + ": the plan keeps mesh trees never built");
+    return std::nullopt;
+  }
+  kept.reset();
+  kept = std::make_unique<TraceScene>(context, scene, frame);
+  return kept->meshBvh().stats().deviceMilliseconds;
 }
 
 }  // namespace hmb

@@ -7,7 +7,10 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "kernels/trace/trace_layout.h"
@@ -21,6 +24,8 @@ class FrameRecorder;
 }
 
 namespace hmb {
+
+class FramePlan;
 
 // The camera at time t as rays (kernels/trace/trace_layout.h): the same pinhole the
 // rasterizer projects with, so a ray through a pixel centre meets what the raster sees there.
@@ -82,5 +87,15 @@ class TraceScene {
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
 };
+
+// The trace scene a stage keeps from one frame to the next (the hybrid's, the reference's).
+// planKeptMeshTrees enters the stage's mesh-tree build `buildPass` in the plan, skipped when
+// `kept` has the scene's meshes, and returns whether it has. prepareKeptMeshTrees builds
+// `kept` afresh when the plan runs `buildPass` (the old trees go first: the two never take
+// memory at once) and returns the build's device milliseconds, nullopt when the kept serve.
+bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene);
+std::optional<double> prepareKeptMeshTrees(std::unique_ptr<TraceScene>& kept, std::string_view buildPass,
+                                           const FramePlan& plan, const vk::Context& context, const scene::Scene& scene,
+                                           vk::FrameRecorder& frame);
 
 }  // namespace hmb

@@ -29,11 +29,7 @@ std::optional<HybridStage::TreeBytes> HybridStage::meshTreeBytes() const {
 void HybridStage::forgetTraceScene() { traceScene_.reset(); }
 
 void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const {
-  const bool sameMeshes = traceScene_ && traceScene_->hasMeshesOf(scene);
-  if (sameMeshes)
-    plan.skip(kBvhMeshes, "the mesh trees of an earlier frame serve this one: same meshes (positions and triangles)");
-  else
-    plan.run(kBvhMeshes);
+  const bool sameMeshes = planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
   const float times[] = {frameTime};
   if (sameMeshes && traceScene_->hasShutterTimes(scene, times))
     plan.skip(kBvhInstances, "the top-level tree of the last frame serves this one: no instance moved since");
@@ -57,13 +53,8 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   settings_ = settings;
   PrepareTimings timings;
   // plan() decided what the last frame's trees still serve; only the others are built.
-  if (!plan.runs(kBvhMeshes) && !traceScene_) throw Error("hybrid: the plan keeps mesh trees never built");
-  if (plan.runs(kBvhMeshes)) {
-    traceScene_.reset();  // the last frame's trees go first: the two never take memory at once
-    traceScene_ = std::make_unique<TraceScene>(context_, scene, frame);
-    const double meshMs = traceScene_->meshBvh().stats().deviceMilliseconds;
-    timings.setup = {{{kBvhMeshes, meshMs}}, meshMs};
-  }
+  if (const std::optional<double> meshMs = prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
+    timings.setup = {{{kBvhMeshes, *meshMs}}, *meshMs};
   const float times[] = {frameTime};
   if (plan.runs(kBvhInstances)) {
     traceScene_->setShutterTimes(scene, times, frame);

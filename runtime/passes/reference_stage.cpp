@@ -219,10 +219,7 @@ vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scen
 
 void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime, uint32_t width,
                           uint32_t height, const ReferenceSettings& settings) const {
-  if (traceScene_ && traceScene_->hasMeshesOf(scene))
-    plan.skip(kBvhMeshes, "the mesh trees of an earlier frame serve this one: same meshes (positions and triangles)");
-  else
-    plan.run(kBvhMeshes);
+  planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
   plan.run(kBvhInstances);
   const std::vector<float> times =
       referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
@@ -259,13 +256,9 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
   const std::vector<float> times =
       referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
   if (progress_.samplesDone < settings.samplesPerPixel) {
-    if (!plan.runs(kBvhMeshes) && !traceScene_) throw Error("reference: the plan keeps mesh trees never built");
-    if (plan.runs(kBvhMeshes)) {
-      traceScene_.reset();  // the last frame's trees go first: the two never take memory at once
-      traceScene_ = std::make_unique<TraceScene>(context_, scene, frame);
-      total.passes.push_back({kBvhMeshes, traceScene_->meshBvh().stats().deviceMilliseconds});
-      total.frameMilliseconds = traceScene_->meshBvh().stats().deviceMilliseconds;
-    }
+    if (const std::optional<double> meshMs =
+            prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
+      vk::appendTimings(total, {{{kBvhMeshes, *meshMs}}, *meshMs});
     TraceScene& traceScene = *traceScene_;
     const float tMin = gpuScene.camera().znear, tMax = gpuScene.camera().zfar;
     const vk::Buffer pixelList = findMovingPixels(frame, scene, times, width, height, settings, tMin, tMax, total);
