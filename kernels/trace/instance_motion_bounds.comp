@@ -20,7 +20,9 @@ void main() {
   const uint i = linearInvocationIndex(HMB_TRACE_GROUP);
   if (i >= params.instanceCount) return;
   const uint mesh = instances[i].mesh;
-  const vec3 lo = packedLower(meshNodes[mesh], meshFrames[mesh]), hi = packedUpper(meshNodes[mesh], meshFrames[mesh]);
+  const uvec4 root = meshNodes[mesh];
+  const BvhFrame frame = meshFrames[mesh];
+  const vec3 lo = packedLower(root, frame), hi = packedUpper(root, frame);
   vec3 worldLo = vec3(uintBitsToFloat(0x7f800000u)), worldHi = -worldLo;
   if (all(lessThanEqual(lo, hi))) {
     // An affine map of a box: the centre moves, the half extent goes through |M|.
