@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
       std::cout << "  " << pass.name << ": ";
       if (!pass.run)
         std::cout << "skipped (" << pass.reason << ")\n";
+      else if (!pass.within.empty())
+        std::cout << "runs inside " << pass.within << "\n";
       else
         std::cout << pass.milliseconds.value_or(0.0) << " ms\n";
     }

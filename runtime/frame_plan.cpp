@@ -16,11 +16,16 @@ auto runningNamed(std::string_view name) {
 
 void FramePlan::run(std::string name) {
   if (runs(name)) throw Error("pass '" + name + "' planned twice");
-  passes_.push_back({std::move(name), true, {}, std::nullopt});
+  passes_.push_back({std::move(name), true, {}, std::nullopt, {}, {}});
+}
+
+void FramePlan::runWithin(std::string name, std::string within) {
+  run(std::move(name));
+  passes_.back().within = std::move(within);
 }
 
 void FramePlan::skip(std::string name, std::string reason) {
-  passes_.push_back({std::move(name), false, std::move(reason), std::nullopt});
+  passes_.push_back({std::move(name), false, std::move(reason), std::nullopt, {}, {}});
 }
 
 bool FramePlan::runs(std::string_view name) const {

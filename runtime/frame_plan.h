@@ -21,12 +21,17 @@ struct PlannedPass {
   // A pass that ran but found no work on the device (an indirect dispatch of no groups: what
   // it would have read was decided on the device during the frame), and why.
   std::string noWork;
+  // A code path inside other passes rather than a dispatch of its own: those passes, whose
+  // times include it (empty for a pass of its own).
+  std::string within;
 };
 
 class FramePlan {
  public:
   void run(std::string name);
   void skip(std::string name, std::string reason);
+  // A code path that runs inside the passes named by `within` (comma separated).
+  void runWithin(std::string name, std::string within);
   bool runs(std::string_view name) const;
   const std::vector<PlannedPass>& passes() const { return passes_; }
 

@@ -41,6 +41,11 @@ class GpuScene {
   uint32_t triangleCount() const { return triangleCount_; }
   uint32_t instanceVertexCount() const { return instanceVertexCount_; }
   const FrameCamera& camera() const { return camera_; }
+  // Whether a material samples a texture. When none does, the shading kernels run a build
+  // without the texture path (passes::ShadingKernel), unless keepTexturePath() was called.
+  bool hasTextures() const { return hasTextures_; }
+  bool texturePath() const { return texturePath_; }
+  void keepTexturePath() { texturePath_ = true; }
 
   const vk::Buffer& vertices() const { return vertices_; }
   const vk::Buffer& instanceVertices() const { return instanceVertices_; }
@@ -53,6 +58,8 @@ class GpuScene {
  private:
   uint32_t triangleCount_ = 0;
   uint32_t instanceVertexCount_ = 0;
+  bool hasTextures_ = false;
+  bool texturePath_ = false;
   FrameCamera camera_;
   vk::Buffer vertices_;
   vk::Buffer instanceVertices_;

@@ -179,9 +179,11 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     // Distributed ray tracing over the shutter: the judge of every other method.
     GpuScene gpuScene(context_, scene);
     gpuScene.setFrame(scene, result.frameTime, width, height);
+    if (!settings.skipUnneededPasses) gpuScene.keepTexturePath();
     vk::Buffer linear(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "beauty (linear RGBA)");
     if (!(settings.skipUnneededPasses && settings.reuseAcrossFrames)) passes_->reference.forgetTraceScene();
     passes_->reference.plan(result.plan, scene, result.frameTime, width, height, settings.reference);
+    passes::planTexturePath(result.plan, gpuScene);
     result.plan.run(passes::EncodeDisplayPass::kName);
     timings = passes_->reference.render(frame, scene, gpuScene, result.frameTime, width, height, settings.reference,
                                         result.plan, linear, settings.onProgress);
@@ -195,6 +197,7 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
     // postprocess: that colour blurred along the G-buffer's velocities (tile-max, neighbour-max, gather).
     GpuScene gpuScene(context_, scene);
     gpuScene.setFrame(scene, result.frameTime, width, height);
+    if (!settings.skipUnneededPasses) gpuScene.keepTexturePath();
     passes::GBufferStage& gbuffer = passes_->gbuffer;
     gbuffer.prepare(gpuScene, width, height);
     gbuffer.plan(result.plan);
@@ -234,6 +237,7 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
           result.plan.skip(pass.name, pass.reason);
       }
     }
+    passes::planTexturePath(result.plan, gpuScene);
     if (blur) {
       passes_->postProcess.prepare(width, height);
       blurred = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "post-process colour");

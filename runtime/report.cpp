@@ -71,6 +71,7 @@ nlohmann::json passesJson(const FramePlan& plan) {
     if (pass.run) {
       entry["ms"] = optionalNumber(pass.milliseconds);
       if (!pass.noWork.empty()) entry["no_work"] = pass.noWork;
+      if (!pass.within.empty()) entry["within"] = pass.within;
     } else
       entry["reason"] = pass.reason;
     passes.push_back(std::move(entry));

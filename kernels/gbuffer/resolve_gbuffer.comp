@@ -72,7 +72,8 @@ void main() {
   // turned to the viewer. The homogeneous determinant has the sign of the screen-space area
   // (positive: back face, y down) and stays right for vertices behind the camera.
   if (dot(c0, cross(c1, c2)) > 0.0) n = -n;
-  const vec2 uv = b.x * shading[tri.v0].uv + b.y * shading[tri.v1].uv + b.z * shading[tri.v2].uv;
+  const vec2 uv =
+      kTexturePath ? b.x * shading[tri.v0].uv + b.y * shading[tri.v1].uv + b.z * shading[tri.v2].uv : vec2(0.0);
 
   const vec3 previousClip =
       b.x * clipPrevious[tri.v0].xyw + b.y * clipPrevious[tri.v1].xyw + b.z * clipPrevious[tri.v2].xyw;

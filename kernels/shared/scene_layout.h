@@ -55,6 +55,10 @@ struct GpuInstance {
 
 #define HMB_NO_TEXTURE 0xffffffffu
 
+// Specialization constant of every shading kernel (shared/shading.glsl): false builds it
+// without the texture path, for scenes whose materials have no texture.
+#define HMB_SPEC_TEXTURE_PATH 0
+
 struct GpuMaterial {
   vec4 baseColor;      // linear RGBA factor
   uint textureOffset;  // first texel in the texel buffer, HMB_NO_TEXTURE when untextured

@@ -5,6 +5,9 @@
 #ifndef HMB_KERNELS_SHARED_SHADING_GLSL
 #define HMB_KERNELS_SHARED_SHADING_GLSL
 
+// False for scenes without textures: the texture path and the uv reads that feed it fold away.
+layout(constant_id = HMB_SPEC_TEXTURE_PATH) const bool kTexturePath = true;
+
 vec3 srgbToLinear(vec3 c) {
   return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
@@ -17,7 +20,7 @@ vec4 texelLinear(uint offset, uint width, uint x, uint y) {
 
 vec4 baseColor(uint material, vec2 uv) {
   const uint offset = materials[material].textureOffset;
-  if (offset == HMB_NO_TEXTURE) return materials[material].baseColor;
+  if (!kTexturePath || offset == HMB_NO_TEXTURE) return materials[material].baseColor;
   if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
   // Repeat wrap without integer division: fract puts uv in [0, 1], so the texel to the left
   // of a sample is in [-1, size - 1] and wraps with one comparison per axis.

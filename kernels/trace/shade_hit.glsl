@@ -19,7 +19,7 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
   const vec3 objectNormal = b.x * vertices[tri.x].normal.xyz + b.y * vertices[tri.y].normal.xyz +
                             b.z * vertices[tri.z].normal.xyz;
   HitSurface s;
-  s.uv = b.x * vertices[tri.x].uv + b.y * vertices[tri.y].uv + b.z * vertices[tri.z].uv;
+  s.uv = kTexturePath ? b.x * vertices[tri.x].uv + b.y * vertices[tri.y].uv + b.z * vertices[tri.z].uv : vec2(0.0);
   const mat3 objectFromWorld = mat3(transforms[transformIndex].objectFromWorld);
   const mat3 normalToWorld = transpose(objectFromWorld);
   vec3 n = normalToWorld * objectNormal;

@@ -316,8 +316,10 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
     std::cout << options.method << ": " << formatMs(result.frameMilliseconds) << " on " << context.info().name << '\n';
     for (const auto& pass : result.plan.passes())
       std::cout << "  " << pass.name << ": "
-                << (pass.run ? formatMs(pass.milliseconds) + (pass.noWork.empty() ? "" : " (no work: " + pass.noWork + ")")
-                             : "skipped (" + pass.reason + ")")
+                << (!pass.run ? "skipped (" + pass.reason + ")"
+                    : !pass.within.empty()
+                        ? "runs inside " + pass.within
+                        : formatMs(pass.milliseconds) + (pass.noWork.empty() ? "" : " (no work: " + pass.noWork + ")"))
                 << '\n';
   }
   return validationVerdict(context);

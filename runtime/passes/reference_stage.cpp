@@ -296,7 +296,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
                                 vk::groupsFor(height, HMB_REFERENCE_GROUP_Y), 1);
         frame.begin();
         if (groups.x > 0)
-          frame.dispatch(kAccumulate, accumulate_,
+          frame.dispatch(kAccumulate, accumulate_.forScene(gpuScene),
                          {&cameraBuffer, &sum, &ts.instanceBvh().nodes(), &ts.instanceBvh().links(),
                           &ts.instanceBvh().primitives(), &ts.instances(), &ts.transforms(), &ts.meshBvh().nodes(),
                           &ts.meshBvh().links(), &ts.meshBvh().primitives(), &ts.triangles(), &ts.positions(),

@@ -14,6 +14,7 @@
 #include <span>
 #include <string>
 
+#include "runtime/passes/shading_kernel.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -90,7 +91,7 @@ class ReferenceStage {
 
   const vk::Context& context_;
   vk::ComputeKernel findMovingPixels_;
-  vk::ComputeKernel accumulate_;
+  ShadingKernel accumulate_;
   vk::ComputeKernel average_;
   ReferenceProgress progress_;
   std::unique_ptr<TraceScene> traceScene_;

@@ -15,7 +15,7 @@ void ResolveGBufferPass::record(vk::FrameRecorder& frame, const GpuScene& scene,
                                 uint32_t height) const {
   // Empty pixels lie at the far plane, so depth comparisons treat them as the farthest surface.
   const gpu::ResolveParams params{width, height, scene.camera().zfar, 0};
-  frame.dispatch(kName, kernel_,
+  frame.dispatch(kName, kernel_.forScene(scene),
                  {&visibility, &scene.triangles(), &scene.instances(), &scene.materials(), &scene.texels(),
                   &scene.cameraBuffer(), &clipCurrent, &clipPrevious, &vertexShading, targets.color,
                   targets.normalDepth, targets.velocity, targets.objectId},

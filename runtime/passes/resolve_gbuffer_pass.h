@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/passes/shading_kernel.h"
 
 namespace hmb::vk {
 class Buffer;
@@ -34,7 +34,7 @@ class ResolveGBufferPass {
               uint32_t width, uint32_t height) const;
 
  private:
-  vk::ComputeKernel kernel_;
+  ShadingKernel kernel_;
 };
 
 }  // namespace hmb::passes

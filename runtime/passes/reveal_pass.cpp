@@ -35,7 +35,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  0u};
   const passes::BvhBuildPass& top = ts.instanceBvh();
   const passes::BvhBuildPass& meshes = ts.meshBvh();
-  frame.dispatchIndirect(kName, kernel_,
+  frame.dispatchIndirect(kName, kernel_.forScene(gpuScene),
                          {&cameraRays, &list, &top.nodes(), &top.links(), &top.primitives(), &ts.instances(),
                           &ts.transforms(), &meshes.nodes(), &meshes.links(), &meshes.primitives(), &ts.triangles(),
                           &ts.positions(), &top.frames(), &meshes.frames(), &gpuScene.vertices(),

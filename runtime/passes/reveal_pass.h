@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "runtime/passes/hybrid_settings.h"
-#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/passes/shading_kernel.h"
 
 namespace hmb {
 class GpuScene;
@@ -39,7 +39,7 @@ class RevealPass {
               const HybridSettings& settings) const;
 
  private:
-  vk::ComputeKernel kernel_;
+  ShadingKernel kernel_;
 };
 
 }  // namespace hmb::passes

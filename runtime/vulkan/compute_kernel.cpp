@@ -10,7 +10,7 @@
 namespace hmb::vk {
 
 ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, uint32_t storageBufferCount,
-                             uint32_t pushConstantBytes)
+                             uint32_t pushConstantBytes, std::span<const uint32_t> specialization)
     : context_(context),
       name_(kernelName),
       storageBufferCount_(storageBufferCount),
@@ -48,11 +48,17 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
     moduleInfo.pCode = spirv.words;
     HMB_VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
 
+    std::vector<VkSpecializationMapEntry> entries(specialization.size());
+    for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)};
+    const VkSpecializationInfo specializationInfo{uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
+                                                  specialization.data()};
+
     VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     pipelineInfo.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipelineInfo.stage.module = module;
     pipelineInfo.stage.pName = "main";
+    pipelineInfo.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specializationInfo;
     pipelineInfo.layout = layout_;
     HMB_VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline_));
     vkDestroyShaderModule(device, module, nullptr);

@@ -1,12 +1,14 @@
 // One compute pipeline built from an embedded kernel. Its bindings are storage buffers
 // 0..N-1 in set 0, and its parameters one push-constant block: every kernel follows that shape.
+// Specialization constants, where a kernel has them, are 32-bit values with ids 0..M-1.
 #pragma once
 
+#include <vulkan/vulkan.h>
+
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
-
-#include <vulkan/vulkan.h>
 
 namespace hmb::vk {
 
@@ -14,8 +16,9 @@ class Context;
 
 class ComputeKernel {
  public:
+  // specialization[i] is the value of constant_id i; constants left out keep the kernel's default.
   ComputeKernel(const Context& context, std::string_view kernelName, uint32_t storageBufferCount,
-                uint32_t pushConstantBytes);
+                uint32_t pushConstantBytes, std::span<const uint32_t> specialization = {});
   ~ComputeKernel();
   ComputeKernel(const ComputeKernel&) = delete;
   ComputeKernel& operator=(const ComputeKernel&) = delete;

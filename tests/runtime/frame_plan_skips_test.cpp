@@ -34,6 +34,7 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
   settings.height = 36;
   settings.frameTime = time;
   settings.skipUnneededPasses = skip;
+  settings.reference.samplesPerPixel = 8;
   return renderer.render(scene, settings);
 }
 
@@ -105,6 +106,45 @@ TEST_F(FramePlanSkipsTest, AMovingFrameRunsTheBlur) {
   }
 }
 
+const PlannedPass* passNamed(const RenderResult& result, const std::string& name) {
+  for (const PlannedPass& pass : result.plan.passes())
+    if (pass.name == name) return &pass;
+  return nullptr;
+}
+
+TEST_F(FramePlanSkipsTest, ASceneWithoutTexturesSkipsTheTexturePathAndTheImageIsUnchanged) {
+  Renderer renderer(context());
+  const scene::Scene temple = scene::loadScene("temple");
+  ASSERT_FALSE(temple.textures.empty());
+  scene::Scene plain = temple;
+  for (scene::Material& material : plain.materials) material.baseColorTexture = -1;
+  plain.textures.clear();
+  const float time = plain.settings.frameTime;
+  for (const char* method : {"sharp", "postprocess", "hybrid", "reference"}) {
+    const RenderResult textured = renderAt(renderer, temple, method, time, true);
+    const PlannedPass* path = passNamed(textured, "texture-path");
+    ASSERT_NE(path, nullptr) << method;
+    EXPECT_TRUE(path->run) << method;
+    EXPECT_NE(path->within.find(std::string(method) == "reference" ? "reference-accumulate-sample" : "resolve-gbuffer"),
+              std::string::npos)
+        << method << ": " << path->within;
+
+    const RenderResult skipped = renderAt(renderer, plain, method, time, true);
+    const RenderResult everything = renderAt(renderer, plain, method, time, false);
+    path = passNamed(skipped, "texture-path");
+    ASSERT_NE(path, nullptr) << method;
+    EXPECT_FALSE(path->run) << method;
+    EXPECT_FALSE(path->reason.empty()) << method;
+    EXPECT_TRUE(passNamed(everything, "texture-path")->run) << method;
+    if (std::string(method) == "hybrid") ASSERT_GT(skipped.hybrid->revealRays, 0u);
+    ASSERT_EQ(skipped.image.layers.size(), everything.image.layers.size()) << method;
+    for (size_t i = 0; i < skipped.image.layers.size(); ++i)
+      EXPECT_EQ(skipped.image.layers[i].values, everything.image.layers[i].values)
+          << method << " layer '" << skipped.image.layers[i].name << "'";
+    EXPECT_EQ(skipped.display.pixels, everything.display.pixels) << method;
+  }
+}
+
 // A wall that fills the view sliding along itself: every pixel moves, none has a silhouette.
 scene::Scene slidingWall() {
   scene::procedural::SceneBuilder builder("sliding wall");
@@ -131,7 +171,7 @@ TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
   const scene::Scene wall = slidingWall();
   ASSERT_TRUE(anythingMovesOnScreen(wall, 1.0f));
   const RenderResult result = renderAt(renderer, wall, "hybrid", 1.0f, true);
-  EXPECT_TRUE(skippedPasses(result).empty());
+  EXPECT_EQ(skippedPasses(result), std::vector<std::string>{"texture-path"});  // the wall has no texture
   EXPECT_EQ(result.hybrid->edgeCandidates, 0u);
   EXPECT_EQ(result.hybrid->maskPixels, 0u);
   EXPECT_EQ(result.hybrid->revealRays, 0u);

@@ -1,17 +1,18 @@
 // Every embedded kernel builds a compute pipeline against the layout its shared header
 // declares; the validation layer checks the SPIR-V's bindings and push constants against it.
-#include <string>
-
 #include <gtest/gtest.h>
 
+#include <string>
+
+#include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/debug/test_pattern.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
 #include "kernels/hybrid/hybrid_layout.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "kernels/output/encode_display.h"
-#include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/raster/raster_layout.h"
 #include "kernels/reference/reference_layout.h"
+#include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_registry.h"
@@ -25,6 +26,7 @@ struct KernelLayout {
   uint32_t bindings;
   uint32_t pushBytes;
   bool needsInt64Atomics;
+  bool shades = false;  // includes shared/shading.glsl: also built without the texture path
 };
 
 const KernelLayout kLayouts[] = {
@@ -43,8 +45,8 @@ const KernelLayout kLayouts[] = {
     {"raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
     {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false},
-    {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false},
+    {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false, true},
+    {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false, true},
     {"reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), false},
     {"reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), false},
     {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
@@ -56,7 +58,7 @@ const KernelLayout kLayouts[] = {
     {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RangeCheckParams), false},
     {"hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
     {"hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
-    {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false},
+    {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false, true},
 };
 
 using KernelPipelinesTest = VulkanTest;
@@ -69,6 +71,11 @@ TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
     ASSERT_NE(layout, nullptr) << "no layout declared in this test for kernel " << kernel.name;
     if (layout->needsInt64Atomics && !context().info().int64BufferAtomics) continue;
     EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout->bindings, layout->pushBytes)) << kernel.name;
+    if (layout->shades) {
+      uint32_t untextured[HMB_SPEC_TEXTURE_PATH + 1] = {};
+      EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout->bindings, layout->pushBytes, untextured))
+          << kernel.name << " without the texture path";
+    }
   }
 }
 

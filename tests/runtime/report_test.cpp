@@ -36,10 +36,20 @@ TEST_F(ReportTest, ReportNamesDeviceSystemSettingsAndEveryPass) {
     const auto& pass = report["passes"][i];
     EXPECT_EQ(pass["name"], result.plan.passes()[i].name);
     if (pass["status"] == "skipped")
-      EXPECT_EQ(pass["reason"], "no pixel in the ray mask");
+      EXPECT_EQ(pass["reason"], result.plan.passes()[i].reason);
     else
       EXPECT_TRUE(pass.contains("ms"));
   }
+  EXPECT_EQ(report["passes"].back()["reason"], "no pixel in the ray mask");
+  // The empty scene has no texture: its shading path is listed as skipped, with why.
+  bool texturePathListed = false;
+  for (const auto& pass : report["passes"])
+    if (pass["name"] == "texture-path") {
+      texturePathListed = true;
+      EXPECT_EQ(pass["status"], "skipped");
+      EXPECT_NE(pass["reason"].get<std::string>().find("no material has a texture"), std::string::npos);
+    }
+  EXPECT_TRUE(texturePathListed);
 
   const std::string path = testing::TempDir() + "report_test.json";
   writeJson(path, report);

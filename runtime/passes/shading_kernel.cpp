@@ -1,0 +1,47 @@
+#include "runtime/passes/shading_kernel.h"
+
+#include <array>
+
+#include "kernels/shared/scene_layout.h"
+#include "runtime/frame_plan.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/passes/reference_stage.h"
+#include "runtime/passes/resolve_gbuffer_pass.h"
+#include "runtime/passes/reveal_pass.h"
+
+namespace hmb::passes {
+
+ShadingKernel::ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t storageBufferCount,
+                             uint32_t pushConstantBytes)
+    : context_(context),
+      name_(kernelName),
+      storageBufferCount_(storageBufferCount),
+      pushConstantBytes_(pushConstantBytes),
+      textured_(context, kernelName, storageBufferCount, pushConstantBytes) {}
+
+ShadingKernel::~ShadingKernel() = default;
+
+const vk::ComputeKernel& ShadingKernel::forScene(const GpuScene& scene) const {
+  if (scene.texturePath()) return textured_;
+  if (!untextured_) {
+    std::array<uint32_t, HMB_SPEC_TEXTURE_PATH + 1> specialization{};
+    specialization[HMB_SPEC_TEXTURE_PATH] = 0u;  // VkBool32 false
+    untextured_ =
+        std::make_unique<vk::ComputeKernel>(context_, name_, storageBufferCount_, pushConstantBytes_, specialization);
+  }
+  return *untextured_;
+}
+
+void planTexturePath(FramePlan& plan, const GpuScene& scene) {
+  std::string shadingPasses;
+  for (const char* name : {ResolveGBufferPass::kName, RevealPass::kName, ReferenceStage::kAccumulate})
+    if (plan.runs(name)) shadingPasses += (shadingPasses.empty() ? "" : ", ") + std::string(name);
+  if (shadingPasses.empty()) return;
+  if (scene.texturePath())
+    plan.runWithin(ShadingKernel::kTexturePath, shadingPasses);
+  else
+    plan.skip(ShadingKernel::kTexturePath,
+              "no material has a texture: " + shadingPasses + " run without texel reads and uv interpolation");
+}
+
+}  // namespace hmb::passes
