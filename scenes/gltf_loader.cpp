@@ -114,9 +114,10 @@ std::optional<Interpolation> interpolationOf(const std::string& name) {
   return std::nullopt;
 }
 
-bool allFinite(const std::vector<double>& values) {
-  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
-}
+// Finite as the floats the scene holds: 1e300 is a finite double but Inf as a float.
+bool finiteAsFloat(double v) { return std::isfinite(static_cast<float>(v)); }
+
+bool allFinite(const std::vector<double>& values) { return std::all_of(values.begin(), values.end(), finiteAsFloat); }
 
 struct Bytes {
   const uint8_t* data = nullptr;
@@ -739,7 +740,7 @@ class GltfImporter {
     if (scene_.camera) return;  // the first one wins
     const tinygltf::PerspectiveCamera& p = src.perspective;
     if (!(p.yfov > 0.0 && p.yfov < 3.14159) || !(p.aspectRatio >= 0.0) || !(p.znear >= 0.0) || !(p.zfar >= 0.0) ||
-        !std::isfinite(p.aspectRatio) || !std::isfinite(p.znear) || !std::isfinite(p.zfar))
+        !finiteAsFloat(p.aspectRatio) || !finiteAsFloat(p.znear) || !finiteAsFloat(p.zfar))
       fail(what + " has invalid perspective parameters");
     Camera camera;
     camera.node = static_cast<int32_t>(nodeIndex);
@@ -770,7 +771,7 @@ class GltfImporter {
     if (haveLight_) return;
     glm::vec3 color(1.0f);
     if (light.color.size() == 3 && allFinite(light.color)) color = glm::vec3(glm::make_vec3(light.color.data()));
-    const float intensity = std::isfinite(light.intensity) ? static_cast<float>(light.intensity) : 1.0f;
+    const float intensity = finiteAsFloat(light.intensity) ? static_cast<float>(light.intensity) : 1.0f;
     const glm::mat4 world = scene_.worldMatrixAt(nodeIndex, scene_.settings.frameTime);
     const glm::vec3 direction(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
     const float len = glm::length(direction);
@@ -828,6 +829,17 @@ bool looksBinary(const fs::path& path) {
   return in.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
 }
 
+// The binary container's version, which the parser does not check: only 2 is glTF 2.0.
+void requireGlbVersion2(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char header[8] = {};
+  in.read(reinterpret_cast<char*>(header), sizeof(header));
+  if (in.gcount() < 8) return;  // too short: the parser says so
+  const uint32_t version = header[4] | header[5] << 8 | header[6] << 16 | uint32_t(header[7]) << 24;
+  if (version != 2)
+    throw Error(path.string() + ": binary glTF version " + std::to_string(version) + "; only version 2 is supported");
+}
+
 }  // namespace
 
 Scene loadGltf(const std::filesystem::path& path) {
@@ -836,11 +848,13 @@ Scene loadGltf(const std::filesystem::path& path) {
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
+  const bool binary = looksBinary(path);
+  if (binary) requireGlbVersion2(path);
   try {
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(&decodeLater, nullptr);
-    ok = looksBinary(path) ? parser.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                           : parser.LoadASCIIFromFile(&model, &err, &warn, path.string());
+    ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                : parser.LoadASCIIFromFile(&model, &err, &warn, path.string());
   } catch (const std::exception& e) {
     throw Error(path.string() + ": " + oneLine(e.what()));
   }

@@ -98,6 +98,20 @@ TEST(CliTest, MissingFileIsAOneLineError) {
   expectOneLineError(hmblur("--quiet render --scene /nonexistent/scene.gltf --method test-pattern"), "no such file");
 }
 
+// Every file of the malformed-glTF corpus: one line naming the file, a non-zero exit.
+TEST(CliTest, EveryMalformedCorpusFileIsAOneLineError) {
+  size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(HMB_MALFORMED_CORPUS_DIR)) {
+    const std::string ext = entry.path().extension().string();
+    if (ext != ".gltf" && ext != ".glb") continue;
+    ++files;
+    SCOPED_TRACE(entry.path().filename().string());
+    expectOneLineError(hmblur("--quiet render --method sharp --width 8 --height 8 --scene '" + entry.path().string() + "'"),
+                       entry.path().string());
+  }
+  EXPECT_GE(files, 30u);
+}
+
 TEST(CliTest, UnknownSceneIsAOneLineErrorNamingTheScenes) {
   const CliRun run = hmblur("--quiet render --scene no-such-scene --method test-pattern");
   expectOneLineError(run, "no-such-scene");

@@ -1,0 +1,46 @@
+// The committed corpus of malformed glTF files (tests/scenes/malformed/, written by its
+// generate.py; the loader's fuzzer starts from it too): every file is a one-line hmb::Error
+// that starts with the path, never a crash or a scene.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "runtime/error.h"
+#include "scenes/load_scene.h"
+
+namespace hmb::scene {
+namespace {
+
+std::vector<std::filesystem::path> corpusFiles() {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(HMB_MALFORMED_CORPUS_DIR)) {
+    const std::string ext = entry.path().extension().string();
+    if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(GltfCorpusTest, EveryMalformedFileIsAOneLineError) {
+  const std::vector<std::filesystem::path> files = corpusFiles();
+  ASSERT_GE(files.size(), 30u) << "the corpus is missing: run tests/scenes/malformed/generate.py";
+  for (const std::filesystem::path& path : files) {
+    try {
+      (void)loadScene(path.string());
+      ADD_FAILURE() << path.filename() << " loaded; every corpus file is malformed";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(path.string(), 0), 0u) << path.filename() << ": " << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << path.filename() << ": " << message;
+      EXPECT_GT(message.size(), path.string().size() + 4) << path.filename() << ": says nothing";
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << path.filename() << " threw something other than hmb::Error: " << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hmb::scene
