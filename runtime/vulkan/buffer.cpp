@@ -55,16 +55,23 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
     if (type == UINT32_MAX) throw Error("no memory type fits buffer '" + name_ + "'");
 
     const auto& memory = context.memoryProperties();
-    const VkDeviceSize heapSize = memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size;
+    const uint32_t heap = memory.memoryTypes[type].heapIndex;
+    const VkDeviceSize heapSize = memory.memoryHeaps[heap].size;
     if (req.size > heapSize)
-      throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " but its memory heap holds " + mib(heapSize));
+      throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " of device memory but its heap holds " +
+                  mib(heapSize) + "; use a smaller image or scene");
+    // Checked before allocating: past the heap, drivers that overcommit fail later and worse.
+    if (context.heapInUse(heap) + req.size > heapSize)
+      throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " more device memory, but the " + mib(heapSize) +
+                  " heap already holds " + mib(context.heapInUse(heap)) + "; use a smaller image or scene");
 
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = type;
     HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory_));
     allocated_ = req.size;
-    context.countAllocation(allocated_);
+    heap_ = heap;
+    context.countAllocation(heap_, allocated_);
     HMB_VK_CHECK(vkBindBufferMemory(device, buffer_, memory_, 0));
 
     if ((memory.memoryTypes[type].propertyFlags & hostFlags) == hostFlags)
@@ -87,6 +94,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
     allocated_ = std::exchange(other.allocated_, 0);
+    heap_ = other.heap_;
     mapped_ = std::exchange(other.mapped_, nullptr);
     name_ = std::move(other.name_);
   }
@@ -99,7 +107,7 @@ void Buffer::release() {
   if (mapped_) vkUnmapMemory(device, memory_);
   if (buffer_) vkDestroyBuffer(device, buffer_, nullptr);
   if (memory_) vkFreeMemory(device, memory_, nullptr);
-  if (allocated_) context_->countRelease(allocated_);
+  if (allocated_) context_->countRelease(heap_, allocated_);
   allocated_ = 0;
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;

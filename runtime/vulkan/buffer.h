@@ -63,6 +63,7 @@ class Buffer {
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkDeviceSize size_ = 0;
   VkDeviceSize allocated_ = 0;  // the memory's size (at least size_), counted in the context
+  uint32_t heap_ = 0;           // the memory heap it was counted in
   void* mapped_ = nullptr;
   std::string name_;
 };

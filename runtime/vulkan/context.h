@@ -2,6 +2,7 @@
 // counts validation messages (tests fail on any error).
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -39,6 +40,7 @@ struct ContextOptions {
   bool validation = false;             // enable VK_LAYER_KHRONOS_validation and count its messages
   bool synchronizationValidation = false;
   bool disableInt64Atomics = false;    // pretend the device lacks them (tests of fallbacks)
+  uint64_t memoryLimitBytes = 0;       // > 0: pretend no memory heap holds more (tests of running out)
 };
 
 class Context {
@@ -67,13 +69,15 @@ class Context {
                           VkMemoryPropertyFlags preferred = 0) const;
   const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
 
-  // Device memory the buffers of this context hold now, and the most they held at once since
-  // creation or the last resetMemoryPeak() (vk::Buffer reports its allocations here).
+  // Device memory the buffers of this context hold now (in all heaps, and in one heap), and
+  // the most they held at once since creation or the last resetMemoryPeak() (vk::Buffer
+  // reports its allocations here and checks each against what its heap has left).
   uint64_t memoryInUse() const { return memoryInUse_.load(); }
+  uint64_t heapInUse(uint32_t heap) const { return heapInUse_.at(heap).load(); }
   uint64_t memoryPeak() const { return memoryPeak_.load(); }
   void resetMemoryPeak() const { memoryPeak_.store(memoryInUse_.load()); }
-  void countAllocation(uint64_t bytes) const;
-  void countRelease(uint64_t bytes) const { memoryInUse_.fetch_sub(bytes); }
+  void countAllocation(uint32_t heap, uint64_t bytes) const;
+  void countRelease(uint32_t heap, uint64_t bytes) const;
 
   // Records commands into a one-time command buffer, submits it and waits.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
@@ -103,6 +107,7 @@ class Context {
   bool validationEnabled_ = false;
 
   mutable std::atomic<uint64_t> memoryInUse_{0}, memoryPeak_{0};
+  mutable std::array<std::atomic<uint64_t>, VK_MAX_MEMORY_HEAPS> heapInUse_{};
   std::atomic<uint32_t> validationErrors_{0};
   std::atomic<uint32_t> validationWarnings_{0};
   mutable std::mutex messagesMutex_;

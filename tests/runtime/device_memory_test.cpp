@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "runtime/error.h"
 #include "runtime/renderer.h"
 #include "runtime/vulkan/buffer.h"
 #include "scenes/load_scene.h"
@@ -56,6 +57,46 @@ TEST_F(DeviceMemoryTest, RenderReportsItsPeakAndPerPixelAndPerTriangleBytes) {
       EXPECT_DOUBLE_EQ(*result.memory.bvhBuiltBytesPerTriangle, *result.memory.bvhAllocatedBytesPerTriangle);
     }
   }
+}
+
+// A device with little memory (a context that pretends its heaps hold 32 MiB): a frame whose
+// buffers each fit but together do not fails with one clear line before the allocation that
+// would overflow the heap, frees what it had taken, and the renderer still renders a frame
+// that fits.
+TEST(DeviceMemoryLimitTest, AFrameLargerThanTheHeapIsAClearErrorAndLeavesNothingBehind) {
+  vk::ContextOptions options;
+  options.validation = true;
+  options.memoryLimitBytes = uint64_t(32) << 20;
+  vk::Context small(options);
+  EXPECT_EQ(small.info().deviceLocalBytes, options.memoryLimitBytes);
+  Renderer renderer(small);
+  const scene::Scene scene = scene::loadScene("temple");
+  RenderSettings settings;
+  for (const char* method : {"sharp", "hybrid", "reference"}) {
+    settings.method = method;
+    // No buffer over 16 MiB, but 52 B of G-buffer per pixel alone is 52 MiB (the reference:
+    // 36 B of beauty, sum and display per pixel).
+    settings.width = 1024;
+    settings.height = 1024;
+    settings.reference.samplesPerPixel = 1;
+    try {
+      renderer.render(scene, settings);
+      ADD_FAILURE() << method << ": a 1024x1024 frame rendered in 32 MiB";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("device memory"), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    EXPECT_LE(small.memoryInUse(), options.memoryLimitBytes) << method;
+    for (uint32_t h = 0; h < small.memoryProperties().memoryHeapCount; ++h)
+      EXPECT_LE(small.heapInUse(h), small.memoryProperties().memoryHeaps[h].size) << method;
+
+    settings.width = 64;
+    settings.height = 36;
+    const RenderResult fits = renderer.render(scene, settings);
+    EXPECT_LE(fits.memory.peakBytes, options.memoryLimitBytes) << method;
+  }
+  EXPECT_EQ(small.validationErrors(), 0u);
 }
 
 }  // namespace
