@@ -136,7 +136,9 @@ TEST_F(FramePlanSkipsTest, ASceneWithoutTexturesSkipsTheTexturePathAndTheImageIs
     EXPECT_FALSE(path->run) << method;
     EXPECT_FALSE(path->reason.empty()) << method;
     EXPECT_TRUE(passNamed(everything, "texture-path")->run) << method;
-    if (std::string(method) == "hybrid") ASSERT_GT(skipped.hybrid->revealRays, 0u);
+    if (std::string(method) == "hybrid") {
+      ASSERT_GT(skipped.hybrid->revealRays, 0u);
+    }
     ASSERT_EQ(skipped.image.layers.size(), everything.image.layers.size()) << method;
     for (size_t i = 0; i < skipped.image.layers.size(); ++i)
       EXPECT_EQ(skipped.image.layers[i].values, everything.image.layers[i].values)
