@@ -1,4 +1,4 @@
-// Issue 8's extreme cases, each rendered by every method (sharp, postprocess, hybrid, reference):
+// Extreme cases, each rendered by every method (sharp, postprocess, hybrid, reference):
 // still and sub-pixel motion, motion of ten tiles and of the whole image width, objects across
 // the near plane and around the camera, depths from 1e-4 to 1e6 in one frame, degenerate and
 // needle triangles, coordinates of 1e7, a wheel spinning a full turn in the shutter, a moving
