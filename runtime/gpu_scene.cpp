@@ -110,12 +110,11 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
         g.textureOffset = textureOffset[m.baseColorTexture];
         g.textureWidth = texture.width;
         g.textureHeight = texture.height;
-        hasTextures_ = true;
+        texturePath_ = true;
       }
     }
     materials.push_back(g);
   }
-  texturePath_ = hasTextures_;
 
   vertices_ = vk::uploadedBuffer(context, vertices, "scene vertices");
   instanceVertices_ = vk::uploadedBuffer(context, instanceVertices, "instance vertices");

@@ -41,9 +41,8 @@ class GpuScene {
   uint32_t triangleCount() const { return triangleCount_; }
   uint32_t instanceVertexCount() const { return instanceVertexCount_; }
   const FrameCamera& camera() const { return camera_; }
-  // Whether a material samples a texture. When none does, the shading kernels run a build
-  // without the texture path (passes::ShadingKernel), unless keepTexturePath() was called.
-  bool hasTextures() const { return hasTextures_; }
+  // Whether the shading kernels run their texture path: when a material samples a texture,
+  // or after keepTexturePath(); else they run a build without it (passes::ShadingKernel).
   bool texturePath() const { return texturePath_; }
   void keepTexturePath() { texturePath_ = true; }
 
@@ -58,7 +57,6 @@ class GpuScene {
  private:
   uint32_t triangleCount_ = 0;
   uint32_t instanceVertexCount_ = 0;
-  bool hasTextures_ = false;
   bool texturePath_ = false;
   FrameCamera camera_;
   vk::Buffer vertices_;
