@@ -57,13 +57,11 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
     const auto& memory = context.memoryProperties();
     const uint32_t heap = memory.memoryTypes[type].heapIndex;
     const VkDeviceSize heapSize = memory.memoryHeaps[heap].size;
-    if (req.size > heapSize)
-      throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " of device memory but its heap holds " +
-                  mib(heapSize) + "; use a smaller image or scene");
     // Checked before allocating: past the heap, drivers that overcommit fail later and worse.
-    if (context.heapInUse(heap) + req.size > heapSize)
-      throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " more device memory, but the " + mib(heapSize) +
-                  " heap already holds " + mib(context.heapInUse(heap)) + "; use a smaller image or scene");
+    const VkDeviceSize inUse = context.heapInUse(heap);
+    if (inUse + req.size > heapSize)
+      throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " of device memory, but its " + mib(heapSize) +
+                  " heap already holds " + mib(inUse) + "; use a smaller image or scene");
 
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;

@@ -289,7 +289,8 @@ Context::Context(const ContextOptions& options) {
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
     if (options.memoryLimitBytes > 0) {
       for (uint32_t h = 0; h < memoryProperties_.memoryHeapCount; ++h)
-        memoryProperties_.memoryHeaps[h].size = std::min(memoryProperties_.memoryHeaps[h].size, options.memoryLimitBytes);
+        memoryProperties_.memoryHeaps[h].size =
+            std::min(memoryProperties_.memoryHeaps[h].size, options.memoryLimitBytes);
       info_.deviceLocalBytes = std::min(info_.deviceLocalBytes, options.memoryLimitBytes);
     }
     queueFamily_ = static_cast<uint32_t>(pickQueueFamily(physicalDevice_));
@@ -427,14 +428,17 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onDebugMessage(VkDebugUtilsMessageSeveri
   return VK_FALSE;
 }
 
-void Context::countRelease(uint32_t heap, uint64_t bytes) const {
-  heapInUse_.at(heap).fetch_sub(bytes);
-  memoryInUse_.fetch_sub(bytes);
+uint64_t Context::memoryInUse() const {
+  uint64_t total = 0;
+  for (const auto& heap : heapInUse_) total += heap.load();
+  return total;
 }
+
+void Context::countRelease(uint32_t heap, uint64_t bytes) const { heapInUse_.at(heap).fetch_sub(bytes); }
 
 void Context::countAllocation(uint32_t heap, uint64_t bytes) const {
   heapInUse_.at(heap).fetch_add(bytes);
-  const uint64_t now = memoryInUse_.fetch_add(bytes) + bytes;
+  const uint64_t now = memoryInUse();
   uint64_t peak = memoryPeak_.load();
   while (now > peak && !memoryPeak_.compare_exchange_weak(peak, now)) {
   }

@@ -72,10 +72,10 @@ class Context {
   // Device memory the buffers of this context hold now (in all heaps, and in one heap), and
   // the most they held at once since creation or the last resetMemoryPeak() (vk::Buffer
   // reports its allocations here and checks each against what its heap has left).
-  uint64_t memoryInUse() const { return memoryInUse_.load(); }
+  uint64_t memoryInUse() const;
   uint64_t heapInUse(uint32_t heap) const { return heapInUse_.at(heap).load(); }
   uint64_t memoryPeak() const { return memoryPeak_.load(); }
-  void resetMemoryPeak() const { memoryPeak_.store(memoryInUse_.load()); }
+  void resetMemoryPeak() const { memoryPeak_.store(memoryInUse()); }
   void countAllocation(uint32_t heap, uint64_t bytes) const;
   void countRelease(uint32_t heap, uint64_t bytes) const;
 
@@ -106,7 +106,7 @@ class Context {
   DeviceInfo info_;
   bool validationEnabled_ = false;
 
-  mutable std::atomic<uint64_t> memoryInUse_{0}, memoryPeak_{0};
+  mutable std::atomic<uint64_t> memoryPeak_{0};
   mutable std::array<std::atomic<uint64_t>, VK_MAX_MEMORY_HEAPS> heapInUse_{};
   std::atomic<uint32_t> validationErrors_{0};
   std::atomic<uint32_t> validationWarnings_{0};
