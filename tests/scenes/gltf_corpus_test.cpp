@@ -1,7 +1,6 @@
 // The committed corpus of malformed glTF files (tests/scenes/malformed/, written by its
 // generate.py; the loader's fuzzer starts from it too): every file is a one-line hmb::Error
 // that starts with the path, never a crash or a scene.
-#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,23 +9,15 @@
 
 #include "runtime/error.h"
 #include "scenes/load_scene.h"
+#include "tests/scenes/malformed_corpus.h"
 
 namespace hmb::scene {
 namespace {
 
-std::vector<std::filesystem::path> corpusFiles() {
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(HMB_MALFORMED_CORPUS_DIR)) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 TEST(GltfCorpusTest, EveryMalformedFileIsAOneLineError) {
-  const std::vector<std::filesystem::path> files = corpusFiles();
-  ASSERT_GE(files.size(), 30u) << "the corpus is missing: run tests/scenes/malformed/generate.py";
+  const std::vector<std::filesystem::path> files = test::malformedCorpusFiles();
+  ASSERT_GE(files.size(), test::kMalformedCorpusMinFiles)
+      << "the corpus is missing: run tests/scenes/malformed/generate.py";
   for (const std::filesystem::path& path : files) {
     try {
       (void)loadScene(path.string());
