@@ -18,7 +18,9 @@ void emitTriangle(vec4 c0, vec4 c1, vec4 c2, uint triangle, bool doubleSided) {
   vec2 p0 = snapToScreen(c0), p1 = snapToScreen(c1), p2 = snapToScreen(c2);
   vec3 z = vec3(c0.z / c0.w, c1.z / c1.w, c2.z / c2.w);
   const float area = cross2(p1 - p0, p2 - p0);
-  if (!(area != 0.0)) return;  // zero area (or NaN from degenerate input)
+  // Ordered compares only: a NaN area fails both and is rejected here on every driver, and an
+  // infinite one (a vertex at infinity) would leave the bounds below non-finite.
+  if (!(abs(area) > 0.0) || isinf(area)) return;
   // With y pointing down the image, faces counter-clockwise in the y-up view (glTF front
   // faces) have negative area here.
   if (area > 0.0 && !doubleSided) return;

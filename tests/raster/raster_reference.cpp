@@ -90,7 +90,7 @@ void emitTriangle(vec4 c0, vec4 c1, vec4 c2, uint32_t triangle, bool doubleSided
        p2 = snapToScreen(c2, state.width, state.height);
   vec3 z = vec3(c0.z / c0.w, c1.z / c1.w, c2.z / c2.w);
   const float area = cross2(p1 - p0, p2 - p0);
-  if (!(area != 0.0f)) return;
+  if (!(std::abs(area) > 0.0f) || std::isinf(area)) return;
   if (area > 0.0f && !doubleSided) return;
   if (area < 0.0f) {
     std::swap(p1, p2);
