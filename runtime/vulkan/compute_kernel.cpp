@@ -5,6 +5,7 @@
 #include "runtime/error.h"
 #include "runtime/vulkan/check.h"
 #include "runtime/vulkan/context.h"
+#include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
 
 namespace hmb::vk {
@@ -16,10 +17,26 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
       storageBufferCount_(storageBufferCount),
       pushConstantBytes_(pushConstantBytes) {
   const EmbeddedKernel& spirv = findKernel(kernelName);
+  // The SPIR-V is the truth about what the kernel binds: the host's declaration must agree
+  // with it, and the device must have room for it, before any Vulkan object is made.
+  const KernelInterface declared = reflectKernel(spirv);
+  checkKernelFitsDevice(name_, declared, context.limits());
+  for (uint32_t i = 0; i < declared.storageBufferBindings.size(); ++i)
+    if (declared.storageBufferBindings[i] != i)
+      throw Error("kernel '" + name_ + "' leaves storage buffer binding " + std::to_string(i) +
+                  " unused; bindings must be 0..N-1 in set 0");
+  if (declared.storageBufferBindings.size() != storageBufferCount || declared.uniformBuffers != 0 ||
+      declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
+    throw Error("kernel '" + name_ + "' declares " + std::to_string(declared.storageBufferBindings.size()) +
+                " storage buffers (and no other descriptors expected) but its host binds " +
+                std::to_string(storageBufferCount));
+  if (declared.pushConstantBytes > pushConstantBytes)
+    throw Error("kernel '" + name_ + "' declares " + std::to_string(declared.pushConstantBytes) +
+                " bytes of push constants but its host passes " + std::to_string(pushConstantBytes));
   if (pushConstantBytes > context.limits().maxPushConstantsSize)
     throw Error("kernel '" + name_ + "' needs " + std::to_string(pushConstantBytes) +
                 " bytes of push constants; the device allows " +
-                std::to_string(context.limits().maxPushConstantsSize));
+                std::to_string(context.limits().maxPushConstantsSize) + " (maxPushConstantsSize)");
   const VkDevice device = context.device();
   VkShaderModule module = VK_NULL_HANDLE;
   try {

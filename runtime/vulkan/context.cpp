@@ -286,6 +286,12 @@ Context::Context(const ContextOptions& options) {
     VkPhysicalDeviceProperties props{};
     vkGetPhysicalDeviceProperties(physicalDevice_, &props);
     limits_ = props.limits;
+    if (options.storageBufferLimit > 0) {
+      limits_.maxPerStageDescriptorStorageBuffers =
+          std::min(limits_.maxPerStageDescriptorStorageBuffers, options.storageBufferLimit);
+      limits_.maxDescriptorSetStorageBuffers =
+          std::min(limits_.maxDescriptorSetStorageBuffers, options.storageBufferLimit);
+    }
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
     if (options.memoryLimitBytes > 0) {
       for (uint32_t h = 0; h < memoryProperties_.memoryHeapCount; ++h)

@@ -41,6 +41,7 @@ struct ContextOptions {
   bool synchronizationValidation = false;
   bool disableInt64Atomics = false;    // pretend the device lacks them (tests of fallbacks)
   uint64_t memoryLimitBytes = 0;       // > 0: pretend no memory heap holds more (tests of running out)
+  uint32_t storageBufferLimit = 0;     // > 0: pretend no stage or set takes more storage buffers
 };
 
 class Context {

@@ -2,6 +2,7 @@
 // declares; the validation layer checks the SPIR-V's bindings and push constants against it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "kernels/bvh/bvh_build_layout.h"
@@ -15,7 +16,9 @@
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
+#include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -77,6 +80,64 @@ TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
           << kernel.name << " without the texture path";
     }
   }
+}
+
+const KernelLayout& layoutOf(std::string_view name) {
+  for (const KernelLayout& l : kLayouts)
+    if (name == l.name) return l;
+  throw std::runtime_error("no layout declared for " + std::string(name));
+}
+
+TEST_F(KernelPipelinesTest, ReflectionReadsWhatEachKernelDeclares) {
+  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
+    const vk::KernelInterface reflected = vk::reflectKernel(kernel);
+    const KernelLayout& layout = layoutOf(kernel.name);
+    EXPECT_EQ(reflected.storageBufferBindings.size(), layout.bindings) << kernel.name;
+    EXPECT_LE(reflected.pushConstantBytes, layout.pushBytes) << kernel.name;
+    EXPECT_GE(reflected.localSize[0] * reflected.localSize[1] * reflected.localSize[2], 1u) << kernel.name;
+  }
+  // encode_display: two buffers, one group of 8x8, its parameters (shared header).
+  const vk::KernelInterface encode = vk::reflectKernel(vk::findKernel("output/encode_display"));
+  EXPECT_EQ(encode.storageBufferBindings, (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(encode.pushConstantBytes, sizeof(gpu::EncodeDisplayParams));
+}
+
+TEST_F(KernelPipelinesTest, AHostThatDisagreesWithTheKernelIsAOneLineError) {
+  const KernelLayout& layout = layoutOf("output/encode_display");
+  expectError([&] { vk::ComputeKernel(context(), layout.name, layout.bindings + 1, layout.pushBytes); },
+                     "declares 2 storage buffers");
+  expectError([&] { vk::ComputeKernel(context(), layout.name, layout.bindings, layout.pushBytes - 4); },
+                     "bytes of push constants but its host passes");
+}
+
+// A device that takes fewer storage buffers per stage than the widest kernel: pipeline creation
+// refuses exactly the kernels that bind more, in one line naming the kernel and the limit.
+TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersRefusesTheKernelsThatNeedMore) {
+  uint32_t widest = 0;
+  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels())
+    widest = std::max(widest, uint32_t(vk::reflectKernel(kernel).storageBufferBindings.size()));
+  ASSERT_GE(widest, 2u);
+  vk::ContextOptions options;
+  options.validation = true;
+  options.storageBufferLimit = widest - 1;
+  vk::Context small(options);
+  ASSERT_EQ(small.limits().maxPerStageDescriptorStorageBuffers, widest - 1);
+  uint32_t refused = 0;
+  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
+    const KernelLayout& layout = layoutOf(kernel.name);
+    if (layout.needsInt64Atomics && !small.info().int64BufferAtomics) continue;
+    if (layout.bindings <= widest - 1) {
+      EXPECT_NO_THROW(vk::ComputeKernel(small, kernel.name, layout.bindings, layout.pushBytes)) << kernel.name;
+      continue;
+    }
+    ++refused;
+    expectError([&] { vk::ComputeKernel(small, kernel.name, layout.bindings, layout.pushBytes); },
+                       "kernel '" + std::string(kernel.name) + "' needs " + std::to_string(layout.bindings) +
+                           " storage buffers in one stage; the device allows " + std::to_string(widest - 1) +
+                           " (maxPerStageDescriptorStorageBuffers)");
+  }
+  EXPECT_GE(refused, 1u);
+  EXPECT_EQ(small.validationErrors(), 0u);
 }
 
 }  // namespace

@@ -1,0 +1,102 @@
+#include "runtime/vulkan/kernel_interface.h"
+
+#include <algorithm>
+#include <memory>
+
+#include <spirv_cross/spirv_cross_c.h>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/kernel_registry.h"
+
+namespace hmb::vk {
+namespace {
+
+using ContextHandle = std::unique_ptr<spvc_context_s, decltype(&spvc_context_destroy)>;
+
+void require(spvc_result result, spvc_context context, const EmbeddedKernel& kernel) {
+  if (result != SPVC_SUCCESS)
+    throw Error("cannot read the SPIR-V of kernel '" + std::string(kernel.name) +
+                "': " + spvc_context_get_last_error_string(context));
+}
+
+std::span<const spvc_reflected_resource> resourcesOf(spvc_resources resources, spvc_resource_type type,
+                                                     spvc_context context, const EmbeddedKernel& kernel) {
+  const spvc_reflected_resource* list = nullptr;
+  size_t count = 0;
+  require(spvc_resources_get_resource_list_for_type(resources, type, &list, &count), context, kernel);
+  return {list, count};
+}
+
+void fitsUnder(const std::string& kernelName, const char* what, uint64_t needed, const char* limitName,
+               uint64_t limit) {
+  if (needed > limit)
+    throw Error("kernel '" + kernelName + "' needs " + std::to_string(needed) + " " + what + "; the device allows " +
+                std::to_string(limit) + " (" + limitName + ")");
+}
+
+}  // namespace
+
+KernelInterface reflectKernel(const EmbeddedKernel& kernel) {
+  spvc_context raw = nullptr;
+  if (spvc_context_create(&raw) != SPVC_SUCCESS) throw Error("cannot create a SPIR-V reflection context");
+  const ContextHandle context(raw, &spvc_context_destroy);
+
+  spvc_parsed_ir ir = nullptr;
+  require(spvc_context_parse_spirv(raw, kernel.words, kernel.wordCount, &ir), raw, kernel);
+  spvc_compiler compiler = nullptr;
+  require(spvc_context_create_compiler(raw, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler), raw,
+          kernel);
+  spvc_resources resources = nullptr;
+  require(spvc_compiler_create_shader_resources(compiler, &resources), raw, kernel);
+
+  KernelInterface result;
+  auto setOf = [&](const spvc_reflected_resource& r) {
+    const unsigned set = spvc_compiler_get_decoration(compiler, r.id, SpvDecorationDescriptorSet);
+    result.highestDescriptorSet = std::max(result.highestDescriptorSet, set);
+    return set;
+  };
+  for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_STORAGE_BUFFER, raw, kernel))
+    if (setOf(r) == 0)
+      result.storageBufferBindings.push_back(spvc_compiler_get_decoration(compiler, r.id, SpvDecorationBinding));
+  std::sort(result.storageBufferBindings.begin(), result.storageBufferBindings.end());
+  for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, raw, kernel)) {
+    setOf(r);
+    ++result.uniformBuffers;
+  }
+  for (spvc_resource_type type :
+       {SPVC_RESOURCE_TYPE_STORAGE_IMAGE, SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, SPVC_RESOURCE_TYPE_SEPARATE_IMAGE,
+        SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS, SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE})
+    result.otherDescriptors += uint32_t(resourcesOf(resources, type, raw, kernel).size());
+
+  for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_PUSH_CONSTANT, raw, kernel)) {
+    size_t bytes = 0;
+    require(spvc_compiler_get_declared_struct_size(compiler, spvc_compiler_get_type_handle(compiler, r.base_type_id),
+                                                   &bytes),
+            raw, kernel);
+    result.pushConstantBytes = std::max(result.pushConstantBytes, uint32_t(bytes));
+  }
+  for (unsigned axis = 0; axis < 3; ++axis)
+    result.localSize[axis] =
+        std::max(1u, spvc_compiler_get_execution_mode_argument_by_index(compiler, SpvExecutionModeLocalSize, axis));
+  return result;
+}
+
+void checkKernelFitsDevice(const std::string& kernelName, const KernelInterface& kernel,
+                           const VkPhysicalDeviceLimits& limits) {
+  const auto storageBuffers = uint64_t(kernel.storageBufferBindings.size());
+  fitsUnder(kernelName, "storage buffers in one stage", storageBuffers, "maxPerStageDescriptorStorageBuffers",
+            limits.maxPerStageDescriptorStorageBuffers);
+  fitsUnder(kernelName, "storage buffers in one set", storageBuffers, "maxDescriptorSetStorageBuffers",
+            limits.maxDescriptorSetStorageBuffers);
+  fitsUnder(kernelName, "bytes of push constants", kernel.pushConstantBytes, "maxPushConstantsSize",
+            limits.maxPushConstantsSize);
+  const char* axes[] = {"maxComputeWorkGroupSize[0]", "maxComputeWorkGroupSize[1]", "maxComputeWorkGroupSize[2]"};
+  for (int axis = 0; axis < 3; ++axis)
+    fitsUnder(kernelName, "invocations along a workgroup axis", kernel.localSize[axis], axes[axis],
+              limits.maxComputeWorkGroupSize[axis]);
+  fitsUnder(kernelName, "invocations per workgroup",
+            uint64_t(kernel.localSize[0]) * kernel.localSize[1] * kernel.localSize[2],
+            "maxComputeWorkGroupInvocations", limits.maxComputeWorkGroupInvocations);
+}
+
+}  // namespace hmb::vk
