@@ -40,10 +40,7 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
     uint32_t type = UINT32_MAX;
     switch (use) {
       case MemoryUse::Device:
-        // Device-local; host-visible as well where the device has such memory (CPU devices,
-        // resizable BAR), which saves a staging copy.
-        type = context.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, hostFlags);
-        if (type == UINT32_MAX) type = context.findMemoryType(req.memoryTypeBits, 0);
+        type = context.findDeviceMemoryType(req.memoryTypeBits);
         break;
       case MemoryUse::Upload:
         type = context.findMemoryType(req.memoryTypeBits, hostFlags);
@@ -65,15 +62,16 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
 
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = type;
+    alloc.memoryTypeIndex = context.allocationType(type);
     HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory_));
     allocated_ = req.size;
     heap_ = heap;
     context.countAllocation(heap_, allocated_);
     HMB_VK_CHECK(vkBindBufferMemory(device, buffer_, memory_, 0));
 
-    if ((memory.memoryTypes[type].propertyFlags & hostFlags) == hostFlags)
-      HMB_VK_CHECK(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    const VkMemoryPropertyFlags flags = memory.memoryTypes[type].propertyFlags;
+    if ((flags & hostFlags) == hostFlags) HMB_VK_CHECK(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    hostCached_ = (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
   } catch (...) {
     release();
     throw;
@@ -94,6 +92,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     allocated_ = std::exchange(other.allocated_, 0);
     heap_ = other.heap_;
     mapped_ = std::exchange(other.mapped_, nullptr);
+    hostCached_ = other.hostCached_;
     name_ = std::move(other.name_);
   }
   return *this;
@@ -132,7 +131,8 @@ void Buffer::read(std::span<std::byte> bytes, VkDeviceSize offset) const {
   if (offset + bytes.size() > size_)
     throw Error("read of " + std::to_string(bytes.size()) + " bytes past the end of buffer '" + name_ + "'");
   if (bytes.empty()) return;
-  if (mapped_) {
+  // Uncached mapped memory (VRAM through a BAR) reads slowly from the host: copy it out first.
+  if (mapped_ && hostCached_) {
     std::memcpy(bytes.data(), static_cast<const std::byte*>(mapped_) + offset, bytes.size());
     return;
   }

@@ -16,7 +16,7 @@ namespace hmb::vk {
 class Context;
 
 enum class MemoryUse {
-  Device,    // kernel working memory; mapped too when the device memory is host-visible
+  Device,    // kernel working memory (vk::Context::findDeviceMemoryType); mapped where that is cheap
   Upload,    // host writes, device reads
   Readback,  // device writes, host reads
 };
@@ -65,6 +65,7 @@ class Buffer {
   VkDeviceSize allocated_ = 0;  // the memory's size (at least size_), counted in the context
   uint32_t heap_ = 0;           // the memory heap it was counted in
   void* mapped_ = nullptr;
+  bool hostCached_ = false;
   std::string name_;
 };
 

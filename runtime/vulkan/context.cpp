@@ -293,6 +293,8 @@ Context::Context(const ContextOptions& options) {
           std::min(limits_.maxDescriptorSetStorageBuffers, options.storageBufferLimit);
     }
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+    for (uint32_t t = 0; t < memoryProperties_.memoryTypeCount; ++t) allocationTypes_[t] = t;
+    if (options.hostVisibleDeviceLocalBytes > 0) pretendDiscreteMemory(options.hostVisibleDeviceLocalBytes);
     if (options.memoryLimitBytes > 0) {
       for (uint32_t h = 0; h < memoryProperties_.memoryHeapCount; ++h)
         memoryProperties_.memoryHeaps[h].size =
@@ -366,17 +368,63 @@ void Context::releaseHandles() {
   }
 }
 
+void Context::pretendDiscreteMemory(uint64_t barBytes) {
+  // Every pretend type is backed by the device's first memory type that is host-visible and
+  // coherent (on a CPU device that is all of its memory); only the flags and heaps differ.
+  const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  uint32_t backing = UINT32_MAX;
+  for (uint32_t t = 0; t < memoryProperties_.memoryTypeCount && backing == UINT32_MAX; ++t)
+    if ((memoryProperties_.memoryTypes[t].propertyFlags & host) == host) backing = t;
+  if (backing == UINT32_MAX) throw Error("cannot pretend a discrete GPU: the device has no host-visible memory");
+  const VkDeviceSize size = memoryProperties_.memoryHeaps[memoryProperties_.memoryTypes[backing].heapIndex].size;
+  VkPhysicalDeviceMemoryProperties view{};
+  view.memoryHeapCount = 3;
+  view.memoryHeaps[0] = {size, VK_MEMORY_HEAP_DEVICE_LOCAL_BIT};                    // VRAM
+  view.memoryHeaps[1] = {std::min(size, barBytes), VK_MEMORY_HEAP_DEVICE_LOCAL_BIT};  // its BAR window
+  view.memoryHeaps[2] = {size, 0};                                                  // system memory
+  view.memoryTypeCount = 4;  // in the order such drivers list them
+  view.memoryTypes[0] = {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0};
+  view.memoryTypes[1] = {host, 2};
+  view.memoryTypes[2] = {host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, 2};
+  view.memoryTypes[3] = {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | host, 1};
+  memoryProperties_ = view;
+  allocationTypes_.fill(backing);
+  info_.deviceLocalBytes = size;
+}
+
 uint32_t Context::findMemoryType(uint32_t allowedTypes, VkMemoryPropertyFlags required,
                                  VkMemoryPropertyFlags preferred) const {
   uint32_t fallback = UINT32_MAX;
   for (uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
-    if (!(allowedTypes & (1u << i))) continue;
+    if (!(allowedTypes & (1u << allocationTypes_[i]))) continue;
     const VkMemoryPropertyFlags flags = memoryProperties_.memoryTypes[i].propertyFlags;
     if ((flags & required) != required) continue;
     if ((flags & preferred) == preferred) return i;
     if (fallback == UINT32_MAX) fallback = i;
   }
   return fallback;
+}
+
+uint32_t Context::findDeviceMemoryType(uint32_t allowedTypes) const {
+  const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  uint32_t largestHeap = UINT32_MAX;
+  for (uint32_t h = 0; h < memoryProperties_.memoryHeapCount; ++h)
+    if ((memoryProperties_.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) &&
+        (largestHeap == UINT32_MAX || memoryProperties_.memoryHeaps[h].size > memoryProperties_.memoryHeaps[largestHeap].size))
+      largestHeap = h;
+  uint32_t deviceOnly = UINT32_MAX;
+  for (uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
+    if (!(allowedTypes & (1u << allocationTypes_[i]))) continue;
+    const VkMemoryType& type = memoryProperties_.memoryTypes[i];
+    if (!(type.propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) continue;
+    if ((type.propertyFlags & host) == host) {
+      if (type.heapIndex == largestHeap) return i;  // mappable and large: no staging copies
+    } else if (deviceOnly == UINT32_MAX) {
+      deviceOnly = i;
+    }
+  }
+  if (deviceOnly != UINT32_MAX) return deviceOnly;
+  return findMemoryType(allowedTypes, 0);
 }
 
 void Context::submitAndWait(VkCommandBuffer commandBuffer) const {

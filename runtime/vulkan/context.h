@@ -42,6 +42,10 @@ struct ContextOptions {
   bool disableInt64Atomics = false;    // pretend the device lacks them (tests of fallbacks)
   uint64_t memoryLimitBytes = 0;       // > 0: pretend no memory heap holds more (tests of running out)
   uint32_t storageBufferLimit = 0;     // > 0: pretend no stage or set takes more storage buffers
+  // > 0: pretend a discrete GPU without resizable BAR, whose host-visible device-local heap holds
+  // this many bytes (256 MiB on such GPUs): device-local memory the host cannot map, that small
+  // heap, and system memory for staging. Tests that frames fit such devices.
+  uint64_t hostVisibleDeviceLocalBytes = 0;
 };
 
 class Context {
@@ -64,11 +68,18 @@ class Context {
   const VkPhysicalDeviceLimits& limits() const { return limits_; }
   bool validationEnabled() const { return validationEnabled_; }
 
-  // Memory type with all required flags among those the buffer allows; prefers the ones that
-  // also have the preferred flags. Returns UINT32_MAX when none fits.
+  // Memory type with all required flags among those the buffer allows (memoryTypeBits of its
+  // requirements); prefers the ones that also have the preferred flags. Returns UINT32_MAX
+  // when none fits. Types and heaps are those of memoryProperties(), which a pretend device
+  // (ContextOptions) changes; allocate with allocationType() of the type found.
   uint32_t findMemoryType(uint32_t allowedTypes, VkMemoryPropertyFlags required,
                           VkMemoryPropertyFlags preferred = 0) const;
+  // The memory type of buffers only kernels touch: device-local, and host-visible too only
+  // where that memory is in the device's largest device-local heap (CPU devices, integrated
+  // GPUs, resizable BAR), so a small BAR heap is never filled with working memory.
+  uint32_t findDeviceMemoryType(uint32_t allowedTypes) const;
   const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
+  uint32_t allocationType(uint32_t type) const { return allocationTypes_.at(type); }
 
   // Device memory the buffers of this context hold now (in all heaps, and in one heap), and
   // the most they held at once since creation or the last resetMemoryPeak() (vk::Buffer
@@ -91,6 +102,7 @@ class Context {
 
  private:
   void releaseHandles();
+  void pretendDiscreteMemory(uint64_t barBytes);
   static VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -104,6 +116,7 @@ class Context {
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   VkPhysicalDeviceLimits limits_{};
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
+  std::array<uint32_t, VK_MAX_MEMORY_TYPES> allocationTypes_{};  // memoryProperties_ type -> the device's
   DeviceInfo info_;
   bool validationEnabled_ = false;
 

@@ -186,7 +186,7 @@ GraphicsRasterizer::Attachment GraphicsRasterizer::createAttachment(VkFormat for
     if (type == UINT32_MAX) throw Error("graphics oracle: no memory type fits an attachment");
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = type;
+    alloc.memoryTypeIndex = context_.allocationType(type);
     HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &a.memory));
     HMB_VK_CHECK(vkBindImageMemory(device, a.image, a.memory, 0));
 

@@ -1,8 +1,10 @@
 // Device memory accounting: every vk::Buffer's allocation is counted in its context while it
 // lives, the peak holds the most counted at once, and a render reports its peak, the G-buffer's
 // bytes per pixel and the mesh trees' bytes per triangle.
+#include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -97,6 +99,65 @@ TEST(DeviceMemoryLimitTest, AFrameLargerThanTheHeapIsAClearErrorAndLeavesNothing
     EXPECT_LE(fits.memory.peakBytes, options.memoryLimitBytes) << method;
   }
   EXPECT_EQ(small.validationErrors(), 0u);
+}
+
+}  // namespace
+}  // namespace hmb::test
+
+namespace hmb::test {
+namespace {
+
+// A discrete GPU without resizable BAR (a context that pretends its host-visible device-local
+// heap holds 256 MiB): the kernels' working memory goes to device-local memory the host cannot
+// map, uploads and read-backs through staging in system memory, so a 1920x1080 hybrid frame
+// (300+ MiB) renders, the BAR heap stays empty, and the image is the one the plain device makes.
+TEST(DeviceMemoryLimitTest, HybridAt1080pRendersOnADeviceWithA256MiBHostVisibleHeap) {
+  constexpr uint64_t kBar = 256ull << 20;
+  vk::ContextOptions options;
+  options.validation = true;
+  options.hostVisibleDeviceLocalBytes = kBar;
+  vk::Context discrete(options);
+  const VkPhysicalDeviceMemoryProperties& memory = discrete.memoryProperties();
+  uint32_t barHeap = UINT32_MAX, vramHeap = UINT32_MAX;
+  for (uint32_t h = 0; h < memory.memoryHeapCount; ++h) {
+    if (!(memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)) continue;
+    (memory.memoryHeaps[h].size == kBar ? barHeap : vramHeap) = h;
+  }
+  ASSERT_NE(barHeap, UINT32_MAX);
+  ASSERT_NE(vramHeap, UINT32_MAX);
+
+  vk::Buffer work(discrete, 1 << 20, vk::MemoryUse::Device, "working memory");
+  EXPECT_EQ(work.mapped(), nullptr) << "device-local memory of a discrete GPU is not host-visible";
+  const std::vector<uint32_t> values = {1, 2, 3, 4};
+  work.upload(std::span<const uint32_t>(values));
+  std::vector<uint32_t> readBack = work.download<uint32_t>();
+  readBack.resize(values.size());
+  EXPECT_EQ(readBack, values);
+
+  const scene::Scene scene = scene::loadScene("living-room");
+  RenderSettings settings;
+  settings.method = "hybrid";
+  settings.width = 1920;
+  settings.height = 1080;
+  Renderer renderer(discrete);
+  const RenderResult result = renderer.render(scene, settings);
+  EXPECT_GT(result.memory.peakBytes, kBar) << "the frame should need more than the BAR heap holds";
+  EXPECT_GT(result.hybrid->maskPixels, 0u);
+  EXPECT_EQ(discrete.heapInUse(barHeap), 0u);
+  EXPECT_GT(discrete.heapInUse(vramHeap), 0u);
+  EXPECT_EQ(discrete.validationErrors(), 0u);
+
+  // The same frame on the device as it is (one host-visible heap): the same image.
+  vk::ContextOptions plainOptions;
+  vk::Context plain(plainOptions);
+  Renderer plainRenderer(plain);
+  const RenderResult expected = plainRenderer.render(scene, settings);
+  ASSERT_EQ(result.image.layers.size(), expected.image.layers.size());
+  for (size_t i = 0; i < result.image.layers.size(); ++i) {
+    EXPECT_EQ(result.image.layers[i].values, expected.image.layers[i].values) << result.image.layers[i].name;
+    EXPECT_EQ(result.image.layers[i].ids, expected.image.layers[i].ids) << result.image.layers[i].name;
+  }
+  EXPECT_EQ(result.display.pixels, expected.display.pixels);
 }
 
 }  // namespace
