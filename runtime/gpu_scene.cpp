@@ -124,6 +124,9 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
                           vk::MemoryUse::Device, "instances");
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
+  const gpu::SceneTable table{vertices_.address(), instances_.address(), materials_.address(), texels_.address(),
+                              cameraBuffer_.address()};
+  table_ = vk::uploadedBuffer(context, std::vector<gpu::SceneTable>{table}, "scene table");
 }
 
 void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {

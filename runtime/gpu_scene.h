@@ -53,6 +53,9 @@ class GpuScene {
   const vk::Buffer& materials() const { return materials_; }
   const vk::Buffer& texels() const { return texels_; }
   const vk::Buffer& cameraBuffer() const { return cameraBuffer_; }
+  // The addresses of vertices, instances, materials, texels and camera (gpu::SceneTable), as
+  // the shading kernels bind them.
+  const vk::Buffer& table() const { return table_; }
 
  private:
   uint32_t triangleCount_ = 0;
@@ -66,6 +69,7 @@ class GpuScene {
   vk::Buffer materials_;
   vk::Buffer texels_;
   vk::Buffer cameraBuffer_;
+  vk::Buffer table_;
 };
 
 }  // namespace hmb

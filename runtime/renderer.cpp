@@ -297,9 +297,10 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
         result.hybrid->revealRays = counts.revealRays;
         mask = passes_->hybrid.rayMask().mask().download<uint32_t>();
         mask.resize(pixels);
-        const std::vector<glm::vec4> revealedAll = passes_->hybrid.revealedColor().download<glm::vec4>();
-        const std::vector<glm::vec4> normalDepthAll = passes_->hybrid.revealedNormalDepth().download<glm::vec4>();
-        const std::vector<uint32_t> idAll = passes_->hybrid.revealedObjectId().download<uint32_t>();
+        const passes::ImageLayer& layer = passes_->hybrid.revealed();
+        const std::vector<glm::vec4> revealedAll = layer.color().download<glm::vec4>();
+        const std::vector<glm::vec4> normalDepthAll = layer.normalDepth().download<glm::vec4>();
+        const std::vector<uint32_t> idAll = layer.objectId().download<uint32_t>();
         std::vector<uint32_t> traced = passes_->hybrid.rayMask().list().download<uint32_t>();
         traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
         for (const uint32_t i : traced) {

@@ -108,6 +108,7 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   });
   triangleBoxes = {};
   meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
+  table_ = vk::Buffer(context, sizeof(gpu::TraceSceneTable), vk::MemoryUse::Device, "trace scene table");
 }
 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
@@ -142,6 +143,14 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   });
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
+
+  const gpu::TraceSceneTable table{instanceBvh_.nodes().address(),     instanceBvh_.links().address(),
+                                   instanceBvh_.primitives().address(), instances_.address(),
+                                   transforms_.address(),               meshBvh_.nodes().address(),
+                                   meshBvh_.links().address(),          meshBvh_.primitives().address(),
+                                   triangles_.address(),                positions_.address(),
+                                   instanceBvh_.frames().address(),     meshBvh_.frames().address()};
+  table_.upload(std::span(&table, 1));
 }
 
 bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene) {

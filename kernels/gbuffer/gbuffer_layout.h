@@ -9,18 +9,12 @@
 
 #define HMB_RESOLVE_BINDING_VISIBILITY 0
 #define HMB_RESOLVE_BINDING_TRIANGLES 1
-#define HMB_RESOLVE_BINDING_INSTANCES 2
-#define HMB_RESOLVE_BINDING_MATERIALS 3
-#define HMB_RESOLVE_BINDING_TEXELS 4
-#define HMB_RESOLVE_BINDING_CAMERA 5
-#define HMB_RESOLVE_BINDING_CLIP_CURRENT 6
-#define HMB_RESOLVE_BINDING_CLIP_PREVIOUS 7
-#define HMB_RESOLVE_BINDING_SHADING 8        // GpuVertexShading per instance vertex
-#define HMB_RESOLVE_BINDING_COLOR 9          // vec4: linear shaded colour, opaque (background colour where empty)
-#define HMB_RESOLVE_BINDING_NORMAL_DEPTH 10  // vec4: xyz world normal, w camera-space depth
-#define HMB_RESOLVE_BINDING_VELOCITY 11      // vec2: screen velocity, pixels per frame (y down)
-#define HMB_RESOLVE_BINDING_OBJECT_ID 12     // uint: object id, 0 for the background
-#define HMB_RESOLVE_BINDING_COUNT 13
+#define HMB_RESOLVE_BINDING_SCENE 2          // SceneTable (shared/scene_layout.h)
+#define HMB_RESOLVE_BINDING_CLIP_CURRENT 3
+#define HMB_RESOLVE_BINDING_CLIP_PREVIOUS 4
+#define HMB_RESOLVE_BINDING_SHADING 5        // GpuVertexShading per instance vertex
+#define HMB_RESOLVE_BINDING_GBUFFER 6        // LayerTable (shared/layer_layout.h): the G-buffer written
+#define HMB_RESOLVE_BINDING_COUNT 7
 
 HMB_GPU_BEGIN
 struct ResolveParams {

@@ -8,22 +8,17 @@
 #include "gbuffer_layout.h"
 #include "../raster/raster_layout.h"
 #include "../shared/scene_layout.h"
+#include "../shared/layer_layout.h"
 
 layout(local_size_x = HMB_RESOLVE_GROUP_X, local_size_y = HMB_RESOLVE_GROUP_Y) in;
 
 layout(std430, binding = HMB_RESOLVE_BINDING_VISIBILITY) readonly buffer Visibility { uvec2 visibility[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_TRIANGLES) readonly buffer Triangles { GpuTriangle triangles[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_TEXELS) readonly buffer Texels { uint texels[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_CAMERA) readonly buffer Camera { GpuCamera camera; };
+layout(std430, binding = HMB_RESOLVE_BINDING_SCENE) readonly buffer Scene { SceneTable scene; };
 layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_CURRENT) readonly buffer ClipCurrent { vec4 clipCurrent[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_PREVIOUS) readonly buffer ClipPrevious { vec4 clipPrevious[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_SHADING) readonly buffer Shading { GpuVertexShading shading[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_COLOR) writeonly buffer Color { vec4 color[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_NORMAL_DEPTH) writeonly buffer NormalDepth { vec4 normalDepth[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_VELOCITY) writeonly buffer Velocity { vec2 velocity[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_OBJECT_ID) writeonly buffer ObjectId { uint objectId[]; };
+layout(std430, binding = HMB_RESOLVE_BINDING_GBUFFER) readonly buffer GBuffer { LayerTable gbuffer; };
 layout(push_constant) uniform Params { ResolveParams params; };
 
 #include "../shared/shading.glsl"
@@ -50,11 +45,12 @@ void main() {
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   const uint triangleId = visibility[index].x;
+  LayerTable target = gbuffer;
   if (triangleId == HMB_VIS_EMPTY) {
-    color[index] = vec4(camera.background.rgb, 1.0);
-    normalDepth[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
-    velocity[index] = vec2(0.0);
-    objectId[index] = 0u;
+    target.color.v[index] = vec4(scene.camera.v[0].background.rgb, 1.0);
+    target.normalDepth.v[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
+    target.velocity.v[index] = vec2(0.0);
+    target.objectId.v[index] = 0u;
     return;
   }
 
@@ -82,8 +78,8 @@ void main() {
 
   // Clip w of a perspective projection is the camera-space depth, and linear in barycentrics.
   const float depth = dot(b, vec3(c0.z, c1.z, c2.z));
-  color[index] = vec4(shadeSurface(instances[tri.instance].material, uv, n), 1.0);
-  normalDepth[index] = vec4(n, depth);
-  velocity[index] = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
-  objectId[index] = instances[tri.instance].objectId;
+  target.color.v[index] = vec4(shadeSurface(scene.instances.v[tri.instance].material, uv, n), 1.0);
+  target.normalDepth.v[index] = vec4(n, depth);
+  target.velocity.v[index] = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
+  target.objectId.v[index] = scene.instances.v[tri.instance].objectId;
 }

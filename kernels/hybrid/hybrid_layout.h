@@ -88,21 +88,15 @@
 // The list passes (edge_mask, reveal_background and the gather's list mode) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
 
-// reveal_background. Slots 2-13 hold the trace scene (kernels/trace/closest_hit.glsl).
-#define HMB_REVEAL_BINDING_CAMERA_RAYS 0    // PinholeCamera at the frame time
-#define HMB_REVEAL_BINDING_LIST 1           // the ray mask's pixel list
-#define HMB_REVEAL_BINDING_VERTICES 14      // GpuVertex per mesh vertex
-#define HMB_REVEAL_BINDING_INSTANCES 15     // GpuInstance per instance (material, previous transform)
-#define HMB_REVEAL_BINDING_MATERIALS 16
-#define HMB_REVEAL_BINDING_TEXELS 17
-#define HMB_REVEAL_BINDING_CAMERA 18        // GpuCamera: previous view-projection, light, background
-#define HMB_REVEAL_BINDING_RASTER_ID 19     // uint per pixel: the G-buffer's object id
-#define HMB_REVEAL_BINDING_COUNTERS 20      // RayMaskCounters: the list's length; rays are counted into it
-#define HMB_REVEAL_BINDING_COLOR 21         // vec4 per pixel: revealed colour (written at listed pixels)
-#define HMB_REVEAL_BINDING_NORMAL_DEPTH 22  // vec4 per pixel: revealed normal, w depth
-#define HMB_REVEAL_BINDING_VELOCITY 23      // vec2 per pixel: revealed velocity, pixels per frame
-#define HMB_REVEAL_BINDING_OBJECT_ID 24     // uint per pixel: revealed object id (0: nothing behind)
-#define HMB_REVEAL_BINDING_COUNT 25
+// reveal_background. Slot 2 holds the trace scene's table (kernels/trace/closest_hit.glsl).
+#define HMB_REVEAL_BINDING_CAMERA_RAYS 0  // PinholeCamera at the frame time
+#define HMB_REVEAL_BINDING_LIST 1         // the ray mask's pixel list
+#define HMB_REVEAL_BINDING_SCENE 3        // SceneTable: shading, previous transforms, camera
+#define HMB_REVEAL_BINDING_RASTER_ID 4    // uint per pixel: the G-buffer's object id
+#define HMB_REVEAL_BINDING_COUNTERS 5     // RayMaskCounters: the list's length; rays are counted into it
+#define HMB_REVEAL_BINDING_REVEALED 6     // LayerTable: the revealed layer (written at listed pixels;
+                                          // object id 0 where nothing is behind)
+#define HMB_REVEAL_BINDING_COUNT 7
 
 // RevealParams.stop
 #define HMB_REVEAL_STOP_OBJECT_ID 0u  // the first surface of another object (one trace, the object skipped whole)

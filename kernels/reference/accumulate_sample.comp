@@ -12,11 +12,7 @@ layout(local_size_x = HMB_REFERENCE_GROUP_X, local_size_y = HMB_REFERENCE_GROUP_
 
 layout(std430, binding = HMB_REFERENCE_BINDING_CAMERAS) readonly buffer Cameras { PinholeCamera cameras[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_SUM) buffer Sum { vec4 sum[]; };
-layout(std430, binding = HMB_REFERENCE_BINDING_VERTICES) readonly buffer Vertices { GpuVertex vertices[]; };
-layout(std430, binding = HMB_REFERENCE_BINDING_INSTANCES) readonly buffer SceneInstances { GpuInstance sceneInstances[]; };
-layout(std430, binding = HMB_REFERENCE_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
-layout(std430, binding = HMB_REFERENCE_BINDING_TEXELS) readonly buffer Texels { uint texels[]; };
-layout(std430, binding = HMB_REFERENCE_BINDING_CAMERA) readonly buffer Camera { GpuCamera camera; };
+layout(std430, binding = HMB_REFERENCE_BINDING_SCENE) readonly buffer Scene { SceneTable scene; };
 layout(std430, binding = HMB_REFERENCE_BINDING_PIXELS) readonly buffer Pixels { uint pixelList[]; };
 layout(push_constant) uniform Params { ReferenceSampleParams params; };
 
@@ -62,7 +58,7 @@ void main() {
   ray.pad1 = 0u;
 
   const BvhHit hit = closestHit(ray, TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES));
-  vec3 color = hit.triangle == HMB_NO_HIT ? camera.background.rgb : shadeHit(hit, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time);
+  vec3 color = hit.triangle == HMB_NO_HIT ? scene.camera.v[0].background.rgb : shadeHit(hit, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time);
   if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
   sum[index] += vec4(color, 1.0);
 }

@@ -11,16 +11,12 @@
 #define HMB_REFERENCE_GROUP_Y 8
 #define HMB_REFERENCE_AVERAGE_GROUP 64
 
-// accumulate_sample. Slots 2-13 hold the trace scene (kernels/trace/closest_hit.glsl).
-#define HMB_REFERENCE_BINDING_CAMERAS 0    // PinholeCamera per shutter time of the batch
-#define HMB_REFERENCE_BINDING_SUM 1        // vec4 per pixel: sum of the shaded samples so far
-#define HMB_REFERENCE_BINDING_VERTICES 14  // GpuVertex per mesh vertex (normals, uvs)
-#define HMB_REFERENCE_BINDING_INSTANCES 15  // GpuInstance per instance (material, flags)
-#define HMB_REFERENCE_BINDING_MATERIALS 16
-#define HMB_REFERENCE_BINDING_TEXELS 17
-#define HMB_REFERENCE_BINDING_CAMERA 18  // GpuCamera of the frame: light, ambient, background
-#define HMB_REFERENCE_BINDING_PIXELS 19  // uint pixel index per entry: the pixels to sample (list mode)
-#define HMB_REFERENCE_BINDING_COUNT 20
+// accumulate_sample. Slot 2 holds the trace scene's table (kernels/trace/closest_hit.glsl).
+#define HMB_REFERENCE_BINDING_CAMERAS 0  // PinholeCamera per shutter time of the batch
+#define HMB_REFERENCE_BINDING_SUM 1      // vec4 per pixel: sum of the shaded samples so far
+#define HMB_REFERENCE_BINDING_SCENE 3    // SceneTable: shading, light, background
+#define HMB_REFERENCE_BINDING_PIXELS 4   // uint pixel index per entry: the pixels to sample (list mode)
+#define HMB_REFERENCE_BINDING_COUNT 5
 
 // find_moving_pixels: pixels whose ray meets the box some moving instance sweeps over the
 // shutter. Only they can change over the shutter when the camera stands still.

@@ -2,6 +2,10 @@
 // two sides cannot drift. Shared structs use only 4-byte scalars, vec2/ivec2/uvec2 at 8-byte
 // offsets and vec4/uvec4/mat4 at 16-byte offsets, which lay out the same in std430 and C++;
 // every shared struct is checked with HMB_CHECK_SIZE on the C++ side.
+//
+// A table of device addresses (a group of buffers that travel together: the trace scene, the
+// shading scene, an image layer) declares each member HMB_REFERENCE(Type) at an 8-byte offset:
+// a GL_EXT_buffer_reference block type in GLSL, the buffer's VkDeviceAddress in C++.
 #ifndef HMB_KERNELS_SHARED_GLSL_CPP_H
 #define HMB_KERNELS_SHARED_GLSL_CPP_H
 
@@ -18,10 +22,13 @@
   using uvec4 = glm::uvec4;          \
   using mat4 = glm::mat4;
 #define HMB_GPU_END }
+#define HMB_REFERENCE(Type) uint64_t
 #define HMB_CHECK_SIZE(type, bytes) static_assert(sizeof(hmb::gpu::type) == (bytes), #type " layout drifted");
 #else
+#extension GL_EXT_buffer_reference : require
 #define HMB_GPU_BEGIN
 #define HMB_GPU_END
+#define HMB_REFERENCE(Type) Type
 #define HMB_CHECK_SIZE(type, bytes)
 #endif
 

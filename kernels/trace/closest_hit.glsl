@@ -2,8 +2,9 @@
 // ray's direction octant says where to go next (kernels/bvh/bvh_build_layout.h), so no
 // per-ray stack is kept and no tree is too deep. Instances of the ignored object are skipped
 // whole, so a reveal ray finds the first surface behind the object it starts on.
-// Declares the scene's buffers at bindings 2-13 (trace_layout.h); every kernel that traces
-// includes this file and keeps its own bindings outside that range.
+// Declares the trace scene's table of addresses at binding 2 (trace_layout.h); every kernel
+// that traces includes this file and keeps its own bindings off that slot. The traversal
+// copies the table's addresses once per ray and reads through them.
 #ifndef HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
 #define HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
 
@@ -11,18 +12,7 @@
 #include "ray_tests.glsl"
 #include "../bvh/packed_node.glsl"
 
-layout(std430, binding = HMB_TRACE_BINDING_TOP_NODES) readonly buffer TopNodes { uvec4 topNodes[]; };
-layout(std430, binding = HMB_TRACE_BINDING_TOP_LINKS) readonly buffer TopLinks { uint topLinks[]; };
-layout(std430, binding = HMB_TRACE_BINDING_TOP_PRIMITIVES) readonly buffer TopPrimitives { uint topPrimitives[]; };
-layout(std430, binding = HMB_TRACE_BINDING_INSTANCES) readonly buffer TraceInstances { TraceInstance traceInstances[]; };
-layout(std430, binding = HMB_TRACE_BINDING_TRANSFORMS) readonly buffer Transforms { InstanceTransform transforms[]; };
-layout(std430, binding = HMB_TRACE_BINDING_MESH_NODES) readonly buffer MeshNodes { uvec4 meshNodes[]; };
-layout(std430, binding = HMB_TRACE_BINDING_MESH_LINKS) readonly buffer MeshLinks { uint meshLinks[]; };
-layout(std430, binding = HMB_TRACE_BINDING_MESH_PRIMITIVES) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
-layout(std430, binding = HMB_TRACE_BINDING_TRIANGLES) readonly buffer TraceTriangles { uvec4 traceTriangles[]; };
-layout(std430, binding = HMB_TRACE_BINDING_POSITIONS) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = HMB_TRACE_BINDING_TOP_FRAME) readonly buffer TopFrame { BvhFrame topFrame; };
-layout(std430, binding = HMB_TRACE_BINDING_MESH_FRAMES) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
+layout(std430, binding = HMB_TRACE_BINDING_SCENE) readonly buffer TraceScene { TraceSceneTable traceScene; };
 
 // What a trace needs to know of the scene beside its buffers.
 struct TraceSceneInfo {
@@ -52,10 +42,10 @@ BvhHit missedHit(float tMax) {
 // Traces the ray, carried into the instance's space at its shutter time, through the
 // instance's mesh tree; keeps a hit that is nearer than `best` (ties: lower instance, then
 // lower triangle, so the answer does not depend on the visiting order).
-void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
-  const uint mesh = traceInstances[instance].mesh;
+void traceInstance(TraceSceneTable ts, uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+  const uint mesh = ts.instances.v[instance].mesh;
   const uint time = min(ray.time, scene.timeCount - 1u);
-  const mat4 objectFromWorld = transforms[instance * scene.timeCount + time].objectFromWorld;
+  const mat4 objectFromWorld = ts.transforms.v[instance * scene.timeCount + time].objectFromWorld;
   const vec3 origin = (objectFromWorld * vec4(ray.originTMin.xyz, 1.0)).xyz;
   const vec3 direction = mat3(objectFromWorld) * ray.directionTMax.xyz;
   const PreparedRay r = prepareRay(origin, direction);
@@ -63,14 +53,14 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
   // A back face is one whose counter-clockwise normal the ray runs along; a transform that
   // flips handedness flips that in object space.
   const bool cull = (scene.flags & HMB_TRACE_CULL_BACK_FACES) != 0u &&
-                    (traceInstances[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
+                    (ts.instances.v[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
   const float handedness = determinant(mat3(objectFromWorld)) < 0.0 ? -1.0 : 1.0;
   const float tMin = ray.originTMin.w;
-  const BvhFrame frame = meshFrames[mesh];
+  const BvhFrame frame = ts.meshFrames.v[mesh];
   uint node = mesh;
   while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = meshNodes[node];
-    const uint link = meshLinks[node * HMB_BVH_OCTANTS + r.octant];
+    const uvec4 n = ts.meshNodes.v[node];
+    const uint link = ts.meshLinks.v[node * HMB_BVH_OCTANTS + r.octant];
     if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), tMin, best.t)) {
       const uint count = packedCount(n);
       if (count == 0u) {
@@ -79,9 +69,9 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
       }
       const uint first = packedLeftOrFirst(n);
       for (uint k = 0; k < count; ++k) {
-        const uint triangle = meshPrimitives[first + k];
-        const uvec4 tri = traceTriangles[triangle];
-        const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
+        const uint triangle = ts.meshPrimitives.v[first + k];
+        const uvec4 tri = ts.triangles.v[triangle];
+        const vec3 p0 = ts.positions.v[tri.x].xyz, p1 = ts.positions.v[tri.y].xyz, p2 = ts.positions.v[tri.z].xyz;
         float t, u, v;
         if (!intersectTriangle(r, p0, p1, p2, t, u, v)) continue;
         if (!(t >= tMin) || t > best.t) continue;
@@ -93,7 +83,7 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
         best.u = u;
         best.v = v;
         best.triangle = triangle;
-        best.objectId = traceInstances[instance].objectId;
+        best.objectId = ts.instances.v[instance].objectId;
         best.instance = instance;
       }
     }
@@ -106,11 +96,12 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
   BvhHit best = missedHit(ray.directionTMax.w);
   const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
   if (!r.valid || scene.instanceCount == 0u) return best;
-  const BvhFrame frame = topFrame;
+  TraceSceneTable ts = traceScene;
+  const BvhFrame frame = ts.topFrame.v[0];
   uint node = HMB_BVH_ROOT;
   while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = topNodes[node];
-    const uint link = topLinks[node * HMB_BVH_OCTANTS + r.octant];
+    const uvec4 n = ts.topNodes.v[node];
+    const uint link = ts.topLinks.v[node * HMB_BVH_OCTANTS + r.octant];
     if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), ray.originTMin.w, best.t)) {
       const uint count = packedCount(n);
       if (count == 0u) {
@@ -119,8 +110,8 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
       }
       const uint first = packedLeftOrFirst(n);
       for (uint k = 0; k < count; ++k) {
-        const uint instance = topPrimitives[first + k];
-        if (traceInstances[instance].objectId != ray.ignoreObjectId) traceInstance(instance, ray, scene, best);
+        const uint instance = ts.topPrimitives.v[first + k];
+        if (ts.instances.v[instance].objectId != ray.ignoreObjectId) traceInstance(ts, instance, ray, scene, best);
       }
     }
     node = link & HMB_BVH_LINK_NEXT_MASK;

@@ -11,23 +11,12 @@
 
 #define HMB_TRACE_GROUP 64
 
-// trace_rays. Bindings 2-13 are the scene (closest_hit.glsl declares them); every kernel that
-// traces uses these slots for them and its own slots outside 2-13.
-#define HMB_TRACE_BINDING_RAYS 0             // TraceRay[]
-#define HMB_TRACE_BINDING_HITS 1             // BvhHit[], one per ray
-#define HMB_TRACE_BINDING_TOP_NODES 2        // BvhPackedNode[] over instances
-#define HMB_TRACE_BINDING_TOP_LINKS 3        // uint[8 * nodes]
-#define HMB_TRACE_BINDING_TOP_PRIMITIVES 4   // uint instance[]
-#define HMB_TRACE_BINDING_INSTANCES 5        // TraceInstance[]
-#define HMB_TRACE_BINDING_TRANSFORMS 6       // InstanceTransform[instance * timeCount + time]
-#define HMB_TRACE_BINDING_MESH_NODES 7       // BvhPackedNode[] of every mesh, mesh m's root at node m
-#define HMB_TRACE_BINDING_MESH_LINKS 8       // uint[8 * nodes]
-#define HMB_TRACE_BINDING_MESH_PRIMITIVES 9  // uint triangle[] (indices into the triangle buffer)
-#define HMB_TRACE_BINDING_TRIANGLES 10       // uvec4 (v0, v1, v2, mesh) per triangle of every mesh
-#define HMB_TRACE_BINDING_POSITIONS 11       // vec4 per mesh vertex (object space)
-#define HMB_TRACE_BINDING_TOP_FRAME 12       // BvhFrame of the top level
-#define HMB_TRACE_BINDING_MESH_FRAMES 13     // BvhFrame per mesh
-#define HMB_TRACE_BINDING_COUNT 14
+// trace_rays. Binding 2 is the trace scene's table of addresses (TraceSceneTable below, declared
+// by closest_hit.glsl); every kernel that traces keeps it there.
+#define HMB_TRACE_BINDING_RAYS 0   // TraceRay[]
+#define HMB_TRACE_BINDING_HITS 1   // BvhHit[], one per ray
+#define HMB_TRACE_BINDING_SCENE 2  // TraceSceneTable
+#define HMB_TRACE_BINDING_COUNT 3
 
 // instance_motion_bounds: the boxes the top level is built over
 #define HMB_MOTION_BOUNDS_BINDING_MESH_NODES 0
@@ -87,6 +76,37 @@ struct InstanceTransform {
 
 HMB_GPU_END
 
+#ifndef __cplusplus
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PackedNodes { uvec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Words { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TraceInstances { TraceInstance v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceTransforms { InstanceTransform v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Uvec4s { uvec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4s { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhFrames { BvhFrame v[]; };
+#endif
+
+HMB_GPU_BEGIN
+
+// The trace scene's buffers, by device address (runtime/trace_scene.h writes it).
+struct TraceSceneTable {
+  HMB_REFERENCE(PackedNodes) topNodes;           // over instances
+  HMB_REFERENCE(Words) topLinks;                 // 8 per node
+  HMB_REFERENCE(Words) topPrimitives;            // instance per leaf entry
+  HMB_REFERENCE(TraceInstances) instances;
+  HMB_REFERENCE(InstanceTransforms) transforms;  // [instance * timeCount + time]
+  HMB_REFERENCE(PackedNodes) meshNodes;          // of every mesh, mesh m's root at node m
+  HMB_REFERENCE(Words) meshLinks;                // 8 per node
+  HMB_REFERENCE(Words) meshPrimitives;           // triangle per leaf entry (into triangles)
+  HMB_REFERENCE(Uvec4s) triangles;               // (v0, v1, v2, mesh) per triangle of every mesh
+  HMB_REFERENCE(Vec4s) positions;                // per mesh vertex, object space
+  HMB_REFERENCE(BvhFrames) topFrame;             // one
+  HMB_REFERENCE(BvhFrames) meshFrames;           // one per mesh
+};
+
+HMB_GPU_END
+
+HMB_CHECK_SIZE(TraceSceneTable, 96)
 HMB_CHECK_SIZE(TraceParams, 16)
 HMB_CHECK_SIZE(TraceRay, 48)
 HMB_CHECK_SIZE(TraceInstance, 16)

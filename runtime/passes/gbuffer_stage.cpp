@@ -30,11 +30,10 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
   }
   if (width != width_ || height != height_) {
     const uint64_t pixels = uint64_t(width) * height;
+    width_ = height_ = 0;  // until every buffer below is allocated: a failed frame leaves none sized
     visibility_ = vk::Buffer(context_, pixels * sizeof(uint64_t), vk::MemoryUse::Device, "visibility");
-    color_ = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "gbuffer colour");
-    normalDepth_ = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "gbuffer normal+depth");
-    velocity_ = vk::Buffer(context_, pixels * sizeof(glm::vec2), vk::MemoryUse::Device, "gbuffer velocity");
-    objectId_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "gbuffer object id");
+    layer_ = {};  // the old layer goes first: the two never take memory at once
+    layer_ = ImageLayer::allocate(context_, pixels, "gbuffer");
     width_ = width;
     height_ = height;
   }
@@ -45,8 +44,7 @@ void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const
   transform_.record(frame, scene, clipCurrent_, clipPrevious_, vertexShading_);
   const RasterInputs inputs{&scene.triangles(), &scene.instances(), &clipCurrent_, scene.triangleCount()};
   rasterize_.record(frame, inputs, visibility_, width_, height_);
-  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_,
-                  {&color_, &normalDepth_, &velocity_, &objectId_}, width_, height_);
+  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_, layer_, width_, height_);
 }
 
 }  // namespace hmb::passes

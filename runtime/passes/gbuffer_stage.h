@@ -36,14 +36,14 @@ class GBufferStage {
   const vk::Buffer& clipPrevious() const { return clipPrevious_; }
   const vk::Buffer& vertexShading() const { return vertexShading_; }
   const vk::Buffer& visibility() const { return visibility_; }
-  const vk::Buffer& color() const { return color_; }
-  const vk::Buffer& normalDepth() const { return normalDepth_; }
-  const vk::Buffer& velocity() const { return velocity_; }
-  const vk::Buffer& objectId() const { return objectId_; }
+  const ImageLayer& layer() const { return layer_; }
+  const vk::Buffer& color() const { return layer_.color(); }
+  const vk::Buffer& normalDepth() const { return layer_.normalDepth(); }
+  const vk::Buffer& velocity() const { return layer_.velocity(); }
+  const vk::Buffer& objectId() const { return layer_.objectId(); }
   // Bytes per pixel of the per-pixel buffers: visibility, colour, normal-depth, velocity, id.
   double bytesPerPixel(uint32_t width, uint32_t height) const {
-    return double(visibility_.size() + color_.size() + normalDepth_.size() + velocity_.size() + objectId_.size()) /
-           (double(width) * height);
+    return double(visibility_.size() + layer_.bytes()) / (double(width) * height);
   }
 
  private:
@@ -53,7 +53,8 @@ class GBufferStage {
   ResolveGBufferPass resolve_;
   uint32_t width_ = 0, height_ = 0, vertexCapacity_ = 0;
   vk::Buffer clipCurrent_, clipPrevious_, vertexShading_;
-  vk::Buffer visibility_, color_, normalDepth_, velocity_, objectId_;
+  vk::Buffer visibility_;
+  ImageLayer layer_;
 };
 
 }  // namespace hmb::passes

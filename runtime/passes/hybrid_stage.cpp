@@ -67,11 +67,9 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   rayMask_.prepare(width, height);
   if (width != width_ || height != height_) {
     const uint64_t pixels = uint64_t(width) * height;
-    revealedColor_ = vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "revealed colour");
-    revealedNormalDepth_ =
-        vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "revealed normal-depth");
-    revealedVelocity_ = vk::Buffer(context_, pixels * sizeof(glm::vec2), vk::MemoryUse::Device, "revealed velocity");
-    revealedObjectId_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "revealed object id");
+    width_ = height_ = 0;  // until every buffer below is allocated: a failed frame leaves none sized
+    revealed_ = {};  // the old layer goes first: the two never take memory at once
+    revealed_ = ImageLayer::allocate(context_, pixels, "revealed");
     backgroundBlurred_ =
         vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "background blurred (mask pixels)");
     width_ = width;
@@ -103,15 +101,15 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   maskParameters.seed = blur.seed;
   rayMask_.record(frame, raster, gbuffer.objectId(), maskParameters);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.objectId(), rayMask_.list(), rayMask_.counters(),
-                 {&revealedColor_, &revealedNormalDepth_, &revealedVelocity_, &revealedObjectId_}, width_, height_,
+                 revealed_, width_, height_,
                  settings_);
 
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
   GatherOptions background;
   background.mask = &rayMask_.mask();
-  background.overlayColor = &revealedColor_;
-  background.overlayNormalDepth = &revealedNormalDepth_;
-  background.overlayVelocity = &revealedVelocity_;
+  background.overlayColor = &revealed_.color();
+  background.overlayNormalDepth = &revealed_.normalDepth();
+  background.overlayVelocity = &revealed_.velocity();
   background.pixelList = &rayMask_.list();
   background.listCounters = &rayMask_.counters();
   postProcess_.recordGather(frame, raster, background, backgroundBlurred_, kGatherBackground);

@@ -73,9 +73,7 @@ class HybridStage {
   };
   std::optional<TreeBytes> meshTreeBytes() const;
   // What the reveal found, written at mask pixels only (the rest is stale).
-  const vk::Buffer& revealedColor() const { return revealedColor_; }
-  const vk::Buffer& revealedNormalDepth() const { return revealedNormalDepth_; }
-  const vk::Buffer& revealedObjectId() const { return revealedObjectId_; }
+  const ImageLayer& revealed() const { return revealed_; }
 
  private:
   const vk::Context& context_;
@@ -86,7 +84,7 @@ class HybridStage {
   std::unique_ptr<TraceScene> traceScene_;
   uint32_t width_ = 0, height_ = 0;
   vk::Buffer cameraRays_;
-  vk::Buffer revealedColor_, revealedNormalDepth_, revealedVelocity_, revealedObjectId_;
+  ImageLayer revealed_;
   vk::Buffer backgroundBlurred_;
 };
 

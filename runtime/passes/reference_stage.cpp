@@ -297,12 +297,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
         frame.begin();
         if (groups.x > 0)
           frame.dispatch(kAccumulate, accumulate_.forScene(gpuScene),
-                         {&cameraBuffer, &sum, &ts.instanceBvh().nodes(), &ts.instanceBvh().links(),
-                          &ts.instanceBvh().primitives(), &ts.instances(), &ts.transforms(), &ts.meshBvh().nodes(),
-                          &ts.meshBvh().links(), &ts.meshBvh().primitives(), &ts.triangles(), &ts.positions(),
-                          &ts.instanceBvh().frames(), &ts.meshBvh().frames(), &gpuScene.vertices(),
-                          &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(), &gpuScene.cameraBuffer(),
-                          &pixelList},
+                         {&cameraBuffer, &sum, &ts.table(), &gpuScene.table(), &pixelList},
                          params, groups);
         vk::appendTimings(total, frame.submitAndWait());
         ++progress_.samplesDone;

@@ -11,14 +11,13 @@ ResolveGBufferPass::ResolveGBufferPass(const vk::Context& context)
 
 void ResolveGBufferPass::record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& visibility,
                                 const vk::Buffer& clipCurrent, const vk::Buffer& clipPrevious,
-                                const vk::Buffer& vertexShading, const GBufferTargets& targets, uint32_t width,
+                                const vk::Buffer& vertexShading, const ImageLayer& target, uint32_t width,
                                 uint32_t height) const {
   // Empty pixels lie at the far plane, so depth comparisons treat them as the farthest surface.
   const gpu::ResolveParams params{width, height, scene.camera().zfar, 0};
   frame.dispatch(kName, kernel_.forScene(scene),
-                 {&visibility, &scene.triangles(), &scene.instances(), &scene.materials(), &scene.texels(),
-                  &scene.cameraBuffer(), &clipCurrent, &clipPrevious, &vertexShading, targets.color,
-                  targets.normalDepth, targets.velocity, targets.objectId},
+                 {&visibility, &scene.triangles(), &scene.table(), &clipCurrent, &clipPrevious, &vertexShading,
+                  &target.table()},
                  params, {vk::groupsFor(width, HMB_RESOLVE_GROUP_X), vk::groupsFor(height, HMB_RESOLVE_GROUP_Y), 1});
 }
 

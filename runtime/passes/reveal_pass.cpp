@@ -16,7 +16,7 @@ RevealPass::RevealPass(const vk::Context& context)
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
                         const vk::Buffer& cameraRays, const vk::Buffer& rasterObjectId, const vk::Buffer& list,
-                        const vk::Buffer& counters, const RevealedLayer& output, uint32_t width, uint32_t height,
+                        const vk::Buffer& counters, const ImageLayer& output, uint32_t width, uint32_t height,
                         const HybridSettings& settings) const {
   if (ts.timeCount() != 1) throw Error("ray reveal: the trace scene must hold the frame time alone");
   const FrameCamera& camera = gpuScene.camera();
@@ -33,15 +33,9 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  0u,
                                  0u,
                                  0u};
-  const passes::BvhBuildPass& top = ts.instanceBvh();
-  const passes::BvhBuildPass& meshes = ts.meshBvh();
   frame.dispatchIndirect(kName, kernel_.forScene(gpuScene),
-                         {&cameraRays, &list, &top.nodes(), &top.links(), &top.primitives(), &ts.instances(),
-                          &ts.transforms(), &meshes.nodes(), &meshes.links(), &meshes.primitives(), &ts.triangles(),
-                          &ts.positions(), &top.frames(), &meshes.frames(), &gpuScene.vertices(),
-                          &gpuScene.instances(), &gpuScene.materials(), &gpuScene.texels(), &gpuScene.cameraBuffer(),
-                          &rasterObjectId, &counters, output.color, output.normalDepth, output.velocity,
-                          output.objectId},
+                         {&cameraRays, &list, &ts.table(), &gpuScene.table(), &rasterObjectId, &counters,
+                          &output.table()},
                          params, counters, offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "runtime/passes/hybrid_settings.h"
+#include "runtime/passes/image_layer.h"
 #include "runtime/passes/shading_kernel.h"
 
 namespace hmb {
@@ -19,23 +20,16 @@ class FrameRecorder;
 
 namespace hmb::passes {
 
-// A G-buffer layer the reveal writes into at the listed pixels.
-struct RevealedLayer {
-  const vk::Buffer* color = nullptr;        // vec4
-  const vk::Buffer* normalDepth = nullptr;  // vec4
-  const vk::Buffer* velocity = nullptr;     // vec2
-  const vk::Buffer* objectId = nullptr;     // uint
-};
-
 class RevealPass {
  public:
   static constexpr const char* kName = "ray-reveal";
   explicit RevealPass(const vk::Context& context);
   // traceScene: shutter times set to the frame time alone. cameraRays: one gpu::PinholeCamera
   // at the frame time. rasterObjectId: the G-buffer's ids. list, counters: RayMaskStage's.
+  // output: written at the listed pixels.
   void record(vk::FrameRecorder& frame, const TraceScene& traceScene, const GpuScene& gpuScene,
               const vk::Buffer& cameraRays, const vk::Buffer& rasterObjectId, const vk::Buffer& list,
-              const vk::Buffer& counters, const RevealedLayer& output, uint32_t width, uint32_t height,
+              const vk::Buffer& counters, const ImageLayer& output, uint32_t width, uint32_t height,
               const HybridSettings& settings) const;
 
  private:

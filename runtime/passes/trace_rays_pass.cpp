@@ -14,13 +14,8 @@ void TraceRaysPass::record(vk::FrameRecorder& frame, const TraceScene& scene, co
                            const vk::Buffer& hits, uint32_t rayCount, uint32_t flags) const {
   if (scene.timeCount() == 0) throw Error("trace-rays: the scene's shutter times are not set");
   const gpu::TraceParams params{rayCount, scene.instanceCount(), scene.timeCount(), flags};
-  const passes::BvhBuildPass& top = scene.instanceBvh();
-  const passes::BvhBuildPass& meshes = scene.meshBvh();
-  frame.dispatch(kName, kernel_,
-                 {&rays, &hits, &top.nodes(), &top.links(), &top.primitives(), &scene.instances(), &scene.transforms(),
-                  &meshes.nodes(), &meshes.links(), &meshes.primitives(), &scene.triangles(), &scene.positions(),
-                  &top.frames(), &meshes.frames()},
-                 params, vk::foldedGroups(vk::groupsFor(rayCount, HMB_TRACE_GROUP)));
+  frame.dispatch(kName, kernel_, {&rays, &hits, &scene.table()}, params,
+                 vk::foldedGroups(vk::groupsFor(rayCount, HMB_TRACE_GROUP)));
 }
 
 }  // namespace hmb::passes

@@ -36,6 +36,8 @@ class Buffer {
 
   VkBuffer handle() const { return buffer_; }
   VkDeviceSize size() const { return size_; }
+  // Where kernels reach it through a table of addresses (kernels/shared/glsl_cpp.h).
+  VkDeviceAddress address() const { return address_; }
   const std::string& name() const { return name_; }
   // Host pointer when the memory is host-visible and coherent, else nullptr.
   void* mapped() const { return mapped_; }
@@ -66,6 +68,7 @@ class Buffer {
   uint32_t heap_ = 0;           // the memory heap it was counted in
   void* mapped_ = nullptr;
   bool hostCached_ = false;
+  VkDeviceAddress address_ = 0;
   std::string name_;
 };
 

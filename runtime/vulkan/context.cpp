@@ -114,11 +114,14 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
   }
 
   VkPhysicalDeviceShaderAtomicInt64Features atomic64{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES};
+  VkPhysicalDeviceBufferDeviceAddressFeatures addresses{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES};
   if (vulkan12 || hasDeviceExtension(device, VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME)) {
     VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features2.pNext = &atomic64;
+    if (vulkan12) atomic64.pNext = &addresses;
     vkGetPhysicalDeviceFeatures2(device, &features2);
     info.int64BufferAtomics = atomic64.shaderBufferInt64Atomics && features2.features.shaderInt64;
+    info.bufferDeviceAddress = vulkan12 && addresses.bufferDeviceAddress;
   }
 
   const int family = pickQueueFamily(device);
@@ -317,11 +320,18 @@ Context::Context(const ContextOptions& options) {
     VkPhysicalDeviceShaderAtomicInt64Features atomic64{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES};
     std::vector<const char*> deviceExtensions;
+    // Kernels reach groups of buffers (the trace scene, the shading scene, an image layer)
+    // through tables of device addresses, which keeps each within the 8 storage buffers that
+    // mobile GPUs allow per stage.
+    if (!info_.bufferDeviceAddress)
+      throw Error("device '" + info_.name + "' lacks bufferDeviceAddress (Vulkan 1.2), which the kernels need");
+    VkPhysicalDeviceBufferDeviceAddressFeatures addresses{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES};
+    addresses.bufferDeviceAddress = VK_TRUE;
+    features2.pNext = &addresses;
     if (info_.int64BufferAtomics) {
       atomic64.shaderBufferInt64Atomics = VK_TRUE;
-      features2.pNext = &atomic64;
-      if (props.apiVersion < VK_API_VERSION_1_2)
-        deviceExtensions.push_back(VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME);
+      addresses.pNext = &atomic64;
     }
     // Portability implementations must enable this extension when they expose it.
     if (hasDeviceExtension(physicalDevice_, "VK_KHR_portability_subset"))

@@ -26,6 +26,7 @@ struct DeviceInfo {
   uint32_t deviceId = 0;
   bool computeCapable = false;
   bool int64BufferAtomics = false;  // shaderBufferInt64Atomics
+  bool bufferDeviceAddress = false;  // kernels reach grouped buffers through tables of addresses
   bool timestamps = false;          // the compute queue has timestamp bits
   uint64_t timestampMask = 0;       // the valid bits of a timestamp on that queue
   double timestampPeriodNs = 0.0;

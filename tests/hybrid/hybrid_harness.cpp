@@ -114,15 +114,15 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
   const vk::Buffer listBuffer = vk::uploadedBuffer(context, list, "test pixel list");
   const vk::Buffer counters = vk::uploadedBuffer(
       context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(list.size()))}, "test counters");
-  const vk::Buffer color = filledBuffer(context, pixels, kSentinelColor, "test revealed colour");
-  const vk::Buffer normalDepth = filledBuffer(context, pixels, kSentinelColor, "test revealed normal-depth");
-  const vk::Buffer velocity = filledBuffer(context, pixels, kSentinelVelocity, "test revealed velocity");
-  const vk::Buffer objectId = filledBuffer(context, pixels, kSentinelId, "test revealed object id");
+  const passes::ImageLayer output(context, filledBuffer(context, pixels, kSentinelColor, "test revealed colour"),
+                                  filledBuffer(context, pixels, kSentinelColor, "test revealed normal-depth"),
+                                  filledBuffer(context, pixels, kSentinelVelocity, "test revealed velocity"),
+                                  filledBuffer(context, pixels, kSentinelId, "test revealed object id"));
 
   const passes::RevealPass reveal(context);
   frame.begin();
   reveal.record(frame, traceScene, gpuScene, cameraRays, gbuffer.objectId(), listBuffer, counters,
-                {&color, &normalDepth, &velocity, &objectId}, width, height, settings);
+                output, width, height, settings);
   frame.submitAndWait();
 
   RevealReadback out;
@@ -130,8 +130,10 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
   out.raster = {
       downloadFirst<glm::vec4>(gbuffer.color(), pixels), downloadFirst<glm::vec4>(gbuffer.normalDepth(), pixels),
       downloadFirst<glm::vec2>(gbuffer.velocity(), pixels), downloadFirst<uint32_t>(gbuffer.objectId(), pixels)};
-  out.revealed = {downloadFirst<glm::vec4>(color, pixels), downloadFirst<glm::vec4>(normalDepth, pixels),
-                  downloadFirst<glm::vec2>(velocity, pixels), downloadFirst<uint32_t>(objectId, pixels)};
+  out.revealed = {downloadFirst<glm::vec4>(output.color(), pixels),
+                  downloadFirst<glm::vec4>(output.normalDepth(), pixels),
+                  downloadFirst<glm::vec2>(output.velocity(), pixels),
+                  downloadFirst<uint32_t>(output.objectId(), pixels)};
   out.counters = counters.download<gpu::RayMaskCounters>().at(0);
   return out;
 }

@@ -1,0 +1,33 @@
+// One image layer of per-pixel buffers (kernels/shared/layer_layout.h): colour, normal and
+// depth, velocity, object id, and the table of their addresses that kernels bind. The G-buffer
+// and the hybrid's revealed layer are both one.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "runtime/vulkan/buffer.h"
+
+namespace hmb::passes {
+
+class ImageLayer {
+ public:
+  ImageLayer() = default;
+  // Takes the four buffers (at least `pixels` entries each) and writes their table.
+  ImageLayer(const vk::Context& context, vk::Buffer color, vk::Buffer normalDepth, vk::Buffer velocity,
+             vk::Buffer objectId);
+  // Four new buffers of `pixels` entries, named "<name> colour", "<name> normal-depth", ...
+  static ImageLayer allocate(const vk::Context& context, uint64_t pixels, const std::string& name);
+
+  const vk::Buffer& color() const { return color_; }              // vec4 linear RGB, a = 1
+  const vk::Buffer& normalDepth() const { return normalDepth_; }  // vec4 world normal, w camera-space depth
+  const vk::Buffer& velocity() const { return velocity_; }        // vec2 pixels per frame, y down
+  const vk::Buffer& objectId() const { return objectId_; }        // uint, 0 = background
+  const vk::Buffer& table() const { return table_; }              // gpu::LayerTable
+  uint64_t bytes() const { return color_.size() + normalDepth_.size() + velocity_.size() + objectId_.size(); }
+
+ private:
+  vk::Buffer color_, normalDepth_, velocity_, objectId_, table_;
+};
+
+}  // namespace hmb::passes
