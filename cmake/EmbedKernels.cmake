@@ -1,27 +1,49 @@
 # Compiles GLSL compute kernels to SPIR-V at build time and embeds them in a target.
 #
-# hmb_embed_kernels(TARGET tgt ROOT dir KERNELS a/b.comp ...)
+# hmb_embed_kernels(TARGET tgt ROOT dir KERNELS a/b.comp ... [ADDRESS_VARIANTS a/b.comp ...])
 # Each kernel "stage/name.comp" becomes the registry entry "stage/name"; runtime code looks
 # kernels up by that name (runtime/vulkan/kernel_registry.h), so no file is read at run time.
+# A kernel also listed in ADDRESS_VARIANTS is built a second time with HMB_BIND_BY_ADDRESS,
+# as "stage/name#by-address": its groups of buffers bound as tables of device addresses, for
+# devices with few storage-buffer bindings (vk::ComputeKernel picks the build).
 function(hmb_embed_kernels)
-  cmake_parse_arguments(ARG "" "TARGET;ROOT" "KERNELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "TARGET;ROOT" "KERNELS;ADDRESS_VARIANTS" ${ARGN})
   set(gen_dir ${CMAKE_CURRENT_BINARY_DIR}/spirv)
   file(MAKE_DIRECTORY ${gen_dir})
   set(headers)
   set(includes "")
   set(entries "")
+  set(builds)
   foreach(kernel ${ARG_KERNELS})
+    list(APPEND builds "${kernel}|")
+  endforeach()
+  foreach(kernel ${ARG_ADDRESS_VARIANTS})
+    list(APPEND builds "${kernel}|by-address")
+  endforeach()
+  foreach(build ${builds})
+    string(REPLACE "|" ";" parts "${build}")
+    list(GET parts 0 kernel)
+    list(LENGTH parts part_count)
+    set(variant "")
+    if(part_count GREATER 1)
+      list(GET parts 1 variant)
+    endif()
     string(REGEX REPLACE "\\.comp$" "" name ${kernel})
+    set(defines)
+    if(variant STREQUAL "by-address")
+      set(name "${name}#by-address")
+      set(defines -DHMB_BIND_BY_ADDRESS=1)
+    endif()
     string(MAKE_C_IDENTIFIER "kSpv_${name}" symbol)
-    string(REPLACE "/" "_" flat ${name})
+    string(MAKE_C_IDENTIFIER "${name}" flat)
     set(header ${gen_dir}/${flat}.spv.h)
     add_custom_command(
       OUTPUT ${header}
-      COMMAND ${GLSLANG_VALIDATOR} -V --quiet --target-env vulkan1.1 -I${ARG_ROOT}
+      COMMAND ${GLSLANG_VALIDATOR} -V --quiet --target-env vulkan1.1 -I${ARG_ROOT} ${defines}
               --depfile ${header}.d --vn ${symbol} -o ${header} ${ARG_ROOT}/${kernel}
       DEPENDS ${ARG_ROOT}/${kernel}
       DEPFILE ${header}.d
-      COMMENT "glslang ${kernel}"
+      COMMENT "glslang ${kernel} ${variant}"
       VERBATIM)
     list(APPEND headers ${header})
     string(APPEND includes "#include \"${flat}.spv.h\"\n")

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -53,9 +54,10 @@ class GpuScene {
   const vk::Buffer& materials() const { return materials_; }
   const vk::Buffer& texels() const { return texels_; }
   const vk::Buffer& cameraBuffer() const { return cameraBuffer_; }
-  // The addresses of vertices, instances, materials, texels and camera (gpu::SceneTable), as
-  // the shading kernels bind them.
-  const vk::Buffer& table() const { return table_; }
+  // Appends the scene as a shading kernel binds it (kernels/shared/scene_bindings.glsl):
+  // vertices, instances, materials, texels and camera, or the table of their addresses for a
+  // kernel that binds by address.
+  void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
 
  private:
   uint32_t triangleCount_ = 0;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "runtime/error.h"
+#include "runtime/vulkan/context.h"
 #include "runtime/frame_plan.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -73,9 +74,8 @@ gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t wi
 
 TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame)
     : context_(context),
-      triangleBoundsKernel_(context, "bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t)),
-      motionBoundsKernel_(context, "trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT,
-                          sizeof(gpu::TraceParams)),
+      triangleBoundsKernel_(context, "bvh/triangle_bounds", sizeof(uint32_t)),
+      motionBoundsKernel_(context, "trace/instance_motion_bounds", sizeof(gpu::TraceParams)),
       meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF),
       instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF) {
   std::vector<glm::vec4> positions;
@@ -108,7 +108,8 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   });
   triangleBoxes = {};
   meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
-  table_ = vk::Buffer(context, sizeof(gpu::TraceSceneTable), vk::MemoryUse::Device, "trace scene table");
+  if (context.info().bufferDeviceAddress)
+    table_ = vk::Buffer(context, sizeof(gpu::TraceSceneTable), vk::MemoryUse::Device, "trace scene table");
 }
 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
@@ -144,13 +145,27 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
 
-  const gpu::TraceSceneTable table{instanceBvh_.nodes().address(),     instanceBvh_.links().address(),
-                                   instanceBvh_.primitives().address(), instances_.address(),
-                                   transforms_.address(),               meshBvh_.nodes().address(),
-                                   meshBvh_.links().address(),          meshBvh_.primitives().address(),
-                                   triangles_.address(),                positions_.address(),
-                                   instanceBvh_.frames().address(),     meshBvh_.frames().address()};
-  table_.upload(std::span(&table, 1));
+  if (context_.info().bufferDeviceAddress) {
+    std::vector<const vk::Buffer*> buffers;
+    appendBindings(buffers, false);
+    gpu::TraceSceneTable table{};
+    static_assert(sizeof(table) == HMB_TRACE_SCENE_BUFFERS * sizeof(uint64_t));
+    for (size_t i = 0; i < buffers.size(); ++i) reinterpret_cast<uint64_t*>(&table)[i] = buffers[i]->address();
+    table_.upload(std::span<const gpu::TraceSceneTable>(&table, 1));
+  }
+}
+
+void TraceScene::appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const {
+  if (byAddress) {
+    if (!table_.handle()) throw Error("the trace scene has no table of addresses on this device");
+    bindings.push_back(&table_);
+    return;
+  }
+  // The order of kernels/trace/trace_scene_bindings.glsl and of gpu::TraceSceneTable.
+  bindings.insert(bindings.end(), {&instanceBvh_.nodes(), &instanceBvh_.links(), &instanceBvh_.primitives(),
+                                   &instances_, &transforms_, &meshBvh_.nodes(), &meshBvh_.links(),
+                                   &meshBvh_.primitives(), &triangles_, &positions_, &instanceBvh_.frames(),
+                                   &meshBvh_.frames()});
 }
 
 bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene) {

@@ -65,9 +65,9 @@ class TraceScene {
   const vk::Buffer& instances() const { return instances_; }
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
-  // The addresses of the buffers above (gpu::TraceSceneTable), as every tracing kernel binds
-  // them (kernels/trace/closest_hit.glsl); written by setShutterTimes.
-  const vk::Buffer& table() const { return table_; }
+  // Appends the trace scene as a tracing kernel binds it (kernels/trace/trace_scene_bindings.glsl):
+  // its 12 buffers, or the table of their addresses for a kernel that binds by address.
+  void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
 
  private:
   const vk::Context& context_;
@@ -89,7 +89,7 @@ class TraceScene {
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
-  vk::Buffer table_;          // gpu::TraceSceneTable
+  vk::Buffer table_;          // gpu::TraceSceneTable, on devices with buffer device addresses
 };
 
 // The trace scene a stage keeps from one frame to the next (the hybrid's, the reference's).

@@ -3,18 +3,23 @@
 #define HMB_KERNELS_GBUFFER_GBUFFER_LAYOUT_H
 
 #include "../shared/glsl_cpp.h"
+#include "../shared/scene_layout.h"
+#include "../shared/layer_layout.h"
 
 #define HMB_RESOLVE_GROUP_X 8
 #define HMB_RESOLVE_GROUP_Y 8
 
 #define HMB_RESOLVE_BINDING_VISIBILITY 0
 #define HMB_RESOLVE_BINDING_TRIANGLES 1
-#define HMB_RESOLVE_BINDING_SCENE 2          // SceneTable (shared/scene_layout.h)
-#define HMB_RESOLVE_BINDING_CLIP_CURRENT 3
-#define HMB_RESOLVE_BINDING_CLIP_PREVIOUS 4
-#define HMB_RESOLVE_BINDING_SHADING 5        // GpuVertexShading per instance vertex
-#define HMB_RESOLVE_BINDING_GBUFFER 6        // LayerTable (shared/layer_layout.h): the G-buffer written
-#define HMB_RESOLVE_BINDING_COUNT 7
+#define HMB_RESOLVE_BINDING_CLIP_CURRENT 2
+#define HMB_RESOLVE_BINDING_CLIP_PREVIOUS 3
+#define HMB_RESOLVE_BINDING_SHADING 4  // GpuVertexShading per instance vertex
+// The scene (shared/scene_bindings.glsl), then the G-buffer written (shared/layer_bindings.glsl):
+// colour (linear, opaque; the background colour where empty), normal and camera-space depth,
+// velocity in pixels per frame (y down), object id (0 for the background).
+#define HMB_RESOLVE_BINDING_SCENE 5
+#define HMB_RESOLVE_BINDING_GBUFFER (HMB_RESOLVE_BINDING_SCENE + HMB_SCENE_BINDINGS)
+#define HMB_RESOLVE_BINDING_COUNT (HMB_RESOLVE_BINDING_GBUFFER + HMB_LAYER_BINDINGS)
 
 HMB_GPU_BEGIN
 struct ResolveParams {

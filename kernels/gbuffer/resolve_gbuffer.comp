@@ -8,17 +8,19 @@
 #include "gbuffer_layout.h"
 #include "../raster/raster_layout.h"
 #include "../shared/scene_layout.h"
-#include "../shared/layer_layout.h"
 
 layout(local_size_x = HMB_RESOLVE_GROUP_X, local_size_y = HMB_RESOLVE_GROUP_Y) in;
 
 layout(std430, binding = HMB_RESOLVE_BINDING_VISIBILITY) readonly buffer Visibility { uvec2 visibility[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_TRIANGLES) readonly buffer Triangles { GpuTriangle triangles[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_SCENE) readonly buffer Scene { SceneTable scene; };
 layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_CURRENT) readonly buffer ClipCurrent { vec4 clipCurrent[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_PREVIOUS) readonly buffer ClipPrevious { vec4 clipPrevious[]; };
 layout(std430, binding = HMB_RESOLVE_BINDING_SHADING) readonly buffer Shading { GpuVertexShading shading[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_GBUFFER) readonly buffer GBuffer { LayerTable gbuffer; };
+#define HMB_SCENE_BINDING HMB_RESOLVE_BINDING_SCENE
+#include "../shared/scene_bindings.glsl"
+#define HMB_LAYER_BINDING HMB_RESOLVE_BINDING_GBUFFER
+#define HMB_LAYER_ACCESS writeonly
+#include "../shared/layer_bindings.glsl"
 layout(push_constant) uniform Params { ResolveParams params; };
 
 #include "../shared/shading.glsl"
@@ -45,12 +47,11 @@ void main() {
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   const uint triangleId = visibility[index].x;
-  LayerTable target = gbuffer;
   if (triangleId == HMB_VIS_EMPTY) {
-    target.color.v[index] = vec4(scene.camera.v[0].background.rgb, 1.0);
-    target.normalDepth.v[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
-    target.velocity.v[index] = vec2(0.0);
-    target.objectId.v[index] = 0u;
+    layerColor[index] = vec4(camera.background.rgb, 1.0);
+    layerNormalDepth[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
+    layerVelocity[index] = vec2(0.0);
+    layerObjectId[index] = 0u;
     return;
   }
 
@@ -78,8 +79,8 @@ void main() {
 
   // Clip w of a perspective projection is the camera-space depth, and linear in barycentrics.
   const float depth = dot(b, vec3(c0.z, c1.z, c2.z));
-  target.color.v[index] = vec4(shadeSurface(scene.instances.v[tri.instance].material, uv, n), 1.0);
-  target.normalDepth.v[index] = vec4(n, depth);
-  target.velocity.v[index] = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
-  target.objectId.v[index] = scene.instances.v[tri.instance].objectId;
+  layerColor[index] = vec4(shadeSurface(sceneInstances[tri.instance].material, uv, n), 1.0);
+  layerNormalDepth[index] = vec4(n, depth);
+  layerVelocity[index] = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
+  layerObjectId[index] = sceneInstances[tri.instance].objectId;
 }

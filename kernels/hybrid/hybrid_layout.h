@@ -17,6 +17,9 @@
 #define HMB_KERNELS_HYBRID_HYBRID_LAYOUT_H
 
 #include "../shared/glsl_cpp.h"
+#include "../shared/layer_layout.h"
+#include "../shared/scene_layout.h"
+#include "../trace/trace_layout.h"
 
 // list_moving_tiles: one invocation per tile.
 #define HMB_MOVING_TILES_GROUP 64
@@ -88,15 +91,18 @@
 // The list passes (edge_mask, reveal_background and the gather's list mode) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
 
-// reveal_background. Slot 2 holds the trace scene's table (kernels/trace/closest_hit.glsl).
+// reveal_background
 #define HMB_REVEAL_BINDING_CAMERA_RAYS 0  // PinholeCamera at the frame time
 #define HMB_REVEAL_BINDING_LIST 1         // the ray mask's pixel list
-#define HMB_REVEAL_BINDING_SCENE 3        // SceneTable: shading, previous transforms, camera
-#define HMB_REVEAL_BINDING_RASTER_ID 4    // uint per pixel: the G-buffer's object id
-#define HMB_REVEAL_BINDING_COUNTERS 5     // RayMaskCounters: the list's length; rays are counted into it
-#define HMB_REVEAL_BINDING_REVEALED 6     // LayerTable: the revealed layer (written at listed pixels;
-                                          // object id 0 where nothing is behind)
-#define HMB_REVEAL_BINDING_COUNT 7
+#define HMB_REVEAL_BINDING_RASTER_ID 2    // uint per pixel: the G-buffer's object id
+#define HMB_REVEAL_BINDING_COUNTERS 3     // RayMaskCounters: the list's length; rays are counted into it
+// The trace scene (trace/trace_scene_bindings.glsl), the scene's shading buffers
+// (shared/scene_bindings.glsl), then the revealed layer, written at the listed pixels
+// (shared/layer_bindings.glsl; object id 0 where nothing is behind).
+#define HMB_REVEAL_BINDING_TRACE_SCENE 4
+#define HMB_REVEAL_BINDING_SCENE (HMB_REVEAL_BINDING_TRACE_SCENE + HMB_TRACE_SCENE_BINDINGS)
+#define HMB_REVEAL_BINDING_REVEALED (HMB_REVEAL_BINDING_SCENE + HMB_SCENE_BINDINGS)
+#define HMB_REVEAL_BINDING_COUNT (HMB_REVEAL_BINDING_REVEALED + HMB_LAYER_BINDINGS)
 
 // RevealParams.stop
 #define HMB_REVEAL_STOP_OBJECT_ID 0u  // the first surface of another object (one trace, the object skipped whole)

@@ -14,18 +14,21 @@
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../shared/scene_layout.h"
-#include "../shared/layer_layout.h"
 #include "../shared/indexing.glsl"
+#define HMB_TRACE_SCENE_BINDING HMB_REVEAL_BINDING_TRACE_SCENE
 #include "../trace/closest_hit.glsl"
 
 layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
 layout(std430, binding = HMB_REVEAL_BINDING_CAMERA_RAYS) readonly buffer CameraRays { PinholeCamera cameraRays; };
 layout(std430, binding = HMB_REVEAL_BINDING_LIST) readonly buffer List { uint list[]; };
-layout(std430, binding = HMB_REVEAL_BINDING_SCENE) readonly buffer Scene { SceneTable scene; };
 layout(std430, binding = HMB_REVEAL_BINDING_RASTER_ID) readonly buffer RasterId { uint rasterId[]; };
 layout(std430, binding = HMB_REVEAL_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
-layout(std430, binding = HMB_REVEAL_BINDING_REVEALED) readonly buffer Revealed { LayerTable revealed; };
+#define HMB_SCENE_BINDING HMB_REVEAL_BINDING_SCENE
+#include "../shared/scene_bindings.glsl"
+#define HMB_LAYER_BINDING HMB_REVEAL_BINDING_REVEALED
+#define HMB_LAYER_ACCESS writeonly
+#include "../shared/layer_bindings.glsl"
 layout(push_constant) uniform Params { RevealParams params; };
 
 #include "../shared/shading.glsl"
@@ -54,21 +57,21 @@ void main() {
   ray.ignoreObjectId = HMB_IGNORE_NONE;
   ray.pad0 = 0u;
   ray.pad1 = 0u;
-  const TraceSceneInfo traceInfo = TraceSceneInfo(params.instanceCount, 1u, HMB_TRACE_CULL_BACK_FACES);
+  const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, 1u, HMB_TRACE_CULL_BACK_FACES);
   const vec3 direction = ray.directionTMax.xyz;
 
   BvhHit hit;
   uint traces = 1u;
   if (params.stop == HMB_REVEAL_STOP_OBJECT_ID) {
     ray.ignoreObjectId = rasterId[index];
-    hit = closestHit(ray, traceInfo);
+    hit = closestHit(ray, scene);
   } else {
-    hit = closestHit(ray, traceInfo);
+    hit = closestHit(ray, scene);
     if (hit.triangle != HMB_NO_HIT) {
       const float firstLuminance = luminance(shadeHit(hit, direction, hit.instance));
       for (uint step = 0u; step < params.maxRecursion; ++step) {
         ray.originTMin.w = pastHit(hit.t);
-        hit = closestHit(ray, traceInfo);
+        hit = closestHit(ray, scene);
         ++traces;
         if (hit.triangle == HMB_NO_HIT) break;
         const float difference = abs(luminance(shadeHit(hit, direction, hit.instance)) - firstLuminance);
@@ -78,28 +81,26 @@ void main() {
   }
 
   atomicAdd(counters.rayCount, traces);
-  LayerTable target = revealed;
   if (hit.triangle == HMB_NO_HIT) {
-    target.color.v[index] = vec4(scene.camera.v[0].background.rgb, 1.0);
-    target.normalDepth.v[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
-    target.velocity.v[index] = vec2(0.0);
-    target.objectId.v[index] = 0u;
+    layerColor[index] = vec4(camera.background.rgb, 1.0);
+    layerNormalDepth[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
+    layerVelocity[index] = vec2(0.0);
+    layerObjectId[index] = 0u;
     return;
   }
   // The hit point now and at the previous frame: carried into the instance's space with the
   // frame-time transform and out again with the previous one.
   const vec3 world = ray.originTMin.xyz + hit.t * direction;
-  const vec4 objectPoint = traceScene.transforms.v[hit.instance].objectFromWorld * vec4(world, 1.0);
-  const vec4 previousClip =
-      scene.camera.v[0].viewProjPrevious * (scene.instances.v[hit.instance].worldPrevious * objectPoint);
+  const vec4 objectPoint = transforms[hit.instance].objectFromWorld * vec4(world, 1.0);
+  const vec4 previousClip = camera.viewProjPrevious * (sceneInstances[hit.instance].worldPrevious * objectPoint);
   vec2 motion = vec2(0.0);
   if (previousClip.w > 0.0) motion = centre - (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(params.width, params.height);
   if (any(isnan(motion)) || any(isinf(motion))) motion = vec2(0.0);
 
   const HitSurface surface = hitSurface(hit, direction, hit.instance);
-  const vec3 shaded = shadeSurface(scene.instances.v[hit.instance].material, surface.uv, surface.normal);
-  target.color.v[index] = vec4(finite3(shaded) ? shaded : vec3(0.0), 1.0);
-  target.normalDepth.v[index] = vec4(surface.normal, hit.t);
-  target.velocity.v[index] = motion;
-  target.objectId.v[index] = traceScene.instances.v[hit.instance].objectId;
+  const vec3 shaded = shadeSurface(sceneInstances[hit.instance].material, surface.uv, surface.normal);
+  layerColor[index] = vec4(finite3(shaded) ? shaded : vec3(0.0), 1.0);
+  layerNormalDepth[index] = vec4(surface.normal, hit.t);
+  layerVelocity[index] = motion;
+  layerObjectId[index] = traceInstances[hit.instance].objectId;
 }

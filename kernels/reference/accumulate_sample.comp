@@ -6,14 +6,16 @@
 #extension GL_GOOGLE_include_directive : require
 #include "reference_layout.h"
 #include "../shared/scene_layout.h"
+#define HMB_TRACE_SCENE_BINDING HMB_REFERENCE_BINDING_TRACE_SCENE
 #include "../trace/closest_hit.glsl"
 
 layout(local_size_x = HMB_REFERENCE_GROUP_X, local_size_y = HMB_REFERENCE_GROUP_Y) in;
 
 layout(std430, binding = HMB_REFERENCE_BINDING_CAMERAS) readonly buffer Cameras { PinholeCamera cameras[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_SUM) buffer Sum { vec4 sum[]; };
-layout(std430, binding = HMB_REFERENCE_BINDING_SCENE) readonly buffer Scene { SceneTable scene; };
 layout(std430, binding = HMB_REFERENCE_BINDING_PIXELS) readonly buffer Pixels { uint pixelList[]; };
+#define HMB_SCENE_BINDING HMB_REFERENCE_BINDING_SCENE
+#include "../shared/scene_bindings.glsl"
 layout(push_constant) uniform Params { ReferenceSampleParams params; };
 
 #include "../shared/shading.glsl"
@@ -58,7 +60,7 @@ void main() {
   ray.pad1 = 0u;
 
   const BvhHit hit = closestHit(ray, TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES));
-  vec3 color = hit.triangle == HMB_NO_HIT ? scene.camera.v[0].background.rgb : shadeHit(hit, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time);
+  vec3 color = hit.triangle == HMB_NO_HIT ? camera.background.rgb : shadeHit(hit, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time);
   if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
   sum[index] += vec4(color, 1.0);
 }

@@ -6,17 +6,21 @@
 
 #include "../shared/glsl_cpp.h"
 #include "../trace/trace_layout.h"
+#include "../shared/scene_layout.h"
 
 #define HMB_REFERENCE_GROUP_X 8
 #define HMB_REFERENCE_GROUP_Y 8
 #define HMB_REFERENCE_AVERAGE_GROUP 64
 
-// accumulate_sample. Slot 2 holds the trace scene's table (kernels/trace/closest_hit.glsl).
+// accumulate_sample
 #define HMB_REFERENCE_BINDING_CAMERAS 0  // PinholeCamera per shutter time of the batch
 #define HMB_REFERENCE_BINDING_SUM 1      // vec4 per pixel: sum of the shaded samples so far
-#define HMB_REFERENCE_BINDING_SCENE 3    // SceneTable: shading, light, background
-#define HMB_REFERENCE_BINDING_PIXELS 4   // uint pixel index per entry: the pixels to sample (list mode)
-#define HMB_REFERENCE_BINDING_COUNT 5
+#define HMB_REFERENCE_BINDING_PIXELS 2   // uint pixel index per entry: the pixels to sample (list mode)
+// The trace scene (trace/trace_scene_bindings.glsl), then the scene's shading buffers
+// (shared/scene_bindings.glsl).
+#define HMB_REFERENCE_BINDING_TRACE_SCENE 3
+#define HMB_REFERENCE_BINDING_SCENE (HMB_REFERENCE_BINDING_TRACE_SCENE + HMB_TRACE_SCENE_BINDINGS)
+#define HMB_REFERENCE_BINDING_COUNT (HMB_REFERENCE_BINDING_SCENE + HMB_SCENE_BINDINGS)
 
 // find_moving_pixels: pixels whose ray meets the box some moving instance sweeps over the
 // shutter. Only they can change over the shutter when the camera stands still.

@@ -81,28 +81,35 @@ struct GpuCamera {
 HMB_GPU_END
 
 #ifndef __cplusplus
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuVertices { GpuVertex v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuInstances { GpuInstance v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuMaterials { GpuMaterial v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer GpuTexels { uint v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuCameras { GpuCamera v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuVerticesRef { GpuVertex v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuInstancesRef { GpuInstance v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuMaterialsRef { GpuMaterial v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer GpuTexelsRef { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuCamerasRef { GpuCamera v[]; };
 #endif
 
 HMB_GPU_BEGIN
 
-// The scene's shading buffers, by device address (runtime/gpu_scene.h writes it): what the
-// shading function (shared/shading.glsl) and the passes that shade read.
+// The scene's shading buffers by device address, in the order of their bindings
+// (shared/scene_bindings.glsl; runtime/gpu_scene.h writes it).
 struct SceneTable {
-  HMB_REFERENCE(GpuVertices) vertices;    // per mesh vertex (normals, uvs)
-  HMB_REFERENCE(GpuInstances) instances;  // material, transforms, object id
-  HMB_REFERENCE(GpuMaterials) materials;
-  HMB_REFERENCE(GpuTexels) texels;        // RGBA8, sRGB
-  HMB_REFERENCE(GpuCameras) camera;       // one: the frame's camera, light and background
+  HMB_REFERENCE(GpuVerticesRef) vertices;    // per mesh vertex (normals, uvs)
+  HMB_REFERENCE(GpuInstancesRef) instances;  // material, transforms, object id
+  HMB_REFERENCE(GpuMaterialsRef) materials;
+  HMB_REFERENCE(GpuTexelsRef) texels;        // RGBA8, sRGB
+  HMB_REFERENCE(GpuCamerasRef) camera;       // one: the frame's camera, light and background
 };
 
 HMB_GPU_END
 
 HMB_CHECK_SIZE(SceneTable, 40)
+
+// The scene takes 5 bindings, or one table in HMB_BIND_BY_ADDRESS builds.
+#ifdef HMB_BIND_BY_ADDRESS
+#define HMB_SCENE_BINDINGS 1
+#else
+#define HMB_SCENE_BINDINGS 5
+#endif
 HMB_CHECK_SIZE(GpuVertex, 48)
 HMB_CHECK_SIZE(GpuTriangle, 16)
 HMB_CHECK_SIZE(GpuInstanceVertex, 8)

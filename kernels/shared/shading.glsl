@@ -1,6 +1,6 @@
 // The one shading function of every method (resolve, ray reveal, reference): base colour
 // (factor x sRGB texture, bilinear, repeat), one directional light plus ambient, no shadows.
-// Needs the including kernel's `scene` block (a SceneTable, shared/scene_layout.h). Reads
+// Needs the Materials, Texels and Camera buffers declared by the including kernel. Reads
 // fields one at a time (no struct copies): CPU devices gather every word a kernel loads.
 #ifndef HMB_KERNELS_SHARED_SHADING_GLSL
 #define HMB_KERNELS_SHARED_SHADING_GLSL
@@ -14,17 +14,17 @@ vec3 srgbToLinear(vec3 c) {
 
 // Texel (x, y) of the texture at `offset` with rows of `width`, as linear RGBA.
 vec4 texelLinear(uint offset, uint width, uint x, uint y) {
-  const vec4 c = unpackUnorm4x8(scene.texels.v[offset + y * width + x]);
+  const vec4 c = unpackUnorm4x8(texels[offset + y * width + x]);
   return vec4(srgbToLinear(c.rgb), c.a);
 }
 
 vec4 baseColor(uint material, vec2 uv) {
-  const uint offset = scene.materials.v[material].textureOffset;
-  if (!kTexturePath || offset == HMB_NO_TEXTURE) return scene.materials.v[material].baseColor;
+  const uint offset = materials[material].textureOffset;
+  if (!kTexturePath || offset == HMB_NO_TEXTURE) return materials[material].baseColor;
   if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
   // Repeat wrap without integer division: fract puts uv in [0, 1], so the texel to the left
   // of a sample is in [-1, size - 1] and wraps with one comparison per axis.
-  const ivec2 size = ivec2(scene.materials.v[material].textureWidth, scene.materials.v[material].textureHeight);
+  const ivec2 size = ivec2(materials[material].textureWidth, materials[material].textureHeight);
   const vec2 st = fract(uv) * vec2(size) - 0.5;
   const vec2 f = st - floor(st);
   const ivec2 i = clamp(ivec2(floor(st)), ivec2(-1), size - 1);
@@ -35,15 +35,15 @@ vec4 baseColor(uint material, vec2 uv) {
   const vec4 c10 = texelLinear(offset, width, hi.x, lo.y);
   const vec4 c01 = texelLinear(offset, width, lo.x, hi.y);
   const vec4 c11 = texelLinear(offset, width, hi.x, hi.y);
-  return scene.materials.v[material].baseColor * mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+  return materials[material].baseColor * mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
 // n: unit world normal facing the viewer. Light from the frame's camera block: lightDirection
 // is the direction light travels.
 vec3 shadeSurface(uint material, vec2 uv, vec3 n) {
   const vec3 albedo = baseColor(material, uv).rgb;
-  const float lambert = max(dot(n, -scene.camera.v[0].lightDirection.xyz), 0.0);
-  return albedo * (scene.camera.v[0].ambient.rgb + scene.camera.v[0].lightColor.rgb * lambert);
+  const float lambert = max(dot(n, -camera.lightDirection.xyz), 0.0);
+  return albedo * (camera.ambient.rgb + camera.lightColor.rgb * lambert);
 }
 
 #endif

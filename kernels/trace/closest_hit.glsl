@@ -2,17 +2,15 @@
 // ray's direction octant says where to go next (kernels/bvh/bvh_build_layout.h), so no
 // per-ray stack is kept and no tree is too deep. Instances of the ignored object are skipped
 // whole, so a reveal ray finds the first surface behind the object it starts on.
-// Declares the trace scene's table of addresses at binding 2 (trace_layout.h); every kernel
-// that traces includes this file and keeps its own bindings off that slot. The traversal
-// copies the table's addresses once per ray and reads through them.
+// Binds the trace scene from the including kernel's HMB_TRACE_SCENE_BINDING on
+// (trace_scene_bindings.glsl).
 #ifndef HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
 #define HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
 
 #include "trace_layout.h"
 #include "ray_tests.glsl"
 #include "../bvh/packed_node.glsl"
-
-layout(std430, binding = HMB_TRACE_BINDING_SCENE) readonly buffer TraceScene { TraceSceneTable traceScene; };
+#include "trace_scene_bindings.glsl"
 
 // What a trace needs to know of the scene beside its buffers.
 struct TraceSceneInfo {
@@ -42,10 +40,10 @@ BvhHit missedHit(float tMax) {
 // Traces the ray, carried into the instance's space at its shutter time, through the
 // instance's mesh tree; keeps a hit that is nearer than `best` (ties: lower instance, then
 // lower triangle, so the answer does not depend on the visiting order).
-void traceInstance(TraceSceneTable ts, uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
-  const uint mesh = ts.instances.v[instance].mesh;
+void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+  const uint mesh = traceInstances[instance].mesh;
   const uint time = min(ray.time, scene.timeCount - 1u);
-  const mat4 objectFromWorld = ts.transforms.v[instance * scene.timeCount + time].objectFromWorld;
+  const mat4 objectFromWorld = transforms[instance * scene.timeCount + time].objectFromWorld;
   const vec3 origin = (objectFromWorld * vec4(ray.originTMin.xyz, 1.0)).xyz;
   const vec3 direction = mat3(objectFromWorld) * ray.directionTMax.xyz;
   const PreparedRay r = prepareRay(origin, direction);
@@ -53,14 +51,14 @@ void traceInstance(TraceSceneTable ts, uint instance, TraceRay ray, TraceSceneIn
   // A back face is one whose counter-clockwise normal the ray runs along; a transform that
   // flips handedness flips that in object space.
   const bool cull = (scene.flags & HMB_TRACE_CULL_BACK_FACES) != 0u &&
-                    (ts.instances.v[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
+                    (traceInstances[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
   const float handedness = determinant(mat3(objectFromWorld)) < 0.0 ? -1.0 : 1.0;
   const float tMin = ray.originTMin.w;
-  const BvhFrame frame = ts.meshFrames.v[mesh];
+  const BvhFrame frame = meshFrames[mesh];
   uint node = mesh;
   while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = ts.meshNodes.v[node];
-    const uint link = ts.meshLinks.v[node * HMB_BVH_OCTANTS + r.octant];
+    const uvec4 n = meshNodes[node];
+    const uint link = meshLinks[node * HMB_BVH_OCTANTS + r.octant];
     if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), tMin, best.t)) {
       const uint count = packedCount(n);
       if (count == 0u) {
@@ -69,9 +67,9 @@ void traceInstance(TraceSceneTable ts, uint instance, TraceRay ray, TraceSceneIn
       }
       const uint first = packedLeftOrFirst(n);
       for (uint k = 0; k < count; ++k) {
-        const uint triangle = ts.meshPrimitives.v[first + k];
-        const uvec4 tri = ts.triangles.v[triangle];
-        const vec3 p0 = ts.positions.v[tri.x].xyz, p1 = ts.positions.v[tri.y].xyz, p2 = ts.positions.v[tri.z].xyz;
+        const uint triangle = meshPrimitives[first + k];
+        const uvec4 tri = traceTriangles[triangle];
+        const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
         float t, u, v;
         if (!intersectTriangle(r, p0, p1, p2, t, u, v)) continue;
         if (!(t >= tMin) || t > best.t) continue;
@@ -83,7 +81,7 @@ void traceInstance(TraceSceneTable ts, uint instance, TraceRay ray, TraceSceneIn
         best.u = u;
         best.v = v;
         best.triangle = triangle;
-        best.objectId = ts.instances.v[instance].objectId;
+        best.objectId = traceInstances[instance].objectId;
         best.instance = instance;
       }
     }
@@ -96,12 +94,11 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
   BvhHit best = missedHit(ray.directionTMax.w);
   const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
   if (!r.valid || scene.instanceCount == 0u) return best;
-  TraceSceneTable ts = traceScene;
-  const BvhFrame frame = ts.topFrame.v[0];
+  const BvhFrame frame = topFrame;
   uint node = HMB_BVH_ROOT;
   while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = ts.topNodes.v[node];
-    const uint link = ts.topLinks.v[node * HMB_BVH_OCTANTS + r.octant];
+    const uvec4 n = topNodes[node];
+    const uint link = topLinks[node * HMB_BVH_OCTANTS + r.octant];
     if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), ray.originTMin.w, best.t)) {
       const uint count = packedCount(n);
       if (count == 0u) {
@@ -110,8 +107,8 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
       }
       const uint first = packedLeftOrFirst(n);
       for (uint k = 0; k < count; ++k) {
-        const uint instance = ts.topPrimitives.v[first + k];
-        if (ts.instances.v[instance].objectId != ray.ignoreObjectId) traceInstance(ts, instance, ray, scene, best);
+        const uint instance = topPrimitives[first + k];
+        if (traceInstances[instance].objectId != ray.ignoreObjectId) traceInstance(instance, ray, scene, best);
       }
     }
     node = link & HMB_BVH_LINK_NEXT_MASK;

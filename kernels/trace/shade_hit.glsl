@@ -3,7 +3,7 @@
 // to world space with the instance's transform at the ray's time and turned to the viewer
 // when a (double-sided) back face is seen, as the G-buffer resolve does, then the shading
 // function every method shares. Needs closest_hit.glsl and shared/shading.glsl included first
-// (and so the kernel's `scene` block).
+// and the kernel's `vertices` (GpuVertex) and `sceneInstances` (GpuInstance) buffers.
 #ifndef HMB_KERNELS_TRACE_SHADE_HIT_GLSL
 #define HMB_KERNELS_TRACE_SHADE_HIT_GLSL
 
@@ -14,19 +14,18 @@ struct HitSurface {
 
 // transformIndex: the hit instance's transform at the ray's time (instance * timeCount + time).
 HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
-  const uvec4 tri = traceScene.triangles.v[hit.triangle];
+  const uvec4 tri = traceTriangles[hit.triangle];
   const vec3 b = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
-  const vec3 objectNormal = b.x * scene.vertices.v[tri.x].normal.xyz + b.y * scene.vertices.v[tri.y].normal.xyz +
-                            b.z * scene.vertices.v[tri.z].normal.xyz;
+  const vec3 objectNormal = b.x * vertices[tri.x].normal.xyz + b.y * vertices[tri.y].normal.xyz +
+                            b.z * vertices[tri.z].normal.xyz;
   HitSurface s;
-  s.uv = kTexturePath ? b.x * scene.vertices.v[tri.x].uv + b.y * scene.vertices.v[tri.y].uv + b.z * scene.vertices.v[tri.z].uv : vec2(0.0);
-  const mat3 objectFromWorld = mat3(traceScene.transforms.v[transformIndex].objectFromWorld);
+  s.uv = kTexturePath ? b.x * vertices[tri.x].uv + b.y * vertices[tri.y].uv + b.z * vertices[tri.z].uv : vec2(0.0);
+  const mat3 objectFromWorld = mat3(transforms[transformIndex].objectFromWorld);
   const mat3 normalToWorld = transpose(objectFromWorld);
   vec3 n = normalToWorld * objectNormal;
   n = dot(n, n) > 0.0 && !any(isinf(n)) ? normalize(n) : vec3(0.0, 0.0, 1.0);
   // cross(M a, M b) = det(M) M^-T cross(a, b): the world counter-clockwise normal.
-  const vec3 p0 = traceScene.positions.v[tri.x].xyz, p1 = traceScene.positions.v[tri.y].xyz,
-             p2 = traceScene.positions.v[tri.z].xyz;
+  const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
   const float handedness = determinant(objectFromWorld) < 0.0 ? -1.0 : 1.0;
   const vec3 geometric = handedness * (normalToWorld * cross(p1 - p0, p2 - p0));
   if (dot(geometric, direction) > 0.0) n = -n;
@@ -36,7 +35,7 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
 
 vec3 shadeHit(BvhHit hit, vec3 direction, uint transformIndex) {
   const HitSurface s = hitSurface(hit, direction, transformIndex);
-  return shadeSurface(scene.instances.v[hit.instance].material, s.uv, s.normal);
+  return shadeSurface(sceneInstances[hit.instance].material, s.uv, s.normal);
 }
 
 #endif

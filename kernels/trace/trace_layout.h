@@ -11,12 +11,20 @@
 
 #define HMB_TRACE_GROUP 64
 
-// trace_rays. Binding 2 is the trace scene's table of addresses (TraceSceneTable below, declared
-// by closest_hit.glsl); every kernel that traces keeps it there.
-#define HMB_TRACE_BINDING_RAYS 0   // TraceRay[]
-#define HMB_TRACE_BINDING_HITS 1   // BvhHit[], one per ray
-#define HMB_TRACE_BINDING_SCENE 2  // TraceSceneTable
-#define HMB_TRACE_BINDING_COUNT 3
+// The trace scene takes 12 bindings, or one table of addresses in HMB_BIND_BY_ADDRESS builds
+// (trace_scene_bindings.glsl); a kernel that traces puts it after its own bindings.
+#define HMB_TRACE_SCENE_BUFFERS 12
+#ifdef HMB_BIND_BY_ADDRESS
+#define HMB_TRACE_SCENE_BINDINGS 1
+#else
+#define HMB_TRACE_SCENE_BINDINGS HMB_TRACE_SCENE_BUFFERS
+#endif
+
+// trace_rays
+#define HMB_TRACE_BINDING_RAYS 0  // TraceRay[]
+#define HMB_TRACE_BINDING_HITS 1  // BvhHit[], one per ray
+#define HMB_TRACE_BINDING_SCENE 2
+#define HMB_TRACE_BINDING_COUNT (HMB_TRACE_BINDING_SCENE + HMB_TRACE_SCENE_BINDINGS)
 
 // instance_motion_bounds: the boxes the top level is built over
 #define HMB_MOTION_BOUNDS_BINDING_MESH_NODES 0
@@ -77,31 +85,32 @@ struct InstanceTransform {
 HMB_GPU_END
 
 #ifndef __cplusplus
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PackedNodes { uvec4 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Words { uint v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TraceInstances { TraceInstance v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceTransforms { InstanceTransform v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Uvec4s { uvec4 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4s { vec4 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhFrames { BvhFrame v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PackedNodesRef { uvec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer WordsRef { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TraceInstancesRef { TraceInstance v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceTransformsRef { InstanceTransform v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Uvec4sRef { uvec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4sRef { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhFramesRef { BvhFrame v[]; };
 #endif
 
 HMB_GPU_BEGIN
 
-// The trace scene's buffers, by device address (runtime/trace_scene.h writes it).
+// The trace scene's buffers by device address, in the order of their bindings
+// (runtime/trace_scene.h writes it).
 struct TraceSceneTable {
-  HMB_REFERENCE(PackedNodes) topNodes;           // over instances
-  HMB_REFERENCE(Words) topLinks;                 // 8 per node
-  HMB_REFERENCE(Words) topPrimitives;            // instance per leaf entry
-  HMB_REFERENCE(TraceInstances) instances;
-  HMB_REFERENCE(InstanceTransforms) transforms;  // [instance * timeCount + time]
-  HMB_REFERENCE(PackedNodes) meshNodes;          // of every mesh, mesh m's root at node m
-  HMB_REFERENCE(Words) meshLinks;                // 8 per node
-  HMB_REFERENCE(Words) meshPrimitives;           // triangle per leaf entry (into triangles)
-  HMB_REFERENCE(Uvec4s) triangles;               // (v0, v1, v2, mesh) per triangle of every mesh
-  HMB_REFERENCE(Vec4s) positions;                // per mesh vertex, object space
-  HMB_REFERENCE(BvhFrames) topFrame;             // one
-  HMB_REFERENCE(BvhFrames) meshFrames;           // one per mesh
+  HMB_REFERENCE(PackedNodesRef) topNodes;           // over instances
+  HMB_REFERENCE(WordsRef) topLinks;                 // 8 per node
+  HMB_REFERENCE(WordsRef) topPrimitives;            // instance per leaf entry
+  HMB_REFERENCE(TraceInstancesRef) instances;
+  HMB_REFERENCE(InstanceTransformsRef) transforms;  // [instance * timeCount + time]
+  HMB_REFERENCE(PackedNodesRef) meshNodes;          // of every mesh, mesh m's root at node m
+  HMB_REFERENCE(WordsRef) meshLinks;                // 8 per node
+  HMB_REFERENCE(WordsRef) meshPrimitives;           // triangle per leaf entry (into triangles)
+  HMB_REFERENCE(Uvec4sRef) triangles;               // (v0, v1, v2, mesh) per triangle of every mesh
+  HMB_REFERENCE(Vec4sRef) positions;                // per mesh vertex, object space
+  HMB_REFERENCE(BvhFramesRef) topFrame;             // one
+  HMB_REFERENCE(BvhFramesRef) meshFrames;           // one per mesh
 };
 
 HMB_GPU_END

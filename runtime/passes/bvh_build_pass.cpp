@@ -16,9 +16,9 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
     : context_(context),
       name_(std::move(name)),
       maxLeaf_(maxLeaf),
-      beginKernel_(context, "bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)),
-      levelKernel_(context, "bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)),
-      sizeDispatchKernel_(context, "bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams)) {
+      beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams)),
+      levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams)),
+      sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)) {
   if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
   if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");

@@ -6,8 +6,7 @@
 namespace hmb::passes {
 
 EncodeDisplayPass::EncodeDisplayPass(const vk::Context& context)
-    : kernel_(context, "output/encode_display", HMB_ENCODE_DISPLAY_BINDING_COUNT,
-              sizeof(gpu::EncodeDisplayParams)) {}
+    : kernel_(context, "output/encode_display", sizeof(gpu::EncodeDisplayParams)) {}
 
 void EncodeDisplayPass::record(vk::FrameRecorder& frame, const vk::Buffer& linear, const vk::Buffer& rgba8,
                                uint32_t width, uint32_t height) const {

@@ -12,7 +12,7 @@
 namespace hmb::passes {
 
 GatherPass::GatherPass(const vk::Context& context)
-    : kernel_(context, "mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams)),
+    : kernel_(context, "mblur/gather", sizeof(gpu::GatherParams)),
       dummy_(vk::uploadedBuffer(context, std::vector<uint32_t>(4, 0u), "gather unused option")) {}
 
 void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,

@@ -6,6 +6,8 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/layer_layout.h"
+#include "runtime/error.h"
+#include "runtime/vulkan/context.h"
 
 namespace hmb::passes {
 
@@ -15,8 +17,19 @@ ImageLayer::ImageLayer(const vk::Context& context, vk::Buffer color, vk::Buffer 
       normalDepth_(std::move(normalDepth)),
       velocity_(std::move(velocity)),
       objectId_(std::move(objectId)) {
-  const gpu::LayerTable table{color_.address(), normalDepth_.address(), velocity_.address(), objectId_.address()};
-  table_ = vk::uploadedBuffer(context, std::vector<gpu::LayerTable>{table}, color_.name() + " (layer table)");
+  if (context.info().bufferDeviceAddress) {
+    const gpu::LayerTable table{color_.address(), normalDepth_.address(), velocity_.address(), objectId_.address()};
+    table_ = vk::uploadedBuffer(context, std::vector<gpu::LayerTable>{table}, color_.name() + " (layer table)");
+  }
+}
+
+void ImageLayer::appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const {
+  if (byAddress) {
+    if (!table_.handle()) throw Error("image layer '" + color_.name() + "' has no table of addresses on this device");
+    bindings.push_back(&table_);
+    return;
+  }
+  bindings.insert(bindings.end(), {&color_, &normalDepth_, &velocity_, &objectId_});
 }
 
 ImageLayer ImageLayer::allocate(const vk::Context& context, uint64_t pixels, const std::string& name) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "runtime/vulkan/buffer.h"
 
@@ -23,7 +24,9 @@ class ImageLayer {
   const vk::Buffer& normalDepth() const { return normalDepth_; }  // vec4 world normal, w camera-space depth
   const vk::Buffer& velocity() const { return velocity_; }        // vec2 pixels per frame, y down
   const vk::Buffer& objectId() const { return objectId_; }        // uint, 0 = background
-  const vk::Buffer& table() const { return table_; }              // gpu::LayerTable
+  // Appends the layer as a kernel binds it (kernels/shared/layer_bindings.glsl): its four
+  // buffers, or the table of their addresses for a kernel that binds by address.
+  void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
   uint64_t bytes() const { return color_.size() + normalDepth_.size() + velocity_.size() + objectId_.size(); }
 
  private:

@@ -6,7 +6,7 @@
 namespace hmb::passes {
 
 JimenezGatherPass::JimenezGatherPass(const vk::Context& context)
-    : kernel_(context, "mblur/gather_jimenez", HMB_JIMENEZ_BINDING_COUNT, sizeof(gpu::JimenezParams)) {}
+    : kernel_(context, "mblur/gather_jimenez", sizeof(gpu::JimenezParams)) {}
 
 void JimenezGatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
                                const vk::Buffer& neighborMax, const vk::Buffer& output,

@@ -6,7 +6,7 @@
 namespace hmb::passes {
 
 NeighborMaxPass::NeighborMaxPass(const vk::Context& context)
-    : kernel_(context, "mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams)) {}
+    : kernel_(context, "mblur/neighbor_max", sizeof(gpu::NeighborMaxParams)) {}
 
 void NeighborMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& tileMax, const vk::Buffer& neighborMax,
                              TileGrid grid, uint32_t neighborhood, std::string_view passName) const {

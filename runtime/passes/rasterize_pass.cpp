@@ -37,11 +37,11 @@ VisibilityScheme defaultVisibilityScheme(const vk::DeviceInfo& device) {
 RasterizePass::RasterizePass(const vk::Context& context, VisibilityScheme scheme)
     : context_(context),
       scheme_(scheme),
-      setupKernel_(context, "raster/setup_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams)),
-      clipKernel_(context, "raster/clip_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams)),
-      sizeDispatchKernel_(context, "raster/size_dispatch", HMB_SIZE_DISPATCH_BINDING_COUNT, sizeof(gpu::RasterParams)),
-      binLargeKernel_(context, "raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams)),
-      rasterizeKernel_(context, rasterizeKernelName(scheme), HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams)) {
+      setupKernel_(context, "raster/setup_triangles", sizeof(gpu::RasterParams)),
+      clipKernel_(context, "raster/clip_triangles", sizeof(gpu::RasterParams)),
+      sizeDispatchKernel_(context, "raster/size_dispatch", sizeof(gpu::RasterParams)),
+      binLargeKernel_(context, "raster/bin_large_triangles", sizeof(gpu::RasterParams)),
+      rasterizeKernel_(context, rasterizeKernelName(scheme), sizeof(gpu::RasterParams)) {
   if (scheme == VisibilityScheme::Int64Atomics && !context.info().int64BufferAtomics)
     throw Error("device '" + context.info().name + "' lacks shaderBufferInt64Atomics; use the depth32-two-pass scheme");
   counters_ = vk::Buffer(context, sizeof(gpu::RasterCounters), vk::MemoryUse::Device, "raster counters");

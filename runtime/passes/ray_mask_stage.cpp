@@ -12,12 +12,11 @@ namespace hmb::passes {
 
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
-      tilesKernel_(context, "hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams)),
-      candidatesKernel_(context, "hybrid/edge_candidates", HMB_EDGE_CANDIDATES_BINDING_COUNT,
-                        sizeof(gpu::EdgeMaskParams)),
-      edgeKernel_(context, "hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::EdgeMaskParams)),
-      rangeKernel_(context, "hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RangeCheckParams)),
-      sizeKernel_(context, "hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams)) {}
+      tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
+      candidatesKernel_(context, "hybrid/edge_candidates", sizeof(gpu::EdgeMaskParams)),
+      edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::EdgeMaskParams)),
+      rangeKernel_(context, "hybrid/range_check", sizeof(gpu::RangeCheckParams)),
+      sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan) const {
   plan.run(kClear);

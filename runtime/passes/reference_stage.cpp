@@ -163,11 +163,9 @@ std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32
 
 ReferenceStage::ReferenceStage(const vk::Context& context)
     : context_(context),
-      findMovingPixels_(context, "reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT,
-                        sizeof(gpu::MovingPixelsParams)),
-      accumulate_(context, "reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT,
-                  sizeof(gpu::ReferenceSampleParams)),
-      average_(context, "reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams)) {}
+      findMovingPixels_(context, "reference/find_moving_pixels", sizeof(gpu::MovingPixelsParams)),
+      accumulate_(context, "reference/accumulate_sample", sizeof(gpu::ReferenceSampleParams)),
+      average_(context, "reference/average_samples", sizeof(gpu::AverageParams)) {}
 
 ReferenceStage::~ReferenceStage() = default;
 
@@ -295,10 +293,13 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
                    : glm::uvec3(vk::groupsFor(width, HMB_REFERENCE_GROUP_X),
                                 vk::groupsFor(height, HMB_REFERENCE_GROUP_Y), 1);
         frame.begin();
-        if (groups.x > 0)
-          frame.dispatch(kAccumulate, accumulate_.forScene(gpuScene),
-                         {&cameraBuffer, &sum, &ts.table(), &gpuScene.table(), &pixelList},
-                         params, groups);
+        if (groups.x > 0) {
+          const vk::ComputeKernel& kernel = accumulate_.forScene(gpuScene);
+          std::vector<const vk::Buffer*> bindings = {&cameraBuffer, &sum, &pixelList};
+          ts.appendBindings(bindings, kernel.bindsByAddress());
+          gpuScene.appendBindings(bindings, kernel.bindsByAddress());
+          frame.dispatch(kAccumulate, kernel, bindings, std::as_bytes(std::span(&params, 1)), groups);
+        }
         vk::appendTimings(total, frame.submitAndWait());
         ++progress_.samplesDone;
         if (progress) progress(progress_);

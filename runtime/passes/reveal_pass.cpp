@@ -1,5 +1,8 @@
 #include "runtime/passes/reveal_pass.h"
 
+#include <span>
+#include <vector>
+
 #include <cstddef>
 
 #include "kernels/hybrid/hybrid_layout.h"
@@ -7,12 +10,13 @@
 #include "runtime/error.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/trace_scene.h"
+#include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
 
 RevealPass::RevealPass(const vk::Context& context)
-    : kernel_(context, "hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams)) {}
+    : kernel_(context, "hybrid/reveal_background", sizeof(gpu::RevealParams)) {}
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
                         const vk::Buffer& cameraRays, const vk::Buffer& rasterObjectId, const vk::Buffer& list,
@@ -33,10 +37,13 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  0u,
                                  0u,
                                  0u};
-  frame.dispatchIndirect(kName, kernel_.forScene(gpuScene),
-                         {&cameraRays, &list, &ts.table(), &gpuScene.table(), &rasterObjectId, &counters,
-                          &output.table()},
-                         params, counters, offsetof(gpu::RayMaskCounters, maskDispatchX));
+  const vk::ComputeKernel& kernel = kernel_.forScene(gpuScene);
+  std::vector<const vk::Buffer*> bindings = {&cameraRays, &list, &rasterObjectId, &counters};
+  ts.appendBindings(bindings, kernel.bindsByAddress());
+  gpuScene.appendBindings(bindings, kernel.bindsByAddress());
+  output.appendBindings(bindings, kernel.bindsByAddress());
+  frame.dispatchIndirect(kName, kernel, bindings, std::as_bytes(std::span(&params, 1)), counters,
+                         offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 
 }  // namespace hmb::passes

@@ -11,13 +11,12 @@
 
 namespace hmb::passes {
 
-ShadingKernel::ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t storageBufferCount,
+ShadingKernel::ShadingKernel(const vk::Context& context, std::string_view kernelName,
                              uint32_t pushConstantBytes)
     : context_(context),
       name_(kernelName),
-      storageBufferCount_(storageBufferCount),
       pushConstantBytes_(pushConstantBytes),
-      textured_(context, kernelName, storageBufferCount, pushConstantBytes) {}
+      textured_(context, kernelName, pushConstantBytes) {}
 
 ShadingKernel::~ShadingKernel() = default;
 
@@ -27,7 +26,7 @@ const vk::ComputeKernel& ShadingKernel::forScene(const GpuScene& scene) const {
     std::array<uint32_t, HMB_SPEC_TEXTURE_PATH + 1> specialization{};
     specialization[HMB_SPEC_TEXTURE_PATH] = 0u;  // VkBool32 false
     untextured_ =
-        std::make_unique<vk::ComputeKernel>(context_, name_, storageBufferCount_, pushConstantBytes_, specialization);
+        std::make_unique<vk::ComputeKernel>(context_, name_, pushConstantBytes_, specialization);
   }
   return *untextured_;
 }

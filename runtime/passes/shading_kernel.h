@@ -21,8 +21,7 @@ namespace hmb::passes {
 class ShadingKernel {
  public:
   static constexpr const char* kTexturePath = "texture-path";
-  ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t storageBufferCount,
-                uint32_t pushConstantBytes);
+  ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t pushConstantBytes);
   ~ShadingKernel();
 
   // The build that shades this scene: without the texture path where scene.texturePath() is false.
@@ -31,7 +30,6 @@ class ShadingKernel {
  private:
   const vk::Context& context_;
   std::string name_;
-  uint32_t storageBufferCount_;
   uint32_t pushConstantBytes_;
   vk::ComputeKernel textured_;
   mutable std::unique_ptr<vk::ComputeKernel> untextured_;

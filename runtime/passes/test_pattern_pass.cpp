@@ -6,7 +6,7 @@
 namespace hmb::passes {
 
 TestPatternPass::TestPatternPass(const vk::Context& context)
-    : kernel_(context, "debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams)) {}
+    : kernel_(context, "debug/test_pattern", sizeof(gpu::TestPatternParams)) {}
 
 void TestPatternPass::record(vk::FrameRecorder& frame, const vk::Buffer& linear, uint32_t width, uint32_t height,
                              float time) const {

@@ -7,7 +7,7 @@
 namespace hmb::passes {
 
 TileMaxPass::TileMaxPass(const vk::Context& context)
-    : kernel_(context, "mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams)) {}
+    : kernel_(context, "mblur/tile_max", sizeof(gpu::TileMaxParams)) {}
 
 void TileMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& velocity, const vk::Buffer& tiles,
                          uint32_t width, uint32_t height, uint32_t tileSize, float velocityScale,

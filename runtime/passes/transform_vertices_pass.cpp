@@ -7,7 +7,7 @@
 namespace hmb::passes {
 
 TransformVerticesPass::TransformVerticesPass(const vk::Context& context)
-    : kernel_(context, "raster/transform_vertices", HMB_TRANSFORM_BINDING_COUNT, sizeof(uint32_t)) {}
+    : kernel_(context, "raster/transform_vertices", sizeof(uint32_t)) {}
 
 void TransformVerticesPass::record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clipCurrent,
                                    const vk::Buffer& clipPrevious, const vk::Buffer& shading) const {

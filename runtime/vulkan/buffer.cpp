@@ -27,8 +27,9 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = bytes;
   info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-               VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | extraUsage;
+               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | extraUsage;
+  const bool addressable = context.info().bufferDeviceAddress;
+  if (addressable) info.usage |= VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   const VkDevice device = context.device();
   HMB_VK_CHECK(vkCreateBuffer(device, &info, nullptr, &buffer_));
@@ -61,10 +62,10 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
       throw Error("buffer '" + name_ + "' needs " + mib(req.size) + " of device memory, but its " + mib(heapSize) +
                   " heap already holds " + mib(inUse) + "; use a smaller image or scene");
 
-    VkMemoryAllocateFlagsInfo addressable{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
-    addressable.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    VkMemoryAllocateFlagsInfo addressFlags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    addressFlags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.pNext = &addressable;
+    if (addressable) alloc.pNext = &addressFlags;
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = context.allocationType(type);
     HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory_));
@@ -75,9 +76,11 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
 
     const VkMemoryPropertyFlags flags = memory.memoryTypes[type].propertyFlags;
     if ((flags & hostFlags) == hostFlags) HMB_VK_CHECK(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
-    VkBufferDeviceAddressInfo addressInfo{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
-    addressInfo.buffer = buffer_;
-    address_ = vkGetBufferDeviceAddress(device, &addressInfo);
+    if (addressable) {
+      VkBufferDeviceAddressInfo addressInfo{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+      addressInfo.buffer = buffer_;
+      address_ = vkGetBufferDeviceAddress(device, &addressInfo);
+    }
     hostCached_ = (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
   } catch (...) {
     release();

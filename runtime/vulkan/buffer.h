@@ -36,7 +36,8 @@ class Buffer {
 
   VkBuffer handle() const { return buffer_; }
   VkDeviceSize size() const { return size_; }
-  // Where kernels reach it through a table of addresses (kernels/shared/glsl_cpp.h).
+  // Where kernels reach it through a table of addresses (kernels/shared/glsl_cpp.h); 0 on
+  // devices without bufferDeviceAddress.
   VkDeviceAddress address() const { return address_; }
   const std::string& name() const { return name_; }
   // Host pointer when the memory is host-visible and coherent, else nullptr.

@@ -10,26 +10,33 @@
 
 namespace hmb::vk {
 
-ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, uint32_t storageBufferCount,
-                             uint32_t pushConstantBytes, std::span<const uint32_t> specialization)
-    : context_(context),
-      name_(kernelName),
-      storageBufferCount_(storageBufferCount),
-      pushConstantBytes_(pushConstantBytes) {
-  const EmbeddedKernel& spirv = findKernel(kernelName);
-  // The SPIR-V is the truth about what the kernel binds: the host's declaration must agree
-  // with it, and the device must have room for it, before any Vulkan object is made.
-  const KernelInterface declared = reflectKernel(spirv);
-  checkKernelFitsDevice(name_, declared, context.limits());
-  for (uint32_t i = 0; i < declared.storageBufferBindings.size(); ++i)
+ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
+                             std::span<const uint32_t> specialization)
+    : context_(context), name_(kernelName), pushConstantBytes_(pushConstantBytes) {
+  // The SPIR-V is the truth about what the kernel binds; the device must have room for it
+  // before any Vulkan object is made.
+  const EmbeddedKernel* spirvBuild = &findKernel(kernelName);
+  KernelInterface declared = reflectKernel(*spirvBuild);
+  std::string doesNotFit = whyKernelDoesNotFit(name_, declared, context.limits());
+  if (const EmbeddedKernel* byAddress = findKernelIfBuilt(name_ + std::string(kByAddressSuffix));
+      byAddress && (context.options().bindByAddress || !doesNotFit.empty())) {
+    if (!context.info().bufferDeviceAddress)
+      throw Error(doesNotFit.empty() ? "kernel '" + name_ + "': binding by address needs bufferDeviceAddress"
+                                     : doesNotFit + ", and lacks bufferDeviceAddress to bind its buffers by address");
+    spirvBuild = byAddress;
+    declared = reflectKernel(*byAddress);
+    doesNotFit = whyKernelDoesNotFit(name_ + " (by address)", declared, context.limits());
+    bindsByAddress_ = true;
+  }
+  if (!doesNotFit.empty()) throw Error(doesNotFit);
+  const EmbeddedKernel& spirv = *spirvBuild;
+  storageBufferCount_ = uint32_t(declared.storageBufferBindings.size());
+  for (uint32_t i = 0; i < storageBufferCount_; ++i)
     if (declared.storageBufferBindings[i] != i)
       throw Error("kernel '" + name_ + "' leaves storage buffer binding " + std::to_string(i) +
                   " unused; bindings must be 0..N-1 in set 0");
-  if (declared.storageBufferBindings.size() != storageBufferCount || declared.uniformBuffers != 0 ||
-      declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
-    throw Error("kernel '" + name_ + "' declares " + std::to_string(declared.storageBufferBindings.size()) +
-                " storage buffers (and no other descriptors expected) but its host binds " +
-                std::to_string(storageBufferCount));
+  if (declared.uniformBuffers != 0 || declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
+    throw Error("kernel '" + name_ + "' declares descriptors other than storage buffers in set 0");
   if (declared.pushConstantBytes > pushConstantBytes)
     throw Error("kernel '" + name_ + "' declares " + std::to_string(declared.pushConstantBytes) +
                 " bytes of push constants but its host passes " + std::to_string(pushConstantBytes));
@@ -37,6 +44,7 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
     throw Error("kernel '" + name_ + "' needs " + std::to_string(pushConstantBytes) +
                 " bytes of push constants; the device allows " +
                 std::to_string(context.limits().maxPushConstantsSize) + " (maxPushConstantsSize)");
+  const uint32_t storageBufferCount = storageBufferCount_;
   const VkDevice device = context.device();
   VkShaderModule module = VK_NULL_HANDLE;
   try {

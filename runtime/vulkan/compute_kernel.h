@@ -1,5 +1,8 @@
 // One compute pipeline built from an embedded kernel. Its bindings are storage buffers
 // 0..N-1 in set 0, and its parameters one push-constant block: every kernel follows that shape.
+// The kernel's SPIR-V says how many buffers it binds. A kernel with an address build (its
+// groups of buffers bound as tables of device addresses) uses that build where its plain one
+// has more bindings than the device allows, or always with ContextOptions::bindByAddress.
 // Specialization constants, where a kernel has them, are 32-bit values with ids 0..M-1.
 #pragma once
 
@@ -17,14 +20,16 @@ class Context;
 class ComputeKernel {
  public:
   // specialization[i] is the value of constant_id i; constants left out keep the kernel's default.
-  ComputeKernel(const Context& context, std::string_view kernelName, uint32_t storageBufferCount,
-                uint32_t pushConstantBytes, std::span<const uint32_t> specialization = {});
+  ComputeKernel(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
+                std::span<const uint32_t> specialization = {});
   ~ComputeKernel();
   ComputeKernel(const ComputeKernel&) = delete;
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
   const std::string& name() const { return name_; }
   uint32_t storageBufferCount() const { return storageBufferCount_; }
+  // Whether the address build runs: the passes then bind each group's table, not its buffers.
+  bool bindsByAddress() const { return bindsByAddress_; }
   uint32_t pushConstantBytes() const { return pushConstantBytes_; }
   VkPipeline pipeline() const { return pipeline_; }
   VkPipelineLayout layout() const { return layout_; }
@@ -37,6 +42,7 @@ class ComputeKernel {
   std::string name_;
   uint32_t storageBufferCount_ = 0;
   uint32_t pushConstantBytes_ = 0;
+  bool bindsByAddress_ = false;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;

@@ -208,7 +208,7 @@ std::vector<DeviceInfo> Context::listDevices() {
   return infos;
 }
 
-Context::Context(const ContextOptions& options) {
+Context::Context(const ContextOptions& options) : options_(options) {
   InstanceSetup setup = portableSetup();
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messengerInfo.messageSeverity =
@@ -320,18 +320,21 @@ Context::Context(const ContextOptions& options) {
     VkPhysicalDeviceShaderAtomicInt64Features atomic64{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES};
     std::vector<const char*> deviceExtensions;
-    // Kernels reach groups of buffers (the trace scene, the shading scene, an image layer)
-    // through tables of device addresses, which keeps each within the 8 storage buffers that
-    // mobile GPUs allow per stage.
-    if (!info_.bufferDeviceAddress)
-      throw Error("device '" + info_.name + "' lacks bufferDeviceAddress (Vulkan 1.2), which the kernels need");
+    void** next = &features2.pNext;
+    // Kernels bind groups of buffers (the trace scene, the shading scene, an image layer) as
+    // tables of device addresses where the device has too few storage-buffer bindings.
     VkPhysicalDeviceBufferDeviceAddressFeatures addresses{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES};
-    addresses.bufferDeviceAddress = VK_TRUE;
-    features2.pNext = &addresses;
+    if (info_.bufferDeviceAddress) {
+      addresses.bufferDeviceAddress = VK_TRUE;
+      *next = &addresses;
+      next = &addresses.pNext;
+    }
     if (info_.int64BufferAtomics) {
       atomic64.shaderBufferInt64Atomics = VK_TRUE;
-      addresses.pNext = &atomic64;
+      *next = &atomic64;
+      if (props.apiVersion < VK_API_VERSION_1_2)
+        deviceExtensions.push_back(VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME);
     }
     // Portability implementations must enable this extension when they expose it.
     if (hasDeviceExtension(physicalDevice_, "VK_KHR_portability_subset"))

@@ -26,7 +26,7 @@ struct DeviceInfo {
   uint32_t deviceId = 0;
   bool computeCapable = false;
   bool int64BufferAtomics = false;  // shaderBufferInt64Atomics
-  bool bufferDeviceAddress = false;  // kernels reach grouped buffers through tables of addresses
+  bool bufferDeviceAddress = false;  // kernels can bind groups of buffers as tables of addresses
   bool timestamps = false;          // the compute queue has timestamp bits
   uint64_t timestampMask = 0;       // the valid bits of a timestamp on that queue
   double timestampPeriodNs = 0.0;
@@ -43,6 +43,9 @@ struct ContextOptions {
   bool disableInt64Atomics = false;    // pretend the device lacks them (tests of fallbacks)
   uint64_t memoryLimitBytes = 0;       // > 0: pretend no memory heap holds more (tests of running out)
   uint32_t storageBufferLimit = 0;     // > 0: pretend no stage or set takes more storage buffers
+  // Kernels with an address build (vk::ComputeKernel) bind their groups of buffers as tables of
+  // device addresses: always when true, else only where their bindings exceed the device's limits.
+  bool bindByAddress = false;
   // > 0: pretend a discrete GPU without resizable BAR, whose host-visible device-local heap holds
   // this many bytes (256 MiB on such GPUs): device-local memory the host cannot map, that small
   // heap, and system memory for staging. Tests that frames fit such devices.
@@ -68,6 +71,7 @@ class Context {
   const DeviceInfo& info() const { return info_; }
   const VkPhysicalDeviceLimits& limits() const { return limits_; }
   bool validationEnabled() const { return validationEnabled_; }
+  const ContextOptions& options() const { return options_; }
 
   // Memory type with all required flags among those the buffer allows (memoryTypeBits of its
   // requirements); prefers the ones that also have the preferred flags. Returns UINT32_MAX
@@ -119,6 +123,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
   std::array<uint32_t, VK_MAX_MEMORY_TYPES> allocationTypes_{};  // memoryProperties_ type -> the device's
   DeviceInfo info_;
+  ContextOptions options_;
   bool validationEnabled_ = false;
 
   mutable std::atomic<uint64_t> memoryPeak_{0};

@@ -27,11 +27,11 @@ std::span<const spvc_reflected_resource> resourcesOf(spvc_resources resources, s
   return {list, count};
 }
 
-void fitsUnder(const std::string& kernelName, const char* what, uint64_t needed, const char* limitName,
-               uint64_t limit) {
-  if (needed > limit)
-    throw Error("kernel '" + kernelName + "' needs " + std::to_string(needed) + " " + what + "; the device allows " +
-                std::to_string(limit) + " (" + limitName + ")");
+void fitsUnder(std::string& why, const std::string& kernelName, const char* what, uint64_t needed,
+               const char* limitName, uint64_t limit) {
+  if (why.empty() && needed > limit)
+    why = "kernel '" + kernelName + "' needs " + std::to_string(needed) + " " + what + "; the device allows " +
+          std::to_string(limit) + " (" + limitName + ")";
 }
 
 }  // namespace
@@ -81,22 +81,24 @@ KernelInterface reflectKernel(const EmbeddedKernel& kernel) {
   return result;
 }
 
-void checkKernelFitsDevice(const std::string& kernelName, const KernelInterface& kernel,
-                           const VkPhysicalDeviceLimits& limits) {
+std::string whyKernelDoesNotFit(const std::string& kernelName, const KernelInterface& kernel,
+                                const VkPhysicalDeviceLimits& limits) {
+  std::string why;
   const auto storageBuffers = uint64_t(kernel.storageBufferBindings.size());
-  fitsUnder(kernelName, "storage buffers in one stage", storageBuffers, "maxPerStageDescriptorStorageBuffers",
+  fitsUnder(why, kernelName, "storage buffers in one stage", storageBuffers, "maxPerStageDescriptorStorageBuffers",
             limits.maxPerStageDescriptorStorageBuffers);
-  fitsUnder(kernelName, "storage buffers in one set", storageBuffers, "maxDescriptorSetStorageBuffers",
+  fitsUnder(why, kernelName, "storage buffers in one set", storageBuffers, "maxDescriptorSetStorageBuffers",
             limits.maxDescriptorSetStorageBuffers);
-  fitsUnder(kernelName, "bytes of push constants", kernel.pushConstantBytes, "maxPushConstantsSize",
+  fitsUnder(why, kernelName, "bytes of push constants", kernel.pushConstantBytes, "maxPushConstantsSize",
             limits.maxPushConstantsSize);
   const char* axes[] = {"maxComputeWorkGroupSize[0]", "maxComputeWorkGroupSize[1]", "maxComputeWorkGroupSize[2]"};
   for (int axis = 0; axis < 3; ++axis)
-    fitsUnder(kernelName, "invocations along a workgroup axis", kernel.localSize[axis], axes[axis],
+    fitsUnder(why, kernelName, "invocations along a workgroup axis", kernel.localSize[axis], axes[axis],
               limits.maxComputeWorkGroupSize[axis]);
-  fitsUnder(kernelName, "invocations per workgroup",
+  fitsUnder(why, kernelName, "invocations per workgroup",
             uint64_t(kernel.localSize[0]) * kernel.localSize[1] * kernel.localSize[2],
             "maxComputeWorkGroupInvocations", limits.maxComputeWorkGroupInvocations);
+  return why;
 }
 
 }  // namespace hmb::vk

@@ -26,9 +26,9 @@ struct KernelInterface {
 // Throws hmb::Error when the SPIR-V cannot be read.
 KernelInterface reflectKernel(const EmbeddedKernel& kernel);
 
-// Throws hmb::Error (one line: the kernel, what it needs, the limit's name and value) when the
-// kernel does not fit the device.
-void checkKernelFitsDevice(const std::string& kernelName, const KernelInterface& kernel,
-                           const VkPhysicalDeviceLimits& limits);
+// Why the kernel does not fit the device (one line: the kernel, what it needs, the limit's
+// name and value), or empty when it fits.
+std::string whyKernelDoesNotFit(const std::string& kernelName, const KernelInterface& kernel,
+                                const VkPhysicalDeviceLimits& limits);
 
 }  // namespace hmb::vk

@@ -6,9 +6,14 @@
 
 namespace hmb::vk {
 
-const EmbeddedKernel& findKernel(std::string_view name) {
+const EmbeddedKernel* findKernelIfBuilt(std::string_view name) {
   for (const EmbeddedKernel& kernel : embeddedKernels())
-    if (kernel.name == name) return kernel;
+    if (kernel.name == name) return &kernel;
+  return nullptr;
+}
+
+const EmbeddedKernel& findKernel(std::string_view name) {
+  if (const EmbeddedKernel* kernel = findKernelIfBuilt(name)) return *kernel;
   throw Error("kernel '" + std::string(name) + "' is not built into this binary");
 }
 

@@ -19,5 +19,11 @@ const std::span<const EmbeddedKernel> embeddedKernels();
 
 // Throws hmb::Error naming the kernel when it was not built in.
 const EmbeddedKernel& findKernel(std::string_view name);
+// nullptr when not built in.
+const EmbeddedKernel* findKernelIfBuilt(std::string_view name);
+
+// The suffix of a kernel's second build whose groups of buffers are bound as tables of device
+// addresses (cmake/EmbedKernels.cmake, HMB_BIND_BY_ADDRESS).
+inline constexpr std::string_view kByAddressSuffix = "#by-address";
 
 }  // namespace hmb::vk

@@ -88,8 +88,7 @@ TEST_F(FrameRecorderTest, RecorderIsReusableAcrossFrames) {
 
 TEST_F(FrameRecorderTest, MisuseIsAClearError) {
   vk::FrameRecorder frame(context());
-  vk::ComputeKernel kernel(context(), "debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT,
-                           sizeof(gpu::TestPatternParams));
+  vk::ComputeKernel kernel(context(), "debug/test_pattern", sizeof(gpu::TestPatternParams));
   vk::Buffer image(context(), 64, vk::MemoryUse::Device, "image");
   const gpu::TestPatternParams params{1, 1, 0.0f, 0};
   EXPECT_THROW(frame.dispatch("outside", kernel, {&image}, params, {1, 1, 1}), Error);

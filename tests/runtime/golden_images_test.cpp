@@ -131,17 +131,11 @@ const std::map<std::string, GoldenTable>& goldenTables() {
   return tables;
 }
 
-TEST_F(GoldenImagesTest, EveryMethodOnEveryReferenceSceneMatchesItsRecordedHash) {
-  const std::string key = configurationKey(context());
-  const bool print = std::getenv("HMB_PRINT_GOLDEN") != nullptr;
-  const auto table = goldenTables().find(key);
-  if (table == goldenTables().end() && !print)
-    GTEST_SKIP() << "no golden hashes recorded for \"" << key << "\" (HMB_PRINT_GOLDEN=1 prints them)";
-
+GoldenTable renderGoldenCases(vk::Context& context) {
   GoldenTable rendered;
   for (const char* sceneName : {"living-room", "temple", "bistro"}) {
     const scene::Scene scene = scene::loadScene(sceneName);
-    Renderer renderer(context());
+    Renderer renderer(context);
     for (const GoldenCase& c : goldenCases()) {
       RenderSettings settings;
       settings.method = c.method;
@@ -151,19 +145,48 @@ TEST_F(GoldenImagesTest, EveryMethodOnEveryReferenceSceneMatchesItsRecordedHash)
       rendered[std::string(sceneName) + "/" + c.name] = imageHash(renderer.render(scene, settings));
     }
   }
+  return rendered;
+}
 
+void expectGolden(const GoldenTable& rendered, const GoldenTable& golden) {
+  for (const auto& [name, hash] : rendered) {
+    const auto expected = golden.find(name);
+    ASSERT_NE(expected, golden.end()) << name << " has no recorded hash";
+    EXPECT_EQ(hash, expected->second) << name << " changed (rendered 0x" << std::hex << hash << ")";
+  }
+  EXPECT_EQ(rendered.size(), golden.size()) << "the table records cases this test no longer renders";
+}
+
+TEST_F(GoldenImagesTest, EveryMethodOnEveryReferenceSceneMatchesItsRecordedHash) {
+  const std::string key = configurationKey(context());
+  const bool print = std::getenv("HMB_PRINT_GOLDEN") != nullptr;
+  const auto table = goldenTables().find(key);
+  if (table == goldenTables().end() && !print)
+    GTEST_SKIP() << "no golden hashes recorded for \"" << key << "\" (HMB_PRINT_GOLDEN=1 prints them)";
+
+  const GoldenTable rendered = renderGoldenCases(context());
   if (print) {
     std::printf("      {\"%s\",\n       {\n", key.c_str());
-    for (const auto& [name, hash] : rendered) std::printf("           {\"%s\", 0x%016llxull},\n", name.c_str(), (unsigned long long)hash);
+    for (const auto& [name, hash] : rendered)
+      std::printf("           {\"%s\", 0x%016llxull},\n", name.c_str(), (unsigned long long)hash);
     std::printf("       }},\n");
   }
   if (table == goldenTables().end()) GTEST_SKIP() << "printed the hashes of \"" << key << "\"";
-  for (const auto& [name, hash] : rendered) {
-    const auto golden = table->second.find(name);
-    ASSERT_NE(golden, table->second.end()) << name << " has no recorded hash";
-    EXPECT_EQ(hash, golden->second) << name << " changed (rendered 0x" << std::hex << hash << ")";
-  }
-  EXPECT_EQ(rendered.size(), table->second.size()) << "the table records cases this test no longer renders";
+  expectGolden(rendered, table->second);
+}
+
+// The kernels' address builds (their groups of buffers bound as tables of device addresses, for
+// devices with few storage-buffer bindings) render the very images their plain builds do.
+TEST(GoldenImagesByAddressTest, TheAddressBuildsRenderTheRecordedImages) {
+  vk::ContextOptions options;
+  options.validation = true;
+  options.bindByAddress = true;
+  vk::Context byAddress(options);
+  if (!byAddress.info().bufferDeviceAddress) GTEST_SKIP() << "the device has no buffer device addresses";
+  const auto table = goldenTables().find(configurationKey(byAddress));
+  if (table == goldenTables().end()) GTEST_SKIP() << "no golden hashes recorded for this configuration";
+  expectGolden(renderGoldenCases(byAddress), table->second);
+  EXPECT_EQ(byAddress.validationErrors(), 0u);
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/debug/test_pattern.h"
@@ -15,7 +17,9 @@
 #include "kernels/reference/reference_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
+#include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/frame_recorder.h"
 #include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "tests/support/expect_error.h"
@@ -66,77 +70,105 @@ const KernelLayout kLayouts[] = {
 
 using KernelPipelinesTest = VulkanTest;
 
+bool isAddressBuild(std::string_view name) { return name.ends_with(vk::kByAddressSuffix); }
+
+const KernelLayout& layoutOf(std::string_view name) {
+  if (isAddressBuild(name)) name.remove_suffix(vk::kByAddressSuffix.size());
+  for (const KernelLayout& l : kLayouts)
+    if (name == l.name) return l;
+  throw std::runtime_error("no layout declared in this test for kernel " + std::string(name));
+}
+
 TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
-    const KernelLayout* layout = nullptr;
-    for (const KernelLayout& l : kLayouts)
-      if (kernel.name == l.name) layout = &l;
-    ASSERT_NE(layout, nullptr) << "no layout declared in this test for kernel " << kernel.name;
-    if (layout->needsInt64Atomics && !context().info().int64BufferAtomics) continue;
-    EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout->bindings, layout->pushBytes)) << kernel.name;
-    if (layout->shades) {
+    if (isAddressBuild(kernel.name)) continue;  // ComputeKernel picks it; see below
+    const KernelLayout& layout = layoutOf(kernel.name);
+    if (layout.needsInt64Atomics && !context().info().int64BufferAtomics) continue;
+    const vk::ComputeKernel built(context(), kernel.name, layout.pushBytes);
+    EXPECT_EQ(built.storageBufferCount(), layout.bindings) << kernel.name;
+    EXPECT_FALSE(built.bindsByAddress()) << kernel.name << ": its bindings fit this device";
+    if (layout.shades) {
       uint32_t untextured[HMB_SPEC_TEXTURE_PATH + 1] = {};
-      EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout->bindings, layout->pushBytes, untextured))
+      EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout.pushBytes, untextured))
           << kernel.name << " without the texture path";
     }
   }
 }
 
-const KernelLayout& layoutOf(std::string_view name) {
-  for (const KernelLayout& l : kLayouts)
-    if (name == l.name) return l;
-  throw std::runtime_error("no layout declared for " + std::string(name));
-}
-
 TEST_F(KernelPipelinesTest, ReflectionReadsWhatEachKernelDeclares) {
+  uint32_t addressBuilds = 0;
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
     const vk::KernelInterface reflected = vk::reflectKernel(kernel);
     const KernelLayout& layout = layoutOf(kernel.name);
-    EXPECT_EQ(reflected.storageBufferBindings.size(), layout.bindings) << kernel.name;
     EXPECT_LE(reflected.pushConstantBytes, layout.pushBytes) << kernel.name;
     EXPECT_GE(reflected.localSize[0] * reflected.localSize[1] * reflected.localSize[2], 1u) << kernel.name;
+    if (!isAddressBuild(kernel.name)) {
+      EXPECT_EQ(reflected.storageBufferBindings.size(), layout.bindings) << kernel.name;
+      continue;
+    }
+    // An address build binds each group (trace scene, shading scene, image layer) as one table.
+    ++addressBuilds;
+    EXPECT_LE(reflected.storageBufferBindings.size(), 8u) << kernel.name;
+    EXPECT_LT(reflected.storageBufferBindings.size(), layout.bindings) << kernel.name;
   }
+  EXPECT_GE(addressBuilds, 4u);
   // encode_display: two buffers, one group of 8x8, its parameters (shared header).
   const vk::KernelInterface encode = vk::reflectKernel(vk::findKernel("output/encode_display"));
   EXPECT_EQ(encode.storageBufferBindings, (std::vector<uint32_t>{0, 1}));
   EXPECT_EQ(encode.pushConstantBytes, sizeof(gpu::EncodeDisplayParams));
 }
 
-TEST_F(KernelPipelinesTest, AHostThatDisagreesWithTheKernelIsAOneLineError) {
+TEST_F(KernelPipelinesTest, HostsThatDisagreeWithTheKernelAreOneLineErrors) {
   const KernelLayout& layout = layoutOf("output/encode_display");
-  expectError([&] { vk::ComputeKernel(context(), layout.name, layout.bindings + 1, layout.pushBytes); },
-                     "declares 2 storage buffers");
-  expectError([&] { vk::ComputeKernel(context(), layout.name, layout.bindings, layout.pushBytes - 4); },
-                     "bytes of push constants but its host passes");
+  expectError([&] { vk::ComputeKernel(context(), layout.name, layout.pushBytes - 4); },
+              "bytes of push constants but its host passes");
+  const vk::ComputeKernel kernel(context(), layout.name, layout.pushBytes);
+  vk::Buffer one(context(), 64, vk::MemoryUse::Device, "test buffer");
+  vk::FrameRecorder frame(context());
+  frame.begin();
+  const gpu::EncodeDisplayParams params{};
+  expectError([&] { frame.dispatch("encode-display", kernel, {&one}, params, {1, 1, 1}); },
+              "binds 1 buffers; kernel 'output/encode_display' has 2");
 }
 
-// A device that takes fewer storage buffers per stage than the widest kernel: pipeline creation
-// refuses exactly the kernels that bind more, in one line naming the kernel and the limit.
-TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersRefusesTheKernelsThatNeedMore) {
+// A device that takes fewer storage buffers per stage than the widest kernel: a kernel whose
+// plain build binds more runs its address build where it has one that fits, and pipeline
+// creation refuses the others in one line naming the kernel and the limit.
+TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersTakesAddressBuildsOrRefusesInOneLine) {
   uint32_t widest = 0;
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels())
     widest = std::max(widest, uint32_t(vk::reflectKernel(kernel).storageBufferBindings.size()));
   ASSERT_GE(widest, 2u);
+  const uint32_t limit = widest - 1;
   vk::ContextOptions options;
   options.validation = true;
-  options.storageBufferLimit = widest - 1;
+  options.storageBufferLimit = limit;
   vk::Context small(options);
-  ASSERT_EQ(small.limits().maxPerStageDescriptorStorageBuffers, widest - 1);
-  uint32_t refused = 0;
+  ASSERT_EQ(small.limits().maxPerStageDescriptorStorageBuffers, limit);
+  uint32_t switched = 0, refused = 0;
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
+    if (isAddressBuild(kernel.name)) continue;
     const KernelLayout& layout = layoutOf(kernel.name);
     if (layout.needsInt64Atomics && !small.info().int64BufferAtomics) continue;
-    if (layout.bindings <= widest - 1) {
-      EXPECT_NO_THROW(vk::ComputeKernel(small, kernel.name, layout.bindings, layout.pushBytes)) << kernel.name;
-      continue;
+    const vk::EmbeddedKernel* byAddress = vk::findKernelIfBuilt(std::string(kernel.name) + std::string(vk::kByAddressSuffix));
+    if (layout.bindings <= limit) {
+      const vk::ComputeKernel built(small, kernel.name, layout.pushBytes);
+      EXPECT_FALSE(built.bindsByAddress()) << kernel.name;
+    } else if (byAddress && vk::reflectKernel(*byAddress).storageBufferBindings.size() <= limit &&
+               small.info().bufferDeviceAddress) {
+      ++switched;
+      const vk::ComputeKernel built(small, kernel.name, layout.pushBytes);
+      EXPECT_TRUE(built.bindsByAddress()) << kernel.name;
+      EXPECT_LE(built.storageBufferCount(), limit) << kernel.name;
+    } else {
+      ++refused;
+      expectError([&] { vk::ComputeKernel(small, kernel.name, layout.pushBytes); },
+                  "kernel '" + std::string(kernel.name) + "' needs " + std::to_string(layout.bindings) +
+                      " storage buffers in one stage; the device allows " + std::to_string(limit) +
+                      " (maxPerStageDescriptorStorageBuffers)");
     }
-    ++refused;
-    expectError([&] { vk::ComputeKernel(small, kernel.name, layout.bindings, layout.pushBytes); },
-                       "kernel '" + std::string(kernel.name) + "' needs " + std::to_string(layout.bindings) +
-                           " storage buffers in one stage; the device allows " + std::to_string(widest - 1) +
-                           " (maxPerStageDescriptorStorageBuffers)");
   }
-  EXPECT_GE(refused, 1u);
+  EXPECT_GE(switched + refused, 1u);
   EXPECT_EQ(small.validationErrors(), 0u);
 }
 

@@ -1,0 +1,39 @@
+// The trace scene as a kernel binds it, from its binding HMB_TRACE_SCENE_BINDING on (defined
+// by the including kernel): the 12 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
+// with few storage-buffer bindings) one TraceSceneTable of their addresses. Either way the
+// kernels read the same names: topNodes[i], transforms[i], ...
+#ifndef HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
+#define HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
+
+#include "trace_layout.h"
+
+#ifdef HMB_BIND_BY_ADDRESS
+layout(std430, binding = HMB_TRACE_SCENE_BINDING) readonly buffer TraceScene { TraceSceneTable traceScene; };
+#define topNodes traceScene.topNodes.v
+#define topLinks traceScene.topLinks.v
+#define topPrimitives traceScene.topPrimitives.v
+#define traceInstances traceScene.instances.v
+#define transforms traceScene.transforms.v
+#define meshNodes traceScene.meshNodes.v
+#define meshLinks traceScene.meshLinks.v
+#define meshPrimitives traceScene.meshPrimitives.v
+#define traceTriangles traceScene.triangles.v
+#define positions traceScene.positions.v
+#define topFrame traceScene.topFrame.v[0]
+#define meshFrames traceScene.meshFrames.v
+#else
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 0) readonly buffer TopNodes { uvec4 topNodes[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 1) readonly buffer TopLinks { uint topLinks[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 2) readonly buffer TopPrimitives { uint topPrimitives[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 3) readonly buffer TraceInstances { TraceInstance traceInstances[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 4) readonly buffer Transforms { InstanceTransform transforms[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 5) readonly buffer MeshNodes { uvec4 meshNodes[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 6) readonly buffer MeshLinks { uint meshLinks[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 8) readonly buffer TraceTriangles { uvec4 traceTriangles[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) readonly buffer Positions { vec4 positions[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 10) readonly buffer TopFrame { BvhFrame topFrame; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 11) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
+#endif
+
+#endif
