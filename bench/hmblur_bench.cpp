@@ -37,6 +37,7 @@ struct GlobalOptions {
   bool quiet = false;
   int device = -1;
   bool validation = false;
+  bool bindByAddress = false;
 };
 
 struct RasterOptions {
@@ -143,6 +144,7 @@ hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
   hmb::vk::ContextOptions options;
   options.deviceIndex = global.device;
   options.validation = global.validation;
+  options.bindByAddress = global.bindByAddress;
   return options;
 }
 
@@ -419,6 +421,9 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& global) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--validation", global.validation,
                "Enable the Khronos validation layer; any validation error fails the suite (exit code 3)");
+  app.add_flag("--bind-by-address", global.bindByAddress,
+               "Kernels with an address build bind their groups of buffers as tables of device addresses "
+               "(default: only where the device has too few storage-buffer bindings)");
 }
 
 // --out, --warmup and --repeats, which every suite has.

@@ -36,6 +36,7 @@ struct GlobalOptions {
   bool quiet = false;
   int device = -1;
   bool validation = false;
+  bool bindByAddress = false;
 };
 
 struct RenderOptions {
@@ -98,6 +99,7 @@ hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
   hmb::vk::ContextOptions options;
   options.deviceIndex = global.device;
   options.validation = global.validation;
+  options.bindByAddress = global.bindByAddress;
   return options;
 }
 
@@ -417,6 +419,9 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--validation", global.validation,
                "Enable the Khronos validation layer; any validation error fails the command");
+  app.add_flag("--bind-by-address", global.bindByAddress,
+               "Kernels with an address build bind their groups of buffers as tables of device addresses "
+               "(default: only where the device has too few storage-buffer bindings)");
 
   RenderOptions renderOptions;
   CLI::App* renderCmd = app.add_subcommand("render", "Render one frame of a scene with one method");
