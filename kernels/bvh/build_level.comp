@@ -231,6 +231,11 @@ void main() {
   // What this lane sends to each side, merged in registers (no per-primitive shared writes).
   vec3 boxLo[2] = vec3[2](vec3(kInfinity), vec3(kInfinity)), boxHi[2] = vec3[2](-vec3(kInfinity), -vec3(kInfinity));
   vec3 centreLo[2] = boxLo, centreHi[2] = boxHi;
+  // A child of one primitive is a leaf at once, its primitive's final place in the first half:
+  // at even levels that is this task's input, which other lanes may not have read yet, so the
+  // write waits for the barrier below. A lane meets at most one such primitive.
+  bool lone = false;
+  uint lonePosition = 0u, lonePrimitive = 0u;
   for (uint base = lane; base < task.count; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
     const uint k = base + u * GROUP;
     if (k >= task.count) break;
@@ -242,7 +247,7 @@ void main() {
                            : binOf(c[axis], task.centroidMin[axis], scale[axis], bins) > lastLeftBin;
     const uint position = task.first + (right ? leftCount + atomicAdd(cursor[1], 1u) : atomicAdd(cursor[0], 1u));
     primitives[outBase + position] = primitive;
-    if ((right ? rightCount : leftCount) == 1u) primitives[position] = primitive;  // a leaf at once: final place
+    if ((right ? rightCount : leftCount) == 1u) lone = true, lonePosition = position, lonePrimitive = primitive;
     if (right) {
       boxLo[1] = min(boxLo[1], box.min.xyz), boxHi[1] = max(boxHi[1], box.max.xyz);
       centreLo[1] = min(centreLo[1], c), centreHi[1] = max(centreHi[1], c);
@@ -259,6 +264,7 @@ void main() {
       laneChildBounds[lane * 24 + side * 12 + 9 + d] = centreHi[side][d];
     }
   barrier();
+  if (lone) primitives[lonePosition] = lonePrimitive;
   for (uint i = lane; i < 24; i += GROUP) {
     const bool lower = (i % 6) < 3;
     float v = lower ? kInfinity : -kInfinity;
