@@ -317,10 +317,11 @@ KernelCase gatherCase(const vk::Context& context, ImageSize size, const KernelsS
   stage.recordTiles(frame, layer.inputs);  // the neighbour-max tiles the gather reads, untimed
   frame.submitAndWait();
 
+  const passes::GatherPass gather(context);
   KernelCase c = pixelCase(kGather, size);
   timeCase(c, options, [&] {
     frame.begin();
-    stage.recordGather(frame, layer.inputs, passes::GatherOptions{}, output, passes::GatherPass::kName);
+    gather.record(frame, layer.inputs, stage.neighborMax(), output, settings);
     return passSum(frame.submitAndWait());
   });
   c.details = {{"samples", settings.samples},

@@ -18,9 +18,8 @@ layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_PREVIOUS) readonly buffer Clip
 layout(std430, binding = HMB_RESOLVE_BINDING_SHADING) readonly buffer Shading { GpuVertexShading shading[]; };
 #define HMB_SCENE_BINDING HMB_RESOLVE_BINDING_SCENE
 #include "../shared/scene_bindings.glsl"
-#define HMB_LAYER_BINDING HMB_RESOLVE_BINDING_GBUFFER
-#define HMB_LAYER_ACCESS writeonly
 #include "../shared/layer_bindings.glsl"
+HMB_LAYER(gbuffer, HMB_RESOLVE_BINDING_GBUFFER, writeonly)
 layout(push_constant) uniform Params { ResolveParams params; };
 
 #include "../shared/shading.glsl"
@@ -48,10 +47,10 @@ void main() {
   const uint index = pixel.y * params.width + pixel.x;
   const uint triangleId = visibility[index].x;
   if (triangleId == HMB_VIS_EMPTY) {
-    layerColor[index] = vec4(camera.background.rgb, 1.0);
-    layerNormalDepth[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
-    layerVelocity[index] = vec2(0.0);
-    layerObjectId[index] = 0u;
+    LAYER_COLOR(gbuffer, index) = vec4(camera.background.rgb, 1.0);
+    LAYER_NORMAL_DEPTH(gbuffer, index) = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
+    LAYER_VELOCITY(gbuffer, index) = vec2(0.0);
+    LAYER_OBJECT_ID(gbuffer, index) = 0u;
     return;
   }
 
@@ -79,8 +78,8 @@ void main() {
 
   // Clip w of a perspective projection is the camera-space depth, and linear in barycentrics.
   const float depth = dot(b, vec3(c0.z, c1.z, c2.z));
-  layerColor[index] = vec4(shadeSurface(sceneInstances[tri.instance].material, uv, n), 1.0);
-  layerNormalDepth[index] = vec4(n, depth);
-  layerVelocity[index] = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
-  layerObjectId[index] = sceneInstances[tri.instance].objectId;
+  LAYER_COLOR(gbuffer, index) = vec4(shadeSurface(sceneInstances[tri.instance].material, uv, n), 1.0);
+  LAYER_NORMAL_DEPTH(gbuffer, index) = vec4(n, depth);
+  LAYER_VELOCITY(gbuffer, index) = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
+  LAYER_OBJECT_ID(gbuffer, index) = sceneInstances[tri.instance].objectId;
 }

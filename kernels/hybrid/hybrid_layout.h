@@ -104,6 +104,26 @@
 #define HMB_REVEAL_BINDING_REVEALED (HMB_REVEAL_BINDING_SCENE + HMB_SCENE_BINDINGS)
 #define HMB_REVEAL_BINDING_COUNT (HMB_REVEAL_BINDING_REVEALED + HMB_LAYER_BINDINGS)
 
+// gather_background: the background layer (the raster, the revealed layer where the mask says
+// HMB_MASK_REVEALED) blurred at the listed pixels; one invocation per list entry.
+#define HMB_BACKGROUND_GATHER_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
+#define HMB_BACKGROUND_GATHER_BINDING_MASK 1          // uint per pixel: HMB_MASK_*
+#define HMB_BACKGROUND_GATHER_BINDING_LIST 2          // the ray mask's pixel list
+#define HMB_BACKGROUND_GATHER_BINDING_COUNTERS 3      // RayMaskCounters: the list's length
+#define HMB_BACKGROUND_GATHER_BINDING_OUTPUT 4        // vec4 per pixel, written at listed pixels
+#define HMB_BACKGROUND_GATHER_BINDING_RASTER 5        // the G-buffer (shared/layer_bindings.glsl)
+#define HMB_BACKGROUND_GATHER_BINDING_REVEALED (HMB_BACKGROUND_GATHER_BINDING_RASTER + HMB_LAYER_BINDINGS)
+#define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_REVEALED + HMB_LAYER_BINDINGS)
+
+// composite: every pixel; the form is a specialization constant.
+#define HMB_COMPOSITE_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
+#define HMB_COMPOSITE_BINDING_MASK 1          // uint per pixel: HMB_MASK_* (0: outside)
+#define HMB_COMPOSITE_BINDING_BACKGROUND 2    // vec4 per pixel: the blurred background, read at mask pixels
+#define HMB_COMPOSITE_BINDING_OUTPUT 3        // vec4 per pixel
+#define HMB_COMPOSITE_BINDING_RASTER 4        // the G-buffer (shared/layer_bindings.glsl)
+#define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
+#define HMB_SPEC_COMPOSITE_COVERAGE 0  // true: the coverage form; false: the weights form
+
 // RevealParams.stop
 #define HMB_REVEAL_STOP_OBJECT_ID 0u  // the first surface of another object (one trace, the object skipped whole)
 #define HMB_REVEAL_STOP_LUMINANCE 1u  // the paper's mode: step past hits until the luminance differs

@@ -26,9 +26,8 @@ layout(std430, binding = HMB_REVEAL_BINDING_RASTER_ID) readonly buffer RasterId 
 layout(std430, binding = HMB_REVEAL_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 #define HMB_SCENE_BINDING HMB_REVEAL_BINDING_SCENE
 #include "../shared/scene_bindings.glsl"
-#define HMB_LAYER_BINDING HMB_REVEAL_BINDING_REVEALED
-#define HMB_LAYER_ACCESS writeonly
 #include "../shared/layer_bindings.glsl"
+HMB_LAYER(revealed, HMB_REVEAL_BINDING_REVEALED, writeonly)
 layout(push_constant) uniform Params { RevealParams params; };
 
 #include "../shared/shading.glsl"
@@ -82,10 +81,10 @@ void main() {
 
   atomicAdd(counters.rayCount, traces);
   if (hit.triangle == HMB_NO_HIT) {
-    layerColor[index] = vec4(camera.background.rgb, 1.0);
-    layerNormalDepth[index] = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
-    layerVelocity[index] = vec2(0.0);
-    layerObjectId[index] = 0u;
+    LAYER_COLOR(revealed, index) = vec4(camera.background.rgb, 1.0);
+    LAYER_NORMAL_DEPTH(revealed, index) = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
+    LAYER_VELOCITY(revealed, index) = vec2(0.0);
+    LAYER_OBJECT_ID(revealed, index) = 0u;
     return;
   }
   // The hit point now and at the previous frame: carried into the instance's space with the
@@ -99,8 +98,8 @@ void main() {
 
   const HitSurface surface = hitSurface(hit, direction, hit.instance);
   const vec3 shaded = shadeSurface(sceneInstances[hit.instance].material, surface.uv, surface.normal);
-  layerColor[index] = vec4(finite3(shaded) ? shaded : vec3(0.0), 1.0);
-  layerNormalDepth[index] = vec4(surface.normal, hit.t);
-  layerVelocity[index] = motion;
-  layerObjectId[index] = traceInstances[hit.instance].objectId;
+  LAYER_COLOR(revealed, index) = vec4(finite3(shaded) ? shaded : vec3(0.0), 1.0);
+  LAYER_NORMAL_DEPTH(revealed, index) = vec4(surface.normal, hit.t);
+  LAYER_VELOCITY(revealed, index) = motion;
+  LAYER_OBJECT_ID(revealed, index) = traceInstances[hit.instance].objectId;
 }

@@ -65,7 +65,7 @@ float behindShareOf(uint sampleObject, float sampleDepth, uint centreObject, flo
 }
 
 // The coverage composite's sample i of `samples` along the pixel's own displacement v:
-// the same positions in gather.comp (which blends) and range_check.comp (which decides
+// the same positions in hybrid/composite.comp (which blends) and range_check.comp (which decides
 // whether the pixel needs the revealed background at all).
 ivec2 coverageSamplePixel(uvec2 pixel, vec2 v, uint i, uint samples, float jitter, uint width, uint height) {
   const float u = (float(i) + 1.0 - jitter) / float(samples);

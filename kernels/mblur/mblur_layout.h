@@ -35,20 +35,8 @@
 #define HMB_GATHER_BINDING_NORMAL_DEPTH 1  // vec4 per pixel, w = camera-space depth
 #define HMB_GATHER_BINDING_VELOCITY 2      // vec2 per pixel, pixels per frame
 #define HMB_GATHER_BINDING_NEIGHBOR_MAX 3  // vec4 per tile
-#define HMB_GATHER_BINDING_MASK 4          // uint per pixel (0: outside); a one-word dummy without a mask
-#define HMB_GATHER_BINDING_OUTPUT 5        // vec4 per pixel
-#define HMB_GATHER_BINDING_LIST 6          // uint pixel index per entry (pixel-list mode; else a dummy)
-#define HMB_GATHER_BINDING_LIST_LENGTH 7   // uint: the list's length in its first word (RayMaskCounters)
-#define HMB_GATHER_BINDING_BACKGROUND 8    // vec4 per pixel: the blurred revealed background (composite; else a dummy)
-#define HMB_GATHER_BINDING_OBJECT_ID 9     // uint per pixel: the layer's object ids (composite; else a dummy)
-// Overlay layer (HMB_GATHER_FLAG_OVERLAY): where the mask says HMB_MASK_REVEALED
-// (kernels/hybrid/hybrid_layout.h), these replace the layer's own
-// colour, normal-depth and velocity (the hybrid's background layer: the revealed surfaces over
-// the raster, without copying the raster).
-#define HMB_GATHER_BINDING_OVERLAY_COLOR 10
-#define HMB_GATHER_BINDING_OVERLAY_NORMAL_DEPTH 11
-#define HMB_GATHER_BINDING_OVERLAY_VELOCITY 12
-#define HMB_GATHER_BINDING_COUNT 13
+#define HMB_GATHER_BINDING_OUTPUT 4        // vec4 per pixel
+#define HMB_GATHER_BINDING_COUNT 5
 
 #define HMB_JIMENEZ_BINDING_COLOR 0
 #define HMB_JIMENEZ_BINDING_NORMAL_DEPTH 1
@@ -59,16 +47,6 @@
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]
-#define HMB_GATHER_FLAG_USE_MASK 2u       // read the mask binding
-// Pixel-list mode: one invocation per listed pixel (8 x 8 lanes per group, groups counted
-// from the list's length by an indirect dispatch); only listed pixels are written.
-#define HMB_GATHER_FLAG_PIXEL_LIST 4u
-// The hybrid composite, in mask pixels (needs USE_MASK): samples behind the pixel by
-// SOFT_Z_EXTENT stand for the background the raster lost there, so the revealed background,
-// blurred, takes their place. How (see gather.comp):
-#define HMB_GATHER_FLAG_COMPOSITE_WEIGHTS 8u    // their colour, in the weighted sum, becomes the revealed one
-#define HMB_GATHER_FLAG_COMPOSITE_COVERAGE 16u  // foreground share of the range blends foreground and revealed
-#define HMB_GATHER_FLAG_OVERLAY 32u  // read the overlay layer where the mask is set (the mask boosts stay off)
 
 // Velocities are clamped to the tile size (so the 3x3 neighbourhood sees every pixel that can
 // reach a tile) and the largest tile size is bounded so per-lane loops stay short.
@@ -101,6 +79,8 @@ struct NeighborMaxParams {
   uint pad0;
 };
 
+// The parameters of every McGuire gather: the post-process gather and the hybrid's background
+// gather and composite (kernels/hybrid/), which must blur alike.
 struct GatherParams {
   uint width;
   uint height;
@@ -113,8 +93,8 @@ struct GatherParams {
   float velocityScale;
   float softZExtent;
   float foregroundBoost;       // multiplies w_f where z_t - z_s >= softZExtent
-  float maskBackgroundBoost;   // multiplies w_b inside the mask
-  float maskForegroundDivide;  // divides w_f inside the mask
+  float maskBackgroundBoost;   // the weights composite: multiplies w_b inside the mask
+  float maskForegroundDivide;  // the weights composite: divides w_f inside the mask
   float coverageMaxSpeed;      // coverage composite: v_X clamped to this length (the image's larger side)
   uint pad1;
   uint pad2;

@@ -15,7 +15,12 @@
 namespace hmb::passes {
 
 HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProcess)
-    : context_(context), postProcess_(postProcess), rayMask_(context), reveal_(context) {}
+    : context_(context),
+      postProcess_(postProcess),
+      rayMask_(context),
+      reveal_(context),
+      backgroundGather_(context),
+      composite_(context) {}
 
 HybridStage::~HybridStage() = default;
 
@@ -101,24 +106,12 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   maskParameters.seed = blur.seed;
   rayMask_.record(frame, raster, gbuffer.objectId(), maskParameters);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.objectId(), rayMask_.list(), rayMask_.counters(),
-                 revealed_, width_, height_,
-                 settings_);
-
+                 revealed_, width_, height_, settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
-  GatherOptions background;
-  background.mask = &rayMask_.mask();
-  background.overlayColor = &revealed_.color();
-  background.overlayNormalDepth = &revealed_.normalDepth();
-  background.overlayVelocity = &revealed_.velocity();
-  background.pixelList = &rayMask_.list();
-  background.listCounters = &rayMask_.counters();
-  postProcess_.recordGather(frame, raster, background, backgroundBlurred_, kGatherBackground);
-  GatherOptions composite;
-  composite.mask = &rayMask_.mask();
-  composite.background = &backgroundBlurred_;
-  composite.objectId = &gbuffer.objectId();
-  composite.composite = settings_.composite;
-  postProcess_.recordGather(frame, raster, composite, output, kGatherComposite);
+  backgroundGather_.record(frame, gbuffer.layer(), revealed_, postProcess_.neighborMax(), rayMask_.mask(),
+                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, width_, height_);
+  composite_.record(frame, gbuffer.layer(), postProcess_.neighborMax(), rayMask_.mask(), backgroundBlurred_, output,
+                    blur, settings_.composite, width_, height_);
 }
 
 }  // namespace hmb::passes

@@ -1,9 +1,9 @@
 // The hybrid method (paper, section 3; DESIGN.md's frame): on top of the G-buffer,
 //   tile-max, neighbour-max of the raster's velocities -> ray mask (RayMaskStage, over the
 //   moving tiles) -> ray reveal (RevealPass) at mask pixels -> gather of the background layer
-//   (the revealed surfaces over the raster, read as an overlay) at mask pixels only (indirect)
-//   -> gather of the raster layer with the mask boosts and the composite (gather.comp's header
-//   says how).
+//   (the revealed surfaces over the raster) at mask pixels only (BackgroundGatherPass,
+//   indirect) -> the raster layer's gather with the background composited in at mask pixels
+//   (CompositePass; kernels/hybrid/composite.comp says how).
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
 // mask and the revealed surfaces.
 #pragma once
@@ -12,6 +12,8 @@
 #include <memory>
 #include <optional>
 
+#include "runtime/passes/background_gather_pass.h"
+#include "runtime/passes/composite_pass.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
@@ -35,8 +37,8 @@ class HybridStage {
  public:
   static constexpr const char* kBvhMeshes = "hybrid-bvh-meshes";        // scene setup: not in the frame time
   static constexpr const char* kBvhInstances = "hybrid-bvh-instances";  // per frame
-  static constexpr const char* kGatherBackground = "gather-background";
-  static constexpr const char* kGatherComposite = "gather-composite";
+  static constexpr const char* kGatherBackground = BackgroundGatherPass::kName;
+  static constexpr const char* kGatherComposite = CompositePass::kName;
 
   // postProcess: the stage whose tiles and gather both layers use (configured for the
   // McGuire filter and the adapted range by the caller).
@@ -80,6 +82,8 @@ class HybridStage {
   PostProcessStage& postProcess_;
   RayMaskStage rayMask_;
   RevealPass reveal_;
+  BackgroundGatherPass backgroundGather_;
+  CompositePass composite_;
   HybridSettings settings_;
   std::unique_ptr<TraceScene> traceScene_;
   uint32_t width_ = 0, height_ = 0;

@@ -61,23 +61,13 @@ void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInp
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
 }
 
-void PostProcessStage::recordGather(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
-                                    const GatherOptions& options, const vk::Buffer& output,
-                                    std::string_view passName) const {
-  if (!gather_) throw Error("post-process: gathers with options need the McGuire filter");
-  requirePreparedSize(inputs);
-  gather_->record(frame, inputs, neighborMax_, options, output, settings_, passName);
-}
-
-void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output,
-                              const vk::Buffer* mask) const {
-  const bool jimenez = settings_.filter == PostProcessFilter::Jimenez;
-  if (mask && jimenez) throw Error("post-process: the Jimenez filter takes no mask");
+void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
+                              const vk::Buffer& output) const {
   recordTiles(frame, inputs);
-  if (jimenez)
+  if (settings_.filter == PostProcessFilter::Jimenez)
     jimenezGather_->record(frame, inputs, neighborMax_, output, settings_);
   else
-    gather_->record(frame, inputs, neighborMax_, mask, output, settings_);
+    gather_->record(frame, inputs, neighborMax_, output, settings_);
 }
 
 }  // namespace hmb::passes

@@ -34,14 +34,10 @@ class PostProcessStage {
   // Sizes the tile buffers for this resolution (reuses them when it is unchanged).
   void prepare(uint32_t width, uint32_t height);
   // inputs: the layer to blur, at the prepared size. output: width * height vec4.
-  // mask: width * height uint (0/1) for the McGuire gather's mask options, or nullptr.
-  void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output,
-              const vk::Buffer* mask = nullptr) const;
-  // The same in parts, for layers that share one set of tiles (the hybrid method): the tile
-  // passes over `inputs`' velocities, then McGuire gathers of any layer with any options.
+  void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output) const;
+  // The tile passes alone over `inputs`' velocities, for stages that run their own gathers
+  // on neighborMax() (the hybrid method).
   void recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const;
-  void recordGather(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const GatherOptions& options,
-                    const vk::Buffer& output, std::string_view passName) const;
 
   const PostProcessSettings& settings() const { return settings_; }
   TileGrid tileGrid() const { return grid_; }

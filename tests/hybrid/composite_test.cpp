@@ -1,4 +1,4 @@
-// The hybrid composites of gather.comp (coverage and weights, at mask pixels) against the C++
+// The hybrid composites of hybrid/composite.comp (coverage and weights, at mask pixels) against the C++
 // reference on random and adversarial layers, and the gather's pixel-list mode: exactly the
 // listed pixels written, each as the full-frame gather writes it, also with more groups than
 // one row of a dispatch holds.
@@ -238,24 +238,43 @@ TEST_F(HybridCompositeTest, PixelListGathersExactlyTheListedPixels) {
     const PostProcessSettings s = compositeSettings(10u, 15u, 4u);
     const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
     const std::vector<uint32_t> list = randomList(c.layer.color.size(), share, rng);
-    // The background gather of the hybrid stage: the list alone.
+    // The background gather of the hybrid stage (no pixel revealed): the post-process gather,
+    // at the listed pixels alone.
     GatherRun run;
     run.sentinel = sentinel;
     const std::vector<glm::vec4> full = runGather(context(), c.layer, tiles, run, s);
     run.list = &list;
     expectListGather(runGather(context(), c.layer, tiles, run, s), full, list, sentinel,
                      "share " + std::to_string(share));
-    // With the mask and the composite too.
-    GatherRun composite;
-    composite.mask = &c.mask;
-    composite.background = &c.background;
-    composite.objectId = &c.objectId;
-    composite.sentinel = sentinel;
-    const std::vector<glm::vec4> fullComposite = runGather(context(), c.layer, tiles, composite, s);
-    composite.list = &list;
-    expectListGather(runGather(context(), c.layer, tiles, composite, s), fullComposite, list, sentinel,
-                     "composite, share " + std::to_string(share));
   }
+}
+
+// The background gather reads the revealed layer where the mask says HMB_MASK_REVEALED and the
+// raster elsewhere: on still layers (the gather copies each pixel) a listed pixel comes out as
+// the revealed colour exactly where it is revealed.
+TEST_F(HybridCompositeTest, TheBackgroundGatherReadsTheRevealedLayerWhereTheMaskSaysSo) {
+  const uint32_t width = 53, height = 31;
+  const size_t pixels = size_t(width) * height;
+  Layer raster{width, height, std::vector<glm::vec4>(pixels, glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)),
+               std::vector<glm::vec4>(pixels, glm::vec4(0, 0, 1, 2)), std::vector<glm::vec2>(pixels, glm::vec2(0.0f))};
+  Layer revealed = raster;
+  std::vector<uint32_t> mask(pixels, HMB_MASK_NONE), list;
+  for (uint32_t i = 0; i < pixels; ++i) {
+    revealed.color[i] = glm::vec4(float(i % width), float(i / width), 0.0f, 1.0f);
+    if (i % 3 == 0) mask[i] = HMB_MASK_REVEALED;
+    else if (i % 3 == 1) mask[i] = HMB_MASK_UNREVEALED;
+    if (i % 5 != 0) list.push_back(i);
+  }
+  const PostProcessSettings s = compositeSettings(8u, 15u, 0u);
+  const std::vector<glm::vec4> tiles(passes::tileGridFor(width, height, s.tileSize).count(), glm::vec4(0.0f));
+  GatherRun run;
+  run.mask = &mask;
+  run.list = &list;
+  run.revealed = &revealed;
+  run.sentinel = glm::vec4(-1.0f);
+  std::vector<glm::vec4> expected(pixels);
+  for (size_t i = 0; i < pixels; ++i) expected[i] = mask[i] == HMB_MASK_REVEALED ? revealed.color[i] : raster.color[i];
+  expectListGather(runGather(context(), raster, tiles, run, s), expected, list, run.sentinel, "overlay");
 }
 
 // More than 65535 groups of 64: the dispatch folds into two rows, and every listed pixel is

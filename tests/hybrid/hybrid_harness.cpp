@@ -4,9 +4,14 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "kernels/hybrid/hybrid_layout.h"
+#include "runtime/passes/background_gather_pass.h"
+#include "runtime/passes/composite_pass.h"
 #include "runtime/passes/gather_pass.h"
+#include "runtime/passes/image_layer.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/reveal_pass.h"
@@ -70,28 +75,41 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
                                  const std::vector<glm::vec4>& neighborMax, const GatherRun& run,
                                  const passes::PostProcessSettings& settings) {
   const size_t pixels = size_t(layer.width) * layer.height;
-  const vk::Buffer color = vk::uploadedBuffer(context, layer.color, "test colour");
-  const vk::Buffer normalDepth = vk::uploadedBuffer(context, layer.normalDepth, "test normal-depth");
-  const vk::Buffer velocity = vk::uploadedBuffer(context, layer.velocity, "test velocity");
+  auto imageLayer = [&](const mblur::Layer& l, const std::vector<uint32_t>* ids, const char* name) {
+    return passes::ImageLayer(context, vk::uploadedBuffer(context, l.color, std::string(name) + " colour"),
+                              vk::uploadedBuffer(context, l.normalDepth, std::string(name) + " normal-depth"),
+                              vk::uploadedBuffer(context, l.velocity, std::string(name) + " velocity"),
+                              ids ? vk::uploadedBuffer(context, *ids, std::string(name) + " object id")
+                                  : filledBuffer(context, pixels, 0u, "test object id"));
+  };
+  const passes::ImageLayer raster = imageLayer(layer, run.objectId, "test raster");
   const vk::Buffer tiles = vk::uploadedBuffer(context, neighborMax, "test neighbor max");
   const vk::Buffer output = filledBuffer(context, pixels, run.sentinel, "test output");
-  std::optional<vk::Buffer> mask, background, objectId, list, counters;
-  passes::GatherOptions options;
-  if (run.mask) options.mask = &mask.emplace(vk::uploadedBuffer(context, *run.mask, "test mask"));
-  if (run.background)
-    options.background = &background.emplace(vk::uploadedBuffer(context, *run.background, "test background"));
-  if (run.objectId) options.objectId = &objectId.emplace(vk::uploadedBuffer(context, *run.objectId, "test object id"));
-  options.composite = run.composite;
-  if (run.list) {
-    options.pixelList = &list.emplace(vk::uploadedBuffer(context, *run.list, "test pixel list"));
-    const std::vector<gpu::RayMaskCounters> c{dispatchFor(uint32_t(run.list->size()))};
-    options.listCounters = &counters.emplace(vk::uploadedBuffer(context, c, "test list counters"));
-  }
-  const passes::GatherPass pass(context);
+  const vk::Buffer mask = run.mask ? vk::uploadedBuffer(context, *run.mask, "test mask")
+                                   : filledBuffer(context, pixels, HMB_MASK_NONE, "test mask");
   vk::FrameRecorder frame(context);
   frame.begin();
-  pass.record(frame, {&color, &normalDepth, &velocity, layer.width, layer.height}, tiles, options, output, settings);
-  frame.submitAndWait();
+  if (run.background) {
+    if (!run.mask || !run.objectId || run.list) throw std::runtime_error("the composite needs mask and ids, no list");
+    const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
+    const passes::CompositePass pass(context);
+    pass.record(frame, raster, tiles, mask, background, output, settings, run.composite, layer.width, layer.height);
+    frame.submitAndWait();
+  } else if (run.list) {
+    const passes::ImageLayer revealed = imageLayer(run.revealed ? *run.revealed : layer, nullptr, "test revealed");
+    const vk::Buffer list = vk::uploadedBuffer(context, *run.list, "test pixel list");
+    const vk::Buffer counters = vk::uploadedBuffer(
+        context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(run.list->size()))}, "test list counters");
+    const passes::BackgroundGatherPass pass(context);
+    pass.record(frame, raster, revealed, tiles, mask, list, counters, output, settings, layer.width, layer.height);
+    frame.submitAndWait();
+  } else {
+    if (run.mask) throw std::runtime_error("the post-process gather takes no mask");
+    const passes::GatherPass pass(context);
+    pass.record(frame, {&raster.color(), &raster.normalDepth(), &raster.velocity(), layer.width, layer.height}, tiles,
+                output, settings);
+    frame.submitAndWait();
+  }
   return downloadFirst<glm::vec4>(output, pixels);
 }
 

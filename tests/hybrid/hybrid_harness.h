@@ -36,15 +36,18 @@ struct RayMaskReadback {
 // RayMaskStage on `layer` (edge mask, range check, compaction, dispatch size).
 RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters);
 
-// One GatherPass run. With `list`, pixel-list mode: only the listed pixels are gathered, the
-// dispatch sized on the host as size_list_dispatch sizes it. The output buffer starts as
-// `sentinel` everywhere.
+// One gather of `layer`: the composite (CompositePass) with `background`, which needs the mask
+// and the object ids; else with `list`, the background gather (BackgroundGatherPass) of the
+// listed pixels, its dispatch sized on the host as size_list_dispatch sizes it, reading
+// `revealed` (default: `layer` itself) where the mask is HMB_MASK_REVEALED; else the
+// post-process gather (GatherPass). The output buffer starts as `sentinel` everywhere.
 struct GatherRun {
   const std::vector<uint32_t>* mask = nullptr;
-  const std::vector<glm::vec4>* background = nullptr;  // composite (with mask and objectId)
+  const std::vector<glm::vec4>* background = nullptr;
   const std::vector<uint32_t>* objectId = nullptr;
   passes::HybridComposite composite = passes::HybridComposite::Coverage;
   const std::vector<uint32_t>* list = nullptr;
+  const mblur::Layer* revealed = nullptr;
   glm::vec4 sentinel{0.0f};
 };
 std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer,

@@ -191,7 +191,7 @@ struct CompositeInputs {
   float softZExtent;
 };
 
-// gather.comp's behindShare.
+// composite.comp's behindShare.
 float behindShare(const CompositeInputs& in, size_t sampleIndex, uint32_t centreObject, float centreDepth) {
   return behindShareOf(in.objectId[sampleIndex], sanitizeDepth(in.layer.normalDepth[sampleIndex].w), centreObject,
                        centreDepth, in.softZExtent);
@@ -220,7 +220,7 @@ glm::vec4 coverageComposite(const CompositeInputs& in, uint32_t px, uint32_t py,
 
 glm::vec4 mixColor(glm::vec4 a, glm::vec4 b, float t) { return a * (1.0f - t) + b * t; }
 
-// The weighted sum of gather.comp at a mask pixel with the weights composite.
+// The weighted sum of composite.comp at a mask pixel with the weights form.
 glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, glm::vec4 dominant,
                            glm::vec4 centreColor, float centreDepth, float jitter,
                            const passes::PostProcessSettings& settings) {

@@ -1,6 +1,6 @@
 // Plain C++ of the hybrid method's kernel math (kernels/hybrid/ray_mask_common.glsl,
 // edge_mask.comp, range_check.comp, size_list_dispatch.comp, and the composites of
-// kernels/mblur/gather.comp), operation for operation, so the kernels can be compared with it
+// kernels/hybrid/composite.comp), operation for operation, so the kernels can be compared with it
 // on any input. The motion blur functions they share come from tests/mblur/mblur_reference.h.
 #pragma once
 
@@ -57,8 +57,8 @@ std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint3
 // size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
 
-// gather.comp with the composite flags: every pixel as the kernel writes it with
-// GatherOptions{mask, background, objectId, composite} (non-mask pixels are the plain gather
+// hybrid/composite.comp: every pixel as the kernel writes it with
+// the mask, the background, the object ids and the form (non-mask pixels are the plain gather
 // with the mask boosts off there).
 std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
                                        const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,

@@ -1,6 +1,6 @@
 // gather.comp (McGuire 2012 with the paper's appendix weights) against the reference in both
 // ranges, on random layers and adversarial ones; the weight functions against the appendix's
-// definitions; still images left unchanged; mask options; seeds.
+// definitions; still images left unchanged; seeds (the mask boosts: tests/hybrid/composite_test.cpp).
 #include <cmath>
 #include <limits>
 #include <random>
@@ -29,9 +29,9 @@ PostProcessSettings settingsFor(GatherRange range, uint32_t tileSize, uint32_t s
   return s;
 }
 
-void expectGatherMatches(const Layer& layer, const PostProcessSettings& s, const std::vector<uint32_t>* mask = nullptr) {
+void expectGatherMatches(const Layer& layer, const PostProcessSettings& s) {
   const auto tiles = referenceTiles(layer, s);
-  expectMatchesReference(runGather(VulkanTest::context(), layer, tiles, mask, s), gather(layer, tiles, mask, s));
+  expectMatchesReference(runGather(VulkanTest::context(), layer, tiles, s), gather(layer, tiles, nullptr, s));
 }
 
 TEST(MblurWeightsTest, AppendixWeightsFollowTheirDefinitions) {
@@ -125,40 +125,14 @@ TEST_F(MblurGatherTest, StillAndSubPixelMotionLeaveTheImageUnchanged) {
   layer.color[5] = {std::numeric_limits<float>::quiet_NaN(), 1e30f, 0.5f, 1.0f};
   for (GatherRange range : {GatherRange::Centered, GatherRange::Adapted}) {
     const PostProcessSettings s = settingsFor(range, 5);
-    const auto still = runGather(context(), layer, referenceTiles(layer, s), nullptr, s);
+    const auto still = runGather(context(), layer, referenceTiles(layer, s), s);
     for (size_t i = 0; i < still.size(); ++i) ASSERT_EQ(still[i], sanitizeColor(layer.color[i])) << i;
     // Under half a pixel of blur everywhere (0.2 px/frame * E * fps = 0.4 px): the early out.
     Layer slow = layer;
     for (glm::vec2& v : slow.velocity) v = glm::vec2(0.2f, 0.0f);
-    const auto subPixel = runGather(context(), slow, referenceTiles(slow, s), nullptr, s);
+    const auto subPixel = runGather(context(), slow, referenceTiles(slow, s), s);
     for (size_t i = 0; i < subPixel.size(); ++i) ASSERT_EQ(subPixel[i], sanitizeColor(layer.color[i])) << i;
   }
-}
-
-TEST_F(MblurGatherTest, MaskBoostsMatchTheReferenceAndAreOffAtOne) {
-  std::mt19937 rng(4);
-  const Layer layer = randomLayer(53, 31, rng);
-  std::vector<uint32_t> mask(layer.color.size());
-  std::bernoulli_distribution inMask(0.4);
-  for (uint32_t& m : mask) m = inMask(rng) ? 1u : 0u;
-  PostProcessSettings s = settingsFor(GatherRange::Adapted, 8);
-  const auto tiles = referenceTiles(layer, s);
-  const auto withoutMask = runGather(context(), layer, tiles, nullptr, s);
-  const auto maskOff = runGather(context(), layer, tiles, &mask, s);
-  EXPECT_EQ(maskOff, withoutMask) << "boost 1 and divide 1 must leave the gather unchanged";
-
-  s.maskBackgroundBoost = 3.0f;
-  s.maskForegroundDivide = 3.0f;
-  const auto boosted = runGather(context(), layer, tiles, &mask, s);
-  expectMatchesReference(boosted, gather(layer, tiles, &mask, s));
-  size_t changed = 0;
-  for (size_t i = 0; i < boosted.size(); ++i) {
-    if (mask[i] == 0) {
-      EXPECT_EQ(boosted[i], withoutMask[i]) << "pixel " << i << " is outside the mask";
-    }
-    changed += boosted[i] != withoutMask[i];
-  }
-  EXPECT_GT(changed, boosted.size() / 10) << "the boosts changed (almost) nothing inside the mask";
 }
 
 TEST_F(MblurGatherTest, TheSeedDecidesTheJitterAndNothingElse) {
@@ -166,9 +140,9 @@ TEST_F(MblurGatherTest, TheSeedDecidesTheJitterAndNothingElse) {
   const Layer layer = randomLayer(61, 37, rng);
   const PostProcessSettings a = settingsFor(GatherRange::Adapted, 8, 15, 1), b = settingsFor(GatherRange::Adapted, 8, 15, 2);
   const auto tiles = referenceTiles(layer, a);
-  const auto first = runGather(context(), layer, tiles, nullptr, a);
-  EXPECT_EQ(runGather(context(), layer, tiles, nullptr, a), first) << "same seed, different result";
-  const auto other = runGather(context(), layer, tiles, nullptr, b);
+  const auto first = runGather(context(), layer, tiles, a);
+  EXPECT_EQ(runGather(context(), layer, tiles, a), first) << "same seed, different result";
+  const auto other = runGather(context(), layer, tiles, b);
   size_t differ = 0;
   for (size_t i = 0; i < first.size(); ++i) differ += first[i] != other[i];
   EXPECT_GT(differ, first.size() / 4);

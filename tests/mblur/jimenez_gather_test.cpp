@@ -95,7 +95,7 @@ TEST_F(MblurJimenezTest, CentredBlurOfAMovingEdgeHasTheRightCoverage) {
       layer.normalDepth[i].w = bar ? 2.0f : 10.0f;
       layer.velocity[i] = bar ? q : glm::vec2(0.0f);
     }
-  const auto out = runStage(context(), layer, nullptr, s);
+  const auto out = runStage(context(), layer, s);
   for (uint32_t x = 44; x < 76; ++x) {
     const float d = x + 0.5f - edge;
     const float coverage = std::clamp((r - d) / (2.0f * r), 0.0f, 1.0f);

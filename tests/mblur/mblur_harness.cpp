@@ -77,17 +77,15 @@ std::vector<glm::vec4> runNeighborMax(vk::Context& context, const std::vector<gl
 }
 
 std::vector<glm::vec4> runGather(vk::Context& context, const Layer& layer, const std::vector<glm::vec4>& neighborMax,
-                                 const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings) {
+                                 const passes::PostProcessSettings& settings) {
   const LayerBuffers buffers = upload(context, layer);
   const vk::Buffer tiles = deviceBuffer(context, neighborMax, "test neighbor max");
-  std::optional<vk::Buffer> maskBuffer;
-  if (mask) maskBuffer.emplace(deviceBuffer(context, *mask, "test mask"));
   const size_t pixels = size_t(layer.width) * layer.height;
   const vk::Buffer out = outputBuffer(context, pixels, "test output");
   const passes::GatherPass pass(context);
   vk::FrameRecorder frame(context);
   frame.begin();
-  pass.record(frame, buffers.inputs(), tiles, maskBuffer ? &*maskBuffer : nullptr, out, settings);
+  pass.record(frame, buffers.inputs(), tiles, out, settings);
   frame.submitAndWait();
   return downloadFirst<glm::vec4>(out, pixels);
 }
@@ -107,18 +105,15 @@ std::vector<glm::vec4> runJimenezGather(vk::Context& context, const Layer& layer
   return downloadFirst<glm::vec4>(out, pixels);
 }
 
-std::vector<glm::vec4> runStage(vk::Context& context, const Layer& layer, const std::vector<uint32_t>* mask,
-                                const passes::PostProcessSettings& settings) {
+std::vector<glm::vec4> runStage(vk::Context& context, const Layer& layer, const passes::PostProcessSettings& settings) {
   const LayerBuffers buffers = upload(context, layer);
-  std::optional<vk::Buffer> maskBuffer;
-  if (mask) maskBuffer.emplace(deviceBuffer(context, *mask, "test mask"));
   const size_t pixels = size_t(layer.width) * layer.height;
   const vk::Buffer out = outputBuffer(context, pixels, "test output");
   passes::PostProcessStage stage(context, settings);
   stage.prepare(layer.width, layer.height);
   vk::FrameRecorder frame(context);
   frame.begin();
-  stage.record(frame, buffers.inputs(), out, maskBuffer ? &*maskBuffer : nullptr);
+  stage.record(frame, buffers.inputs(), out);
   frame.submitAndWait();
   return downloadFirst<glm::vec4>(out, pixels);
 }

@@ -22,14 +22,13 @@ std::vector<glm::vec4> runNeighborMax(vk::Context& context, const std::vector<gl
                                       passes::TileGrid grid, uint32_t neighborhood);
 // The gather alone, on given neighbour-max tiles (grid at settings.tileSize).
 std::vector<glm::vec4> runGather(vk::Context& context, const Layer& layer, const std::vector<glm::vec4>& neighborMax,
-                                 const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings);
+                                 const passes::PostProcessSettings& settings);
 // The Jimenez gather alone (grid at settings.jimenezTileSize).
 std::vector<glm::vec4> runJimenezGather(vk::Context& context, const Layer& layer,
                                         const std::vector<glm::vec4>& neighborMax,
                                         const passes::PostProcessSettings& settings);
 // The whole PostProcessStage.
-std::vector<glm::vec4> runStage(vk::Context& context, const Layer& layer, const std::vector<uint32_t>* mask,
-                                const passes::PostProcessSettings& settings);
+std::vector<glm::vec4> runStage(vk::Context& context, const Layer& layer, const passes::PostProcessSettings& settings);
 
 // A layer of the given size, every pixel at rest: colour 0.5 grey, depth 1.
 Layer stillLayer(uint32_t width, uint32_t height);

@@ -30,7 +30,7 @@ float unitFromHash(uint32_t h);
 uint32_t nextHash(uint32_t h);
 glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height);
 float cone(float ds, float v);
-// gather.comp's sample i of `samples` along v_N: u in (0, 1] for the adapted range, t in
+// gather_samples.glsl's sample i of `samples` along v_N: u in (0, 1] for the adapted range, t in
 // [-1, 1] for the centred one; none for the centred range's middle sample of an odd count
 // (it lands on the pixel itself).
 std::optional<float> gatherSampleParameter(uint32_t i, uint32_t samples, float jitter, bool adapted);
@@ -51,7 +51,8 @@ std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& velocity, uint32_t 
 // neighbor_max.comp
 std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes::TileGrid grid,
                                    uint32_t neighborhood);
-// gather.comp (the McGuire fields of settings); mask: width * height or nullptr.
+// The McGuire gather (kernels/mblur/gather_samples.glsl, the McGuire fields of settings); mask:
+// width * height or nullptr (the weights composite's boosts inside it, composite.comp).
 std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& neighborMax,
                               const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings);
 // gather_jimenez.comp

@@ -172,7 +172,7 @@ TEST_F(MblurMovingQuadTest, AppendixWeightsMatchTheAnalyticBoxFilterAwayFromTheS
   const Truth truth = analyticBlur();
   passes::PostProcessSettings settings = quadSettings();
   settings.foregroundBoost = 1.0f;  // the appendix's weights alone
-  const auto blurred = runStage(context(), layer, nullptr, settings);
+  const auto blurred = runStage(context(), layer, settings);
   ASSERT_TRUE(allFinite(blurred));
   const QuadErrors e = measure(blurred, truth);
   expectInteriorAndBackground(e);
@@ -187,7 +187,7 @@ TEST_F(MblurMovingQuadTest, PaperForegroundBoostKeepsTheRegionsAndOnlyThickensTh
   const Layer layer = movingQuadGBuffer();
   const Truth truth = analyticBlur();
   const passes::PostProcessSettings settings = quadSettings();  // x30
-  const auto blurred = runStage(context(), layer, nullptr, settings);
+  const auto blurred = runStage(context(), layer, settings);
   ASSERT_TRUE(allFinite(blurred));
   const QuadErrors e = measure(blurred, truth);
   expectInteriorAndBackground(e);

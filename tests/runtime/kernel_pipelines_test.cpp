@@ -60,6 +60,8 @@ const KernelLayout kLayouts[] = {
     {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
     {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
     {"mblur/gather_jimenez", HMB_JIMENEZ_BINDING_COUNT, sizeof(gpu::JimenezParams), false},
+    {"hybrid/composite", HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), false},
+    {"hybrid/gather_background", HMB_BACKGROUND_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
     {"hybrid/edge_candidates", HMB_EDGE_CANDIDATES_BINDING_COUNT, sizeof(gpu::EdgeMaskParams), false},
     {"hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::EdgeMaskParams), false},
     {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RangeCheckParams), false},

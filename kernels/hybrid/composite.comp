@@ -1,0 +1,109 @@
+#version 450
+// The hybrid composite (paper, section 3: both layers blurred, then composited; the paper
+// leaves the form open), every pixel of the image. Outside the ray mask it is the post-process
+// gather of the raster layer. At a mask pixel X the raster holds the moving object, and the
+// samples the gather takes behind X (other objects deeper than X) are the wrong background:
+// what lies beyond the silhouette, not behind X. The background layer blurred at mask pixels
+// (gather_background.comp) gives B, the right background at X. Two forms, a specialization
+// constant:
+//  - weights: the gather with the paper's mask boosts (w_b x maskBackgroundBoost, w_f /
+//    maskForegroundDivide: x3 and /3), each sample's colour becoming mix(c_s, B, b), b its
+//    share behind X.
+//  - coverage (default): under the linear-motion convention X is covered by its object at
+//    shutter fraction s exactly when X + (1 - s) v_X lies on that object now, so the share of
+//    samples X + u v_X, u in (0, 1], that are on it (or not behind X) estimates the coverage
+//    alpha, and the object's blurred colour F is the plain mean of those samples (and X):
+//    C = alpha F + (1 - alpha) B. v_X is the pixel's own velocity, clamped only to the image
+//    (coverageMaxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
+//    even where the gather's tiles clamp its outer blur. The README gives the measured errors.
+#extension GL_GOOGLE_include_directive : require
+#include "hybrid_layout.h"
+#include "../mblur/mblur_layout.h"
+#include "../shared/layer_bindings.glsl"
+
+layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
+
+layout(std430, binding = HMB_COMPOSITE_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
+layout(std430, binding = HMB_COMPOSITE_BINDING_MASK) readonly buffer Mask { uint mask[]; };
+layout(std430, binding = HMB_COMPOSITE_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
+layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
+HMB_LAYER(raster, HMB_COMPOSITE_BINDING_RASTER, readonly)
+layout(push_constant) uniform Params { GatherParams params; };
+
+layout(constant_id = HMB_SPEC_COMPOSITE_COVERAGE) const bool kCoverage = true;
+
+#include "../mblur/mblur_common.glsl"
+
+// The weights form at the current pixel: the revealed background, the pixel's object and depth.
+bool weightsComposite = false;
+vec4 revealedColor = vec4(0.0);
+uint centreObject = 0u;
+float compositeCentreDepth = 0.0;
+
+vec4 sampleColorAt(uint i) { return LAYER_COLOR(raster, i); }
+float sampleDepthAt(uint i) { return LAYER_NORMAL_DEPTH(raster, i).w; }
+vec2 sampleVelocityAt(uint i) { return LAYER_VELOCITY(raster, i); }
+
+// Share of sample `sampleIndex` that is background to the pixel (object `object` at `depth`).
+float behindShare(uint sampleIndex, uint object, float depth) {
+  return behindShareOf(LAYER_OBJECT_ID(raster, sampleIndex), sanitizeDepth(sampleDepthAt(sampleIndex)), object, depth,
+                       params.softZExtent);
+}
+
+vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
+  return weightsComposite ? mix(sampleColor, revealedColor, behindShare(sampleIndex, centreObject, compositeCentreDepth))
+                          : sampleColor;
+}
+
+#include "../mblur/gather_samples.glsl"
+
+// The coverage form at a mask pixel (see above).
+vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
+  float speed;
+  const vec2 v = gatherVelocity(sampleVelocityAt(index), params.velocityScale, params.coverageMaxSpeed, speed);
+  const uint object = LAYER_OBJECT_ID(raster, index);
+  vec4 foregroundSum = centreColor;
+  float foregroundCount = 0.0;
+  for (uint i = 0u; i < params.samples; ++i) {
+    const ivec2 samplePixel = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
+    const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
+    const float onObject = 1.0 - behindShare(sampleIndex, object, centreDepth);
+    foregroundSum += onObject * sanitizeColor(sampleColorAt(sampleIndex));
+    foregroundCount += onObject;
+  }
+  const float alpha = foregroundCount / float(params.samples);
+  // alpha is exactly 1 where no sample is behind: range_check leaves those pixels unrevealed
+  // (their background entry is stale, and sanitized, then weighted by exactly 0).
+  return alpha * (foregroundSum / (1.0 + foregroundCount)) + (1.0 - alpha) * sanitizeColor(background[index]);
+}
+
+void main() {
+  const uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= params.width || pixel.y >= params.height) return;
+  const uint index = pixel.y * params.width + pixel.x;
+  const vec4 centreColor = sanitizeColor(sampleColorAt(index));
+
+  const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
+  if (dominant.z < 0.5) {  // under half a pixel of blur in the whole neighbourhood
+    outColor[index] = centreColor;
+    return;
+  }
+  const float maxSpeed = float(params.tileSize);
+  float centreSpeed;
+  gatherVelocity(sampleVelocityAt(index), params.velocityScale, maxSpeed, centreSpeed);
+  const float centreDepth = sanitizeDepth(sampleDepthAt(index));
+  const bool inMask = mask[index] != 0u;
+  const float backgroundScale = inMask ? params.maskBackgroundBoost : 1.0;
+  const float foregroundScale = inMask ? 1.0 / params.maskForegroundDivide : 1.0;
+  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
+  if (inMask && kCoverage) {
+    outColor[index] = coverageComposite(pixel, index, centreColor, centreDepth, jitter);
+    return;
+  }
+  weightsComposite = inMask && !kCoverage;
+  revealedColor = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
+  centreObject = weightsComposite ? LAYER_OBJECT_ID(raster, index) : 0u;
+  compositeCentreDepth = centreDepth;
+  outColor[index] = gatherSamples(pixel, centreColor, centreSpeed, centreDepth, dominant.xy, maxSpeed, jitter,
+                                  foregroundScale, backgroundScale);
+}

@@ -1,0 +1,50 @@
+#version 450
+// The hybrid's background layer, blurred at the ray mask's listed pixels only (an indirect
+// dispatch over the list): the raster G-buffer with the revealed surfaces read in its place
+// wherever the mask says HMB_MASK_REVEALED, gathered as the post-process gather does
+// (mblur/gather_samples.glsl, no mask boosts). The composite reads the result at mask pixels.
+#extension GL_GOOGLE_include_directive : require
+#include "hybrid_layout.h"
+#include "../mblur/mblur_layout.h"
+#include "../shared/layer_bindings.glsl"
+
+layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
+
+layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
+layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
+layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_LIST) readonly buffer List { uint pixelList[]; };
+layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
+layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
+HMB_LAYER(raster, HMB_BACKGROUND_GATHER_BINDING_RASTER, readonly)
+HMB_LAYER(revealed, HMB_BACKGROUND_GATHER_BINDING_REVEALED, readonly)
+layout(push_constant) uniform Params { GatherParams params; };
+
+bool overlaid(uint i) { return mask[i] == HMB_MASK_REVEALED; }
+vec4 sampleColorAt(uint i) { return overlaid(i) ? LAYER_COLOR(revealed, i) : LAYER_COLOR(raster, i); }
+float sampleDepthAt(uint i) { return overlaid(i) ? LAYER_NORMAL_DEPTH(revealed, i).w : LAYER_NORMAL_DEPTH(raster, i).w; }
+vec2 sampleVelocityAt(uint i) { return overlaid(i) ? LAYER_VELOCITY(revealed, i) : LAYER_VELOCITY(raster, i); }
+vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
+
+#include "../mblur/gather_samples.glsl"
+
+void main() {
+  const uint entry = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y) +
+                     gl_LocalInvocationID.y * HMB_GATHER_GROUP_X + gl_LocalInvocationID.x;
+  if (entry >= counters.maskCount) return;
+  const uint index = pixelList[entry];
+  const uvec2 pixel = uvec2(index % params.width, index / params.width);
+  if (pixel.y >= params.height) return;
+  const vec4 centreColor = sanitizeColor(sampleColorAt(index));
+
+  const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
+  if (dominant.z < 0.5) {  // under half a pixel of blur in the whole neighbourhood
+    outColor[index] = centreColor;
+    return;
+  }
+  const float maxSpeed = float(params.tileSize);
+  float centreSpeed;
+  gatherVelocity(sampleVelocityAt(index), params.velocityScale, maxSpeed, centreSpeed);
+  const float centreDepth = sanitizeDepth(sampleDepthAt(index));
+  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
+  outColor[index] = gatherSamples(pixel, centreColor, centreSpeed, centreDepth, dominant.xy, maxSpeed, jitter, 1.0, 1.0);
+}

@@ -1,0 +1,31 @@
+// Host side of kernels/hybrid/gather_background.comp: the hybrid's background layer (the raster
+// with the revealed surfaces in its place where the mask says so) blurred at the ray mask's
+// listed pixels, dispatched indirectly from the list's length.
+#pragma once
+
+#include "runtime/passes/image_layer.h"
+#include "runtime/passes/post_process_settings.h"
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb::vk {
+class FrameRecorder;
+}
+
+namespace hmb::passes {
+
+class BackgroundGatherPass {
+ public:
+  static constexpr const char* kName = "gather-background";
+  explicit BackgroundGatherPass(const vk::Context& context);
+  // neighborMax: the raster's (PostProcessStage). mask, list, counters: RayMaskStage's.
+  // output: width * height vec4, written at the listed pixels.
+  void record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
+              const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
+              const vk::Buffer& counters, const vk::Buffer& output, const PostProcessSettings& settings,
+              uint32_t width, uint32_t height) const;
+
+ private:
+  vk::ComputeKernel kernel_;
+};
+
+}  // namespace hmb::passes

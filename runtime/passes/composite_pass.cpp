@@ -1,0 +1,38 @@
+#include "runtime/passes/composite_pass.h"
+
+#include <span>
+#include <vector>
+
+#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/mblur/mblur_layout.h"
+#include "runtime/error.h"
+#include "runtime/passes/gather_pass.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+namespace {
+
+constexpr uint32_t kCoverageForm[HMB_SPEC_COMPOSITE_COVERAGE + 1] = {1u};
+constexpr uint32_t kWeightsForm[HMB_SPEC_COMPOSITE_COVERAGE + 1] = {0u};
+
+}  // namespace
+
+CompositePass::CompositePass(const vk::Context& context)
+    : coverage_(context, "hybrid/composite", sizeof(gpu::GatherParams), kCoverageForm),
+      weights_(context, "hybrid/composite", sizeof(gpu::GatherParams), kWeightsForm) {}
+
+void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
+                           const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
+                           const PostProcessSettings& settings, HybridComposite composite, uint32_t width,
+                           uint32_t height) const {
+  if (composite == HybridComposite::Coverage && settings.range != GatherRange::Adapted)
+    throw Error("composite: the coverage form needs the adapted range");
+  const vk::ComputeKernel& kernel = composite == HybridComposite::Coverage ? coverage_ : weights_;
+  const gpu::GatherParams params = gatherParams(settings, width, height);
+  std::vector<const vk::Buffer*> bindings = {&neighborMax, &mask, &background, &output};
+  raster.appendBindings(bindings, kernel.bindsByAddress());
+  frame.dispatch(kName, kernel, bindings, std::as_bytes(std::span(&params, 1)),
+                 {vk::groupsFor(width, HMB_GATHER_GROUP_X), vk::groupsFor(height, HMB_GATHER_GROUP_Y), 1});
+}
+
+}  // namespace hmb::passes
