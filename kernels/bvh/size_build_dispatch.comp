@@ -3,15 +3,14 @@
 // empties the count that level L + 2 will append to.
 #extension GL_GOOGLE_include_directive : require
 #include "bvh_build_common.glsl"
+#include "../shared/dispatch.h"
 
 layout(local_size_x = 1) in;
 
 void main() {
   const uint parity = params.level & 1u;
   const uint next = counters.taskCount[1u - parity];
-  // Groups fold into rows of 65535, as vk::foldedGroups does on the host.
-  counters.dispatch[1u - parity] = next == 0u ? uvec4(0u, 0u, 1u, 0u)
-                                              : uvec4(min(next, 65535u), (next + 65534u) / 65535u, 1u, 0u);
+  counters.dispatch[1u - parity] = uvec4(foldedGroups(next), 0u);
   counters.taskCount[parity] = 0u;
   counters.dispatch[parity] = uvec4(0u, 0u, 1u, 0u);
 }

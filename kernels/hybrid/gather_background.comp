@@ -6,6 +6,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
+#include "../shared/indexing.glsl"
 #include "../shared/layer_bindings.glsl"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
@@ -28,8 +29,7 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 #include "../mblur/gather_samples.glsl"
 
 void main() {
-  const uint entry = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y) +
-                     gl_LocalInvocationID.y * HMB_GATHER_GROUP_X + gl_LocalInvocationID.x;
+  const uint entry = linearInvocationIndex(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y);
   if (entry >= counters.maskCount) return;
   const uint index = pixelList[entry];
   const uvec2 pixel = uvec2(index % params.width, index / params.width);

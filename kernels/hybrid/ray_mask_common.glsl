@@ -5,6 +5,8 @@
 #ifndef HMB_KERNELS_HYBRID_RAY_MASK_COMMON_GLSL
 #define HMB_KERNELS_HYBRID_RAY_MASK_COMMON_GLSL
 
+#include "../shared/indexing.glsl"
+
 // Eqs. 1 and 2: the pixel's predicted position at the other end of its displacement lies on
 // another object (m_n != m_t) that is deeper by more than SOFT_Z_EXTENT (z_n - z_t > S).
 // Under the shutter convention the pixel sees the points now at X + u v, u in [0, 1], so
@@ -28,7 +30,7 @@ float normalizedEdge(float x) {
 // The pixel of this invocation in the mask passes' dispatch over the listed tiles (see
 // hybrid_layout.h): group (x, y) is the list entry, group z the 8 x 8 block in the tile.
 // Lanes past the tile's edge get a pixel outside every image.
-uint listedTileEntry() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
+uint listedTileEntry() { return foldedGroupIndex(); }
 
 uvec2 listedTilePixel(uint tile, uint tilesX, uint tileSize) {
   const uint blocksX = (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;

@@ -46,12 +46,10 @@ void main() {
   const uint index = list[entry];
   const uvec2 pixel = uvec2(index % params.width, index / params.width);
   const vec2 centre = vec2(pixel) + 0.5;
-  const vec2 ndc = centre / vec2(params.width, params.height) * 2.0 - 1.0;
 
   TraceRay ray;
   ray.originTMin = vec4(cameraRays.eye.xyz, params.tMin);
-  ray.directionTMax = vec4(cameraRays.forward.xyz + ndc.x * cameraRays.right.xyz + ndc.y * cameraRays.down.xyz,
-                           params.tMax);
+  ray.directionTMax = vec4(pinholeRayDirection(cameraRays, centre, params.width, params.height), params.tMax);
   ray.time = 0u;
   ray.ignoreObjectId = HMB_IGNORE_NONE;
   ray.pad0 = 0u;

@@ -6,21 +6,18 @@
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
+#include "../shared/dispatch.h"
 
 layout(local_size_x = 1) in;
 
 layout(std430, binding = HMB_SIZE_LIST_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(push_constant) uniform Params { SizeListParams params; };
 
-uvec3 folded(uint groups) {
-  return groups == 0u ? uvec3(0u, 0u, 1u) : uvec3(min(groups, 65535u), (groups + 65534u) / 65535u, 1u);
-}
-
-uvec3 listGroups(uint count) { return folded((count + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP); }
+uvec3 listGroups(uint count) { return foldedGroups((count + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP); }
 
 void main() {
   if (params.list == HMB_SIZE_LIST_MOVING_TILES) {
-    const uvec3 g = folded(counters.tileCount);
+    const uvec3 g = foldedGroups(counters.tileCount);
     counters.tileGroupDispatchX = g.x;
     counters.tileGroupDispatchY = g.y;
     counters.tileGroupDispatchZ = g.z;

@@ -3,6 +3,8 @@
 #ifndef HMB_KERNELS_MBLUR_MBLUR_COMMON_GLSL
 #define HMB_KERNELS_MBLUR_MBLUR_COMMON_GLSL
 
+#include "mblur_hash.h"
+
 // G-buffer velocity q (pixels per frame) -> the velocity a gather uses (pixels per exposure,
 // halved for a centred range: velocityScale says which), its length clamped to maxSpeed.
 // `speed` is min(|v|, maxSpeed), the ranking key of the tile passes. Non-finite velocities, and
@@ -34,23 +36,6 @@ vec4 sanitizeColor(vec4 c) {
 }
 
 float sanitizeDepth(float z) { return isnan(z) ? HMB_MBLUR_MAX_DEPTH : clamp(z, 0.0, HMB_MBLUR_MAX_DEPTH); }
-
-// Per-pixel jitter: an integer hash of (pixel, seed), the same on every device.
-uint mblurHash(uint x, uint y, uint seed) {
-  uint h = x * 0x9E3779B1u + y * 0x85EBCA77u + seed * 0xC2B2AE3Du + 0x27D4EB2Fu;
-  h ^= h >> 16;
-  h *= 0x7FEB352Du;
-  h ^= h >> 15;
-  h *= 0x846CA68Bu;
-  h ^= h >> 16;
-  return h;
-}
-
-// [0, 1) from the top 24 bits: exact in float.
-float unitFromHash(uint h) { return float(h >> 8) * (1.0 / 16777216.0); }
-
-// The next value of a hash sequence (for a second and third random number per pixel).
-uint nextHash(uint h) { return mblurHash(h, 0x68E31DA4u, 0x1B56C4E9u); }
 
 // Nearest pixel to a position (pixel centres at integer + 0.5), clamped to the image.
 ivec2 nearestPixel(vec2 position, uint width, uint height) {

@@ -4,6 +4,7 @@
 // a triangle covering the screen costs no single invocation more than a few pairs.
 #extension GL_GOOGLE_include_directive : require
 #include "raster_layout.h"
+#include "../shared/indexing.glsl"
 
 layout(local_size_x = HMB_RASTER_GROUP) in;
 
@@ -14,7 +15,7 @@ layout(std430, binding = HMB_BIN_LARGE_BINDING_LARGE) readonly buffer Large { ui
 layout(push_constant) uniform Params { RasterParams params; };
 
 void main() {
-  const uint entry = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  const uint entry = foldedGroupIndex();
   if (entry >= counters.largeCount) return;
   const uint slot = large[entry];
   const SetupTriangle s = setup[slot];

@@ -19,7 +19,7 @@ layout(std430, binding = HMB_SETUP_BINDING_LARGE) writeonly buffer Large { uint 
 layout(std430, binding = HMB_SETUP_BINDING_CLIP_LIST) buffer ClipList { uint clipList[]; };
 layout(push_constant) uniform Params { RasterParams params; };
 
-#include "clip_planes.glsl"
+#include "clip_planes.h"
 #include "emit_triangle.glsl"
 
 // The intersection of an edge with a plane, interpolated from the endpoint inside the plane:

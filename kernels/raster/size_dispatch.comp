@@ -5,20 +5,17 @@
 // rasterize_tiles (one invocation per (triangle, tile) pair).
 #extension GL_GOOGLE_include_directive : require
 #include "raster_layout.h"
+#include "../shared/dispatch.h"
 
 layout(local_size_x = 1) in;
 
 layout(std430, binding = HMB_SIZE_DISPATCH_BINDING_COUNTERS) buffer Counters { RasterCounters counters; };
 layout(push_constant) uniform Params { RasterParams params; };
 
-uvec3 folded(uint groups) {
-  return groups == 0u ? uvec3(0u, 0u, 1u) : uvec3(min(groups, 65535u), (groups + 65534u) / 65535u, 1u);
-}
-
 void main() {
   if (params.pass == 0u) {
     const uint listed = min(counters.clipCount, params.clipCapacity);
-    const uvec3 clip = folded((listed + HMB_RASTER_GROUP - 1u) / HMB_RASTER_GROUP);
+    const uvec3 clip = foldedGroups((listed + HMB_RASTER_GROUP - 1u) / HMB_RASTER_GROUP);
     counters.clipX = clip.x;
     counters.clipY = clip.y;
     counters.clipZ = clip.z;
@@ -28,8 +25,8 @@ void main() {
   const bool overflow = counters.overflow != 0u;
   const uint pairs = overflow ? 0u : counters.pairCount;
   const uint large = overflow ? 0u : counters.largeCount;
-  const uvec3 rasterize = folded((pairs + HMB_RASTER_GROUP - 1u) / HMB_RASTER_GROUP);
-  const uvec3 binLarge = folded(large);
+  const uvec3 rasterize = foldedGroups((pairs + HMB_RASTER_GROUP - 1u) / HMB_RASTER_GROUP);
+  const uvec3 binLarge = foldedGroups(large);
   counters.rasterizeX = rasterize.x;
   counters.rasterizeY = rasterize.y;
   counters.rasterizeZ = rasterize.z;

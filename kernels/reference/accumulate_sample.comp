@@ -5,6 +5,7 @@
 // added to the pixel's sum. One dispatch per sample: each invocation owns its pixel's sum.
 #extension GL_GOOGLE_include_directive : require
 #include "reference_layout.h"
+#include "../shared/indexing.glsl"
 #include "../shared/scene_layout.h"
 #define HMB_TRACE_SCENE_BINDING HMB_REFERENCE_BINDING_TRACE_SCENE
 #include "../trace/closest_hit.glsl"
@@ -34,9 +35,7 @@ void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if ((params.flags & HMB_REFERENCE_PIXEL_LIST) != 0u) {
     // List mode: a 1D run of 8x8 groups over the list's entries.
-    const uint entry = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) *
-                           (HMB_REFERENCE_GROUP_X * HMB_REFERENCE_GROUP_Y) +
-                       gl_LocalInvocationID.y * HMB_REFERENCE_GROUP_X + gl_LocalInvocationID.x;
+    const uint entry = linearInvocationIndex(HMB_REFERENCE_GROUP_X * HMB_REFERENCE_GROUP_Y);
     if (entry >= params.listLength) return;
     const uint listed = pixelList[entry];
     pixel = uvec2(listed % params.width, listed / params.width);
@@ -49,11 +48,10 @@ void main() {
     const uint h = pcgHash(index ^ pcgHash(params.sampleIndex ^ pcgHash(params.seed)));
     offset = vec2(unitFloat(h), unitFloat(pcgHash(h)));
   }
-  const vec2 ndc = (vec2(pixel) + offset) / vec2(params.width, params.height) * 2.0 - 1.0;
   const PinholeCamera cam = cameras[params.time];
   TraceRay ray;
   ray.originTMin = vec4(cam.eye.xyz, params.tMin);
-  ray.directionTMax = vec4(cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.down.xyz, params.tMax);
+  ray.directionTMax = vec4(pinholeRayDirection(cam, vec2(pixel) + offset, params.width, params.height), params.tMax);
   ray.time = params.time;
   ray.ignoreObjectId = HMB_IGNORE_NONE;
   ray.pad0 = 0u;

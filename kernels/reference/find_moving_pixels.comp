@@ -17,9 +17,8 @@ layout(push_constant) uniform Params { MovingPixelsParams params; };
 void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
-  const vec2 ndc = (vec2(pixel) + 0.5) / vec2(params.width, params.height) * 2.0 - 1.0;
   const PinholeCamera cam = cameras[0];
-  const PreparedRay r = prepareRay(cam.eye.xyz, cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.down.xyz);
+  const PreparedRay r = prepareRay(cam.eye.xyz, pinholeRayDirection(cam, vec2(pixel) + 0.5, params.width, params.height));
   bool moving = false;
   for (uint b = 0; b < params.boxCount && !moving; ++b)
     moving = r.valid && intersectBox(r, boxes[2 * b].xyz, boxes[2 * b + 1].xyz, params.tMin, params.tMax);

@@ -85,6 +85,14 @@ struct InstanceTransform {
 HMB_GPU_END
 
 #ifndef __cplusplus
+// The direction of the camera ray through image position `position` (pixels; a centre is
+// integer + 0.5) of a width x height image: the one pinhole the reveal, the reference and its
+// moving-pixel search all shoot through (trace_scene.h builds the camera from the raster's).
+vec3 pinholeRayDirection(PinholeCamera camera, vec2 position, uint width, uint height) {
+  const vec2 ndc = position / vec2(width, height) * 2.0 - 1.0;
+  return camera.forward.xyz + ndc.x * camera.right.xyz + ndc.y * camera.down.xyz;
+}
+
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PackedNodesRef { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer WordsRef { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TraceInstancesRef { TraceInstance v[]; };

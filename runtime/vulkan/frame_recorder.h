@@ -15,6 +15,8 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
+#include "kernels/shared/dispatch.h"
+
 namespace hmb::vk {
 
 class Buffer;
@@ -39,12 +41,9 @@ inline uint32_t groupsFor(uint32_t items, uint32_t groupSize) {
   return static_cast<uint32_t>((uint64_t(items) + groupSize - 1) / groupSize);
 }
 
-// A 1D run of groups folded into rows of at most 65535 (the smallest maxComputeWorkGroupCount
-// Vulkan allows); kernels read their index with linearInvocationIndex() (shared/indexing.glsl).
-inline glm::uvec3 foldedGroups(uint32_t groups) {
-  if (groups == 0) return {0, 0, 1};
-  return {groups < 65535u ? groups : 65535u, (groups + 65534u) / 65535u, 1};
-}
+// A 1D run of groups folded into rows of at most 65535, as the kernels that size their own
+// dispatches fold them (kernels/shared/dispatch.h).
+using gpu::foldedGroups;
 
 class FrameRecorder {
  public:

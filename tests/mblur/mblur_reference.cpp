@@ -39,20 +39,6 @@ glm::vec4 sanitizeColor(glm::vec4 c) {
 
 float sanitizeDepth(float z) { return std::isnan(z) ? kMaxDepth : std::clamp(z, 0.0f, kMaxDepth); }
 
-uint32_t mblurHash(uint32_t x, uint32_t y, uint32_t seed) {
-  uint32_t h = x * 0x9E3779B1u + y * 0x85EBCA77u + seed * 0xC2B2AE3Du + 0x27D4EB2Fu;
-  h ^= h >> 16;
-  h *= 0x7FEB352Du;
-  h ^= h >> 15;
-  h *= 0x846CA68Bu;
-  h ^= h >> 16;
-  return h;
-}
-
-float unitFromHash(uint32_t h) { return float(h >> 8) * (1.0f / 16777216.0f); }
-
-uint32_t nextHash(uint32_t h) { return mblurHash(h, 0x68E31DA4u, 0x1B56C4E9u); }
-
 glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height) {
   const glm::ivec2 p(int(std::floor(position.x)), int(std::floor(position.y)));
   return {std::clamp(p.x, 0, int(width) - 1), std::clamp(p.y, 0, int(height) - 1)};

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "kernels/mblur/mblur_hash.h"
 #include "runtime/passes/post_process_settings.h"
 
 namespace hmb::test::mblur {
@@ -25,9 +26,10 @@ struct Layer {
 glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float& speed);
 glm::vec4 sanitizeColor(glm::vec4 c);
 float sanitizeDepth(float z);
-uint32_t mblurHash(uint32_t x, uint32_t y, uint32_t seed);
-float unitFromHash(uint32_t h);
-uint32_t nextHash(uint32_t h);
+// The jitter hash is the kernels' own (kernels/mblur/mblur_hash.h).
+using gpu::mblurHash;
+using gpu::nextHash;
+using gpu::unitFromHash;
 glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height);
 float cone(float ds, float v);
 // gather_samples.glsl's sample i of `samples` along v_N: u in (0, 1] for the adapted range, t in

@@ -13,6 +13,8 @@
 #include <string>
 #include <tuple>
 
+#include "kernels/raster/clip_planes.h"
+
 namespace hmb::test::reference {
 namespace {
 
@@ -25,23 +27,11 @@ using glm::vec4;
 
 // ---- setup_triangles.comp ----
 
-constexpr float kGuardBand = 4.0f;
-constexpr int kPlaneCount = 5;
-constexpr int kMaxPolygon = 3 + kPlaneCount;
-
-float planeDistance(int plane, vec4 c) {
-  switch (plane) {
-    case 0: return c.z;
-    case 1: return kGuardBand * c.w - c.x;
-    case 2: return kGuardBand * c.w + c.x;
-    case 3: return kGuardBand * c.w - c.y;
-    default: return kGuardBand * c.w + c.y;
-  }
-}
-
-bool insideClipVolume(vec4 c) {
-  return c.z >= 0.0f && std::abs(c.x) <= kGuardBand * c.w && std::abs(c.y) <= kGuardBand * c.w;
-}
+// The clip volume is the kernels' own (kernels/raster/clip_planes.h).
+using gpu::insideClipVolume;
+using gpu::kMaxPolygon;
+using gpu::kPlaneCount;
+using gpu::planeDistance;
 
 // Mirrors intersectEdge in clip_triangles.comp: from the endpoint inside the plane, divide
 // before scaling (the kernel marks the expression `precise`, so no fused multiply-add).
