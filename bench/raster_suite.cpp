@@ -142,7 +142,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
     double drawMs = 0;
     const auto runCompute = [&] {
       compute = renderCompute();
-      if (stage.growIfOverflowed()) throw Error(label + ": rasterizer buffers overflowed during timing");
+      if (stage.rasterizer().growIfOverflowed()) throw Error(label + ": rasterizer buffers overflowed during timing");
     };
     const auto runGraphics = [&] {
       image = graphics.rasterize(triangles);

@@ -25,16 +25,10 @@ class GBufferStage {
   // Sizes the buffers for this scene and resolution (reuses them when they fit).
   void prepare(const GpuScene& scene, uint32_t width, uint32_t height);
   void record(vk::FrameRecorder& frame, const GpuScene& scene) const;
-  // After the frame: true when the rasterizer's buffers overflowed and grew (record again).
-  bool growIfOverflowed() { return rasterize_.growIfOverflowed(); }
 
   const RasterizePass& rasterizer() const { return rasterize_; }
   RasterizePass& rasterizer() { return rasterize_; }
-  uint32_t width() const { return width_; }
-  uint32_t height() const { return height_; }
   const vk::Buffer& clipCurrent() const { return clipCurrent_; }
-  const vk::Buffer& clipPrevious() const { return clipPrevious_; }
-  const vk::Buffer& vertexShading() const { return vertexShading_; }
   const vk::Buffer& visibility() const { return visibility_; }
   const ImageLayer& layer() const { return layer_; }
   const vk::Buffer& color() const { return layer_.color(); }

@@ -65,7 +65,6 @@ class HybridStage {
   // The next frame builds its trees anew, whatever the last frame built.
   void forgetTraceScene();
 
-  const HybridSettings& settings() const { return settings_; }
   const RayMaskStage& rayMask() const { return rayMask_; }
   // After prepare(): the meshes' trees (nodes, links, triangle indices) in bytes per mesh
   // triangle (each mesh's tree is built once, however many instances it has), as allocated
