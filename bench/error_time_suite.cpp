@@ -27,7 +27,7 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
   std::vector<Config> configs;
   const auto add = [&](std::string label, std::string series, double parameter, const std::string& method) {
     Config c{std::move(label), std::move(series), parameter, {}};
-    c.settings.method = method;
+    c.settings.method = parseMethod(method);
     // Each repeat is timed as a new frame of the animation: nothing kept from the last one.
     c.settings.reuseAcrossFrames = false;
     c.settings.width = o.size.width;
@@ -66,7 +66,7 @@ metrics::DisplayImage displayOf(const RenderResult& r) { return metrics::display
 // here for both to be timed alike.
 double frameMillisecondsWithoutSetup(const RenderResult& r) {
   double ms = *r.frameMilliseconds;
-  if (r.method == "reference")
+  if (r.method == Method::Reference)
     for (const PlannedPass& pass : r.plan.passes())
       if (pass.name == passes::ReferenceStage::kBvhMeshes && pass.milliseconds) ms -= *pass.milliseconds;
   return ms;
@@ -92,7 +92,7 @@ ErrorTimeScene runScene(Renderer& renderer, const std::string& name, const Error
     result.judge = path.filename().string();
   } else {
     RenderSettings settings;
-    settings.method = "reference";
+    settings.method = Method::Reference;
     settings.width = o.size.width;
     settings.height = o.size.height;
     settings.reference.samplesPerPixel = o.judgeSpp;
@@ -107,7 +107,7 @@ ErrorTimeScene runScene(Renderer& renderer, const std::string& name, const Error
 
   std::optional<metrics::BlurRegion> region;
   for (const Config& config : configurations(o)) {
-    const bool reference = config.settings.method == "reference";
+    const bool reference = config.settings.method == Method::Reference;
     const int warmup = reference ? 0 : o.warmup;
     const int repeats = reference ? o.referenceRepeats : o.repeats;
     progress(name + ": " + config.label);
@@ -123,7 +123,7 @@ ErrorTimeScene runScene(Renderer& renderer, const std::string& name, const Error
     const metrics::Comparison error = metrics::compareImages(judge, image, &*region);
     ErrorTimeCase c;
     c.scene = name;
-    c.method = config.settings.method;
+    c.method = std::string(methodName(config.settings.method));
     c.label = config.label;
     c.series = config.series;
     c.parameter = config.parameter;

@@ -16,7 +16,7 @@ double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 PassesCase runCase(Renderer& renderer, const scene::Scene& scene, const std::string& name, const std::string& method,
                    const ImageSize& size, const PassesSuiteOptions& o) {
   RenderSettings settings;
-  settings.method = method;
+  settings.method = parseMethod(method);
   settings.width = size.width;
   settings.height = size.height;
   settings.reuseAcrossFrames = false;  // each repeat is timed as a new frame: nothing kept from the last one

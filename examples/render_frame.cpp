@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     const hmb::scene::Scene scene = hmb::scene::loadScene(args[0]);
 
     hmb::RenderSettings settings;  // everything else: the scene's and the method's defaults
-    settings.method = args[1];
+    settings.method = hmb::parseMethod(args[1]);
     if (args.size() == 5) {
       settings.width = static_cast<uint32_t>(std::stoul(args[3]));
       settings.height = static_cast<uint32_t>(std::stoul(args[4]));
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     const hmb::RenderResult frame = renderer.render(scene, settings);
     hmb::io::writePng(args[2], frame.display);
 
-    std::cout << frame.method << " " << frame.width << "x" << frame.height << " on " << device.info().name << ": "
+    std::cout << hmb::methodName(frame.method) << " " << frame.width << "x" << frame.height << " on " << device.info().name << ": "
               << frame.frameMilliseconds.value_or(0.0) << " ms\n";
     for (const hmb::PlannedPass& pass : frame.plan.passes()) {
       std::cout << "  " << pass.name << ": ";

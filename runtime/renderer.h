@@ -11,6 +11,7 @@
 
 #include "runtime/frame_plan.h"
 #include "runtime/io/image.h"
+#include "runtime/methods/method.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/rasterize_pass.h"
@@ -52,7 +53,7 @@ struct HybridChoices {
 };
 
 struct RenderSettings {
-  std::string method = "sharp";
+  Method method = Method::Sharp;
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;  // seconds; default: the scene's settings.frameTime
@@ -72,7 +73,7 @@ struct RenderSettings {
 };
 
 struct RenderResult {
-  std::string method;
+  Method method = Method::Sharp;
   RenderSettings settings;  // what it was rendered with (the progress callback left out)
   uint32_t width = 0;
   uint32_t height = 0;
@@ -109,20 +110,27 @@ struct RenderResult {
   std::optional<passes::ReferenceProgress> reference;
 };
 
-// The methods this build can render, in the order the demo runs them.
-const std::vector<std::string>& methodNames();
-// Methods that prove the runtime rather than render the scene (accepted, not in the demo).
-const std::vector<std::string>& debugMethodNames();
+// The names of the methods the demo renders, in its order (runtime/methods/method.h has them all).
+std::vector<std::string> methodNames();
 
 // The post-process settings of a render of this scene (throws hmb::Error for bad names).
 passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings);
 
+// Throws hmb::Error (one line) for post-process choices no scene could take.
+void validatePostProcessChoices(const PostProcessChoices& choices);
+
 // The hybrid settings of a render of this scene (throws hmb::Error for bad names or values).
 passes::HybridSettings hybridSettingsFor(const scene::Scene& scene, const RenderSettings& settings);
 
-// Throws hmb::Error (one line) for an unknown method or an unusable size.
+// Throws hmb::Error (one line) for an unusable size or settings the method cannot render with.
 void validateRenderSettings(const RenderSettings& settings);
 
+struct FrameResources;
+class FrameMethod;
+
+// Renders frames with any method on one device. It owns what the methods share (the G-buffer,
+// the post-process blur, the display encoding, the frame recorder) and each method's
+// FrameMethod, made on its first frame and kept with what it keeps across frames.
 class Renderer {
  public:
   explicit Renderer(vk::Context& context);
@@ -133,9 +141,11 @@ class Renderer {
   RenderResult render(const scene::Scene& scene, const RenderSettings& settings);
 
  private:
-  struct Passes;
+  struct Shared;
+  FrameMethod& methodFor(Method method);
+
   vk::Context& context_;
-  std::unique_ptr<Passes> passes_;  // pipelines are created once, on first use
+  std::unique_ptr<Shared> shared_;  // pipelines are created once, on first use
 };
 
 }  // namespace hmb

@@ -90,7 +90,7 @@ nlohmann::json rasterJson(const RenderResult& result) {
 }
 
 nlohmann::json methodSettingsJson(const RenderResult& result) {
-  if (result.method == "reference") {
+  if (result.method == Method::Reference) {
     const passes::ReferenceSettings& r = result.settings.reference;
     nlohmann::json json = {{"spp", r.samplesPerPixel},
                            {"seed", r.seed},
@@ -146,7 +146,7 @@ nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& syst
       {"date", utcTimestamp()},
       {"device", deviceJson(device)},
       {"system", systemJson(system)},
-      {"method", result.method},
+      {"method", methodName(result.method)},
       {"resolution", {{"width", result.width}, {"height", result.height}}},
       {"frame_time_s", result.frameTime},
       {"settings", methodSettingsJson(result)},

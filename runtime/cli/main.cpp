@@ -259,7 +259,7 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
 
 int render(const GlobalOptions& global, const RenderOptions& options) {
   hmb::RenderSettings settings;
-  settings.method = options.method;
+  settings.method = hmb::parseMethod(options.method);
   settings.width = options.width;
   settings.height = options.height;
   settings.frameTime = options.frameTime;
@@ -301,7 +301,7 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   if (referenceImage) {
     // The blur region is where the reference differs from the sharp frame of the same instant.
     hmb::RenderSettings sharpSettings = settings;
-    sharpSettings.method = "sharp";
+    sharpSettings.method = hmb::Method::Sharp;
     sharpSettings.onProgress = nullptr;
     const hmb::metrics::DisplayImage sharp =
         hmb::metrics::displayImageFromRgba8(renderer.render(scene, sharpSettings).display);
@@ -351,7 +351,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
   std::map<std::string, hmb::io::Rgba8Image> stripImages;
   for (const std::string& method : methods) {
     hmb::RenderSettings settings;
-    settings.method = method;
+    settings.method = hmb::parseMethod(method);
     settings.width = options.width;
     settings.height = options.height;
     settings.reference.samplesPerPixel = options.referenceSpp;
@@ -427,7 +427,10 @@ int main(int argc, char** argv) {
   CLI::App* renderCmd = app.add_subcommand("render", "Render one frame of a scene with one method");
   renderCmd->add_option("--scene", renderOptions.scene, "Reference scene name or a .gltf/.glb file")
       ->capture_default_str();
-  renderCmd->add_option("--method", renderOptions.method, "Rendering method")->capture_default_str();
+  std::string methodHelp = "Rendering method:";
+  for (const hmb::MethodDescription& m : hmb::methodDescriptions())
+    methodHelp += "\n  " + std::string(m.name) + ": " + std::string(m.summary);
+  renderCmd->add_option("--method", renderOptions.method, methodHelp)->capture_default_str();
   renderCmd->add_option("--width", renderOptions.width, "Image width in pixels")->capture_default_str();
   renderCmd->add_option("--height", renderOptions.height, "Image height in pixels")->capture_default_str();
   renderCmd->add_option("--frame-time", renderOptions.frameTime, "Time of the frame in seconds (shutter closes then)");

@@ -352,11 +352,11 @@ TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
   const RevealScene s = revealScene();
   Renderer renderer(context());
   RenderSettings settings;
-  settings.method = "hybrid";
+  settings.method = Method::Hybrid;
   settings.width = kWidth;
   settings.height = kHeight;
   const RenderResult hybrid = renderer.render(s.scene, settings);
-  settings.method = "sharp";
+  settings.method = Method::Sharp;
   const RenderResult sharp = renderer.render(s.scene, settings);
   const io::ImageLayer* mask = hybrid.image.find("rayMask");
   const io::ImageLayer* revealed = hybrid.image.find("revealed");

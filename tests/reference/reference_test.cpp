@@ -31,7 +31,7 @@ RenderResult renderWith(const scene::Scene& scene, const std::string& method, ui
                         uint32_t height = kHeight) {
   static Renderer renderer(VulkanTest::context());
   RenderSettings settings;
-  settings.method = method;
+  settings.method = parseMethod(method);
   settings.width = width;
   settings.height = height;
   settings.frameTime = frameTime;
@@ -121,7 +121,7 @@ TEST_F(ReferenceTest, StillPixelsSampledOnceGiveTheSameImage) {
   const scene::Scene scene = scene::loadScene("temple");
   Renderer renderer(context());
   RenderSettings settings;
-  settings.method = "reference";
+  settings.method = Method::Reference;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.reference.samplesPerPixel = 16;
@@ -147,7 +147,7 @@ TEST_F(ReferenceTest, CheckpointResumesToTheSameImage) {
   fs::remove(checkpoint);
   Renderer renderer(context());
   RenderSettings settings;
-  settings.method = "reference";
+  settings.method = Method::Reference;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.reference.samplesPerPixel = 12;
@@ -250,7 +250,7 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
     const auto error = [&](const char* method, const char* composite, const char* stop = nullptr,
                            std::optional<float> foregroundBoost = std::nullopt) {
       RenderSettings settings;
-      settings.method = method;
+      settings.method = parseMethod(method);
       settings.width = kClaimWidth;
       settings.height = kClaimHeight;
       if (composite) settings.hybrid.composite = composite;
@@ -282,7 +282,7 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
 
 TEST(ReferenceSettingsTest, AbsurdSettingsAreRejected) {
   RenderSettings settings;
-  settings.method = "reference";
+  settings.method = Method::Reference;
   settings.reference.samplesPerPixel = 0;
   EXPECT_THROW(validateRenderSettings(settings), Error);
   settings.reference.samplesPerPixel = 1u << 30;

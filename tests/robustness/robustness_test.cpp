@@ -65,7 +65,7 @@ Renderer& renderer() {
 RenderResult render(const scene::Scene& scene, const std::string& method, uint32_t width, uint32_t height,
                     uint32_t spp = kReferenceSpp, std::optional<float> frameTime = std::nullopt, bool skip = true) {
   RenderSettings settings;
-  settings.method = method;
+  settings.method = parseMethod(method);
   settings.width = width;
   settings.height = height;
   settings.frameTime = frameTime;

@@ -45,7 +45,7 @@ TEST_F(DeviceMemoryTest, RenderReportsItsPeakAndPerPixelAndPerTriangleBytes) {
   settings.width = 96;
   settings.height = 54;
   for (const char* method : {"postprocess", "hybrid"}) {
-    settings.method = method;
+    settings.method = parseMethod(method);
     const RenderResult result = renderer.render(scene, settings);
     // Visibility (8), colour (16), normal-depth (16), velocity (8) and object id (4).
     EXPECT_EQ(result.memory.gbufferBytesPerPixel, 52.0) << method;
@@ -75,7 +75,7 @@ TEST(DeviceMemoryLimitTest, AFrameLargerThanTheHeapIsAClearErrorAndLeavesNothing
   const scene::Scene scene = scene::loadScene("temple");
   RenderSettings settings;
   for (const char* method : {"sharp", "hybrid", "reference"}) {
-    settings.method = method;
+    settings.method = parseMethod(method);
     // No buffer over 16 MiB, but 52 B of G-buffer per pixel alone is 52 MiB (the reference:
     // 36 B of beauty, sum and display per pixel).
     settings.width = 1024;
@@ -136,7 +136,7 @@ TEST(DeviceMemoryLimitTest, HybridAt1080pRendersOnADeviceWithA256MiBHostVisibleH
 
   const scene::Scene scene = scene::loadScene("living-room");
   RenderSettings settings;
-  settings.method = "hybrid";
+  settings.method = Method::Hybrid;
   settings.width = 1920;
   settings.height = 1080;
   Renderer renderer(discrete);

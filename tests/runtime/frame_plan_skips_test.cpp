@@ -29,7 +29,7 @@ constexpr float kStillTime = 0.45f;
 RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::string& method, float time,
                       bool skip) {
   RenderSettings settings;
-  settings.method = method;
+  settings.method = parseMethod(method);
   settings.width = 64;
   settings.height = 36;
   settings.frameTime = time;

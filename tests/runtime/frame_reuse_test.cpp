@@ -21,7 +21,7 @@ constexpr const char* kInstances = "hybrid-bvh-instances";
 RenderResult renderWith(const std::string& method, Renderer& renderer, const scene::Scene& scene, float time,
                         bool reuse = true) {
   RenderSettings settings;
-  settings.method = method;
+  settings.method = parseMethod(method);
   settings.width = 96;
   settings.height = 54;
   settings.frameTime = time;

@@ -138,7 +138,7 @@ GoldenTable renderGoldenCases(vk::Context& context) {
     Renderer renderer(context);
     for (const GoldenCase& c : goldenCases()) {
       RenderSettings settings;
-      settings.method = c.method;
+      settings.method = parseMethod(c.method);
       settings.width = 160;
       settings.height = 90;
       c.configure(settings);

@@ -61,7 +61,7 @@ TEST_F(RealFilesRenderTest, EveryLoadableFileRendersAFiniteFrameThatShowsItsGeom
       EXPECT_GT(covered, 0) << "the default or given camera should see the scene";
     }
     RenderSettings hybrid = settings;
-    hybrid.method = "hybrid";
+    hybrid.method = Method::Hybrid;
     const RenderResult blurred = renderer.render(scene, hybrid);
     for (float v : blurred.image.find("")->values) ASSERT_TRUE(std::isfinite(v)) << "hybrid";
     ++rendered;

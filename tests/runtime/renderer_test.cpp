@@ -26,11 +26,27 @@ std::string errorOf(const RenderSettings& settings) {
 }
 
 TEST(RenderSettingsTest, UnknownMethodNamesTheAvailableOnes) {
-  RenderSettings settings;
-  settings.method = "magic";
-  const std::string message = errorOf(settings);
+  std::string message;
+  try {
+    parseMethod("magic");
+  } catch (const Error& e) {
+    message = e.what();
+  }
   EXPECT_NE(message.find("unknown method 'magic'"), std::string::npos) << message;
-  for (const std::string& name : methodNames()) EXPECT_NE(message.find(name), std::string::npos) << message;
+  for (const MethodDescription& m : methodDescriptions())
+    EXPECT_NE(message.find(std::string(m.name)), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(RenderSettingsTest, EveryMethodIsRegisteredOnceAndNamesRoundTrip) {
+  for (const MethodDescription& m : methodDescriptions()) {
+    EXPECT_EQ(parseMethod(m.name), m.method) << m.name;
+    EXPECT_EQ(methodName(m.method), m.name);
+    EXPECT_EQ(&describe(m.method), &m) << m.name << " is registered twice";
+    EXPECT_NE(m.make, nullptr) << m.name;
+    EXPECT_NE(m.validate, nullptr) << m.name;
+  }
+  EXPECT_EQ(methodNames(), (std::vector<std::string>{"sharp", "postprocess", "hybrid", "reference"}));
 }
 
 TEST(RenderSettingsTest, EmptyAndAbsurdSizesAreRejected) {
@@ -50,7 +66,7 @@ TEST_F(RendererTest, TestPatternFrameHasBeautyDisplayAndPlan) {
   Renderer renderer(context());
   const scene::Scene empty;
   RenderSettings settings;
-  settings.method = "test-pattern";
+  settings.method = Method::TestPattern;
   settings.width = 7;
   settings.height = 3;
   const RenderResult result = renderer.render(empty, settings);
@@ -96,7 +112,7 @@ TEST_F(RendererTest, SharpFrameHasBeautyAovsPlanAndRasterStats) {
   Renderer renderer(context());
   const scene::Scene scene = scene::loadScene("living-room");
   RenderSettings settings;
-  settings.method = "sharp";
+  settings.method = Method::Sharp;
   settings.width = 67;
   settings.height = 37;
   const RenderResult result = renderer.render(scene, settings);

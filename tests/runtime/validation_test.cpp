@@ -23,7 +23,7 @@ TEST_F(ValidationTest, EveryMethodOnEveryReferenceSceneRunsWithoutAValidationMes
     for (const std::string& method : methodNames()) {
       const uint32_t errors = context().validationErrors(), warnings = context().validationWarnings();
       RenderSettings settings;
-      settings.method = method;
+      settings.method = parseMethod(method);
       settings.width = 64;
       settings.height = 36;
       settings.reference.samplesPerPixel = 2;

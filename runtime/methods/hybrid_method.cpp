@@ -1,0 +1,141 @@
+// hybrid: the paper's method (passes::HybridStage): the post-process blur of the raster layer,
+// with the background hidden behind moving objects ray traced inside the ray mask, blurred,
+// and composited in.
+#include <algorithm>
+
+#include "runtime/error.h"
+#include "runtime/frame_plan.h"
+#include "runtime/methods/frame_method.h"
+#include "runtime/methods/raster_frame.h"
+#include "runtime/passes/encode_display_pass.h"
+#include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/hybrid_stage.h"
+#include "runtime/passes/post_process_stage.h"
+#include "runtime/passes/shading_kernel.h"
+#include "runtime/renderer.h"
+#include "runtime/vulkan/buffer.h"
+
+namespace hmb {
+namespace {
+
+class HybridMethod final : public FrameMethod {
+ public:
+  explicit HybridMethod(FrameResources& resources)
+      : resources_(resources), hybrid_(resources.context, resources.postProcess) {}
+
+  vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
+    const RenderSettings& settings = request.settings;
+    const GpuScene scene = prepareRasterFrame(resources_, request, result);
+    const bool still = nothingMovesOnScreen(request);
+    result.hybrid.emplace();
+    result.hybrid->settings = hybridSettingsFor(request.scene, settings);
+    // The blur the hybrid extends, with the hybrid's mask boosts and foreground boost.
+    result.postprocess = postProcessSettingsFor(request.scene, settings);
+    result.postprocess->maskBackgroundBoost = result.hybrid->settings.maskBackgroundBoost;
+    result.postprocess->maskForegroundDivide = result.hybrid->settings.maskForegroundDivide;
+    if (!settings.postprocess.foregroundBoost) result.postprocess->foregroundBoost = result.hybrid->settings.foregroundBoost;
+    passes::PostProcessStage& blur = resources_.postProcess;
+    blur.configure(*result.postprocess);
+    if (!(settings.skipUnneededPasses && settings.reuseAcrossFrames)) hybrid_.forgetTraceScene();
+    FramePlan blurPlan;
+    hybrid_.plan(blurPlan, request.scene, request.frameTime);
+    planBlur(result.plan, blurPlan, still);
+    passes::planTexturePath(result.plan, scene);
+
+    vk::Buffer blurred;
+    vk::FrameTimings timings;
+    if (!still) {
+      blur.prepare(request.width, request.height);
+      blurred = vk::Buffer(resources_.context, uint64_t(request.width) * request.height * sizeof(glm::vec4),
+                           vk::MemoryUse::Device, "post-process colour");
+      // The trace scene's mesh trees (setup, reported apart) and its instance tree at the frame
+      // time (part of the frame) are built where the plan runs them, kept where it skips them.
+      const auto prepared = hybrid_.prepare(resources_.recorder, request.scene, request.frameTime, request.width,
+                                            request.height, result.hybrid->settings, result.plan);
+      result.hybrid->setupMilliseconds = prepared.setup.frameMilliseconds;
+      timings = prepared.frame;
+      // The setup passes are listed with their times, but not added to the frame's.
+      timings.passes.insert(timings.passes.begin(), prepared.setup.passes.begin(), prepared.setup.passes.end());
+    }
+    result.plan.run(passes::EncodeDisplayPass::kName);
+    const passes::GBufferStage& gbuffer = resources_.gbuffer;
+    const vk::Buffer& beauty = still ? gbuffer.color() : blurred;
+    vk::appendTimings(timings, recordRasterFrame(resources_, scene, [&](vk::FrameRecorder& frame) {
+                        if (!still) hybrid_.record(frame, gbuffer, scene, blurred);
+                        resources_.encodeDisplay.record(frame, beauty, request.display, request.width, request.height);
+                      }));
+    if (const auto trees = still ? std::nullopt : hybrid_.meshTreeBytes()) {
+      result.memory.bvhAllocatedBytesPerTriangle = trees->allocatedPerTriangle;
+      result.memory.bvhBuiltBytesPerTriangle = trees->usedPerTriangle;
+    }
+    collectRasterFrame(resources_, request, beauty, result);
+    collectHybridLayers(request, still, result);
+    return timings;
+  }
+
+ private:
+  // The ray mask, and what the reveal found behind the pixels it traced (black elsewhere), its
+  // depth and object; all empty when the frame is still and the passes were skipped. The mask
+  // is made on the device, so the passes over it are recorded every frame and sized from it:
+  // when it is empty they dispatch no groups, and the plan says so.
+  void collectHybridLayers(const FrameRequest& request, bool still, RenderResult& result) const {
+    const uint64_t pixels = uint64_t(request.width) * request.height;
+    std::vector<uint32_t> mask(pixels, 0u), revealedId(pixels, 0u);
+    std::vector<glm::vec4> revealed(pixels, glm::vec4(0.0f)), revealedDepth(pixels, glm::vec4(0.0f));
+    if (!still) {
+      const passes::RayMaskCounts counts = hybrid_.rayMask().counts();
+      result.hybrid->edgeCandidates = counts.edgeCandidates;
+      result.hybrid->maskPixels = counts.maskPixels;
+      result.hybrid->revealedPixels = counts.listedPixels;
+      result.hybrid->revealRays = counts.revealRays;
+      mask = hybrid_.rayMask().mask().download<uint32_t>();
+      mask.resize(pixels);
+      const passes::ImageLayer& layer = hybrid_.revealed();
+      const std::vector<glm::vec4> revealedAll = layer.color().download<glm::vec4>();
+      const std::vector<glm::vec4> normalDepthAll = layer.normalDepth().download<glm::vec4>();
+      const std::vector<uint32_t> idAll = layer.objectId().download<uint32_t>();
+      std::vector<uint32_t> traced = hybrid_.rayMask().list().download<uint32_t>();
+      traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
+      for (const uint32_t i : traced) {
+        if (i >= pixels) continue;
+        revealed[i] = revealedAll[i];
+        revealedDepth[i] = glm::vec4(normalDepthAll[i].w, 0.0f, 0.0f, 0.0f);
+        revealedId[i] = idAll[i];
+      }
+      if (result.hybrid->edgeCandidates == 0)
+        result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");
+      if (result.hybrid->revealedPixels == 0) {
+        const std::string reason = result.hybrid->maskPixels == 0
+                                       ? "the ray mask is empty: no ray traced"
+                                       : "no mask pixel's composite meets the background: no ray traced";
+        result.plan.noteNoWork(passes::RevealPass::kName, reason);
+        result.plan.noteNoWork(passes::HybridStage::kGatherBackground, reason);
+      }
+    }
+    result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::move(mask)});
+    result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));
+    result.image.layers.push_back(vec4Layer("revealedDepth", {"Z"}, revealedDepth));
+    result.image.layers.push_back(io::ImageLayer{"revealedObjectId", {"id"}, true, {}, std::move(revealedId)});
+  }
+
+  FrameResources& resources_;
+  passes::HybridStage hybrid_;
+};
+
+}  // namespace
+
+void validateHybridMethod(const RenderSettings& settings) {
+  validatePostProcessChoices(settings.postprocess);
+  if (settings.postprocess.filter && *settings.postprocess.filter != "mcguire")
+    throw Error("the hybrid method blurs with the McGuire filter (--filter mcguire)");
+  const passes::HybridSettings hybrid = hybridSettingsFor(scene::Scene{}, settings);
+  if (hybrid.composite == passes::HybridComposite::Coverage && settings.postprocess.range &&
+      passes::parseRange(*settings.postprocess.range) != passes::GatherRange::Adapted)
+    throw Error("the hybrid method's coverage composite needs the adapted range (--range adapted)");
+}
+
+std::unique_ptr<FrameMethod> makeHybridMethod(FrameResources& resources) {
+  return std::make_unique<HybridMethod>(resources);
+}
+
+}  // namespace hmb

@@ -1,0 +1,61 @@
+// postprocess: the G-buffer's colour blurred along its velocities (tile-max, neighbour-max,
+// then McGuire's or Jimenez's gather).
+#include "runtime/frame_plan.h"
+#include "runtime/methods/frame_method.h"
+#include "runtime/methods/raster_frame.h"
+#include "runtime/passes/encode_display_pass.h"
+#include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/post_process_stage.h"
+#include "runtime/passes/shading_kernel.h"
+#include "runtime/renderer.h"
+#include "runtime/vulkan/buffer.h"
+
+namespace hmb {
+namespace {
+
+class PostProcessMethod final : public FrameMethod {
+ public:
+  explicit PostProcessMethod(FrameResources& resources) : resources_(resources) {}
+
+  vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
+    const GpuScene scene = prepareRasterFrame(resources_, request, result);
+    const bool still = nothingMovesOnScreen(request);
+    passes::PostProcessStage& blur = resources_.postProcess;
+    result.postprocess = postProcessSettingsFor(request.scene, request.settings);
+    blur.configure(*result.postprocess);
+    FramePlan blurPlan;
+    blur.plan(blurPlan);
+    planBlur(result.plan, blurPlan, still);
+    passes::planTexturePath(result.plan, scene);
+    vk::Buffer blurred;
+    if (!still) {
+      blur.prepare(request.width, request.height);
+      blurred = vk::Buffer(resources_.context, uint64_t(request.width) * request.height * sizeof(glm::vec4),
+                           vk::MemoryUse::Device, "post-process colour");
+    }
+    result.plan.run(passes::EncodeDisplayPass::kName);
+    const passes::GBufferStage& gbuffer = resources_.gbuffer;
+    const vk::Buffer& beauty = still ? gbuffer.color() : blurred;
+    const vk::FrameTimings timings = recordRasterFrame(resources_, scene, [&](vk::FrameRecorder& frame) {
+      if (!still)
+        blur.record(frame, {&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), request.width, request.height},
+                    blurred);
+      resources_.encodeDisplay.record(frame, beauty, request.display, request.width, request.height);
+    });
+    collectRasterFrame(resources_, request, beauty, result);
+    return timings;
+  }
+
+ private:
+  FrameResources& resources_;
+};
+
+}  // namespace
+
+void validatePostProcessMethod(const RenderSettings& settings) { validatePostProcessChoices(settings.postprocess); }
+
+std::unique_ptr<FrameMethod> makePostProcessMethod(FrameResources& resources) {
+  return std::make_unique<PostProcessMethod>(resources);
+}
+
+}  // namespace hmb

@@ -1,0 +1,47 @@
+// What the raster methods (sharp, post-process, hybrid) share around their own passes: the
+// scene on the device at the frame time, the G-buffer planned and prepared, the blur's plan
+// (left out when nothing moves on screen), and afterwards the image: the beauty layer and the
+// G-buffer's AOVs read back.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "runtime/gpu_scene.h"
+#include "runtime/io/image.h"
+#include "runtime/methods/frame_method.h"
+
+namespace hmb {
+
+class FramePlan;
+
+// A float layer of `values`' first channels.
+io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> channels,
+                         const std::vector<glm::vec4>& values);
+
+// The scene at the request's frame time, the texture path kept when every pass must run, the
+// G-buffer prepared and its passes entered in the plan.
+GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result);
+
+// With nothing moving on screen every velocity is 0: the gather returns each pixel's own colour
+// and the hybrid's mask is empty, so the blur's passes are left out.
+bool nothingMovesOnScreen(const FrameRequest& request);
+
+// Enters the blur's passes (planned in `blurPlan`) in the frame's plan; all skipped when still.
+void planBlur(FramePlan& plan, const FramePlan& blurPlan, bool still);
+
+// The G-buffer's passes, then `recordRest` (the method's own passes and the display encoding),
+// recorded again with grown buffers while the rasterizer overflows.
+vk::FrameTimings recordRasterFrame(FrameResources& resources, const GpuScene& scene,
+                                   const std::function<void(vk::FrameRecorder&)>& recordRest);
+
+// After the frame: beauty (the linear image the method made) and the G-buffer's depth, normal,
+// velocity and object id as the image's layers, with the G-buffer's bytes per pixel and the
+// rasterizer's statistics.
+void collectRasterFrame(FrameResources& resources, const FrameRequest& request, const vk::Buffer& beauty,
+                        RenderResult& result);
+
+}  // namespace hmb
