@@ -108,8 +108,6 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   });
   triangleBoxes = {};
   meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
-  if (context.info().bufferDeviceAddress)
-    table_ = vk::Buffer(context, sizeof(gpu::TraceSceneTable), vk::MemoryUse::Device, "trace scene table");
 }
 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
@@ -146,11 +144,14 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   builtTransforms_ = std::move(transforms);
 
   if (context_.info().bufferDeviceAddress) {
-    std::vector<const vk::Buffer*> buffers;
-    appendBindings(buffers, false);
-    gpu::TraceSceneTable table{};
-    static_assert(sizeof(table) == HMB_TRACE_SCENE_BUFFERS * sizeof(uint64_t));
-    for (size_t i = 0; i < buffers.size(); ++i) reinterpret_cast<uint64_t*>(&table)[i] = buffers[i]->address();
+    const gpu::TraceSceneTable table{instanceBvh_.nodes().address(),     instanceBvh_.links().address(),
+                                     instanceBvh_.primitives().address(), instances_.address(),
+                                     transforms_.address(),               meshBvh_.nodes().address(),
+                                     meshBvh_.links().address(),          meshBvh_.primitives().address(),
+                                     triangles_.address(),                positions_.address(),
+                                     instanceBvh_.frames().address(),     meshBvh_.frames().address()};
+    if (!table_.handle())
+      table_ = vk::Buffer(context_, sizeof(gpu::TraceSceneTable), vk::MemoryUse::Device, "trace scene table");
     table_.upload(std::span<const gpu::TraceSceneTable>(&table, 1));
   }
 }

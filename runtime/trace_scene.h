@@ -66,7 +66,8 @@ class TraceScene {
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
   // Appends the trace scene as a tracing kernel binds it (kernels/trace/trace_scene_bindings.glsl):
-  // its 12 buffers, or the table of their addresses for a kernel that binds by address.
+  // its 12 buffers, or the table of their addresses (written by setShutterTimes) for a kernel
+  // that binds by address.
   void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
 
  private:

@@ -34,9 +34,9 @@ layout(constant_id = HMB_SPEC_COMPOSITE_COVERAGE) const bool kCoverage = true;
 
 #include "../mblur/mblur_common.glsl"
 
-// The weights form at the current pixel: the revealed background, the pixel's object and depth.
+// The weights form at the current pixel: the blurred background B, the pixel's object and depth.
 bool weightsComposite = false;
-vec4 revealedColor = vec4(0.0);
+vec4 blurredBackground = vec4(0.0);
 uint centreObject = 0u;
 float compositeCentreDepth = 0.0;
 
@@ -51,7 +51,7 @@ float behindShare(uint sampleIndex, uint object, float depth) {
 }
 
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
-  return weightsComposite ? mix(sampleColor, revealedColor, behindShare(sampleIndex, centreObject, compositeCentreDepth))
+  return weightsComposite ? mix(sampleColor, blurredBackground, behindShare(sampleIndex, centreObject, compositeCentreDepth))
                           : sampleColor;
 }
 
@@ -101,7 +101,7 @@ void main() {
     return;
   }
   weightsComposite = inMask && !kCoverage;
-  revealedColor = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
+  blurredBackground = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
   centreObject = weightsComposite ? LAYER_OBJECT_ID(raster, index) : 0u;
   compositeCentreDepth = centreDepth;
   outColor[index] = gatherSamples(pixel, centreColor, centreSpeed, centreDepth, dominant.xy, maxSpeed, jitter,

@@ -7,11 +7,16 @@
 //   edge_mask      eqs. 3, 4: the listed candidates whose 5x5 Sobel of depth and normal passes
 //                  the edge threshold e (listing first keeps the Sobel's lanes busy)
 //   range_check    moving pixels whose range along their velocity meets the edge mask: the ray
-//                  mask, as a 0/1 image (for the gathers) and a compacted pixel list
+//                  mask, per pixel HMB_MASK_* (for the gathers), and a compacted list of the
+//                  pixels to reveal
 //   size_list_dispatch    a list's length -> the indirect dispatch of the passes over it, so
 //                  an empty list dispatches nothing
 //   reveal_background     per listed pixel, the first surface behind the object the raster sees
 //                  there: its colour, depth, normal, velocity and object id
+//   gather_background     the background layer (the raster, the revealed surfaces where
+//                  revealed) blurred at the listed pixels
+//   composite      the raster layer's gather with the blurred background composited in at
+//                  mask pixels
 // Shared by the GLSL kernels and the C++ passes and reference.
 #ifndef HMB_KERNELS_HYBRID_HYBRID_LAYOUT_H
 #define HMB_KERNELS_HYBRID_HYBRID_LAYOUT_H
@@ -88,7 +93,7 @@
 #define HMB_SIZE_LIST_MASK 1u             // HMB_MASK_LIST_GROUP mask pixels per group
 #define HMB_SIZE_LIST_EDGE_CANDIDATES 2u  // HMB_MASK_LIST_GROUP edge candidates per group
 
-// The list passes (edge_mask, reveal_background and the gather's list mode) run 64 lanes per group.
+// The list passes (edge_mask, reveal_background, gather_background) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
 
 // reveal_background

@@ -33,12 +33,21 @@
 #define HMB_SHARED inline
 #define HMB_CHECK_SIZE(type, bytes) static_assert(sizeof(hmb::gpu::type) == (bytes), #type " layout drifted");
 #else
+// Only address builds (HMB_BIND_BY_ADDRESS) use device addresses: plain builds must run on
+// devices without them.
+#ifdef HMB_BIND_BY_ADDRESS
 #extension GL_EXT_buffer_reference : require
+#endif
 #define HMB_GPU_BEGIN
 #define HMB_GPU_END
 #define HMB_REFERENCE(Type) Type
 #define HMB_SHARED
 #define HMB_CHECK_SIZE(type, bytes)
+#endif
+
+// Tables of device addresses exist on the host and in address builds.
+#if defined(__cplusplus) || defined(HMB_BIND_BY_ADDRESS)
+#define HMB_ADDRESS_TABLES 1
 #endif
 
 #endif

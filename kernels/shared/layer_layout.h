@@ -7,6 +7,7 @@
 
 #include "glsl_cpp.h"
 
+#ifdef HMB_ADDRESS_TABLES
 #ifndef __cplusplus
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer LayerVec4sRef { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer LayerVec2sRef { vec2 v[]; };
@@ -25,6 +26,7 @@ struct LayerTable {
 HMB_GPU_END
 
 HMB_CHECK_SIZE(LayerTable, 32)
+#endif
 
 // A layer takes 4 bindings, or one table in HMB_BIND_BY_ADDRESS builds (shared/layer_bindings.glsl).
 #ifdef HMB_BIND_BY_ADDRESS

@@ -80,6 +80,7 @@ struct GpuCamera {
 
 HMB_GPU_END
 
+#ifdef HMB_ADDRESS_TABLES
 #ifndef __cplusplus
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuVerticesRef { GpuVertex v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GpuInstancesRef { GpuInstance v[]; };
@@ -103,6 +104,7 @@ struct SceneTable {
 HMB_GPU_END
 
 HMB_CHECK_SIZE(SceneTable, 40)
+#endif
 
 // The scene takes 5 bindings, or one table in HMB_BIND_BY_ADDRESS builds.
 #ifdef HMB_BIND_BY_ADDRESS

@@ -92,7 +92,10 @@ vec3 pinholeRayDirection(PinholeCamera camera, vec2 position, uint width, uint h
   const vec2 ndc = position / vec2(width, height) * 2.0 - 1.0;
   return camera.forward.xyz + ndc.x * camera.right.xyz + ndc.y * camera.down.xyz;
 }
+#endif
 
+#ifdef HMB_ADDRESS_TABLES
+#ifndef __cplusplus
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PackedNodesRef { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer WordsRef { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TraceInstancesRef { TraceInstance v[]; };
@@ -124,6 +127,7 @@ struct TraceSceneTable {
 HMB_GPU_END
 
 HMB_CHECK_SIZE(TraceSceneTable, 96)
+#endif
 HMB_CHECK_SIZE(TraceParams, 16)
 HMB_CHECK_SIZE(TraceRay, 48)
 HMB_CHECK_SIZE(TraceInstance, 16)

@@ -346,7 +346,8 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
                            {"methods", nlohmann::json::array()}};
   // The reference first: it is the judge every other method is measured against.
   std::vector<std::string> methods = hmb::methodNames();
-  std::stable_partition(methods.begin(), methods.end(), [](const std::string& m) { return m == "reference"; });
+  std::stable_partition(methods.begin(), methods.end(),
+                        [](const std::string& m) { return hmb::parseMethod(m) == hmb::Method::Reference; });
   std::optional<hmb::metrics::DisplayImage> judge, sharp;
   std::map<std::string, hmb::io::Rgba8Image> stripImages;
   for (const std::string& method : methods) {
@@ -363,8 +364,8 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     hmb::io::writeExr(stem.string() + ".exr", result.image);
     stripImages[method] = result.display;
     const hmb::metrics::DisplayImage display = hmb::metrics::displayImageFromLayered(result.image);
-    if (method == "reference") judge = display;
-    if (method == "sharp") sharp = display;
+    if (settings.method == hmb::Method::Reference) judge = display;
+    if (settings.method == hmb::Method::Sharp) sharp = display;
     nlohmann::json entry = {{"method", method},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
                             {"settings", hmb::methodSettingsJson(result)},

@@ -1,4 +1,4 @@
-// The hybrid method (paper, section 3; DESIGN.md's frame): on top of the G-buffer,
+// The hybrid method (paper, section 3): on top of the G-buffer,
 //   tile-max, neighbour-max of the raster's velocities -> ray mask (RayMaskStage, over the
 //   moving tiles) -> ray reveal (RevealPass) at mask pixels -> gather of the background layer
 //   (the revealed surfaces over the raster) at mask pixels only (BackgroundGatherPass,

@@ -81,7 +81,11 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
       addressInfo.buffer = buffer_;
       address_ = vkGetBufferDeviceAddress(device, &addressInfo);
     }
-    hostCached_ = (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
+    // Reading mapped memory the host does not cache is slow (VRAM through a BAR): such a buffer
+    // is read through a staging copy, where the device has cached memory to copy into.
+    const VkMemoryPropertyFlags cached = hostFlags | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    readDirectly_ = (flags & cached) == cached ||
+                    ((flags & hostFlags) == hostFlags && context.findMemoryType(req.memoryTypeBits, cached) == UINT32_MAX);
   } catch (...) {
     release();
     throw;
@@ -102,7 +106,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     allocated_ = std::exchange(other.allocated_, 0);
     heap_ = other.heap_;
     mapped_ = std::exchange(other.mapped_, nullptr);
-    hostCached_ = other.hostCached_;
+    readDirectly_ = other.readDirectly_;
     address_ = std::exchange(other.address_, 0);
     name_ = std::move(other.name_);
   }
@@ -143,8 +147,7 @@ void Buffer::read(std::span<std::byte> bytes, VkDeviceSize offset) const {
   if (offset + bytes.size() > size_)
     throw Error("read of " + std::to_string(bytes.size()) + " bytes past the end of buffer '" + name_ + "'");
   if (bytes.empty()) return;
-  // Uncached mapped memory (VRAM through a BAR) reads slowly from the host: copy it out first.
-  if (mapped_ && hostCached_) {
+  if (mapped_ && readDirectly_) {
     std::memcpy(bytes.data(), static_cast<const std::byte*>(mapped_) + offset, bytes.size());
     return;
   }

@@ -68,7 +68,7 @@ class Buffer {
   VkDeviceSize allocated_ = 0;  // the memory's size (at least size_), counted in the context
   uint32_t heap_ = 0;           // the memory heap it was counted in
   void* mapped_ = nullptr;
-  bool hostCached_ = false;
+  bool readDirectly_ = false;  // mapped and cached, or no cached memory to stage through
   VkDeviceAddress address_ = 0;
   std::string name_;
 };

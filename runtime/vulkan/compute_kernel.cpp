@@ -18,8 +18,14 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
   const EmbeddedKernel* spirvBuild = &findKernel(kernelName);
   KernelInterface declared = reflectKernel(*spirvBuild);
   std::string doesNotFit = whyKernelDoesNotFit(name_, declared, context.limits());
+  // The address build, where there is one, is for devices whose storage-buffer bindings the
+  // plain build exceeds (or for every device, when asked).
+  const auto& limits = context.limits();
+  const uint64_t storageBuffers = declared.storageBufferBindings.size();
+  const bool tooManyBuffers = storageBuffers > limits.maxPerStageDescriptorStorageBuffers ||
+                              storageBuffers > limits.maxDescriptorSetStorageBuffers;
   if (const EmbeddedKernel* byAddress = findKernelIfBuilt(name_ + std::string(kByAddressSuffix));
-      byAddress && (context.options().bindByAddress || !doesNotFit.empty())) {
+      byAddress && (context.options().bindByAddress || tooManyBuffers)) {
     if (!context.info().bufferDeviceAddress)
       throw Error(doesNotFit.empty() ? "kernel '" + name_ + "': binding by address needs bufferDeviceAddress"
                                      : doesNotFit + ", and lacks bufferDeviceAddress to bind its buffers by address");
@@ -29,6 +35,8 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
     bindsByAddress_ = true;
   }
   if (!doesNotFit.empty()) throw Error(doesNotFit);
+  if (declared.usesDeviceAddresses && !context.info().bufferDeviceAddress)
+    throw Error("kernel '" + name_ + "' reads buffers by device address, which the device lacks (bufferDeviceAddress)");
   const EmbeddedKernel& spirv = *spirvBuild;
   storageBufferCount_ = uint32_t(declared.storageBufferBindings.size());
   for (uint32_t i = 0; i < storageBufferCount_; ++i)

@@ -75,6 +75,11 @@ KernelInterface reflectKernel(const EmbeddedKernel& kernel) {
             raw, kernel);
     result.pushConstantBytes = std::max(result.pushConstantBytes, uint32_t(bytes));
   }
+  const SpvCapability* capabilities = nullptr;
+  size_t capabilityCount = 0;
+  require(spvc_compiler_get_declared_capabilities(compiler, &capabilities, &capabilityCount), raw, kernel);
+  for (size_t i = 0; i < capabilityCount; ++i)
+    result.usesDeviceAddresses |= capabilities[i] == SpvCapabilityPhysicalStorageBufferAddresses;
   for (unsigned axis = 0; axis < 3; ++axis)
     result.localSize[axis] =
         std::max(1u, spvc_compiler_get_execution_mode_argument_by_index(compiler, SpvExecutionModeLocalSize, axis));

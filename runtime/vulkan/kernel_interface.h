@@ -21,6 +21,7 @@ struct KernelInterface {
   uint32_t highestDescriptorSet = 0;
   uint32_t pushConstantBytes = 0;    // the declared size of the push-constant block, 0 without one
   uint32_t localSize[3] = {1, 1, 1};
+  bool usesDeviceAddresses = false;  // PhysicalStorageBufferAddresses: address builds only
 };
 
 // Throws hmb::Error when the SPIR-V cannot be read.

@@ -1,7 +1,8 @@
-// The hybrid composites of hybrid/composite.comp (coverage and weights, at mask pixels) against the C++
-// reference on random and adversarial layers, and the gather's pixel-list mode: exactly the
-// listed pixels written, each as the full-frame gather writes it, also with more groups than
-// one row of a dispatch holds.
+// The hybrid composites of hybrid/composite.comp (coverage and weights, at mask pixels) against the
+// C++ reference on random and adversarial layers, and the background gather over a pixel list
+// (hybrid/gather_background.comp): exactly the listed pixels written, each as the full-frame
+// gather writes it, also with more groups than one row of a dispatch holds, and the revealed
+// layer read where the mask says so.
 #include <algorithm>
 #include <cmath>
 #include <limits>

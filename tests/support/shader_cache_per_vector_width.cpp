@@ -5,6 +5,7 @@
 // links this file: a run that sets the width, and no cache folder of its own, gets a cache
 // folder for that width, before any Vulkan driver is loaded.
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace {
@@ -18,7 +19,7 @@ const bool kCachePerVectorWidth = [] {
   else if (const char* home = std::getenv("HOME"))
     base = std::string(home) + "/.cache";
   else
-    base = "/tmp";
+    base = std::filesystem::temp_directory_path().string();
   return setenv("MESA_SHADER_CACHE_DIR", (base + "/mesa_shader_cache_lp" + width).c_str(), 0) == 0;
 }();
 
