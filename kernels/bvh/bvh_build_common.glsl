@@ -11,8 +11,10 @@ layout(std430, binding = HMB_BUILD_BINDING_ROOTS) readonly buffer Roots { uvec2 
 layout(std430, binding = HMB_BUILD_BINDING_PRIMITIVES) buffer Primitives { uint primitives[]; };
 layout(std430, binding = HMB_BUILD_BINDING_NODES) buffer Nodes { BvhNode nodes[]; };
 layout(std430, binding = HMB_BUILD_BINDING_LINKS) buffer Links { uint links[]; };
-layout(std430, binding = HMB_BUILD_BINDING_TASKS) buffer Tasks { BvhBuildTask tasks[]; };
-layout(std430, binding = HMB_BUILD_BINDING_COUNTERS) buffer Counters { BvhBuildCounters counters; };
+layout(std430, binding = HMB_BUILD_BINDING_TASKS) buffer Tasks {
+  BvhBuildCounters counters;
+  BvhBuildTask tasks[];
+};
 layout(std430, binding = HMB_BUILD_BINDING_PACKED_NODES) buffer PackedNodes { uvec4 packedNodes[]; };
 layout(std430, binding = HMB_BUILD_BINDING_FRAMES) buffer Frames { BvhFrame frames[]; };
 layout(push_constant) uniform Params { BvhBuildParams params; };

@@ -47,11 +47,13 @@
 #define HMB_BUILD_BINDING_PRIMITIVES 2  // uint[2 * primitiveCount]: the final array, then a scratch copy
 #define HMB_BUILD_BINDING_NODES 3       // BvhNode[]: exact bounds, the build's working copy
 #define HMB_BUILD_BINDING_LINKS 4       // uint[8 * node capacity], see HMB_BVH_LINK_*
-#define HMB_BUILD_BINDING_TASKS 5       // BvhBuildTask[2 * taskCapacity]: this level's, the next level's
-#define HMB_BUILD_BINDING_COUNTERS 6    // BvhBuildCounters
-#define HMB_BUILD_BINDING_PACKED_NODES 7  // BvhPackedNode[]: the nodes as traversal reads them
-#define HMB_BUILD_BINDING_FRAMES 8        // BvhFrame per tree: what its packed bounds count steps in
-#define HMB_BUILD_BINDING_COUNT 9
+// The task queue: BvhBuildCounters (its head: the levels' task counts and indirect
+// dispatches), then BvhBuildTask[2 * taskCapacity], this level's and the next level's, from
+// byte sizeof(BvhBuildCounters) (a multiple of a task's 16-byte alignment).
+#define HMB_BUILD_BINDING_TASKS 5
+#define HMB_BUILD_BINDING_PACKED_NODES 6  // BvhPackedNode[]: the nodes as traversal reads them
+#define HMB_BUILD_BINDING_FRAMES 7        // BvhFrame per tree: what its packed bounds count steps in
+#define HMB_BUILD_BINDING_COUNT 8
 
 HMB_GPU_BEGIN
 

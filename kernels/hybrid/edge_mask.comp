@@ -7,7 +7,8 @@
 // relative depth step, so the same threshold marks the same silhouettes whether the scene is
 // modelled in millimetres or kilometres. delta_n is the length of the normal's Sobel
 // derivatives (both directions, all three components). Image borders clamp. Writes 1 at edge
-// pixels only; the edge buffer is filled with 0 before.
+// pixels, and at the coarse mask's blocks near them, only; the edge buffer is filled with 0
+// before.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
@@ -18,8 +19,8 @@ layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 layout(std430, binding = HMB_EDGE_MASK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
+// The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) writeonly buffer Edges { uint edges[]; };
-layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGE_BLOCKS) writeonly buffer EdgeBlocks { uint edgeBlocks[]; };
 layout(push_constant) uniform Params { EdgeMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -65,9 +66,10 @@ void main() {
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
+  const uint blocks = HMB_EDGE_BLOCKS_FIRST(params.width, params.height);
   const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.width);
   const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;
   const uvec2 last = min(pixel + 1u, uvec2(params.width, params.height) - 1u) / HMB_EDGE_BLOCK;
   for (uint y = first.y; y <= last.y; ++y)
-    for (uint x = first.x; x <= last.x; ++x) edgeBlocks[y * blocksX + x] = 1u;
+    for (uint x = first.x; x <= last.x; ++x) edges[blocks + y * blocksX + x] = 1u;
 }

@@ -53,9 +53,10 @@
 #define HMB_EDGE_MASK_BINDING_NORMAL_DEPTH 0  // vec4 per pixel
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
 #define HMB_EDGE_MASK_BINDING_CANDIDATES 2    // edge_candidates' list
-#define HMB_EDGE_MASK_BINDING_EDGES 3         // uint per pixel: 1 in the edge mask (written there only)
-#define HMB_EDGE_MASK_BINDING_EDGE_BLOCKS 4   // uint per HMB_EDGE_BLOCK^2 block: 1 near an edge
-#define HMB_EDGE_MASK_BINDING_COUNT 5
+// The edge mask, then the coarse edge mask (HMB_EDGE_BLOCKS_FIRST): 1 in the mask, 0 elsewhere
+// (written at 1s only; the buffer is filled with 0 before).
+#define HMB_EDGE_MASK_BINDING_EDGES 3
+#define HMB_EDGE_MASK_BINDING_COUNT 4
 
 // Side of the blocks of the coarse edge image, in pixels. A block is flagged when an edge
 // pixel lies within one pixel of it, so a segment passing through no flagged block passes
@@ -63,17 +64,21 @@
 #define HMB_EDGE_BLOCK 4u
 // Blocks across a side of n pixels (the coarse image is row-major, this many per row).
 #define HMB_EDGE_BLOCKS_ACROSS(n) (((n) + HMB_EDGE_BLOCK - 1u) / HMB_EDGE_BLOCK)
+// The edge buffer of a width x height image: a uint per pixel (the edge mask), then a uint
+// per HMB_EDGE_BLOCK^2 block (the coarse one), from this entry on; this many entries in all.
+#define HMB_EDGE_BLOCKS_FIRST(width, height) ((width) * (height))
+#define HMB_EDGE_BUFFER_ENTRIES(width, height) \
+  (HMB_EDGE_BLOCKS_FIRST(width, height) + HMB_EDGE_BLOCKS_ACROSS(width) * HMB_EDGE_BLOCKS_ACROSS(height))
 
 #define HMB_RANGE_CHECK_BINDING_VELOCITY 0  // vec2 per pixel
-#define HMB_RANGE_CHECK_BINDING_EDGES 1     // uint per pixel (edge_mask)
+#define HMB_RANGE_CHECK_BINDING_EDGES 1     // the edge mask, then the coarse one (edge_mask)
 #define HMB_RANGE_CHECK_BINDING_TILES 2     // uint tile index per moving tile
 #define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
 #define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel to reveal, in no order
 #define HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH 6  // vec4 per pixel (the coverage test)
 #define HMB_RANGE_CHECK_BINDING_OBJECT_ID 7     // uint per pixel (the coverage test)
-#define HMB_RANGE_CHECK_BINDING_EDGE_BLOCKS 8   // uint per block (edge_mask)
-#define HMB_RANGE_CHECK_BINDING_COUNT 9
+#define HMB_RANGE_CHECK_BINDING_COUNT 8
 
 // Ray mask values: a mask pixel is revealed (listed for the reveal, its revealed surface then
 // written) or not (the coverage composite gives its background no weight).

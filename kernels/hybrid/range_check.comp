@@ -14,6 +14,7 @@
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
+// The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGES) readonly buffer Edges { uint edges[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) writeonly buffer Mask { uint mask[]; };
@@ -21,7 +22,6 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { Ray
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGE_BLOCKS) readonly buffer EdgeBlocks { uint edgeBlocks[]; };
 layout(push_constant) uniform Params { RangeCheckParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -31,7 +31,8 @@ layout(push_constant) uniform Params { RangeCheckParams params; };
 // coarse edge image: a grid walk over the blocks it crosses, ~|b - a| / 2 steps where the fine
 // walk takes |b - a|. Every fine-walk pixel lies on the segment (up to rounding), and a block
 // is flagged when an edge pixel lies within a pixel of it, so "no" here means the fine walk
-// meets no edge. Each move steps one block towards the last one, so `moves` moves end there.
+// meets no edge. Each move steps one block towards the last one, so `moves` moves end there;
+// `entry`, the block's entry in the edge buffer, moves with it.
 bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   const float side = float(HMB_EDGE_BLOCK);
   const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.width);
@@ -45,18 +46,22 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   vec2 tNext = vec2(d.x != 0.0 ? abs(boundary.x - a.x) * inverse.x : 2.0, d.y != 0.0 ? abs(boundary.y - a.y) * inverse.y : 2.0);
   const vec2 tStep = side * inverse;
   const uint moves = uint(abs(last.x - block.x) + abs(last.y - block.y));
+  uint entry = HMB_EDGE_BLOCKS_FIRST(params.width, params.height) + uint(block.y) * blocksX + uint(block.x);
+  const uint rowStep = uint(stepSign.y) * blocksX;  // modulo 2^32: one row up or down
   for (uint i = 0u; i < moves; ++i) {
-    if (edgeBlocks[uint(block.y) * blocksX + uint(block.x)] != 0u) return true;
+    if (edges[entry] != 0u) return true;
     const bool stepX = block.y == last.y || (block.x != last.x && tNext.x < tNext.y);
     if (stepX) {
       block.x += stepSign.x;
+      entry += uint(stepSign.x);
       tNext.x += tStep.x;
     } else {
       block.y += stepSign.y;
+      entry += rowStep;
       tNext.y += tStep.y;
     }
   }
-  return edgeBlocks[uint(last.y) * blocksX + uint(last.x)] != 0u;
+  return edges[entry] != 0u;
 }
 
 // The range check at one pixel moving by v (speed > 0).

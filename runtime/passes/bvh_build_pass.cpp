@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cstring>
 
 #include "bvh/packed_node.h"
@@ -47,12 +48,12 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
     frames_ = vk::Buffer(context_, treeCount * sizeof(gpu::BvhFrame), vk::MemoryUse::Device, name_ + " frames");
   if (tasks > taskCapacity_) {
     taskCapacity_ = static_cast<uint32_t>(tasks);
-    tasks_ = vk::Buffer(context_, 2 * tasks * sizeof(gpu::BvhBuildTask), vk::MemoryUse::Device, name_ + " tasks");
+    // The counters at the head, then the two levels' tasks (kernels/bvh/bvh_build_layout.h).
+    tasks_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters) + 2 * tasks * sizeof(gpu::BvhBuildTask),
+                        vk::MemoryUse::Device, name_ + " tasks");
   }
   if (rootBuffer_.size() < treeCount * sizeof(glm::uvec2))
     rootBuffer_ = vk::Buffer(context_, treeCount * sizeof(glm::uvec2), vk::MemoryUse::Device, name_ + " roots");
-  if (counters_.size() == 0)
-    counters_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters), vk::MemoryUse::Device, name_ + " counters");
 }
 
 uint32_t BvhBuildPass::firstSubmissionLevels(uint32_t largestTree) {
@@ -83,10 +84,10 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   const glm::uvec3 rootGroups = vk::foldedGroups(treeCount);
   counters.dispatch[0] = glm::uvec4(rootGroups, 0u);
   counters.dispatch[1] = glm::uvec4(0u, 0u, 1u, 0u);
-  counters_.write(std::as_bytes(std::span(&counters, 1)));
+  tasks_.write(std::as_bytes(std::span(&counters, 1)));
 
-  const std::initializer_list<const vk::Buffer*> buffers = {&boxes,  &rootBuffer_, &primitives_,  &nodes_, &links_,
-                                                            &tasks_, &counters_,   &packedNodes_, &frames_};
+  const std::initializer_list<const vk::Buffer*> buffers = {&boxes,  &rootBuffer_, &primitives_,  &nodes_,
+                                                            &links_, &tasks_,      &packedNodes_, &frames_};
   gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, 0, 0, 0};
   stats_ = {};
   uint32_t largestTree = 0;
@@ -101,8 +102,8 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
     const uint32_t end = level + (level == 0 ? firstSubmissionLevels(largestTree) : kLevelsPerLaterSubmission);
     for (; level < end; ++level) {
       params.level = level;
-      frame.dispatchIndirect(kLevel, levelKernel_, buffers, params, counters_,
-                             (level & 1u) * sizeof(glm::uvec4));
+      frame.dispatchIndirect(kLevel, levelKernel_, buffers, params, tasks_,
+                             offsetof(gpu::BvhBuildCounters, dispatch) + (level & 1u) * sizeof(glm::uvec4));
       frame.dispatch(kSizeDispatch, sizeDispatchKernel_, buffers, params, glm::uvec3(1));
     }
     const vk::FrameTimings timings = frame.submitAndWait();
@@ -110,7 +111,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
       if (pass.name == kLevel && pass.milliseconds) stats_.levelMilliseconds.push_back(*pass.milliseconds);
     ++stats_.submissions;
     stats_.deviceMilliseconds += timings.frameMilliseconds.value_or(0.0);
-    counters_.read(std::as_writable_bytes(std::span(&counters, 1)));
+    tasks_.read(std::as_writable_bytes(std::span(&counters, 1)));
     if (counters.taskCount[level & 1u] == 0) break;
     if (level > uint64_t(primitiveCount) + 2)
       throw Error(name_ + ": the build did not finish (device fault?)");  // every level splits

@@ -116,8 +116,7 @@ class BvhBuildPass {
   vk::Buffer packedNodes_;
   vk::Buffer frames_;
   vk::Buffer links_;
-  vk::Buffer tasks_;
-  vk::Buffer counters_;
+  vk::Buffer tasks_;  // gpu::BvhBuildCounters, then the tasks of two levels
   BvhBuildStats stats_;
 };
 

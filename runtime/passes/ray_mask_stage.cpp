@@ -31,13 +31,13 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   if (width == 0 || height == 0) throw Error("ray mask: empty image");
   if (width == width_ && height == height_) return;
   const uint64_t pixels = uint64_t(width) * height;
-  edges_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge mask");
+  // The edge mask, then the coarse edge mask (kernels/hybrid/hybrid_layout.h).
+  edges_ = vk::Buffer(context_, HMB_EDGE_BUFFER_ENTRIES(uint64_t(width), uint64_t(height)) * sizeof(uint32_t),
+                      vk::MemoryUse::Device, "edge mask");
   mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
   candidates_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge candidates");
   tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
-  const uint64_t blocks = uint64_t(HMB_EDGE_BLOCKS_ACROSS(width)) * HMB_EDGE_BLOCKS_ACROSS(height);
-  edgeBlocks_ = vk::Buffer(context_, blocks * sizeof(uint32_t), vk::MemoryUse::Device, "coarse edge mask");
   counters_ = vk::Buffer(context_, sizeof(gpu::RayMaskCounters), vk::MemoryUse::Device, "ray mask counters");
   width_ = width;
   height_ = height;
@@ -54,7 +54,6 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
   frame.fill(kClear, edges_, 0u);
-  frame.fill(kClear, edgeBlocks_, 0u);
   frame.fill(kClear, mask_, 0u);
   const gpu::MovingTilesParams tileParams{p.grid.count(), 0u, 0u, 0u};
   frame.dispatch(kMovingTiles, tilesKernel_, {p.tileMax, &counters_, &tiles_}, tileParams,
@@ -72,7 +71,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                          {layer.normalDepth, layer.velocity, &objectId, &tiles_, &counters_, &candidates_}, edgeParams,
                          counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
   sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
-  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, &counters_, &candidates_, &edges_, &edgeBlocks_},
+  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, &counters_, &candidates_, &edges_},
                          edgeParams, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
   const gpu::RangeCheckParams rangeParams{width_,
                                           height_,
@@ -87,8 +86,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                                           0u,
                                           0u};
   frame.dispatchIndirect(kRangeCheck, rangeKernel_,
-                         {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId,
-                          &edgeBlocks_},
+                         {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId},
                          rangeParams, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
   sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }

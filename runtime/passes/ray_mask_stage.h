@@ -56,7 +56,7 @@ class RayMaskStage {
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& layer, const vk::Buffer& objectId,
               const RayMaskParameters& parameters) const;
 
-  const vk::Buffer& edges() const { return edges_; }        // uint per pixel
+  const vk::Buffer& edges() const { return edges_; }        // uint per pixel, then per coarse block
   const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
   const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal
   const vk::Buffer& candidates() const { return candidates_; }  // uint pixel index per edge candidate
@@ -71,7 +71,6 @@ class RayMaskStage {
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each
   vk::Buffer tiles_;       // moving tiles: at most one per pixel, whatever the tile size
-  vk::Buffer edgeBlocks_;  // coarse edge mask: uint per HMB_EDGE_BLOCK^2 block
 };
 
 }  // namespace hmb::passes
