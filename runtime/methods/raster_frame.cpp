@@ -20,6 +20,10 @@ io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> chann
   return layer;
 }
 
+io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& linear) {
+  return {request.width, request.height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
+}
+
 GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result) {
   GpuScene gpuScene(resources.context, request.scene);
   gpuScene.setFrame(request.scene, request.frameTime, request.width, request.height);

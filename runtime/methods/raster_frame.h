@@ -22,6 +22,9 @@ class FramePlan;
 io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> channels,
                          const std::vector<glm::vec4>& values);
 
+// An image of the beauty layer alone (methods without a G-buffer): `linear`'s RGBA.
+io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& linear);
+
 // The scene at the request's frame time, the texture path kept when every pass must run, the
 // G-buffer prepared and its passes entered in the plan.
 GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result);

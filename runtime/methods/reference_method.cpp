@@ -36,7 +36,7 @@ class ReferenceMethod final : public FrameMethod {
     resources_.encodeDisplay.record(frame, linear, request.display, request.width, request.height);
     vk::appendTimings(timings, frame.submitAndWait());
     result.reference = reference_.lastProgress();
-    result.image = {request.width, request.height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
+    result.image = beautyImage(request, linear);
     return timings;
   }
 

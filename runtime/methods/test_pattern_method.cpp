@@ -24,7 +24,7 @@ class TestPatternMethod final : public FrameMethod {
     pattern_.record(frame, linear, request.width, request.height, request.frameTime);
     resources_.encodeDisplay.record(frame, linear, request.display, request.width, request.height);
     const vk::FrameTimings timings = frame.submitAndWait();
-    result.image = {request.width, request.height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
+    result.image = beautyImage(request, linear);
     return timings;
   }
 

@@ -28,14 +28,12 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
                                 "vertex shading");
     vertexCapacity_ = vertices;
   }
-  if (width != width_ || height != height_) {
+  if (size_.changesTo(width, height)) {
     const uint64_t pixels = uint64_t(width) * height;
-    width_ = height_ = 0;  // until every buffer below is allocated: a failed frame leaves none sized
     visibility_ = vk::Buffer(context_, pixels * sizeof(uint64_t), vk::MemoryUse::Device, "visibility");
     layer_ = {};  // the old layer goes first: the two never take memory at once
     layer_ = ImageLayer::allocate(context_, pixels, "gbuffer");
-    width_ = width;
-    height_ = height;
+    size_.madeFor(width, height);
   }
   rasterize_.reserve(scene.triangleCount(), width, height);
 }
@@ -43,8 +41,8 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
 void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const {
   transform_.record(frame, scene, clipCurrent_, clipPrevious_, vertexShading_);
   const RasterInputs inputs{&scene.triangles(), &scene.instances(), &clipCurrent_, scene.triangleCount()};
-  rasterize_.record(frame, inputs, visibility_, width_, height_);
-  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_, layer_, width_, height_);
+  rasterize_.record(frame, inputs, visibility_, size_.width(), size_.height());
+  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_, layer_, size_.width(), size_.height());
 }
 
 }  // namespace hmb::passes

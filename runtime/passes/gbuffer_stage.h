@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "runtime/passes/image_size.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/transform_vertices_pass.h"
@@ -45,7 +46,8 @@ class GBufferStage {
   TransformVerticesPass transform_;
   RasterizePass rasterize_;
   ResolveGBufferPass resolve_;
-  uint32_t width_ = 0, height_ = 0, vertexCapacity_ = 0;
+  ImageSize size_;
+  uint32_t vertexCapacity_ = 0;
   vk::Buffer clipCurrent_, clipPrevious_, vertexShading_;
   vk::Buffer visibility_;
   ImageLayer layer_;

@@ -70,15 +70,13 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
                                    "reveal camera rays");
 
   rayMask_.prepare(width, height);
-  if (width != width_ || height != height_) {
+  if (size_.changesTo(width, height)) {
     const uint64_t pixels = uint64_t(width) * height;
-    width_ = height_ = 0;  // until every buffer below is allocated: a failed frame leaves none sized
     revealed_ = {};  // the old layer goes first: the two never take memory at once
     revealed_ = ImageLayer::allocate(context_, pixels, "revealed");
     backgroundBlurred_ =
         vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "background blurred (mask pixels)");
-    width_ = width;
-    height_ = height;
+    size_.madeFor(width, height);
   }
   return timings;
 }
@@ -87,7 +85,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
                          const vk::Buffer& output) const {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
   const PostProcessSettings& blur = postProcess_.settings();
-  const MotionBlurInputs raster{&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), width_, height_};
+  const MotionBlurInputs raster{&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), size_.width(), size_.height()};
   postProcess_.recordTiles(frame, raster);
   // The mask walks each pixel's whole displacement (clamped to the image, not to the tile), as
   // the coverage composite does: a fast object's inner blur is wider than the gather's tiles.
@@ -96,7 +94,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   maskParameters.tileSize = blur.tileSize;
   maskParameters.grid = postProcess_.tileGrid();
   maskParameters.velocityScale = blur.velocityScale();
-  maskParameters.maxSpeed = float(std::max(width_, height_));
+  maskParameters.maxSpeed = float(std::max(size_.width(), size_.height()));
   maskParameters.softZExtent = blur.softZExtent;
   maskParameters.edgeThreshold = settings_.edgeThreshold;
   // The coverage composite weights the revealed background by 1 - alpha: pixels whose samples
@@ -106,12 +104,12 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   maskParameters.seed = blur.seed;
   rayMask_.record(frame, raster, gbuffer.objectId(), maskParameters);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.objectId(), rayMask_.list(), rayMask_.counters(),
-                 revealed_, width_, height_, settings_);
+                 revealed_, size_.width(), size_.height(), settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
   backgroundGather_.record(frame, gbuffer.layer(), revealed_, postProcess_.neighborMax(), rayMask_.mask(),
-                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, width_, height_);
+                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, size_.width(), size_.height());
   composite_.record(frame, gbuffer.layer(), postProcess_.neighborMax(), rayMask_.mask(), backgroundBlurred_, output,
-                    blur, settings_.composite, width_, height_);
+                    blur, settings_.composite, size_.width(), size_.height());
 }
 
 }  // namespace hmb::passes

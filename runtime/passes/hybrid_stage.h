@@ -15,6 +15,7 @@
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"
 #include "runtime/passes/gather_pass.h"
+#include "runtime/passes/image_size.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "runtime/passes/reveal_pass.h"
@@ -85,7 +86,7 @@ class HybridStage {
   CompositePass composite_;
   HybridSettings settings_;
   std::unique_ptr<TraceScene> traceScene_;
-  uint32_t width_ = 0, height_ = 0;
+  ImageSize size_;
   vk::Buffer cameraRays_;
   ImageLayer revealed_;
   vk::Buffer backgroundBlurred_;

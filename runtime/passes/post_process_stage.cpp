@@ -20,7 +20,7 @@ void PostProcessStage::configure(const PostProcessSettings& settings) {
   // Pipelines compile once each and cost time on CPU devices: a gather is built when first used.
   if (settings_.filter == PostProcessFilter::Jimenez && !jimenezGather_) jimenezGather_.emplace(context_);
   if (settings_.filter == PostProcessFilter::McGuire && !gather_) gather_.emplace(context_);
-  width_ = height_ = 0;  // the tile grid follows the tile size: prepare() sizes it again
+  size_.forget();  // the tile grid follows the tile size: prepare() sizes it again
 }
 
 void PostProcessStage::planTiles(FramePlan& plan) const {
@@ -35,7 +35,7 @@ void PostProcessStage::plan(FramePlan& plan) const {
 
 void PostProcessStage::prepare(uint32_t width, uint32_t height) {
   if (width == 0 || height == 0) throw Error("post-process: empty image");
-  if (width == width_ && height == height_) return;
+  if (!size_.changesTo(width, height)) return;
   grid_ = tileGridFor(width, height, settings_.effectiveTileSize());
   // tile_max runs one group per tile; 65535 is the smallest group-count limit Vulkan allows.
   if (grid_.x > 65535 || grid_.y > 65535)
@@ -44,14 +44,11 @@ void PostProcessStage::prepare(uint32_t width, uint32_t height) {
   const uint64_t bytes = uint64_t(grid_.count()) * sizeof(glm::vec4);
   tileMax_ = vk::Buffer(context_, bytes, vk::MemoryUse::Device, "tile max");
   neighborMax_ = vk::Buffer(context_, bytes, vk::MemoryUse::Device, "neighbor max");
-  width_ = width;
-  height_ = height;
+  size_.madeFor(width, height);
 }
 
 void PostProcessStage::requirePreparedSize(const MotionBlurInputs& inputs) const {
-  if (inputs.width != width_ || inputs.height != height_)
-    throw Error("post-process: inputs are " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) +
-                " but the stage was prepared for " + std::to_string(width_) + "x" + std::to_string(height_));
+  size_.requireMadeFor("post-process", inputs.width, inputs.height);
 }
 
 void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {

@@ -12,6 +12,7 @@
 #include "runtime/passes/neighbor_max_pass.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/tile_max_pass.h"
+#include "runtime/passes/image_size.h"
 #include "runtime/vulkan/buffer.h"
 
 namespace hmb {
@@ -54,7 +55,7 @@ class PostProcessStage {
   NeighborMaxPass neighborMaxPass_;
   std::optional<GatherPass> gather_;
   std::optional<JimenezGatherPass> jimenezGather_;
-  uint32_t width_ = 0, height_ = 0;
+  ImageSize size_;
   TileGrid grid_;
   vk::Buffer tileMax_, neighborMax_;
 };

@@ -29,7 +29,7 @@ void RayMaskStage::plan(FramePlan& plan) const {
 
 void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   if (width == 0 || height == 0) throw Error("ray mask: empty image");
-  if (width == width_ && height == height_) return;
+  if (!size_.changesTo(width, height)) return;
   const uint64_t pixels = uint64_t(width) * height;
   // The edge mask, then the coarse edge mask (kernels/hybrid/hybrid_layout.h).
   edges_ = vk::Buffer(context_, HMB_EDGE_BUFFER_ENTRIES(uint64_t(width), uint64_t(height)) * sizeof(uint32_t),
@@ -39,17 +39,15 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   candidates_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge candidates");
   tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
   counters_ = vk::Buffer(context_, sizeof(gpu::RayMaskCounters), vk::MemoryUse::Device, "ray mask counters");
-  width_ = width;
-  height_ = height;
+  size_.madeFor(width, height);
 }
 
 void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer, const vk::Buffer& objectId,
                           const RayMaskParameters& p) const {
-  if (layer.width != width_ || layer.height != height_)
-    throw Error("ray mask: inputs are " + std::to_string(layer.width) + "x" + std::to_string(layer.height) +
-                " but the stage was prepared for " + std::to_string(width_) + "x" + std::to_string(height_));
+  size_.requireMadeFor("ray mask", layer.width, layer.height);
+  const uint32_t width = size_.width(), height = size_.height();
   if (!p.tileMax || p.tileSize == 0 || p.grid.count() == 0) throw Error("ray mask: no tile-max to start from");
-  if (uint64_t(p.grid.x) * p.tileSize < width_ || uint64_t(p.grid.y) * p.tileSize < height_)
+  if (uint64_t(p.grid.x) * p.tileSize < width || uint64_t(p.grid.y) * p.tileSize < height)
     throw Error("ray mask: the tile grid does not cover the image");
   // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
@@ -65,7 +63,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   };
   const uint32_t blocksPerSide = vk::groupsFor(p.tileSize, HMB_MASK_TILE_GROUP_X);
   sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide);
-  const gpu::EdgeMaskParams edgeParams{width_,      height_,         p.tileSize,     p.grid.x,
+  const gpu::EdgeMaskParams edgeParams{width,      height,         p.tileSize,     p.grid.x,
                                        p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold};
   frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
                          {layer.normalDepth, layer.velocity, &objectId, &tiles_, &counters_, &candidates_}, edgeParams,
@@ -73,8 +71,8 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, &counters_, &candidates_, &edges_},
                          edgeParams, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
-  const gpu::RangeCheckParams rangeParams{width_,
-                                          height_,
+  const gpu::RangeCheckParams rangeParams{width,
+                                          height,
                                           p.tileSize,
                                           p.grid.x,
                                           p.velocityScale,

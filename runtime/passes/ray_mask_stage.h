@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "runtime/passes/image_size.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -67,7 +68,7 @@ class RayMaskStage {
  private:
   const vk::Context& context_;
   vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, rangeKernel_, sizeKernel_;
-  uint32_t width_ = 0, height_ = 0;
+  ImageSize size_;
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each
   vk::Buffer tiles_;       // moving tiles: at most one per pixel, whatever the tile size
