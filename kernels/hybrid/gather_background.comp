@@ -37,7 +37,7 @@ void main() {
   const vec4 centreColor = sanitizeColor(sampleColorAt(index));
 
   const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
-  if (dominant.z < 0.5) {  // under half a pixel of blur in the whole neighbourhood
+  if (dominant.z < kMinBlurPixels) {  // under half a pixel of blur in the whole neighbourhood
     outColor[index] = centreColor;
     return;
   }

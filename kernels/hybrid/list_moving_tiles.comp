@@ -4,6 +4,7 @@
 // no pixel can pass eq. 1 or meet an edge along its range: the mask passes skip those tiles.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
+#include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 
 layout(local_size_x = HMB_MOVING_TILES_GROUP) in;
@@ -17,5 +18,5 @@ void main() {
   const uint tile = linearInvocationIndex(HMB_MOVING_TILES_GROUP);
   if (tile >= params.tileCount) return;
   // NaN speeds never reach here: tile_max stores sanitized speeds.
-  if (tileMax[tile].z >= 0.5) tiles[atomicAdd(counters.tileCount, 1u)] = tile;
+  if (tileMax[tile].z >= kMinBlurPixels) tiles[atomicAdd(counters.tileCount, 1u)] = tile;
 }

@@ -62,7 +62,7 @@ void main() {
   const vec2 lookup = centre / m + (vec2(jitterX, jitterY) * 2.0 - 1.0) * params.tileJitter;
   const ivec2 tile = clamp(ivec2(floor(lookup)), ivec2(0), ivec2(params.tilesX, params.tilesY) - 1);
   const vec4 dominant = neighborMax[uint(tile.y) * params.tilesX + uint(tile.x)];
-  if (dominant.z < 0.5) {
+  if (dominant.z < kMinBlurPixels) {
     outColor[index] = centreColor;
     return;
   }

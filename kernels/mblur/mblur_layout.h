@@ -61,6 +61,10 @@
 #define HMB_MBLUR_MAX_DEPTH 3.0e38
 
 HMB_GPU_BEGIN
+// Blur under half a pixel moves no pixel centre: a gather whose neighbourhood moves less
+// returns the pixel's own colour, and the ray mask leaves tiles that move less alone.
+const float kMinBlurPixels = 0.5f;
+
 struct TileMaxParams {
   uint width;
   uint height;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "kernels/mblur/mblur_layout.h"
+
 namespace hmb::test::hybrid {
 
 namespace {
@@ -284,7 +286,7 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vec
       const size_t index = size_t(py) * layer.width + px;
       if (mask[index] == 0u) continue;
       const glm::vec4 dominant = neighborMax[size_t(py / m) * grid.x + px / m];
-      if (dominant.z < 0.5f) continue;
+      if (dominant.z < gpu::kMinBlurPixels) continue;
       const glm::vec4 centreColor = sanitizeColor(layer.color[index]);
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
       const float jitter = mblur::unitFromHash(mblur::mblurHash(px, py, settings.seed));

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/mblur/mblur_layout.h"
+
 namespace hmb::test::mblur {
 
 namespace {
-constexpr float kMaxColor = 65504.0f;
-constexpr float kMaxDepth = 3.0e38f;
+constexpr float kMaxColor = float(HMB_MBLUR_MAX_COLOR);  // the kernels' (mblur_layout.h)
+constexpr float kMaxDepth = float(HMB_MBLUR_MAX_DEPTH);
 
 float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
 bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
@@ -120,7 +122,7 @@ std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& 
       const uint32_t index = py * width + px;
       const glm::vec4 centreColor = sanitizeColor(layer.color[index]);
       const glm::vec4 dominant = neighborMaxTiles[(py / m) * grid.x + px / m];
-      if (dominant.z < 0.5f) {
+      if (dominant.z < gpu::kMinBlurPixels) {
         out[index] = centreColor;
         continue;
       }
@@ -201,7 +203,7 @@ std::vector<glm::vec4> gatherJimenez(const Layer& layer, const std::vector<glm::
       const int tx = std::clamp(int(std::floor(lookup.x)), 0, int(grid.x) - 1);
       const int ty = std::clamp(int(std::floor(lookup.y)), 0, int(grid.y) - 1);
       const glm::vec4 dominant = neighborMaxTiles[size_t(ty) * grid.x + tx];
-      if (dominant.z < 0.5f) {
+      if (dominant.z < gpu::kMinBlurPixels) {
         out[index] = centreColor;
         continue;
       }
