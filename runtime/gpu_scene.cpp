@@ -7,7 +7,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "runtime/error.h"
-#include "runtime/vulkan/context.h"
 
 namespace hmb {
 namespace {
@@ -125,20 +124,12 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
                           vk::MemoryUse::Device, "instances");
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
-  if (context.info().bufferDeviceAddress) {
-    const gpu::SceneTable table{vertices_.address(), instances_.address(), materials_.address(), texels_.address(),
-                                cameraBuffer_.address()};
-    table_ = vk::uploadedBuffer(context, std::vector<gpu::SceneTable>{table}, "scene table");
-  }
 }
 
 void GpuScene::appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const {
-  if (byAddress) {
-    if (!table_.handle()) throw Error("the scene has no table of addresses on this device");
-    bindings.push_back(&table_);
-    return;
-  }
-  bindings.insert(bindings.end(), {&vertices_, &instances_, &materials_, &texels_, &cameraBuffer_});
+  static_assert(sizeof(gpu::SceneTable) == 5 * sizeof(uint64_t));
+  const vk::Buffer* members[] = {&vertices_, &instances_, &materials_, &texels_, &cameraBuffer_};  // SceneTable's order
+  shading_.append(bindings, byAddress, members);
 }
 
 void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {

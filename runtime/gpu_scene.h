@@ -9,6 +9,7 @@
 
 #include "kernels/shared/scene_layout.h"
 #include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/buffer_group.h"
 #include "scenes/scene.h"
 
 namespace hmb {
@@ -71,7 +72,7 @@ class GpuScene {
   vk::Buffer materials_;
   vk::Buffer texels_;
   vk::Buffer cameraBuffer_;
-  vk::Buffer table_;
+  vk::BufferGroup shading_;  // the buffers above that shading kernels bind together
 };
 
 }  // namespace hmb

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "runtime/error.h"
-#include "runtime/vulkan/context.h"
 #include "runtime/frame_plan.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -143,30 +142,17 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
 
-  if (context_.info().bufferDeviceAddress) {
-    const gpu::TraceSceneTable table{instanceBvh_.nodes().address(),     instanceBvh_.links().address(),
-                                     instanceBvh_.primitives().address(), instances_.address(),
-                                     transforms_.address(),               meshBvh_.nodes().address(),
-                                     meshBvh_.links().address(),          meshBvh_.primitives().address(),
-                                     triangles_.address(),                positions_.address(),
-                                     instanceBvh_.frames().address(),     meshBvh_.frames().address()};
-    if (!table_.handle())
-      table_ = vk::Buffer(context_, sizeof(gpu::TraceSceneTable), vk::MemoryUse::Device, "trace scene table");
-    table_.upload(std::span<const gpu::TraceSceneTable>(&table, 1));
-  }
+  group_.forgetTable();  // the instances, their transforms and the top level are new
 }
 
 void TraceScene::appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const {
-  if (byAddress) {
-    if (!table_.handle()) throw Error("the trace scene has no table of addresses on this device");
-    bindings.push_back(&table_);
-    return;
-  }
+  static_assert(sizeof(gpu::TraceSceneTable) == HMB_TRACE_SCENE_BUFFERS * sizeof(uint64_t));
   // The order of kernels/trace/trace_scene_bindings.glsl and of gpu::TraceSceneTable.
-  bindings.insert(bindings.end(), {&instanceBvh_.nodes(), &instanceBvh_.links(), &instanceBvh_.primitives(),
-                                   &instances_, &transforms_, &meshBvh_.nodes(), &meshBvh_.links(),
-                                   &meshBvh_.primitives(), &triangles_, &positions_, &instanceBvh_.frames(),
-                                   &meshBvh_.frames()});
+  const vk::Buffer* members[] = {&instanceBvh_.nodes(), &instanceBvh_.links(), &instanceBvh_.primitives(),
+                                 &instances_,           &transforms_,          &meshBvh_.nodes(),
+                                 &meshBvh_.links(),     &meshBvh_.primitives(), &triangles_,
+                                 &positions_,           &instanceBvh_.frames(), &meshBvh_.frames()};
+  group_.append(bindings, byAddress, members);
 }
 
 bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene) {

@@ -16,6 +16,7 @@
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/buffer_group.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "scenes/scene.h"
 
@@ -66,8 +67,7 @@ class TraceScene {
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
   // Appends the trace scene as a tracing kernel binds it (kernels/trace/trace_scene_bindings.glsl):
-  // its 12 buffers, or the table of their addresses (written by setShutterTimes) for a kernel
-  // that binds by address.
+  // its 12 buffers, or the table of their addresses for a kernel that binds by address.
   void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
 
  private:
@@ -90,7 +90,7 @@ class TraceScene {
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
-  vk::Buffer table_;          // gpu::TraceSceneTable, on devices with buffer device addresses
+  vk::BufferGroup group_;     // the buffers above, as tracing kernels bind them
 };
 
 // The trace scene a stage keeps from one frame to the next (the hybrid's, the reference's).

@@ -1,6 +1,6 @@
 // One image layer of per-pixel buffers (kernels/shared/layer_layout.h): colour, normal and
-// depth, velocity, object id, and the table of their addresses that kernels bind. The G-buffer
-// and the hybrid's revealed layer are both one.
+// depth, velocity, object id, bound together (vk::BufferGroup). The G-buffer and the hybrid's
+// revealed layer are both one.
 #pragma once
 
 #include <cstdint>
@@ -8,15 +8,15 @@
 #include <vector>
 
 #include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/buffer_group.h"
 
 namespace hmb::passes {
 
 class ImageLayer {
  public:
   ImageLayer() = default;
-  // Takes the four buffers (at least `pixels` entries each) and writes their table.
-  ImageLayer(const vk::Context& context, vk::Buffer color, vk::Buffer normalDepth, vk::Buffer velocity,
-             vk::Buffer objectId);
+  // Takes the four buffers (at least `pixels` entries each).
+  ImageLayer(vk::Buffer color, vk::Buffer normalDepth, vk::Buffer velocity, vk::Buffer objectId);
   // Four new buffers of `pixels` entries, named "<name> colour", "<name> normal-depth", ...
   static ImageLayer allocate(const vk::Context& context, uint64_t pixels, const std::string& name);
 
@@ -30,7 +30,8 @@ class ImageLayer {
   uint64_t bytes() const { return color_.size() + normalDepth_.size() + velocity_.size() + objectId_.size(); }
 
  private:
-  vk::Buffer color_, normalDepth_, velocity_, objectId_, table_;
+  vk::Buffer color_, normalDepth_, velocity_, objectId_;
+  vk::BufferGroup group_;
 };
 
 }  // namespace hmb::passes

@@ -40,6 +40,7 @@ class Buffer {
   // devices without bufferDeviceAddress.
   VkDeviceAddress address() const { return address_; }
   const std::string& name() const { return name_; }
+  const Context& context() const { return *context_; }
   // Host pointer when the memory is host-visible and coherent, else nullptr.
   void* mapped() const { return mapped_; }
 

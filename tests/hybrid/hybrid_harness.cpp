@@ -76,7 +76,7 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
                                  const passes::PostProcessSettings& settings) {
   const size_t pixels = size_t(layer.width) * layer.height;
   auto imageLayer = [&](const mblur::Layer& l, const std::vector<uint32_t>* ids, const char* name) {
-    return passes::ImageLayer(context, vk::uploadedBuffer(context, l.color, std::string(name) + " colour"),
+    return passes::ImageLayer(vk::uploadedBuffer(context, l.color, std::string(name) + " colour"),
                               vk::uploadedBuffer(context, l.normalDepth, std::string(name) + " normal-depth"),
                               vk::uploadedBuffer(context, l.velocity, std::string(name) + " velocity"),
                               ids ? vk::uploadedBuffer(context, *ids, std::string(name) + " object id")
@@ -132,7 +132,7 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
   const vk::Buffer listBuffer = vk::uploadedBuffer(context, list, "test pixel list");
   const vk::Buffer counters = vk::uploadedBuffer(
       context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(list.size()))}, "test counters");
-  const passes::ImageLayer output(context, filledBuffer(context, pixels, kSentinelColor, "test revealed colour"),
+  const passes::ImageLayer output(filledBuffer(context, pixels, kSentinelColor, "test revealed colour"),
                                   filledBuffer(context, pixels, kSentinelColor, "test revealed normal-depth"),
                                   filledBuffer(context, pixels, kSentinelVelocity, "test revealed velocity"),
                                   filledBuffer(context, pixels, kSentinelId, "test revealed object id"));

@@ -1,0 +1,27 @@
+#include "runtime/vulkan/buffer_group.h"
+
+#include <cstdint>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/context.h"
+
+namespace hmb::vk {
+
+void BufferGroup::append(std::vector<const Buffer*>& bindings, bool byAddress,
+                         std::span<const Buffer* const> members) const {
+  if (!byAddress) {
+    bindings.insert(bindings.end(), members.begin(), members.end());
+    return;
+  }
+  if (!table_.handle()) {
+    const Context& context = members.front()->context();
+    if (!context.info().bufferDeviceAddress)
+      throw Error("binding '" + members.front()->name() + "' and its group by address needs buffer device addresses, which the device lacks");
+    std::vector<uint64_t> addresses;
+    for (const Buffer* member : members) addresses.push_back(member->address());
+    table_ = uploadedBuffer(context, addresses, members.front()->name() + " (address table)");
+  }
+  bindings.push_back(&table_);
+}
+
+}  // namespace hmb::vk
