@@ -46,8 +46,7 @@ class HybridMethod final : public FrameMethod {
     vk::FrameTimings timings;
     if (!still) {
       blur.prepare(request.width, request.height);
-      blurred = vk::Buffer(resources_.context, uint64_t(request.width) * request.height * sizeof(glm::vec4),
-                           vk::MemoryUse::Device, "post-process colour");
+      blurred = linearImageBuffer(resources_, request, "post-process colour");
       // The trace scene's mesh trees (setup, reported apart) and its instance tree at the frame
       // time (part of the frame) are built where the plan runs them, kept where it skips them.
       const auto prepared = hybrid_.prepare(resources_.recorder, request.scene, request.frameTime, request.width,
@@ -60,9 +59,8 @@ class HybridMethod final : public FrameMethod {
     result.plan.run(passes::EncodeDisplayPass::kName);
     const passes::GBufferStage& gbuffer = resources_.gbuffer;
     const vk::Buffer& beauty = still ? gbuffer.color() : blurred;
-    vk::appendTimings(timings, recordRasterFrame(resources_, scene, [&](vk::FrameRecorder& frame) {
+    vk::appendTimings(timings, recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
                         if (!still) hybrid_.record(frame, gbuffer, scene, blurred);
-                        resources_.encodeDisplay.record(frame, beauty, request.display, request.width, request.height);
                       }));
     if (const auto trees = still ? std::nullopt : hybrid_.meshTreeBytes()) {
       result.memory.bvhAllocatedBytesPerTriangle = trees->allocatedPerTriangle;

@@ -30,17 +30,15 @@ class PostProcessMethod final : public FrameMethod {
     vk::Buffer blurred;
     if (!still) {
       blur.prepare(request.width, request.height);
-      blurred = vk::Buffer(resources_.context, uint64_t(request.width) * request.height * sizeof(glm::vec4),
-                           vk::MemoryUse::Device, "post-process colour");
+      blurred = linearImageBuffer(resources_, request, "post-process colour");
     }
     result.plan.run(passes::EncodeDisplayPass::kName);
     const passes::GBufferStage& gbuffer = resources_.gbuffer;
     const vk::Buffer& beauty = still ? gbuffer.color() : blurred;
-    const vk::FrameTimings timings = recordRasterFrame(resources_, scene, [&](vk::FrameRecorder& frame) {
+    const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
       if (!still)
         blur.record(frame, {&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), request.width, request.height},
                     blurred);
-      resources_.encodeDisplay.record(frame, beauty, request.display, request.width, request.height);
     });
     collectRasterFrame(resources_, request, beauty, result);
     return timings;

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "runtime/frame_plan.h"
+#include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/renderer.h"
@@ -18,6 +19,11 @@ io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> chann
   for (const glm::vec4& v : values)
     for (size_t c = 0; c < n; ++c) layer.values.push_back(v[int(c)]);
   return layer;
+}
+
+vk::Buffer linearImageBuffer(const FrameResources& resources, const FrameRequest& request, std::string name) {
+  return vk::Buffer(resources.context, uint64_t(request.width) * request.height * sizeof(glm::vec4),
+                    vk::MemoryUse::Device, std::move(name));
 }
 
 io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& linear) {
@@ -49,12 +55,14 @@ void planBlur(FramePlan& plan, const FramePlan& blurPlan, bool still) {
   }
 }
 
-vk::FrameTimings recordRasterFrame(FrameResources& resources, const GpuScene& scene,
-                                   const std::function<void(vk::FrameRecorder&)>& recordRest) {
+vk::FrameTimings recordRasterFrame(FrameResources& resources, const FrameRequest& request, const GpuScene& scene,
+                                   const vk::Buffer& beauty,
+                                   const std::function<void(vk::FrameRecorder&)>& recordMethodPasses) {
   passes::GBufferStage& gbuffer = resources.gbuffer;
   return passes::submitUntilRasterFits(resources.recorder, gbuffer.rasterizer(), [&](vk::FrameRecorder& frame) {
     gbuffer.record(frame, scene);
-    recordRest(frame);
+    recordMethodPasses(frame);
+    resources.encodeDisplay.record(frame, beauty, request.display, request.width, request.height);
   });
 }
 

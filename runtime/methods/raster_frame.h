@@ -22,6 +22,9 @@ class FramePlan;
 io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> channels,
                          const std::vector<glm::vec4>& values);
 
+// A linear RGBA image of the requested size on the device (a method's beauty layer).
+vk::Buffer linearImageBuffer(const FrameResources& resources, const FrameRequest& request, std::string name);
+
 // An image of the beauty layer alone (methods without a G-buffer): `linear`'s RGBA.
 io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& linear);
 
@@ -36,10 +39,11 @@ bool nothingMovesOnScreen(const FrameRequest& request);
 // Enters the blur's passes (planned in `blurPlan`) in the frame's plan; all skipped when still.
 void planBlur(FramePlan& plan, const FramePlan& blurPlan, bool still);
 
-// The G-buffer's passes, then `recordRest` (the method's own passes and the display encoding),
-// recorded again with grown buffers while the rasterizer overflows.
-vk::FrameTimings recordRasterFrame(FrameResources& resources, const GpuScene& scene,
-                                   const std::function<void(vk::FrameRecorder&)>& recordRest);
+// The G-buffer's passes, the method's own (`recordMethodPasses`), then the display encoding of
+// `beauty`; recorded again with grown buffers while the rasterizer overflows.
+vk::FrameTimings recordRasterFrame(FrameResources& resources, const FrameRequest& request, const GpuScene& scene,
+                                   const vk::Buffer& beauty,
+                                   const std::function<void(vk::FrameRecorder&)>& recordMethodPasses);
 
 // After the frame: beauty (the linear image the method made) and the G-buffer's depth, normal,
 // velocity and object id as the image's layers, with the G-buffer's bytes per pixel and the

@@ -22,8 +22,7 @@ class ReferenceMethod final : public FrameMethod {
     GpuScene scene(resources_.context, request.scene);
     scene.setFrame(request.scene, request.frameTime, request.width, request.height);
     if (!settings.skipUnneededPasses) scene.keepTexturePath();
-    const vk::Buffer linear(resources_.context, uint64_t(request.width) * request.height * sizeof(glm::vec4),
-                            vk::MemoryUse::Device, "beauty (linear RGBA)");
+    const vk::Buffer linear = linearImageBuffer(resources_, request, "beauty (linear RGBA)");
     if (!(settings.skipUnneededPasses && settings.reuseAcrossFrames)) reference_.forgetTraceScene();
     reference_.plan(result.plan, request.scene, request.frameTime, request.width, request.height, settings.reference);
     passes::planTexturePath(result.plan, scene);

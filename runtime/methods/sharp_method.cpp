@@ -19,9 +19,7 @@ class SharpMethod final : public FrameMethod {
     passes::planTexturePath(result.plan, scene);
     result.plan.run(passes::EncodeDisplayPass::kName);
     const vk::Buffer& beauty = resources_.gbuffer.color();
-    const vk::FrameTimings timings = recordRasterFrame(resources_, scene, [&](vk::FrameRecorder& frame) {
-      resources_.encodeDisplay.record(frame, beauty, request.display, request.width, request.height);
-    });
+    const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [](vk::FrameRecorder&) {});
     collectRasterFrame(resources_, request, beauty, result);
     return timings;
   }

@@ -15,8 +15,7 @@ class TestPatternMethod final : public FrameMethod {
   explicit TestPatternMethod(FrameResources& resources) : resources_(resources), pattern_(resources.context) {}
 
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
-    const vk::Buffer linear(resources_.context, uint64_t(request.width) * request.height * sizeof(glm::vec4),
-                            vk::MemoryUse::Device, "beauty (linear RGBA)");
+    const vk::Buffer linear = linearImageBuffer(resources_, request, "beauty (linear RGBA)");
     result.plan.run(passes::TestPatternPass::kName);
     result.plan.run(passes::EncodeDisplayPass::kName);
     vk::FrameRecorder& frame = resources_.recorder;

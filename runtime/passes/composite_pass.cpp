@@ -18,8 +18,7 @@ constexpr uint32_t kWeightsForm[HMB_SPEC_COMPOSITE_COVERAGE + 1] = {0u};
 }  // namespace
 
 CompositePass::CompositePass(const vk::Context& context)
-    : coverage_(context, "hybrid/composite", sizeof(gpu::GatherParams), kCoverageForm),
-      weights_(context, "hybrid/composite", sizeof(gpu::GatherParams), kWeightsForm) {}
+    : context_(context), coverage_(context, "hybrid/composite", sizeof(gpu::GatherParams), kCoverageForm) {}
 
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
                            const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
@@ -27,7 +26,9 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
                            uint32_t height) const {
   if (composite == HybridComposite::Coverage && settings.range != GatherRange::Adapted)
     throw Error("composite: the coverage form needs the adapted range");
-  const vk::ComputeKernel& kernel = composite == HybridComposite::Coverage ? coverage_ : weights_;
+  if (composite == HybridComposite::Weights && !weights_)
+    weights_ = std::make_unique<vk::ComputeKernel>(context_, "hybrid/composite", sizeof(gpu::GatherParams), kWeightsForm);
+  const vk::ComputeKernel& kernel = composite == HybridComposite::Coverage ? coverage_ : *weights_;
   const gpu::GatherParams params = gatherParams(settings, width, height);
   std::vector<const vk::Buffer*> bindings = {&neighborMax, &mask, &background, &output};
   raster.appendBindings(bindings, kernel.bindsByAddress());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"
@@ -26,7 +27,9 @@ class CompositePass {
               const PostProcessSettings& settings, HybridComposite composite, uint32_t width, uint32_t height) const;
 
  private:
-  vk::ComputeKernel coverage_, weights_;  // the two builds of the specialization constant
+  const vk::Context& context_;
+  vk::ComputeKernel coverage_;  // the default form; the weights form is built on first use
+  mutable std::unique_ptr<vk::ComputeKernel> weights_;
 };
 
 }  // namespace hmb::passes
