@@ -81,29 +81,21 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const vec4 centreColor = sanitizeColor(sampleColorAt(index));
-
-  const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
-  if (dominant.z < kMinBlurPixels) {  // under half a pixel of blur in the whole neighbourhood
-    outColor[index] = centreColor;
+  GatherCentre centre;
+  if (!readGatherCentre(pixel, index, centre)) {
+    outColor[index] = centre.color;
     return;
   }
-  const float maxSpeed = float(params.tileSize);
-  float centreSpeed;
-  gatherVelocity(sampleVelocityAt(index), params.velocityScale, maxSpeed, centreSpeed);
-  const float centreDepth = sanitizeDepth(sampleDepthAt(index));
   const bool inMask = mask[index] != 0u;
   const float backgroundScale = inMask ? params.maskBackgroundBoost : 1.0;
   const float foregroundScale = inMask ? 1.0 / params.maskForegroundDivide : 1.0;
-  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
   if (inMask && kCoverage) {
-    outColor[index] = coverageComposite(pixel, index, centreColor, centreDepth, jitter);
+    outColor[index] = coverageComposite(pixel, index, centre.color, centre.depth, centre.jitter);
     return;
   }
   weightsComposite = inMask && !kCoverage;
   blurredBackground = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
   centreObject = weightsComposite ? LAYER_OBJECT_ID(raster, index) : 0u;
-  compositeCentreDepth = centreDepth;
-  outColor[index] = gatherSamples(pixel, centreColor, centreSpeed, centreDepth, dominant.xy, maxSpeed, jitter,
-                                  foregroundScale, backgroundScale);
+  compositeCentreDepth = centre.depth;
+  outColor[index] = gatherSamples(pixel, centre, foregroundScale, backgroundScale);
 }

@@ -34,17 +34,6 @@ void main() {
   const uint index = pixelList[entry];
   const uvec2 pixel = uvec2(index % params.width, index / params.width);
   if (pixel.y >= params.height) return;
-  const vec4 centreColor = sanitizeColor(sampleColorAt(index));
-
-  const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
-  if (dominant.z < kMinBlurPixels) {  // under half a pixel of blur in the whole neighbourhood
-    outColor[index] = centreColor;
-    return;
-  }
-  const float maxSpeed = float(params.tileSize);
-  float centreSpeed;
-  gatherVelocity(sampleVelocityAt(index), params.velocityScale, maxSpeed, centreSpeed);
-  const float centreDepth = sanitizeDepth(sampleDepthAt(index));
-  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
-  outColor[index] = gatherSamples(pixel, centreColor, centreSpeed, centreDepth, dominant.xy, maxSpeed, jitter, 1.0, 1.0);
+  GatherCentre centre;
+  outColor[index] = readGatherCentre(pixel, index, centre) ? gatherSamples(pixel, centre, 1.0, 1.0) : centre.color;
 }

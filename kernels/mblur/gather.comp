@@ -24,17 +24,6 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const vec4 centreColor = sanitizeColor(color[index]);
-
-  const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
-  if (dominant.z < kMinBlurPixels) {  // under half a pixel of blur in the whole neighbourhood
-    outColor[index] = centreColor;
-    return;
-  }
-  const float maxSpeed = float(params.tileSize);
-  float centreSpeed;
-  gatherVelocity(velocity[index], params.velocityScale, maxSpeed, centreSpeed);
-  const float centreDepth = sanitizeDepth(normalDepth[index].w);
-  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
-  outColor[index] = gatherSamples(pixel, centreColor, centreSpeed, centreDepth, dominant.xy, maxSpeed, jitter, 1.0, 1.0);
+  GatherCentre centre;
+  outColor[index] = readGatherCentre(pixel, index, centre) ? gatherSamples(pixel, centre, 1.0, 1.0) : centre.color;
 }

@@ -21,7 +21,8 @@
 //
 // Shared by the post-process gather (mblur/gather.comp) and the hybrid's gathers
 // (hybrid/gather_background.comp, hybrid/composite.comp). The including kernel declares
-// `params` (GatherParams) and defines, before including this file, what a sample reads:
+// `params` (GatherParams) and `neighborMax[]` and defines, before including this file, what a
+// sample reads:
 //   vec4 sampleColorAt(uint i), float sampleDepthAt(uint i), vec2 sampleVelocityAt(uint i),
 //   vec4 contributionOf(uint sampleIndex, vec4 sampleColor)  (the colour a sample adds).
 #ifndef HMB_KERNELS_MBLUR_GATHER_SAMPLES_GLSL
@@ -29,10 +30,35 @@
 
 #include "mblur_common.glsl"
 
-// The blurred colour of `pixel`. dominant: its tile's neighbour-max velocity; the scales
-// multiply w_f and w_b (the hybrid's mask boosts, else 1).
-vec4 gatherSamples(uvec2 pixel, vec4 centreColor, float centreSpeed, float centreDepth, vec2 dominant,
-                   float maxSpeed, float jitter, float foregroundScale, float backgroundScale) {
+// What a gather reads of its own pixel.
+struct GatherCentre {
+  vec4 color;     // sanitized
+  vec2 dominant;  // its tile's neighbour-max velocity
+  float speed;    // its own, clamped to the tile size
+  float depth;    // sanitized
+  float jitter;   // of its samples
+};
+
+// Reads the pixel; false (centre.color alone set) when under kMinBlurPixels of blur reach its
+// whole neighbourhood, so that the gather leaves it its own colour.
+bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
+  centre.color = sanitizeColor(sampleColorAt(index));
+  const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
+  if (dominant.z < kMinBlurPixels) return false;
+  centre.dominant = dominant.xy;
+  gatherVelocity(sampleVelocityAt(index), params.velocityScale, float(params.tileSize), centre.speed);
+  centre.depth = sanitizeDepth(sampleDepthAt(index));
+  centre.jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
+  return true;
+}
+
+// The blurred colour of `pixel`; the scales multiply w_f and w_b (the hybrid's mask boosts,
+// else 1).
+vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float backgroundScale) {
+  const vec4 centreColor = c.color;
+  const float centreSpeed = c.speed, centreDepth = c.depth, jitter = c.jitter;
+  const vec2 dominant = c.dominant;
+  const float maxSpeed = float(params.tileSize);
   const bool adapted = (params.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u;
   float weightSum = 1.0 / max(centreSpeed, 0.5);
   vec4 sum = centreColor * weightSum;
