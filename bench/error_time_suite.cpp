@@ -36,17 +36,17 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
     return &configs.back().settings;
   };
   add("sharp", "sharp", 0, "sharp");
-  for (const char* range : {"centered", "adapted"})
+  for (const passes::GatherRange range : {passes::GatherRange::Centered, passes::GatherRange::Adapted})
     for (const uint32_t s : o.samples) {
-      RenderSettings* settings = add(std::string("postprocess ") + range + " S" + std::to_string(s),
-                                     std::string("postprocess ") + range, s, "postprocess");
+      const std::string name = "postprocess " + std::string(passes::rangeName(range));
+      RenderSettings* settings = add(name + " S" + std::to_string(s), name, s, "postprocess");
       settings->postprocess.range = range;
       settings->postprocess.samples = s;
     }
   for (const uint32_t s : o.samples) add("hybrid S" + std::to_string(s), "hybrid", s, "hybrid")->postprocess.samples = s;
   for (const uint32_t r : o.recursionLimits) {
     RenderSettings* settings = add("hybrid luminance stop R" + std::to_string(r), "hybrid luminance stop", r, "hybrid");
-    settings->hybrid.stop = "luminance";
+    settings->hybrid.stop = passes::RevealStop::Luminance;
     settings->hybrid.maxRecursion = r;
   }
   for (const float e : o.edgeThresholds)

@@ -289,7 +289,8 @@ KernelCase pixelCase(const std::string& kernel, ImageSize size) {
 KernelCase tileMaxCase(const vk::Context& context, ImageSize size, const KernelsSuiteOptions& options) {
   const RandomLayer layer = randomLayer(context, size);
   const passes::PostProcessSettings settings;  // the paper's defaults: m = 40
-  const passes::TileGrid grid = passes::tileGridFor(size.width, size.height, settings.tileSize);
+  const uint32_t tileSize = settings.effectiveTileSize();
+  const passes::TileGrid grid = passes::tileGridFor(size.width, size.height, tileSize);
   const vk::Buffer tiles(context, std::max(grid.count(), 1u) * sizeof(glm::vec4), vk::MemoryUse::Device,
                          "bench tile max");
   const passes::TileMaxPass pass(context);
@@ -298,10 +299,10 @@ KernelCase tileMaxCase(const vk::Context& context, ImageSize size, const Kernels
   KernelCase c = pixelCase(kTileMax, size);
   timeCase(c, options, [&] {
     frame.begin();
-    pass.record(frame, layer.velocity, tiles, size.width, size.height, settings.tileSize, settings.velocityScale());
+    pass.record(frame, layer.velocity, tiles, size.width, size.height, tileSize, settings.velocityScale());
     return passSum(frame.submitAndWait());
   });
-  c.details = {{"tile_size", settings.tileSize}, {"tiles", grid.count()}};
+  c.details = {{"tile_size", tileSize}, {"tiles", grid.count()}};
   return c;
 }
 
@@ -325,7 +326,7 @@ KernelCase gatherCase(const vk::Context& context, ImageSize size, const KernelsS
     return passSum(frame.submitAndWait());
   });
   c.details = {{"samples", settings.samples},
-               {"tile_size", settings.tileSize},
+               {"tile_size", settings.effectiveTileSize()},
                {"neighborhood", settings.neighborhood},
                {"range", passes::rangeName(settings.effectiveRange())}};
   return c;

@@ -1,6 +1,7 @@
 #include "runtime/renderer.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -27,53 +28,81 @@ io::Rgba8Image downloadDisplay(const vk::Buffer& display, uint32_t width, uint32
   return image;
 }
 
-// The user's choices over `s`, validated (hmb::Error names the first absurd value).
-passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const PostProcessChoices& c) {
-  if (c.filter) s.filter = passes::parseFilter(*c.filter);
-  if (c.range) s.range = passes::parseRange(*c.range);
-  if (c.samples) s.samples = *c.samples;
-  if (c.tileSize) {
-    s.tileSize = *c.tileSize;
-    s.jimenezTileSize = *c.tileSize;
+// `s` (the scene's) with the user's post-process choices; a tile size not chosen is the filter's,
+// scaled with the image.
+passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const RenderSettings& settings) {
+  settings::applyAll(passes::postProcessSettingTable(), settings.postprocess, s);
+  if (!s.tileSize) {
+    // The paper's tile sizes are pixels of a 720-line image; velocities in pixels scale with the
+    // image, so the tiles do too (else a small image is a handful of tiles and every blur
+    // spills over the whole frame).
+    const float linesScale = float(settings.height) / 720.0f;
+    s.tileSize = std::max(1u, static_cast<uint32_t>(std::lround(float(passes::describe(s.filter).tileSize) * linesScale)));
   }
-  if (c.neighborhood) s.neighborhood = *c.neighborhood;
-  if (c.foregroundBoost) s.foregroundBoost = *c.foregroundBoost;
-  if (c.softZExtent) s.softZExtent = *c.softZExtent;
-  if (c.seed) s.seed = *c.seed;
+  passes::validate(s);
+  return s;
+}
+
+// One table's settings as a render's: `choices` picks the table's choices out of RenderSettings.
+template <class Choices, class Settings>
+void addDescriptions(std::vector<RenderSettingDescription>& out, const settings::Table<Choices, Settings>& table,
+                     Choices RenderSettings::*choices, const Settings& defaults, const Settings* hybridDefaults) {
+  for (const auto& setting : table) {
+    std::string defaultText = setting.defaultText;
+    if (hybridDefaults && setting.show(*hybridDefaults) != setting.show(defaults))
+      defaultText += "; hybrid " + setting.show(*hybridDefaults);
+    std::string help = std::string(setting.help) + " [" + std::string(setting.methods);
+    help[0] = char(std::toupper(static_cast<unsigned char>(help[0])));
+    if (!setting.accepts.empty()) help += "; " + setting.accepts;
+    help += "; default " + defaultText + "]";
+    const auto read = [read = setting.read, choices](RenderSettings& r, std::string_view text) { read(r.*choices, text); };
+    const auto same = std::find_if(out.begin(), out.end(), [&](const auto& d) { return d.name == setting.name; });
+    if (same == out.end()) {
+      out.push_back({std::string(setting.name), help, std::string(setting.valueName), setting.flag, read});
+    } else {
+      help[0] = char(std::tolower(static_cast<unsigned char>(help[0])));
+      same->help += "; " + help;
+      same->read = [first = same->read, read](RenderSettings& r, std::string_view text) {
+        first(r, text);
+        read(r, text);
+      };
+    }
+  }
+}
+
+// `s` (the scene's) with the user's hybrid choices and post-process choices for its blur.
+passes::HybridSettings hybridWithChoices(passes::HybridSettings s, const RenderSettings& settings) {
+  s.blur = withChoices(s.blur, settings);
+  settings::applyAll(passes::hybridSettingTable(), settings.hybrid, s);
   passes::validate(s);
   return s;
 }
 
 }  // namespace
 
-passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
-  passes::PostProcessSettings base = passes::PostProcessSettings::fromScene(scene.settings);
-  // The paper's tile sizes are pixels of a 720-line image; velocities in pixels scale with the
-  // image, so the tiles do too (else a small image is a handful of tiles and every blur spills
-  // over the whole frame).
-  const float linesScale = float(settings.height) / 720.0f;
-  base.tileSize = std::max(1u, static_cast<uint32_t>(std::lround(float(base.tileSize) * linesScale)));
-  base.jimenezTileSize = std::max(1u, static_cast<uint32_t>(std::lround(float(base.jimenezTileSize) * linesScale)));
-  return withChoices(base, settings.postprocess);
+std::vector<RenderSettingDescription> renderSettingDescriptions() {
+  std::vector<RenderSettingDescription> out;
+  const passes::PostProcessSettings hybridBlur = passes::HybridSettings{}.blur;
+  addDescriptions(out, passes::postProcessSettingTable(), &RenderSettings::postprocess, passes::PostProcessSettings{},
+                  &hybridBlur);
+  addDescriptions(out, passes::hybridSettingTable(), &RenderSettings::hybrid, passes::HybridSettings{},
+                  static_cast<const passes::HybridSettings*>(nullptr));
+  addDescriptions(out, passes::referenceSettingTable(), &RenderSettings::reference, passes::ReferenceSettings{},
+                  static_cast<const passes::ReferenceSettings*>(nullptr));
+  return out;
 }
 
-void validatePostProcessChoices(const PostProcessChoices& choices) {
-  withChoices(passes::PostProcessSettings{}, choices);
+passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
+  return withChoices(passes::PostProcessSettings::fromScene(scene.settings), settings);
 }
 
 passes::HybridSettings hybridSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
-  passes::HybridSettings s = passes::HybridSettings::fromScene(scene.settings);
-  const HybridChoices& c = settings.hybrid;
-  if (c.edgeThreshold) s.edgeThreshold = *c.edgeThreshold;
-  if (c.stop) s.stop = passes::parseRevealStop(*c.stop);
-  if (c.maxRecursion) s.maxRecursion = *c.maxRecursion;
-  if (c.luminanceThreshold) s.luminanceThreshold = *c.luminanceThreshold;
-  if (c.composite) s.composite = passes::parseComposite(*c.composite);
-  if (c.maskBackgroundBoost) s.maskBackgroundBoost = *c.maskBackgroundBoost;
-  if (c.maskForegroundDivide) s.maskForegroundDivide = *c.maskForegroundDivide;
-  passes::validate(s);
-  return s;
+  return hybridWithChoices(passes::HybridSettings::fromScene(scene.settings), settings);
 }
+
+void validatePostProcessChoices(const RenderSettings& settings) { withChoices(passes::PostProcessSettings{}, settings); }
+
+void validateHybridChoices(const RenderSettings& settings) { hybridWithChoices(passes::HybridSettings{}, settings); }
 
 void validateRenderSettings(const RenderSettings& settings) {
   if (settings.width == 0 || settings.height == 0)

@@ -27,39 +27,15 @@ namespace hmb {
 // The largest image side accepted; larger requests fail before any allocation.
 inline constexpr uint32_t kMaxImageSide = 16384;
 
-// The post-process settings a user chose; the rest come from the scene (exposure, frame rate,
-// SOFT_Z_EXTENT) and the defaults of passes::PostProcessSettings.
-struct PostProcessChoices {
-  std::optional<std::string> filter;  // mcguire | jimenez
-  std::optional<std::string> range;   // centered | adapted
-  std::optional<uint32_t> samples;
-  std::optional<uint32_t> tileSize;
-  std::optional<uint32_t> neighborhood;
-  std::optional<float> foregroundBoost;
-  std::optional<float> softZExtent;
-  std::optional<uint32_t> seed;
-};
-
-// The hybrid settings a user chose; the rest come from the scene (edge threshold) and the
-// defaults of passes::HybridSettings.
-struct HybridChoices {
-  std::optional<float> edgeThreshold;
-  std::optional<std::string> stop;  // object-id | luminance
-  std::optional<uint32_t> maxRecursion;
-  std::optional<float> luminanceThreshold;
-  std::optional<std::string> composite;  // coverage | weights
-  std::optional<float> maskBackgroundBoost;
-  std::optional<float> maskForegroundDivide;
-};
-
 struct RenderSettings {
   Method method = Method::Sharp;
   uint32_t width = 1280;
   uint32_t height = 720;
   std::optional<float> frameTime;  // seconds; default: the scene's settings.frameTime
+  // What the user chose of each method's settings (the rest derive from the scene and the image).
   passes::ReferenceSettings reference;
-  PostProcessChoices postprocess;  // postprocess and hybrid
-  HybridChoices hybrid;
+  passes::PostProcessChoices postprocess;  // postprocess, and the hybrid's blur
+  passes::HybridChoices hybrid;
   // Leave out the passes that cannot change the image (the plan lists them as skipped, with
   // why); false runs every pass, to check that leaving them out changes nothing.
   bool skipUnneededPasses = true;
@@ -113,14 +89,30 @@ struct RenderResult {
 // The names of the methods the demo renders, in its order (runtime/methods/method.h has them all).
 std::vector<std::string> methodNames();
 
-// The post-process settings of a render of this scene (throws hmb::Error for bad names).
+// Every setting a user can choose for a render, for front ends: one per name across the
+// post-process, hybrid and reference tables (a name in several tables, like seed, reads into
+// each). Built from the tables' descriptions; the help text ends with the methods that read
+// the setting, the values it accepts and its default.
+struct RenderSettingDescription {
+  std::string name;
+  std::string help;
+  std::string valueName;  // "N", "X", "NAME", "FILE"
+  bool flag = false;      // a switch without a value
+  // The text a user typed into the settings' choices (throws hmb::Error naming the setting).
+  std::function<void(RenderSettings&, std::string_view text)> read;
+};
+std::vector<RenderSettingDescription> renderSettingDescriptions();
+
+// The post-process settings of a render of this scene: the scene's, the image's tile sizes and
+// the user's choices (throws hmb::Error naming the first absurd value).
 passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings);
 
-// Throws hmb::Error (one line) for post-process choices no scene could take.
-void validatePostProcessChoices(const PostProcessChoices& choices);
-
-// The hybrid settings of a render of this scene (throws hmb::Error for bad names or values).
+// The hybrid settings of a render of this scene, its blur included (throws hmb::Error).
 passes::HybridSettings hybridSettingsFor(const scene::Scene& scene, const RenderSettings& settings);
+
+// Throw hmb::Error (one line) for choices no scene could take: the choices over the defaults.
+void validatePostProcessChoices(const RenderSettings& settings);
+void validateHybridChoices(const RenderSettings& settings);
 
 // Throws hmb::Error (one line) for an unusable size or settings the method cannot render with.
 void validateRenderSettings(const RenderSettings& settings);

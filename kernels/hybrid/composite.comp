@@ -14,7 +14,7 @@
 //    samples X + u v_X, u in (0, 1], that are on it (or not behind X) estimates the coverage
 //    alpha, and the object's blurred colour F is the plain mean of those samples (and X):
 //    C = alpha F + (1 - alpha) B. v_X is the pixel's own velocity, clamped only to the image
-//    (coverageMaxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
+//    (maxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
 //    even where the gather's tiles clamp its outer blur. The README gives the measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
@@ -60,7 +60,7 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
 // The coverage form at a mask pixel (see above).
 vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
   float speed;
-  const vec2 v = gatherVelocity(sampleVelocityAt(index), params.velocityScale, params.coverageMaxSpeed, speed);
+  const vec2 v = gatherVelocity(sampleVelocityAt(index), params.velocityScale, params.maxSpeed, speed);
   const uint object = LAYER_OBJECT_ID(raster, index);
   vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0;

@@ -16,7 +16,7 @@ layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_OBJECT_ID) readonly buffer 
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_LIST) writeonly buffer Candidates { uint candidates[]; };
-layout(push_constant) uniform Params { EdgeMaskParams params; };
+layout(push_constant) uniform Params { RayMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
@@ -24,21 +24,21 @@ layout(push_constant) uniform Params { EdgeMaskParams params; };
 // Eqs. 1 and 2 at one pixel.
 bool isCandidate(uvec2 pixel, uint index) {
   float speed;
-  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
+  const vec2 v = gatherVelocity(velocity[index], params.blur.velocityScale, params.blur.maxSpeed, speed);
   if (!(speed > 0.0)) return false;
-  const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.width, params.height);
-  const uint endIndex = uint(end.y) * params.width + uint(end.x);
+  const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
+  const uint endIndex = uint(end.y) * params.blur.width + uint(end.x);
   return endsOnDeeperObject(objectId[index], sanitizeDepth(normalDepth[index].w), objectId[endIndex],
-                            normalDepth[endIndex].w, params.softZExtent);
+                            normalDepth[endIndex].w, params.blur.softZExtent);
 }
 
 void main() {
   const uint tile = tiles[listedTileEntry()];
-  const uvec2 begin = uvec2(tile % params.tilesX, tile / params.tilesX) * params.tileSize;
-  const uvec2 end = min(begin + params.tileSize, uvec2(params.width, params.height));
+  const uvec2 begin = uvec2(tile % params.blur.tilesX, tile / params.blur.tilesX) * params.blur.tileSize;
+  const uvec2 end = min(begin + params.blur.tileSize, uvec2(params.blur.width, params.blur.height));
   for (uint y = begin.y + gl_LocalInvocationID.y; y < end.y; y += HMB_MASK_TILE_GROUP_Y) {
     for (uint x = begin.x + gl_LocalInvocationID.x; x < end.x; x += HMB_MASK_TILE_GROUP_X) {
-      const uint index = y * params.width + x;
+      const uint index = y * params.blur.width + x;
       if (isCandidate(uvec2(x, y), index)) candidates[atomicAdd(counters.candidateCount, 1u)] = index;
     }
   }

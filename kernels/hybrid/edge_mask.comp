@@ -21,7 +21,7 @@ layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counter
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) writeonly buffer Edges { uint edges[]; };
-layout(push_constant) uniform Params { EdgeMaskParams params; };
+layout(push_constant) uniform Params { RayMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
@@ -32,12 +32,12 @@ vec3 sanitizeNormal(vec3 n) { return any(isnan(n)) || any(isinf(n)) ? vec3(0.0) 
 // (a far plane of 1e30 or a NaN read as the farthest depth is still an edge, and a scene
 // modelled at 1e20 units is measured as one at 1).
 float edgeStrength(ivec2 pixel, float depthHere) {
-  const ivec2 last = ivec2(int(params.width) - 1, int(params.height) - 1);
+  const ivec2 last = ivec2(int(params.blur.width) - 1, int(params.blur.height) - 1);
   vec4 window[25];
   float largest = 0.0;
   for (int k = 0; k < 25; ++k) {
     const ivec2 p = clamp(pixel + ivec2(k % 5 - 2, k / 5 - 2), ivec2(0), last);
-    const vec4 nd = normalDepth[uint(p.y) * params.width + uint(p.x)];
+    const vec4 nd = normalDepth[uint(p.y) * params.blur.width + uint(p.x)];
     window[k] = vec4(sanitizeNormal(nd.xyz), sanitizeDepth(nd.w));
     largest = max(largest, window[k].w);
   }
@@ -61,15 +61,15 @@ void main() {
   const uint entry = linearInvocationIndex(HMB_MASK_LIST_GROUP);
   if (entry >= counters.candidateCount) return;
   const uint index = candidates[entry];
-  const uvec2 pixel = uvec2(index % params.width, index / params.width);
+  const uvec2 pixel = uvec2(index % params.blur.width, index / params.blur.width);
   const float depthHere = sanitizeDepth(normalDepth[index].w);
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
-  const uint blocks = HMB_EDGE_BLOCKS_FIRST(params.width, params.height);
-  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.width);
+  const uint blocks = HMB_EDGE_BLOCKS_FIRST(params.blur.width, params.blur.height);
+  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.blur.width);
   const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;
-  const uvec2 last = min(pixel + 1u, uvec2(params.width, params.height) - 1u) / HMB_EDGE_BLOCK;
+  const uvec2 last = min(pixel + 1u, uvec2(params.blur.width, params.blur.height) - 1u) / HMB_EDGE_BLOCK;
   for (uint y = first.y; y <= last.y; ++y)
     for (uint x = first.x; x <= last.x; ++x) edges[blocks + y * blocksX + x] = 1u;
 }

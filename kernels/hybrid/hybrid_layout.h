@@ -22,6 +22,7 @@
 #define HMB_KERNELS_HYBRID_HYBRID_LAYOUT_H
 
 #include "../shared/glsl_cpp.h"
+#include "../mblur/mblur_layout.h"
 #include "../shared/layer_layout.h"
 #include "../shared/scene_layout.h"
 #include "../trace/trace_layout.h"
@@ -86,7 +87,7 @@
 #define HMB_MASK_UNREVEALED 1u
 #define HMB_MASK_REVEALED 2u
 
-// RangeCheckParams.flags: list only the mask pixels whose coverage composite samples (the
+// RayMaskParams.flags: list only the mask pixels whose coverage composite samples (the
 // gather's, same positions and jitter) meet the background; the others blend it with weight
 // exactly 0, so their reveal would change nothing.
 #define HMB_RANGE_CHECK_LIST_UNCOVERED 1u
@@ -178,29 +179,13 @@ struct SizeListParams {
   uint pad2;
 };
 
-// edge_candidates and edge_mask (each reads its own fields).
-struct EdgeMaskParams {
-  uint width;
-  uint height;
-  uint tileSize;  // the gather's tile grid, which the tile list indexes
-  uint tilesX;
-  float velocityScale;  // q (pixels per frame) -> per-exposure displacement: E * fps
-  float maxSpeed;       // displacements are clamped to this length (the image's larger side)
-  float softZExtent;    // eq. 2: the end position must be deeper by more than this
+// edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,
+// velocity scale, maximum speed, SOFT_Z_EXTENT, samples and seed), so that the mask finds the
+// pixels the gathers will blur as they blur them; then the mask's own.
+struct RayMaskParams {
+  GatherParams blur;
   float edgeThreshold;  // e: eq. 4's x_n must exceed it
-};
-
-struct RangeCheckParams {
-  uint width;
-  uint height;
-  uint tileSize;
-  uint tilesX;
-  float velocityScale;
-  float maxSpeed;
-  uint flags;        // HMB_RANGE_CHECK_*
-  uint samples;      // the coverage composite's samples
-  uint seed;         // and its per-pixel jitter's seed (the gather's)
-  float softZExtent;
+  uint flags;           // HMB_RANGE_CHECK_*
   uint pad0;
   uint pad1;
 };
@@ -225,8 +210,7 @@ HMB_GPU_END
 HMB_CHECK_SIZE(RayMaskCounters, 72)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
 HMB_CHECK_SIZE(SizeListParams, 16)
-HMB_CHECK_SIZE(EdgeMaskParams, 32)
-HMB_CHECK_SIZE(RangeCheckParams, 48)
+HMB_CHECK_SIZE(RayMaskParams, 80)
 HMB_CHECK_SIZE(RevealParams, 48)
 
 #endif

@@ -22,7 +22,7 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { Ray
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
-layout(push_constant) uniform Params { RangeCheckParams params; };
+layout(push_constant) uniform Params { RayMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
@@ -35,7 +35,7 @@ layout(push_constant) uniform Params { RangeCheckParams params; };
 // `entry`, the block's entry in the edge buffer, moves with it.
 bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   const float side = float(HMB_EDGE_BLOCK);
-  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.width);
+  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.blur.width);
   ivec2 block = ivec2(floor(a / side));
   const ivec2 last = ivec2(floor(b / side));
   const vec2 d = b - a;
@@ -46,7 +46,7 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   vec2 tNext = vec2(d.x != 0.0 ? abs(boundary.x - a.x) * inverse.x : 2.0, d.y != 0.0 ? abs(boundary.y - a.y) * inverse.y : 2.0);
   const vec2 tStep = side * inverse;
   const uint moves = uint(abs(last.x - block.x) + abs(last.y - block.y));
-  uint entry = HMB_EDGE_BLOCKS_FIRST(params.width, params.height) + uint(block.y) * blocksX + uint(block.x);
+  uint entry = HMB_EDGE_BLOCKS_FIRST(params.blur.width, params.blur.height) + uint(block.y) * blocksX + uint(block.x);
   const uint rowStep = uint(stepSign.y) * blocksX;  // modulo 2^32: one row up or down
   for (uint i = 0u; i < moves; ++i) {
     if (edges[entry] != 0u) return true;
@@ -70,12 +70,12 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   const vec2 centre = vec2(pixel) + 0.5;
   // Ranges that leave the image are clamped pixel by pixel; those take the fine walk alone.
   const vec2 end = centre + v;
-  if (all(greaterThanEqual(end, vec2(0.0))) && end.x < float(params.width) && end.y < float(params.height) &&
+  if (all(greaterThanEqual(end, vec2(0.0))) && end.x < float(params.blur.width) && end.y < float(params.blur.height) &&
       !segmentMeetsEdgeBlock(centre, end))
     return false;
   for (uint i = 0u; i <= steps; ++i) {
-    const ivec2 p = nearestPixel(centre + v * (float(i) / float(steps)), params.width, params.height);
-    if (edges[uint(p.y) * params.width + uint(p.x)] != 0u) return true;
+    const ivec2 p = nearestPixel(centre + v * (float(i) / float(steps)), params.blur.width, params.blur.height);
+    if (edges[uint(p.y) * params.blur.width + uint(p.x)] != 0u) return true;
   }
   return false;
 }
@@ -83,25 +83,25 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
 // Whether any of the coverage composite's samples of this pixel lies behind it, i.e. whether
 // the composite gives the revealed background a weight above 0.
 bool meetsBackground(uvec2 pixel, uint index, vec2 v) {
-  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
+  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.blur.seed));
   const uint centreObject = objectId[index];
   const float centreDepth = sanitizeDepth(normalDepth[index].w);
-  for (uint i = 0u; i < params.samples; ++i) {
-    const ivec2 p = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
-    const uint sampleIndex = uint(p.y) * params.width + uint(p.x);
+  for (uint i = 0u; i < params.blur.samples; ++i) {
+    const ivec2 p = coverageSamplePixel(pixel, v, i, params.blur.samples, jitter, params.blur.width, params.blur.height);
+    const uint sampleIndex = uint(p.y) * params.blur.width + uint(p.x);
     if (behindShareOf(objectId[sampleIndex], sanitizeDepth(normalDepth[sampleIndex].w), centreObject, centreDepth,
-                      params.softZExtent) > 0.0)
+                      params.blur.softZExtent) > 0.0)
       return true;
   }
   return false;
 }
 
 void main() {
-  const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.tilesX, params.tileSize);
-  if (pixel.x >= params.width || pixel.y >= params.height) return;
-  const uint index = pixel.y * params.width + pixel.x;
+  const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.blur.tilesX, params.blur.tileSize);
+  if (pixel.x >= params.blur.width || pixel.y >= params.blur.height) return;
+  const uint index = pixel.y * params.blur.width + pixel.x;
   float speed;
-  const vec2 v = gatherVelocity(velocity[index], params.velocityScale, params.maxSpeed, speed);
+  const vec2 v = gatherVelocity(velocity[index], params.blur.velocityScale, params.blur.maxSpeed, speed);
   if (!(speed > 0.0) || !meetsEdge(pixel, v, speed)) {
     mask[index] = HMB_MASK_NONE;
     return;

@@ -99,7 +99,8 @@ struct GatherParams {
   float foregroundBoost;       // multiplies w_f where z_t - z_s >= softZExtent
   float maskBackgroundBoost;   // the weights composite: multiplies w_b inside the mask
   float maskForegroundDivide;  // the weights composite: divides w_f inside the mask
-  float coverageMaxSpeed;      // coverage composite: v_X clamped to this length (the image's larger side)
+  float maxSpeed;              // the coverage composite and the ray mask: v_X clamped to this length (the
+                               // image's larger side)
   uint pad1;
   uint pad2;
 };

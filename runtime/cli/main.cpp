@@ -42,17 +42,11 @@ struct GlobalOptions {
 struct RenderOptions {
   std::string scene = "living-room";
   std::string method = "sharp";
-  uint32_t width = 1280;
-  uint32_t height = 720;
-  std::optional<float> frameTime;
-  std::string frames;  // "A:B": frames A to B at times frame / fps, an image each
+  hmb::RenderSettings settings;  // the method's settings: generated options (renderSettingDescriptions)
+  std::string frames;            // "A:B": frames A to B at times frame / fps, an image each
   bool runEveryPass = false;
   std::string out;
   std::string report;
-  hmb::passes::ReferenceSettings reference;
-  hmb::PostProcessChoices postprocess;
-  hmb::HybridChoices hybrid;
-  std::string checkpoint;
   std::string referenceImage;  // compare the result with this image (.exr or .png)
   std::string errorImage;      // FLIP error map of that comparison (.png)
 };
@@ -218,9 +212,9 @@ fs::path framePath(const fs::path& out, uint32_t frame, uint32_t lastFrame) {
 // the next can use (the hybrid's trees) is kept. One report lists every frame's passes.
 int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb::RenderSettings settings) {
   const FrameRange range = parseFrames(options.frames);
-  if (options.frameTime)
+  if (settings.frameTime)
     throw hmb::Error("--frames and --frame-time exclude each other: a frame's time is frame / fps");
-  if (!options.referenceImage.empty() || !options.checkpoint.empty())
+  if (!options.referenceImage.empty() || !settings.reference.checkpoint.empty())
     throw hmb::Error("--frames renders a sequence: --reference and --checkpoint take one frame");
   progress(global, "loading scene " + options.scene);
   const hmb::scene::Scene scene = hmb::scene::loadScene(options.scene);
@@ -233,7 +227,7 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
                            {"system", hmb::systemJson(hmb::querySystemInfo())},
                            {"scene", hmb::sceneJson(scene)},
                            {"method", options.method},
-                           {"resolution", {options.width, options.height}},
+                           {"resolution", {settings.width, settings.height}},
                            {"fps", scene.settings.fps},
                            {"frames", nlohmann::json::array()}};
   for (uint32_t frame = range.first; frame <= range.last; ++frame) {
@@ -258,18 +252,10 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
 }
 
 int render(const GlobalOptions& global, const RenderOptions& options) {
-  hmb::RenderSettings settings;
+  hmb::RenderSettings settings = options.settings;
   settings.method = hmb::parseMethod(options.method);
-  settings.width = options.width;
-  settings.height = options.height;
-  settings.frameTime = options.frameTime;
   settings.skipUnneededPasses = !options.runEveryPass;
-  settings.reference = options.reference;
-  settings.postprocess = options.postprocess;
-  settings.hybrid = options.hybrid;
-  settings.postprocess.seed = options.reference.seed;
-  settings.reference.checkpoint = options.checkpoint;
-  if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
+  if (!global.quiet) settings.onProgress = referenceProgressPrinter(settings.width, settings.height);
   hmb::validateRenderSettings(settings);
   checkOutputPath(options.out, {".exr", ".png"}, "--out");
   checkOutputPath(options.report, {".json"}, "--report");
@@ -281,10 +267,10 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   std::optional<hmb::metrics::DisplayImage> referenceImage;
   if (!options.referenceImage.empty()) {
     referenceImage = hmb::metrics::loadDisplayImage(options.referenceImage);
-    if (referenceImage->width != options.width || referenceImage->height != options.height)
+    if (referenceImage->width != settings.width || referenceImage->height != settings.height)
       throw hmb::Error("--reference '" + options.referenceImage + "' is " +
                        hmb::metrics::sizeText(referenceImage->width, referenceImage->height) + ", the render is " +
-                       hmb::metrics::sizeText(options.width, options.height));
+                       hmb::metrics::sizeText(settings.width, settings.height));
   }
 
   progress(global, "loading scene " + options.scene);
@@ -292,8 +278,8 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   hmb::vk::Context context(contextOptions(global));
   progress(global, "device: " + context.info().name);
   hmb::Renderer renderer(context);
-  progress(global, "rendering " + options.method + " at " + std::to_string(options.width) + "x" +
-                       std::to_string(options.height));
+  progress(global, "rendering " + options.method + " at " + std::to_string(settings.width) + "x" +
+                       std::to_string(settings.height));
   const hmb::RenderResult result = renderer.render(scene, settings);
 
   if (!options.out.empty()) writeImage(options.out, result);
@@ -432,9 +418,10 @@ int main(int argc, char** argv) {
   for (const hmb::MethodDescription& m : hmb::methodDescriptions())
     methodHelp += "\n  " + std::string(m.name) + ": " + std::string(m.summary);
   renderCmd->add_option("--method", renderOptions.method, methodHelp)->capture_default_str();
-  renderCmd->add_option("--width", renderOptions.width, "Image width in pixels")->capture_default_str();
-  renderCmd->add_option("--height", renderOptions.height, "Image height in pixels")->capture_default_str();
-  renderCmd->add_option("--frame-time", renderOptions.frameTime, "Time of the frame in seconds (shutter closes then)");
+  renderCmd->add_option("--width", renderOptions.settings.width, "Image width in pixels")->capture_default_str();
+  renderCmd->add_option("--height", renderOptions.settings.height, "Image height in pixels")->capture_default_str();
+  renderCmd->add_option("--frame-time", renderOptions.settings.frameTime,
+                        "Time of the frame in seconds (shutter closes then); default: the scene's");
   renderCmd->add_option("--frames", renderOptions.frames,
                         "Render frames FIRST:LAST (at frame / fps) as an image sequence: --out NAME.png writes "
                         "NAME.0001.png ...; the report lists every frame");
@@ -443,43 +430,18 @@ int main(int argc, char** argv) {
                       "says which and why)");
   renderCmd->add_option("--out", renderOptions.out, "Output image: .exr (beauty + AOV layers) or .png (display)");
   renderCmd->add_option("--report", renderOptions.report, "JSON report: device, settings, per-pass times");
-  renderCmd->add_option("--filter", renderOptions.postprocess.filter, "postprocess: mcguire (default) or jimenez");
-  renderCmd->add_option("--range", renderOptions.postprocess.range,
-                        "postprocess: adapted (default: the pixel at the end of its range) or centered");
-  renderCmd->add_option("--samples", renderOptions.postprocess.samples, "postprocess: gather samples (default 15)");
-  renderCmd->add_option("--tile-size", renderOptions.postprocess.tileSize,
-                        "postprocess: tile size m in pixels (default 40, jimenez 20, per 720 image lines)");
-  renderCmd->add_option("--neighborhood", renderOptions.postprocess.neighborhood,
-                        "postprocess: neighbour-max over n x n tiles (default 3)");
-  renderCmd->add_option("--foreground-boost", renderOptions.postprocess.foregroundBoost,
-                        "postprocess, hybrid: w_f factor past SOFT_Z_EXTENT (default 30 adapted, 1 centered, 3 hybrid)");
-  renderCmd->add_option("--soft-z-extent", renderOptions.postprocess.softZExtent,
-                        "postprocess: SOFT_Z_EXTENT in scene units (default: the scene's)");
-  renderCmd->add_option("--edge-threshold", renderOptions.hybrid.edgeThreshold,
-                        "hybrid: ray-mask edge threshold e in [0, 1) (default: the scene's)");
-  renderCmd->add_option("--reveal-stop", renderOptions.hybrid.stop,
-                        "hybrid: reveal rays stop on another object-id (default) or a luminance change");
-  renderCmd->add_option("--max-recursion", renderOptions.hybrid.maxRecursion,
-                        "hybrid: luminance stop: hits stepped past at most (default 5)");
-  renderCmd->add_option("--luminance-threshold", renderOptions.hybrid.luminanceThreshold,
-                        "hybrid: luminance stop: relative difference that ends a reveal (default 0.1)");
-  renderCmd->add_option("--composite", renderOptions.hybrid.composite,
-                        "hybrid: coverage (default) or weights (see README)");
-  renderCmd->add_option("--mask-background-boost", renderOptions.hybrid.maskBackgroundBoost,
-                        "hybrid: weights composite: background weight factor in the mask (default 3)");
-  renderCmd->add_option("--mask-foreground-divide", renderOptions.hybrid.maskForegroundDivide,
-                        "hybrid: weights composite: foreground weight divisor in the mask (default 3)");
-  renderCmd->add_option("--spp", renderOptions.reference.samplesPerPixel, "reference: samples (shutter times) per pixel")
-      ->capture_default_str();
-  renderCmd->add_option("--seed", renderOptions.reference.seed, "Seed of every random choice (reference time jitter)")
-      ->capture_default_str();
-  renderCmd->add_flag("--pixel-jitter", renderOptions.reference.pixelJitter,
-                      "reference: a random point in the pixel per sample instead of its centre");
+  // Every method setting, from its one description; read once the command line is parsed.
+  std::vector<std::pair<hmb::RenderSettingDescription, std::optional<std::string>>> methodSettings;
+  for (const hmb::RenderSettingDescription& d : hmb::renderSettingDescriptions()) methodSettings.emplace_back(d, std::nullopt);
+  for (auto& [description, text] : methodSettings) {
+    if (description.flag)
+      renderCmd->add_flag_callback("--" + description.name, [&text = text] { text = "true"; }, description.help);
+    else
+      renderCmd->add_option("--" + description.name, text, description.help)->type_name(description.valueName);
+  }
   renderCmd->add_option("--reference", renderOptions.referenceImage,
                         "Compare the result with this image (.exr or .png): PSNR, SSIM, FLIP in the report");
   renderCmd->add_option("--error-image", renderOptions.errorImage, "With --reference: write the FLIP error map (.png)");
-  renderCmd->add_option("--checkpoint", renderOptions.checkpoint,
-                        "reference: file to resume from and to save the sum to after every batch");
 
   DemoOptions demoOptions;
   CLI::App* demoCmd = app.add_subcommand("demo", "Render the default scene with every method and write a report");
@@ -500,6 +462,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    for (const auto& [description, text] : methodSettings)
+      if (text) description.read(renderOptions.settings, *text);
     if (*listDevicesCmd) return listDevices();
     if (*listScenesCmd) return listScenes();
     if (*renderCmd) return render(global, renderOptions);

@@ -29,11 +29,7 @@ class HybridMethod final : public FrameMethod {
     const bool still = nothingMovesOnScreen(request);
     result.hybrid.emplace();
     result.hybrid->settings = hybridSettingsFor(request.scene, settings);
-    // The blur the hybrid extends, with the hybrid's mask boosts and foreground boost.
-    result.postprocess = postProcessSettingsFor(request.scene, settings);
-    result.postprocess->maskBackgroundBoost = result.hybrid->settings.maskBackgroundBoost;
-    result.postprocess->maskForegroundDivide = result.hybrid->settings.maskForegroundDivide;
-    if (!settings.postprocess.foregroundBoost) result.postprocess->foregroundBoost = result.hybrid->settings.foregroundBoost;
+    result.postprocess = result.hybrid->settings.blur;
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);
     if (!(settings.skipUnneededPasses && settings.reuseAcrossFrames)) hybrid_.forgetTraceScene();
@@ -122,15 +118,7 @@ class HybridMethod final : public FrameMethod {
 
 }  // namespace
 
-void validateHybridMethod(const RenderSettings& settings) {
-  validatePostProcessChoices(settings.postprocess);
-  if (settings.postprocess.filter && *settings.postprocess.filter != "mcguire")
-    throw Error("the hybrid method blurs with the McGuire filter (--filter mcguire)");
-  const passes::HybridSettings hybrid = hybridSettingsFor(scene::Scene{}, settings);
-  if (hybrid.composite == passes::HybridComposite::Coverage && settings.postprocess.range &&
-      passes::parseRange(*settings.postprocess.range) != passes::GatherRange::Adapted)
-    throw Error("the hybrid method's coverage composite needs the adapted range (--range adapted)");
-}
+void validateHybridMethod(const RenderSettings& settings) { validateHybridChoices(settings); }
 
 std::unique_ptr<FrameMethod> makeHybridMethod(FrameResources& resources) {
   return std::make_unique<HybridMethod>(resources);

@@ -1,5 +1,5 @@
 // postprocess: the G-buffer's colour blurred along its velocities (tile-max, neighbour-max,
-// then McGuire's or Jimenez's gather).
+// then the chosen filter's gather).
 #include "runtime/frame_plan.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
@@ -50,7 +50,7 @@ class PostProcessMethod final : public FrameMethod {
 
 }  // namespace
 
-void validatePostProcessMethod(const RenderSettings& settings) { validatePostProcessChoices(settings.postprocess); }
+void validatePostProcessMethod(const RenderSettings& settings) { validatePostProcessChoices(settings); }
 
 std::unique_ptr<FrameMethod> makePostProcessMethod(FrameResources& resources) {
   return std::make_unique<PostProcessMethod>(resources);

@@ -6,7 +6,6 @@
 
 #include "kernels/hybrid/hybrid_layout.h"
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/passes/gather_pass.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
@@ -17,13 +16,12 @@ BackgroundGatherPass::BackgroundGatherPass(const vk::Context& context)
 void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
                                   const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
                                   const vk::Buffer& counters, const vk::Buffer& output,
-                                  const PostProcessSettings& settings, uint32_t width, uint32_t height) const {
+                                  const gpu::GatherParams& blur) const {
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
-  const gpu::GatherParams params = gatherParams(settings, width, height);
   std::vector<const vk::Buffer*> bindings = {&neighborMax, &mask, &list, &counters, &output};
   raster.appendBindings(bindings, kernel_.bindsByAddress());
   revealed.appendBindings(bindings, kernel_.bindsByAddress());
-  frame.dispatchIndirect(kName, kernel_, bindings, std::as_bytes(std::span(&params, 1)), counters,
+  frame.dispatchIndirect(kName, kernel_, bindings, std::as_bytes(std::span(&blur, 1)), counters,
                          offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "runtime/passes/image_layer.h"
-#include "runtime/passes/post_process_settings.h"
+#include "kernels/mblur/mblur_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {
@@ -18,11 +18,10 @@ class BackgroundGatherPass {
   static constexpr const char* kName = "gather-background";
   explicit BackgroundGatherPass(const vk::Context& context);
   // neighborMax: the raster's (PostProcessStage). mask, list, counters: RayMaskStage's.
-  // output: width * height vec4, written at the listed pixels.
+  // output: width * height vec4, written at the listed pixels. blur: the frame's (gatherParams()).
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
               const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
-              const vk::Buffer& counters, const vk::Buffer& output, const PostProcessSettings& settings,
-              uint32_t width, uint32_t height) const;
+              const vk::Buffer& counters, const vk::Buffer& output, const gpu::GatherParams& blur) const;
 
  private:
   vk::ComputeKernel kernel_;

@@ -6,7 +6,6 @@
 #include "kernels/hybrid/hybrid_layout.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/error.h"
-#include "runtime/passes/gather_pass.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
@@ -22,18 +21,16 @@ CompositePass::CompositePass(const vk::Context& context)
 
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
                            const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
-                           const PostProcessSettings& settings, HybridComposite composite, uint32_t width,
-                           uint32_t height) const {
-  if (composite == HybridComposite::Coverage && settings.range != GatherRange::Adapted)
+                           const gpu::GatherParams& blur, HybridComposite composite) const {
+  if (composite == HybridComposite::Coverage && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
     throw Error("composite: the coverage form needs the adapted range");
   if (composite == HybridComposite::Weights && !weights_)
     weights_ = std::make_unique<vk::ComputeKernel>(context_, "hybrid/composite", sizeof(gpu::GatherParams), kWeightsForm);
   const vk::ComputeKernel& kernel = composite == HybridComposite::Coverage ? coverage_ : *weights_;
-  const gpu::GatherParams params = gatherParams(settings, width, height);
   std::vector<const vk::Buffer*> bindings = {&neighborMax, &mask, &background, &output};
   raster.appendBindings(bindings, kernel.bindsByAddress());
-  frame.dispatch(kName, kernel, bindings, std::as_bytes(std::span(&params, 1)),
-                 {vk::groupsFor(width, HMB_GATHER_GROUP_X), vk::groupsFor(height, HMB_GATHER_GROUP_Y), 1});
+  frame.dispatch(kName, kernel, bindings, std::as_bytes(std::span(&blur, 1)),
+                 {vk::groupsFor(blur.width, HMB_GATHER_GROUP_X), vk::groupsFor(blur.height, HMB_GATHER_GROUP_Y), 1});
 }
 
 }  // namespace hmb::passes

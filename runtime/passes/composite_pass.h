@@ -7,7 +7,7 @@
 
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"
-#include "runtime/passes/post_process_settings.h"
+#include "kernels/mblur/mblur_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {
@@ -21,10 +21,11 @@ class CompositePass {
   static constexpr const char* kName = "gather-composite";
   explicit CompositePass(const vk::Context& context);
   // neighborMax: the raster's. mask: RayMaskStage's. background: BackgroundGatherPass's output,
-  // read at mask pixels. output: width * height vec4. The coverage form needs the adapted range.
+  // read at mask pixels. output: width * height vec4. blur: the frame's (gatherParams(), with the
+  // hybrid's mask weights). The coverage form needs the adapted range.
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
               const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
-              const PostProcessSettings& settings, HybridComposite composite, uint32_t width, uint32_t height) const;
+              const gpu::GatherParams& blur, HybridComposite composite) const;
 
  private:
   const vk::Context& context_;

@@ -7,12 +7,14 @@
 
 namespace hmb::passes {
 
-gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t width, uint32_t height) {
-  const TileGrid grid = tileGridFor(width, height, settings.tileSize);
+gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t width, uint32_t height,
+                               MaskWeights mask) {
+  const uint32_t tileSize = settings.effectiveTileSize();
+  const TileGrid grid = tileGridFor(width, height, tileSize);
   const uint32_t flags = settings.range == GatherRange::Adapted ? HMB_GATHER_FLAG_ADAPTED_RANGE : 0u;
   return gpu::GatherParams{width,
                            height,
-                           settings.tileSize,
+                           tileSize,
                            grid.x,
                            grid.y,
                            settings.samples,
@@ -21,14 +23,18 @@ gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t wid
                            gatherVelocityScale(settings.range, settings.exposure, settings.fps),
                            settings.softZExtent,
                            settings.effectiveForegroundBoost(),
-                           settings.maskBackgroundBoost,
-                           settings.maskForegroundDivide,
+                           mask.backgroundBoost,
+                           mask.foregroundDivide,
                            float(std::max(width, height)),
                            0,
                            0};
 }
 
 GatherPass::GatherPass(const vk::Context& context) : kernel_(context, "mblur/gather", sizeof(gpu::GatherParams)) {}
+
+std::unique_ptr<GatherFilter> makeMcGuireGather(const vk::Context& context) {
+  return std::make_unique<GatherPass>(context);
+}
 
 void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
                         const vk::Buffer& output, const PostProcessSettings& settings) const {

@@ -1,42 +1,38 @@
 // Host side of kernels/mblur/gather.comp: the post-process gather, McGuire et al. 2012's
-// reconstruction with the paper's weights, centred or adapted range.
+// reconstruction with the paper's weights, centred or adapted range (the "mcguire" filter).
 #pragma once
 
 #include <cstdint>
 #include <string_view>
 
 #include "kernels/mblur/mblur_layout.h"
+#include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/post_process_settings.h"
-#include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
-
-namespace hmb::vk {
-class FrameRecorder;
-}
 
 namespace hmb::passes {
 
-// One layer to blur, width * height entries each, row 0 at the top.
-struct MotionBlurInputs {
-  const vk::Buffer* color = nullptr;        // vec4 linear
-  const vk::Buffer* normalDepth = nullptr;  // vec4, w camera-space depth
-  const vk::Buffer* velocity = nullptr;     // vec2 pixels per frame, y down
-  uint32_t width = 0;
-  uint32_t height = 0;
+// Inside the hybrid's ray mask, the weights composite scales McGuire's weights (paper,
+// section 4); 1 and 1 leave them as they are.
+struct MaskWeights {
+  float backgroundBoost = 1.0f;
+  float foregroundDivide = 1.0f;
 };
 
 // The parameters every McGuire gather of a width x height image takes from the settings (the
-// post-process gather, the hybrid's background gather and composite).
-gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t width, uint32_t height);
+// post-process gather, the hybrid's background gather and composite, and its ray mask, which
+// must find the pixels they blur as they blur them).
+gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t width, uint32_t height,
+                               MaskWeights mask = {});
 
-class GatherPass {
+class GatherPass final : public GatherFilter {
  public:
   static constexpr const char* kName = "gather";
   explicit GatherPass(const vk::Context& context);
-  // neighborMax: from NeighborMaxPass at settings.tileSize with settings.velocityScale().
-  // output: width * height vec4. Uses the McGuire fields of settings whatever settings.filter.
+  std::string_view passName() const override { return kName; }
+  // Uses the McGuire fields of settings whatever settings.filter.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
-              const vk::Buffer& output, const PostProcessSettings& settings) const;
+              const vk::Buffer& output, const PostProcessSettings& settings) const override;
 
  private:
   vk::ComputeKernel kernel_;

@@ -1,57 +1,70 @@
 #include "runtime/passes/hybrid_settings.h"
 
-#include <cmath>
 #include <string>
 
 #include "runtime/error.h"
 #include "scenes/scene.h"
 
 namespace hmb::passes {
-
-HybridSettings HybridSettings::fromScene(const scene::Settings& sceneSettings) {
-  HybridSettings settings;
-  settings.edgeThreshold = sceneSettings.edgeThreshold;
-  return settings;
-}
-
 namespace {
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw Error("hybrid settings: " + message);
+const settings::Names<RevealStop> kStopNames = {{RevealStop::ObjectId, "object-id"},
+                                                {RevealStop::Luminance, "luminance"}};
+const settings::Names<HybridComposite> kCompositeNames = {{HybridComposite::Coverage, "coverage"},
+                                                          {HybridComposite::Weights, "weights"}};
+
+using Choices = HybridChoices;
+using Settings = HybridSettings;
+
+settings::Table<Choices, Settings> makeTable() {
+  using namespace settings;
+  constexpr float kMaxFactor = 1e6f;
+  const Range<float> factor{0.0f, kMaxFactor, true};
+  return {
+      number("edge-threshold", "hybrid", "ray-mask edge threshold e (eq. 4)", &Choices::edgeThreshold,
+             &Settings::edgeThreshold, Range<float>{0.0f, 1.0f, false, true}, "the scene's"),
+      named("reveal-stop", "hybrid", "reveal rays stop on another object, or on a luminance change (the paper)",
+            &Choices::stop, &Settings::stop, kStopNames),
+      number("max-recursion", "hybrid", "luminance stop: hits stepped past at most", &Choices::maxRecursion,
+             &Settings::maxRecursion, Range<uint32_t>{1, 64}),
+      number("luminance-threshold", "hybrid", "luminance stop: relative difference that ends a reveal",
+             &Choices::luminanceThreshold, &Settings::luminanceThreshold, factor),
+      named("composite", "hybrid", "coverage: alpha F + (1 - alpha) B; weights: the paper's weighted sum (see README)",
+            &Choices::composite, &Settings::composite, kCompositeNames),
+      number("mask-background-boost", "hybrid", "weights composite: background weight factor in the mask",
+             &Choices::maskBackgroundBoost, &Settings::maskBackgroundBoost, factor),
+      number("mask-foreground-divide", "hybrid", "weights composite: foreground weight divisor in the mask",
+             &Choices::maskForegroundDivide, &Settings::maskForegroundDivide, factor),
+  };
 }
 
 }  // namespace
 
+const settings::Table<HybridChoices, HybridSettings>& hybridSettingTable() {
+  static const settings::Table<Choices, Settings> table = makeTable();
+  return table;
+}
+
+HybridSettings HybridSettings::fromScene(const scene::Settings& sceneSettings) {
+  HybridSettings settings;
+  const std::optional<float> foregroundBoost = settings.blur.foregroundBoost;
+  settings.blur = PostProcessSettings::fromScene(sceneSettings);
+  settings.blur.foregroundBoost = foregroundBoost;
+  settings.edgeThreshold = sceneSettings.edgeThreshold;
+  return settings;
+}
+
 void validate(const HybridSettings& s) {
-  require(std::isfinite(s.edgeThreshold) && s.edgeThreshold >= 0.0f && s.edgeThreshold < 1.0f,
-          "edge threshold must be in [0, 1) (got " + std::to_string(s.edgeThreshold) + ")");
-  require(s.maxRecursion >= 1 && s.maxRecursion <= 64,
-          "max recursion must be 1..64 (got " + std::to_string(s.maxRecursion) + ")");
-  require(std::isfinite(s.luminanceThreshold) && s.luminanceThreshold > 0.0f && s.luminanceThreshold <= 1e6f,
-          "luminance threshold must be finite and > 0 (got " + std::to_string(s.luminanceThreshold) + ")");
-  for (const float factor : {s.maskBackgroundBoost, s.maskForegroundDivide, s.foregroundBoost})
-    require(std::isfinite(factor) && factor > 0.0f && factor <= 1e6f,
-            "boosts must be finite, > 0 and <= 1e6 (got " + std::to_string(factor) + ")");
+  validate(s.blur);
+  settings::checkAll(hybridSettingTable(), s, "hybrid settings");
+  if (s.blur.filter != PostProcessFilter::McGuire)
+    throw Error("hybrid settings: the hybrid method blurs with the McGuire filter (filter mcguire)");
+  if (s.composite == HybridComposite::Coverage && s.blur.effectiveRange() != GatherRange::Adapted)
+    throw Error("hybrid settings: the coverage composite needs the adapted range (range adapted)");
 }
 
-std::string_view revealStopName(RevealStop stop) {
-  return stop == RevealStop::Luminance ? "luminance" : "object-id";
-}
+std::string_view revealStopName(RevealStop stop) { return settings::nameOf(kStopNames, stop); }
 
-std::string_view compositeName(HybridComposite composite) {
-  return composite == HybridComposite::Weights ? "weights" : "coverage";
-}
-
-RevealStop parseRevealStop(std::string_view name) {
-  if (name == "object-id") return RevealStop::ObjectId;
-  if (name == "luminance") return RevealStop::Luminance;
-  throw Error("unknown reveal stop '" + std::string(name) + "' (object-id|luminance)");
-}
-
-HybridComposite parseComposite(std::string_view name) {
-  if (name == "coverage") return HybridComposite::Coverage;
-  if (name == "weights") return HybridComposite::Weights;
-  throw Error("unknown composite '" + std::string(name) + "' (coverage|weights)");
-}
+std::string_view compositeName(HybridComposite composite) { return settings::nameOf(kCompositeNames, composite); }
 
 }  // namespace hmb::passes

@@ -1,9 +1,14 @@
-// Settings of the hybrid method (paper, sections 3.2 and 4): the ray mask, the ray reveal and
-// the composite. The blur itself takes passes::PostProcessSettings (McGuire filter, adapted range).
+// Settings of the hybrid method (paper, sections 3.2 and 4): the post-process blur it extends
+// (McGuire's filter), the ray mask, the ray reveal and the composite; and the choices a user
+// makes of them.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
+
+#include "runtime/passes/post_process_settings.h"
+#include "runtime/setting.h"
 
 namespace hmb::scene {
 struct Settings;
@@ -21,34 +26,57 @@ enum class HybridComposite {
   Weights,   // background samples' colours replaced by B inside McGuire's weighted sum
 };
 
+// w_f's boost where the pixel is deeper than the sample by SOFT_Z_EXTENT, in both layers'
+// gathers (adapted post-process keeps the paper's 30). The paper's boost makes a silhouette's
+// outer blur opaque; with the inner blur revealed, 30 over-darkens it. Measured against
+// references on every scene at two sizes and several frame times, 3 has the smallest worst-case
+// loss against each case's best boost (1.1 dB; 30 loses up to 3.5 dB):
+// bench/results/hybrid-foreground-boost. --foreground-boost overrides it.
+inline constexpr float kHybridForegroundBoost = 3.0f;
+
 struct HybridSettings {
+  // The blur of both layers: the McGuire filter, the adapted range (the coverage composite needs
+  // it) and the hybrid's foreground boost.
+  PostProcessSettings blur = [] {
+    PostProcessSettings s;
+    s.foregroundBoost = kHybridForegroundBoost;
+    return s;
+  }();
   float edgeThreshold = 0.9f;          // e of eq. 4 (the scene's: 0.90 / 0.98 / 0.96 in the paper)
   RevealStop stop = RevealStop::ObjectId;
   uint32_t maxRecursion = 5;           // luminance stop: hits stepped past at most, 1..64
   float luminanceThreshold = 0.1f;     // luminance stop: relative difference that ends the recursion
   HybridComposite composite = HybridComposite::Coverage;
-  // w_f's boost where the pixel is deeper than the sample by SOFT_Z_EXTENT, in both layers'
-  // gathers (adapted post-process keeps the paper's 30). The paper's boost makes a
-  // silhouette's outer blur opaque; with the inner blur revealed, 30 over-darkens it. Measured
-  // against references on every scene at two sizes and several frame times, 3 has the smallest
-  // worst-case loss against each case's best boost (1.1 dB; 30 loses up to 3.5 dB):
-  // bench/results/hybrid-foreground-boost. --foreground-boost overrides it.
-  float foregroundBoost = 3.0f;
   // Inside the mask (paper, section 4): background weight x3, foreground weight /3. Only the
   // weights composite uses McGuire's weights there.
   float maskBackgroundBoost = 3.0f;
   float maskForegroundDivide = 3.0f;
 
-  // The edge threshold from a scene's settings, the rest at their defaults.
+  // The blur's exposure, fps and SOFT_Z_EXTENT and the edge threshold from a scene's settings,
+  // the rest at their defaults.
   static HybridSettings fromScene(const scene::Settings& sceneSettings);
 };
 
-// Throws hmb::Error with a one-line message naming the first absurd value.
+// What a user chose of the hybrid's own settings (its blur takes PostProcessChoices); the rest
+// come from the scene (edge threshold) and the defaults above.
+struct HybridChoices {
+  std::optional<float> edgeThreshold;
+  std::optional<RevealStop> stop;
+  std::optional<uint32_t> maxRecursion;
+  std::optional<float> luminanceThreshold;
+  std::optional<HybridComposite> composite;
+  std::optional<float> maskBackgroundBoost;
+  std::optional<float> maskForegroundDivide;
+};
+
+// Every hybrid setting a user can choose, each described once (runtime/setting.h).
+const settings::Table<HybridChoices, HybridSettings>& hybridSettingTable();
+
+// Throws hmb::Error with a one-line message naming the first absurd value, the blur's included
+// (which must be the McGuire filter, over the adapted range for the coverage composite).
 void validate(const HybridSettings& settings);
 
-std::string_view revealStopName(RevealStop stop);                 // "object-id" | "luminance"
-std::string_view compositeName(HybridComposite composite);        // "coverage" | "weights"
-RevealStop parseRevealStop(std::string_view name);
-HybridComposite parseComposite(std::string_view name);
+std::string_view revealStopName(RevealStop stop);           // "object-id" | "luminance"
+std::string_view compositeName(HybridComposite composite);  // "coverage" | "weights"
 
 }  // namespace hmb::passes

@@ -51,10 +51,8 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
                                                  float frameTime, uint32_t width, uint32_t height,
                                                  const HybridSettings& settings, const FramePlan& plan) {
   validate(settings);
-  const PostProcessSettings& blur = postProcess_.settings();
-  if (blur.filter != PostProcessFilter::McGuire) throw Error("hybrid: the blur must be the McGuire filter");
-  if (settings.composite == HybridComposite::Coverage && blur.range != GatherRange::Adapted)
-    throw Error("hybrid: the coverage composite needs the adapted range");
+  if (postProcess_.settings() != settings.blur)
+    throw Error("hybrid: the post-process stage must be configured with the hybrid's blur settings");
   settings_ = settings;
   PrepareTimings timings;
   // plan() decided what the last frame's trees still serve; only the others are built.
@@ -84,32 +82,27 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
 void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
                          const vk::Buffer& output) const {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
-  const PostProcessSettings& blur = postProcess_.settings();
   const MotionBlurInputs raster{&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), size_.width(), size_.height()};
   postProcess_.recordTiles(frame, raster);
-  // The mask walks each pixel's whole displacement (clamped to the image, not to the tile), as
-  // the coverage composite does: a fast object's inner blur is wider than the gather's tiles.
+  // One set of gather parameters for the frame: the mask must find the pixels the two gathers
+  // blur, as they blur them.
+  const gpu::GatherParams blur = gatherParams(settings_.blur, size_.width(), size_.height(),
+                                              {settings_.maskBackgroundBoost, settings_.maskForegroundDivide});
   RayMaskParameters maskParameters;
   maskParameters.tileMax = &postProcess_.tileMax();
-  maskParameters.tileSize = blur.tileSize;
-  maskParameters.grid = postProcess_.tileGrid();
-  maskParameters.velocityScale = blur.velocityScale();
-  maskParameters.maxSpeed = float(std::max(size_.width(), size_.height()));
-  maskParameters.softZExtent = blur.softZExtent;
+  maskParameters.blur = blur;
   maskParameters.edgeThreshold = settings_.edgeThreshold;
   // The coverage composite weights the revealed background by 1 - alpha: pixels whose samples
   // all stay on their object (alpha exactly 1) need no reveal (38% of bistro's mask at 1280x720).
   maskParameters.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
-  maskParameters.samples = blur.samples;
-  maskParameters.seed = blur.seed;
   rayMask_.record(frame, raster, gbuffer.objectId(), maskParameters);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.objectId(), rayMask_.list(), rayMask_.counters(),
                  revealed_, size_.width(), size_.height(), settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
   backgroundGather_.record(frame, gbuffer.layer(), revealed_, postProcess_.neighborMax(), rayMask_.mask(),
-                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, size_.width(), size_.height());
+                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur);
   composite_.record(frame, gbuffer.layer(), postProcess_.neighborMax(), rayMask_.mask(), backgroundBlurred_, output,
-                    blur, settings_.composite, size_.width(), size_.height());
+                    blur, settings_.composite);
 }
 
 }  // namespace hmb::passes

@@ -8,13 +8,18 @@ namespace hmb::passes {
 JimenezGatherPass::JimenezGatherPass(const vk::Context& context)
     : kernel_(context, "mblur/gather_jimenez", sizeof(gpu::JimenezParams)) {}
 
+std::unique_ptr<GatherFilter> makeJimenezGather(const vk::Context& context) {
+  return std::make_unique<JimenezGatherPass>(context);
+}
+
 void JimenezGatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
                                const vk::Buffer& neighborMax, const vk::Buffer& output,
-                               const PostProcessSettings& settings, std::string_view passName) const {
-  const TileGrid grid = tileGridFor(inputs.width, inputs.height, settings.jimenezTileSize);
+                               const PostProcessSettings& settings) const {
+  const uint32_t tileSize = settings.effectiveTileSize();
+  const TileGrid grid = tileGridFor(inputs.width, inputs.height, tileSize);
   const gpu::JimenezParams params{inputs.width,
                                   inputs.height,
-                                  settings.jimenezTileSize,
+                                  tileSize,
                                   grid.x,
                                   grid.y,
                                   settings.samples,
@@ -24,7 +29,7 @@ void JimenezGatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs&
                                   settings.softZExtent,
                                   settings.jimenezTileJitter,
                                   0};
-  frame.dispatch(passName, kernel_, {inputs.color, inputs.normalDepth, inputs.velocity, &neighborMax, &output},
+  frame.dispatch(kName, kernel_, {inputs.color, inputs.normalDepth, inputs.velocity, &neighborMax, &output},
                  params,
                  {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});
 }

@@ -1,12 +1,11 @@
 // Host side of kernels/mblur/gather_jimenez.comp: the Jimenez 2014 filter (the paper's UE4-like
-// baseline). Its tiles come from TileMaxPass / NeighborMaxPass at settings.jimenezTileSize with
-// the centred velocity scale.
+// baseline; the "jimenez" filter), always centred.
 #pragma once
 
 #include <cstdint>
 #include <string_view>
 
-#include "runtime/passes/gather_pass.h"
+#include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/vulkan/compute_kernel.h"
 
@@ -17,13 +16,13 @@ class FrameRecorder;
 
 namespace hmb::passes {
 
-class JimenezGatherPass {
+class JimenezGatherPass final : public GatherFilter {
  public:
   static constexpr const char* kName = "gather-jimenez";
   explicit JimenezGatherPass(const vk::Context& context);
-  // neighborMax: grid at settings.jimenezTileSize; output: width * height vec4.
+  std::string_view passName() const override { return kName; }
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
-              const vk::Buffer& output, const PostProcessSettings& settings, std::string_view passName = kName) const;
+              const vk::Buffer& output, const PostProcessSettings& settings) const override;
 
  private:
   vk::ComputeKernel kernel_;

@@ -7,6 +7,67 @@
 #include "scenes/scene.h"
 
 namespace hmb::passes {
+namespace {
+
+settings::Names<PostProcessFilter> filterNames() {
+  settings::Names<PostProcessFilter> names;
+  for (const FilterDescription& d : kFilters) names.emplace_back(d.filter, d.name);
+  return names;
+}
+
+const settings::Names<GatherRange> kRangeNames = {{GatherRange::Centered, "centered"},
+                                                 {GatherRange::Adapted, "adapted"}};
+
+// Tile sizes: a filter's default in pixels of 720 lines, as the command line says it.
+std::string filterTileSizes() {
+  std::string text;
+  for (const FilterDescription& d : kFilters)
+    text += (text.empty() ? "" : ", ") + std::string(d.name) + " " + std::to_string(d.tileSize);
+  return text + " px per 720 image lines";
+}
+
+std::string defaultForegroundBoosts() {
+  PostProcessSettings adapted, centered;
+  adapted.range = GatherRange::Adapted;
+  centered.range = GatherRange::Centered;
+  return settings::formatNumber(adapted.effectiveForegroundBoost()) + " adapted, " +
+         settings::formatNumber(centered.effectiveForegroundBoost()) + " centered";
+}
+
+using Choices = PostProcessChoices;
+using Settings = PostProcessSettings;
+constexpr std::string_view kReaders = "postprocess, hybrid";
+
+settings::Table<Choices, Settings> makeTable() {
+  using namespace settings;
+  constexpr float kMaxFactor = 1e6f;
+  return {
+      named("filter", "postprocess", "the gather that ends the blur", &Choices::filter, &Settings::filter,
+            filterNames()),
+      named("range", kReaders, "adapted: the pixel at the end of its range (the paper); centered: McGuire's",
+            &Choices::range, &Settings::range, kRangeNames),
+      number("samples", kReaders, "gather samples S", &Choices::samples, &Settings::samples,
+             Range<uint32_t>{1, HMB_MBLUR_MAX_SAMPLES}),
+      number("tile-size", kReaders, "tile size m in pixels", &Choices::tileSize, &Settings::tileSize,
+             Range<uint32_t>{1, HMB_MBLUR_MAX_TILE_SIZE}, filterTileSizes()),
+      number("neighborhood", kReaders, "neighbour-max over n x n tiles", &Choices::neighborhood,
+             &Settings::neighborhood, Range<uint32_t>{1, HMB_MBLUR_MAX_NEIGHBORHOOD, false, false, true}),
+      number("foreground-boost", kReaders, "w_f factor where the pixel is past SOFT_Z_EXTENT behind the sample",
+             &Choices::foregroundBoost, &Settings::foregroundBoost, Range<float>{0.0f, kMaxFactor, true},
+             defaultForegroundBoosts()),
+      number("soft-z-extent", kReaders, "SOFT_Z_EXTENT in scene units", &Choices::softZExtent,
+             &Settings::softZExtent, Range<float>{0.0f, std::numeric_limits<float>::max(), true}, "the scene's"),
+      number("seed", kReaders, "seed of the gathers' per-pixel sample jitter", &Choices::seed, &Settings::seed,
+             Range<uint32_t>{}),
+  };
+}
+
+}  // namespace
+
+const settings::Table<PostProcessChoices, PostProcessSettings>& postProcessSettingTable() {
+  static const settings::Table<Choices, Settings> table = makeTable();
+  return table;
+}
 
 PostProcessSettings PostProcessSettings::fromScene(const scene::Settings& sceneSettings) {
   PostProcessSettings settings;
@@ -18,16 +79,12 @@ PostProcessSettings PostProcessSettings::fromScene(const scene::Settings& sceneS
 
 float PostProcessSettings::effectiveForegroundBoost() const {
   if (foregroundBoost) return *foregroundBoost;
-  return range == GatherRange::Adapted ? 30.0f : 1.0f;
+  return effectiveRange() == GatherRange::Adapted ? 30.0f : 1.0f;
 }
 
-uint32_t PostProcessSettings::effectiveTileSize() const {
-  return filter == PostProcessFilter::Jimenez ? jimenezTileSize : tileSize;
-}
+uint32_t PostProcessSettings::effectiveTileSize() const { return tileSize.value_or(describe(filter).tileSize); }
 
-GatherRange PostProcessSettings::effectiveRange() const {
-  return filter == PostProcessFilter::Jimenez ? GatherRange::Centered : range;
-}
+GatherRange PostProcessSettings::effectiveRange() const { return describe(filter).onlyRange.value_or(range); }
 
 float PostProcessSettings::velocityScale() const { return gatherVelocityScale(effectiveRange(), exposure, fps); }
 
@@ -36,61 +93,22 @@ float gatherVelocityScale(GatherRange range, float exposure, float fps) {
   return range == GatherRange::Centered ? 0.5f * perExposure : perExposure;
 }
 
-namespace {
-
-void require(bool ok, const std::string& message) {
-  if (!ok) throw Error("post-process settings: " + message);
-}
-
-void requireFactor(float value, const char* name) {
-  require(std::isfinite(value) && value > 0.0f && value <= 1e6f,
-          std::string(name) + " must be finite, > 0 and <= 1e6 (got " + std::to_string(value) + ")");
-}
-
-}  // namespace
-
 void validate(const PostProcessSettings& s) {
-  require(s.samples >= 1 && s.samples <= HMB_MBLUR_MAX_SAMPLES,
-          "samples must be 1.." + std::to_string(HMB_MBLUR_MAX_SAMPLES) + " (got " + std::to_string(s.samples) + ")");
-  require(s.tileSize >= 1 && s.tileSize <= HMB_MBLUR_MAX_TILE_SIZE,
-          "tile size must be 1.." + std::to_string(HMB_MBLUR_MAX_TILE_SIZE) + " px (got " +
-              std::to_string(s.tileSize) + ")");
-  require(s.jimenezTileSize >= 1 && s.jimenezTileSize <= HMB_MBLUR_MAX_TILE_SIZE,
-          "Jimenez tile size must be 1.." + std::to_string(HMB_MBLUR_MAX_TILE_SIZE) + " px (got " +
-              std::to_string(s.jimenezTileSize) + ")");
-  require(s.neighborhood % 2 == 1 && s.neighborhood <= HMB_MBLUR_MAX_NEIGHBORHOOD,
-          "neighbourhood must be odd and 1.." + std::to_string(HMB_MBLUR_MAX_NEIGHBORHOOD) + " tiles (got " +
-              std::to_string(s.neighborhood) + ")");
+  settings::checkAll(postProcessSettingTable(), s, "post-process settings");
+  const auto require = [](bool ok, const std::string& message) {
+    if (!ok) throw Error("post-process settings: " + message);
+  };
   require(std::isfinite(s.exposure) && s.exposure >= 0.0f,
           "exposure must be finite and >= 0 s (got " + std::to_string(s.exposure) + ")");
   require(std::isfinite(s.fps) && s.fps > 0.0f, "fps must be finite and > 0 (got " + std::to_string(s.fps) + ")");
   require(std::isfinite(s.exposure * s.fps), "exposure * fps overflows");
-  require(std::isfinite(s.softZExtent) && s.softZExtent > 0.0f,
-          "SOFT_Z_EXTENT must be finite and > 0 (got " + std::to_string(s.softZExtent) + ")");
-  requireFactor(s.effectiveForegroundBoost(), "foreground boost");
-  requireFactor(s.maskBackgroundBoost, "mask background boost");
-  requireFactor(s.maskForegroundDivide, "mask foreground divide");
   require(std::isfinite(s.jimenezTileJitter) && s.jimenezTileJitter >= 0.0f && s.jimenezTileJitter <= 1.0f,
           "Jimenez tile jitter must be in [0, 1] tiles (got " + std::to_string(s.jimenezTileJitter) + ")");
 }
 
-std::string_view filterName(PostProcessFilter filter) {
-  return filter == PostProcessFilter::Jimenez ? "jimenez" : "mcguire";
-}
+std::string_view filterName(PostProcessFilter filter) { return describe(filter).name; }
 
-std::string_view rangeName(GatherRange range) { return range == GatherRange::Centered ? "centered" : "adapted"; }
-
-PostProcessFilter parseFilter(std::string_view name) {
-  if (name == "mcguire") return PostProcessFilter::McGuire;
-  if (name == "jimenez") return PostProcessFilter::Jimenez;
-  throw Error("unknown post-process filter '" + std::string(name) + "' (mcguire|jimenez)");
-}
-
-GatherRange parseRange(std::string_view name) {
-  if (name == "centered") return GatherRange::Centered;
-  if (name == "adapted") return GatherRange::Adapted;
-  throw Error("unknown gather range '" + std::string(name) + "' (centered|adapted)");
-}
+std::string_view rangeName(GatherRange range) { return settings::nameOf(kRangeNames, range); }
 
 TileGrid tileGridFor(uint32_t width, uint32_t height, uint32_t tileSize) {
   return {(width + tileSize - 1) / tileSize, (height + tileSize - 1) / tileSize};

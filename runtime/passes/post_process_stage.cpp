@@ -18,8 +18,8 @@ void PostProcessStage::configure(const PostProcessSettings& settings) {
   validate(settings);
   settings_ = settings;
   // Pipelines compile once each and cost time on CPU devices: a gather is built when first used.
-  if (settings_.filter == PostProcessFilter::Jimenez && !jimenezGather_) jimenezGather_.emplace(context_);
-  if (settings_.filter == PostProcessFilter::McGuire && !gather_) gather_.emplace(context_);
+  std::unique_ptr<GatherFilter>& filter = filters_[settings_.filter];
+  if (!filter) filter = describe(settings_.filter).make(context_);
   size_.forget();  // the tile grid follows the tile size: prepare() sizes it again
 }
 
@@ -30,7 +30,7 @@ void PostProcessStage::planTiles(FramePlan& plan) const {
 
 void PostProcessStage::plan(FramePlan& plan) const {
   planTiles(plan);
-  plan.run(settings_.filter == PostProcessFilter::Jimenez ? JimenezGatherPass::kName : GatherPass::kName);
+  plan.run(std::string(filters_.at(settings_.filter)->passName()));
 }
 
 void PostProcessStage::prepare(uint32_t width, uint32_t height) {
@@ -61,10 +61,7 @@ void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInp
 void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
                               const vk::Buffer& output) const {
   recordTiles(frame, inputs);
-  if (settings_.filter == PostProcessFilter::Jimenez)
-    jimenezGather_->record(frame, inputs, neighborMax_, output, settings_);
-  else
-    gather_->record(frame, inputs, neighborMax_, output, settings_);
+  filters_.at(settings_.filter)->record(frame, inputs, neighborMax_, output, settings_);
 }
 
 }  // namespace hmb::passes

@@ -1,15 +1,14 @@
-// The post-process motion blur stage: tile-max -> neighbour-max -> gather (McGuire et al. 2012
-// with the paper's weights, centred or adapted range) or gather-jimenez (Jimenez 2014), from a
-// G-buffer layer into an output colour buffer. Owns the two tile buffers.
+// The post-process motion blur stage: tile-max -> neighbour-max -> the chosen filter's gather
+// (post_process_filter.h), from a G-buffer layer into an output colour buffer. Owns the two
+// tile buffers and the gathers it has used.
 #pragma once
 
 #include <cstdint>
-#include <optional>
-#include <string_view>
+#include <map>
+#include <memory>
 
-#include "runtime/passes/gather_pass.h"
-#include "runtime/passes/jimenez_gather_pass.h"
 #include "runtime/passes/neighbor_max_pass.h"
+#include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/tile_max_pass.h"
 #include "runtime/passes/image_size.h"
@@ -53,8 +52,7 @@ class PostProcessStage {
   PostProcessSettings settings_;
   TileMaxPass tileMaxPass_;
   NeighborMaxPass neighborMaxPass_;
-  std::optional<GatherPass> gather_;
-  std::optional<JimenezGatherPass> jimenezGather_;
+  std::map<PostProcessFilter, std::unique_ptr<GatherFilter>> filters_;
   ImageSize size_;
   TileGrid grid_;
   vk::Buffer tileMax_, neighborMax_;

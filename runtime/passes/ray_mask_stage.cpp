@@ -13,9 +13,9 @@ namespace hmb::passes {
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
       tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
-      candidatesKernel_(context, "hybrid/edge_candidates", sizeof(gpu::EdgeMaskParams)),
-      edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::EdgeMaskParams)),
-      rangeKernel_(context, "hybrid/range_check", sizeof(gpu::RangeCheckParams)),
+      candidatesKernel_(context, "hybrid/edge_candidates", sizeof(gpu::RayMaskParams)),
+      edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
+      rangeKernel_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)),
       sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan) const {
@@ -46,46 +46,37 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           const RayMaskParameters& p) const {
   size_.requireMadeFor("ray mask", layer.width, layer.height);
   const uint32_t width = size_.width(), height = size_.height();
-  if (!p.tileMax || p.tileSize == 0 || p.grid.count() == 0) throw Error("ray mask: no tile-max to start from");
-  if (uint64_t(p.grid.x) * p.tileSize < width || uint64_t(p.grid.y) * p.tileSize < height)
+  const gpu::GatherParams& blur = p.blur;
+  if (blur.width != width || blur.height != height) throw Error("ray mask: the blur's parameters are for another size");
+  const TileGrid grid{blur.tilesX, blur.tilesY};
+  if (!p.tileMax || blur.tileSize == 0 || grid.count() == 0) throw Error("ray mask: no tile-max to start from");
+  if (uint64_t(grid.x) * blur.tileSize < width || uint64_t(grid.y) * blur.tileSize < height)
     throw Error("ray mask: the tile grid does not cover the image");
   // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
   frame.fill(kClear, edges_, 0u);
   frame.fill(kClear, mask_, 0u);
-  const gpu::MovingTilesParams tileParams{p.grid.count(), 0u, 0u, 0u};
+  const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
   frame.dispatch(kMovingTiles, tilesKernel_, {p.tileMax, &counters_, &tiles_}, tileParams,
-                 vk::foldedGroups(vk::groupsFor(p.grid.count(), HMB_MOVING_TILES_GROUP)));
+                 vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
   // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
   const auto sizeDispatch = [&](uint32_t list, uint32_t blocksPerTile) {
     frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_}, gpu::SizeListParams{list, blocksPerTile, 0u, 0u},
                    {1, 1, 1});
   };
-  const uint32_t blocksPerSide = vk::groupsFor(p.tileSize, HMB_MASK_TILE_GROUP_X);
+  const uint32_t blocksPerSide = vk::groupsFor(blur.tileSize, HMB_MASK_TILE_GROUP_X);
   sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide);
-  const gpu::EdgeMaskParams edgeParams{width,      height,         p.tileSize,     p.grid.x,
-                                       p.velocityScale, p.maxSpeed, p.softZExtent, p.edgeThreshold};
+  const gpu::RayMaskParams params{blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u,
+                                  0u};
   frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
-                         {layer.normalDepth, layer.velocity, &objectId, &tiles_, &counters_, &candidates_}, edgeParams,
+                         {layer.normalDepth, layer.velocity, &objectId, &tiles_, &counters_, &candidates_}, params,
                          counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
   sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, &counters_, &candidates_, &edges_},
-                         edgeParams, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
-  const gpu::RangeCheckParams rangeParams{width,
-                                          height,
-                                          p.tileSize,
-                                          p.grid.x,
-                                          p.velocityScale,
-                                          p.maxSpeed,
-                                          p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u,
-                                          p.samples,
-                                          p.seed,
-                                          p.softZExtent,
-                                          0u,
-                                          0u};
+                         params, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
   frame.dispatchIndirect(kRangeCheck, rangeKernel_,
                          {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId},
-                         rangeParams, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
+                         params, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
   sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }
 

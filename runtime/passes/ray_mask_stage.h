@@ -20,17 +20,13 @@ namespace hmb::passes {
 
 struct RayMaskParameters {
   const vk::Buffer* tileMax = nullptr;  // the gather's tile-max (PostProcessStage::tileMax())
-  uint32_t tileSize = 40;               // its tile size
-  TileGrid grid;                        // its tile grid
-  float velocityScale = 1.0f;  // q (pixels per frame) -> per-exposure displacement
-  float maxSpeed = 1280.0f;    // displacements are clamped to this length (px)
-  float softZExtent = 0.03f;
+  // The frame's gather parameters (gatherParams()): the mask walks the tiles, velocities (scaled
+  // and clamped), depths and samples the gathers will.
+  gpu::GatherParams blur{};
   float edgeThreshold = 0.9f;
   // List only the mask pixels whose coverage composite samples (the gather's: its sample count
   // and seed) meet the background: the composite gives the others' reveal a weight of 0.
   bool listOnlyUncovered = false;
-  uint32_t samples = 15;
-  uint32_t seed = 0;
 };
 
 struct RayMaskCounts {

@@ -135,10 +135,24 @@ void writeCheckpoint(const std::filesystem::path& path, const nlohmann::json& id
 
 }  // namespace
 
+const settings::Table<ReferenceSettings, ReferenceSettings>& referenceSettingTable() {
+  using namespace settings;
+  using S = ReferenceSettings;
+  static const Table<S, S> table = {
+      number("spp", "reference", "samples (shutter times) per pixel", &S::samplesPerPixel, &S::samplesPerPixel,
+             Range<uint32_t>{1, kMaxSamplesPerPixel}),
+      number("seed", "reference", "seed of the shutter times' and pixel positions' jitter", &S::seed, &S::seed,
+             Range<uint32_t>{}),
+      flag("pixel-jitter", "reference", "a random point in the pixel per sample instead of its centre",
+           &S::pixelJitter, &S::pixelJitter),
+      path("checkpoint", "reference", "file to resume from and to save the sum to after every batch", &S::checkpoint,
+           &S::checkpoint),
+  };
+  return table;
+}
+
 void validateReferenceSettings(const ReferenceSettings& settings) {
-  if (settings.samplesPerPixel == 0 || settings.samplesPerPixel > kMaxSamplesPerPixel)
-    throw Error("--spp " + std::to_string(settings.samplesPerPixel) + " is out of range 1.." +
-                std::to_string(kMaxSamplesPerPixel));
+  settings::checkAll(referenceSettingTable(), settings, "reference settings");
   if (settings.timesPerBatch == 0 || settings.timesPerBatch > 4096)
     throw Error("reference batch of " + std::to_string(settings.timesPerBatch) + " times is out of range 1..4096");
   if (!settings.checkpoint.empty()) {

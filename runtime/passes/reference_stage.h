@@ -15,6 +15,7 @@
 #include <string>
 
 #include "runtime/passes/shading_kernel.h"
+#include "runtime/setting.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -36,6 +37,10 @@ struct ReferenceSettings {
   bool sampleStillPixelsOnce = true;  // with a still camera: pixels nothing moving crosses take one sample
   std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten per batch
 };
+
+// Every reference setting a user can choose, each described once (runtime/setting.h). None
+// derives from the scene: the choices are the settings themselves.
+const settings::Table<ReferenceSettings, ReferenceSettings>& referenceSettingTable();
 
 // Throws hmb::Error (one line) for settings that cannot render.
 void validateReferenceSettings(const ReferenceSettings& settings);

@@ -201,7 +201,7 @@ TEST(CliTest, ReferenceRenderAndMetricsAgainstIt) {
   expectOneLineError(hmblur("--quiet render --scene living-room --method sharp --width 41 --height 24 --reference " +
                             (dir / "reference.exr").string()),
                      "40x24");
-  expectOneLineError(hmblur("--quiet render --method reference --spp 0" + size), "--spp");
+  expectOneLineError(hmblur("--quiet render --method reference --spp 0" + size), "spp must be");
   expectOneLineError(hmblur("--quiet render --method reference --checkpoint /nonexistent-dir/c.bin" + size),
                      "does not exist");
 }
@@ -247,7 +247,7 @@ TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
     EXPECT_NE(std::find(names.begin(), names.end(), layer), names.end()) << layer;
   expectOneLineError(hmblur("--quiet render --method hybrid --composite magic --width 8 --height 8"), "magic");
   expectOneLineError(hmblur("--quiet render --method hybrid --edge-threshold 1.5 --width 8 --height 8"),
-                     "edge threshold");
+                     "edge-threshold must be");
   expectOneLineError(hmblur("--quiet render --method hybrid --max-recursion 0 --width 8 --height 8"), "recursion");
   expectOneLineError(hmblur("--quiet render --method hybrid --filter jimenez --width 8 --height 8"), "McGuire");
   expectOneLineError(hmblur("--quiet render --method hybrid --range centered --width 8 --height 8"), "adapted");

@@ -37,10 +37,11 @@ PostProcessSettings compositeSettings(uint32_t tileSize, uint32_t samples, uint3
   s.samples = samples;
   s.seed = seed;
   s.softZExtent = 0.05f;
-  s.maskBackgroundBoost = 3.0f;
-  s.maskForegroundDivide = 3.0f;
   return s;
 }
+
+// The paper's boosts inside the mask (the weights composite's).
+constexpr passes::MaskWeights kMaskWeights{3.0f, 3.0f};
 
 // The composite's inputs beside the layer: a mask, a background and object ids.
 struct CompositeCase {
@@ -91,6 +92,7 @@ std::vector<glm::vec4> runComposite(const CompositeCase& c, const std::vector<gl
   run.background = &c.background;
   run.objectId = &c.objectId;
   run.composite = composite;
+  run.maskWeights = kMaskWeights;
   return runGather(VulkanTest::context(), c.layer, tiles, run, s);
 }
 
@@ -103,8 +105,8 @@ size_t expectCompositeMatches(const CompositeCase& c, const PostProcessSettings&
   const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
   const std::vector<glm::vec4> device = runComposite(c, tiles, s, composite);
   const std::vector<glm::vec4> reference =
-      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, composite);
-  const std::vector<glm::vec4> plain = mblur::gather(c.layer, tiles, &c.mask, s);
+      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, composite, kMaskWeights);
+  const std::vector<glm::vec4> plain = mblur::gather(c.layer, tiles, &c.mask, s, kMaskWeights);
   EXPECT_TRUE(mblur::allFinite(device)) << what;
   size_t off = 0, changed = 0, maskPixels = 0;
   for (size_t i = 0; i < device.size(); ++i) {
@@ -204,7 +206,8 @@ TEST_F(HybridCompositeTest, CoverageByHand) {
   EXPECT_LT(mblur::maxAbsDifference(device[2], expected), 1e-6f)
       << device[2].x << " " << device[2].y << " " << device[2].z << " alpha " << alpha;
   const std::vector<glm::vec4> reference =
-      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, HybridComposite::Coverage);
+      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, HybridComposite::Coverage,
+                      kMaskWeights);
   EXPECT_LT(mblur::maxAbsDifference(reference[2], expected), 1e-6f);
 }
 
@@ -267,7 +270,7 @@ TEST_F(HybridCompositeTest, TheBackgroundGatherReadsTheRevealedLayerWhereTheMask
     if (i % 5 != 0) list.push_back(i);
   }
   const PostProcessSettings s = compositeSettings(8u, 15u, 0u);
-  const std::vector<glm::vec4> tiles(passes::tileGridFor(width, height, s.tileSize).count(), glm::vec4(0.0f));
+  const std::vector<glm::vec4> tiles(passes::tileGridFor(width, height, s.effectiveTileSize()).count(), glm::vec4(0.0f));
   GatherRun run;
   run.mask = &mask;
   run.list = &list;
@@ -291,7 +294,7 @@ TEST_F(HybridCompositeTest, PixelListFoldedIntoTwoRowsOfGroups) {
     if (i % 64 != 5) list.push_back(i);
   ASSERT_GT(list.size(), size_t(65535) * 64);
   const PostProcessSettings s = compositeSettings(40u, 15u, 0u);
-  const passes::TileGrid grid = passes::tileGridFor(width, height, s.tileSize);
+  const passes::TileGrid grid = passes::tileGridFor(width, height, s.effectiveTileSize());
   const std::vector<glm::vec4> tiles(grid.count(), glm::vec4(0.0f));
   GatherRun run;
   run.sentinel = glm::vec4(-1.0f);

@@ -26,10 +26,10 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 RayMaskParameters parametersWith(float edgeThreshold, float softZExtent = 0.03f, float maxSpeed = 40.0f,
                                  float velocityScale = 1.0f) {
   RayMaskParameters p;
-  p.tileSize = 13;  // the moving-tile list's tiles: odd, partial 8x8 blocks and partial border tiles
-  p.velocityScale = velocityScale;
-  p.maxSpeed = maxSpeed;
-  p.softZExtent = softZExtent;
+  p.blur.tileSize = 13;  // the moving-tile list's tiles: odd, partial 8x8 blocks and partial border tiles
+  p.blur.velocityScale = velocityScale;
+  p.blur.maxSpeed = maxSpeed;
+  p.blur.softZExtent = softZExtent;
   p.edgeThreshold = edgeThreshold;
   return p;
 }

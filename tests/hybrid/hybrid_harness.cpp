@@ -50,13 +50,17 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   // The mask passes start from the gather's tile-max, run here at the parameters' tile size.
   const passes::TileMaxPass tileMax(context);
   passes::RayMaskParameters withTiles = parameters;
-  withTiles.grid = passes::tileGridFor(layer.width, layer.height, parameters.tileSize);
-  const vk::Buffer tiles(context, uint64_t(withTiles.grid.count()) * sizeof(glm::vec4), vk::MemoryUse::Device,
-                         "test tile max");
+  const passes::TileGrid grid = passes::tileGridFor(layer.width, layer.height, parameters.blur.tileSize);
+  withTiles.blur.width = layer.width;
+  withTiles.blur.height = layer.height;
+  withTiles.blur.tilesX = grid.x;
+  withTiles.blur.tilesY = grid.y;
+  const vk::Buffer tiles(context, uint64_t(grid.count()) * sizeof(glm::vec4), vk::MemoryUse::Device, "test tile max");
   withTiles.tileMax = &tiles;
   vk::FrameRecorder frame(context);
   frame.begin();
-  tileMax.record(frame, velocity, tiles, layer.width, layer.height, parameters.tileSize, parameters.velocityScale);
+  tileMax.record(frame, velocity, tiles, layer.width, layer.height, parameters.blur.tileSize,
+                 parameters.blur.velocityScale);
   stage.record(frame, inputs, objectId, withTiles);
   frame.submitAndWait();
 
@@ -87,13 +91,14 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   const vk::Buffer output = filledBuffer(context, pixels, run.sentinel, "test output");
   const vk::Buffer mask = run.mask ? vk::uploadedBuffer(context, *run.mask, "test mask")
                                    : filledBuffer(context, pixels, HMB_MASK_NONE, "test mask");
+  const gpu::GatherParams params = passes::gatherParams(settings, layer.width, layer.height, run.maskWeights);
   vk::FrameRecorder frame(context);
   frame.begin();
   if (run.background) {
     if (!run.mask || !run.objectId || run.list) throw std::runtime_error("the composite needs mask and ids, no list");
     const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
     const passes::CompositePass pass(context);
-    pass.record(frame, raster, tiles, mask, background, output, settings, run.composite, layer.width, layer.height);
+    pass.record(frame, raster, tiles, mask, background, output, params, run.composite);
     frame.submitAndWait();
   } else if (run.list) {
     const passes::ImageLayer revealed = imageLayer(run.revealed ? *run.revealed : layer, nullptr, "test revealed");
@@ -101,7 +106,7 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     const vk::Buffer counters = vk::uploadedBuffer(
         context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(run.list->size()))}, "test list counters");
     const passes::BackgroundGatherPass pass(context);
-    pass.record(frame, raster, revealed, tiles, mask, list, counters, output, settings, layer.width, layer.height);
+    pass.record(frame, raster, revealed, tiles, mask, list, counters, output, params);
     frame.submitAndWait();
   } else {
     if (run.mask) throw std::runtime_error("the post-process gather takes no mask");

@@ -11,6 +11,7 @@
 
 #include "kernels/hybrid/hybrid_layout.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/passes/gather_pass.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
@@ -48,6 +49,7 @@ struct GatherRun {
   passes::HybridComposite composite = passes::HybridComposite::Coverage;
   const std::vector<uint32_t>* list = nullptr;
   const mblur::Layer* revealed = nullptr;
+  passes::MaskWeights maskWeights;  // the composite's and the background gather's
   glm::vec4 sentinel{0.0f};
 };
 std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer,

@@ -107,12 +107,12 @@ std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskPa
     for (uint32_t x = 0; x < layer.width; ++x) {
       const size_t index = size_t(y) * layer.width + x;
       float speed;
-      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.velocityScale, p.maxSpeed, speed);
+      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
       if (!(speed > 0.0f)) continue;
       const glm::ivec2 end = nearestPixel({float(x) + 0.5f + v.x, float(y) + 0.5f + v.y}, layer.width, layer.height);
       const size_t endIndex = indexOf(layer.width, end);
       out[index] = endsOnDeeperObject(layer.objectId[index], sanitizeDepth(layer.normalDepth[index].w),
-                                      layer.objectId[endIndex], layer.normalDepth[endIndex].w, p.softZExtent);
+                                      layer.objectId[endIndex], layer.normalDepth[endIndex].w, p.blur.softZExtent);
     }
   return out;
 }
@@ -137,7 +137,7 @@ std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const s
     for (uint32_t x = 0; x < width; ++x) {
       const size_t index = size_t(y) * width + x;
       float speed;
-      const glm::vec2 v = gatherVelocity(velocity[index], p.velocityScale, p.maxSpeed, speed);
+      const glm::vec2 v = gatherVelocity(velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
       if (!(speed > 0.0f)) continue;
       const auto steps = uint32_t(std::ceil(speed));
       const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
@@ -161,14 +161,14 @@ std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint3
       const size_t index = size_t(y) * layer.width + x;
       if (mask[index] == 0u) continue;
       float speed;
-      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.velocityScale, p.maxSpeed, speed);
-      const float jitter = mblur::unitFromHash(mblur::mblurHash(x, y, p.seed));
+      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
+      const float jitter = mblur::unitFromHash(mblur::mblurHash(x, y, p.blur.seed));
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
-      for (uint32_t i = 0; i < p.samples && !out[index]; ++i) {
+      for (uint32_t i = 0; i < p.blur.samples && !out[index]; ++i) {
         const size_t sample =
-            indexOf(layer.width, coverageSamplePixel(x, y, v, i, p.samples, jitter, layer.width, layer.height));
+            indexOf(layer.width, coverageSamplePixel(x, y, v, i, p.blur.samples, jitter, layer.width, layer.height));
         out[index] = behindShareOf(layer.objectId[sample], sanitizeDepth(layer.normalDepth[sample].w),
-                                   layer.objectId[index], centreDepth, p.softZExtent) > 0.0f;
+                                   layer.objectId[index], centreDepth, p.blur.softZExtent) > 0.0f;
       }
     }
   return out;
@@ -225,18 +225,18 @@ glm::vec4 mixColor(glm::vec4 a, glm::vec4 b, float t) { return a * (1.0f - t) + 
 // The weighted sum of composite.comp at a mask pixel with the weights form.
 glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, glm::vec4 dominant,
                            glm::vec4 centreColor, float centreDepth, float jitter,
-                           const passes::PostProcessSettings& settings) {
+                           const passes::PostProcessSettings& settings, passes::MaskWeights maskWeights) {
   const mblur::Layer& layer = in.layer;
   const size_t index = size_t(py) * layer.width + px;
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
-  const float maxSpeed = float(settings.tileSize);
+  const float maxSpeed = float(settings.effectiveTileSize());
   const bool adapted = settings.range == passes::GatherRange::Adapted;
   float centreSpeed;
   gatherVelocity(layer.velocity[index], velocityScale, maxSpeed, centreSpeed);
   const glm::vec4 revealed = sanitizeColor(in.background[index]);
   const uint32_t centreObject = in.objectId[index];
-  const float backgroundScale = settings.maskBackgroundBoost;
-  const float foregroundScale = 1.0f / settings.maskForegroundDivide;
+  const float backgroundScale = maskWeights.backgroundBoost;
+  const float foregroundScale = 1.0f / maskWeights.foregroundDivide;
   const float foregroundBoost = settings.effectiveForegroundBoost();
 
   float weightSum = 1.0f / std::max(centreSpeed, 0.5f);
@@ -272,12 +272,13 @@ glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, 
 std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
                                        const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,
                                        const std::vector<uint32_t>& objectId,
-                                       const passes::PostProcessSettings& settings, passes::HybridComposite composite) {
+                                       const passes::PostProcessSettings& settings, passes::HybridComposite composite,
+                                       passes::MaskWeights maskWeights) {
   // Outside the mask (and inside it where the neighbourhood is still) the kernel is the plain
   // gather with the mask flag on.
-  std::vector<glm::vec4> out = mblur::gather(layer, neighborMax, &mask, settings);
+  std::vector<glm::vec4> out = mblur::gather(layer, neighborMax, &mask, settings, maskWeights);
   const CompositeInputs in{layer, background, objectId, settings.softZExtent};
-  const uint32_t m = settings.tileSize;
+  const uint32_t m = settings.effectiveTileSize();
   const passes::TileGrid grid = passes::tileGridFor(layer.width, layer.height, m);
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
   const float coverageMaxSpeed = float(std::max(layer.width, layer.height));
@@ -293,7 +294,8 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vec
       out[index] = composite == passes::HybridComposite::Coverage
                        ? coverageComposite(in, px, py, centreColor, centreDepth, jitter, velocityScale,
                                            coverageMaxSpeed, settings.samples)
-                       : weightsComposite(in, px, py, dominant, centreColor, centreDepth, jitter, settings);
+                       : weightsComposite(in, px, py, dominant, centreColor, centreDepth, jitter, settings,
+                                          maskWeights);
     }
   return out;
 }

@@ -49,8 +49,8 @@ std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const s
                                  uint32_t width, uint32_t height, const passes::RayMaskParameters& parameters);
 
 // range_check.comp with HMB_RANGE_CHECK_LIST_UNCOVERED: true for the mask pixels whose coverage
-// composite samples (parameters.samples, jitter from parameters.seed, along the displacement
-// clamped to parameters.maxSpeed) meet another object deeper than the pixel.
+// composite samples (parameters.blur.samples, jitter from parameters.blur.seed, along the
+// displacement clamped to parameters.blur.maxSpeed) meet another object deeper than the pixel.
 std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint32_t>& mask,
                                  const passes::RayMaskParameters& parameters);
 
@@ -63,6 +63,7 @@ gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
 std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
                                        const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,
                                        const std::vector<uint32_t>& objectId,
-                                       const passes::PostProcessSettings& settings, passes::HybridComposite composite);
+                                       const passes::PostProcessSettings& settings, passes::HybridComposite composite,
+                                       passes::MaskWeights maskWeights);
 
 }  // namespace hmb::test::hybrid

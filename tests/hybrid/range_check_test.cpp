@@ -23,10 +23,10 @@ using passes::RayMaskParameters;
 
 RayMaskParameters parametersWith(float edgeThreshold, float maxSpeed = 40.0f, float velocityScale = 1.0f) {
   RayMaskParameters p;
-  p.tileSize = 13;  // the moving-tile list's tiles: odd, partial 8x8 blocks and partial border tiles
-  p.velocityScale = velocityScale;
-  p.maxSpeed = maxSpeed;
-  p.softZExtent = 0.03f;
+  p.blur.tileSize = 13;  // the moving-tile list's tiles: odd, partial 8x8 blocks and partial border tiles
+  p.blur.velocityScale = velocityScale;
+  p.blur.maxSpeed = maxSpeed;
+  p.blur.softZExtent = 0.03f;
   p.edgeThreshold = edgeThreshold;
   return p;
 }
@@ -141,8 +141,8 @@ TEST_F(HybridRangeCheckTest, OnlyPixelsWhoseCoverageMeetsTheBackgroundAreListed)
     const MaskLayer layer = randomMaskLayer(width, height, rng);
     RayMaskParameters p = parametersWith(0.5f);
     p.listOnlyUncovered = true;
-    p.samples = 3 + 4 * round;
-    p.seed = round;
+    p.blur.samples = 3 + 4 * round;
+    p.blur.seed = round;
     const RayMaskReadback device = runRayMask(context(), layer, p);
     EXPECT_EQ(device.mask, rangeCheck(layer.velocity, device.edges, width, height, p)) << round;
     const std::vector<bool> reveal = revealedPixels(layer, device.mask, p);

@@ -22,7 +22,7 @@ using passes::PostProcessSettings;
 PostProcessSettings jimenezSettings(uint32_t tileSize, uint32_t samples = 15) {
   PostProcessSettings s;
   s.filter = PostProcessFilter::Jimenez;
-  s.jimenezTileSize = tileSize;
+  s.tileSize = tileSize;
   s.samples = samples;
   s.seed = 3;
   s.softZExtent = 0.05f;

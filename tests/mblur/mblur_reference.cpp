@@ -109,8 +109,9 @@ std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes
 }
 
 std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& neighborMaxTiles,
-                              const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings) {
-  const uint32_t width = layer.width, height = layer.height, m = settings.tileSize;
+                              const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings,
+                              passes::MaskWeights maskWeights) {
+  const uint32_t width = layer.width, height = layer.height, m = settings.effectiveTileSize();
   const passes::TileGrid grid = passes::tileGridFor(width, height, m);
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
   const bool adapted = settings.range == passes::GatherRange::Adapted;
@@ -130,8 +131,8 @@ std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& 
       gatherVelocity(layer.velocity[index], velocityScale, maxSpeed, centreSpeed);
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
       const bool inMask = mask && (*mask)[index] != 0;
-      const float backgroundScale = inMask ? settings.maskBackgroundBoost : 1.0f;
-      const float foregroundScale = inMask ? 1.0f / settings.maskForegroundDivide : 1.0f;
+      const float backgroundScale = inMask ? maskWeights.backgroundBoost : 1.0f;
+      const float foregroundScale = inMask ? 1.0f / maskWeights.foregroundDivide : 1.0f;
 
       float weightSum = 1.0f / std::max(centreSpeed, 0.5f);
       glm::vec4 sum = centreColor * weightSum;
@@ -182,7 +183,7 @@ float jimenezWeight(float centreDepth, float sampleDepth, float offset, float ce
 
 std::vector<glm::vec4> gatherJimenez(const Layer& layer, const std::vector<glm::vec4>& neighborMaxTiles,
                                      const passes::PostProcessSettings& settings) {
-  const uint32_t width = layer.width, height = layer.height, tileSize = settings.jimenezTileSize;
+  const uint32_t width = layer.width, height = layer.height, tileSize = settings.effectiveTileSize();
   const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
   const float velocityScale = passes::gatherVelocityScale(passes::GatherRange::Centered, settings.exposure, settings.fps);
   const float m = float(tileSize);

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "kernels/mblur/mblur_hash.h"
+#include "runtime/passes/gather_pass.h"
 #include "runtime/passes/post_process_settings.h"
 
 namespace hmb::test::mblur {
@@ -56,7 +57,8 @@ std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes
 // The McGuire gather (kernels/mblur/gather_samples.glsl, the McGuire fields of settings); mask:
 // width * height or nullptr (the weights composite's boosts inside it, composite.comp).
 std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& neighborMax,
-                              const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings);
+                              const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings,
+                              passes::MaskWeights maskWeights = {});
 // gather_jimenez.comp
 std::vector<glm::vec4> gatherJimenez(const Layer& layer, const std::vector<glm::vec4>& neighborMax,
                                      const passes::PostProcessSettings& settings);

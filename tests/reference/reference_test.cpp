@@ -247,24 +247,25 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
   };
   for (const Claim claim : {Claim{"living-room", 1.5}, Claim{"temple", 1.5}, Claim{"bistro", 0.3}}) {
     const JudgedScene& j = judged(claim.scene);
-    const auto error = [&](const char* method, const char* composite, const char* stop = nullptr,
+    const auto error = [&](const char* method, std::optional<passes::HybridComposite> composite,
+                           std::optional<passes::RevealStop> stop = std::nullopt,
                            std::optional<float> foregroundBoost = std::nullopt) {
       RenderSettings settings;
       settings.method = parseMethod(method);
       settings.width = kClaimWidth;
       settings.height = kClaimHeight;
-      if (composite) settings.hybrid.composite = composite;
-      if (stop) settings.hybrid.stop = stop;
+      settings.hybrid.composite = composite;
+      settings.hybrid.stop = stop;
       settings.postprocess.foregroundBoost = foregroundBoost;
       static Renderer renderer(VulkanTest::context());
       return metrics::compareImages(j.judge, displayOf(renderer.render(j.scene, settings)), &j.region);
     };
-    const metrics::Comparison post = error("postprocess", nullptr);
-    const metrics::Comparison hybrid = error("hybrid", nullptr);
-    const metrics::Comparison weights = error("hybrid", "weights");
+    const metrics::Comparison post = error("postprocess", std::nullopt);
+    const metrics::Comparison hybrid = error("hybrid", std::nullopt);
+    const metrics::Comparison weights = error("hybrid", passes::HybridComposite::Weights);
     // Printed only (README): the paper's reveal stop, and the paper's foreground boost.
-    const metrics::Comparison luminance = error("hybrid", nullptr, "luminance");
-    const metrics::Comparison paperBoost = error("hybrid", nullptr, nullptr, 30.0f);
+    const metrics::Comparison luminance = error("hybrid", std::nullopt, passes::RevealStop::Luminance);
+    const metrics::Comparison paperBoost = error("hybrid", std::nullopt, std::nullopt, 30.0f);
     ASSERT_TRUE(post.region && hybrid.region && weights.region && luminance.region && paperBoost.region)
         << claim.scene;
     ASSERT_TRUE(post.frame.ssim && hybrid.frame.ssim && post.region->ssim && hybrid.region->ssim) << claim.scene;

@@ -246,7 +246,7 @@ uint32_t tileSizeAt(uint32_t height) {
   scene::deriveDefaults(empty);
   RenderSettings settings;
   settings.height = height;
-  return postProcessSettingsFor(empty, settings).tileSize;
+  return postProcessSettingsFor(empty, settings).effectiveTileSize();
 }
 
 // Linear motion through `atClose` at the shutter close, covering `perExposure` over the exposure.

@@ -90,7 +90,7 @@ TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
       EXPECT_EQ(skipped.hybrid->maskPixels, 0u);
       EXPECT_EQ(everything.hybrid->maskPixels, 0u);
       EXPECT_EQ(everything.hybrid->revealRays, 0u);
-      EXPECT_EQ(skipped.hybrid->settings.foregroundBoost, everything.hybrid->settings.foregroundBoost);
+      EXPECT_EQ(skipped.hybrid->settings.blur, everything.hybrid->settings.blur);
     }
     EXPECT_EQ(skipped.postprocess->effectiveForegroundBoost(), everything.postprocess->effectiveForegroundBoost());
   }

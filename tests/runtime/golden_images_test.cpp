@@ -36,13 +36,13 @@ const std::vector<GoldenCase>& goldenCases() {
   static const std::vector<GoldenCase> cases = {
       {"sharp", "sharp", [](RenderSettings&) {}},
       {"postprocess", "postprocess", [](RenderSettings&) {}},
-      {"postprocess-centered", "postprocess", [](RenderSettings& s) { s.postprocess.range = "centered"; }},
-      {"postprocess-jimenez", "postprocess", [](RenderSettings& s) { s.postprocess.filter = "jimenez"; }},
+      {"postprocess-centered", "postprocess", [](RenderSettings& s) { s.postprocess.range = passes::GatherRange::Centered; }},
+      {"postprocess-jimenez", "postprocess", [](RenderSettings& s) { s.postprocess.filter = passes::PostProcessFilter::Jimenez; }},
       {"hybrid", "hybrid", [](RenderSettings&) {}},
       {"hybrid-luminance-weights", "hybrid",
        [](RenderSettings& s) {
-         s.hybrid.stop = "luminance";
-         s.hybrid.composite = "weights";
+         s.hybrid.stop = passes::RevealStop::Luminance;
+         s.hybrid.composite = passes::HybridComposite::Weights;
        }},
       {"reference", "reference", [](RenderSettings& s) { s.reference.samplesPerPixel = 8; }},
   };
