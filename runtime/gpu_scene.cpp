@@ -126,10 +126,10 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
 }
 
-void GpuScene::appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const {
+void GpuScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
   static_assert(sizeof(gpu::SceneTable) == 5 * sizeof(uint64_t));
   const vk::Buffer* members[] = {&vertices_, &instances_, &materials_, &texels_, &cameraBuffer_};  // SceneTable's order
-  shading_.append(bindings, byAddress, members);
+  shading_.bind(bindings, firstBinding, byAddress, members);
 }
 
 void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {

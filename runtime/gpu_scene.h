@@ -55,10 +55,10 @@ class GpuScene {
   const vk::Buffer& materials() const { return materials_; }
   const vk::Buffer& texels() const { return texels_; }
   const vk::Buffer& cameraBuffer() const { return cameraBuffer_; }
-  // Appends the scene as a shading kernel binds it (kernels/shared/scene_bindings.glsl):
-  // vertices, instances, materials, texels and camera, or the table of their addresses for a
-  // kernel that binds by address.
-  void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
+  // Binds the scene as a shading kernel declares it (kernels/shared/scene_bindings.glsl) from
+  // firstBinding on: vertices, instances, materials, texels and camera, or the table of their
+  // addresses for a kernel that binds by address.
+  void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
 
  private:
   uint32_t triangleCount_ = 0;

@@ -102,7 +102,10 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   if (roots.empty()) roots.emplace_back(0u, 0u);  // a scene without meshes: one empty tree
   const uint32_t count = triangleCount_;
   meshBvh_.build(frame, triangleBoxes, count, roots, [&](vk::FrameRecorder& f) {
-    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {&positions_, &triangles_, &triangleBoxes}, count,
+    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {{HMB_TRIANGLE_BOUNDS_BINDING_POSITIONS, &positions_},
+                {HMB_TRIANGLE_BOUNDS_BINDING_TRIANGLES, &triangles_},
+                {HMB_TRIANGLE_BOUNDS_BINDING_BOXES, &triangleBoxes}},
+               count,
                vk::foldedGroups(vk::groupsFor(count, HMB_BVH_BUILD_GROUP)));
   });
   triangleBoxes = {};
@@ -136,7 +139,12 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   const glm::uvec2 root(0u, instanceCount_);
   instanceBvh_.build(frame, instanceBoxes_, instanceCount_, std::span(&root, 1), [&](vk::FrameRecorder& f) {
     f.dispatch(kMotionBounds, motionBoundsKernel_,
-               {&meshBvh_.nodes(), &instances_, &transforms_, &instanceBoxes_, &meshBvh_.frames()}, params,
+               {{HMB_MOTION_BOUNDS_BINDING_MESH_NODES, &meshBvh_.nodes()},
+                {HMB_MOTION_BOUNDS_BINDING_INSTANCES, &instances_},
+                {HMB_MOTION_BOUNDS_BINDING_TRANSFORMS, &transforms_},
+                {HMB_MOTION_BOUNDS_BINDING_BOXES, &instanceBoxes_},
+                {HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES, &meshBvh_.frames()}},
+               params,
                vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
   });
   builtInstances_ = std::move(instances);
@@ -145,14 +153,14 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
   group_.forgetTable();  // the instances, their transforms and the top level are new
 }
 
-void TraceScene::appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const {
+void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
   static_assert(sizeof(gpu::TraceSceneTable) == HMB_TRACE_SCENE_BUFFERS * sizeof(uint64_t));
   // The order of kernels/trace/trace_scene_bindings.glsl and of gpu::TraceSceneTable.
   const vk::Buffer* members[] = {&instanceBvh_.nodes(), &instanceBvh_.links(), &instanceBvh_.primitives(),
                                  &instances_,           &transforms_,          &meshBvh_.nodes(),
                                  &meshBvh_.links(),     &meshBvh_.primitives(), &triangles_,
                                  &positions_,           &instanceBvh_.frames(), &meshBvh_.frames()};
-  group_.append(bindings, byAddress, members);
+  group_.bind(bindings, firstBinding, byAddress, members);
 }
 
 bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene) {

@@ -66,9 +66,10 @@ class TraceScene {
   const vk::Buffer& instances() const { return instances_; }
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
-  // Appends the trace scene as a tracing kernel binds it (kernels/trace/trace_scene_bindings.glsl):
-  // its 12 buffers, or the table of their addresses for a kernel that binds by address.
-  void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
+  // Binds the trace scene as a tracing kernel declares it (kernels/trace/trace_scene_bindings.glsl)
+  // from firstBinding on: its 12 buffers, or the table of their addresses for a kernel that binds
+  // by address.
+  void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
 
  private:
   const vk::Context& context_;

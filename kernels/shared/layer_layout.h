@@ -28,11 +28,8 @@ HMB_GPU_END
 HMB_CHECK_SIZE(LayerTable, 32)
 #endif
 
-// A layer takes 4 bindings, or one table in HMB_BIND_BY_ADDRESS builds (shared/layer_bindings.glsl).
-#ifdef HMB_BIND_BY_ADDRESS
-#define HMB_LAYER_BINDINGS 1
-#else
+// A layer takes 4 binding numbers (shared/layer_bindings.glsl); HMB_BIND_BY_ADDRESS builds bind
+// one table at the first and leave the others unused, keeping the numbers after it.
 #define HMB_LAYER_BINDINGS 4
-#endif
 
 #endif

@@ -106,12 +106,9 @@ HMB_GPU_END
 HMB_CHECK_SIZE(SceneTable, 40)
 #endif
 
-// The scene takes 5 bindings, or one table in HMB_BIND_BY_ADDRESS builds.
-#ifdef HMB_BIND_BY_ADDRESS
-#define HMB_SCENE_BINDINGS 1
-#else
+// The scene takes 5 binding numbers (shared/scene_bindings.glsl); HMB_BIND_BY_ADDRESS builds
+// bind one table at the first and leave the others unused, keeping the numbers after it.
 #define HMB_SCENE_BINDINGS 5
-#endif
 HMB_CHECK_SIZE(GpuVertex, 48)
 HMB_CHECK_SIZE(GpuTriangle, 16)
 HMB_CHECK_SIZE(GpuInstanceVertex, 8)

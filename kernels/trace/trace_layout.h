@@ -11,14 +11,11 @@
 
 #define HMB_TRACE_GROUP 64
 
-// The trace scene takes 12 bindings, or one table of addresses in HMB_BIND_BY_ADDRESS builds
-// (trace_scene_bindings.glsl); a kernel that traces puts it after its own bindings.
+// The trace scene takes 12 binding numbers (trace_scene_bindings.glsl); a kernel that traces
+// puts it after its own bindings. HMB_BIND_BY_ADDRESS builds bind one table of addresses at the
+// first and leave the others unused, so both builds keep the same numbers for the host.
 #define HMB_TRACE_SCENE_BUFFERS 12
-#ifdef HMB_BIND_BY_ADDRESS
-#define HMB_TRACE_SCENE_BINDINGS 1
-#else
 #define HMB_TRACE_SCENE_BINDINGS HMB_TRACE_SCENE_BUFFERS
-#endif
 
 // trace_rays
 #define HMB_TRACE_BINDING_RAYS 0  // TraceRay[]

@@ -18,10 +18,14 @@ void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& ra
                                   const vk::Buffer& counters, const vk::Buffer& output,
                                   const gpu::GatherParams& blur) const {
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
-  std::vector<const vk::Buffer*> bindings = {&neighborMax, &mask, &list, &counters, &output};
-  raster.appendBindings(bindings, kernel_.bindsByAddress());
-  revealed.appendBindings(bindings, kernel_.bindsByAddress());
-  frame.dispatchIndirect(kName, kernel_, bindings, std::as_bytes(std::span(&blur, 1)), counters,
+  vk::Bindings bindings = {{HMB_BACKGROUND_GATHER_BINDING_NEIGHBOR_MAX, &neighborMax},
+                           {HMB_BACKGROUND_GATHER_BINDING_MASK, &mask},
+                           {HMB_BACKGROUND_GATHER_BINDING_LIST, &list},
+                           {HMB_BACKGROUND_GATHER_BINDING_COUNTERS, &counters},
+                           {HMB_BACKGROUND_GATHER_BINDING_OUTPUT, &output}};
+  raster.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_RASTER, kernel_.bindsByAddress());
+  revealed.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_REVEALED, kernel_.bindsByAddress());
+  frame.dispatchIndirect(kName, kernel_, bindings, blur, counters,
                          offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 

@@ -86,8 +86,14 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   counters.dispatch[1] = glm::uvec4(0u, 0u, 1u, 0u);
   tasks_.write(std::as_bytes(std::span(&counters, 1)));
 
-  const std::initializer_list<const vk::Buffer*> buffers = {&boxes,  &rootBuffer_, &primitives_,  &nodes_,
-                                                            &links_, &tasks_,      &packedNodes_, &frames_};
+  const vk::Bindings buffers = {{HMB_BUILD_BINDING_BOXES, &boxes},
+                                {HMB_BUILD_BINDING_ROOTS, &rootBuffer_},
+                                {HMB_BUILD_BINDING_PRIMITIVES, &primitives_},
+                                {HMB_BUILD_BINDING_NODES, &nodes_},
+                                {HMB_BUILD_BINDING_LINKS, &links_},
+                                {HMB_BUILD_BINDING_TASKS, &tasks_},
+                                {HMB_BUILD_BINDING_PACKED_NODES, &packedNodes_},
+                                {HMB_BUILD_BINDING_FRAMES, &frames_}};
   gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, 0, 0, 0};
   stats_ = {};
   uint32_t largestTree = 0;

@@ -27,9 +27,12 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
   if (composite == HybridComposite::Weights && !weights_)
     weights_ = std::make_unique<vk::ComputeKernel>(context_, "hybrid/composite", sizeof(gpu::GatherParams), kWeightsForm);
   const vk::ComputeKernel& kernel = composite == HybridComposite::Coverage ? coverage_ : *weights_;
-  std::vector<const vk::Buffer*> bindings = {&neighborMax, &mask, &background, &output};
-  raster.appendBindings(bindings, kernel.bindsByAddress());
-  frame.dispatch(kName, kernel, bindings, std::as_bytes(std::span(&blur, 1)),
+  vk::Bindings bindings = {{HMB_COMPOSITE_BINDING_NEIGHBOR_MAX, &neighborMax},
+                           {HMB_COMPOSITE_BINDING_MASK, &mask},
+                           {HMB_COMPOSITE_BINDING_BACKGROUND, &background},
+                           {HMB_COMPOSITE_BINDING_OUTPUT, &output}};
+  raster.bind(bindings, HMB_COMPOSITE_BINDING_RASTER, kernel.bindsByAddress());
+  frame.dispatch(kName, kernel, bindings, blur,
                  {vk::groupsFor(blur.width, HMB_GATHER_GROUP_X), vk::groupsFor(blur.height, HMB_GATHER_GROUP_Y), 1});
 }
 

@@ -11,7 +11,8 @@ EncodeDisplayPass::EncodeDisplayPass(const vk::Context& context)
 void EncodeDisplayPass::record(vk::FrameRecorder& frame, const vk::Buffer& linear, const vk::Buffer& rgba8,
                                uint32_t width, uint32_t height) const {
   const gpu::EncodeDisplayParams params{width, height, 0, 0};
-  frame.dispatch(kName, kernel_, {&linear, &rgba8}, params,
+  frame.dispatch(kName, kernel_, {{HMB_ENCODE_DISPLAY_BINDING_LINEAR, &linear}, {HMB_ENCODE_DISPLAY_BINDING_RGBA8, &rgba8}},
+                 params,
                  {vk::groupsFor(width, HMB_ENCODE_DISPLAY_GROUP_X), vk::groupsFor(height, HMB_ENCODE_DISPLAY_GROUP_Y),
                   1});
 }

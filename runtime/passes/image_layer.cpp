@@ -15,10 +15,10 @@ ImageLayer::ImageLayer(vk::Buffer color, vk::Buffer normalDepth, vk::Buffer velo
       velocity_(std::move(velocity)),
       objectId_(std::move(objectId)) {}
 
-void ImageLayer::appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const {
+void ImageLayer::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
   static_assert(sizeof(gpu::LayerTable) == 4 * sizeof(uint64_t));
   const vk::Buffer* members[] = {&color_, &normalDepth_, &velocity_, &objectId_};  // gpu::LayerTable's order
-  group_.append(bindings, byAddress, members);
+  group_.bind(bindings, firstBinding, byAddress, members);
 }
 
 ImageLayer ImageLayer::allocate(const vk::Context& context, uint64_t pixels, const std::string& name) {

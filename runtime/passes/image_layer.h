@@ -24,9 +24,10 @@ class ImageLayer {
   const vk::Buffer& normalDepth() const { return normalDepth_; }  // vec4 world normal, w camera-space depth
   const vk::Buffer& velocity() const { return velocity_; }        // vec2 pixels per frame, y down
   const vk::Buffer& objectId() const { return objectId_; }        // uint, 0 = background
-  // Appends the layer as a kernel binds it (kernels/shared/layer_bindings.glsl): its four
-  // buffers, or the table of their addresses for a kernel that binds by address.
-  void appendBindings(std::vector<const vk::Buffer*>& bindings, bool byAddress) const;
+  // Binds the layer as a kernel declares it (kernels/shared/layer_bindings.glsl) from
+  // firstBinding on: its four buffers, or the table of their addresses for a kernel that binds
+  // by address.
+  void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
   uint64_t bytes() const { return color_.size() + normalDepth_.size() + velocity_.size() + objectId_.size(); }
 
  private:

@@ -11,7 +11,8 @@ NeighborMaxPass::NeighborMaxPass(const vk::Context& context)
 void NeighborMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& tileMax, const vk::Buffer& neighborMax,
                              TileGrid grid, uint32_t neighborhood, std::string_view passName) const {
   const gpu::NeighborMaxParams params{grid.x, grid.y, neighborhood, 0};
-  frame.dispatch(passName, kernel_, {&tileMax, &neighborMax}, params,
+  frame.dispatch(passName, kernel_, {{HMB_NEIGHBOR_MAX_BINDING_TILE_MAX, &tileMax}, {HMB_NEIGHBOR_MAX_BINDING_NEIGHBOR_MAX, &neighborMax}},
+                 params,
                  {vk::groupsFor(grid.x, HMB_NEIGHBOR_MAX_GROUP_X), vk::groupsFor(grid.y, HMB_NEIGHBOR_MAX_GROUP_Y), 1});
 }
 

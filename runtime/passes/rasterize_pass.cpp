@@ -114,27 +114,42 @@ void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs,
 
   frame.fill(kClearVisibility, visibility, HMB_VIS_EMPTY);
   frame.fill(kClearCounters, counters_, 0u);
-  const std::initializer_list<const vk::Buffer*> setupBindings = {
-      inputs.triangles, inputs.instances, inputs.clipCurrent, &setup_, &pairs_, &counters_, &large_, &clipList_};
+  const vk::Bindings setupBindings = {{HMB_SETUP_BINDING_TRIANGLES, inputs.triangles},
+                                      {HMB_SETUP_BINDING_INSTANCES, inputs.instances},
+                                      {HMB_SETUP_BINDING_CLIP_CURRENT, inputs.clipCurrent},
+                                      {HMB_SETUP_BINDING_SETUP, &setup_},
+                                      {HMB_SETUP_BINDING_PAIRS, &pairs_},
+                                      {HMB_SETUP_BINDING_COUNTERS, &counters_},
+                                      {HMB_SETUP_BINDING_LARGE, &large_},
+                                      {HMB_SETUP_BINDING_CLIP_LIST, &clipList_}};
+  const vk::Bindings sizeBindings = {{HMB_SIZE_DISPATCH_BINDING_COUNTERS, &counters_}};
+  const vk::Bindings rasterizeBindings = {{HMB_RASTERIZE_BINDING_SETUP, &setup_},
+                                          {HMB_RASTERIZE_BINDING_PAIRS, &pairs_},
+                                          {HMB_RASTERIZE_BINDING_COUNTERS, &counters_},
+                                          {HMB_RASTERIZE_BINDING_VISIBILITY, &visibility}};
   frame.dispatch(kSetup, setupKernel_, setupBindings, params,
                  vk::foldedGroups(vk::groupsFor(inputs.triangleCount, HMB_RASTER_GROUP)));
   params.pass = 0;
-  frame.dispatch(kSizeClipDispatch, sizeDispatchKernel_, {&counters_}, params, {1, 1, 1});
+  frame.dispatch(kSizeClipDispatch, sizeDispatchKernel_, sizeBindings, params, {1, 1, 1});
   frame.dispatchIndirect(kClip, clipKernel_, setupBindings, params, counters_, HMB_RASTER_COUNTERS_CLIP_OFFSET);
   params.pass = 1;
-  frame.dispatch(kSizeDispatch, sizeDispatchKernel_, {&counters_}, params, {1, 1, 1});
-  frame.dispatchIndirect(kBinLarge, binLargeKernel_, {&setup_, &pairs_, &counters_, &large_}, params, counters_,
-                         HMB_RASTER_COUNTERS_BIN_LARGE_OFFSET);
+  frame.dispatch(kSizeDispatch, sizeDispatchKernel_, sizeBindings, params, {1, 1, 1});
+  frame.dispatchIndirect(kBinLarge, binLargeKernel_,
+                         {{HMB_BIN_LARGE_BINDING_SETUP, &setup_},
+                          {HMB_BIN_LARGE_BINDING_PAIRS, &pairs_},
+                          {HMB_BIN_LARGE_BINDING_COUNTERS, &counters_},
+                          {HMB_BIN_LARGE_BINDING_LARGE, &large_}},
+                         params, counters_, HMB_RASTER_COUNTERS_BIN_LARGE_OFFSET);
   if (scheme_ == VisibilityScheme::Int64Atomics) {
-    frame.dispatchIndirect(kRasterize, rasterizeKernel_, {&setup_, &pairs_, &counters_, &visibility}, params,
-                           counters_, HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+    frame.dispatchIndirect(kRasterize, rasterizeKernel_, rasterizeBindings, params, counters_,
+                           HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
   } else {
     params.pass = 0;
-    frame.dispatchIndirect(kRasterizeDepth32, rasterizeKernel_, {&setup_, &pairs_, &counters_, &visibility}, params,
-                           counters_, HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+    frame.dispatchIndirect(kRasterizeDepth32, rasterizeKernel_, rasterizeBindings, params, counters_,
+                           HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
     params.pass = 1;
-    frame.dispatchIndirect(kRasterizeIds32, rasterizeKernel_, {&setup_, &pairs_, &counters_, &visibility}, params,
-                           counters_, HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+    frame.dispatchIndirect(kRasterizeIds32, rasterizeKernel_, rasterizeBindings, params, counters_,
+                           HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
   }
 }
 

@@ -57,25 +57,46 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   frame.fill(kClear, edges_, 0u);
   frame.fill(kClear, mask_, 0u);
   const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
-  frame.dispatch(kMovingTiles, tilesKernel_, {p.tileMax, &counters_, &tiles_}, tileParams,
+  frame.dispatch(kMovingTiles, tilesKernel_,
+                 {{HMB_MOVING_TILES_BINDING_TILE_MAX, p.tileMax},
+                  {HMB_MOVING_TILES_BINDING_COUNTERS, &counters_},
+                  {HMB_MOVING_TILES_BINDING_LIST, &tiles_}},
+                 tileParams,
                  vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
   // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
   const auto sizeDispatch = [&](uint32_t list, uint32_t blocksPerTile) {
-    frame.dispatch(kSizeDispatch, sizeKernel_, {&counters_}, gpu::SizeListParams{list, blocksPerTile, 0u, 0u},
-                   {1, 1, 1});
+    frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
+                   gpu::SizeListParams{list, blocksPerTile, 0u, 0u}, {1, 1, 1});
   };
   const uint32_t blocksPerSide = vk::groupsFor(blur.tileSize, HMB_MASK_TILE_GROUP_X);
   sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide);
   const gpu::RayMaskParams params{blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u,
                                   0u};
   frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
-                         {layer.normalDepth, layer.velocity, &objectId, &tiles_, &counters_, &candidates_}, params,
+                         {{HMB_EDGE_CANDIDATES_BINDING_NORMAL_DEPTH, layer.normalDepth},
+                          {HMB_EDGE_CANDIDATES_BINDING_VELOCITY, layer.velocity},
+                          {HMB_EDGE_CANDIDATES_BINDING_OBJECT_ID, &objectId},
+                          {HMB_EDGE_CANDIDATES_BINDING_TILES, &tiles_},
+                          {HMB_EDGE_CANDIDATES_BINDING_COUNTERS, &counters_},
+                          {HMB_EDGE_CANDIDATES_BINDING_LIST, &candidates_}},
+                         params,
                          counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
   sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
-  frame.dispatchIndirect(kEdges, edgeKernel_, {layer.normalDepth, &counters_, &candidates_, &edges_},
+  frame.dispatchIndirect(kEdges, edgeKernel_,
+                         {{HMB_EDGE_MASK_BINDING_NORMAL_DEPTH, layer.normalDepth},
+                          {HMB_EDGE_MASK_BINDING_COUNTERS, &counters_},
+                          {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
+                          {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
                          params, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
   frame.dispatchIndirect(kRangeCheck, rangeKernel_,
-                         {layer.velocity, &edges_, &tiles_, &mask_, &counters_, &list_, layer.normalDepth, &objectId},
+                         {{HMB_RANGE_CHECK_BINDING_VELOCITY, layer.velocity},
+                          {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},
+                          {HMB_RANGE_CHECK_BINDING_TILES, &tiles_},
+                          {HMB_RANGE_CHECK_BINDING_MASK, &mask_},
+                          {HMB_RANGE_CHECK_BINDING_COUNTERS, &counters_},
+                          {HMB_RANGE_CHECK_BINDING_LIST, &list_},
+                          {HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH, layer.normalDepth},
+                          {HMB_RANGE_CHECK_BINDING_OBJECT_ID, &objectId}},
                          params, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
   sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }

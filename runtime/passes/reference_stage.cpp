@@ -221,7 +221,11 @@ vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scen
     const vk::Buffer boxBuffer = vk::uploadedBuffer(context_, boxes, "moving instance boxes");
     const gpu::MovingPixelsParams params{width, height, static_cast<uint32_t>(boxes.size() / 2), 0u, tMin, tMax, 0u, 0u};
     frame.begin();
-    frame.dispatch(kMovingPixels, findMovingPixels_, {&cameraBuffer, &boxBuffer, &counter, &list}, params,
+    frame.dispatch(kMovingPixels, findMovingPixels_, {{HMB_MOVING_PIXELS_BINDING_CAMERAS, &cameraBuffer},
+                    {HMB_MOVING_PIXELS_BINDING_BOXES, &boxBuffer},
+                    {HMB_MOVING_PIXELS_BINDING_COUNTER, &counter},
+                    {HMB_MOVING_PIXELS_BINDING_LIST, &list}},
+                   params,
                    {vk::groupsFor(width, HMB_MOVING_PIXELS_GROUP_X), vk::groupsFor(height, HMB_MOVING_PIXELS_GROUP_Y), 1});
     vk::appendTimings(timings, frame.submitAndWait());
   }
@@ -309,10 +313,12 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
         frame.begin();
         if (groups.x > 0) {
           const vk::ComputeKernel& kernel = accumulate_.forScene(gpuScene);
-          std::vector<const vk::Buffer*> bindings = {&cameraBuffer, &sum, &pixelList};
-          ts.appendBindings(bindings, kernel.bindsByAddress());
-          gpuScene.appendBindings(bindings, kernel.bindsByAddress());
-          frame.dispatch(kAccumulate, kernel, bindings, std::as_bytes(std::span(&params, 1)), groups);
+          vk::Bindings bindings = {{HMB_REFERENCE_BINDING_CAMERAS, &cameraBuffer},
+                                   {HMB_REFERENCE_BINDING_SUM, &sum},
+                                   {HMB_REFERENCE_BINDING_PIXELS, &pixelList}};
+          ts.bind(bindings, HMB_REFERENCE_BINDING_TRACE_SCENE, kernel.bindsByAddress());
+          gpuScene.bind(bindings, HMB_REFERENCE_BINDING_SCENE, kernel.bindsByAddress());
+          frame.dispatch(kAccumulate, kernel, bindings, params, groups);
         }
         vk::appendTimings(total, frame.submitAndWait());
         ++progress_.samplesDone;
@@ -325,7 +331,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
 
   const gpu::AverageParams params{static_cast<uint32_t>(pixels), 0u, 0u, 0u};
   frame.begin();
-  frame.dispatch(kAverage, average_, {&sum, &color}, params,
+  frame.dispatch(kAverage, average_, {{HMB_AVERAGE_BINDING_SUM, &sum}, {HMB_AVERAGE_BINDING_COLOR, &color}}, params,
                  vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_REFERENCE_AVERAGE_GROUP)));
   vk::appendTimings(total, frame.submitAndWait());
   return total;

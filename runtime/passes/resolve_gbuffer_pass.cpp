@@ -20,11 +20,14 @@ void ResolveGBufferPass::record(vk::FrameRecorder& frame, const GpuScene& scene,
   // Empty pixels lie at the far plane, so depth comparisons treat them as the farthest surface.
   const gpu::ResolveParams params{width, height, scene.camera().zfar, 0};
   const vk::ComputeKernel& kernel = kernel_.forScene(scene);
-  std::vector<const vk::Buffer*> bindings = {&visibility, &scene.triangles(), &clipCurrent, &clipPrevious,
-                                             &vertexShading};
-  scene.appendBindings(bindings, kernel.bindsByAddress());
-  target.appendBindings(bindings, kernel.bindsByAddress());
-  frame.dispatch(kName, kernel, bindings, std::as_bytes(std::span(&params, 1)),
+  vk::Bindings bindings = {{HMB_RESOLVE_BINDING_VISIBILITY, &visibility},
+                           {HMB_RESOLVE_BINDING_TRIANGLES, &scene.triangles()},
+                           {HMB_RESOLVE_BINDING_CLIP_CURRENT, &clipCurrent},
+                           {HMB_RESOLVE_BINDING_CLIP_PREVIOUS, &clipPrevious},
+                           {HMB_RESOLVE_BINDING_SHADING, &vertexShading}};
+  scene.bind(bindings, HMB_RESOLVE_BINDING_SCENE, kernel.bindsByAddress());
+  target.bind(bindings, HMB_RESOLVE_BINDING_GBUFFER, kernel.bindsByAddress());
+  frame.dispatch(kName, kernel, bindings, params,
                  {vk::groupsFor(width, HMB_RESOLVE_GROUP_X), vk::groupsFor(height, HMB_RESOLVE_GROUP_Y), 1});
 }
 

@@ -38,11 +38,14 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  0u,
                                  0u};
   const vk::ComputeKernel& kernel = kernel_.forScene(gpuScene);
-  std::vector<const vk::Buffer*> bindings = {&cameraRays, &list, &rasterObjectId, &counters};
-  ts.appendBindings(bindings, kernel.bindsByAddress());
-  gpuScene.appendBindings(bindings, kernel.bindsByAddress());
-  output.appendBindings(bindings, kernel.bindsByAddress());
-  frame.dispatchIndirect(kName, kernel, bindings, std::as_bytes(std::span(&params, 1)), counters,
+  vk::Bindings bindings = {{HMB_REVEAL_BINDING_CAMERA_RAYS, &cameraRays},
+                           {HMB_REVEAL_BINDING_LIST, &list},
+                           {HMB_REVEAL_BINDING_RASTER_ID, &rasterObjectId},
+                           {HMB_REVEAL_BINDING_COUNTERS, &counters}};
+  ts.bind(bindings, HMB_REVEAL_BINDING_TRACE_SCENE, kernel.bindsByAddress());
+  gpuScene.bind(bindings, HMB_REVEAL_BINDING_SCENE, kernel.bindsByAddress());
+  output.bind(bindings, HMB_REVEAL_BINDING_REVEALED, kernel.bindsByAddress());
+  frame.dispatchIndirect(kName, kernel, bindings, params, counters,
                          offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 

@@ -15,7 +15,8 @@ void TileMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& velocity, c
   const TileGrid grid = tileGridFor(width, height, tileSize);
   const gpu::TileMaxParams params{width, height, tileSize, grid.x, grid.y, velocityScale, 0, 0};
   // One group per tile.
-  frame.dispatch(passName, kernel_, {&velocity, &tiles}, params, {grid.x, grid.y, 1});
+  frame.dispatch(passName, kernel_, {{HMB_TILE_MAX_BINDING_VELOCITY, &velocity}, {HMB_TILE_MAX_BINDING_TILES, &tiles}},
+                 params, {grid.x, grid.y, 1});
 }
 
 }  // namespace hmb::passes

@@ -18,9 +18,9 @@ void TraceRaysPass::record(vk::FrameRecorder& frame, const TraceScene& scene, co
                            const vk::Buffer& hits, uint32_t rayCount, uint32_t flags) const {
   if (scene.timeCount() == 0) throw Error("trace-rays: the scene's shutter times are not set");
   const gpu::TraceParams params{rayCount, scene.instanceCount(), scene.timeCount(), flags};
-  std::vector<const vk::Buffer*> bindings = {&rays, &hits};
-  scene.appendBindings(bindings, kernel_.bindsByAddress());
-  frame.dispatch(kName, kernel_, bindings, std::as_bytes(std::span(&params, 1)),
+  vk::Bindings bindings = {{HMB_TRACE_BINDING_RAYS, &rays}, {HMB_TRACE_BINDING_HITS, &hits}};
+  scene.bind(bindings, HMB_TRACE_BINDING_SCENE, kernel_.bindsByAddress());
+  frame.dispatch(kName, kernel_, bindings, params,
                  vk::foldedGroups(vk::groupsFor(rayCount, HMB_TRACE_GROUP)));
 }
 

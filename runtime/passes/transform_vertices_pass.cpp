@@ -13,8 +13,13 @@ void TransformVerticesPass::record(vk::FrameRecorder& frame, const GpuScene& sce
                                    const vk::Buffer& clipPrevious, const vk::Buffer& shading) const {
   const uint32_t vertexCount = scene.instanceVertexCount();
   frame.dispatch(kName, kernel_,
-                 {&scene.vertices(), &scene.instanceVertices(), &scene.instances(), &scene.cameraBuffer(),
-                  &clipCurrent, &clipPrevious, &shading},
+                 {{HMB_TRANSFORM_BINDING_VERTICES, &scene.vertices()},
+                  {HMB_TRANSFORM_BINDING_INSTANCE_VERTICES, &scene.instanceVertices()},
+                  {HMB_TRANSFORM_BINDING_INSTANCES, &scene.instances()},
+                  {HMB_TRANSFORM_BINDING_CAMERA, &scene.cameraBuffer()},
+                  {HMB_TRANSFORM_BINDING_CLIP_CURRENT, &clipCurrent},
+                  {HMB_TRANSFORM_BINDING_CLIP_PREVIOUS, &clipPrevious},
+                  {HMB_TRANSFORM_BINDING_SHADING, &shading}},
                  vertexCount, vk::foldedGroups(vk::groupsFor(vertexCount, HMB_RASTER_GROUP)));
 }
 

@@ -7,10 +7,10 @@
 
 namespace hmb::vk {
 
-void BufferGroup::append(std::vector<const Buffer*>& bindings, bool byAddress,
-                         std::span<const Buffer* const> members) const {
+void BufferGroup::bind(Bindings& bindings, uint32_t firstBinding, bool byAddress,
+                       std::span<const Buffer* const> members) const {
   if (!byAddress) {
-    bindings.insert(bindings.end(), members.begin(), members.end());
+    for (const Buffer* member : members) bindings.push_back({firstBinding++, member});
     return;
   }
   if (!table_.handle()) {
@@ -21,7 +21,7 @@ void BufferGroup::append(std::vector<const Buffer*>& bindings, bool byAddress,
     for (const Buffer* member : members) addresses.push_back(member->address());
     table_ = uploadedBuffer(context, addresses, members.front()->name() + " (address table)");
   }
-  bindings.push_back(&table_);
+  bindings.push_back({firstBinding, &table_});
 }
 
 }  // namespace hmb::vk

@@ -38,11 +38,7 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
   if (declared.usesDeviceAddresses && !context.info().bufferDeviceAddress)
     throw Error("kernel '" + name_ + "' reads buffers by device address, which the device lacks (bufferDeviceAddress)");
   const EmbeddedKernel& spirv = *spirvBuild;
-  storageBufferCount_ = uint32_t(declared.storageBufferBindings.size());
-  for (uint32_t i = 0; i < storageBufferCount_; ++i)
-    if (declared.storageBufferBindings[i] != i)
-      throw Error("kernel '" + name_ + "' leaves storage buffer binding " + std::to_string(i) +
-                  " unused; bindings must be 0..N-1 in set 0");
+  bindings_ = declared.storageBufferBindings;
   if (declared.uniformBuffers != 0 || declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
     throw Error("kernel '" + name_ + "' declares descriptors other than storage buffers in set 0");
   if (declared.pushConstantBytes > pushConstantBytes)
@@ -52,19 +48,18 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
     throw Error("kernel '" + name_ + "' needs " + std::to_string(pushConstantBytes) +
                 " bytes of push constants; the device allows " +
                 std::to_string(context.limits().maxPushConstantsSize) + " (maxPushConstantsSize)");
-  const uint32_t storageBufferCount = storageBufferCount_;
   const VkDevice device = context.device();
   VkShaderModule module = VK_NULL_HANDLE;
   try {
-    std::vector<VkDescriptorSetLayoutBinding> bindings(storageBufferCount);
-    for (uint32_t i = 0; i < storageBufferCount; ++i) {
-      bindings[i].binding = i;
+    std::vector<VkDescriptorSetLayoutBinding> bindings(bindings_.size());
+    for (size_t i = 0; i < bindings_.size(); ++i) {
+      bindings[i].binding = bindings_[i];
       bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       bindings[i].descriptorCount = 1;
       bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    setInfo.bindingCount = storageBufferCount;
+    setInfo.bindingCount = uint32_t(bindings.size());
     setInfo.pBindings = bindings.data();
     HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout_));
 

@@ -1,6 +1,6 @@
-// One compute pipeline built from an embedded kernel. Its bindings are storage buffers
-// 0..N-1 in set 0, and its parameters one push-constant block: every kernel follows that shape.
-// The kernel's SPIR-V says how many buffers it binds. A kernel with an address build (its
+// One compute pipeline built from an embedded kernel. Its bindings are storage buffers in set 0,
+// and its parameters one push-constant block: every kernel follows that shape. The kernel's
+// SPIR-V says which binding numbers it declares. A kernel with an address build (its
 // groups of buffers bound as tables of device addresses) uses that build where its plain one
 // has more bindings than the device allows, or always with ContextOptions::bindByAddress.
 // Specialization constants, where a kernel has them, are 32-bit values with ids 0..M-1.
@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace hmb::vk {
 
@@ -27,7 +28,10 @@ class ComputeKernel {
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
   const std::string& name() const { return name_; }
-  uint32_t storageBufferCount() const { return storageBufferCount_; }
+  uint32_t storageBufferCount() const { return uint32_t(bindings_.size()); }
+  // The binding numbers it declares, ascending. An address build keeps its plain build's
+  // numbers: each group's table sits at the group's first number, the rest stay unused.
+  const std::vector<uint32_t>& bindings() const { return bindings_; }
   // Whether the address build runs: the passes then bind each group's table, not its buffers.
   bool bindsByAddress() const { return bindsByAddress_; }
   uint32_t pushConstantBytes() const { return pushConstantBytes_; }
@@ -40,7 +44,7 @@ class ComputeKernel {
 
   const Context& context_;
   std::string name_;
-  uint32_t storageBufferCount_ = 0;
+  std::vector<uint32_t> bindings_;
   uint32_t pushConstantBytes_ = 0;
   bool bindsByAddress_ = false;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;

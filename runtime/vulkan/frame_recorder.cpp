@@ -1,5 +1,6 @@
 #include "runtime/vulkan/frame_recorder.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "runtime/error.h"
@@ -93,17 +94,27 @@ void FrameRecorder::endPass(uint32_t index) {
 }
 
 uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel,
-                                         std::span<const Buffer* const> buffers,
+                                         std::span<const Binding> bindings,
                                          std::span<const std::byte> pushConstants) {
-  if (buffers.size() != kernel.storageBufferCount())
-    throw Error("pass '" + std::string(pass) + "' binds " + std::to_string(buffers.size()) + " buffers; kernel '" +
-                kernel.name() + "' has " + std::to_string(kernel.storageBufferCount()));
+  const auto passAndKernel = [&] { return "pass '" + std::string(pass) + "' (kernel '" + kernel.name() + "')"; };
+  // Exactly one buffer at each binding number the kernel declares.
+  std::vector<uint32_t> given;
+  for (const Binding& b : bindings) given.push_back(b.index);
+  std::sort(given.begin(), given.end());
+  if (const auto twice = std::adjacent_find(given.begin(), given.end()); twice != given.end())
+    throw Error(passAndKernel() + " binds binding " + std::to_string(*twice) + " twice");
+  for (const uint32_t index : given)
+    if (!std::binary_search(kernel.bindings().begin(), kernel.bindings().end(), index))
+      throw Error(passAndKernel() + " binds binding " + std::to_string(index) + ", which the kernel does not declare");
+  for (const uint32_t index : kernel.bindings())
+    if (!std::binary_search(given.begin(), given.end(), index))
+      throw Error(passAndKernel() + " leaves binding " + std::to_string(index) + " unbound");
   if (pushConstants.size() != kernel.pushConstantBytes())
     throw Error("pass '" + std::string(pass) + "' pushes " + std::to_string(pushConstants.size()) +
                 " bytes; kernel '" + kernel.name() + "' takes " + std::to_string(kernel.pushConstantBytes()));
 
   VkDescriptorSet set = VK_NULL_HANDLE;
-  if (!buffers.empty()) {
+  if (!bindings.empty()) {
     const VkDescriptorSetLayout setLayout = kernel.setLayout();
     VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     allocInfo.descriptorPool = descriptorPool_;
@@ -111,15 +122,16 @@ uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKer
     allocInfo.pSetLayouts = &setLayout;
     HMB_VK_CHECK(vkAllocateDescriptorSets(context_.device(), &allocInfo, &set));
 
-    std::vector<VkDescriptorBufferInfo> infos(buffers.size());
-    std::vector<VkWriteDescriptorSet> writes(buffers.size());
-    for (size_t i = 0; i < buffers.size(); ++i) {
-      if (!buffers[i] || !buffers[i]->handle())
-        throw Error("pass '" + std::string(pass) + "' binds an empty buffer at slot " + std::to_string(i));
-      infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+    std::vector<VkDescriptorBufferInfo> infos(bindings.size());
+    std::vector<VkWriteDescriptorSet> writes(bindings.size());
+    for (size_t i = 0; i < bindings.size(); ++i) {
+      const Buffer* buffer = bindings[i].buffer;
+      if (!buffer || !buffer->handle())
+        throw Error(passAndKernel() + " binds an empty buffer at binding " + std::to_string(bindings[i].index));
+      infos[i] = {buffer->handle(), 0, VK_WHOLE_SIZE};
       writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
       writes[i].dstSet = set;
-      writes[i].dstBinding = static_cast<uint32_t>(i);
+      writes[i].dstBinding = bindings[i].index;
       writes[i].descriptorCount = 1;
       writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       writes[i].pBufferInfo = &infos[i];
@@ -136,27 +148,26 @@ uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKer
   return index;
 }
 
-void FrameRecorder::dispatch(std::string_view pass, const ComputeKernel& kernel,
-                             std::span<const Buffer* const> buffers, std::span<const std::byte> pushConstants,
-                             glm::uvec3 groups) {
+void FrameRecorder::dispatch(std::string_view pass, const ComputeKernel& kernel, std::span<const Binding> bindings,
+                             std::span<const std::byte> pushConstants, glm::uvec3 groups) {
   const auto& limits = context_.limits();
   for (int axis = 0; axis < 3; ++axis)
     if (groups[axis] > limits.maxComputeWorkGroupCount[axis])
       throw Error("pass '" + std::string(pass) + "' needs " + std::to_string(groups[axis]) +
                   " work groups along axis " + std::to_string(axis) + "; the device allows " +
                   std::to_string(limits.maxComputeWorkGroupCount[axis]));
-  const uint32_t index = bindAndBeginPass(pass, kernel, buffers, pushConstants);
+  const uint32_t index = bindAndBeginPass(pass, kernel, bindings, pushConstants);
   if (groups.x > 0 && groups.y > 0 && groups.z > 0) vkCmdDispatch(commandBuffer_, groups.x, groups.y, groups.z);
   endPass(index);
 }
 
 void FrameRecorder::dispatchIndirect(std::string_view pass, const ComputeKernel& kernel,
-                                     std::span<const Buffer* const> buffers, std::span<const std::byte> pushConstants,
+                                     std::span<const Binding> bindings, std::span<const std::byte> pushConstants,
                                      const Buffer& indirect, VkDeviceSize offset) {
   if (offset % 4 != 0 || offset + sizeof(VkDispatchIndirectCommand) > indirect.size())
     throw Error("pass '" + std::string(pass) + "': indirect dispatch at byte " + std::to_string(offset) +
                 " does not fit buffer '" + indirect.name() + "'");
-  const uint32_t index = bindAndBeginPass(pass, kernel, buffers, pushConstants);
+  const uint32_t index = bindAndBeginPass(pass, kernel, bindings, pushConstants);
   vkCmdDispatchIndirect(commandBuffer_, indirect.handle(), offset);
   endPass(index);
 }

@@ -16,6 +16,7 @@
 #include <vulkan/vulkan.h>
 
 #include "kernels/shared/dispatch.h"
+#include "runtime/vulkan/binding.h"
 
 namespace hmb::vk {
 
@@ -55,25 +56,36 @@ class FrameRecorder {
   // Starts a new frame; the previous frame's command buffer and descriptor sets are reused.
   void begin();
 
-  void dispatch(std::string_view pass, const ComputeKernel& kernel, std::span<const Buffer* const> buffers,
+  // bindings: a buffer at each binding number the kernel declares (its layout header's names).
+  void dispatch(std::string_view pass, const ComputeKernel& kernel, std::span<const Binding> bindings,
                 std::span<const std::byte> pushConstants, glm::uvec3 groups);
   template <class Push>
-  void dispatch(std::string_view pass, const ComputeKernel& kernel, std::initializer_list<const Buffer*> buffers,
+  void dispatch(std::string_view pass, const ComputeKernel& kernel, std::initializer_list<Binding> bindings,
                 const Push& push, glm::uvec3 groups) {
-    dispatch(pass, kernel, std::span<const Buffer* const>(buffers.begin(), buffers.size()),
+    dispatch(pass, kernel, std::span<const Binding>(bindings.begin(), bindings.size()),
              std::as_bytes(std::span<const Push>(&push, 1)), groups);
+  }
+  template <class Push>
+  void dispatch(std::string_view pass, const ComputeKernel& kernel, const Bindings& bindings, const Push& push,
+                glm::uvec3 groups) {
+    dispatch(pass, kernel, std::span<const Binding>(bindings), std::as_bytes(std::span<const Push>(&push, 1)), groups);
   }
 
   // A dispatch whose group counts the device reads from `indirect` at `offset` when the pass
   // runs (a VkDispatchIndirectCommand written by an earlier pass of the same frame).
-  void dispatchIndirect(std::string_view pass, const ComputeKernel& kernel, std::span<const Buffer* const> buffers,
+  void dispatchIndirect(std::string_view pass, const ComputeKernel& kernel, std::span<const Binding> bindings,
                         std::span<const std::byte> pushConstants, const Buffer& indirect, VkDeviceSize offset);
   template <class Push>
-  void dispatchIndirect(std::string_view pass, const ComputeKernel& kernel,
-                        std::initializer_list<const Buffer*> buffers, const Push& push, const Buffer& indirect,
-                        VkDeviceSize offset) {
-    dispatchIndirect(pass, kernel, std::span<const Buffer* const>(buffers.begin(), buffers.size()),
+  void dispatchIndirect(std::string_view pass, const ComputeKernel& kernel, std::initializer_list<Binding> bindings,
+                        const Push& push, const Buffer& indirect, VkDeviceSize offset) {
+    dispatchIndirect(pass, kernel, std::span<const Binding>(bindings.begin(), bindings.size()),
                      std::as_bytes(std::span<const Push>(&push, 1)), indirect, offset);
+  }
+  template <class Push>
+  void dispatchIndirect(std::string_view pass, const ComputeKernel& kernel, const Bindings& bindings,
+                        const Push& push, const Buffer& indirect, VkDeviceSize offset) {
+    dispatchIndirect(pass, kernel, std::span<const Binding>(bindings), std::as_bytes(std::span<const Push>(&push, 1)),
+                     indirect, offset);
   }
 
   // Fills a whole buffer with a 32-bit value (clears, sentinels).
@@ -86,7 +98,7 @@ class FrameRecorder {
 
  private:
   // Checks the bindings, binds pipeline, descriptors and push constants, opens the pass.
-  uint32_t bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel, std::span<const Buffer* const> buffers,
+  uint32_t bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel, std::span<const Binding> bindings,
                             std::span<const std::byte> pushConstants);
   uint32_t beginPass(std::string_view pass);
   void endPass(uint32_t index);

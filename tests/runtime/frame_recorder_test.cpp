@@ -91,13 +91,16 @@ TEST_F(FrameRecorderTest, MisuseIsAClearError) {
   vk::ComputeKernel kernel(context(), "debug/test_pattern", sizeof(gpu::TestPatternParams));
   vk::Buffer image(context(), 64, vk::MemoryUse::Device, "image");
   const gpu::TestPatternParams params{1, 1, 0.0f, 0};
-  EXPECT_THROW(frame.dispatch("outside", kernel, {&image}, params, {1, 1, 1}), Error);
+  const vk::Binding linear{HMB_TEST_PATTERN_BINDING_LINEAR, &image};
+  EXPECT_THROW(frame.dispatch("outside", kernel, {linear}, params, {1, 1, 1}), Error);
   frame.begin();
-  EXPECT_THROW(frame.dispatch("two buffers", kernel, {&image, &image}, params, {1, 1, 1}), Error);
-  EXPECT_THROW(frame.dispatch("wrong push size", kernel, {&image}, uint32_t(0), {1, 1, 1}), Error);
+  EXPECT_THROW(frame.dispatch("two buffers", kernel, {linear, {HMB_TEST_PATTERN_BINDING_LINEAR + 1, &image}}, params,
+                              {1, 1, 1}),
+               Error);
+  EXPECT_THROW(frame.dispatch("wrong push size", kernel, {linear}, uint32_t(0), {1, 1, 1}), Error);
   const uint32_t tooMany = context().limits().maxComputeWorkGroupCount[0] + 1;
   if (tooMany != 0) {
-    EXPECT_THROW(frame.dispatch("too many groups", kernel, {&image}, params, {tooMany, 1, 1}), Error);
+    EXPECT_THROW(frame.dispatch("too many groups", kernel, {linear}, params, {tooMany, 1, 1}), Error);
   }
   frame.submitAndWait();
 }

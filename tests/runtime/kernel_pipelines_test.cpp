@@ -133,8 +133,17 @@ TEST_F(KernelPipelinesTest, HostsThatDisagreeWithTheKernelAreOneLineErrors) {
   vk::FrameRecorder frame(context());
   frame.begin();
   const gpu::EncodeDisplayParams params{};
-  expectError([&] { frame.dispatch("encode-display", kernel, {&one}, params, {1, 1, 1}); },
-              "binds 1 buffers; kernel 'output/encode_display' has 2");
+  // Buffers go to the binding numbers the kernel's header names, each once, all of them.
+  const vk::Binding linear{HMB_ENCODE_DISPLAY_BINDING_LINEAR, &one}, rgba8{HMB_ENCODE_DISPLAY_BINDING_RGBA8, &one};
+  expectError([&] { frame.dispatch("encode-display", kernel, {linear}, params, {1, 1, 1}); },
+              "pass 'encode-display' (kernel 'output/encode_display') leaves binding 1 unbound");
+  expectError([&] { frame.dispatch("encode-display", kernel, {linear, linear, rgba8}, params, {1, 1, 1}); },
+              "binds binding 0 twice");
+  expectError([&] { frame.dispatch("encode-display", kernel, {linear, rgba8, {7, &one}}, params, {1, 1, 1}); },
+              "binds binding 7, which the kernel does not declare");
+  expectError([&] { frame.dispatch("encode-display", kernel, {linear, {HMB_ENCODE_DISPLAY_BINDING_RGBA8, nullptr}},
+                                   params, {1, 1, 1}); },
+              "binds an empty buffer at binding 1");
 }
 
 // A device that takes fewer storage buffers per stage than the widest kernel: a kernel whose
