@@ -101,13 +101,23 @@ struct Range {
       return aboveMin && belowMax;
   }
   std::string text() const {
+    // Appended piece by piece: GCC 12 warns (-Wrestrict) on a literal + std::string temporary.
     std::string text;
     if constexpr (std::is_integral_v<T>) {
-      text = (oddOnly ? "odd, " : "") + formatNumber(min) + ".." + formatNumber(max);
+      if (oddOnly) text += "odd, ";
+      text += formatNumber(min);
+      text += "..";
+      text += formatNumber(max);
     } else if (max == std::numeric_limits<T>::max()) {
-      text = std::string(minOpen ? "> " : ">= ") + formatNumber(min) + ", finite";
+      text += minOpen ? "> " : ">= ";
+      text += formatNumber(min);
+      text += ", finite";
     } else {
-      text = std::string(minOpen ? "(" : "[") + formatNumber(min) + ", " + formatNumber(max) + (maxOpen ? ")" : "]");
+      text += minOpen ? "(" : "[";
+      text += formatNumber(min);
+      text += ", ";
+      text += formatNumber(max);
+      text += maxOpen ? ")" : "]";
     }
     return text;
   }
@@ -176,7 +186,8 @@ Setting<Choices, Settings> named(std::string_view name, std::string_view methods
                                  Names<E> names) {
   std::string accepts, defaultText;
   for (const auto& [value, valueName] : names) {
-    accepts += (accepts.empty() ? "" : "|") + std::string(valueName);
+    if (!accepts.empty()) accepts += '|';
+    accepts += valueName;
     if (value == Settings{}.*field) defaultText = valueName;
   }
   Setting<Choices, Settings> s{name, methods, help, defaultText, accepts, "NAME"};

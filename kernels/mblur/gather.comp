@@ -2,15 +2,9 @@
 // The post-process gather: McGuire et al. 2012's reconstruction with the paper's weights and
 // its centred or adapted range (mblur/gather_samples.glsl), every pixel of the image.
 #extension GL_GOOGLE_include_directive : require
-#include "mblur_layout.h"
+#include "filter_bindings.glsl"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
-
-layout(std430, binding = HMB_GATHER_BINDING_COLOR) readonly buffer Color { vec4 color[]; };
-layout(std430, binding = HMB_GATHER_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
-layout(std430, binding = HMB_GATHER_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
-layout(std430, binding = HMB_GATHER_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
-layout(std430, binding = HMB_GATHER_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
 layout(push_constant) uniform Params { GatherParams params; };
 
 vec4 sampleColorAt(uint i) { return color[i]; }

@@ -18,15 +18,9 @@
 //  - weights are coverage: the pixel's own colour fills what the 2P samples leave,
 //    result = (sum w c + (2P - sum w) c_X) / 2P.
 #extension GL_GOOGLE_include_directive : require
-#include "mblur_layout.h"
+#include "filter_bindings.glsl"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
-
-layout(std430, binding = HMB_JIMENEZ_BINDING_COLOR) readonly buffer Color { vec4 color[]; };
-layout(std430, binding = HMB_JIMENEZ_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
-layout(std430, binding = HMB_JIMENEZ_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
-layout(std430, binding = HMB_JIMENEZ_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
-layout(std430, binding = HMB_JIMENEZ_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
 layout(push_constant) uniform Params { JimenezParams params; };
 
 #include "mblur_common.glsl"

@@ -28,22 +28,16 @@
 #define HMB_NEIGHBOR_MAX_BINDING_NEIGHBOR_MAX 1  // vec4 per tile
 #define HMB_NEIGHBOR_MAX_BINDING_COUNT 2
 
-// gather and gather_jimenez: one invocation per pixel.
+// The gathers (every post-process filter's and the hybrid's): one invocation per pixel.
 #define HMB_GATHER_GROUP_X 8
 #define HMB_GATHER_GROUP_Y 8
-#define HMB_GATHER_BINDING_COLOR 0         // vec4 per pixel, linear
-#define HMB_GATHER_BINDING_NORMAL_DEPTH 1  // vec4 per pixel, w = camera-space depth
-#define HMB_GATHER_BINDING_VELOCITY 2      // vec2 per pixel, pixels per frame
-#define HMB_GATHER_BINDING_NEIGHBOR_MAX 3  // vec4 per tile
-#define HMB_GATHER_BINDING_OUTPUT 4        // vec4 per pixel
-#define HMB_GATHER_BINDING_COUNT 5
-
-#define HMB_JIMENEZ_BINDING_COLOR 0
-#define HMB_JIMENEZ_BINDING_NORMAL_DEPTH 1
-#define HMB_JIMENEZ_BINDING_VELOCITY 2
-#define HMB_JIMENEZ_BINDING_NEIGHBOR_MAX 3
-#define HMB_JIMENEZ_BINDING_OUTPUT 4
-#define HMB_JIMENEZ_BINDING_COUNT 5
+// Every post-process filter's gather (gather, gather_jimenez; filter_bindings.glsl).
+#define HMB_FILTER_BINDING_COLOR 0         // vec4 per pixel, linear
+#define HMB_FILTER_BINDING_NORMAL_DEPTH 1  // vec4 per pixel, w = camera-space depth
+#define HMB_FILTER_BINDING_VELOCITY 2      // vec2 per pixel, pixels per frame
+#define HMB_FILTER_BINDING_NEIGHBOR_MAX 3  // vec4 per tile
+#define HMB_FILTER_BINDING_OUTPUT 4        // vec4 per pixel
+#define HMB_FILTER_BINDING_COUNT 5
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]

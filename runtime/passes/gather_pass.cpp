@@ -39,13 +39,7 @@ std::unique_ptr<GatherFilter> makeMcGuireGather(const vk::Context& context) {
 void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
                         const vk::Buffer& output, const PostProcessSettings& settings) const {
   const gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
-  frame.dispatch(kName, kernel_,
-                 {{HMB_GATHER_BINDING_COLOR, inputs.color},
-                  {HMB_GATHER_BINDING_NORMAL_DEPTH, inputs.normalDepth},
-                  {HMB_GATHER_BINDING_VELOCITY, inputs.velocity},
-                  {HMB_GATHER_BINDING_NEIGHBOR_MAX, &neighborMax},
-                  {HMB_GATHER_BINDING_OUTPUT, &output}},
-                 params,
+  frame.dispatch(kName, kernel_, filterBindings(inputs, neighborMax, output), params,
                  {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});
 }
 

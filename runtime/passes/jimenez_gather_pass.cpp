@@ -29,13 +29,7 @@ void JimenezGatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs&
                                   settings.softZExtent,
                                   settings.jimenezTileJitter,
                                   0};
-  frame.dispatch(kName, kernel_,
-                 {{HMB_JIMENEZ_BINDING_COLOR, inputs.color},
-                  {HMB_JIMENEZ_BINDING_NORMAL_DEPTH, inputs.normalDepth},
-                  {HMB_JIMENEZ_BINDING_VELOCITY, inputs.velocity},
-                  {HMB_JIMENEZ_BINDING_NEIGHBOR_MAX, &neighborMax},
-                  {HMB_JIMENEZ_BINDING_OUTPUT, &output}},
-                 params,
+  frame.dispatch(kName, kernel_, filterBindings(inputs, neighborMax, output), params,
                  {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});
 }
 

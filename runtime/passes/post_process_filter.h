@@ -9,8 +9,9 @@
 #include <optional>
 #include <string_view>
 
+#include "runtime/vulkan/binding.h"
+
 namespace hmb::vk {
-class Buffer;
 class Context;
 class FrameRecorder;
 }  // namespace hmb::vk
@@ -37,6 +38,9 @@ struct MotionBlurInputs {
   uint32_t width = 0;
   uint32_t height = 0;
 };
+
+// What every filter's kernel binds (kernels/mblur/filter_bindings.glsl).
+vk::Bindings filterBindings(const MotionBlurInputs& inputs, const vk::Buffer& neighborMax, const vk::Buffer& output);
 
 class GatherFilter {
  public:

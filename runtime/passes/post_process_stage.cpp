@@ -4,10 +4,20 @@
 
 #include <glm/glm.hpp>
 
+#include "kernels/mblur/mblur_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
 
 namespace hmb::passes {
+
+vk::Bindings filterBindings(const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
+                            const vk::Buffer& output) {
+  return {{HMB_FILTER_BINDING_COLOR, inputs.color},
+          {HMB_FILTER_BINDING_NORMAL_DEPTH, inputs.normalDepth},
+          {HMB_FILTER_BINDING_VELOCITY, inputs.velocity},
+          {HMB_FILTER_BINDING_NEIGHBOR_MAX, &neighborMax},
+          {HMB_FILTER_BINDING_OUTPUT, &output}};
+}
 
 PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcessSettings& settings)
     : context_(context), tileMaxPass_(context), neighborMaxPass_(context) {

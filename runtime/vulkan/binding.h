@@ -1,5 +1,5 @@
 // A buffer at one of a kernel's binding numbers, as the kernel's layout header names it
-// (HMB_GATHER_BINDING_COLOR ...): passes bind buffers by those names, never by their position
+// (HMB_FILTER_BINDING_COLOR ...): passes bind buffers by those names, never by their position
 // in a list, and the frame recorder checks the numbers against what the kernel declares.
 #pragma once
 

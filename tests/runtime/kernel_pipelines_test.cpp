@@ -58,8 +58,8 @@ const KernelLayout kLayouts[] = {
     {"reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), false},
     {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
     {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
-    {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
-    {"mblur/gather_jimenez", HMB_JIMENEZ_BINDING_COUNT, sizeof(gpu::JimenezParams), false},
+    {"mblur/gather", HMB_FILTER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
+    {"mblur/gather_jimenez", HMB_FILTER_BINDING_COUNT, sizeof(gpu::JimenezParams), false},
     {"hybrid/composite", HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), false},
     {"hybrid/gather_background", HMB_BACKGROUND_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false},
     {"hybrid/edge_candidates", HMB_EDGE_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
@@ -90,7 +90,9 @@ TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
     const bool fits = layout.bindings <= context().limits().maxPerStageDescriptorStorageBuffers &&
                       layout.bindings <= context().limits().maxDescriptorSetStorageBuffers;
     EXPECT_EQ(built.bindsByAddress(), !fits) << kernel.name;
-    if (fits) EXPECT_EQ(built.storageBufferCount(), layout.bindings) << kernel.name;
+    if (fits) {
+      EXPECT_EQ(built.storageBufferCount(), layout.bindings) << kernel.name;
+    }
     if (layout.shades) {
       uint32_t untextured[HMB_SPEC_TEXTURE_PATH + 1] = {};
       EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout.pushBytes, untextured))
