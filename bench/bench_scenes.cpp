@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "runtime/error.h"
 #include "scenes/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
@@ -56,8 +57,24 @@ scene::Scene millionTriangles() {
 
 }  // namespace
 
+std::optional<std::filesystem::path> cadEnginePath() {
+  for (const char* root : {"/usr/share/assimp/models/glTF2", "/usr/share/assimp-testmodels/glTF2"}) {
+    const std::filesystem::path path =
+        std::filesystem::path(root) / "2CylinderEngine-glTF-Binary" / "2CylinderEngine.glb";
+    if (std::filesystem::exists(path)) return path;
+  }
+  return std::nullopt;
+}
+
 scene::Scene loadBenchScene(const std::string& name) {
   if (name == kCubeSphere1m) return cubeSphere(290);
+  if (name == kCadEngine) {
+    const std::optional<std::filesystem::path> path = cadEnginePath();
+    if (!path) throw Error(std::string(kCadEngine) + ": Debian's assimp-testmodels is not installed");
+    scene::Scene scene = scene::loadScene(path->string());
+    scene.name = kCadEngine;
+    return scene;
+  }
   if (name == kMillionTriangles) return millionTriangles();
   return scene::loadScene(name);
 }

@@ -2,6 +2,8 @@
 // scene reaches, made in code so that nothing large is committed.
 #pragma once
 
+#include <filesystem>
+#include <optional>
 #include <string>
 
 #include "scenes/scene.h"
@@ -14,6 +16,12 @@ inline constexpr const char* kCubeSphere1m = "cube-sphere-1m";
 // A sphere of 1,000,000 triangles behind a box sliding across it, lit and shaded: the
 // passes suite's check of the hybrid frame on a scene of a million triangles.
 inline constexpr const char* kMillionTriangles = "million-triangles";
+
+// A real CAD asset: 2CylinderEngine from Debian's assimp-testmodels (110k triangles in
+// millimetres, many of them long and thin, with thousands of degenerate ones). Its path, or
+// nothing when the package is not installed.
+inline constexpr const char* kCadEngine = "cad-engine";
+std::optional<std::filesystem::path> cadEnginePath();
 
 // These names, else scene::loadScene (a reference scene or a glTF file).
 scene::Scene loadBenchScene(const std::string& name);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iomanip>
 #include <random>
@@ -11,6 +12,7 @@
 #include "bench/bench_scenes.h"
 #include "bench/embree_reference.h"
 #include "bvh/reference_builder.h"
+#include "bvh/reference_traversal.h"
 #include "runtime/error.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/trace_rays_pass.h"
@@ -71,14 +73,38 @@ std::vector<bvh::Ray> randomRays(const Flat& flat, uint32_t count) {
   return rays;
 }
 
-double agreement(std::span<const gpu::BvhHit> device, std::span<const gpu::BvhHit> embree) {
-  size_t same = 0;
+bool sameAnswer(const gpu::BvhHit& a, const gpu::BvhHit& b) {
+  const bool aHit = a.triangle != HMB_NO_HIT, bHit = b.triangle != HMB_NO_HIT;
+  return aHit == bHit && (!aHit || std::abs(a.t - b.t) <= 1e-4f * std::max(1.0f, std::abs(b.t)));
+}
+
+// Every ray on which the device and Embree disagree, judged by the exact answer.
+Disagreements judgeDisagreements(const Flat& flat, std::span<const bvh::Ray> rays,
+                                 std::span<const gpu::BvhHit> device, std::span<const gpu::BvhHit> embree) {
+  Disagreements out;
   for (size_t i = 0; i < device.size(); ++i) {
-    const bool deviceHit = device[i].triangle != HMB_NO_HIT, embreeHit = embree[i].triangle != HMB_NO_HIT;
-    if (deviceHit != embreeHit) continue;
-    if (!deviceHit || std::abs(device[i].t - embree[i].t) <= 1e-4f * std::max(1.0f, std::abs(embree[i].t))) ++same;
+    if (sameAnswer(device[i], embree[i])) continue;
+    ++out.rays;
+    const bvh::ExactHit exact = bvh::exactClosestHit(flat.view(), rays[i]);
+    gpu::BvhHit truth{};
+    truth.triangle = std::isfinite(exact.t) ? 0u : HMB_NO_HIT;
+    truth.t = float(exact.t);
+    const auto far = [](const gpu::BvhHit& h) { return h.triangle == HMB_NO_HIT ? INFINITY : double(h.t); };
+    // A graze nearer than the farther answer can turn either test's answer.
+    if (exact.grazeT <= std::max(far(device[i]), far(embree[i])) * (1.0 + 1e-4)) {
+      ++out.grazes;
+    } else if (!sameAnswer(device[i], truth)) {
+      if (out.deviceWrong++ == 0) {
+        char text[256];
+        std::snprintf(text, sizeof(text), "ray %zu: device triangle %u at t %.9g, Embree %u at %.9g, exact t %.9g", i,
+                      device[i].triangle, device[i].t, embree[i].triangle, embree[i].t, exact.t);
+        out.firstDeviceWrong = text;
+      }
+    } else {
+      ++out.embreeWrong;
+    }
   }
-  return device.empty() ? 1.0 : double(same) / double(device.size());
+  return out;
 }
 
 TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene, const passes::TraceRaysPass& pass,
@@ -109,9 +135,14 @@ TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene,
   f.embreeMilliseconds = summarize(ms);
   f.embreeMraysPerSecond = f.rays / (f.embreeMilliseconds.median * 1e3);
   const std::vector<gpu::BvhHit> hits = hitBuffer.download<gpu::BvhHit>();
-  f.hitAgreement = agreement(std::span(hits).first(rays.size()), run.hits);
+  const std::span<const gpu::BvhHit> deviceHits = std::span(hits).first(rays.size());
+  f.disagreements = judgeDisagreements(flat, rays, deviceHits, run.hits);
+  f.hitAgreement = rays.empty() ? 1.0 : 1.0 - double(f.disagreements.rays) / double(rays.size());
   if (f.hitAgreement < kMinHitAgreement)
     throw Error("device and Embree hits agree on only " + std::to_string(f.hitAgreement * 100.0) + "% of the rays");
+  if (f.disagreements.deviceWrong > 0)
+    throw Error("the device's hit differs from the exact one on " + std::to_string(f.disagreements.deviceWrong) +
+                " rays that graze no edge (" + f.disagreements.firstDeviceWrong + ")");
   return f;
 }
 
@@ -122,7 +153,12 @@ nlohmann::json traceJson(const TraceFigures& f) {
           {"device_mrays_per_s", f.deviceMraysPerSecond},
           {"embree_mrays_per_s", f.embreeMraysPerSecond},
           {"device_over_embree", f.deviceMraysPerSecond / f.embreeMraysPerSecond},
-          {"hit_agreement", f.hitAgreement}};
+          {"hit_agreement", f.hitAgreement},
+          {"disagreements",
+           {{"rays", f.disagreements.rays},
+            {"grazing_an_edge", f.disagreements.grazes},
+            {"device_wrong", f.disagreements.deviceWrong},
+            {"embree_wrong", f.disagreements.embreeWrong}}}};
 }
 
 }  // namespace

@@ -23,7 +23,8 @@ class Context;
 namespace hmb::bench {
 
 // Below this fraction of rays on which the device and Embree agree (both miss, or hit at the
-// same t within 1e-4 relative), the run fails.
+// same t within 1e-4 relative), the run fails; it fails as well on any ray where the device
+// is wrong by the exact answer and grazes no edge (Disagreements).
 constexpr double kMinHitAgreement = 0.999;
 
 struct BvhSuiteOptions {
@@ -35,12 +36,24 @@ struct BvhSuiteOptions {
   int embreeThreads = 0;  // 0: LP_NUM_THREADS when set, else every hardware thread
 };
 
+// The rays on which the device and Embree disagree, each judged by a double-precision brute
+// force over every triangle: either passes within 1e-5 (barycentric) of an edge nearer than the
+// farther answer (float tests may rightly differ there), or one of the two is wrong.
+struct Disagreements {
+  size_t rays = 0;
+  size_t grazes = 0;
+  size_t deviceWrong = 0;  // the run fails on any
+  size_t embreeWrong = 0;
+  std::string firstDeviceWrong;  // the first such ray, for the error
+};
+
 struct TraceFigures {
   uint32_t rays = 0;
   Summary deviceMilliseconds;
   Summary embreeMilliseconds;
   double deviceMraysPerSecond = 0, embreeMraysPerSecond = 0;
-  double hitAgreement = 0;  // worst repeat
+  double hitAgreement = 0;  // the last repeat's
+  Disagreements disagreements;
 };
 
 struct BvhCase {

@@ -7,7 +7,7 @@
 
 namespace hmb::bvh {
 
-PreparedRay::PreparedRay(const Ray& ray) : origin(ray.origin) {
+PreparedRay::PreparedRay(const Ray& ray) : origin(ray.origin), direction(ray.direction) {
   const glm::vec3& d = ray.direction;
   inverseDirection = 1.0f / d;
   valid = std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z) && d != glm::vec3(0.0f);
@@ -61,10 +61,32 @@ bool intersectTriangle(const PreparedRay& ray, const glm::vec3& v0, const glm::v
   const float det = u + v + w;
   if (det == 0.0f) return false;
   const float az = ray.shearZ * a[ray.kz], bz = ray.shearZ * b[ray.kz], cz = ray.shearZ * c[ray.kz];
-  const float scaledT = u * az + v * bz + w * cz;
   const float inverseDet = 1.0f / det;
-  hit = TriangleHit{scaledT * inverseDet, v * inverseDet, w * inverseDet};
+  const float t = (u * az + v * bz + w * cz) * inverseDet;
+  hit = TriangleHit{t, v * inverseDet, w * inverseDet};
   return true;
+}
+
+float planeHitDistance(const PreparedRay& ray, const glm::vec3& v0, const glm::vec3& v1, const glm::vec3& v2,
+                        float shearedT) {
+  // The normal is the cross product of the two edges at the largest angle (opposite the longest
+  // edge: at least 60 degrees, so well conditioned), and the plane passes through their vertex;
+  // edges and vertex minus origin are exact for nearby floats.
+  const glm::vec3 edge0 = v1 - v0, edge1 = v2 - v1, edge2 = v0 - v2;
+  const float length0 = glm::dot(edge0, edge0), length1 = glm::dot(edge1, edge1), length2 = glm::dot(edge2, edge2);
+  glm::vec3 normal, vertex;
+  float lengths;
+  if (length0 >= length1 && length0 >= length2) {
+    normal = glm::cross(edge1, edge2), vertex = v2, lengths = length1 * length2;
+  } else if (length1 >= length2) {
+    normal = glm::cross(edge2, edge0), vertex = v0, lengths = length2 * length0;
+  } else {
+    normal = glm::cross(edge0, edge1), vertex = v1, lengths = length0 * length1;
+  }
+  const float towards = glm::dot(normal, ray.direction);
+  if (!(towards != 0.0f && std::isfinite(towards) && glm::dot(normal, normal) >= kSliverSine * kSliverSine * lengths))
+    return shearedT;
+  return glm::dot(normal, vertex - ray.origin) / towards;
 }
 
 }  // namespace hmb::bvh

@@ -1,5 +1,6 @@
 #include "bvh/reference_traversal.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -8,6 +9,13 @@ namespace hmb::bvh {
 namespace {
 
 Hit missFor(const Ray& ray) { return Hit{ray.tMax, 0.0f, 0.0f, HMB_NO_HIT, HMB_NO_HIT, 0, 0, 0}; }
+
+// The closest hit's distance from its triangle's plane (planeHitDistance), kept in [tMin, tMax].
+void refineDistance(const PreparedRay& prepared, const Ray& ray, const TriangleList& triangles, Hit& best) {
+  if (best.triangle == HMB_NO_HIT) return;
+  const auto [v0, v1, v2] = triangles.vertices(best.triangle);
+  best.t = std::clamp(planeHitDistance(prepared, v0, v1, v2, best.t), ray.tMin, ray.tMax);
+}
 
 // Tests one triangle and keeps it when it comes before the best hit so far.
 void testTriangle(const PreparedRay& prepared, const Ray& ray, const TriangleList& triangles, uint32_t triangle,
@@ -57,6 +65,7 @@ Hit closestHit(const Bvh& bvh, const TriangleList& triangles, const Ray& ray, co
       stack.push_back({right, rightNear});
     }
   }
+  refineDistance(prepared, ray, triangles, best);
   return best;
 }
 
@@ -65,7 +74,27 @@ Hit bruteForceClosestHit(const TriangleList& triangles, const Ray& ray, const Tr
   const PreparedRay prepared(ray);
   if (!prepared.valid) return best;
   for (uint32_t t = 0; t < triangles.triangleCount(); ++t) testTriangle(prepared, ray, triangles, t, options, best);
+  refineDistance(prepared, ray, triangles, best);
   return best;
+}
+
+ExactHit exactClosestHit(const TriangleList& triangles, const Ray& ray, double grazeMargin) {
+  ExactHit out;
+  const glm::dvec3 o(ray.origin), d(ray.direction);
+  for (uint32_t triangle = 0; triangle < triangles.triangleCount(); ++triangle) {
+    const auto [v0, v1, v2] = triangles.vertices(triangle);
+    const glm::dvec3 p0(v0), e1 = glm::dvec3(v1) - p0, e2 = glm::dvec3(v2) - p0;
+    const glm::dvec3 p = glm::cross(d, e2);
+    const double det = glm::dot(e1, p);
+    if (det == 0.0 || !std::isfinite(det)) continue;
+    const glm::dvec3 s = o - p0, q = glm::cross(s, e1);
+    const double u = glm::dot(s, p) / det, v = glm::dot(d, q) / det, t = glm::dot(e2, q) / det;
+    if (!(t >= double(ray.tMin)) || !(t <= double(ray.tMax))) continue;
+    const double margin = std::min({u, v, 1.0 - u - v});
+    if (margin >= 0.0) out.t = std::min(out.t, t);
+    if (std::abs(margin) <= grazeMargin) out.grazeT = std::min(out.grazeT, t);
+  }
+  return out;
 }
 
 }  // namespace hmb::bvh

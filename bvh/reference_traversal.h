@@ -28,4 +28,15 @@ Hit closestHit(const Bvh& bvh, const TriangleList& triangles, const Ray& ray, co
 
 Hit bruteForceClosestHit(const TriangleList& triangles, const Ray& ray, const TraceOptions& options = {});
 
+// The judge of float traversals on real assets: a double-precision brute force over every
+// triangle (both sides) of the nearest hit in [tMin, tMax], and of the nearest triangle whose
+// edge the ray passes within `grazeMargin` of (a barycentric weight, so scale-free; inside or
+// out), where float tests may rightly pick another triangle or miss.
+struct ExactHit {
+  double t = INFINITY;       // infinite: no hit
+  double grazeT = INFINITY;  // infinite: no edge grazed
+};
+inline constexpr double kGrazeMargin = 1e-5;
+ExactHit exactClosestHit(const TriangleList& triangles, const Ray& ray, double grazeMargin = kGrazeMargin);
+
 }  // namespace hmb::bvh

@@ -55,6 +55,7 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
   const float handedness = determinant(mat3(objectFromWorld)) < 0.0 ? -1.0 : 1.0;
   const float tMin = ray.originTMin.w;
   const BvhFrame frame = meshFrames[mesh];
+  bool nearestHere = false;  // best is this instance's: its distance is refined at the end
   uint node = mesh;
   while (node != HMB_BVH_LINK_END) {
     const uvec4 n = meshNodes[node];
@@ -83,9 +84,15 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
         best.triangle = triangle;
         best.objectId = traceInstances[instance].objectId;
         best.instance = instance;
+        nearestHere = true;
       }
     }
     node = link & HMB_BVH_LINK_NEXT_MASK;
+  }
+  if (nearestHere) {
+    const uvec4 tri = traceTriangles[best.triangle];
+    const float refined = planeHitDistance(r, positions[tri.x].xyz, positions[tri.y].xyz, positions[tri.z].xyz, best.t);
+    best.t = clamp(refined, tMin, ray.directionTMax.w);
   }
 }
 

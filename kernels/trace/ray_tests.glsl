@@ -5,9 +5,13 @@
 // Relative widening of a box's far end: covers the box test's and the triangle test's
 // rounding, so a hit is never culled by its own leaf's box (bvh::kBoxSlack).
 const float kBoxSlack = 1.0 / 65536.0;
+// A largest angle this close to 180 degrees (sine): planeHitDistance keeps the edge functions'
+// distance (bvh::kSliverSine).
+const float kSliverSine = 1.0 / 1024.0;
 
 struct PreparedRay {
   vec3 origin;
+  vec3 direction;
   vec3 inverseDirection;  // +-inf for a zero component, by its sign
   bvec3 negative;         // direction < 0 (or -0) per axis: the box planes swap
   uint octant;            // bit a set: negative along axis a (selects the traversal order)
@@ -21,6 +25,7 @@ struct PreparedRay {
 PreparedRay prepareRay(vec3 origin, vec3 direction) {
   PreparedRay r;
   r.origin = origin;
+  r.direction = direction;
   r.inverseDirection = 1.0 / direction;
   r.negative = lessThan(r.inverseDirection, vec3(0.0));
   r.octant = (r.negative.x ? 1u : 0u) | (r.negative.y ? 2u : 0u) | (r.negative.z ? 4u : 0u);
@@ -75,6 +80,34 @@ bool intersectTriangle(PreparedRay r, vec3 v0, vec3 v1, vec3 v2, out float t, ou
   u = e1 * inverseDet;
   v = e2 * inverseDet;
   return true;
+}
+
+// The distance to the plane of a triangle the ray hits, to float precision; `shearedT` for a
+// sliver or a ray in its plane (bvh::planeHitDistance explains). Taken for the closest hit only.
+float planeHitDistance(PreparedRay r, vec3 v0, vec3 v1, vec3 v2, float shearedT) {
+  precise const vec3 edge0 = v1 - v0, edge1 = v2 - v1, edge2 = v0 - v2;
+  precise const float length0 = dot(edge0, edge0), length1 = dot(edge1, edge1), length2 = dot(edge2, edge2);
+  precise vec3 normal, vertex;
+  precise float lengths;
+  if (length0 >= length1 && length0 >= length2) {
+    normal = cross(edge1, edge2);
+    vertex = v2;
+    lengths = length1 * length2;
+  } else if (length1 >= length2) {
+    normal = cross(edge2, edge0);
+    vertex = v0;
+    lengths = length2 * length0;
+  } else {
+    normal = cross(edge0, edge1);
+    vertex = v1;
+    lengths = length0 * length1;
+  }
+  precise const float towards = dot(normal, r.direction);
+  precise const float area2 = dot(normal, normal);
+  if (!(towards != 0.0 && !isinf(towards) && !isnan(towards) && area2 >= kSliverSine * kSliverSine * lengths))
+    return shearedT;
+  precise const float facing = dot(normal, vertex - r.origin);
+  return facing / towards;
 }
 
 #endif
