@@ -187,6 +187,7 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
     progress("  device builds");
     std::vector<double> builds;
     std::vector<std::vector<double>> levels;
+    std::vector<double> smallTaskMs;
     std::unique_ptr<TraceScene> traceScene;
     for (int i = 0; i < options.warmup + options.repeats; ++i) {
       vk::FrameRecorder frame(context);
@@ -194,10 +195,13 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
       if (i < options.warmup) continue;
       builds.push_back(traceScene->meshBvh().stats().deviceMilliseconds);
       levels.push_back(traceScene->meshBvh().stats().levelMilliseconds);
+      smallTaskMs.push_back(traceScene->meshBvh().stats().smallTaskMilliseconds);
     }
     c.deviceBuildMilliseconds = summarize(builds);
     const auto median = std::find(builds.begin(), builds.end(), c.deviceBuildMilliseconds.median);
     c.deviceLevelMilliseconds = levels.at(median == builds.end() ? 0 : median - builds.begin());
+    c.deviceSmallTaskMilliseconds = smallTaskMs.at(median == builds.end() ? 0 : median - builds.begin());
+    c.deviceSmallTasks = traceScene->meshBvh().stats().smallTasks;
     c.deviceLevels = traceScene->meshBvh().stats().levels;
     c.sahDevice = bvh::sahCost(traceScene->meshBvh().download(0));
 
@@ -244,6 +248,8 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
             {"device_mtris_per_s", mtris},
             {"device_levels", c.deviceLevels},
             {"device_level_ms", c.deviceLevelMilliseconds},
+            {"device_small_tasks", c.deviceSmallTasks},
+            {"device_small_task_ms", c.deviceSmallTaskMilliseconds},
             {"embree_scene_ms", summaryJson(c.embreeSceneBuildMilliseconds)},
             {"embree_mtris_per_s", embreeMtris},
             {"embree_build_bvh_ms", summaryJson(c.embreeBvhBuildMilliseconds)},

@@ -61,6 +61,8 @@ struct BvhCase {
   uint32_t triangles = 0;
   Summary deviceBuildMilliseconds;  // triangle boxes + every level, device timestamps
   std::vector<double> deviceLevelMilliseconds;  // of the median build
+  uint32_t deviceSmallTasks = 0;                // subtrees build_small_tasks finished
+  double deviceSmallTaskMilliseconds = 0;       // its time in the median build
   uint32_t deviceLevels = 0;
   Summary embreeSceneBuildMilliseconds;  // rtcCommitScene
   Summary embreeBvhBuildMilliseconds;    // rtcBuildBVH into our layout

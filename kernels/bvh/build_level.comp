@@ -319,6 +319,13 @@ void main() {
     next.tree = task.tree;
     next.centroidMin = vec4(childBounds[b + 6], childBounds[b + 7], childBounds[b + 8], 0.0);
     next.centroidMax = vec4(childBounds[b + 9], childBounds[b + 10], childBounds[b + 11], 0.0);
+    if (count <= HMB_BVH_SMALL_TASK) {
+      // Its range is in the half this level wrote; build_small_tasks finishes it after the levels.
+      next.centroidMin.w = float(params.level + 1u);
+      next.centroidMax.w = float(1u - parity);
+      tasks[2u * params.taskCapacity + atomicAdd(counters.smallTaskCount, 1u)] = next;
+      continue;
+    }
     const uint slot = atomicAdd(counters.taskCount[1u - parity], 1u);
     tasks[(1u - parity) * params.taskCapacity + slot] = next;
     atomicMax(counters.levels, params.level + 2u);

@@ -1,6 +1,7 @@
 // Layouts of the BVH builder's kernels: triangle_bounds / instance_motion_bounds (primitive
 // boxes) -> begin_build (one root task per tree) -> build_level, once per tree level, with
-// size_build_dispatch sizing the next level's indirect dispatch.
+// size_build_dispatch sizing the next level's indirect dispatch -> build_small_tasks, the
+// subtrees of small tasks whole.
 //
 // The build is top-down binned SAH, level by level: one workgroup per task (a node and its
 // primitive range) bins the range's centroids, picks the cheapest split on any axis, and
@@ -27,6 +28,12 @@
 #define HMB_BVH_MAX_TREE_PRIMITIVES 2000000u
 // Centroid bins per axis. 16 keep the SAH cost within a few percent of a full sweep.
 #define HMB_BVH_BINS 16
+// A task of at most this many primitives is not split level by level: build_small_tasks, one
+// invocation per task after the levels, builds its whole subtree with an exact SAH sweep.
+// The deep levels' thousands of tiny tasks each cost build_level a workgroup and its bins'
+// set-up (over 70% of a million-triangle build's time went to tasks under 16 primitives).
+#define HMB_BVH_SMALL_TASK 32u
+#define HMB_BVH_SMALL_TASK_GROUP 64
 // Leaves of mesh trees hold at most this many primitives (as the CPU reference builder's
 // default); each build names its own limit (BvhBuildParams::maxLeaf).
 #define HMB_BVH_MAX_LEAF 4u
@@ -48,8 +55,9 @@
 #define HMB_BUILD_BINDING_NODES 3       // BvhNode[]: exact bounds, the build's working copy
 #define HMB_BUILD_BINDING_LINKS 4       // uint[8 * node capacity], see HMB_BVH_LINK_*
 // The task queue: BvhBuildCounters (its head: the levels' task counts and indirect
-// dispatches), then BvhBuildTask[2 * taskCapacity], this level's and the next level's, from
-// byte sizeof(BvhBuildCounters) (a multiple of a task's 16-byte alignment).
+// dispatches), then BvhBuildTask[3 * taskCapacity] from byte sizeof(BvhBuildCounters) (a
+// multiple of a task's 16-byte alignment): this level's, the next level's, and the small
+// tasks build_small_tasks finishes.
 #define HMB_BUILD_BINDING_TASKS 5
 #define HMB_BUILD_BINDING_PACKED_NODES 6  // BvhPackedNode[]: the nodes as traversal reads them
 #define HMB_BUILD_BINDING_FRAMES 7        // BvhFrame per tree: what its packed bounds count steps in
@@ -80,20 +88,21 @@ struct BvhBuildTask {
   uint first;  // range of the primitive arrays
   uint count;
   uint tree;         // whose frame the node's children are packed in
-  vec4 centroidMin;  // bounds of the range's box centres (w unused)
-  vec4 centroidMax;
+  vec4 centroidMin;  // bounds of the range's box centres; small tasks: w the node's level
+  vec4 centroidMax;  // small tasks: w the half of the primitive array the range is in (0, 1)
 };
 
 // Indirect dispatch arguments and task counts of two levels in turn (index: level & 1).
 struct BvhBuildCounters {
-  uvec4 dispatch[2];  // xyz: groups of build_level for a level with that parity
-  uint taskCount[2];  // tasks of a level with that parity
-  uint nodeCount;     // nodes allocated (trees' roots included)
-  uint levels;        // deepest level that had tasks, plus one
+  uvec4 dispatch[2];    // xyz: groups of build_level for a level with that parity
+  uvec4 smallDispatch;  // xyz: groups of build_small_tasks
+  uint taskCount[2];    // tasks of a level with that parity
+  uint smallTaskCount;
+  uint nodeCount;  // nodes allocated (trees' roots included)
+  uint levels;     // deepest level that had tasks, plus one
   uint leafCount;
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
 HMB_GPU_END
@@ -112,6 +121,6 @@ HMB_GPU_END
 HMB_CHECK_SIZE(BvhBox, 32)
 HMB_CHECK_SIZE(BvhBuildParams, 32)
 HMB_CHECK_SIZE(BvhBuildTask, 48)
-HMB_CHECK_SIZE(BvhBuildCounters, 64)
+HMB_CHECK_SIZE(BvhBuildCounters, 80)
 
 #endif

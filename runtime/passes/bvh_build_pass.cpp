@@ -19,7 +19,8 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       maxLeaf_(maxLeaf),
       beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams)),
       levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams)),
-      sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)) {
+      sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)),
+      smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams)) {
   if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
   if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
@@ -48,8 +49,9 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
     frames_ = vk::Buffer(context_, treeCount * sizeof(gpu::BvhFrame), vk::MemoryUse::Device, name_ + " frames");
   if (tasks > taskCapacity_) {
     taskCapacity_ = static_cast<uint32_t>(tasks);
-    // The counters at the head, then the two levels' tasks (kernels/bvh/bvh_build_layout.h).
-    tasks_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters) + 2 * tasks * sizeof(gpu::BvhBuildTask),
+    // The counters at the head, then the two levels' tasks and the small tasks
+    // (kernels/bvh/bvh_build_layout.h).
+    tasks_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters) + 3 * tasks * sizeof(gpu::BvhBuildTask),
                         vk::MemoryUse::Device, name_ + " tasks");
   }
   if (rootBuffer_.size() < treeCount * sizeof(glm::uvec2))
@@ -122,6 +124,18 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
     if (level > uint64_t(primitiveCount) + 2)
       throw Error(name_ + ": the build did not finish (device fault?)");  // every level splits
   }
+  if (counters.smallTaskCount > 0) {
+    frame.begin();
+    frame.dispatchIndirect(kSmallTasks, smallTasksKernel_, buffers, params, tasks_,
+                           offsetof(gpu::BvhBuildCounters, smallDispatch));
+    const vk::FrameTimings timings = frame.submitAndWait();
+    ++stats_.submissions;
+    stats_.deviceMilliseconds += timings.frameMilliseconds.value_or(0.0);
+    for (const vk::PassTiming& pass : timings.passes)
+      if (pass.name == kSmallTasks) stats_.smallTaskMilliseconds += pass.milliseconds.value_or(0.0);
+    tasks_.read(std::as_writable_bytes(std::span(&counters, 1)));
+  }
+  stats_.smallTasks = counters.smallTaskCount;
   stats_.nodes = counters.nodeCount;
   stats_.leaves = counters.leafCount;
   stats_.levels = counters.levels;

@@ -1,5 +1,6 @@
 // Host side of the device BVH builder (kernels/bvh/): begin_build, then build_level and
-// size_build_dispatch once per tree level. Builds one or more trees over one array of
+// size_build_dispatch once per tree level, then build_small_tasks for the small subtrees the
+// levels set aside. Builds one or more trees over one array of
 // primitive boxes; tree r covers primitives roots[r] = (first, count) and is rooted at node r.
 //
 // How deep the trees go is only known on the device, so build() records a batch of levels,
@@ -33,6 +34,8 @@ struct BvhBuildStats {
   uint32_t submissions = 0;  // batches of levels submitted
   double deviceMilliseconds = 0.0;  // sum of the batches' frame times (0 without timestamps)
   std::vector<double> levelMilliseconds;  // build_level's time at each level (empty without timestamps)
+  uint32_t smallTasks = 0;                // subtrees build_small_tasks finished
+  double smallTaskMilliseconds = 0.0;     // its time
 };
 
 class BvhBuildPass {
@@ -40,6 +43,7 @@ class BvhBuildPass {
   static constexpr const char* kBegin = "bvh-begin-build";
   static constexpr const char* kLevel = "bvh-build-level";
   static constexpr const char* kSizeDispatch = "bvh-size-build-dispatch";
+  static constexpr const char* kSmallTasks = "bvh-build-small-tasks";
   static constexpr const char* kCompact = "bvh-compact";
   // Levels recorded in the first submission: what a tree of the largest root's size needs
   // when its splits are not too uneven (log2 of its primitives, plus a margin), at most
@@ -107,6 +111,7 @@ class BvhBuildPass {
   vk::ComputeKernel beginKernel_;
   vk::ComputeKernel levelKernel_;
   vk::ComputeKernel sizeDispatchKernel_;
+  vk::ComputeKernel smallTasksKernel_;
   uint32_t taskCapacity_ = 0;
   uint32_t primitiveCount_ = 0;
   std::vector<glm::uvec2> roots_;

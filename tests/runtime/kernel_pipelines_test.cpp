@@ -41,6 +41,7 @@ const KernelLayout kLayouts[] = {
     {"bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
     {"bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
     {"bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
+    {"bvh/build_small_tasks", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
     {"trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT, sizeof(gpu::TraceParams), false},
     {"trace/trace_rays", HMB_TRACE_BINDING_COUNT, sizeof(gpu::TraceParams), false},
     {"debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams), false},
