@@ -15,6 +15,7 @@
 #include "bvh/reference_traversal.h"
 #include "runtime/error.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/trace_rays_pass.h"
 #include "runtime/trace_scene.h"
 #include "runtime/vulkan/context.h"
@@ -207,6 +208,23 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
 
     progress("  CPU full-sweep build");
     const bvh::PrimitiveBounds input = bvh::triangleBounds(flat.view());
+    {
+      // Refit of the same tree to the same boxes: what a deforming mesh pays per frame instead
+      // of a build (the work does not depend on how far the triangles moved).
+      std::vector<gpu::BvhBox> boxes;
+      for (const Aabb& b : input.bounds) boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
+      const vk::Buffer boxBuffer = vk::uploadedBuffer(context, boxes, "bench boxes");
+      passes::BvhBuildPass tree(context, "bench refit", HMB_BVH_MAX_LEAF);
+      vk::FrameRecorder frame(context);
+      const glm::uvec2 root(0u, c.triangles);
+      tree.build(frame, boxBuffer, c.triangles, std::span(&root, 1));
+      std::vector<double> refits;
+      for (int i = 0; i < options.warmup + options.repeats; ++i) {
+        const double ms = tree.refit(frame, boxBuffer);
+        if (i >= options.warmup) refits.push_back(ms);
+      }
+      c.deviceRefitMilliseconds = summarize(refits);
+    }
     const auto start = std::chrono::steady_clock::now();
     const bvh::Bvh reference = bvh::buildReferenceSah(input.bounds, input.centroids);
     c.cpuReferenceBuildMilliseconds =
@@ -250,6 +268,7 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
             {"device_level_ms", c.deviceLevelMilliseconds},
             {"device_small_tasks", c.deviceSmallTasks},
             {"device_small_task_ms", c.deviceSmallTaskMilliseconds},
+            {"device_refit_ms", summaryJson(c.deviceRefitMilliseconds)},
             {"embree_scene_ms", summaryJson(c.embreeSceneBuildMilliseconds)},
             {"embree_mtris_per_s", embreeMtris},
             {"embree_build_bvh_ms", summaryJson(c.embreeBvhBuildMilliseconds)},

@@ -63,6 +63,7 @@ struct BvhCase {
   std::vector<double> deviceLevelMilliseconds;  // of the median build
   uint32_t deviceSmallTasks = 0;                // subtrees build_small_tasks finished
   double deviceSmallTaskMilliseconds = 0;       // its time in the median build
+  Summary deviceRefitMilliseconds;              // refit of the built tree to its boxes
   uint32_t deviceLevels = 0;
   Summary embreeSceneBuildMilliseconds;  // rtcCommitScene
   Summary embreeBvhBuildMilliseconds;    // rtcBuildBVH into our layout

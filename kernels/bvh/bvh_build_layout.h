@@ -63,7 +63,28 @@
 #define HMB_BUILD_BINDING_FRAMES 7        // BvhFrame per tree: what its packed bounds count steps in
 #define HMB_BUILD_BINDING_COUNT 8
 
+// refit_parents, refit_depths, refit_bounds (once per depth, deepest first) and refit_pack: a
+// built tree's bounds from new primitive boxes, its topology, links and primitive order kept
+// (deforming meshes).
+#define HMB_REFIT_BINDING_BOXES 0         // BvhBox per primitive, the new ones
+#define HMB_REFIT_BINDING_ROOTS 1         // uvec2 (first primitive, count) per tree
+#define HMB_REFIT_BINDING_PRIMITIVES 2    // the built primitive order the leaves index
+#define HMB_REFIT_BINDING_PACKED_NODES 3  // rewritten: bounds in the tree's new frame
+#define HMB_REFIT_BINDING_FRAMES 4        // rewritten: from each root's new box
+#define HMB_REFIT_BINDING_EXACT 5         // BvhBox per node: the refitted exact bounds (scratch)
+#define HMB_REFIT_BINDING_PARENTS 6       // uint per node (scratch)
+#define HMB_REFIT_BINDING_DEPTHS 7        // uint per node: steps from its root (scratch)
+#define HMB_REFIT_BINDING_COUNT 8
+#define HMB_REFIT_GROUP 64
+
 HMB_GPU_BEGIN
+
+struct BvhRefitParams {
+  uint nodeCount;
+  uint treeCount;  // roots are nodes 0..treeCount-1
+  uint depth;      // refit_bounds: the depth whose nodes it bounds
+  uint pad0;
+};
 
 // A primitive's bounds (w unused). Empty: min > max.
 struct BvhBox {
@@ -122,5 +143,6 @@ HMB_CHECK_SIZE(BvhBox, 32)
 HMB_CHECK_SIZE(BvhBuildParams, 32)
 HMB_CHECK_SIZE(BvhBuildTask, 48)
 HMB_CHECK_SIZE(BvhBuildCounters, 80)
+HMB_CHECK_SIZE(BvhRefitParams, 16)
 
 #endif

@@ -20,7 +20,11 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams)),
       levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams)),
       sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)),
-      smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams)) {
+      smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams)),
+      refitParentsKernel_(context, "bvh/refit_parents", sizeof(gpu::BvhRefitParams)),
+      refitDepthsKernel_(context, "bvh/refit_depths", sizeof(gpu::BvhRefitParams)),
+      refitBoundsKernel_(context, "bvh/refit_bounds", sizeof(gpu::BvhRefitParams)),
+      refitPackKernel_(context, "bvh/refit_pack", sizeof(gpu::BvhRefitParams)) {
   if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
   if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
@@ -141,6 +145,40 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   stats_.levels = counters.levels;
   stats_.levelMilliseconds.resize(std::min<size_t>(stats_.levelMilliseconds.size(), stats_.levels));
   return stats_;
+}
+
+double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes) {
+  if (stats_.nodes == 0) throw Error(name_ + ": refit() before a build");
+  if (boxes.size() < uint64_t(primitiveCount_) * sizeof(gpu::BvhBox))
+    throw Error(name_ + ": refit() needs a box for each of the " + std::to_string(primitiveCount_) + " primitives");
+  const uint64_t nodes = stats_.nodes;
+  // Scratch for this refit alone.
+  const vk::Buffer roots = vk::uploadedBuffer(context_, roots_, name_ + " refit roots");
+  const vk::Buffer exact(context_, nodes * sizeof(gpu::BvhBox), vk::MemoryUse::Device, name_ + " refit bounds");
+  const vk::Buffer parents(context_, nodes * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " refit parents");
+  const vk::Buffer depths(context_, nodes * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " refit depths");
+  const vk::Bindings bindings = {{HMB_REFIT_BINDING_BOXES, &boxes},
+                                 {HMB_REFIT_BINDING_ROOTS, &roots},
+                                 {HMB_REFIT_BINDING_PRIMITIVES, &primitives_},
+                                 {HMB_REFIT_BINDING_PACKED_NODES, &packedNodes_},
+                                 {HMB_REFIT_BINDING_FRAMES, &frames_},
+                                 {HMB_REFIT_BINDING_EXACT, &exact},
+                                 {HMB_REFIT_BINDING_PARENTS, &parents},
+                                 {HMB_REFIT_BINDING_DEPTHS, &depths}};
+  gpu::BvhRefitParams params{stats_.nodes, static_cast<uint32_t>(roots_.size()), 0, 0};
+  const glm::uvec3 groups = vk::foldedGroups(vk::groupsFor(stats_.nodes, HMB_REFIT_GROUP));
+  frame.begin();
+  frame.dispatch(kRefitParents, refitParentsKernel_, bindings, params, groups);
+  frame.dispatch(kRefitDepths, refitDepthsKernel_, bindings, params, groups);
+  // No node lies deeper than the build's level count (stats_.levels counts depth + 1 of every
+  // node that was split, and a leaf is one below such a node).
+  for (uint32_t depth = stats_.levels + 1; depth-- > 0;) {
+    params.depth = depth;
+    frame.dispatch(kRefitBounds, refitBoundsKernel_, bindings, params, groups);
+  }
+  frame.dispatch(kRefitPack, refitPackKernel_, bindings, params, groups);
+  const double ms = frame.submitAndWait().frameMilliseconds.value_or(0.0);
+  return ms;
 }
 
 void BvhBuildPass::compact(vk::FrameRecorder& frame) {

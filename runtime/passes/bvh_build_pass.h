@@ -45,6 +45,10 @@ class BvhBuildPass {
   static constexpr const char* kSizeDispatch = "bvh-size-build-dispatch";
   static constexpr const char* kSmallTasks = "bvh-build-small-tasks";
   static constexpr const char* kCompact = "bvh-compact";
+  static constexpr const char* kRefitParents = "bvh-refit-parents";
+  static constexpr const char* kRefitDepths = "bvh-refit-depths";
+  static constexpr const char* kRefitBounds = "bvh-refit-bounds";
+  static constexpr const char* kRefitPack = "bvh-refit-pack";
   // Levels recorded in the first submission: what a tree of the largest root's size needs
   // when its splits are not too uneven (log2 of its primitives, plus a margin), at most
   // kMaxLevelsPerSubmission. A deeper tree takes more submissions of kLevelsPerLaterSubmission
@@ -73,6 +77,13 @@ class BvhBuildPass {
   // kept, which then hold about half the worst case allocated for a build. The next build
   // allocates afresh. Adds its copy time to stats().deviceMilliseconds.
   void compact(vk::FrameRecorder& frame);
+
+  // Refits the last build's trees to new boxes of the same primitives (a deforming mesh): every
+  // node's bounds from its leaves up, each tree's frame from its root's new box, the topology,
+  // links and primitive order kept. Compacted trees refit too. Returns the device time (ms).
+  // The SAH cost drifts as the primitives move from where the build split them; a build
+  // restores it.
+  double refit(vk::FrameRecorder& frame, const vk::Buffer& boxes);
 
   const BvhBuildStats& stats() const { return stats_; }
   // The trees' buffers on the device: exact and packed nodes, links, primitive indices and
@@ -112,6 +123,10 @@ class BvhBuildPass {
   vk::ComputeKernel levelKernel_;
   vk::ComputeKernel sizeDispatchKernel_;
   vk::ComputeKernel smallTasksKernel_;
+  vk::ComputeKernel refitParentsKernel_;
+  vk::ComputeKernel refitDepthsKernel_;
+  vk::ComputeKernel refitBoundsKernel_;
+  vk::ComputeKernel refitPackKernel_;
   uint32_t taskCapacity_ = 0;
   uint32_t primitiveCount_ = 0;
   std::vector<glm::uvec2> roots_;

@@ -1,0 +1,17 @@
+#version 450
+// Refit, last: every node's new exact box packed in its tree's new frame (the root's new box),
+// which the root's invocation also stores. The index words stay.
+#extension GL_GOOGLE_include_directive : require
+#include "refit_common.glsl"
+
+void main() {
+  const uint node = linearInvocationIndex(HMB_REFIT_GROUP);
+  if (node >= params.nodeCount || isEmptyRoot(node)) return;
+  uint tree = node;
+  while (tree >= params.treeCount) tree = parents[tree];
+  const BvhBox root = exact[tree];
+  const BvhFrame frame = frameOf(root.min.xyz, root.max.xyz);
+  if (node == tree) frames[tree] = frame;
+  const BvhBox box = exact[node];
+  packedNodes[node].xyz = packBox(box.min.xyz, box.max.xyz, frame);
+}
