@@ -42,11 +42,6 @@ shared uint cursor[2];
 shared float laneChildBounds[GROUP * 24];
 shared float childBounds[24];
 
-float surfaceArea(vec3 lo, vec3 hi) {
-  const vec3 e = max(hi - lo, vec3(0.0));
-  return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
-
 // Bin of a centroid coordinate among `bins`; scale is 0 on an axis whose centroids coincide
 // (not binned).
 uint binOf(float c, float lo, float scale, uint bins) {
@@ -277,13 +272,7 @@ void main() {
   // Jobs 0..7: the links of each octant; 8: the node; 9 and 10: the two children.
   for (uint job = lane; job < HMB_BVH_OCTANTS + 3u; job += GROUP) {
     if (job < HMB_BVH_OCTANTS) {
-      // The child on the ray's side of the split axis first: the left one unless the ray
-      // runs towards negative values on that axis.
-      const uint rightFirst = (job >> axis) & 1u;
-      const uint escape = links[task.node * HMB_BVH_OCTANTS + job] & HMB_BVH_LINK_NEXT_MASK;
-      links[(left + rightFirst) * HMB_BVH_OCTANTS + job] = left + 1u - rightFirst;
-      links[(left + 1u - rightFirst) * HMB_BVH_OCTANTS + job] = escape;
-      links[task.node * HMB_BVH_OCTANTS + job] = escape | (rightFirst != 0u ? HMB_BVH_LINK_RIGHT_FIRST : 0u);
+      linkChildren(task.node, left, axis, job);
       continue;
     }
     if (job == HMB_BVH_OCTANTS) {
@@ -296,22 +285,9 @@ void main() {
     const uint b = side * 12;
     const uint first = task.first + (side == 0u ? 0u : leftCount);
     const uint count = side == 0u ? leftCount : rightCount;
-    BvhNode child;
-    child.minX = childBounds[b];
-    child.minY = childBounds[b + 1];
-    child.minZ = childBounds[b + 2];
-    child.maxX = childBounds[b + 3];
-    child.maxY = childBounds[b + 4];
-    child.maxZ = childBounds[b + 5];
-    child.leftOrFirst = first;
-    child.count = count == 1u ? 1u : 0u;
-    nodes[left + side] = child;
-    const vec3 lo = vec3(child.minX, child.minY, child.minZ), hi = vec3(child.maxX, child.maxY, child.maxZ);
-    packedNodes[left + side] = uvec4(packBox(lo, hi, frames[task.tree]), packLeftOrFirstCount(first, child.count));
-    if (count == 1u) {
-      atomicAdd(counters.leafCount, 1u);
-      continue;
-    }
+    writeChild(left + side, first, count, task.tree, vec3(childBounds[b], childBounds[b + 1], childBounds[b + 2]),
+               vec3(childBounds[b + 3], childBounds[b + 4], childBounds[b + 5]));
+    if (count == 1u) continue;
     BvhBuildTask next;
     next.node = left + side;
     next.first = first;

@@ -14,11 +14,6 @@
 
 layout(local_size_x = HMB_BVH_SMALL_TASK_GROUP) in;
 
-float surfaceArea(vec3 lo, vec3 hi) {
-  const vec3 e = max(hi - lo, vec3(0.0));
-  return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
-
 // The task's primitives, reordered as its nodes split them.
 uint order[SMALL];
 // The node being split: its primitives' boxes and centroids (by position in its range), the
@@ -32,21 +27,6 @@ float rightArea[SMALL];
 
 // Node, first position in `order`, count, level: what is left to split.
 uvec4 stack[SMALL];
-
-void writeChild(uint index, uint first, uint count, uint tree, vec3 lo, vec3 hi) {
-  BvhNode child;
-  child.minX = lo.x;
-  child.minY = lo.y;
-  child.minZ = lo.z;
-  child.maxX = hi.x;
-  child.maxY = hi.y;
-  child.maxZ = hi.z;
-  child.leftOrFirst = first;
-  child.count = count == 1u ? 1u : 0u;
-  nodes[index] = child;
-  packedNodes[index] = uvec4(packBox(lo, hi, frames[tree]), packLeftOrFirstCount(first, child.count));
-  if (count == 1u) atomicAdd(counters.leafCount, 1u);
-}
 
 void main() {
   const uint index = linearInvocationIndex(HMB_BVH_SMALL_TASK_GROUP);
@@ -118,15 +98,7 @@ void main() {
     for (uint k = 0; k < count; ++k) order[first + k] = reordered[k];
     const uint left = atomicAdd(counters.nodeCount, 2u);
     atomicMax(counters.levels, level + 2u);
-    // The links of each octant, as build_level writes them: the child on the ray's side of
-    // the split axis first.
-    for (uint octant = 0; octant < HMB_BVH_OCTANTS; ++octant) {
-      const uint rightFirst = (octant >> bestAxis) & 1u;
-      const uint escape = links[node * HMB_BVH_OCTANTS + octant] & HMB_BVH_LINK_NEXT_MASK;
-      links[(left + rightFirst) * HMB_BVH_OCTANTS + octant] = left + 1u - rightFirst;
-      links[(left + 1u - rightFirst) * HMB_BVH_OCTANTS + octant] = escape;
-      links[node * HMB_BVH_OCTANTS + octant] = escape | (rightFirst != 0u ? HMB_BVH_LINK_RIGHT_FIRST : 0u);
-    }
+    for (uint octant = 0; octant < HMB_BVH_OCTANTS; ++octant) linkChildren(node, left, bestAxis, octant);
     nodes[node].leftOrFirst = left;
     nodes[node].count = 0u;
     packedNodes[node].w = packLeftOrFirstCount(left, 0u);
