@@ -67,7 +67,7 @@ struct BvhHit {
   uint triangle;  // HMB_NO_HIT when nothing was hit
   uint objectId;  // object of the hit triangle (HMB_NO_HIT when nothing was hit)
   uint instance;  // two-level traces: the instance hit (HMB_NO_HIT when nothing was hit)
-  uint pad1;
+  uint entry;     // device traces: the hit triangle's place in the leaves' order (TraceScene)
   uint pad2;
 };
 

@@ -110,6 +110,14 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   });
   triangleBoxes = {};
   meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
+  // The triangles in the leaves' order, which traversal reads without the leaves' indirection
+  // (the primitive order names each triangle, for the closest hit only).
+  if (count > 0) {
+    const std::vector<uint32_t> order = meshBvh_.primitives().download<uint32_t>();
+    std::vector<glm::uvec4> leafOrder(count);
+    for (uint32_t entry = 0; entry < count; ++entry) leafOrder[entry] = triangles.at(order.at(entry));
+    triangles_ = vk::uploadedBuffer(context, leafOrder, "trace triangles (leaf order)");
+  }
 }
 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }

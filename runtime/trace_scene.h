@@ -62,7 +62,7 @@ class TraceScene {
   const passes::BvhBuildPass& meshBvh() const { return meshBvh_; }
   const passes::BvhBuildPass& instanceBvh() const { return instanceBvh_; }
   const vk::Buffer& positions() const { return positions_; }
-  const vk::Buffer& triangles() const { return triangles_; }
+  const vk::Buffer& triangles() const { return triangles_; }  // in the leaves' order (BvhHit::entry)
   const vk::Buffer& instances() const { return instances_; }
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
@@ -87,7 +87,7 @@ class TraceScene {
   std::vector<gpu::TraceInstance> builtInstances_;
   std::vector<gpu::InstanceTransform> builtTransforms_;
   vk::Buffer positions_;      // vec4 per vertex of every mesh
-  vk::Buffer triangles_;      // uvec4 (v0, v1, v2, mesh) per triangle of every mesh
+  vk::Buffer triangles_;      // uvec4 (v0, v1, v2, mesh) per triangle of every mesh, in the leaves' order
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds

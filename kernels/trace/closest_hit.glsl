@@ -32,14 +32,14 @@ BvhHit missedHit(float tMax) {
   hit.triangle = HMB_NO_HIT;
   hit.objectId = HMB_NO_HIT;
   hit.instance = HMB_NO_HIT;
-  hit.pad1 = 0u;
+  hit.entry = HMB_NO_HIT;
   hit.pad2 = 0u;
   return hit;
 }
 
 // Traces the ray, carried into the instance's space at its shutter time, through the
 // instance's mesh tree; keeps a hit that is nearer than `best` (ties: lower instance, then
-// lower triangle, so the answer does not depend on the visiting order).
+// lower leaf entry, so the answer does not depend on the visiting order).
 void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   const uint mesh = traceInstances[instance].mesh;
   const uint time = min(ray.time, scene.timeCount - 1u);
@@ -68,20 +68,22 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
       }
       const uint first = packedLeftOrFirst(n);
       for (uint k = 0; k < count; ++k) {
-        const uint triangle = meshPrimitives[first + k];
-        const uvec4 tri = traceTriangles[triangle];
+        // The triangles are stored in the leaves' order: no indirection through the leaf's
+        // primitive indices, which name the triangle once, for the closest hit.
+        const uint entry = first + k;
+        const uvec4 tri = traceTriangles[entry];
         const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
         float t, u, v;
         if (!intersectTriangle(r, p0, p1, p2, t, u, v)) continue;
         if (!(t >= tMin) || t > best.t) continue;
         if (cull && handedness * dot(direction, cross(p1 - p0, p2 - p0)) > 0.0) continue;
         if (t == best.t && (best.triangle != HMB_NO_HIT) &&
-            (instance > best.instance || (instance == best.instance && triangle >= best.triangle)))
+            (instance > best.instance || (instance == best.instance && entry >= best.entry)))
           continue;
         best.t = t;
         best.u = u;
         best.v = v;
-        best.triangle = triangle;
+        best.entry = entry;
         best.objectId = traceInstances[instance].objectId;
         best.instance = instance;
         nearestHere = true;
@@ -90,7 +92,8 @@ void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhH
     node = link & HMB_BVH_LINK_NEXT_MASK;
   }
   if (nearestHere) {
-    const uvec4 tri = traceTriangles[best.triangle];
+    best.triangle = meshPrimitives[best.entry];
+    const uvec4 tri = traceTriangles[best.entry];
     const float refined = planeHitDistance(r, positions[tri.x].xyz, positions[tri.y].xyz, positions[tri.z].xyz, best.t);
     best.t = clamp(refined, tMin, ray.directionTMax.w);
   }

@@ -14,7 +14,7 @@ struct HitSurface {
 
 // transformIndex: the hit instance's transform at the ray's time (instance * timeCount + time).
 HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
-  const uvec4 tri = traceTriangles[hit.triangle];
+  const uvec4 tri = traceTriangles[hit.entry];
   const vec3 b = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
   const vec3 objectNormal = b.x * vertices[tri.x].normal.xyz + b.y * vertices[tri.y].normal.xyz +
                             b.z * vertices[tri.z].normal.xyz;
