@@ -29,7 +29,7 @@ io::Rgba8Image downloadDisplay(const vk::Buffer& display, uint32_t width, uint32
 }
 
 // `s` (the scene's) with the user's post-process choices; a tile size not chosen is the filter's,
-// scaled with the image.
+// scaled with the image. Not validated: the callers validate what they build on it.
 passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const RenderSettings& settings) {
   settings::applyAll(passes::postProcessSettingTable(), settings.postprocess, s);
   if (!s.tileSize) {
@@ -39,6 +39,10 @@ passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const Ren
     const float linesScale = float(settings.height) / 720.0f;
     s.tileSize = std::max(1u, static_cast<uint32_t>(std::lround(float(passes::describe(s.filter).tileSize) * linesScale)));
   }
+  return s;
+}
+
+passes::PostProcessSettings validated(passes::PostProcessSettings s) {
   passes::validate(s);
   return s;
 }
@@ -46,7 +50,8 @@ passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const Ren
 // One table's settings as a render's: `choices` picks the table's choices out of RenderSettings.
 template <class Choices, class Settings>
 void addDescriptions(std::vector<RenderSettingDescription>& out, const settings::Table<Choices, Settings>& table,
-                     Choices RenderSettings::*choices, const Settings& defaults, const Settings* hybridDefaults) {
+                     Choices RenderSettings::*choices, const Settings& defaults,
+                     const Settings* hybridDefaults = nullptr) {
   for (const auto& setting : table) {
     std::string defaultText = setting.defaultText;
     if (hybridDefaults && setting.show(*hybridDefaults) != setting.show(defaults))
@@ -70,7 +75,8 @@ void addDescriptions(std::vector<RenderSettingDescription>& out, const settings:
   }
 }
 
-// `s` (the scene's) with the user's hybrid choices and post-process choices for its blur.
+// `s` (the scene's) with the user's hybrid choices and post-process choices for its blur,
+// validated, its blur included.
 passes::HybridSettings hybridWithChoices(passes::HybridSettings s, const RenderSettings& settings) {
   s.blur = withChoices(s.blur, settings);
   settings::applyAll(passes::hybridSettingTable(), settings.hybrid, s);
@@ -85,22 +91,22 @@ std::vector<RenderSettingDescription> renderSettingDescriptions() {
   const passes::PostProcessSettings hybridBlur = passes::HybridSettings{}.blur;
   addDescriptions(out, passes::postProcessSettingTable(), &RenderSettings::postprocess, passes::PostProcessSettings{},
                   &hybridBlur);
-  addDescriptions(out, passes::hybridSettingTable(), &RenderSettings::hybrid, passes::HybridSettings{},
-                  static_cast<const passes::HybridSettings*>(nullptr));
-  addDescriptions(out, passes::referenceSettingTable(), &RenderSettings::reference, passes::ReferenceSettings{},
-                  static_cast<const passes::ReferenceSettings*>(nullptr));
+  addDescriptions(out, passes::hybridSettingTable(), &RenderSettings::hybrid, passes::HybridSettings{});
+  addDescriptions(out, passes::referenceSettingTable(), &RenderSettings::reference, passes::ReferenceSettings{});
   return out;
 }
 
 passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
-  return withChoices(passes::PostProcessSettings::fromScene(scene.settings), settings);
+  return validated(withChoices(passes::PostProcessSettings::fromScene(scene.settings), settings));
 }
 
 passes::HybridSettings hybridSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
   return hybridWithChoices(passes::HybridSettings::fromScene(scene.settings), settings);
 }
 
-void validatePostProcessChoices(const RenderSettings& settings) { withChoices(passes::PostProcessSettings{}, settings); }
+void validatePostProcessChoices(const RenderSettings& settings) {
+  validated(withChoices(passes::PostProcessSettings{}, settings));
+}
 
 void validateHybridChoices(const RenderSettings& settings) { hybridWithChoices(passes::HybridSettings{}, settings); }
 

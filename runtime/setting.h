@@ -7,8 +7,6 @@
 #pragma once
 
 #include <charconv>
-#include <cmath>
-#include <concepts>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -29,7 +27,7 @@ struct Setting {
   std::string_view name;
   std::string_view methods;  // the methods that read it, for help texts: "postprocess, hybrid"
   std::string_view help;
-  std::string defaultText;  // "15", "the scene's", ...: taken from the defaults, never retyped
+  std::string defaultText;  // "15", "the scene's", ...: show() of the defaults unless a builder names it
   std::string accepts;      // "1..255", "mcguire|jimenez", ...
   std::string_view valueName;  // what the value is, for help texts: "N", "X", "NAME", "FILE"
   bool flag = false;           // a switch without a value: its text is "true"
@@ -157,10 +155,6 @@ template <class Choices, class Settings, class T, class ChoiceMember, class Fiel
 Setting<Choices, Settings> number(std::string_view name, std::string_view methods, std::string_view help,
                                   ChoiceMember Choices::*choice, FieldMember Settings::*field, Range<T> range,
                                   std::string defaultText = {}) {
-  if (defaultText.empty()) {
-    const auto fallback = valueOf(Settings{}.*field);
-    defaultText = fallback ? formatNumber(T(*fallback)) : "none";
-  }
   Setting<Choices, Settings> s{name, methods, help, std::move(defaultText), range.text(),
                                std::is_integral_v<T> ? "N" : "X"};
   s.read = [=](Choices& c, std::string_view text) { c.*choice = parseNumber<T>(name, text); };
@@ -176,6 +170,7 @@ Setting<Choices, Settings> number(std::string_view name, std::string_view method
     const auto value = valueOf(settings.*field);
     return value ? formatNumber(T(*value)) : std::string("none");
   };
+  if (s.defaultText.empty()) s.defaultText = s.show(Settings{});
   return s;
 }
 
@@ -184,13 +179,12 @@ template <class Choices, class Settings, class E, class ChoiceMember>
 Setting<Choices, Settings> named(std::string_view name, std::string_view methods, std::string_view help,
                                  ChoiceMember Choices::*choice, E Settings::*field,
                                  Names<E> names) {
-  std::string accepts, defaultText;
-  for (const auto& [value, valueName] : names) {
+  std::string accepts;
+  for (const auto& entry : names) {
     if (!accepts.empty()) accepts += '|';
-    accepts += valueName;
-    if (value == Settings{}.*field) defaultText = valueName;
+    accepts += entry.second;
   }
-  Setting<Choices, Settings> s{name, methods, help, defaultText, accepts, "NAME"};
+  Setting<Choices, Settings> s{name, methods, help, "", accepts, "NAME"};
   s.read = [=](Choices& c, std::string_view text) {
     for (const auto& [value, valueName] : names)
       if (valueName == text) {
@@ -208,6 +202,7 @@ Setting<Choices, Settings> named(std::string_view name, std::string_view methods
     return std::string(name) + " is not one of " + accepts;
   };
   s.show = [=](const Settings& settings) { return std::string(nameOf(names, settings.*field)); };
+  s.defaultText = s.show(Settings{});
   return s;
 }
 
@@ -215,11 +210,12 @@ Setting<Choices, Settings> named(std::string_view name, std::string_view methods
 template <class Choices, class Settings>
 Setting<Choices, Settings> flag(std::string_view name, std::string_view methods, std::string_view help,
                                 bool Choices::*choice, bool Settings::*field) {
-  Setting<Choices, Settings> s{name, methods, help, Settings{}.*field ? "on" : "off", "", "", true};
+  Setting<Choices, Settings> s{name, methods, help, "", "", "", true};
   s.read = [=](Choices& c, std::string_view) { c.*choice = true; };
   s.apply = [=](const Choices& c, Settings& settings) { settings.*field = c.*choice; };
   s.problem = [](const Settings&) { return std::string(); };
   s.show = [=](const Settings& settings) { return std::string(settings.*field ? "on" : "off"); };
+  s.defaultText = s.show(Settings{});
   return s;
 }
 
@@ -227,11 +223,12 @@ Setting<Choices, Settings> flag(std::string_view name, std::string_view methods,
 template <class Choices, class Settings>
 Setting<Choices, Settings> path(std::string_view name, std::string_view methods, std::string_view help,
                                 std::filesystem::path Choices::*choice, std::filesystem::path Settings::*field) {
-  Setting<Choices, Settings> s{name, methods, help, "none", "a file name", "FILE"};
+  Setting<Choices, Settings> s{name, methods, help, "", "a file name", "FILE"};
   s.read = [=](Choices& c, std::string_view value) { c.*choice = std::filesystem::path(std::string(value)); };
   s.apply = [=](const Choices& c, Settings& settings) { settings.*field = c.*choice; };
   s.problem = [](const Settings&) { return std::string(); };
   s.show = [=](const Settings& settings) { return (settings.*field).empty() ? "none" : (settings.*field).string(); };
+  s.defaultText = s.show(Settings{});
   return s;
 }
 
