@@ -211,9 +211,7 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
     {
       // Refit of the same tree to the same boxes: what a deforming mesh pays per frame instead
       // of a build (the work does not depend on how far the triangles moved).
-      std::vector<gpu::BvhBox> boxes;
-      for (const Aabb& b : input.bounds) boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
-      const vk::Buffer boxBuffer = vk::uploadedBuffer(context, boxes, "bench boxes");
+      const vk::Buffer boxBuffer = vk::uploadedBuffer(context, passes::bvhBoxes(input.bounds), "bench boxes");
       passes::BvhBuildPass tree(context, "bench refit", HMB_BVH_MAX_LEAF);
       vk::FrameRecorder frame(context);
       const glm::uvec2 root(0u, c.triangles);

@@ -13,6 +13,13 @@
 
 namespace hmb::passes {
 
+std::vector<gpu::BvhBox> bvhBoxes(std::span<const Aabb> bounds) {
+  std::vector<gpu::BvhBox> boxes;
+  boxes.reserve(bounds.size());
+  for (const Aabb& b : bounds) boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
+  return boxes;
+}
+
 BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf)
     : context_(context),
       name_(std::move(name)),
@@ -177,8 +184,7 @@ double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes) {
     frame.dispatch(kRefitBounds, refitBoundsKernel_, bindings, params, groups);
   }
   frame.dispatch(kRefitPack, refitPackKernel_, bindings, params, groups);
-  const double ms = frame.submitAndWait().frameMilliseconds.value_or(0.0);
-  return ms;
+  return frame.submitAndWait().frameMilliseconds.value_or(0.0);
 }
 
 void BvhBuildPass::compact(vk::FrameRecorder& frame) {

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "bvh/bvh.h"
+#include "kernels/bvh/bvh_build_layout.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
@@ -26,6 +27,10 @@ struct FrameTimings;
 }
 
 namespace hmb::passes {
+
+// Host bounds as the builder takes them (BvhBox per primitive), for builds and refits over boxes
+// made on the host.
+std::vector<gpu::BvhBox> bvhBoxes(std::span<const Aabb> bounds);
 
 struct BvhBuildStats {
   uint32_t nodes = 0;

@@ -116,8 +116,7 @@ TEST_F(DeviceBvh, LeavesHoldNoMorePrimitivesThanTheBuildAllows) {
 TEST_F(DeviceBvh, CompactingKeepsTheTreesInBuffersOfTheirSizeAndABuildMayFollow) {
   const TriangleMesh mesh = bvh::test::randomSoup(500, 0.05f, 11);
   const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
-  std::vector<gpu::BvhBox> boxes;
-  for (const Aabb& b : input.bounds) boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
+  const std::vector<gpu::BvhBox> boxes = passes::bvhBoxes(input.bounds);
   const vk::Buffer buffer = vk::uploadedBuffer(context(), boxes, "soup boxes");
   const auto count = static_cast<uint32_t>(boxes.size());
   const glm::uvec2 roots[] = {{0u, count / 2}, {count / 2, count - count / 2}};
@@ -144,10 +143,7 @@ TEST_F(DeviceBvh, CompactingKeepsTheTreesInBuffersOfTheirSizeAndABuildMayFollow)
 }
 
 std::vector<gpu::BvhBox> boxesOf(const TriangleMesh& mesh) {
-  std::vector<gpu::BvhBox> boxes;
-  for (const Aabb& b : bvh::triangleBounds(mesh.view()).bounds)
-    boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
-  return boxes;
+  return passes::bvhBoxes(bvh::triangleBounds(mesh.view()).bounds);
 }
 
 // The mesh bent and swollen: every triangle moves, many change size and orientation.
@@ -218,8 +214,8 @@ TEST_F(DeviceBvh, PackedNodesAreTheHostsPackingOfTheExactNodes) {
   std::vector<glm::uvec2> roots;
   for (const TriangleMesh& mesh : meshes) {
     roots.emplace_back(uint32_t(boxes.size()), mesh.triangleCount());
-    for (const Aabb& b : bvh::triangleBounds(mesh.view()).bounds)
-      boxes.push_back({glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f)});
+    const std::vector<gpu::BvhBox> meshBoxes = boxesOf(mesh);
+    boxes.insert(boxes.end(), meshBoxes.begin(), meshBoxes.end());
   }
   const vk::Buffer buffer = vk::uploadedBuffer(context(), boxes, "packing boxes");
   passes::BvhBuildPass builder(context(), "packed", HMB_BVH_MAX_LEAF);
