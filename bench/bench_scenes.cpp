@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "runtime/error.h"
+#include "scenes/assimp_test_models.h"
 #include "scenes/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
@@ -58,12 +59,10 @@ scene::Scene millionTriangles() {
 }  // namespace
 
 std::optional<std::filesystem::path> cadEnginePath() {
-  for (const char* root : {"/usr/share/assimp/models/glTF2", "/usr/share/assimp-testmodels/glTF2"}) {
-    const std::filesystem::path path =
-        std::filesystem::path(root) / "2CylinderEngine-glTF-Binary" / "2CylinderEngine.glb";
-    if (std::filesystem::exists(path)) return path;
-  }
-  return std::nullopt;
+  const std::filesystem::path models = scene::assimpGltfModels();
+  const std::filesystem::path path = models / "2CylinderEngine-glTF-Binary" / "2CylinderEngine.glb";
+  if (models.empty() || !std::filesystem::exists(path)) return std::nullopt;
+  return path;
 }
 
 scene::Scene loadBenchScene(const std::string& name) {

@@ -12,6 +12,7 @@
 
 #include "runtime/error.h"
 #include "runtime/renderer.h"
+#include "scenes/assimp_test_models.h"
 #include "scenes/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
@@ -22,13 +23,11 @@ namespace fs = std::filesystem;
 
 std::vector<fs::path> realGltfFiles() {
   std::vector<fs::path> files;
-  for (const char* root : {"/usr/share/assimp/models/glTF2", "/usr/share/assimp-testmodels/glTF2"}) {
-    if (!fs::is_directory(root)) continue;
-    for (const auto& entry : fs::recursive_directory_iterator(root)) {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
-    }
-    break;
+  const fs::path root = scene::assimpGltfModels();
+  if (root.empty()) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string ext = entry.path().extension().string();
+    if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   return files;

@@ -4,19 +4,14 @@
 #include <gtest/gtest.h>
 
 #include "runtime/error.h"
+#include "scenes/assimp_test_models.h"
 #include "scenes/gltf_loader.h"
 
 namespace hmb::scene {
 namespace {
 
-std::filesystem::path modelsDir() {
-  for (const char* candidate : {"/usr/share/assimp/models/glTF2", "/usr/share/assimp-testmodels/glTF2"})
-    if (std::filesystem::is_directory(candidate)) return candidate;
-  return {};
-}
-
-#define REQUIRE_MODELS()                          \
-  const std::filesystem::path root = modelsDir(); \
+#define REQUIRE_MODELS()                                 \
+  const std::filesystem::path root = assimpGltfModels(); \
   if (root.empty()) GTEST_SKIP() << "assimp-testmodels is not installed"
 
 TEST(GltfRealFilesTest, BoxTexturedInAllContainers) {

@@ -15,6 +15,7 @@
 
 #include "bvh/reference_traversal.h"
 #include "runtime/vulkan/frame_recorder.h"
+#include "scenes/assimp_test_models.h"
 #include "scenes/load_scene.h"
 #include "tests/support/vulkan_test.h"
 #include "tests/trace/trace_harness.h"
@@ -177,12 +178,9 @@ TEST_F(TraceRays, DegenerateAndCoincidentTrianglesMatchBruteForce) {
 // demands against Embree, except where the ray grazes an edge nearer than its hit (float tests
 // may rightly pick another triangle there).
 TEST_F(TraceRays, CadAssetHitsAreAtTheExactDistance) {
-  std::filesystem::path asset;
-  for (const char* root : {"/usr/share/assimp/models/glTF2", "/usr/share/assimp-testmodels/glTF2"})
-    if (const auto path = std::filesystem::path(root) / "2CylinderEngine-glTF-Binary" / "2CylinderEngine.glb";
-        std::filesystem::exists(path))
-      asset = path;
-  if (asset.empty()) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const std::filesystem::path models = scene::assimpGltfModels();
+  const std::filesystem::path asset = models / "2CylinderEngine-glTF-Binary" / "2CylinderEngine.glb";
+  if (models.empty() || !std::filesystem::exists(asset)) GTEST_SKIP() << "assimp-testmodels is not installed";
   const scene::Scene scene = scene::loadScene(asset.string());
   const TriangleMesh mesh = bvh::test::sceneTriangles(scene, scene.settings.frameTime);
   std::vector<uint32_t> needles;  // longest edge at least 50 times the height on it
