@@ -172,8 +172,7 @@ TEST_F(DeviceBvh, RefitBoundsDeformedTrianglesWithTheTopologyKept) {
   const std::vector<Aabb> bentBounds = bvh::triangleBounds(bent.view()).bounds;
   for (const bool compacted : {false, true}) {
     if (compacted) builder.compact(frame);
-    const double ms = builder.refit(frame, after);
-    EXPECT_GE(ms, 0.0);
+    builder.refit(frame, after);
     for (uint32_t tree = 0; tree < 3; ++tree) {
       const glm::uvec2 range = roots[tree];
       const std::vector<Aabb> treeBounds(bentBounds.begin() + range.x, bentBounds.begin() + range.x + range.y);
