@@ -11,6 +11,7 @@
 
 #include "bench/bench_scenes.h"
 #include "bench/embree_reference.h"
+#include "bench/ray_query_anchor.h"
 #include "bvh/reference_builder.h"
 #include "bvh/reference_traversal.h"
 #include "runtime/error.h"
@@ -108,9 +109,18 @@ Disagreements judgeDisagreements(const Flat& flat, std::span<const bvh::Ray> ray
   return out;
 }
 
+// Fails the run where a tracer is often wrong: a fast wrong tracer is no result.
+void checkAgreement(const std::string& who, double agreement, const Disagreements& d) {
+  if (agreement < kMinHitAgreement)
+    throw Error(who + " and Embree hits agree on only " + std::to_string(agreement * 100.0) + "% of the rays");
+  if (d.deviceWrong > 0)
+    throw Error(who + "'s hit differs from the exact one on " + std::to_string(d.deviceWrong) +
+                " rays that graze no edge (" + d.firstDeviceWrong + ")");
+}
+
 TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene, const passes::TraceRaysPass& pass,
                        const Flat& flat, std::span<const bvh::Ray> rays, const BvhSuiteOptions& options,
-                       bool embree) {
+                       bool embree, RayQueryAnchor* anchor) {
   TraceFigures f;
   f.rays = static_cast<uint32_t>(rays.size());
   std::vector<gpu::TraceRay> traceRays;
@@ -128,38 +138,63 @@ TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene,
   }
   f.deviceMilliseconds = summarize(device);
   f.deviceMraysPerSecond = f.rays / (f.deviceMilliseconds.median * 1e3);
-  if (!embree) return f;
-  const EmbreeRun run = runEmbree(flat.view(), rays, embreeThreadCount(options.embreeThreads), options.warmup,
-                                  options.repeats);
-  std::vector<double> ms;
-  for (double s : run.traceSeconds) ms.push_back(s * 1e3);
-  f.embreeMilliseconds = summarize(ms);
-  f.embreeMraysPerSecond = f.rays / (f.embreeMilliseconds.median * 1e3);
   const std::vector<gpu::BvhHit> hits = hitBuffer.download<gpu::BvhHit>();
   const std::span<const gpu::BvhHit> deviceHits = std::span(hits).first(rays.size());
-  f.disagreements = judgeDisagreements(flat, rays, deviceHits, run.hits);
-  f.hitAgreement = rays.empty() ? 1.0 : 1.0 - double(f.disagreements.rays) / double(rays.size());
-  if (f.hitAgreement < kMinHitAgreement)
-    throw Error("device and Embree hits agree on only " + std::to_string(f.hitAgreement * 100.0) + "% of the rays");
-  if (f.disagreements.deviceWrong > 0)
-    throw Error("the device's hit differs from the exact one on " + std::to_string(f.disagreements.deviceWrong) +
-                " rays that graze no edge (" + f.disagreements.firstDeviceWrong + ")");
+  // What the anchor is judged against: Embree where there is Embree.
+  std::vector<gpu::BvhHit> judge(deviceHits.begin(), deviceHits.end());
+  if (embree) {
+    EmbreeRun run = runEmbree(flat.view(), rays, embreeThreadCount(options.embreeThreads), options.warmup,
+                              options.repeats);
+    std::vector<double> ms;
+    for (double s : run.traceSeconds) ms.push_back(s * 1e3);
+    f.embreeMilliseconds = summarize(ms);
+    f.embreeMraysPerSecond = f.rays / (f.embreeMilliseconds.median * 1e3);
+    f.disagreements = judgeDisagreements(flat, rays, deviceHits, run.hits);
+    f.hitAgreement = rays.empty() ? 1.0 : 1.0 - double(f.disagreements.rays) / double(rays.size());
+    checkAgreement("device", f.hitAgreement, f.disagreements);
+    judge = std::move(run.hits);
+  }
+  if (anchor) {
+    std::vector<double> ms;
+    std::vector<gpu::BvhHit> anchorHits;
+    for (int i = 0; i < options.warmup + options.repeats; ++i) {
+      const double t = anchor->trace(rays, anchorHits);
+      if (i >= options.warmup) ms.push_back(t);
+    }
+    f.anchorMilliseconds = summarize(ms);
+    f.anchorMraysPerSecond = f.rays / (f.anchorMilliseconds.median * 1e3);
+    f.anchorDisagreements = judgeDisagreements(flat, rays, anchorHits, judge);
+    f.anchorAgreement = rays.empty() ? 1.0 : 1.0 - double(f.anchorDisagreements.rays) / double(rays.size());
+    checkAgreement("the driver's ray query", f.anchorAgreement, f.anchorDisagreements);
+  }
   return f;
 }
 
+// `traced` names the side judged (the first of the two compared).
+nlohmann::json disagreementsJson(const Disagreements& d, const std::string& traced) {
+  return {{"rays", d.rays},
+          {"grazing_an_edge", d.grazes},
+          {traced + "_wrong", d.deviceWrong},
+          {"embree_wrong", d.embreeWrong}};
+}
+
 nlohmann::json traceJson(const TraceFigures& f) {
-  return {{"rays", f.rays},
-          {"device_ms", summaryJson(f.deviceMilliseconds)},
-          {"embree_ms", summaryJson(f.embreeMilliseconds)},
-          {"device_mrays_per_s", f.deviceMraysPerSecond},
-          {"embree_mrays_per_s", f.embreeMraysPerSecond},
-          {"device_over_embree", f.deviceMraysPerSecond / f.embreeMraysPerSecond},
-          {"hit_agreement", f.hitAgreement},
-          {"disagreements",
-           {{"rays", f.disagreements.rays},
-            {"grazing_an_edge", f.disagreements.grazes},
-            {"device_wrong", f.disagreements.deviceWrong},
-            {"embree_wrong", f.disagreements.embreeWrong}}}};
+  nlohmann::json j = {{"rays", f.rays},
+                      {"device_ms", summaryJson(f.deviceMilliseconds)},
+                      {"embree_ms", summaryJson(f.embreeMilliseconds)},
+                      {"device_mrays_per_s", f.deviceMraysPerSecond},
+                      {"embree_mrays_per_s", f.embreeMraysPerSecond},
+                      {"device_over_embree", f.deviceMraysPerSecond / f.embreeMraysPerSecond},
+                      {"hit_agreement", f.hitAgreement},
+                      {"disagreements", disagreementsJson(f.disagreements, "device")}};
+  if (f.anchorMraysPerSecond > 0) {
+    j["ray_query_ms"] = summaryJson(f.anchorMilliseconds);
+    j["ray_query_mrays_per_s"] = f.anchorMraysPerSecond;
+    j["device_over_ray_query"] = f.deviceMraysPerSecond / f.anchorMraysPerSecond;
+    j["ray_query_hit_agreement"] = f.anchorAgreement;
+    j["ray_query_disagreements"] = disagreementsJson(f.anchorDisagreements, "ray_query");
+  }
+  return j;
 }
 
 }  // namespace
@@ -170,10 +205,20 @@ int embreeThreadCount(int requested) {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+std::string rayQueryAnchorSkipped(const vk::Context& context, const BvhSuiteOptions& options) {
+  if (!options.rayQueryAnchor) return "not asked for";
+  return RayQueryAnchor::unavailableReason(context);
+}
+
 std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptions& options, const Progress& progress) {
   if (!context.info().timestamps) throw Error("device " + context.info().name + " has no timestamps");
   const bool embree = embreeAvailable();
   if (!embree) progress("built without Embree: its columns stay empty");
+  std::unique_ptr<RayQueryAnchor> anchor;
+  if (const std::string skipped = rayQueryAnchorSkipped(context, options); skipped.empty())
+    anchor = std::make_unique<RayQueryAnchor>(context);
+  else
+    progress("the driver's ray queries left out: " + skipped);
   std::vector<BvhCase> cases;
   const passes::TraceRaysPass tracePass(context);
   for (const std::string& name : options.scenes) {
@@ -245,10 +290,20 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
       c.embreeBvhBuildMilliseconds = summarize(bvhMs);
       c.sahEmbree = bvh::sahCost(run.bvh);
     }
+    if (anchor) {
+      progress("  the driver's acceleration-structure builds");
+      std::vector<double> ms;
+      for (int i = 0; i < options.warmup + options.repeats; ++i) {
+        const double t = anchor->build(flat.view());
+        if (i >= options.warmup) ms.push_back(t);
+      }
+      c.anchorBuildMilliseconds = summarize(ms);
+      c.anchorMeasured = true;
+    }
     progress("  coherent rays");
-    c.coherent = traceCase(context, *traceScene, tracePass, flat, coherent, options, embree);
+    c.coherent = traceCase(context, *traceScene, tracePass, flat, coherent, options, embree, anchor.get());
     progress("  incoherent rays");
-    c.incoherent = traceCase(context, *traceScene, tracePass, flat, incoherent, options, embree);
+    c.incoherent = traceCase(context, *traceScene, tracePass, flat, incoherent, options, embree, anchor.get());
     cases.push_back(std::move(c));
   }
   return cases;
@@ -271,7 +326,11 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
             {"embree_mtris_per_s", embreeMtris},
             {"embree_build_bvh_ms", summaryJson(c.embreeBvhBuildMilliseconds)},
             {"device_over_embree_speed", mtris / embreeMtris},
-            {"cpu_full_sweep_ms", c.cpuReferenceBuildMilliseconds}}},
+            {"cpu_full_sweep_ms", c.cpuReferenceBuildMilliseconds},
+            {"ray_query_build_ms", c.anchorMeasured ? summaryJson(c.anchorBuildMilliseconds) : nlohmann::json()},
+            {"device_over_ray_query_build_speed",
+             c.anchorMeasured ? nlohmann::json(c.anchorBuildMilliseconds.median / c.deviceBuildMilliseconds.median)
+                              : nlohmann::json()}}},
           {"sah",
            {{"device", c.sahDevice},
             {"cpu_full_sweep", c.sahReference},
@@ -298,6 +357,20 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
     for (const TraceFigures* f : {&c.coherent, &c.incoherent})
       out << std::setprecision(2) << f->deviceMraysPerSecond << " / " << f->embreeMraysPerSecond << " ("
           << std::setprecision(3) << f->deviceMraysPerSecond / f->embreeMraysPerSecond << "x) | ";
+    out << "\n";
+  }
+  if (std::none_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.anchorMeasured; })) return;
+  out << "\nThe driver's own acceleration structures and ray queries, same triangles and rays:\n\n"
+      << "| scene | its build ms (ours over it, speed) | coherent Mrays/s (ours over it) | incoherent Mrays/s "
+         "(ours over it) |\n"
+      << "|---|---:|---:|---:|\n";
+  for (const BvhCase& c : cases) {
+    if (!c.anchorMeasured) continue;
+    out << "| " << c.scene << " | " << std::setprecision(1) << c.anchorBuildMilliseconds.median << " ("
+        << std::setprecision(3) << c.anchorBuildMilliseconds.median / c.deviceBuildMilliseconds.median << "x) | ";
+    for (const TraceFigures* f : {&c.coherent, &c.incoherent})
+      out << std::setprecision(2) << f->anchorMraysPerSecond << " (" << std::setprecision(2)
+          << f->deviceMraysPerSecond / f->anchorMraysPerSecond << "x) | ";
     out << "\n";
   }
 }

@@ -34,6 +34,9 @@ struct BvhSuiteOptions {
   int warmup = 1;
   int repeats = 3;
   int embreeThreads = 0;  // 0: LP_NUM_THREADS when set, else every hardware thread
+  // The driver's own acceleration structures and ray queries beside ours (ray_query_anchor.h),
+  // where the device has them.
+  bool rayQueryAnchor = true;
 };
 
 // The rays on which the device and Embree disagree, each judged by a double-precision brute
@@ -54,6 +57,12 @@ struct TraceFigures {
   double deviceMraysPerSecond = 0, embreeMraysPerSecond = 0;
   double hitAgreement = 0;  // the last repeat's
   Disagreements disagreements;
+  // The driver's ray queries (when measured), checked against Embree as the device is (against
+  // the device where there is no Embree).
+  Summary anchorMilliseconds;
+  double anchorMraysPerSecond = 0;
+  double anchorAgreement = 0;
+  Disagreements anchorDisagreements;
 };
 
 struct BvhCase {
@@ -64,6 +73,8 @@ struct BvhCase {
   uint32_t deviceSmallTasks = 0;                // subtrees build_small_tasks finished
   double deviceSmallTaskMilliseconds = 0;       // its time in the median build
   Summary deviceRefitMilliseconds;              // refit of the built tree to its boxes
+  bool anchorMeasured = false;                  // the driver's ray queries ran (RayQueryAnchor)
+  Summary anchorBuildMilliseconds;              // its bottom and top level builds
   uint32_t deviceLevels = 0;
   Summary embreeSceneBuildMilliseconds;  // rtcCommitScene
   Summary embreeBvhBuildMilliseconds;    // rtcBuildBVH into our layout
@@ -71,6 +82,9 @@ struct BvhCase {
   double sahDevice = 0, sahReference = 0, sahEmbree = 0;
   TraceFigures coherent, incoherent;
 };
+
+// Why the suite leaves out the driver's ray queries on this context ("" when it runs them).
+std::string rayQueryAnchorSkipped(const vk::Context& context, const BvhSuiteOptions& options);
 
 std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptions& options, const Progress& progress);
 nlohmann::json bvhCaseJson(const BvhCase& c);

@@ -59,6 +59,7 @@ struct BvhOptions {
   int warmup = 1;
   int repeats = 3;
   int embreeThreads = 0;
+  bool rayQuery = true;  // the driver's own ray queries beside ours, where it has them
 };
 
 struct ErrorTimeOptions {
@@ -237,6 +238,7 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   suite.warmup = options.warmup;
   suite.repeats = options.repeats;
   suite.embreeThreads = options.embreeThreads;
+  suite.rayQueryAnchor = options.rayQuery;
   checkOutputDirectory(options.out);
   const hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
@@ -253,11 +255,17 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
       "device times are Vulkan timestamps (build: triangle boxes + every level; trace: the trace-rays pass). "
       "Embree: rtcCommitScene (default quality) for build speed, rtcBuildBVH into our node layout for its SAH "
       "cost, rtcIntersect over embree_threads threads for rays. SAH costs: traversal 1, intersection 1, "
-      "leaves of at most 4, normalized by the root's area.";
+      "leaves of at most 4, normalized by the root's area. ray_query: the driver's own acceleration-structure build "
+      "(bottom and top level, timestamps around both) and ray queries from a compute kernel, on a second logical "
+      "device of the same physical device, checked against Embree like the device.";
   report["embree"] = hmb::bench::embreeAvailable() ? hmb::bench::embreeVersion() : "unavailable";
   report["settings"] = {{"warmup", suite.warmup},
                         {"repeats", suite.repeats},
                         {"embree_threads", hmb::bench::embreeThreadCount(suite.embreeThreads)},
+                        {"ray_query", hmb::bench::rayQueryAnchorSkipped(context, suite).empty()
+                                          ? "measured: the driver's own acceleration structures (bottom level "
+                                            "prefer-fast-trace, opaque; one identity instance) and ray queries"
+                                          : "left out: " + hmb::bench::rayQueryAnchorSkipped(context, suite)},
                         {"coherent_rays", "one per pixel, 640x360, from the scene camera"},
                         {"incoherent_rays", suite.incoherentRays},
                         {"min_hit_agreement", hmb::bench::kMinHitAgreement}};
@@ -474,6 +482,9 @@ int main(int argc, char** argv) {
                      "Embree's threads (0: LP_NUM_THREADS when set, else every hardware thread)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  bvhCmd->add_flag("!--no-ray-query", bvhOptions.rayQuery,
+                   "Leave out the driver's own acceleration structures and ray queries (measured where the "
+                   "device has VK_KHR_ray_query, e.g. Mesa >= 24.1 lavapipe)");
 
   ErrorTimeOptions errorTimeOptions;
   CLI::App* errorTimeCmd = app.add_subcommand(

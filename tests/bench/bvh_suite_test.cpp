@@ -1,0 +1,78 @@
+// hmblur-bench's bvh suite as a user runs it, on the smallest reference scene: the driver's own
+// ray queries stand beside ours where the device has them, agree with Embree, and say why they
+// are left out where it has not. Times are only checked to be measured, never against a bar.
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "runtime/vulkan/context.h"
+#include "tests/cli/cli_harness.h"
+
+namespace hmb::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+CliRun bench(const std::string& args) { return runProgram(HMB_BENCH_PATH, "--validation --quiet " + args); }
+
+nlohmann::json readJson(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+bool deviceHasRayQueries() {
+  const vk::Context context;
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(context.physicalDevice(), nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(context.physicalDevice(), nullptr, &count, extensions.data());
+  bool query = false, structures = false;
+  for (const VkExtensionProperties& e : extensions) {
+    query = query || std::strcmp(e.extensionName, VK_KHR_RAY_QUERY_EXTENSION_NAME) == 0;
+    structures = structures || std::strcmp(e.extensionName, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) == 0;
+  }
+  return query && structures;
+}
+
+TEST(BvhSuite, TheDriversRayQueriesStandBesideOursWhereItHasThem) {
+  const fs::path dir = tempDir("bench_bvh");
+  const std::string out = (dir / "bvh.json").string();
+  const CliRun run = bench("bvh --scenes living-room --warmup 0 --repeats 1 --out " + out);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const nlohmann::json report = readJson(out);
+  ASSERT_EQ(report.at("cases").size(), 1u);
+  const nlohmann::json& c = report.at("cases").at(0);
+  const std::string rayQuery = report.at("settings").at("ray_query");
+  if (!deviceHasRayQueries()) {
+    EXPECT_EQ(rayQuery.rfind("left out: the driver has no VK_KHR_", 0), 0u) << rayQuery;
+    EXPECT_TRUE(c.at("build").at("ray_query_build_ms").is_null()) << c.dump();
+    EXPECT_FALSE(c.at("coherent").contains("ray_query_mrays_per_s")) << c.dump();
+    GTEST_SKIP() << "the device has no ray queries: only their absence is checked";
+  }
+  EXPECT_EQ(rayQuery.rfind("measured", 0), 0u) << rayQuery;
+  EXPECT_GT(c.at("build").at("ray_query_build_ms").at("median").get<double>(), 0.0) << c.dump();
+  for (const char* rays : {"coherent", "incoherent"}) {
+    const nlohmann::json& t = c.at(rays);
+    EXPECT_GT(t.at("ray_query_mrays_per_s").get<double>(), 0.0) << rays;
+    EXPECT_GE(t.at("ray_query_hit_agreement").get<double>(), 0.999) << rays;
+    EXPECT_EQ(t.at("ray_query_disagreements").at("ray_query_wrong"), 0) << rays;
+  }
+}
+
+TEST(BvhSuite, NoRayQueryLeavesThemOutAndSaysSo) {
+  const fs::path dir = tempDir("bench_bvh_no_ray_query");
+  const std::string out = (dir / "bvh.json").string();
+  const CliRun run = bench("bvh --scenes living-room --warmup 0 --repeats 1 --no-ray-query --out " + out);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const nlohmann::json report = readJson(out);
+  EXPECT_EQ(report.at("settings").at("ray_query"), "left out: not asked for");
+  EXPECT_FALSE(report.at("cases").at(0).at("incoherent").contains("ray_query_mrays_per_s"));
+}
+
+}  // namespace
+}  // namespace hmb::test
