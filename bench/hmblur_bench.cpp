@@ -2,7 +2,11 @@
 // timestamp queries; each suite warms up, repeats, and reports medians and spread, with the
 // device, driver, CPU, LP_NUM_THREADS and git revision (bench/README.md). Errors are one line
 // on stderr and a non-zero exit. `--suite NAME` is another spelling of the subcommand NAME.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -16,11 +20,13 @@
 
 #include "bench/bench_scenes.h"
 #include "bench/bvh_suite.h"
+#include "bench/driver_files.h"
 #include "bench/embree_reference.h"
 #include "bench/error_time_suite.h"
 #include "bench/kernels_suite.h"
 #include "bench/passes_suite.h"
 #include "bench/raster_suite.h"
+#include "bench/side_by_side.h"
 #include "runtime/error.h"
 #include "runtime/report.h"
 #include "runtime/system_info.h"
@@ -38,6 +44,7 @@ struct GlobalOptions {
   int device = -1;
   bool validation = false;
   bool bindByAddress = false;
+  std::string driverFiles;  // run on this unpacked driver (driver_files.h)
 };
 
 struct RasterOptions {
@@ -92,6 +99,7 @@ struct KernelsOptions {
       names.push_back(hmb::bench::sizeName(size));
     return names;
   }();
+  std::vector<std::string> drivers;  // several: side by side (side_by_side.h)
 };
 
 // The command as typed, for the report (arguments with spaces quoted).
@@ -360,7 +368,68 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   return validationVerdict({&context});
 }
 
+std::string shellQuoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+template <typename T>
+std::string commaList(const std::vector<T>& values) {
+  std::ostringstream out;
+  for (size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << values[i];
+  return out.str();
+}
+
+// The kernels suite once per driver of --drivers, each in a program of its own and one after
+// the other, merged side by side (side_by_side.h).
+int kernelsOnDrivers(const GlobalOptions& global, const KernelsOptions& options, const std::string& command) {
+  if (!global.driverFiles.empty()) throw hmb::Error("--drivers and --driver-files: give one of the two");
+  checkOutputDirectory(options.out);
+  for (const std::string& driver : options.drivers)
+    if (driver != "default") hmb::bench::resolveDriverFiles(driver);  // a bad path fails before any run
+  const auto progress = progressPrinter(global);
+  const fs::path scratch = fs::temp_directory_path() / ("hmblur-bench-drivers-" + std::to_string(getpid()));
+  fs::create_directories(scratch);
+  std::vector<hmb::bench::DriverReport> runs;
+  int verdict = kOk;
+  for (size_t d = 0; d < options.drivers.size(); ++d) {
+    const std::string& driver = options.drivers[d];
+    progress("driver " + std::to_string(d + 1) + " of " + std::to_string(options.drivers.size()) + ": " + driver);
+    const fs::path out = scratch / ("driver-" + std::to_string(d) + ".json");
+    std::string line = shellQuoted(fs::read_symlink("/proc/self/exe").string());
+    if (global.quiet) line += " --quiet";
+    if (global.device >= 0) line += " --device " + std::to_string(global.device);
+    if (global.validation) line += " --validation";
+    if (global.bindByAddress) line += " --bind-by-address";
+    if (driver != "default") line += " --driver-files " + shellQuoted(driver);
+    line += " kernels --sizes " + commaList(options.sizes) + " --triangles " + commaList(options.suite.triangles) +
+            " --rays " + commaList(options.suite.rays) + " --kernels " + commaList(options.suite.kernels) +
+            " --warmup " + std::to_string(options.suite.warmup) + " --repeats " +
+            std::to_string(options.suite.repeats) + " --out " + shellQuoted(out.string()) + " > /dev/null";
+    const int status = std::system(line.c_str());
+    const int exit = WIFEXITED(status) ? WEXITSTATUS(status) : kError;
+    if (exit == kValidationFailed) verdict = kValidationFailed;
+    else if (exit != kOk)
+      throw hmb::Error("--drivers: the kernels suite on driver '" + driver + "' failed (exit " + std::to_string(exit) +
+                       ")");
+    std::ifstream in(out);
+    runs.push_back({driver, nlohmann::json::parse(in)});
+  }
+  fs::remove_all(scratch);
+  const nlohmann::json merged = hmb::bench::sideBySideJson(runs, command);
+  hmb::bench::writeSideBySideMarkdown(std::cout, merged);
+  if (options.out.empty()) return verdict;
+  hmb::writeJson(options.out, merged);
+  writeBeside(
+      options.out, [&](std::ostream& out) { hmb::bench::writeSideBySideCsv(out, merged); },
+      [&](std::ostream& out) { hmb::bench::writeSideBySideMarkdown(out, merged); });
+  progress("wrote " + options.out + " and the .csv and .md beside it");
+  return verdict;
+}
+
 int kernels(const GlobalOptions& global, const KernelsOptions& options, const std::string& command) {
+  if (!options.drivers.empty()) return kernelsOnDrivers(global, options, command);
   hmb::bench::KernelsSuiteOptions suite = options.suite;
   suite.sizes.clear();
   for (const std::string& size : options.sizes) suite.sizes.push_back(hmb::bench::parseImageSize(size));
@@ -438,6 +507,9 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& global) {
   app.add_flag("--bind-by-address", global.bindByAddress,
                "Kernels with an address build bind their groups of buffers as tables of device addresses "
                "(default: only where the device has too few storage-buffer bindings)");
+  app.add_option("--driver-files", global.driverFiles,
+                 "Run on the Vulkan driver of this ICD manifest or folder (e.g. the one "
+                 "scripts/mesa25-lavapipe.sh unpacks), not the installed one");
 }
 
 // --out, --warmup and --repeats, which every suite has.
@@ -540,6 +612,11 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember(hmb::bench::kernelNames()))
       ->capture_default_str();
+  kernelsCmd
+      ->add_option("--drivers", kernelsOptions.drivers,
+                   "The same kernels on several drivers, side by side: 'default' (the installed one) or what "
+                   "--driver-files takes, comma separated")
+      ->delimiter(',');
 
   // `--suite NAME [options]` is the subcommand NAME spelled as an option. A first parse takes
   // the global options and --suite and leaves the rest, which the named suite's own parser
@@ -572,6 +649,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // The driver is chosen before any Vulkan call: this may start the program again on it.
+    if (!global.driverFiles.empty()) hmb::bench::runOnDriverFiles(global.driverFiles, argv);
     if (*rasterCmd) return raster(global, rasterOptions, commandLine(argc, argv));
     if (*bvhCmd) return bvh(global, bvhOptions, commandLine(argc, argv));
     if (*errorTimeCmd) return errorTime(global, errorTimeOptions, commandLine(argc, argv));

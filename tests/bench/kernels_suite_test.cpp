@@ -147,5 +147,60 @@ TEST(KernelsSuite, UnknownSuiteOrOptionFails) {
   EXPECT_NE(unknownKernel.output.find("nosuch"), std::string::npos) << unknownKernel.output;
 }
 
+// --drivers runs the same cases once per driver and puts them side by side; "default" twice is
+// the installed driver twice, so the test needs no second driver.
+TEST(KernelsSuite, DriversRunsTheSameKernelsOnEachDriverSideBySide) {
+  const fs::path dir = tempDir("bench_drivers");
+  const std::string out = (dir / "kernels.json").string();
+  const CliRun run = bench("kernels --drivers default,default --kernels tile-max,trace --sizes 32x32 --triangles 100 "
+                           "--rays 200 --warmup 0 --repeats 1 --out " + out);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const nlohmann::json report = readJson(out);
+  ASSERT_EQ(report.at("drivers").size(), 2u);
+  for (const nlohmann::json& driver : report.at("drivers")) {
+    EXPECT_EQ(driver.at("driver"), "default");
+    EXPECT_EQ(caseKeys(driver), (std::multiset<CaseKey>{{"tile-max", 32, 32, 0, 0}, {"trace", 0, 0, 100, 200}}));
+  }
+  ASSERT_EQ(report.at("cases").size(), 2u);
+  for (const nlohmann::json& c : report.at("cases")) {
+    ASSERT_EQ(c.at("median_ms").size(), 2u) << c.dump();
+    for (double ms : c.at("median_ms")) EXPECT_GT(ms, 0.0) << c.dump();
+    EXPECT_DOUBLE_EQ(c.at("over_first").at(0).get<double>(), 1.0) << c.dump();
+    EXPECT_NEAR(c.at("over_first").at(1).get<double>(),
+                c.at("median_ms").at(1).get<double>() / c.at("median_ms").at(0).get<double>(), 1e-9);
+  }
+  std::ifstream markdown(dir / "kernels.md");
+  std::stringstream table;
+  table << markdown.rdbuf();
+  EXPECT_NE(table.str().find("| driver 2 / 1 |"), std::string::npos) << table.str();
+}
+
+// --driver-files takes an ICD manifest: the installed lavapipe's own gives the same device.
+TEST(KernelsSuite, DriverFilesRunsOnTheManifestsDriver) {
+  fs::path manifest;
+  std::error_code error;
+  for (const fs::directory_entry& e : fs::directory_iterator("/usr/share/vulkan/icd.d", error))
+    if (e.path().filename().string().rfind("lvp_icd.", 0) == 0) manifest = e.path();
+  if (manifest.empty()) GTEST_SKIP() << "no installed lavapipe manifest";
+  const fs::path dir = tempDir("bench_driver_files");
+  const std::string out = (dir / "kernels.json").string();
+  const CliRun run = bench("--driver-files " + manifest.string() +
+                           " kernels --kernels tile-max --sizes 32x32 --warmup 0 --repeats 1 --out " + out);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(readJson(out).at("device").at("driver"), "llvmpipe") << readJson(out).at("device").dump();
+}
+
+TEST(KernelsSuite, DriverFilesThatNameNoDriverFailInOneLine) {
+  const fs::path dir = tempDir("bench_bad_driver_files");
+  expectOneLineError(bench("--driver-files " + (dir / "missing").string() + " kernels --out ''"), "does not exist");
+  std::ofstream(dir / "not-a-manifest.json") << "{\"file_format_version\": \"1.0.0\"}";
+  expectOneLineError(bench("--driver-files " + (dir / "not-a-manifest.json").string() + " kernels --out ''"),
+                     "no ICD.library_path");
+  expectOneLineError(bench("--driver-files " + dir.string() + " kernels --out ''"), "no ICD.library_path");
+  fs::create_directories(dir / "empty");
+  expectOneLineError(bench("--driver-files " + (dir / "empty").string() + " kernels --out ''"), "holds no ICD manifest");
+  expectOneLineError(bench("kernels --drivers default," + (dir / "missing").string() + " --out ''"), "does not exist");
+}
+
 }  // namespace
 }  // namespace hmb::test
