@@ -94,30 +94,37 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   meshCount_ = static_cast<uint32_t>(scene.meshes.size());
   meshFingerprint_ = fingerprintOf(scene);
   triangleCount_ = static_cast<uint32_t>(triangles.size());
-  positions_ = vk::uploadedBuffer(context, positions, "trace positions");
-  triangles_ = vk::uploadedBuffer(context, triangles, "trace triangles");
+  // The build's input alone: traversal reads leafTriangles_ (below).
+  const vk::Buffer positionBuffer = vk::uploadedBuffer(context, positions, "trace positions");
+  const vk::Buffer triangleBuffer = vk::uploadedBuffer(context, triangles, "trace triangles");
   // The boxes serve the build alone: freed before the trees are compacted, to lower the peak.
   vk::Buffer triangleBoxes(context, std::max<size_t>(triangles.size(), 1) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
                            "triangle boxes");
   if (roots.empty()) roots.emplace_back(0u, 0u);  // a scene without meshes: one empty tree
   const uint32_t count = triangleCount_;
   meshBvh_.build(frame, triangleBoxes, count, roots, [&](vk::FrameRecorder& f) {
-    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {{HMB_TRIANGLE_BOUNDS_BINDING_POSITIONS, &positions_},
-                {HMB_TRIANGLE_BOUNDS_BINDING_TRIANGLES, &triangles_},
+    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {{HMB_TRIANGLE_BOUNDS_BINDING_POSITIONS, &positionBuffer},
+                {HMB_TRIANGLE_BOUNDS_BINDING_TRIANGLES, &triangleBuffer},
                 {HMB_TRIANGLE_BOUNDS_BINDING_BOXES, &triangleBoxes}},
                count,
                vk::foldedGroups(vk::groupsFor(count, HMB_BVH_BUILD_GROUP)));
   });
   triangleBoxes = {};
   meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
-  // The triangles in the leaves' order, which traversal reads without the leaves' indirection
-  // (the primitive order names each triangle, for the closest hit only).
+  // Each triangle's vertices in the leaves' order, which traversal reads without the leaves'
+  // indirection or the vertex indices (the primitive order names each triangle, for the closest
+  // hit only; the indices ride in w, for shading).
+  std::vector<glm::vec4> leafTriangles(3 * std::max(count, 1u), glm::vec4(0.0f));
   if (count > 0) {
     const std::vector<uint32_t> order = meshBvh_.primitives().download<uint32_t>();
-    std::vector<glm::uvec4> leafOrder(count);
-    for (uint32_t entry = 0; entry < count; ++entry) leafOrder[entry] = triangles.at(order.at(entry));
-    triangles_ = vk::uploadedBuffer(context, leafOrder, "trace triangles (leaf order)");
+    for (uint32_t entry = 0; entry < count; ++entry) {
+      const glm::uvec4& triangle = triangles.at(order.at(entry));
+      for (uint32_t corner = 0; corner < 3; ++corner)
+        leafTriangles[3 * entry + corner] =
+            glm::vec4(glm::vec3(positions.at(triangle[corner])), std::bit_cast<float>(triangle[corner]));
+    }
   }
+  leafTriangles_ = vk::uploadedBuffer(context, leafTriangles, "trace triangles (leaf order)");
 }
 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
@@ -166,8 +173,8 @@ void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddr
   // The order of kernels/trace/trace_scene_bindings.glsl and of gpu::TraceSceneTable.
   const vk::Buffer* members[] = {&instanceBvh_.nodes(), &instanceBvh_.links(), &instanceBvh_.primitives(),
                                  &instances_,           &transforms_,          &meshBvh_.nodes(),
-                                 &meshBvh_.links(),     &meshBvh_.primitives(), &triangles_,
-                                 &positions_,           &instanceBvh_.frames(), &meshBvh_.frames()};
+                                 &meshBvh_.links(),     &meshBvh_.primitives(), &leafTriangles_,
+                                 &instanceBvh_.frames(), &meshBvh_.frames()};
   group_.bind(bindings, firstBinding, byAddress, members);
 }
 

@@ -61,13 +61,13 @@ class TraceScene {
 
   const passes::BvhBuildPass& meshBvh() const { return meshBvh_; }
   const passes::BvhBuildPass& instanceBvh() const { return instanceBvh_; }
-  const vk::Buffer& positions() const { return positions_; }
-  const vk::Buffer& triangles() const { return triangles_; }  // in the leaves' order (BvhHit::entry)
+  // 3 vec4 per triangle in the leaves' order (BvhHit::entry): its vertices, their indices in w.
+  const vk::Buffer& leafTriangles() const { return leafTriangles_; }
   const vk::Buffer& instances() const { return instances_; }
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
   // Binds the trace scene as a tracing kernel declares it (kernels/trace/trace_scene_bindings.glsl)
-  // from firstBinding on: its 12 buffers, or the table of their addresses for a kernel that binds
+  // from firstBinding on: its 11 buffers, or the table of their addresses for a kernel that binds
   // by address.
   void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
 
@@ -86,8 +86,7 @@ class TraceScene {
   // What the top level was last built from, to tell whether a frame can keep it.
   std::vector<gpu::TraceInstance> builtInstances_;
   std::vector<gpu::InstanceTransform> builtTransforms_;
-  vk::Buffer positions_;      // vec4 per vertex of every mesh
-  vk::Buffer triangles_;      // uvec4 (v0, v1, v2, mesh) per triangle of every mesh, in the leaves' order
+  vk::Buffer leafTriangles_;  // per triangle in the leaves' order: 3 vec4 (vertex xyz, index bits)
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds

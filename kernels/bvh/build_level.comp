@@ -24,9 +24,12 @@ layout(local_size_x = GROUP) in;
 
 #define kInfinity uintBitsToFloat(0x7f800000u)
 
-// Per lane, per (axis, bin): primitive count and the merged boxes (min xyz, max xyz).
-shared uint laneBinCount[GROUP * 3 * BINS];
-shared float laneBinBounds[GROUP * 3 * BINS * 6];
+// Per lane, per (axis, bin): the merged boxes' lower corner with the primitive count in w (a
+// float: exact to 2^24, past any lane's share of a tree), and their upper corner. One vec4 per
+// side, so binning a primitive is two loads and two stores per axis: on lavapipe each
+// shared-memory access at per-lane addresses is a loop over the lanes, whatever its width.
+shared vec4 laneBinLower[GROUP * 3 * BINS];
+shared vec4 laneBinUpper[GROUP * 3 * BINS];
 // The bins of the whole task (bounds as ordered uints, see ordered_float.glsl), then each
 // axis's left-to-right sweep.
 shared uint binCount[3 * BINS];
@@ -87,12 +90,8 @@ void binPerLane(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane
   const uint mine = lane * 3 * BINS;
   for (uint a = 0; a < 3; ++a)
     for (uint b = 0; b < bins; ++b) {
-      const uint slot = mine + a * BINS + b;
-      laneBinCount[slot] = 0u;
-      for (uint d = 0; d < 3; ++d) {
-        laneBinBounds[slot * 6 + d] = kInfinity;
-        laneBinBounds[slot * 6 + 3 + d] = -kInfinity;
-      }
+      laneBinLower[mine + a * BINS + b] = vec4(vec3(kInfinity), 0.0);
+      laneBinUpper[mine + a * BINS + b] = vec4(-vec3(kInfinity), 0.0);
     }
   for (uint base = lane; base < task.count; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
     const uint k = base + u * GROUP;
@@ -102,25 +101,23 @@ void binPerLane(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane
     for (uint a = 0; a < 3; ++a) {
       if (scale[a] == 0.0) continue;
       const uint slot = mine + a * BINS + binOf(c[a], task.centroidMin[a], scale[a], bins);
-      laneBinCount[slot] += 1u;
-      for (uint d = 0; d < 3; ++d) {
-        laneBinBounds[slot * 6 + d] = min(laneBinBounds[slot * 6 + d], box.min[d]);
-        laneBinBounds[slot * 6 + 3 + d] = max(laneBinBounds[slot * 6 + 3 + d], box.max[d]);
-      }
+      const vec4 lower = laneBinLower[slot];
+      laneBinLower[slot] = vec4(min(lower.xyz, box.min.xyz), lower.w + 1.0);
+      laneBinUpper[slot].xyz = max(laneBinUpper[slot].xyz, box.max.xyz);
     }
   }
   barrier();
   for (uint i = lane; i < 3 * bins; i += GROUP) {
     const uint slot = (i / bins) * BINS + i % bins;
-    uint n = 0u;
+    float n = 0.0;
     vec3 lo = vec3(kInfinity), hi = -lo;
     for (uint l = 0; l < GROUP; ++l) {
-      const uint from = l * 3 * BINS + slot;
-      n += laneBinCount[from];
-      lo = min(lo, vec3(laneBinBounds[from * 6], laneBinBounds[from * 6 + 1], laneBinBounds[from * 6 + 2]));
-      hi = max(hi, vec3(laneBinBounds[from * 6 + 3], laneBinBounds[from * 6 + 4], laneBinBounds[from * 6 + 5]));
+      const vec4 lower = laneBinLower[l * 3 * BINS + slot];
+      n += lower.w;
+      lo = min(lo, lower.xyz);
+      hi = max(hi, laneBinUpper[l * 3 * BINS + slot].xyz);
     }
-    binCount[slot] = n;
+    binCount[slot] = uint(n);
     for (uint d = 0; d < 3; ++d) {
       binBounds[slot * 6 + d] = orderedUint(lo[d]);
       binBounds[slot * 6 + 3 + d] = orderedUint(hi[d]);

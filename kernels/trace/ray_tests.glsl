@@ -45,17 +45,24 @@ PreparedRay prepareRay(vec3 origin, vec3 direction) {
 
 // True when the ray's [tMin, tMax] meets the box. A 0 * inf (a ray in a slab's boundary plane)
 // is NaN and leaves the interval as it was; an empty box (min > max) is never met.
-bool intersectBox(PreparedRay r, vec3 lo, vec3 hi, float tMin, float tMax) {
+// `near` is where the ray enters the box (at least tMin).
+bool intersectBoxEntry(PreparedRay r, vec3 lo, vec3 hi, float tMin, float tMax, out float near) {
   const vec3 entryPlane = mix(lo, hi, r.negative), exitPlane = mix(hi, lo, r.negative);
   const vec3 entry = (entryPlane - r.origin) * r.inverseDirection;
   const vec3 exit = (exitPlane - r.origin) * r.inverseDirection;
-  float near = tMin, far = tMax;
+  float far = tMax;
+  near = tMin;
   for (uint a = 0; a < 3; ++a) {
     near = entry[a] > near ? entry[a] : near;
     far = exit[a] < far ? exit[a] : far;
   }
   far += abs(far) * kBoxSlack;
   return near <= far;
+}
+
+bool intersectBox(PreparedRay r, vec3 lo, vec3 hi, float tMin, float tMax) {
+  float near;
+  return intersectBoxEntry(r, lo, hi, tMin, tMax, near);
 }
 
 // Watertight test, both sides. t, u (weight of v1) and v (of v2) are written on a hit.

@@ -14,7 +14,9 @@ struct HitSurface {
 
 // transformIndex: the hit instance's transform at the ray's time (instance * timeCount + time).
 HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
-  const uvec4 tri = traceTriangles[hit.entry];
+  const vec4 a = leafTriangles[3u * hit.entry], b3 = leafTriangles[3u * hit.entry + 1u],
+             c = leafTriangles[3u * hit.entry + 2u];
+  const uvec3 tri = floatBitsToUint(vec3(a.w, b3.w, c.w));
   const vec3 b = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
   const vec3 objectNormal = b.x * vertices[tri.x].normal.xyz + b.y * vertices[tri.y].normal.xyz +
                             b.z * vertices[tri.z].normal.xyz;
@@ -25,7 +27,7 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
   vec3 n = normalToWorld * objectNormal;
   n = dot(n, n) > 0.0 && !any(isinf(n)) ? normalize(n) : vec3(0.0, 0.0, 1.0);
   // cross(M a, M b) = det(M) M^-T cross(a, b): the world counter-clockwise normal.
-  const vec3 p0 = positions[tri.x].xyz, p1 = positions[tri.y].xyz, p2 = positions[tri.z].xyz;
+  const vec3 p0 = a.xyz, p1 = b3.xyz, p2 = c.xyz;
   const float handedness = determinant(objectFromWorld) < 0.0 ? -1.0 : 1.0;
   const vec3 geometric = handedness * (normalToWorld * cross(p1 - p0, p2 - p0));
   if (dot(geometric, direction) > 0.0) n = -n;

@@ -11,10 +11,10 @@
 
 #define HMB_TRACE_GROUP 64
 
-// The trace scene takes 12 binding numbers (trace_scene_bindings.glsl); a kernel that traces
+// The trace scene takes 11 binding numbers (trace_scene_bindings.glsl); a kernel that traces
 // puts it after its own bindings. HMB_BIND_BY_ADDRESS builds bind one table of addresses at the
 // first and leave the others unused, so both builds keep the same numbers for the host.
-#define HMB_TRACE_SCENE_BUFFERS 12
+#define HMB_TRACE_SCENE_BUFFERS 11
 #define HMB_TRACE_SCENE_BINDINGS HMB_TRACE_SCENE_BUFFERS
 
 // trace_rays
@@ -34,6 +34,11 @@
 // TraceParams.flags: skip the back faces of single-sided instances, as the rasterizer does
 // (the renderer's rays); without it every face is hit (tests against brute force and Embree).
 #define HMB_TRACE_CULL_BACK_FACES 1u
+
+// Pending subtrees one walk through a mesh tree keeps (closest_hit.glsl, walkStacked), and
+// the specialization constant that changes it: past it, the linked walk takes over.
+#define HMB_TRACE_STACK_SIZE 32
+#define HMB_SPEC_TRACE_STACK 1
 
 // TraceInstance.flags
 #define HMB_TRACE_INSTANCE_SINGLE_SIDED 1u  // its material is not double-sided
@@ -114,16 +119,15 @@ struct TraceSceneTable {
   HMB_REFERENCE(InstanceTransformsRef) transforms;  // [instance * timeCount + time]
   HMB_REFERENCE(PackedNodesRef) meshNodes;          // of every mesh, mesh m's root at node m
   HMB_REFERENCE(WordsRef) meshLinks;                // 8 per node
-  HMB_REFERENCE(WordsRef) meshPrimitives;           // triangle per leaf entry (into triangles)
-  HMB_REFERENCE(Uvec4sRef) triangles;               // (v0, v1, v2, mesh) per triangle of every mesh
-  HMB_REFERENCE(Vec4sRef) positions;                // per mesh vertex, object space
+  HMB_REFERENCE(WordsRef) meshPrimitives;           // triangle per leaf entry (the scene's numbering)
+  HMB_REFERENCE(Vec4sRef) leafTriangles;            // 3 per leaf entry: vertex xyz, its index in w's bits
   HMB_REFERENCE(BvhFramesRef) topFrame;             // one
   HMB_REFERENCE(BvhFramesRef) meshFrames;           // one per mesh
 };
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(TraceSceneTable, 96)
+HMB_CHECK_SIZE(TraceSceneTable, 88)
 #endif
 HMB_CHECK_SIZE(TraceParams, 16)
 HMB_CHECK_SIZE(TraceRay, 48)

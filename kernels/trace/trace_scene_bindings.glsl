@@ -1,5 +1,5 @@
 // The trace scene as a kernel binds it, from its binding HMB_TRACE_SCENE_BINDING on (defined
-// by the including kernel): the 12 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
+// by the including kernel): the 11 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
 // with few storage-buffer bindings) one TraceSceneTable of their addresses. Either way the
 // kernels read the same names: topNodes[i], transforms[i], ...
 #ifndef HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
@@ -17,8 +17,7 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING) readonly buffer TraceScene { T
 #define meshNodes traceScene.meshNodes.v
 #define meshLinks traceScene.meshLinks.v
 #define meshPrimitives traceScene.meshPrimitives.v
-#define traceTriangles traceScene.triangles.v
-#define positions traceScene.positions.v
+#define leafTriangles traceScene.leafTriangles.v
 #define topFrame traceScene.topFrame.v[0]
 #define meshFrames traceScene.meshFrames.v
 #else
@@ -30,10 +29,11 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING + 4) readonly buffer Transforms
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 5) readonly buffer MeshNodes { uvec4 meshNodes[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 6) readonly buffer MeshLinks { uint meshLinks[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 8) readonly buffer TraceTriangles { uvec4 traceTriangles[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 10) readonly buffer TopFrame { BvhFrame topFrame; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 11) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
+// Each triangle's three vertices in the leaves' order (entry e at 3e..3e+2): a leaf's triangles
+// are three loads each, with no indirection through vertex indices.
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 8) readonly buffer LeafTriangles { vec4 leafTriangles[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) readonly buffer TopFrame { BvhFrame topFrame; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 10) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
 #endif
 
 #endif

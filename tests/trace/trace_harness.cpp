@@ -27,12 +27,12 @@ gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time, uint32_t ignoreObject
 }
 
 std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceScene& scene,
-                                       std::span<const gpu::TraceRay> rays, uint32_t flags) {
+                                       std::span<const gpu::TraceRay> rays, uint32_t flags, uint32_t stackSize) {
   const std::vector<gpu::TraceRay> rayList(rays.begin(), rays.end());
   const vk::Buffer rayBuffer = vk::uploadedBuffer(context, rayList, "test rays");
   const vk::Buffer hits(context, std::max<size_t>(rays.size(), 1) * sizeof(gpu::BvhHit), vk::MemoryUse::Device,
                         "test hits");
-  const passes::TraceRaysPass pass(context);
+  const passes::TraceRaysPass pass(context, stackSize);
   vk::FrameRecorder frame(context);
   frame.begin();
   pass.record(frame, scene, rayBuffer, hits, static_cast<uint32_t>(rays.size()), flags);

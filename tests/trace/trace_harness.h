@@ -21,9 +21,11 @@ scene::Scene sceneOf(const bvh::test::TriangleMesh& mesh);
 
 gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time = 0, uint32_t ignoreObjectId = HMB_IGNORE_NONE);
 
-// Closest hits of `rays` through the scene (its shutter times must be set); flags: HMB_TRACE_*.
+// Closest hits of `rays` through the scene (its shutter times must be set); flags: HMB_TRACE_*;
+// stackSize: the trace kernel's (passes::TraceRaysPass).
 std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceScene& scene,
-                                       std::span<const gpu::TraceRay> rays, uint32_t flags = 0);
+                                       std::span<const gpu::TraceRay> rays, uint32_t flags = 0,
+                                       uint32_t stackSize = HMB_TRACE_STACK_SIZE);
 
 // Closest hits of `rays` through `mesh` as a one-instance scene at one shutter time.
 std::vector<gpu::BvhHit> traceMesh(const vk::Context& context, const bvh::test::TriangleMesh& mesh,

@@ -113,6 +113,39 @@ TEST_F(TraceRays, RandomSoupMatchesBruteForce) {
   EXPECT_GE(c.hits, 1500u);
 }
 
+// A ray that needs more pending subtrees than the stack holds finishes with the linked walk: with
+// room for one, nearly every ray hands over, and the hits stay those of the full stack, bit for
+// bit (the closest hit and its ties do not depend on the visiting order).
+TEST_F(TraceRays, AShortStackHandsOverToTheLinkedWalkWithTheSameHits) {
+  const TriangleMesh mesh = bvh::test::randomSoup(4000, 0.1f, 21);
+  const scene::Scene scene = sceneOf(mesh);
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene, frame);
+  const float time = 0.0f;
+  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
+  std::vector<gpu::TraceRay> rays;
+  for (const Ray& ray : bvh::test::mixedRays(mesh, 3000, 22)) rays.push_back(traceRay(ray));
+  const std::vector<gpu::BvhHit> full = traceOnDevice(context(), traceScene, rays);
+  const std::vector<gpu::BvhHit> handedOver = traceOnDevice(context(), traceScene, rays, 0, 1);
+  uint32_t hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (full[i].triangle != HMB_NO_HIT) ++hits;
+    ASSERT_EQ(handedOver[i].triangle, full[i].triangle) << "ray " << i;
+    ASSERT_EQ(handedOver[i].t, full[i].t) << "ray " << i;
+    ASSERT_EQ(handedOver[i].u, full[i].u) << "ray " << i;
+    ASSERT_EQ(handedOver[i].v, full[i].v) << "ray " << i;
+  }
+  EXPECT_GE(hits, 1000u);
+  // And both are right: the full stack against brute force.
+  TriangleMesh oneObject = mesh;
+  oneObject.objectIds.assign(mesh.triangleCount(), 1u);
+  Comparison c;
+  const std::vector<Ray> hostRays = bvh::test::mixedRays(mesh, 3000, 22);
+  for (size_t i = 0; i < hostRays.size(); ++i)
+    c.add(i, bvh::bruteForceClosestHit(oneObject.view(), hostRays[i]), handedOver[i], 0u, 1e-5f);
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+}
+
 TEST_F(TraceRays, AxisAlignedRaysMatchBruteForce) {
   const TriangleMesh mesh = bvh::test::cubeSphere(12);
   const Comparison c = compareOnMesh(mesh, axisRays(mesh, 3000, 13));
