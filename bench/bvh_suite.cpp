@@ -249,6 +249,7 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
     c.deviceSmallTaskMilliseconds = smallTaskMs.at(median == builds.end() ? 0 : median - builds.begin());
     c.deviceSmallTasks = traceScene->meshBvh().stats().smallTasks;
     c.deviceLevels = traceScene->meshBvh().stats().levels;
+    c.deviceBuildShape = traceScene->meshBvh().shape().describe();
     c.sahDevice = bvh::sahCost(traceScene->meshBvh().download(0));
 
     progress("  CPU full-sweep build");
@@ -318,6 +319,7 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
            {{"device_ms", summaryJson(c.deviceBuildMilliseconds)},
             {"device_mtris_per_s", mtris},
             {"device_levels", c.deviceLevels},
+            {"device_build_shape", c.deviceBuildShape},
             {"device_level_ms", c.deviceLevelMilliseconds},
             {"device_small_tasks", c.deviceSmallTasks},
             {"device_small_task_ms", c.deviceSmallTaskMilliseconds},

@@ -76,6 +76,7 @@ struct BvhCase {
   bool anchorMeasured = false;                  // the driver's ray queries ran (RayQueryAnchor)
   Summary anchorBuildMilliseconds;              // its bottom and top level builds
   uint32_t deviceLevels = 0;
+  std::string deviceBuildShape;  // the level kernel's workgroups (passes::BvhBuildShape::describe)
   Summary embreeSceneBuildMilliseconds;  // rtcCommitScene
   Summary embreeBvhBuildMilliseconds;    // rtcBuildBVH into our layout
   double cpuReferenceBuildMilliseconds = 0;  // full sweep, one thread

@@ -11,7 +11,6 @@
 #include "bvh_build_common.glsl"
 #include "../shared/ordered_float.glsl"
 
-#define GROUP HMB_BVH_LEVEL_GROUP
 #define BINS HMB_BVH_BINS
 #define LEAF_SPLIT (-1)
 #define MEDIAN_SPLIT (-2)
@@ -20,7 +19,13 @@
 // and iteration, so that a task of HMB_BVH_MAX_TREE_PRIMITIVES stays under that count.
 #define UNROLL 8
 
-layout(local_size_x = GROUP) in;
+// The workgroup's size and how it bins come from the device (BvhBuildShape): on a CPU
+// device 8 lanes binning large tasks into a copy of the bins per lane; on a GPU a warp or
+// wave binning with shared atomics, and no per-lane copies.
+layout(local_size_x = HMB_BVH_LEVEL_GROUP, local_size_x_id = HMB_SPEC_BVH_LEVEL_GROUP) in;
+layout(constant_id = HMB_SPEC_BVH_LANE_BINS) const bool kLaneBins = true;
+const uint GROUP = gl_WorkGroupSize.x;
+const uint LANE_SLOTS = kLaneBins ? GROUP * 3u * BINS : 1u;
 
 #define kInfinity uintBitsToFloat(0x7f800000u)
 
@@ -28,8 +33,8 @@ layout(local_size_x = GROUP) in;
 // float: exact to 2^24, past any lane's share of a tree), and their upper corner. One vec4 per
 // side, so binning a primitive is two loads and two stores per axis: on lavapipe each
 // shared-memory access at per-lane addresses is a loop over the lanes, whatever its width.
-shared vec4 laneBinLower[GROUP * 3 * BINS];
-shared vec4 laneBinUpper[GROUP * 3 * BINS];
+shared vec4 laneBinLower[LANE_SLOTS];
+shared vec4 laneBinUpper[LANE_SLOTS];
 // The bins of the whole task (bounds as ordered uints, see ordered_float.glsl), then each
 // axis's left-to-right sweep.
 shared uint binCount[3 * BINS];
@@ -142,7 +147,7 @@ void main() {
   for (uint a = 0; a < 3; ++a)
     scale[a] = extent[a] > 0.0 && !isinf(extent[a]) ? min(float(bins) / extent[a], 3.0e38) : 0.0;
 
-  if (task.count >= HMB_BVH_LANE_BINS_MIN) binPerLane(task, inBase, scale, bins, lane);
+  if (kLaneBins && task.count >= HMB_BVH_LANE_BINS_MIN) binPerLane(task, inBase, scale, bins, lane);
   else binWithAtomics(task, inBase, scale, bins, lane);
   barrier();
 

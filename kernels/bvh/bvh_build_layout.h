@@ -16,13 +16,19 @@
 #include "../../bvh/bvh_layout.h"
 
 #define HMB_BVH_BUILD_GROUP 64
-// build_level's workgroup, one task each: 8 lanes, lavapipe's SIMD width (64 lanes made
-// small tasks 3x slower there). A task of at least HMB_BVH_LANE_BINS_MIN primitives bins into
-// a copy of the bins per lane, without atomics (lavapipe runs each shared atomic lane by lane
-// as a compare-exchange loop, which made binning of large tasks 2x slower); smaller ones bin
-// with shared atomics, which costs less than clearing and merging the copies.
+// build_level's workgroup, one task each, shaped per device (runtime/passes/bvh_build_pass.h,
+// BvhBuildShape) through two specialization constants:
+// - on CPU devices (lavapipe), 8 lanes, its SIMD width (64 lanes made small tasks 3x slower
+//   there), and a task of at least HMB_BVH_LANE_BINS_MIN primitives bins into a copy of the
+//   bins per lane, without atomics: lavapipe runs each shared atomic lane by lane as a
+//   compare-exchange loop, which made binning of large tasks 2x slower; smaller ones bin with
+//   shared atomics, which costs less than clearing and merging the copies;
+// - on GPUs, a warp or wave (the subgroup size, at least 32) binning with shared atomics, which
+//   GPUs run natively; per-lane copies would need 1.5 KiB of shared memory per lane.
 #define HMB_BVH_LEVEL_GROUP 8
 #define HMB_BVH_LANE_BINS_MIN 64u
+#define HMB_SPEC_BVH_LEVEL_GROUP 0  // the workgroup's size (local_size_x_id)
+#define HMB_SPEC_BVH_LANE_BINS 1    // bool: large tasks bin into per-lane copies
 // The most primitives one tree may have: lavapipe stops any invocation's loops after 65535
 // iterations in all, and a root task's lanes loop twice over count / (8 lanes * 8 unrolled).
 #define HMB_BVH_MAX_TREE_PRIMITIVES 2000000u

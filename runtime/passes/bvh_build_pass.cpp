@@ -1,6 +1,7 @@
 #include "runtime/passes/bvh_build_pass.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstring>
@@ -20,12 +21,45 @@ std::vector<gpu::BvhBox> bvhBoxes(std::span<const Aabb> bounds) {
   return boxes;
 }
 
+namespace {
+// build_level's shared memory besides the per-lane bins: the task's bins and sweeps, and each
+// lane's child bounds (kernels/bvh/build_level.comp).
+uint64_t levelSharedBytes(const BvhBuildShape& shape) {
+  const uint64_t slots = 3ull * HMB_BVH_BINS;
+  const uint64_t perLaneBins = shape.laneBins ? shape.levelGroup * slots * 2 * 16 : 32;
+  return perLaneBins + slots * (4 + 6 * 4 + 4 + 4) + 3 * 8 + 16 + shape.levelGroup * 24 * 4 + 24 * 4;
+}
+
+std::array<uint32_t, 2> levelSpecialization(const BvhBuildShape& shape) {
+  static_assert(HMB_SPEC_BVH_LEVEL_GROUP == 0 && HMB_SPEC_BVH_LANE_BINS == 1);
+  return {shape.levelGroup, shape.laneBins ? 1u : 0u};
+}
+}  // namespace
+
+BvhBuildShape BvhBuildShape::forDevice(const vk::Context& context) {
+  BvhBuildShape shape;
+  if (context.info().type == "cpu") return shape;  // lavapipe: 8 lanes, per-lane bins
+  shape.laneBins = false;
+  shape.levelGroup = std::clamp(context.info().subgroupSize, 32u, 64u);
+  shape.levelGroup = std::min(shape.levelGroup, context.limits().maxComputeWorkGroupSize[0]);
+  shape.levelGroup = std::min(shape.levelGroup, context.limits().maxComputeWorkGroupInvocations);
+  return shape;
+}
+
+std::string BvhBuildShape::describe() const {
+  return std::to_string(levelGroup) + " lanes, " + (laneBins ? "per-lane bins" : "shared atomics");
+}
+
 BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf)
+    : BvhBuildPass(context, std::move(name), maxLeaf, BvhBuildShape::forDevice(context)) {}
+
+BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf, const BvhBuildShape& shape)
     : context_(context),
       name_(std::move(name)),
       maxLeaf_(maxLeaf),
+      shape_(shape),
       beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams)),
-      levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams)),
+      levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams), levelSpecialization(shape)),
       sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)),
       smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams)),
       refitParentsKernel_(context, "bvh/refit_parents", sizeof(gpu::BvhRefitParams)),
@@ -33,6 +67,15 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       refitBoundsKernel_(context, "bvh/refit_bounds", sizeof(gpu::BvhRefitParams)),
       refitPackKernel_(context, "bvh/refit_pack", sizeof(gpu::BvhRefitParams)) {
   if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
+  // A root of HMB_BVH_MAX_TREE_PRIMITIVES must stay under lavapipe's 65535 loop iterations.
+  if (shape_.levelGroup < HMB_BVH_LEVEL_GROUP || shape_.levelGroup > context.limits().maxComputeWorkGroupSize[0])
+    throw Error(name_ + ": a build workgroup of " + std::to_string(shape_.levelGroup) + " lanes is outside " +
+                std::to_string(HMB_BVH_LEVEL_GROUP) + " to the device's " +
+                std::to_string(context.limits().maxComputeWorkGroupSize[0]));
+  if (levelSharedBytes(shape_) > context.limits().maxComputeSharedMemorySize)
+    throw Error(name_ + ": the build's " + shape_.describe() + " need " + std::to_string(levelSharedBytes(shape_)) +
+                " bytes of shared memory; the device has " +
+                std::to_string(context.limits().maxComputeSharedMemorySize));
   if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
 }

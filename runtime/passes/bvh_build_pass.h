@@ -43,6 +43,19 @@ struct BvhBuildStats {
   double smallTaskMilliseconds = 0.0;     // its time
 };
 
+// How build_level's workgroups are shaped (kernels/bvh/bvh_build_layout.h): their size and
+// whether large tasks bin into per-lane copies of the bins.
+struct BvhBuildShape {
+  uint32_t levelGroup = HMB_BVH_LEVEL_GROUP;
+  bool laneBins = true;
+  // The shape for the device: CPU devices (lavapipe) get 8 lanes and per-lane bins; GPUs a
+  // warp or wave (the subgroup size, 32 to 64, within the device's workgroup limit) binning
+  // with shared atomics.
+  static BvhBuildShape forDevice(const vk::Context& context);
+  // "8 lanes, per-lane bins" / "32 lanes, shared atomics": for reports.
+  std::string describe() const;
+};
+
 class BvhBuildPass {
  public:
   static constexpr const char* kBegin = "bvh-begin-build";
@@ -66,8 +79,11 @@ class BvhBuildPass {
   static uint32_t firstSubmissionLevels(uint32_t largestTree);
 
   // Leaves hold at most maxLeaf primitives (HMB_BVH_MAX_LEAF for triangles,
-  // HMB_BVH_MAX_INSTANCE_LEAF for instances).
+  // HMB_BVH_MAX_INSTANCE_LEAF for instances). The shape defaults to the device's; tests build
+  // with the other shape to check that both make the same trees.
   BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf);
+  BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf, const BvhBuildShape& shape);
+  const BvhBuildShape& shape() const { return shape_; }
 
   // Builds the trees over `boxes` (BvhBox per primitive, primitiveCount of them) with
   // the given roots, whose ranges must not overlap. `before` records passes that must run
@@ -124,6 +140,7 @@ class BvhBuildPass {
   const vk::Context& context_;
   std::string name_;
   uint32_t maxLeaf_;
+  BvhBuildShape shape_;
   vk::ComputeKernel beginKernel_;
   vk::ComputeKernel levelKernel_;
   vk::ComputeKernel sizeDispatchKernel_;

@@ -142,6 +142,50 @@ TEST_F(DeviceBvh, CompactingKeepsTheTreesInBuffersOfTheirSizeAndABuildMayFollow)
   EXPECT_EQ(bvh::test::structuralProblem(builder.download(0), input.bounds, HMB_BVH_MAX_LEAF), "");
 }
 
+// The workgroup shape is the device's (CPU: 8 lanes, per-lane bins; GPU: a warp or wave,
+// shared atomics), and both must make the same trees: the bins' counts and bounds do not
+// depend on who adds what. Here both run on the test device, over two trees of each of two
+// soups (large tasks bin per lane in the CPU shape). Node numbering and the order of
+// primitives inside a leaf may differ (atomics hand out places in any order); every node's
+// bounds, the shape of the tree and each leaf's primitive set may not. (Where centroids tie
+// along an axis, the small subtrees' sorts keep the order the levels left, so a mesh with
+// such ties, like the cube sphere, may split its tied primitives the other way round.)
+TEST_F(DeviceBvh, GpuAndCpuShapedBuildsMakeTheSameTrees) {
+  const passes::BvhBuildShape cpu{HMB_BVH_LEVEL_GROUP, true}, gpu{32, false};
+  EXPECT_EQ(cpu.describe(), "8 lanes, per-lane bins");
+  EXPECT_EQ(gpu.describe(), "32 lanes, shared atomics");
+  for (const TriangleMesh& mesh : {bvh::test::randomSoup(20000, 0.02f, 31), bvh::test::randomSoup(3000, 0.2f, 32)}) {
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
+    const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "boxes");
+    const auto count = static_cast<uint32_t>(input.bounds.size());
+    const glm::uvec2 roots[] = {{0u, count / 3}, {count / 3, count - count / 3}};
+    std::vector<bvh::Bvh> trees[2];
+    for (int s = 0; s < 2; ++s) {
+      passes::BvhBuildPass builder(context(), "shaped", HMB_BVH_MAX_LEAF, s == 0 ? cpu : gpu);
+      vk::FrameRecorder frame(context());
+      builder.build(frame, buffer, count, roots);
+      for (uint32_t r = 0; r < 2; ++r) trees[s].push_back(builder.download(r));
+    }
+    for (uint32_t r = 0; r < 2; ++r) {
+      const bvh::Bvh &a = trees[0][r], &b = trees[1][r];
+      ASSERT_EQ(a.nodes.size(), b.nodes.size()) << "tree " << r;
+      for (size_t i = 0; i < a.nodes.size(); ++i) {
+        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).min, bvh::boundsOf(b.nodes[i]).min) << "tree " << r << " node " << i;
+        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).max, bvh::boundsOf(b.nodes[i]).max) << "tree " << r << " node " << i;
+        ASSERT_EQ(a.nodes[i].count, b.nodes[i].count) << "tree " << r << " node " << i;
+        if (!bvh::isLeaf(a.nodes[i])) continue;
+        std::vector<uint32_t> inA(a.primitiveIndices.begin() + a.nodes[i].leftOrFirst,
+                                  a.primitiveIndices.begin() + a.nodes[i].leftOrFirst + a.nodes[i].count);
+        std::vector<uint32_t> inB(b.primitiveIndices.begin() + b.nodes[i].leftOrFirst,
+                                  b.primitiveIndices.begin() + b.nodes[i].leftOrFirst + b.nodes[i].count);
+        std::sort(inA.begin(), inA.end());
+        std::sort(inB.begin(), inB.end());
+        ASSERT_EQ(inA, inB) << "tree " << r << " leaf " << i;
+      }
+    }
+  }
+}
+
 std::vector<gpu::BvhBox> boxesOf(const TriangleMesh& mesh) {
   return passes::bvhBoxes(bvh::triangleBounds(mesh.view()).bounds);
 }
