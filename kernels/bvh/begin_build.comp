@@ -47,7 +47,7 @@ void main() {
   }
   barrier();
 
-  if (lane < HMB_BVH_OCTANTS) links[tree * HMB_BVH_OCTANTS + lane] = HMB_BVH_LINK_END;
+  if (lane < HMB_BVH_OCTANTS) linkQuads[tree * 2u + (lane >> 2u)][lane & 3u] = HMB_BVH_LINK_END;
   if (lane != 0) return;
   BvhNode root;
   root.minX = orderedFloat(boundsMin[0]);

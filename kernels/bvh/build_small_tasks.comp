@@ -17,10 +17,11 @@ layout(local_size_x = HMB_BVH_SMALL_TASK_GROUP) in;
 // The task's primitives, reordered as its nodes split them.
 uint order[SMALL];
 // The node being split: its primitives' boxes and centroids (by position in its range), the
-// positions sorted by centroid along one axis, the best axis's sorted positions, and the
-// right sides' areas of the sweep.
+// positions sorted by centroid along one axis (centroid, position as bits: one access moves
+// both, and on lavapipe each access at per-lane indices is a loop over the lanes), the best
+// axis's sorted positions, and the right sides' areas of the sweep.
 vec3 boxLo[SMALL], boxHi[SMALL], centre[SMALL];
-uint sorted[SMALL];
+vec2 sorted[SMALL];
 uint best[SMALL];
 uint reordered[SMALL];
 float rightArea[SMALL];
@@ -59,23 +60,27 @@ void main() {
       for (uint k = 0; k < count; ++k) {
         const float c = centre[k][axis];
         uint at = k;
-        while (at > 0u && centre[sorted[at - 1u]][axis] > c) {
-          sorted[at] = sorted[at - 1u];
+        while (at > 0u) {
+          const vec2 before = sorted[at - 1u];
+          if (!(before.x > c)) break;
+          sorted[at] = before;
           --at;
         }
-        sorted[at] = k;
+        sorted[at] = vec2(c, uintBitsToFloat(k));
       }
       vec3 lo = vec3(uintBitsToFloat(0x7f800000u)), hi = -lo;
       for (uint k = count - 1u; k > 0u; --k) {
-        lo = min(lo, boxLo[sorted[k]]);
-        hi = max(hi, boxHi[sorted[k]]);
+        const uint at = floatBitsToUint(sorted[k].y);
+        lo = min(lo, boxLo[at]);
+        hi = max(hi, boxHi[at]);
         rightArea[k] = surfaceArea(lo, hi);
       }
       lo = vec3(uintBitsToFloat(0x7f800000u)), hi = -lo;
       bool improved = false;
       for (uint left = 1u; left < count; ++left) {
-        lo = min(lo, boxLo[sorted[left - 1u]]);
-        hi = max(hi, boxHi[sorted[left - 1u]]);
+        const uint at = floatBitsToUint(sorted[left - 1u].y);
+        lo = min(lo, boxLo[at]);
+        hi = max(hi, boxHi[at]);
         // A node with no area (all primitives on a line or a point) weighs children equally.
         const float leftShare = nodeArea > 0.0 ? surfaceArea(lo, hi) / nodeArea : 1.0;
         const float rightShare = nodeArea > 0.0 ? rightArea[left] / nodeArea : 1.0;
@@ -83,7 +88,7 @@ void main() {
         if (cost < bestCost) bestCost = cost, bestAxis = axis, bestLeft = left, improved = true;
       }
       if (improved)
-        for (uint k = 0; k < count; ++k) best[k] = sorted[k];
+        for (uint k = 0; k < count; ++k) best[k] = floatBitsToUint(sorted[k].y);
     }
     if (bestLeft == 0u) bestLeft = count / 2u;
 
@@ -98,7 +103,7 @@ void main() {
     for (uint k = 0; k < count; ++k) order[first + k] = reordered[k];
     const uint left = atomicAdd(counters.nodeCount, 2u);
     atomicMax(counters.levels, level + 2u);
-    for (uint octant = 0; octant < HMB_BVH_OCTANTS; ++octant) linkChildren(node, left, bestAxis, octant);
+    linkChildrenAllOctants(node, left, bestAxis);
     nodes[node].leftOrFirst = left;
     nodes[node].count = 0u;
     packedNodes[node].w = packLeftOrFirstCount(left, 0u);

@@ -10,7 +10,8 @@ layout(std430, binding = HMB_BUILD_BINDING_BOXES) readonly buffer Boxes { BvhBox
 layout(std430, binding = HMB_BUILD_BINDING_ROOTS) readonly buffer Roots { uvec2 roots[]; };
 layout(std430, binding = HMB_BUILD_BINDING_PRIMITIVES) buffer Primitives { uint primitives[]; };
 layout(std430, binding = HMB_BUILD_BINDING_NODES) buffer Nodes { BvhNode nodes[]; };
-layout(std430, binding = HMB_BUILD_BINDING_LINKS) buffer Links { uint links[]; };
+// A node's 8 link words (one per direction octant) as two uvec4: octants 0-3, then 4-7.
+layout(std430, binding = HMB_BUILD_BINDING_LINKS) buffer Links { uvec4 linkQuads[]; };
 layout(std430, binding = HMB_BUILD_BINDING_TASKS) buffer Tasks {
   BvhBuildCounters counters;
   BvhBuildTask tasks[];
@@ -50,13 +51,28 @@ void writeChild(uint index, uint first, uint count, uint tree, vec3 lo, vec3 hi)
 
 // The links of one direction octant when `node` splits along `axis` into children left and
 // left + 1: the child on the ray's side of the split first, the other after it, and after that
-// wherever the node led before.
+// wherever the node led before. One word each (build_level gives each octant its own lane).
 void linkChildren(uint node, uint left, uint axis, uint octant) {
   const uint rightFirst = (octant >> axis) & 1u;
-  const uint escape = links[node * HMB_BVH_OCTANTS + octant] & HMB_BVH_LINK_NEXT_MASK;
-  links[(left + rightFirst) * HMB_BVH_OCTANTS + octant] = left + 1u - rightFirst;
-  links[(left + 1u - rightFirst) * HMB_BVH_OCTANTS + octant] = escape;
-  links[node * HMB_BVH_OCTANTS + octant] = escape | (rightFirst != 0u ? HMB_BVH_LINK_RIGHT_FIRST : 0u);
+  const uint quad = octant >> 2u, word = octant & 3u;
+  const uint escape = linkQuads[node * 2u + quad][word] & HMB_BVH_LINK_NEXT_MASK;
+  linkQuads[(left + rightFirst) * 2u + quad][word] = left + 1u - rightFirst;
+  linkQuads[(left + 1u - rightFirst) * 2u + quad][word] = escape;
+  linkQuads[node * 2u + quad][word] = escape | (rightFirst != 0u ? HMB_BVH_LINK_RIGHT_FIRST : 0u);
+}
+
+// linkChildren for all 8 octants at once, for one invocation that splits a node alone
+// (build_small_tasks): two loads and six stores of four words, where a word at a time is 32
+// accesses (on lavapipe each a loop over the lanes).
+void linkChildrenAllOctants(uint node, uint left, uint axis) {
+  for (uint quad = 0u; quad < 2u; ++quad) {
+    const uvec4 octants = uvec4(0u, 1u, 2u, 3u) + 4u * quad;
+    const bvec4 rightFirst = notEqual((octants >> axis) & 1u, uvec4(0u));
+    const uvec4 escape = linkQuads[node * 2u + quad] & HMB_BVH_LINK_NEXT_MASK;
+    linkQuads[left * 2u + quad] = mix(uvec4(left + 1u), escape, rightFirst);
+    linkQuads[(left + 1u) * 2u + quad] = mix(escape, uvec4(left), rightFirst);
+    linkQuads[node * 2u + quad] = escape | mix(uvec4(0u), uvec4(HMB_BVH_LINK_RIGHT_FIRST), rightFirst);
+  }
 }
 
 #endif
