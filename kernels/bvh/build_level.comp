@@ -35,20 +35,22 @@ const uint LANE_SLOTS = kLaneBins ? GROUP * 3u * BINS : 1u;
 // shared-memory access at per-lane addresses is a loop over the lanes, whatever its width.
 shared vec4 laneBinLower[LANE_SLOTS];
 shared vec4 laneBinUpper[LANE_SLOTS];
-// The bins of the whole task (bounds as ordered uints, see ordered_float.glsl), then each
-// axis's left-to-right sweep.
-shared uint binCount[3 * BINS];
-shared uint binBounds[3 * BINS * 6];
-shared float leftArea[3 * BINS];   // per (axis, bin b): area of bins 0..b merged
-shared uint leftCountOf[3 * BINS];  // per (axis, bin b): primitives in bins 0..b
+// The bins of the whole task: the lower corner (ordered uints, see ordered_float.glsl) with
+// the count in w, and the upper corner; one access per side (shared atomics work on their
+// components). Then each axis's left-to-right sweep: per (axis, bin b), the area of bins
+// 0..b merged and the primitives in them.
+shared uvec4 binLowerCount[3 * BINS];
+shared uvec4 binUpper[3 * BINS];
+shared vec2 leftAreaCount[3 * BINS];  // x: area, y: count (exact in a float up to 2^24)
 shared float axisCost[3];           // the cheapest split of each axis (+inf: none)
 shared uint axisSplit[3];           // its last bin on the left
 shared int chosenSplit;             // the axis split along, or LEAF_SPLIT / MEDIAN_SPLIT
 shared uint firstChild;
 shared uint cursor[2];
-// Per lane, per side: box min xyz, max xyz, centroid min xyz, max xyz of what it sent there.
-shared float laneChildBounds[GROUP * 24];
-shared float childBounds[24];
+// Per lane, per side: box min, box max, centroid min, centroid max of what it sent there
+// (xyz of 4 vec4 per side), then the same merged over the lanes.
+shared vec4 laneChildBounds[GROUP * 8];
+shared vec4 childBounds[8];
 
 // Bin of a centroid coordinate among `bins`; scale is 0 on an axis whose centroids coincide
 // (not binned).
@@ -56,23 +58,16 @@ uint binOf(float c, float lo, float scale, uint bins) {
   return uint(clamp((c - lo) * scale, 0.0, float(bins - 1u)));
 }
 
-vec3 binLower(uint slot) {
-  return vec3(orderedFloat(binBounds[slot * 6]), orderedFloat(binBounds[slot * 6 + 1]), orderedFloat(binBounds[slot * 6 + 2]));
-}
-vec3 binUpper(uint slot) {
-  return vec3(orderedFloat(binBounds[slot * 6 + 3]), orderedFloat(binBounds[slot * 6 + 4]),
-              orderedFloat(binBounds[slot * 6 + 5]));
+vec3 unordered(uvec3 ordered) {
+  return vec3(orderedFloat(ordered.x), orderedFloat(ordered.y), orderedFloat(ordered.z));
 }
 
 // A small task bins straight into the task's bins with shared atomics: cheaper than setting
 // up and merging a copy per lane when each lane bins only a few primitives.
 void binWithAtomics(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane) {
   for (uint i = lane; i < 3 * BINS; i += GROUP) {
-    binCount[i] = 0u;
-    for (uint d = 0; d < 3; ++d) {
-      binBounds[i * 6 + d] = kOrderedPositiveInfinity;
-      binBounds[i * 6 + 3 + d] = kOrderedNegativeInfinity;
-    }
+    binLowerCount[i] = uvec4(uvec3(kOrderedPositiveInfinity), 0u);
+    binUpper[i] = uvec4(uvec3(kOrderedNegativeInfinity), 0u);
   }
   barrier();
   for (uint k = lane; k < task.count; k += GROUP) {
@@ -81,11 +76,13 @@ void binWithAtomics(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint 
     for (uint a = 0; a < 3; ++a) {
       if (scale[a] == 0.0) continue;
       const uint slot = a * BINS + binOf(c[a], task.centroidMin[a], scale[a], bins);
-      atomicAdd(binCount[slot], 1u);
-      for (uint d = 0; d < 3; ++d) {
-        atomicMin(binBounds[slot * 6 + d], orderedUint(box.min[d]));
-        atomicMax(binBounds[slot * 6 + 3 + d], orderedUint(box.max[d]));
-      }
+      atomicAdd(binLowerCount[slot].w, 1u);
+      atomicMin(binLowerCount[slot].x, orderedUint(box.min.x));
+      atomicMin(binLowerCount[slot].y, orderedUint(box.min.y));
+      atomicMin(binLowerCount[slot].z, orderedUint(box.min.z));
+      atomicMax(binUpper[slot].x, orderedUint(box.max.x));
+      atomicMax(binUpper[slot].y, orderedUint(box.max.y));
+      atomicMax(binUpper[slot].z, orderedUint(box.max.z));
     }
   }
 }
@@ -122,11 +119,8 @@ void binPerLane(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane
       lo = min(lo, lower.xyz);
       hi = max(hi, laneBinUpper[l * 3 * BINS + slot].xyz);
     }
-    binCount[slot] = uint(n);
-    for (uint d = 0; d < 3; ++d) {
-      binBounds[slot * 6 + d] = orderedUint(lo[d]);
-      binBounds[slot * 6 + 3 + d] = orderedUint(hi[d]);
-    }
+    binLowerCount[slot] = uvec4(orderedUint(lo.x), orderedUint(lo.y), orderedUint(lo.z), uint(n));
+    binUpper[slot] = uvec4(orderedUint(hi.x), orderedUint(hi.y), orderedUint(hi.z), 0u);
   }
 }
 
@@ -164,23 +158,25 @@ void main() {
       uint n = 0u;
       for (uint b = 0; b + 1 < bins; ++b) {
         const uint slot = a * BINS + b;
-        n += binCount[slot];
-        lo = min(lo, binLower(slot));
-        hi = max(hi, binUpper(slot));
-        leftArea[slot] = surfaceArea(lo, hi);
-        leftCountOf[slot] = n;
+        const uvec4 lower = binLowerCount[slot];
+        n += lower.w;
+        lo = min(lo, unordered(lower.xyz));
+        hi = max(hi, unordered(binUpper[slot].xyz));
+        leftAreaCount[slot] = vec2(surfaceArea(lo, hi), float(n));
       }
       lo = vec3(kInfinity), hi = -lo;
       n = 0u;
       for (uint b = bins - 1u; b > 0u; --b) {
         const uint slot = a * BINS + b;
-        n += binCount[slot];
-        lo = min(lo, binLower(slot));
-        hi = max(hi, binUpper(slot));
-        const uint left = leftCountOf[slot - 1u];
+        const uvec4 lower = binLowerCount[slot];
+        n += lower.w;
+        lo = min(lo, unordered(lower.xyz));
+        hi = max(hi, unordered(binUpper[slot].xyz));
+        const vec2 leftSide = leftAreaCount[slot - 1u];
+        const uint left = uint(leftSide.y);
         if (left == 0u || n == 0u) continue;
         // A node with no area (all primitives on a line or a point) weighs children equally.
-        const float leftShare = nodeArea > 0.0 ? leftArea[slot - 1u] / nodeArea : 1.0;
+        const float leftShare = nodeArea > 0.0 ? leftSide.x / nodeArea : 1.0;
         const float rightShare = nodeArea > 0.0 ? surfaceArea(lo, hi) / nodeArea : 1.0;
         const float cost = 1.0 + leftShare * float(left) + rightShare * float(n);
         if (cost <= best) best = cost, bestSplit = b - 1u;  // ties: the lowest split
@@ -223,7 +219,7 @@ void main() {
 
   const uint axis = split == MEDIAN_SPLIT ? 0u : uint(split);
   const uint lastLeftBin = split == MEDIAN_SPLIT ? 0u : axisSplit[axis];
-  const uint leftCount = split == MEDIAN_SPLIT ? task.count / 2u : leftCountOf[axis * BINS + lastLeftBin];
+  const uint leftCount = split == MEDIAN_SPLIT ? task.count / 2u : uint(leftAreaCount[axis * BINS + lastLeftBin].y);
   const uint rightCount = task.count - leftCount;
   // What this lane sends to each side, merged in registers (no per-primitive shared writes).
   vec3 boxLo[2] = vec3[2](vec3(kInfinity), vec3(kInfinity)), boxHi[2] = vec3[2](-vec3(kInfinity), -vec3(kInfinity));
@@ -253,20 +249,19 @@ void main() {
       centreLo[0] = min(centreLo[0], c), centreHi[0] = max(centreHi[0], c);
     }
   }
-  for (uint side = 0; side < 2; ++side)
-    for (uint d = 0; d < 3; ++d) {
-      laneChildBounds[lane * 24 + side * 12 + d] = boxLo[side][d];
-      laneChildBounds[lane * 24 + side * 12 + 3 + d] = boxHi[side][d];
-      laneChildBounds[lane * 24 + side * 12 + 6 + d] = centreLo[side][d];
-      laneChildBounds[lane * 24 + side * 12 + 9 + d] = centreHi[side][d];
-    }
+  for (uint side = 0; side < 2; ++side) {
+    laneChildBounds[lane * 8 + side * 4] = vec4(boxLo[side], 0.0);
+    laneChildBounds[lane * 8 + side * 4 + 1] = vec4(boxHi[side], 0.0);
+    laneChildBounds[lane * 8 + side * 4 + 2] = vec4(centreLo[side], 0.0);
+    laneChildBounds[lane * 8 + side * 4 + 3] = vec4(centreHi[side], 0.0);
+  }
   barrier();
   if (lone) primitives[lonePosition] = lonePrimitive;
-  for (uint i = lane; i < 24; i += GROUP) {
-    const bool lower = (i % 6) < 3;
-    float v = lower ? kInfinity : -kInfinity;
-    for (uint l = 0; l < GROUP; ++l) v = lower ? min(v, laneChildBounds[l * 24 + i]) : max(v, laneChildBounds[l * 24 + i]);
-    childBounds[i] = v;
+  for (uint i = lane; i < 8; i += GROUP) {
+    const bool lower = (i & 1u) == 0u;  // box min, box max, centroid min, centroid max per side
+    vec3 v = vec3(lower ? kInfinity : -kInfinity);
+    for (uint l = 0; l < GROUP; ++l) v = lower ? min(v, laneChildBounds[l * 8 + i].xyz) : max(v, laneChildBounds[l * 8 + i].xyz);
+    childBounds[i] = vec4(v, 0.0);
   }
   barrier();
 
@@ -284,19 +279,18 @@ void main() {
       continue;
     }
     const uint side = job - (HMB_BVH_OCTANTS + 1u);
-    const uint b = side * 12;
+    const uint b = side * 4;
     const uint first = task.first + (side == 0u ? 0u : leftCount);
     const uint count = side == 0u ? leftCount : rightCount;
-    writeChild(left + side, first, count, task.tree, vec3(childBounds[b], childBounds[b + 1], childBounds[b + 2]),
-               vec3(childBounds[b + 3], childBounds[b + 4], childBounds[b + 5]));
+    writeChild(left + side, first, count, task.tree, childBounds[b].xyz, childBounds[b + 1].xyz);
     if (count == 1u) continue;
     BvhBuildTask next;
     next.node = left + side;
     next.first = first;
     next.count = count;
     next.tree = task.tree;
-    next.centroidMin = vec4(childBounds[b + 6], childBounds[b + 7], childBounds[b + 8], 0.0);
-    next.centroidMax = vec4(childBounds[b + 9], childBounds[b + 10], childBounds[b + 11], 0.0);
+    next.centroidMin = vec4(childBounds[b + 2].xyz, 0.0);
+    next.centroidMax = vec4(childBounds[b + 3].xyz, 0.0);
     if (count <= HMB_BVH_SMALL_TASK) {
       // Its range is in the half this level wrote; build_small_tasks finishes it after the levels.
       next.centroidMin.w = float(params.level + 1u);

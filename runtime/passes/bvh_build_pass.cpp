@@ -27,7 +27,7 @@ namespace {
 uint64_t levelSharedBytes(const BvhBuildShape& shape) {
   const uint64_t slots = 3ull * HMB_BVH_BINS;
   const uint64_t perLaneBins = shape.laneBins ? shape.levelGroup * slots * 2 * 16 : 32;
-  return perLaneBins + slots * (4 + 6 * 4 + 4 + 4) + 3 * 8 + 16 + shape.levelGroup * 24 * 4 + 24 * 4;
+  return perLaneBins + slots * (16 + 16 + 8) + 3 * 8 + 16 + shape.levelGroup * 8 * 16 + 8 * 16;
 }
 
 std::array<uint32_t, 2> levelSpecialization(const BvhBuildShape& shape) {
