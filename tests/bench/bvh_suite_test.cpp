@@ -11,19 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "runtime/vulkan/context.h"
-#include "tests/cli/cli_harness.h"
+#include "tests/bench/bench_harness.h"
 
 namespace hmb::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-CliRun bench(const std::string& args) { return runProgram(HMB_BENCH_PATH, "--validation --quiet " + args); }
-
-nlohmann::json readJson(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 bool deviceHasRayQueries() {
   const vk::Context context;

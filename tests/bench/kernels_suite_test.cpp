@@ -12,19 +12,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "tests/cli/cli_harness.h"
+#include "tests/bench/bench_harness.h"
 
 namespace hmb::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-CliRun bench(const std::string& args) { return runProgram(HMB_BENCH_PATH, "--validation --quiet " + args); }
-
-nlohmann::json readJson(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 // (kernel, width, height, triangles, rays) of every case in a report.
 using CaseKey = std::tuple<std::string, uint32_t, uint32_t, uint32_t, uint32_t>;
