@@ -105,19 +105,35 @@ bool walkLinked(MeshRay m, inout BvhHit best) {
   return nearest;
 }
 
+// The subtrees a mesh walk has put off (walkStacked): each one's range word and the distance
+// at which the ray enters it. Module scope, so that popPending reads them without a copy.
+uint pendingWords[kTraceStackSize];
+float pendingEntries[kTraceStackSize];
+
+// The nearest put-off subtree that can still hold a nearer hit (as intersectBox widens): false
+// when none is left.
+bool popPending(inout uint pending, float bestT, out uint word) {
+  word = 0u;
+  while (pending > 0u) {
+    --pending;
+    word = pendingWords[pending];
+    if (pendingEntries[pending] <= bestT + abs(bestT) * kBoxSlack) return true;
+  }
+  return false;
+}
+
 // Depth first with a short stack, the nearer child first. A node's two children are adjacent,
 // and each packed node carries its own child range, so one step loads both children and tests
 // both boxes: two loads per entered node where the linked walk pays two per box tested (on
-// lavapipe every load at per-lane addresses is a loop over the lanes; on GPUs this is the
-// usual while-while walk). The far child waits on the stack with its entry distance, and is
-// dropped when a nearer hit has been found meanwhile. `overflowed` is set, with the walk
-// abandoned, when a ray needs more than kTraceStackSize pending subtrees: the caller then
+// lavapipe every load at per-lane addresses is a loop over the lanes). The far child waits on
+// the stack with its entry distance, and is dropped when a nearer hit has been found meanwhile.
+// Interior steps repeat until the ray holds a leaf, so that the lanes of a SIMD group test
+// their leaves together (the while-while form of Aila and Laine). `overflowed` is set, with the
+// walk abandoned, when a ray needs more than kTraceStackSize pending subtrees: the caller then
 // finishes with the linked walk (best only ever shrinks, so what was found stays right).
 bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
   overflowed = false;
   bool nearest = false;
-  uint pendingWord[kTraceStackSize];
-  float pendingEntry[kTraceStackSize];
   uint pending = 0u;
   const uvec4 root = meshNodes[m.mesh];
   float entry;
@@ -125,9 +141,9 @@ bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
     return false;
   uint word = root.w;  // the entered node's range: children, or triangles
   for (;;) {
-    const uint count = word & HMB_BVH_PACKED_MAX_COUNT;
-    const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-    if (count == 0u) {
+    bool left = true;  // a subtree is left to walk
+    while (left && (word & HMB_BVH_PACKED_MAX_COUNT) == 0u) {
+      const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
       const uvec4 a = meshNodes[first], b = meshNodes[first + 1u];
       float entryA, entryB;
       const bool hitA = intersectBoxEntry(m.r, packedLower(a, m.frame), packedUpper(a, m.frame), m.tMin, best.t, entryA);
@@ -138,27 +154,19 @@ bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
           return nearest;
         }
         const bool aFirst = entryA <= entryB;
-        pendingWord[pending] = aFirst ? b.w : a.w;
-        pendingEntry[pending] = aFirst ? entryB : entryA;
+        pendingWords[pending] = aFirst ? b.w : a.w;
+        pendingEntries[pending] = aFirst ? entryB : entryA;
         ++pending;
         word = aFirst ? a.w : b.w;
-        continue;
-      }
-      if (hitA || hitB) {
+      } else if (hitA || hitB) {
         word = hitA ? a.w : b.w;
-        continue;
+      } else {
+        left = popPending(pending, best.t, word);
       }
-    } else if (testLeaf(m, first, count, best)) {
-      nearest = true;
     }
-    // The nearest pending subtree that can still hold a nearer hit (as intersectBox widens).
-    bool found = false;
-    while (pending > 0u && !found) {
-      --pending;
-      found = pendingEntry[pending] <= best.t + abs(best.t) * kBoxSlack;
-      word = pendingWord[pending];
-    }
-    if (!found) return nearest;
+    if (!left) return nearest;
+    if (testLeaf(m, word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, best)) nearest = true;
+    if (!popPending(pending, best.t, word)) return nearest;
   }
 }
 
