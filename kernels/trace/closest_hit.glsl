@@ -1,7 +1,7 @@
-// The closest hit of a ray through the two-level BVH. The top level is walked stackless (each
-// node's link for the ray's direction octant says where to go next, kernels/bvh/
-// bvh_build_layout.h); each instance's mesh tree depth first with a short stack, which hands
-// over to the linked walk for a ray that would need more. Instances of the ignored object are
+// The closest hit of a ray through the two-level BVH: the top level over instances, then each
+// instance's mesh tree, both walked depth first with a short stack. A ray that would need more
+// hands over to the linked walk, stackless: each node's link for the ray's direction octant
+// says where to go next (kernels/bvh/bvh_build_layout.h). Instances of the ignored object are
 // skipped whole, so a reveal ray finds the first surface behind the object it starts on.
 // Binds the trace scene from the including kernel's HMB_TRACE_SCENE_BINDING on
 // (trace_scene_bindings.glsl).
@@ -105,22 +105,55 @@ bool walkLinked(MeshRay m, inout BvhHit best) {
   return nearest;
 }
 
-// The subtrees a mesh walk has put off (walkStacked): each one's range word and the distance
-// at which the ray enters it. Module scope, so that popPending reads them without a copy.
-uint pendingWords[kTraceStackSize];
-float pendingEntries[kTraceStackSize];
+// The subtrees a walk has put off: each one's range word and the distance at which the ray
+// enters it, one stack for the top-level walk and one for the mesh walk it runs per instance.
+// Module scope, so that the steps below read them without a copy.
+#define TOP_WALK 0
+#define MESH_WALK 1
+uint pendingWords[2][kTraceStackSize];
+float pendingEntries[2][kTraceStackSize];
 
 // The nearest put-off subtree that can still hold a nearer hit (as intersectBox widens): false
 // when none is left.
-bool popPending(inout uint pending, float bestT, out uint word) {
+bool popPending(uint walk, inout uint pending, float bestT, out uint word) {
   word = 0u;
   while (pending > 0u) {
     --pending;
-    word = pendingWords[pending];
-    if (pendingEntries[pending] <= bestT + abs(bestT) * kBoxSlack) return true;
+    word = pendingWords[walk][pending];
+    if (pendingEntries[walk][pending] <= bestT + abs(bestT) * kBoxSlack) return true;
   }
   return false;
 }
+
+// One interior step of a stacked walk: the entered node's children a and b (loaded by the
+// caller from its tree) tested, the nearer one hit entered and the farther put off, or the
+// nearest put-off subtree taken up when neither is hit. Returns false when nothing is left to
+// walk; sets `overflowed` (and returns false) when a subtree cannot be put off.
+bool interiorStep(uint walk, uvec4 a, uvec4 b, PreparedRay r, BvhFrame frame, float tMin, float bestT,
+                  inout uint pending, inout uint word, inout bool overflowed) {
+  float entryA, entryB;
+  const bool hitA = intersectBoxEntry(r, packedLower(a, frame), packedUpper(a, frame), tMin, bestT, entryA);
+  const bool hitB = intersectBoxEntry(r, packedLower(b, frame), packedUpper(b, frame), tMin, bestT, entryB);
+  if (hitA && hitB) {
+    if (pending == kTraceStackSize) {
+      overflowed = true;
+      return false;
+    }
+    const bool aFirst = entryA <= entryB;
+    pendingWords[walk][pending] = aFirst ? b.w : a.w;
+    pendingEntries[walk][pending] = aFirst ? entryB : entryA;
+    ++pending;
+    word = aFirst ? a.w : b.w;
+    return true;
+  }
+  if (hitA || hitB) {
+    word = hitA ? a.w : b.w;
+    return true;
+  }
+  return popPending(walk, pending, bestT, word);
+}
+
+bool isInterior(uint word) { return (word & HMB_BVH_PACKED_MAX_COUNT) == 0u; }
 
 // Depth first with a short stack, the nearer child first. A node's two children are adjacent,
 // and each packed node carries its own child range, so one step loads both children and tests
@@ -142,70 +175,96 @@ bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
   uint word = root.w;  // the entered node's range: children, or triangles
   for (;;) {
     bool left = true;  // a subtree is left to walk
-    while (left && (word & HMB_BVH_PACKED_MAX_COUNT) == 0u) {
+    while (left && isInterior(word)) {
       const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      const uvec4 a = meshNodes[first], b = meshNodes[first + 1u];
-      float entryA, entryB;
-      const bool hitA = intersectBoxEntry(m.r, packedLower(a, m.frame), packedUpper(a, m.frame), m.tMin, best.t, entryA);
-      const bool hitB = intersectBoxEntry(m.r, packedLower(b, m.frame), packedUpper(b, m.frame), m.tMin, best.t, entryB);
-      if (hitA && hitB) {
-        if (pending == kTraceStackSize) {
-          overflowed = true;
-          return nearest;
-        }
-        const bool aFirst = entryA <= entryB;
-        pendingWords[pending] = aFirst ? b.w : a.w;
-        pendingEntries[pending] = aFirst ? entryB : entryA;
-        ++pending;
-        word = aFirst ? a.w : b.w;
-      } else if (hitA || hitB) {
-        word = hitA ? a.w : b.w;
-      } else {
-        left = popPending(pending, best.t, word);
-      }
+      left = interiorStep(MESH_WALK, meshNodes[first], meshNodes[first + 1u], m.r, m.frame, m.tMin, best.t, pending,
+                          word, overflowed);
     }
     if (!left) return nearest;
     if (testLeaf(m, word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, best)) nearest = true;
-    if (!popPending(pending, best.t, word)) return nearest;
+    if (!popPending(MESH_WALK, pending, best.t, word)) return nearest;
   }
 }
 
+// The ray carried into the instance's space at its shutter time.
+PreparedRay instanceRay(uint instance, TraceRay ray, TraceSceneInfo scene, out mat3 linear) {
+  const uint time = min(ray.time, scene.timeCount - 1u);
+  const mat4 objectFromWorld = transforms[instance * scene.timeCount + time].objectFromWorld;
+  linear = mat3(objectFromWorld);
+  return prepareRay((objectFromWorld * vec4(ray.originTMin.xyz, 1.0)).xyz, linear * ray.directionTMax.xyz);
+}
+
 // Traces the ray, carried into the instance's space at its shutter time, through the
-// instance's mesh tree; keeps a hit that is nearer than `best`.
+// instance's mesh tree; keeps a hit that is nearer than `best`. Every hit is compared at the
+// watertight test's distance, whichever instance it is in, so the closest hit does not depend
+// on the order instances are visited in; closestHit refines the winner's distance once.
 void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   MeshRay m;
   m.instance = instance;
   m.mesh = traceInstances[instance].mesh;
-  const uint time = min(ray.time, scene.timeCount - 1u);
-  const mat4 objectFromWorld = transforms[instance * scene.timeCount + time].objectFromWorld;
-  const vec3 origin = (objectFromWorld * vec4(ray.originTMin.xyz, 1.0)).xyz;
-  const vec3 direction = mat3(objectFromWorld) * ray.directionTMax.xyz;
-  m.r = prepareRay(origin, direction);
+  mat3 linear;
+  m.r = instanceRay(instance, ray, scene, linear);
   if (!m.r.valid) return;
   // A back face is one whose counter-clockwise normal the ray runs along; a transform that
   // flips handedness flips that in object space.
   m.cull = (scene.flags & HMB_TRACE_CULL_BACK_FACES) != 0u &&
            (traceInstances[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
-  m.handedness = determinant(mat3(objectFromWorld)) < 0.0 ? -1.0 : 1.0;
+  m.handedness = determinant(linear) < 0.0 ? -1.0 : 1.0;
   m.tMin = ray.originTMin.w;
   m.frame = meshFrames[m.mesh];
   bool overflowed;
-  bool nearestHere = walkStacked(m, best, overflowed);  // best is this instance's: refined below
+  bool nearestHere = walkStacked(m, best, overflowed);
   if (overflowed && walkLinked(m, best)) nearestHere = true;
-  if (nearestHere) {
-    best.triangle = meshPrimitives[best.entry];
-    const uint at = 3u * best.entry;
-    const float refined = planeHitDistance(m.r, leafTriangles[at].xyz, leafTriangles[at + 1u].xyz,
-                                           leafTriangles[at + 2u].xyz, best.t);
-    best.t = clamp(refined, m.tMin, ray.directionTMax.w);
+  if (nearestHere) best.triangle = meshPrimitives[best.entry];
+}
+
+// The closest hit's distance from its triangle's plane (planeHitDistance), in its instance's
+// space, within [tMin, tMax].
+void refineClosestHit(TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+  if (best.triangle == HMB_NO_HIT) return;
+  mat3 linear;
+  const PreparedRay r = instanceRay(best.instance, ray, scene, linear);
+  const uint at = 3u * best.entry;
+  const float refined =
+      planeHitDistance(r, leafTriangles[at].xyz, leafTriangles[at + 1u].xyz, leafTriangles[at + 2u].xyz, best.t);
+  best.t = clamp(refined, ray.originTMin.w, ray.directionTMax.w);
+}
+
+// The instances of a top-level leaf (first..first+count-1 of its primitive order), each traced
+// unless it is the ignored object.
+void traceTopLeaf(uint first, uint count, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+  for (uint k = 0; k < count; ++k) {
+    const uint instance = topPrimitives[first + k];
+    if (traceInstances[instance].objectId != ray.ignoreObjectId) traceInstance(instance, ray, scene, best);
   }
 }
 
-// The closest hit in [tMin, tMax] of the ray; a miss has triangle == HMB_NO_HIT and t == tMax.
-BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
-  BvhHit best = missedHit(ray.directionTMax.w);
-  const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
-  if (!r.valid || scene.instanceCount == 0u) return best;
+// The top level walked as walkStacked walks a mesh tree; false when it overflowed its stack.
+bool walkTopStacked(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+  bool overflowed = false;
+  uint pending = 0u;
+  const BvhFrame frame = topFrame;
+  const float tMin = ray.originTMin.w;
+  const uvec4 root = topNodes[HMB_BVH_ROOT];
+  float entry;
+  if (!intersectBoxEntry(r, packedLower(root, frame), packedUpper(root, frame), tMin, best.t, entry)) return true;
+  uint word = root.w;
+  for (;;) {
+    bool left = true;
+    while (left && isInterior(word)) {
+      const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
+      left = interiorStep(TOP_WALK, topNodes[first], topNodes[first + 1u], r, frame, tMin, best.t, pending, word,
+                          overflowed);
+    }
+    if (!left) return !overflowed;
+    traceTopLeaf(word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, ray, scene, best);
+    if (!popPending(TOP_WALK, pending, best.t, word)) return true;
+  }
+}
+
+// The top level's linked walk, for a ray that overflowed the stacked one: from the root again,
+// with what was found so far.
+void walkTopLinked(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   const BvhFrame frame = topFrame;
   uint node = HMB_BVH_ROOT;
   while (node != HMB_BVH_LINK_END) {
@@ -217,14 +276,19 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
         node = firstChildOf(n, link);
         continue;
       }
-      const uint first = packedLeftOrFirst(n);
-      for (uint k = 0; k < count; ++k) {
-        const uint instance = topPrimitives[first + k];
-        if (traceInstances[instance].objectId != ray.ignoreObjectId) traceInstance(instance, ray, scene, best);
-      }
+      traceTopLeaf(packedLeftOrFirst(n), count, ray, scene, best);
     }
     node = link & HMB_BVH_LINK_NEXT_MASK;
   }
+}
+
+// The closest hit in [tMin, tMax] of the ray; a miss has triangle == HMB_NO_HIT and t == tMax.
+BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
+  BvhHit best = missedHit(ray.directionTMax.w);
+  const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
+  if (!r.valid || scene.instanceCount == 0u) return best;
+  if (!walkTopStacked(r, ray, scene, best)) walkTopLinked(r, ray, scene, best);
+  refineClosestHit(ray, scene, best);
   return best;
 }
 

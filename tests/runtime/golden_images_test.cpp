@@ -106,7 +106,7 @@ const std::map<std::string, GoldenTable>& goldenTables() {
       {"llvmpipe (LLVM 15.0.6) | fma",
        {
            {"bistro/hybrid", 0x87e3e625326180e5ull},
-           {"bistro/hybrid-luminance-weights", 0x9774943d2dc15a1aull},
+           {"bistro/hybrid-luminance-weights", 0xcf0a33a835d98c18ull},
            {"bistro/postprocess", 0x2420081240cadc1bull},
            {"bistro/postprocess-centered", 0xdfd1ae60e8da2974ull},
            {"bistro/postprocess-jimenez", 0x346238db403a95c9ull},

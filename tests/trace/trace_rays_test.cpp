@@ -380,6 +380,35 @@ TEST_F(TwoLevelScene, MotionBoundsHoldEveryInstanceAtEveryShutterTime) {
   EXPECT_EQ(bvh::test::structuralProblem(top, instanceBoxes, HMB_BVH_MAX_INSTANCE_LEAF), "");
 }
 
+// The top level is walked like the mesh trees, with the same hand-over to the linked walk: with
+// room for one pending subtree, the rays through four moving instances, at every shutter time
+// and with ignored objects, get the same hits, bit for bit, as with the full stack.
+TEST_F(TwoLevelScene, AShortStackHandsOverToTheLinkedWalksOnBothLevels) {
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene_, frame);
+  traceScene.setShutterTimes(scene_, times_, frame);
+  TriangleMesh all;
+  for (uint32_t i = 0; i < scene_.instances.size(); ++i)
+    all.append(scene_.meshes[scene_.instances[i].mesh], scene_.worldMatrixAt(scene_.instances[i].node, 0.0f), i);
+  std::vector<gpu::TraceRay> rays;
+  const std::vector<Ray> mixed = bvh::test::mixedRays(all, 3000, 37);
+  for (size_t r = 0; r < mixed.size(); ++r)
+    rays.push_back(traceRay(mixed[r], static_cast<uint32_t>(r % times_.size()),
+                            r % 3 == 0 ? 10 + static_cast<uint32_t>(r % 4) : HMB_IGNORE_NONE));
+  const std::vector<gpu::BvhHit> full = traceOnDevice(context(), traceScene, rays);
+  const std::vector<gpu::BvhHit> handedOver = traceOnDevice(context(), traceScene, rays, 0, 1);
+  uint32_t hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (full[i].triangle != HMB_NO_HIT) ++hits;
+    ASSERT_EQ(handedOver[i].triangle, full[i].triangle) << "ray " << i;
+    ASSERT_EQ(handedOver[i].instance, full[i].instance) << "ray " << i;
+    ASSERT_EQ(handedOver[i].t, full[i].t) << "ray " << i;
+    ASSERT_EQ(handedOver[i].u, full[i].u) << "ray " << i;
+    ASSERT_EQ(handedOver[i].v, full[i].v) << "ray " << i;
+  }
+  EXPECT_GE(hits, 700u);
+}
+
 TEST_F(TwoLevelScene, RaysAtEachShutterTimeMatchBruteForceWithAndWithoutIgnoredObject) {
   vk::FrameRecorder frame(context());
   TraceScene traceScene(context(), scene_, frame);
