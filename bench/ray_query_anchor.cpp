@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "bench/shaders/ray_query_layout.h"
 #include "ray_query_trace.spv.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/check.h"
@@ -17,7 +18,7 @@ namespace {
 
 constexpr const char* kExtensions[] = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, VK_KHR_RAY_QUERY_EXTENSION_NAME,
                                        VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
-constexpr uint32_t kGroup = 64;  // ray_query_trace.comp's local size
+constexpr uint32_t kGroup = HMB_RAY_QUERY_GROUP;
 
 // The features the anchor needs, chained for a query or for device creation.
 struct FeatureChain {
@@ -295,9 +296,10 @@ RayQueryAnchor::RayQueryAnchor(const vk::Context& context) : state_(std::make_un
   HMB_VK_CHECK(vkCreateQueryPool(s.device, &queryInfo, nullptr, &s.timestamps));
 
   const VkDescriptorSetLayoutBinding bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+      {HMB_RAY_QUERY_BINDING_SCENE, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+       nullptr},
+      {HMB_RAY_QUERY_BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {HMB_RAY_QUERY_BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = 3;
   setInfo.pBindings = bindings;
@@ -419,14 +421,17 @@ double RayQueryAnchor::trace(std::span<const bvh::Ray> rays, std::vector<gpu::Bv
   VkWriteDescriptorSet writes[3] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
                                     {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
   writes[0].pNext = &structureWrite;
+  writes[0].dstBinding = HMB_RAY_QUERY_BINDING_SCENE;
   writes[0].descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
-  writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  writes[1].dstBinding = HMB_RAY_QUERY_BINDING_RAYS;
+  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   writes[1].pBufferInfo = &rayInfo;
+  writes[2].dstBinding = HMB_RAY_QUERY_BINDING_HITS;
+  writes[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   writes[2].pBufferInfo = &hitInfo;
-  for (uint32_t i = 0; i < 3; ++i) {
-    writes[i].dstSet = s.set;
-    writes[i].dstBinding = i;
-    writes[i].descriptorCount = 1;
+  for (VkWriteDescriptorSet& write : writes) {
+    write.dstSet = s.set;
+    write.descriptorCount = 1;
   }
   HMB_VK_CHECK(vkDeviceWaitIdle(s.device));
   vkUpdateDescriptorSets(s.device, 3, writes, 0, nullptr);

@@ -3,8 +3,10 @@
 // the driver's own acceleration structure (VK_KHR_ray_query). Benchmark only: the renderer
 // never uses a ray-tracing extension.
 #extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+#include "ray_query_layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = HMB_RAY_QUERY_GROUP) in;
 
 struct AnchorRay {
   vec4 originTMin;
@@ -17,9 +19,9 @@ struct AnchorHit {
   uint triangle;  // 0xffffffff: nothing hit
 };
 
-layout(set = 0, binding = 0) uniform accelerationStructureEXT scene;
-layout(std430, set = 0, binding = 1) readonly buffer Rays { AnchorRay rays[]; };
-layout(std430, set = 0, binding = 2) writeonly buffer Hits { AnchorHit hits[]; };
+layout(set = 0, binding = HMB_RAY_QUERY_BINDING_SCENE) uniform accelerationStructureEXT scene;
+layout(std430, set = 0, binding = HMB_RAY_QUERY_BINDING_RAYS) readonly buffer Rays { AnchorRay rays[]; };
+layout(std430, set = 0, binding = HMB_RAY_QUERY_BINDING_HITS) writeonly buffer Hits { AnchorHit hits[]; };
 layout(push_constant) uniform Params { uint rayCount; } params;
 
 void main() {
