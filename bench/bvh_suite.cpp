@@ -140,8 +140,7 @@ TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene,
   f.deviceMraysPerSecond = f.rays / (f.deviceMilliseconds.median * 1e3);
   const std::vector<gpu::BvhHit> hits = hitBuffer.download<gpu::BvhHit>();
   const std::span<const gpu::BvhHit> deviceHits = std::span(hits).first(rays.size());
-  // What the anchor is judged against: Embree where there is Embree.
-  std::vector<gpu::BvhHit> judge(deviceHits.begin(), deviceHits.end());
+  std::vector<gpu::BvhHit> embreeHits;
   if (embree) {
     EmbreeRun run = runEmbree(flat.view(), rays, embreeThreadCount(options.embreeThreads), options.warmup,
                               options.repeats);
@@ -152,7 +151,7 @@ TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene,
     f.disagreements = judgeDisagreements(flat, rays, deviceHits, run.hits);
     f.hitAgreement = rays.empty() ? 1.0 : 1.0 - double(f.disagreements.rays) / double(rays.size());
     checkAgreement("device", f.hitAgreement, f.disagreements);
-    judge = std::move(run.hits);
+    embreeHits = std::move(run.hits);
   }
   if (anchor) {
     std::vector<double> ms;
@@ -163,7 +162,9 @@ TraceFigures traceCase(const vk::Context& context, const TraceScene& traceScene,
     }
     f.anchorMilliseconds = summarize(ms);
     f.anchorMraysPerSecond = f.rays / (f.anchorMilliseconds.median * 1e3);
-    f.anchorDisagreements = judgeDisagreements(flat, rays, anchorHits, judge);
+    // Judged against Embree where there is Embree, else against the device.
+    f.anchorDisagreements =
+        judgeDisagreements(flat, rays, anchorHits, embree ? std::span<const gpu::BvhHit>(embreeHits) : deviceHits);
     f.anchorAgreement = rays.empty() ? 1.0 : 1.0 - double(f.anchorDisagreements.rays) / double(rays.size());
     checkAgreement("the driver's ray query", f.anchorAgreement, f.anchorDisagreements);
   }

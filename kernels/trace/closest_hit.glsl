@@ -47,6 +47,7 @@ BvhHit missedHit(float tMax) {
 struct MeshRay {
   PreparedRay r;
   uint instance;
+  uint objectId;  // the instance's, for its hits
   uint mesh;
   float tMin;
   bool cull;
@@ -76,7 +77,7 @@ bool testLeaf(MeshRay m, uint first, uint count, inout BvhHit best) {
     best.u = u;
     best.v = v;
     best.entry = entry;
-    best.objectId = traceInstances[m.instance].objectId;
+    best.objectId = m.objectId;
     best.instance = m.instance;
     nearest = true;
   }
@@ -198,17 +199,18 @@ PreparedRay instanceRay(uint instance, TraceRay ray, TraceSceneInfo scene, out m
 // instance's mesh tree; keeps a hit that is nearer than `best`. Every hit is compared at the
 // watertight test's distance, whichever instance it is in, so the closest hit does not depend
 // on the order instances are visited in; closestHit refines the winner's distance once.
-void traceInstance(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+void traceInstance(uint instance, TraceInstance record, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   MeshRay m;
   m.instance = instance;
-  m.mesh = traceInstances[instance].mesh;
+  m.objectId = record.objectId;
+  m.mesh = record.mesh;
   mat3 linear;
   m.r = instanceRay(instance, ray, scene, linear);
   if (!m.r.valid) return;
   // A back face is one whose counter-clockwise normal the ray runs along; a transform that
   // flips handedness flips that in object space.
   m.cull = (scene.flags & HMB_TRACE_CULL_BACK_FACES) != 0u &&
-           (traceInstances[instance].flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
+           (record.flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
   m.handedness = determinant(linear) < 0.0 ? -1.0 : 1.0;
   m.tMin = ray.originTMin.w;
   m.frame = meshFrames[m.mesh];
@@ -235,7 +237,8 @@ void refineClosestHit(TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
 void traceTopLeaf(uint first, uint count, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   for (uint k = 0; k < count; ++k) {
     const uint instance = topPrimitives[first + k];
-    if (traceInstances[instance].objectId != ray.ignoreObjectId) traceInstance(instance, ray, scene, best);
+    const TraceInstance record = traceInstances[instance];  // read once for all it gives
+    if (record.objectId != ray.ignoreObjectId) traceInstance(instance, record, ray, scene, best);
   }
 }
 
