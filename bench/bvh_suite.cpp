@@ -52,7 +52,8 @@ std::vector<bvh::Ray> cameraRays(const scene::Scene& scene, ImageSize size) {
     for (uint32_t x = 0; x < size.width; ++x) {
       const glm::vec2 ndc(2.0f * (float(x) + 0.5f) / float(size.width) - 1.0f,
                           2.0f * (float(y) + 0.5f) / float(size.height) - 1.0f);
-      const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f), far = clipToWorld * glm::vec4(ndc, 0.5f, 1.0f);
+      // Depth is reversed: z/w = 1 at the near plane, 0.5 at twice its distance.
+      const glm::vec4 near = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f), far = clipToWorld * glm::vec4(ndc, 0.5f, 1.0f);
       const glm::vec3 a = glm::vec3(near) / near.w, b = glm::vec3(far) / far.w;
       rays.push_back(bvh::Ray{a, glm::normalize(b - a)});
     }

@@ -1,6 +1,7 @@
 #include "runtime/gpu_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -30,8 +31,17 @@ glm::mat4 projection(const scene::Scene& scene, uint32_t width, uint32_t height)
   const scene::Camera camera = scene.camera.value_or(scene::Camera{});
   const float aspect = camera.aspectRatio > 0.0f ? camera.aspectRatio : float(width) / float(height);
   const DepthRange range = depthRange(scene);
-  glm::mat4 p = glm::perspectiveRH_ZO(camera.yfov, aspect, range.znear, range.zfar);
-  p[1][1] *= -1.0f;  // Vulkan clip space: y points down the image
+  // Reversed depth: z/w = n (f - d) / ((f - n) d) at camera distance d, 1 at the near plane and
+  // 0 at the far one. Float has its finest steps near 0, where perspective crowds distant
+  // surfaces, so a near/far ratio of 1e9 still keeps surfaces a part in 1e6 apart (the
+  // standard mapping, 1 - n/d near the far end, loses them past a ratio of about 1e4).
+  const float n = range.znear, f = range.zfar;
+  glm::mat4 p(0.0f);
+  p[0][0] = 1.0f / (aspect * std::tan(camera.yfov * 0.5f));
+  p[1][1] = -1.0f / std::tan(camera.yfov * 0.5f);  // Vulkan clip space: y points down the image
+  p[2][2] = n / (f - n);                            // z_clip = n (f - d) / (f - n), with z_view = -d
+  p[3][2] = n * f / (f - n);
+  p[2][3] = -1.0f;                                  // w_clip = d
   return p;
 }
 

@@ -17,7 +17,7 @@ namespace hmb {
 // The camera of one frame on the host: what the kernels get, and what tests need to check them.
 struct FrameCamera {
   glm::mat4 view{1.0f};
-  glm::mat4 projection{1.0f};  // Vulkan clip space: y down, depth z/w in [0, 1]
+  glm::mat4 projection{1.0f};  // Vulkan clip space: y down, depth z/w in [0, 1], reversed (1 at znear)
   glm::mat4 viewProjCurrent{1.0f};
   glm::mat4 viewProjPrevious{1.0f};
   glm::vec3 eye{0.0f};

@@ -8,14 +8,15 @@
 
 HMB_GPU_BEGIN
 
-// Clip planes as dot(plane, clip) >= 0: near (z >= 0) and a guard band of 4x the viewport.
+// Clip planes as dot(plane, clip) >= 0: near (z <= w: depth is reversed, 1 at the near plane)
+// and a guard band of 4x the viewport. The far plane (z >= 0) is left to each pixel's depth.
 const float kGuardBand = 4.0f;
 const int kPlaneCount = 5;
 const int kMaxPolygon = 3 + kPlaneCount;
 
 HMB_SHARED float planeDistance(int plane, vec4 c) {
   switch (plane) {
-    case 0: return c.z;
+    case 0: return c.w - c.z;
     case 1: return kGuardBand * c.w - c.x;
     case 2: return kGuardBand * c.w + c.x;
     case 3: return kGuardBand * c.w - c.y;
@@ -25,7 +26,7 @@ HMB_SHARED float planeDistance(int plane, vec4 c) {
 
 // planeDistance(plane, c) >= 0 for every plane (the same comparisons, without the arrays).
 HMB_SHARED bool insideClipVolume(vec4 c) {
-  return c.z >= 0.0f && abs(c.x) <= kGuardBand * c.w && abs(c.y) <= kGuardBand * c.w;
+  return c.z <= c.w && abs(c.x) <= kGuardBand * c.w && abs(c.y) <= kGuardBand * c.w;
 }
 
 HMB_GPU_END

@@ -15,8 +15,8 @@
 // bin_large_triangles, where a whole workgroup writes them, instead of writing them itself.
 #define HMB_RASTER_LARGE_TILES 16u
 
-// A visibility-buffer entry is uint64 (depth bits << 32 | triangle id), read as uvec2
-// (x = triangle id, y = depth bits). Cleared to all ones: no triangle, farthest depth.
+// A visibility-buffer entry is uint64 (depth key << 32 | triangle id), read as uvec2
+// (x = triangle id, y = depth key). Cleared to all ones: no triangle, the far plane.
 #define HMB_VIS_EMPTY 0xffffffffu
 
 // transform_vertices
@@ -60,6 +60,14 @@
 
 HMB_GPU_BEGIN
 
+// Depth is reversed (runtime/gpu_scene.cpp): z/w is 1 at the near plane and falls towards 0
+// at the far one, so float's fine steps near 0 fall where perspective needs them and a
+// near/far ratio of 1e9 still separates surfaces a part in 1e6 apart. The key of a depth in
+// [0, 1] is its bits inverted: nearer surfaces have smaller keys, so atomicMin keeps the
+// nearest, and the far plane (0 and -0 alike) keys as all ones, the empty entry.
+HMB_SHARED uint depthKey(float depth) { return depth > 0.0f ? ~floatBitsToUint(depth) : 0xffffffffu; }
+HMB_SHARED float depthOfKey(uint key) { return uintBitsToFloat(~key); }
+
 struct RasterParams {
   uint width;
   uint height;
@@ -80,7 +88,7 @@ struct SetupTriangle {
   vec2 p2;
   uint triangle;      // id of the scene triangle it came from (near clipping may split one)
   uint firstPair;     // index of its first (triangle, tile) pair; its tiles follow row by row
-  vec4 depth;         // xyz: z/w at p0, p1, p2
+  vec4 depth;         // xyz: z/w at p0, p1, p2 (reversed: 1 at the near plane)
   uvec4 pixelBounds;  // inclusive pixel rectangle: x0, y0, x1, y1
 };
 

@@ -1,6 +1,7 @@
 #version 450
 // One invocation per (triangle, tile) pair: every covered pixel centre of the tile gets
-// atomicMin(depth bits << 32 | triangle id) in the visibility buffer. The current value is
+// atomicMin(depth key << 32 | triangle id) in the visibility buffer (nearest
+// first: raster_layout.h, depthKey). The current value is
 // read first, so pixels already holding a nearer surface cost no atomic.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -31,7 +32,7 @@ void main() {
       const float depth = coverageDepth(s, edges, uvec2(x, y));
       if (depth < 0.0) continue;
       const uint index = y * params.width + x;
-      const uint64_t candidate = (uint64_t(floatBitsToUint(depth)) << 32) | uint64_t(s.triangle);
+      const uint64_t candidate = (uint64_t(depthKey(depth)) << 32) | uint64_t(s.triangle);
       if (candidate < visibility[index]) atomicMin(visibility[index], candidate);
     }
   }

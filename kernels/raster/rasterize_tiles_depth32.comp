@@ -1,6 +1,6 @@
 #version 450
 // The visibility buffer without 64-bit atomics, in two passes over the same pairs: pass 0
-// takes atomicMin of the depth bits; pass 1 writes the triangle id where the depth matches
+// takes atomicMin of the depth keys (raster_layout.h, depthKey); pass 1 writes the triangle id where the depth matches
 // (atomicMin on the id, so equal depths resolve to the same triangle as the 64-bit path).
 #extension GL_GOOGLE_include_directive : require
 #include "raster_layout.h"
@@ -12,7 +12,7 @@ layout(local_size_x = HMB_RASTER_GROUP) in;
 layout(std430, binding = HMB_RASTERIZE_BINDING_SETUP) readonly buffer Setup { SetupTriangle setup[]; };
 layout(std430, binding = HMB_RASTERIZE_BINDING_PAIRS) readonly buffer Pairs { uvec2 pairs[]; };
 layout(std430, binding = HMB_RASTERIZE_BINDING_COUNTERS) readonly buffer Counters { RasterCounters counters; };
-// Entry i is uvec2(triangle id, depth bits): the same bytes as the 64-bit scheme's uint64.
+// Entry i is uvec2(triangle id, depth key): the same bytes as the 64-bit scheme's uint64.
 layout(std430, binding = HMB_RASTERIZE_BINDING_VISIBILITY) buffer Visibility { uint visibility[]; };
 layout(push_constant) uniform Params { RasterParams params; };
 
@@ -30,10 +30,10 @@ void main() {
       const float depth = coverageDepth(s, edges, uvec2(x, y));
       if (depth < 0.0) continue;
       const uint index = y * params.width + x;
-      const uint depthBits = floatBitsToUint(depth);
+      const uint key = depthKey(depth);
       if (params.pass == 0u) {
-        if (depthBits < visibility[2u * index + 1u]) atomicMin(visibility[2u * index + 1u], depthBits);
-      } else if (depthBits == visibility[2u * index + 1u]) {
+        if (key < visibility[2u * index + 1u]) atomicMin(visibility[2u * index + 1u], key);
+      } else if (key == visibility[2u * index + 1u]) {
         atomicMin(visibility[2u * index], s.triangle);
       }
     }

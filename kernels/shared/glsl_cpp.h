@@ -27,6 +27,8 @@
   using uvec4 = glm::uvec4;          \
   using mat4 = glm::mat4;            \
   using glm::abs;                    \
+  using glm::floatBitsToUint;        \
+  using glm::uintBitsToFloat;        \
   using glm::min;
 #define HMB_GPU_END }
 #define HMB_REFERENCE(Type) uint64_t

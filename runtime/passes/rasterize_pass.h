@@ -2,7 +2,7 @@
 // clip_triangles (for the triangles setup lists), bin_large_triangles and rasterize_tiles (or
 // its 32-bit two-pass fallback), with size_dispatch sizing the indirect ones.
 // Input: clip-space triangles; output: the visibility buffer (uint64 per pixel, read as uvec2
-// (triangle id, depth bits), HMB_VIS_EMPTY where nothing is hit).
+// (triangle id, depth key), HMB_VIS_EMPTY where nothing is hit).
 //
 // The setup and pair buffers are sized by estimate. When a frame needs more, the kernels flag
 // an overflow and rasterize nothing; growIfOverflowed() then sizes the buffers from the
@@ -29,7 +29,7 @@ class FramePlan;
 namespace hmb::passes {
 
 enum class VisibilityScheme {
-  Int64Atomics,    // one atomicMin of (depth bits << 32 | triangle id) per covered pixel
+  Int64Atomics,    // one atomicMin of (depth key << 32 | triangle id) per covered pixel
   Depth32TwoPass,  // without shaderBufferInt64Atomics: atomicMin depth, then id where depth matches
 };
 

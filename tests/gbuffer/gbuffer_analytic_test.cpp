@@ -69,8 +69,9 @@ struct Ray {
 Ray pixelRay(const FrameCamera& camera, uint32_t x, uint32_t y) {
   const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjCurrent));
   const double ndcX = (x + 0.5) / kWidth * 2.0 - 1.0, ndcY = (y + 0.5) / kHeight * 2.0 - 1.0;
-  const glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, 0.0, 1.0);
-  const glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+  // Depth is reversed: z/w = 1 at the near plane, 0 at the far one.
+  const glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+  const glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 0.0, 1.0);
   const glm::dvec3 a = glm::dvec3(nearPoint) / nearPoint.w, b = glm::dvec3(farPoint) / farPoint.w;
   return {a, glm::normalize(b - a)};
 }

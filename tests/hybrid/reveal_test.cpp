@@ -99,8 +99,9 @@ struct QuadHit {
 QuadHit hitQuad(const scene::Scene& scene, const FrameCamera& camera, const Quad& quad, double x, double y, float t) {
   const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjCurrent));
   const double ndcX = x / kWidth * 2.0 - 1.0, ndcY = y / kHeight * 2.0 - 1.0;
-  const glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, 0.0, 1.0);
-  const glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+  // Depth is reversed: z/w = 1 at the near plane, 0 at the far one.
+  const glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+  const glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 0.0, 1.0);
   const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
   const glm::dvec3 direction = glm::normalize(glm::dvec3(farPoint) / farPoint.w - origin);
   const glm::dmat4 world = glm::dmat4(scene.worldMatrixAt(quad.node, t));

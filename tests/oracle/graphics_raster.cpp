@@ -269,7 +269,7 @@ void GraphicsRasterizer::createPipelines() {
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = VK_TRUE;
     depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is larger
 
     VkPipelineColorBlendAttachmentState blendAttachment{};
     blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;
@@ -373,7 +373,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
 
     VkClearValue clears[2]{};
     clears[0].color.uint32[0] = 0;
-    clears[1].depthStencil = {1.0f, 0};
+    clears[1].depthStencil = {0.0f, 0};  // the far plane
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = renderPass_;
     begin.framebuffer = framebuffer_;

@@ -12,8 +12,8 @@
 //   two triangles sharing that edge covers the centre; the tests check that the device uses
 //   the top-left rule (lavapipe does).
 // - Depth: z/w interpolated linearly in screen space (no perspective correction), clipped
-//   to 0 <= z/w <= 1 (depth clamp off); LESS test, so on equal depth the triangle that comes
-//   first in the span wins. Callers that want "smallest id wins" pass triangles sorted by id.
+//   to 0 <= z/w <= 1 (depth clamp off); GREATER test (depth is reversed: nearer is larger),
+//   so on equal depth the triangle that comes first in the span wins. Callers that want "smallest id wins" pass triangles sorted by id.
 // - Facing: with framebuffer (y-down) positions p0, p1, p2 and
 //     cross = (p1.x - p0.x) * (p2.y - p0.y) - (p1.y - p0.y) * (p2.x - p0.x),
 //   a triangle is FRONT-facing when cross < 0: counter-clockwise as the image is viewed
@@ -41,7 +41,7 @@ class Context;
 namespace hmb::oracle {
 
 struct OracleTriangle {
-  glm::vec4 clip[3];  // clip-space positions (x right, y down in NDC, depth z/w in [0, 1])
+  glm::vec4 clip[3];  // clip-space positions (x right, y down in NDC, depth z/w in [0, 1], 1 nearest)
   uint32_t id = 0;    // written to the id image as id + 1 (0 = no triangle)
   bool doubleSided = false;  // false: back faces are culled
 };
@@ -49,7 +49,7 @@ struct OracleTriangle {
 struct OracleImage {
   uint32_t width = 0, height = 0;
   std::vector<uint32_t> ids;  // row-major, row 0 at the top; id + 1 of the visible triangle, 0 = none
-  std::vector<float> depth;   // z/w of the visible triangle, 1.0 where empty
+  std::vector<float> depth;   // z/w of the visible triangle, 0.0 (the far plane) where empty
 
   uint32_t idAt(uint32_t x, uint32_t y) const { return ids[size_t(y) * width + x]; }
   float depthAt(uint32_t x, uint32_t y) const { return depth[size_t(y) * width + x]; }
@@ -114,7 +114,7 @@ std::vector<OracleTriangle> oracleTriangles(std::span<const glm::vec4> clip,
                                             std::span<const gpu::GpuTriangle> triangles,
                                             const std::vector<bool>& doubleSided);
 
-// Fraction of pixels where a compute visibility buffer (entries (triangle id, depth bits),
+// Fraction of pixels where a compute visibility buffer (entries (triangle id, depth key),
 // HMB_VIS_EMPTY when empty) and the oracle see the same triangle, or both none. Throws
 // hmb::Error when the buffer has fewer entries than the image has pixels.
 double idAgreement(std::span<const glm::uvec2> visibility, const OracleImage& oracle);

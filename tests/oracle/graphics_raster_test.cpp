@@ -83,7 +83,7 @@ TEST_F(GraphicsOracleTest, SingleTriangleCoversCentresInside) {
       const bool inside = covers(t.p[0], t.p[1], t.p[2], x, y);
       covered += inside;
       EXPECT_EQ(image.idAt(x, y), inside ? 42u : 0u) << "pixel " << x << "," << y;
-      EXPECT_EQ(image.depthAt(x, y), inside ? 0.5f : 1.0f) << "pixel " << x << "," << y;
+      EXPECT_EQ(image.depthAt(x, y), inside ? 0.5f : 0.0f) << "pixel " << x << "," << y;
     }
   EXPECT_GT(covered, 40u);
 }
@@ -131,8 +131,8 @@ TEST_F(GraphicsOracleTest, SharedDiagonalIsWatertight) {
 
 TEST_F(GraphicsOracleTest, NearerTriangleWinsInEitherOrder) {
   const uint32_t W = 20, H = 16;
-  const PixelTriangle far = flat({1.25, 1.25}, {18.75, 2.25}, {3.25, 14.75}, 0.75);
-  const PixelTriangle near = flat({6.25, 4.75}, {19.25, 8.25}, {8.75, 15.25}, 0.25);
+  const PixelTriangle far = flat({1.25, 1.25}, {18.75, 2.25}, {3.25, 14.75}, 0.25);  // reversed depth
+  const PixelTriangle near = flat({6.25, 4.75}, {19.25, 8.25}, {8.75, 15.25}, 0.75);
   const OracleTriangle farTri = toClip(far, W, H, 10, true), nearTri = toClip(near, W, H, 20, true);
   for (const auto& order : {std::vector{farTri, nearTri}, std::vector{nearTri, farTri}}) {
     const OracleImage image = rasterizeWithGraphicsPipeline(context(), W, H, order);
@@ -143,7 +143,7 @@ TEST_F(GraphicsOracleTest, NearerTriangleWinsInEitherOrder) {
         const bool inFar = covers(far.p[0], far.p[1], far.p[2], x, y);
         overlap += inNear && inFar;
         EXPECT_EQ(image.idAt(x, y), inNear ? 21u : (inFar ? 11u : 0u)) << "pixel " << x << "," << y;
-        EXPECT_EQ(image.depthAt(x, y), inNear ? 0.25f : (inFar ? 0.75f : 1.0f)) << "pixel " << x << "," << y;
+        EXPECT_EQ(image.depthAt(x, y), inNear ? 0.75f : (inFar ? 0.25f : 0.0f)) << "pixel " << x << "," << y;
       }
     EXPECT_GT(overlap, 10u);
   }
@@ -166,7 +166,7 @@ TEST_F(GraphicsOracleTest, DepthIsZOverWInterpolatedInScreenSpace) {
       const bool inside = covers(t.p[0], t.p[1], t.p[2], x, y);
       ASSERT_EQ(image.idAt(x, y), inside ? 8u : 0u) << "pixel " << x << "," << y;
       if (!inside) {
-        EXPECT_EQ(image.depthAt(x, y), 1.0f);
+        EXPECT_EQ(image.depthAt(x, y), 0.0f);
         continue;
       }
       const dvec2 c(x + 0.5, y + 0.5);
@@ -250,7 +250,7 @@ TEST_F(GraphicsOracleTest, OddSizesAndZeroTriangles) {
     EXPECT_EQ(empty.width, W);
     EXPECT_EQ(empty.height, H);
     EXPECT_EQ(empty.ids, std::vector<uint32_t>(size_t(W) * H, 0u));
-    EXPECT_EQ(empty.depth, std::vector<float>(size_t(W) * H, 1.0f));
+    EXPECT_EQ(empty.depth, std::vector<float>(size_t(W) * H, 0.0f));
 
     // One triangle that contains the whole viewport.
     OracleTriangle full;
@@ -291,7 +291,7 @@ TEST_F(GraphicsOracleTest, MillionTrianglesNearestLayerWins) {
   triangles.reserve(size_t(W) * H * 2 * layers);
   std::vector<PixelTriangle> cell;  // the two triangles of each cell, in id order
   for (uint32_t layer = 0; layer < layers; ++layer) {
-    const double z = layer == nearest ? 0.125 : 0.25 + 0.0625 * layer;
+    const double z = layer == nearest ? 0.875 : 0.75 - 0.0625 * layer;  // reversed: nearest largest
     for (uint32_t y = 0; y < H; ++y)
       for (uint32_t x = 0; x < W; ++x) {
         const dvec2 p00(x, y), p10(x + 1, y), p11(x + 1, y + 1), p01(x, y + 1);
@@ -311,7 +311,7 @@ TEST_F(GraphicsOracleTest, MillionTrianglesNearestLayerWins) {
       const PixelTriangle& upper = cell[first];
       const uint32_t half = covers(upper.p[0], upper.p[1], upper.p[2], x, y) ? 0 : 1;
       ASSERT_EQ(image.idAt(x, y), layerBase + first + half + 1) << "pixel " << x << "," << y;
-      ASSERT_EQ(image.depthAt(x, y), 0.125f) << "pixel " << x << "," << y;
+      ASSERT_EQ(image.depthAt(x, y), 0.875f) << "pixel " << x << "," << y;
     }
 }
 

@@ -14,10 +14,7 @@
 namespace hmb::test {
 
 float Visibility::depthAt(uint32_t x, uint32_t y) const {
-  const uint32_t bits = entries[size_t(y) * width + x].y;
-  float depth;
-  std::memcpy(&depth, &bits, sizeof(depth));
-  return depth;
+  return gpu::depthOfKey(entries[size_t(y) * width + x].y);
 }
 
 void ClipTriangles::add(glm::vec4 a, glm::vec4 b, glm::vec4 c, bool isDoubleSided) {

@@ -20,7 +20,7 @@ class Context;
 
 namespace hmb::test {
 
-// A visibility buffer read back: entry i = (triangle id, depth bits), HMB_VIS_EMPTY when empty.
+// A visibility buffer read back: entry i = (triangle id, depth key: raster_layout.h), HMB_VIS_EMPTY when empty.
 struct Visibility {
   uint32_t width = 0, height = 0;
   std::vector<glm::uvec2> entries;

@@ -243,11 +243,10 @@ ReferenceVisibility rasterizeReference(std::span<const gpu::SetupTriangle> setup
         if (depth < 0.0f) continue;
         const size_t index = size_t(y) * width + x;
         ++out.coverage[index];
-        uint32_t bits;
-        std::memcpy(&bits, &depth, sizeof(bits));
-        const uint64_t candidate = (uint64_t(bits) << 32) | s.triangle;
+        const uint32_t key = gpu::depthKey(depth);
+        const uint64_t candidate = (uint64_t(key) << 32) | s.triangle;
         const uint64_t current = (uint64_t(out.entries[index].y) << 32) | out.entries[index].x;
-        if (candidate < current) out.entries[index] = uvec2(s.triangle, bits);
+        if (candidate < current) out.entries[index] = uvec2(s.triangle, key);
       }
     }
   }

@@ -44,13 +44,13 @@ float coverageDepth(const gpu::SetupTriangle& s, glm::uvec2 pixel);
 
 struct ReferenceVisibility {
   uint32_t width = 0, height = 0;
-  std::vector<glm::uvec2> entries;  // (triangle id, depth bits), HMB_VIS_EMPTY in both when empty
+  std::vector<glm::uvec2> entries;  // (triangle id, depth key), HMB_VIS_EMPTY in both when empty
   std::vector<uint32_t> coverage;   // set-up triangles whose coverageDepth() >= 0 at the centre
 
   uint32_t idAt(uint32_t x, uint32_t y) const { return entries[size_t(y) * width + x].x; }
 };
 
-// The visibility buffer: per pixel the smallest (depth bits, triangle id) over the set-up
+// The visibility buffer: per pixel the smallest (depth key, triangle id) over the set-up
 // triangles covering its centre, as both visibility schemes compute it.
 ReferenceVisibility rasterizeReference(std::span<const gpu::SetupTriangle> setup, uint32_t width, uint32_t height);
 

@@ -36,11 +36,7 @@ glm::vec4 atScreen(float sx, float sy, float depth, uint32_t width, uint32_t hei
   return {ndcX * w, ndcY * w, depth * w, w};
 }
 
-float bitsToFloat(uint32_t bits) {
-  float f;
-  std::memcpy(&f, &bits, sizeof(f));
-  return f;
-}
+float depthOf(uint32_t key) { return gpu::depthOfKey(key); }
 
 std::string describe(const gpu::SetupTriangle& s) {
   std::ostringstream os;
@@ -125,12 +121,12 @@ PixelAgreement compareVisibility(const Visibility& kernel, const reference::Refe
       const glm::uvec2 k = kernel.entries[i], r = expected.entries[i];
       const bool sameId = k.x == r.x;
       a.sameIds += sameId;
-      // Empty pixels must be fully cleared (depth bits too); covered ones within 1e-6 in depth.
-      const bool depthOk = r.x == HMB_VIS_EMPTY ? k.y == r.y : std::abs(bitsToFloat(k.y) - bitsToFloat(r.y)) <= 1e-6f;
+      // Empty pixels must be fully cleared (depth keys too); covered ones within 1e-6 in depth.
+      const bool depthOk = r.x == HMB_VIS_EMPTY ? k.y == r.y : std::abs(depthOf(k.y) - depthOf(r.y)) <= 1e-6f;
       if (sameId && !depthOk) ++a.depthMismatches;
       if ((!sameId || !depthOk) && listed++ < 6)
-        os << "\n  pixel (" << x << ", " << y << "): kernel id " << k.x << " depth " << bitsToFloat(k.y)
-           << ", reference id " << r.x << " depth " << bitsToFloat(r.y) << " (covered by " << expected.coverage[i]
+        os << "\n  pixel (" << x << ", " << y << "): kernel id " << k.x << " depth " << depthOf(k.y)
+           << ", reference id " << r.x << " depth " << depthOf(r.y) << " (covered by " << expected.coverage[i]
            << ")";
     }
   }
@@ -181,13 +177,13 @@ ClipTriangles randomTriangles(uint32_t seed, int count) {
     // NDC sizes from a hundredth of a pixel to many screens (past the 4x guard band).
     const glm::vec2 centre(uniform(-1.4f, 1.4f), uniform(-1.4f, 1.4f));
     const float size = logUniform(2e-4f, 12.0f);
-    const int behindNear = rng() % 6 == 0 ? 1 + int(rng() % 2) : 0;  // vertices with z < 0
+    const int beforeNear = rng() % 6 == 0 ? 1 + int(rng() % 2) : 0;  // vertices with z > w
     glm::vec4 v[3];
     for (int k = 0; k < 3; ++k) {
       const glm::vec2 ndc = centre + size * glm::vec2(uniform(-1, 1), uniform(-1, 1));
       float depth = uniform(0.01f, 0.99f);
-      if (k < behindNear) depth = uniform(-2.0f, -0.01f);
-      if (rng() % 25 == 0) depth = uniform(1.0f, 1.5f);  // beyond the far plane
+      if (k < beforeNear) depth = uniform(1.01f, 3.0f);     // reversed depth: nearer than the near plane
+      if (rng() % 25 == 0) depth = uniform(-0.5f, 0.0f);  // beyond the far plane
       const float w = logUniform(0.1f, 10.0f);
       v[k] = glm::vec4(ndc.x * w, ndc.y * w, depth * w, w);
     }
@@ -463,9 +459,10 @@ TEST_F(RasterizeKernelTest, TrianglesBehindTheCameraDrawNothing) {
 TEST_F(RasterizeKernelTest, NearPlaneCrossingKeepsTheFrontPart) {
   constexpr uint32_t kSize = 32;
   ClipTriangles input;
-  input.add(glm::vec4(-0.75f, -0.75f, 0.5f, 1.0f), glm::vec4(0.75f, -0.75f, -0.5f, 1.0f),
-            glm::vec4(0.0f, 0.75f, -0.5f, 1.0f));
-  input.add(glm::vec4(-2.0f, 1.0f, -1.0f, 2.0f), glm::vec4(2.0f, 1.0f, 1.0f, 2.0f), glm::vec4(0.0f, 2.0f, 0.5f, 0.5f));
+  // Depth is reversed: z > w lies in front of the near plane.
+  input.add(glm::vec4(-0.75f, -0.75f, 0.5f, 1.0f), glm::vec4(0.75f, -0.75f, 1.5f, 1.0f),
+            glm::vec4(0.0f, 0.75f, 1.5f, 1.0f));
+  input.add(glm::vec4(-2.0f, 1.0f, 3.0f, 2.0f), glm::vec4(2.0f, 1.0f, 1.0f, 2.0f), glm::vec4(0.0f, 2.0f, 0.0f, 0.5f));
   const std::vector<gpu::SetupTriangle> setup =
       reference::setupTriangles(input.clip, input.triangles, input.doubleSided, kSize, kSize);
   ASSERT_GE(setup.size(), 3u) << "near clipping turns the first triangle into a quad: two triangles";
@@ -476,8 +473,9 @@ TEST_F(RasterizeKernelTest, NearPlaneCrossingKeepsTheFrontPart) {
   expectMatchesReference(input, kSize, kSize, 1.0);
 }
 
-// Depths exactly 0 (z = 0, on the near plane) and 1 (z = w) are inside the depth range; a
-// triangle whose depth passes 1 is drawn only where it is <= 1.
+// Depths exactly 0 (z = 0, on the far plane) and 1 (z = w, on the near plane: depth is
+// reversed) are inside the depth range; a triangle whose depth passes below 0 is drawn only
+// where it is >= 0.
 TEST_F(RasterizeKernelTest, DepthRangeEndsAreInclusive) {
   constexpr uint32_t kSize = 16;
   ClipTriangles input;
@@ -485,7 +483,7 @@ TEST_F(RasterizeKernelTest, DepthRangeEndsAreInclusive) {
             atScreen(0.5f, 8.5f, 0.0f, kSize, kSize));
   input.add(atScreen(16, 8, 1.0f, kSize, kSize), atScreen(16, 16, 1.0f, kSize, kSize),
             atScreen(8, 16, 1.0f, kSize, kSize));
-  input.add(atScreen(0, 10, 0.5f, kSize, kSize), atScreen(8, 10, 1.5f, kSize, kSize),
+  input.add(atScreen(0, 10, 0.5f, kSize, kSize), atScreen(8, 10, -0.5f, kSize, kSize),
             atScreen(0, 16, 0.5f, kSize, kSize));
   for (VisibilityScheme scheme : kSchemes) {
     SCOPED_TRACE(passes::visibilitySchemeName(scheme));
@@ -494,8 +492,8 @@ TEST_F(RasterizeKernelTest, DepthRangeEndsAreInclusive) {
     EXPECT_EQ(v.depthAt(0, 0), 0.0f);
     EXPECT_EQ(v.idAt(15, 15), 1u);
     EXPECT_EQ(v.depthAt(15, 15), 1.0f);
-    EXPECT_EQ(v.idAt(0, 12), 2u);              // depth 0.5625 there
-    EXPECT_EQ(v.idAt(6, 10), HMB_VIS_EMPTY);   // depth 1.31 there: beyond the far plane
+    EXPECT_EQ(v.idAt(0, 12), 2u);              // depth 0.4375 there
+    EXPECT_EQ(v.idAt(6, 10), HMB_VIS_EMPTY);   // depth -0.31 there: beyond the far plane
   }
   expectMatchesReference(input, kSize, kSize, 1.0);
 }
