@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "kernels/shared/layer_layout.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
@@ -253,7 +254,7 @@ KernelCase traceCase(const vk::Context& context, const TraceScene& scene, const 
 // A G-buffer layer of random colours and depths, with velocities uniform in
 // +-kMaxVelocityPixels, so every tile moves and the gather takes all its samples.
 struct RandomLayer {
-  vk::Buffer color, normalDepth, velocity;
+  vk::Buffer samples;
   passes::MotionBlurInputs inputs;
 };
 
@@ -261,18 +262,15 @@ RandomLayer randomLayer(const vk::Context& context, ImageSize size) {
   std::mt19937 rng = caseRng({size.width, size.height});
   std::uniform_real_distribution<float> unit(0.0f, 1.0f), motion(-kMaxVelocityPixels, kMaxVelocityPixels);
   const size_t pixels = size_t(size.width) * size.height;
-  std::vector<glm::vec4> color(pixels), normalDepth(pixels);
-  std::vector<glm::vec2> velocity(pixels);
+  std::vector<glm::uvec4> samples(pixels);
   for (size_t i = 0; i < pixels; ++i) {
-    color[i] = {unit(rng), unit(rng), unit(rng), 1.0f};
-    normalDepth[i] = {0.0f, 0.0f, 1.0f, 1.0f + 9.0f * unit(rng)};
-    velocity[i] = {motion(rng), motion(rng)};
+    const glm::vec3 color(unit(rng), unit(rng), unit(rng));
+    const float depth = 1.0f + 9.0f * unit(rng);
+    const glm::vec2 velocity(motion(rng), motion(rng));
+    samples[i] = gpu::packLayerSample(color, depth, velocity);
   }
-  RandomLayer layer{vk::uploadedBuffer(context, color, "bench colour"),
-                    vk::uploadedBuffer(context, normalDepth, "bench normal-depth"),
-                    vk::uploadedBuffer(context, velocity, "bench velocity"),
-                    {}};
-  layer.inputs = {&layer.color, &layer.normalDepth, &layer.velocity, size.width, size.height};
+  RandomLayer layer{vk::uploadedBuffer(context, samples, "bench samples"), {}};
+  layer.inputs = {&layer.samples, size.width, size.height};
   return layer;
 }
 
@@ -299,7 +297,7 @@ KernelCase tileMaxCase(const vk::Context& context, ImageSize size, const Kernels
   KernelCase c = pixelCase(kTileMax, size);
   timeCase(c, options, [&] {
     frame.begin();
-    pass.record(frame, layer.velocity, tiles, size.width, size.height, tileSize, settings.velocityScale());
+    pass.record(frame, layer.samples, tiles, size.width, size.height, tileSize, settings.velocityScale());
     return passSum(frame.submitAndWait());
   });
   c.details = {{"tile_size", tileSize}, {"tiles", grid.count()}};

@@ -47,10 +47,8 @@ void main() {
   const uint index = pixel.y * params.width + pixel.x;
   const uint triangleId = visibility[index].x;
   if (triangleId == HMB_VIS_EMPTY) {
-    LAYER_COLOR(gbuffer, index) = vec4(camera.background.rgb, 1.0);
-    LAYER_NORMAL_DEPTH(gbuffer, index) = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
-    LAYER_VELOCITY(gbuffer, index) = vec2(0.0);
-    LAYER_OBJECT_ID(gbuffer, index) = 0u;
+    const vec3 background = camera.background.rgb;  // not inside the macro: `camera` is one
+    WRITE_LAYER(gbuffer, index, background, vec3(0.0), 0u, params.backgroundDepth, vec2(0.0));
     return;
   }
 
@@ -78,8 +76,7 @@ void main() {
 
   // Clip w of a perspective projection is the camera-space depth, and linear in barycentrics.
   const float depth = dot(b, vec3(c0.z, c1.z, c2.z));
-  LAYER_COLOR(gbuffer, index) = vec4(shadeSurface(sceneInstances[tri.instance].material, uv, n), 1.0);
-  LAYER_NORMAL_DEPTH(gbuffer, index) = vec4(n, depth);
-  LAYER_VELOCITY(gbuffer, index) = (any(isinf(motion)) || any(isnan(motion))) ? vec2(0.0) : motion;
-  LAYER_OBJECT_ID(gbuffer, index) = sceneInstances[tri.instance].objectId;
+  const vec3 color = shadeSurface(sceneInstances[tri.instance].material, uv, n);
+  const uint objectId = sceneInstances[tri.instance].objectId;
+  WRITE_LAYER(gbuffer, index, color, n, objectId, depth, motion);  // non-finite motion packs as none
 }

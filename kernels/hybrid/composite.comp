@@ -40,14 +40,13 @@ vec4 blurredBackground = vec4(0.0);
 uint centreObject = 0u;
 float compositeCentreDepth = 0.0;
 
-vec4 sampleColorAt(uint i) { return LAYER_COLOR(raster, i); }
-float sampleDepthAt(uint i) { return LAYER_NORMAL_DEPTH(raster, i).w; }
-vec2 sampleVelocityAt(uint i) { return LAYER_VELOCITY(raster, i); }
+uvec4 blurSampleAt(uint i) { return LAYER_SAMPLE(raster, i); }
 
-// Share of sample `sampleIndex` that is background to the pixel (object `object` at `depth`).
+// Share of sample `sampleIndex` that is background to the pixel (object `object` at `depth`):
+// one load of its surface (object id and depth).
 float behindShare(uint sampleIndex, uint object, float depth) {
-  return behindShareOf(LAYER_OBJECT_ID(raster, sampleIndex), sanitizeDepth(sampleDepthAt(sampleIndex)), object, depth,
-                       params.softZExtent);
+  const uvec4 surface = LAYER_SURFACE(raster, sampleIndex);
+  return behindShareOf(layerObjectId(surface), sanitizeDepth(layerDepth(surface)), object, depth, params.softZExtent);
 }
 
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
@@ -59,16 +58,17 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
 
 // The coverage form at a mask pixel (see above).
 vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
+  const uvec4 own = LAYER_SURFACE(raster, index);
   float speed;
-  const vec2 v = gatherVelocity(sampleVelocityAt(index), params.velocityScale, params.maxSpeed, speed);
-  const uint object = LAYER_OBJECT_ID(raster, index);
+  const vec2 v = gatherVelocity(layerVelocity(own), params.velocityScale, params.maxSpeed, speed);
+  const uint object = layerObjectId(own);
   vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0;
   for (uint i = 0u; i < params.samples; ++i) {
     const ivec2 samplePixel = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float onObject = 1.0 - behindShare(sampleIndex, object, centreDepth);
-    foregroundSum += onObject * sanitizeColor(sampleColorAt(sampleIndex));
+    foregroundSum += onObject * sanitizeColor(vec4(layerColor(LAYER_SAMPLE(raster, sampleIndex)), 1.0));
     foregroundCount += onObject;
   }
   const float alpha = foregroundCount / float(params.samples);
@@ -95,7 +95,7 @@ void main() {
   }
   weightsComposite = inMask && !kCoverage;
   blurredBackground = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
-  centreObject = weightsComposite ? LAYER_OBJECT_ID(raster, index) : 0u;
+  centreObject = weightsComposite ? layerObjectId(LAYER_SURFACE(raster, index)) : 0u;
   compositeCentreDepth = centre.depth;
   outColor[index] = gatherSamples(pixel, centre, foregroundScale, backgroundScale);
 }

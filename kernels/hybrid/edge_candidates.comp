@@ -7,12 +7,12 @@
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
+#include "../shared/layer_layout.h"
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
-layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
-layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
+// The G-buffer's surfaces (velocity, object id, depth: shared/layer_layout.h).
+layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_LIST) writeonly buffer Candidates { uint candidates[]; };
@@ -23,13 +23,15 @@ layout(push_constant) uniform Params { RayMaskParams params; };
 
 // Eqs. 1 and 2 at one pixel.
 bool isCandidate(uvec2 pixel, uint index) {
+  const uvec4 here = surfaces[index];
   float speed;
-  const vec2 v = gatherVelocity(velocity[index], params.blur.velocityScale, params.blur.maxSpeed, speed);
+  const vec2 v = gatherVelocity(layerVelocity(here), params.blur.velocityScale, params.blur.maxSpeed, speed);
   if (!(speed > 0.0)) return false;
   const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
   const uint endIndex = uint(end.y) * params.blur.width + uint(end.x);
-  return endsOnDeeperObject(objectId[index], sanitizeDepth(normalDepth[index].w), objectId[endIndex],
-                            normalDepth[endIndex].w, params.blur.softZExtent);
+  const uvec4 there = surfaces[endIndex];
+  return endsOnDeeperObject(layerObjectId(here), sanitizeDepth(layerDepth(here)), layerObjectId(there),
+                            layerDepth(there), params.blur.softZExtent);
 }
 
 void main() {

@@ -13,10 +13,12 @@
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
+#include "../shared/layer_layout.h"
 
 layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
-layout(std430, binding = HMB_EDGE_MASK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
+// The G-buffer's surfaces (normal, depth: shared/layer_layout.h).
+layout(std430, binding = HMB_EDGE_MASK_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
@@ -37,8 +39,8 @@ float edgeStrength(ivec2 pixel, float depthHere) {
   float largest = 0.0;
   for (int k = 0; k < 25; ++k) {
     const ivec2 p = clamp(pixel + ivec2(k % 5 - 2, k / 5 - 2), ivec2(0), last);
-    const vec4 nd = normalDepth[uint(p.y) * params.blur.width + uint(p.x)];
-    window[k] = vec4(sanitizeNormal(nd.xyz), sanitizeDepth(nd.w));
+    const uvec4 surface = surfaces[uint(p.y) * params.blur.width + uint(p.x)];
+    window[k] = vec4(sanitizeNormal(layerNormal(surface)), sanitizeDepth(layerDepth(surface)));
     largest = max(largest, window[k].w);
   }
   vec2 depthGradient = vec2(0.0);
@@ -62,7 +64,7 @@ void main() {
   if (entry >= counters.candidateCount) return;
   const uint index = candidates[entry];
   const uvec2 pixel = uvec2(index % params.blur.width, index / params.blur.width);
-  const float depthHere = sanitizeDepth(normalDepth[index].w);
+  const float depthHere = sanitizeDepth(layerDepth(surfaces[index]));
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).

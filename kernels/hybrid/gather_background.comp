@@ -21,9 +21,7 @@ HMB_LAYER(revealed, HMB_BACKGROUND_GATHER_BINDING_REVEALED, readonly)
 layout(push_constant) uniform Params { GatherParams params; };
 
 bool overlaid(uint i) { return mask[i] == HMB_MASK_REVEALED; }
-vec4 sampleColorAt(uint i) { return overlaid(i) ? LAYER_COLOR(revealed, i) : LAYER_COLOR(raster, i); }
-float sampleDepthAt(uint i) { return overlaid(i) ? LAYER_NORMAL_DEPTH(revealed, i).w : LAYER_NORMAL_DEPTH(raster, i).w; }
-vec2 sampleVelocityAt(uint i) { return overlaid(i) ? LAYER_VELOCITY(revealed, i) : LAYER_VELOCITY(raster, i); }
+uvec4 blurSampleAt(uint i) { return overlaid(i) ? LAYER_SAMPLE(revealed, i) : LAYER_SAMPLE(raster, i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 
 #include "../mblur/gather_samples.glsl"

@@ -43,15 +43,13 @@
 #define HMB_MASK_TILE_GROUP_X 8
 #define HMB_MASK_TILE_GROUP_Y 8
 
-#define HMB_EDGE_CANDIDATES_BINDING_NORMAL_DEPTH 0  // vec4 per pixel: world normal, w camera-space depth
-#define HMB_EDGE_CANDIDATES_BINDING_VELOCITY 1      // vec2 per pixel: pixels per frame
-#define HMB_EDGE_CANDIDATES_BINDING_OBJECT_ID 2     // uint per pixel
-#define HMB_EDGE_CANDIDATES_BINDING_TILES 3         // uint tile index per moving tile
-#define HMB_EDGE_CANDIDATES_BINDING_COUNTERS 4      // RayMaskCounters: candidateCount
-#define HMB_EDGE_CANDIDATES_BINDING_LIST 5          // uint pixel index per candidate, in no order
-#define HMB_EDGE_CANDIDATES_BINDING_COUNT 6
+#define HMB_EDGE_CANDIDATES_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces (shared/layer_layout.h)
+#define HMB_EDGE_CANDIDATES_BINDING_TILES 1     // uint tile index per moving tile
+#define HMB_EDGE_CANDIDATES_BINDING_COUNTERS 2  // RayMaskCounters: candidateCount
+#define HMB_EDGE_CANDIDATES_BINDING_LIST 3      // uint pixel index per candidate, in no order
+#define HMB_EDGE_CANDIDATES_BINDING_COUNT 4
 
-#define HMB_EDGE_MASK_BINDING_NORMAL_DEPTH 0  // vec4 per pixel
+#define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
 #define HMB_EDGE_MASK_BINDING_CANDIDATES 2    // edge_candidates' list
 // The edge mask, then the coarse edge mask (HMB_EDGE_BLOCKS_FIRST): 1 in the mask, 0 elsewhere
@@ -71,15 +69,13 @@
 #define HMB_EDGE_BUFFER_ENTRIES(width, height) \
   (HMB_EDGE_BLOCKS_FIRST(width, height) + HMB_EDGE_BLOCKS_ACROSS(width) * HMB_EDGE_BLOCKS_ACROSS(height))
 
-#define HMB_RANGE_CHECK_BINDING_VELOCITY 0  // vec2 per pixel
+#define HMB_RANGE_CHECK_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_RANGE_CHECK_BINDING_EDGES 1     // the edge mask, then the coarse one (edge_mask)
 #define HMB_RANGE_CHECK_BINDING_TILES 2     // uint tile index per moving tile
 #define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
 #define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel to reveal, in no order
-#define HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH 6  // vec4 per pixel (the coverage test)
-#define HMB_RANGE_CHECK_BINDING_OBJECT_ID 7     // uint per pixel (the coverage test)
-#define HMB_RANGE_CHECK_BINDING_COUNT 8
+#define HMB_RANGE_CHECK_BINDING_COUNT 6
 
 // Ray mask values: a mask pixel is revealed (listed for the reveal, its revealed surface then
 // written) or not (the coverage composite gives its background no weight).
@@ -105,7 +101,7 @@
 // reveal_background
 #define HMB_REVEAL_BINDING_CAMERA_RAYS 0  // PinholeCamera at the frame time
 #define HMB_REVEAL_BINDING_LIST 1         // the ray mask's pixel list
-#define HMB_REVEAL_BINDING_RASTER_ID 2    // uint per pixel: the G-buffer's object id
+#define HMB_REVEAL_BINDING_RASTER_SURFACES 2  // the G-buffer's surfaces (shared/layer_layout.h): its object ids
 #define HMB_REVEAL_BINDING_COUNTERS 3     // RayMaskCounters: the list's length; rays are counted into it
 // The trace scene (trace/trace_scene_bindings.glsl), the scene's shading buffers
 // (shared/scene_bindings.glsl), then the revealed layer, written at the listed pixels

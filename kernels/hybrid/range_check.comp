@@ -10,18 +10,18 @@
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
+#include "../shared/layer_layout.h"
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
+// The G-buffer's surfaces (velocity, object id, depth: shared/layer_layout.h).
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGES) readonly buffer Edges { uint edges[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) writeonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_NORMAL_DEPTH) readonly buffer NormalDepth { vec4 normalDepth[]; };
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
 layout(push_constant) uniform Params { RayMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -84,12 +84,14 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
 // the composite gives the revealed background a weight above 0.
 bool meetsBackground(uvec2 pixel, uint index, vec2 v) {
   const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.blur.seed));
-  const uint centreObject = objectId[index];
-  const float centreDepth = sanitizeDepth(normalDepth[index].w);
+  const uvec4 own = surfaces[index];
+  const uint centreObject = layerObjectId(own);
+  const float centreDepth = sanitizeDepth(layerDepth(own));
   for (uint i = 0u; i < params.blur.samples; ++i) {
     const ivec2 p = coverageSamplePixel(pixel, v, i, params.blur.samples, jitter, params.blur.width, params.blur.height);
     const uint sampleIndex = uint(p.y) * params.blur.width + uint(p.x);
-    if (behindShareOf(objectId[sampleIndex], sanitizeDepth(normalDepth[sampleIndex].w), centreObject, centreDepth,
+    const uvec4 surface = surfaces[sampleIndex];
+    if (behindShareOf(layerObjectId(surface), sanitizeDepth(layerDepth(surface)), centreObject, centreDepth,
                       params.blur.softZExtent) > 0.0)
       return true;
   }
@@ -101,7 +103,7 @@ void main() {
   if (pixel.x >= params.blur.width || pixel.y >= params.blur.height) return;
   const uint index = pixel.y * params.blur.width + pixel.x;
   float speed;
-  const vec2 v = gatherVelocity(velocity[index], params.blur.velocityScale, params.blur.maxSpeed, speed);
+  const vec2 v = gatherVelocity(layerVelocity(surfaces[index]), params.blur.velocityScale, params.blur.maxSpeed, speed);
   if (!(speed > 0.0) || !meetsEdge(pixel, v, speed)) {
     mask[index] = HMB_MASK_NONE;
     return;

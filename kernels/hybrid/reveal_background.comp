@@ -22,7 +22,7 @@ layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
 layout(std430, binding = HMB_REVEAL_BINDING_CAMERA_RAYS) readonly buffer CameraRays { PinholeCamera cameraRays; };
 layout(std430, binding = HMB_REVEAL_BINDING_LIST) readonly buffer List { uint list[]; };
-layout(std430, binding = HMB_REVEAL_BINDING_RASTER_ID) readonly buffer RasterId { uint rasterId[]; };
+layout(std430, binding = HMB_REVEAL_BINDING_RASTER_SURFACES) readonly buffer RasterSurfaces { uvec4 rasterSurfaces[]; };
 layout(std430, binding = HMB_REVEAL_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 #define HMB_SCENE_BINDING HMB_REVEAL_BINDING_SCENE
 #include "../shared/scene_bindings.glsl"
@@ -60,7 +60,7 @@ void main() {
   BvhHit hit;
   uint traces = 1u;
   if (params.stop == HMB_REVEAL_STOP_OBJECT_ID) {
-    ray.ignoreObjectId = rasterId[index];
+    ray.ignoreObjectId = layerObjectId(rasterSurfaces[index]);
     hit = closestHit(ray, scene);
   } else {
     hit = closestHit(ray, scene);
@@ -79,10 +79,8 @@ void main() {
 
   atomicAdd(counters.rayCount, traces);
   if (hit.triangle == HMB_NO_HIT) {
-    LAYER_COLOR(revealed, index) = vec4(camera.background.rgb, 1.0);
-    LAYER_NORMAL_DEPTH(revealed, index) = vec4(0.0, 0.0, 0.0, params.backgroundDepth);
-    LAYER_VELOCITY(revealed, index) = vec2(0.0);
-    LAYER_OBJECT_ID(revealed, index) = 0u;
+    const vec3 background = camera.background.rgb;  // not inside the macro: `camera` is one
+    WRITE_LAYER(revealed, index, background, vec3(0.0), 0u, params.backgroundDepth, vec2(0.0));
     return;
   }
   // The hit point now and at the previous frame: carried into the instance's space with the
@@ -92,12 +90,10 @@ void main() {
   const vec4 previousClip = camera.viewProjPrevious * (sceneInstances[hit.instance].worldPrevious * objectPoint);
   vec2 motion = vec2(0.0);
   if (previousClip.w > 0.0) motion = centre - (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(params.width, params.height);
-  if (any(isnan(motion)) || any(isinf(motion))) motion = vec2(0.0);
 
   const HitSurface surface = hitSurface(hit, direction, hit.instance);
   const vec3 shaded = shadeSurface(sceneInstances[hit.instance].material, surface.uv, surface.normal);
-  LAYER_COLOR(revealed, index) = vec4(finite3(shaded) ? shaded : vec3(0.0), 1.0);
-  LAYER_NORMAL_DEPTH(revealed, index) = vec4(surface.normal, hit.t);
-  LAYER_VELOCITY(revealed, index) = motion;
-  LAYER_OBJECT_ID(revealed, index) = traceInstances[hit.instance].objectId;
+  const vec3 color = finite3(shaded) ? shaded : vec3(0.0);
+  const uint objectId = traceInstances[hit.instance].objectId;
+  WRITE_LAYER(revealed, index, color, surface.normal, objectId, hit.t, motion);  // non-finite motion packs as none
 }

@@ -7,9 +7,7 @@
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 layout(push_constant) uniform Params { GatherParams params; };
 
-vec4 sampleColorAt(uint i) { return color[i]; }
-float sampleDepthAt(uint i) { return normalDepth[i].w; }
-vec2 sampleVelocityAt(uint i) { return velocity[i]; }
+uvec4 blurSampleAt(uint i) { return samples[i]; }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 
 #include "gather_samples.glsl"

@@ -43,7 +43,8 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const vec4 centreColor = sanitizeColor(color[index]);
+  const uvec4 own = samples[index];
+  const vec4 centreColor = sanitizeColor(vec4(layerColor(own), 1.0));
 
   uint h = mblurHash(pixel.x, pixel.y, params.seed);
   const float sampleJitter = unitFromHash(h);
@@ -64,9 +65,9 @@ void main() {
   const uint pairs = (params.samples + 1u) / 2u;
   const float pixelsToSampleUnits = float(pairs) / dominant.z;
   float centreSpeed;
-  gatherVelocity(velocity[index], params.velocityScale, m, centreSpeed);
+  gatherVelocity(layerVelocity(own), params.velocityScale, m, centreSpeed);
   const float centreSpread = centreSpeed * pixelsToSampleUnits;
-  const float centreDepth = sanitizeDepth(normalDepth[index].w);
+  const float centreDepth = sanitizeDepth(layerDepth(own));
 
   vec4 sum = vec4(0.0);
   float weightSum = 0.0;
@@ -77,11 +78,12 @@ void main() {
     const ivec2 pixelB = nearestPixel(centre - step, params.width, params.height);
     const uint indexA = uint(pixelA.y) * params.width + uint(pixelA.x);
     const uint indexB = uint(pixelB.y) * params.width + uint(pixelB.x);
+    const uvec4 sampleA = samples[indexA], sampleB = samples[indexB];
     float speedA, speedB;
-    gatherVelocity(velocity[indexA], params.velocityScale, m, speedA);
-    gatherVelocity(velocity[indexB], params.velocityScale, m, speedB);
-    const float depthA = sanitizeDepth(normalDepth[indexA].w);
-    const float depthB = sanitizeDepth(normalDepth[indexB].w);
+    gatherVelocity(layerVelocity(sampleA), params.velocityScale, m, speedA);
+    gatherVelocity(layerVelocity(sampleB), params.velocityScale, m, speedB);
+    const float depthA = sanitizeDepth(layerDepth(sampleA));
+    const float depthB = sanitizeDepth(layerDepth(sampleB));
     const float spreadA = speedA * pixelsToSampleUnits, spreadB = speedB * pixelsToSampleUnits;
     float weightA = sampleWeight(centreDepth, depthA, offset, centreSpread, spreadA);
     float weightB = sampleWeight(centreDepth, depthB, offset, centreSpread, spreadB);
@@ -90,7 +92,7 @@ void main() {
     } else if (depthB > depthA && spreadA > spreadB) {
       weightB = weightA;
     }
-    sum += weightA * sanitizeColor(color[indexA]) + weightB * sanitizeColor(color[indexB]);
+    sum += weightA * sanitizeColor(vec4(layerColor(sampleA), 1.0)) + weightB * sanitizeColor(vec4(layerColor(sampleB), 1.0));
     weightSum += weightA + weightB;
   }
   const float sampleCount = float(2u * pairs);

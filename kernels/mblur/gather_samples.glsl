@@ -23,12 +23,14 @@
 // (hybrid/gather_background.comp, hybrid/composite.comp). The including kernel declares
 // `params` (GatherParams) and `neighborMax[]` and defines, before including this file, what a
 // sample reads:
-//   vec4 sampleColorAt(uint i), float sampleDepthAt(uint i), vec2 sampleVelocityAt(uint i),
+//   uvec4 blurSampleAt(uint i)  (pixel i's packed sample: colour, depth, velocity, one load;
+//                                shared/layer_layout.h),
 //   vec4 contributionOf(uint sampleIndex, vec4 sampleColor)  (the colour a sample adds).
 #ifndef HMB_KERNELS_MBLUR_GATHER_SAMPLES_GLSL
 #define HMB_KERNELS_MBLUR_GATHER_SAMPLES_GLSL
 
 #include "mblur_common.glsl"
+#include "../shared/layer_layout.h"
 
 // What a gather reads of its own pixel.
 struct GatherCentre {
@@ -42,12 +44,13 @@ struct GatherCentre {
 // Reads the pixel; false (centre.color alone set) when under kMinBlurPixels of blur reach its
 // whole neighbourhood, so that the gather leaves it its own colour.
 bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
-  centre.color = sanitizeColor(sampleColorAt(index));
+  const uvec4 own = blurSampleAt(index);
+  centre.color = sanitizeColor(vec4(layerColor(own), 1.0));
   const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
   if (dominant.z < kMinBlurPixels) return false;
   centre.dominant = dominant.xy;
-  gatherVelocity(sampleVelocityAt(index), params.velocityScale, float(params.tileSize), centre.speed);
-  centre.depth = sanitizeDepth(sampleDepthAt(index));
+  gatherVelocity(layerVelocity(own), params.velocityScale, float(params.tileSize), centre.speed);
+  centre.depth = sanitizeDepth(layerDepth(own));
   centre.jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
   return true;
 }
@@ -76,9 +79,10 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     const ivec2 samplePixel = nearestPixel(centre + t * dominant, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float ds = length(vec2(samplePixel - ivec2(pixel)));
+    const uvec4 packed = blurSampleAt(sampleIndex);
     float sampleSpeed;
-    gatherVelocity(sampleVelocityAt(sampleIndex), params.velocityScale, maxSpeed, sampleSpeed);
-    const float sampleDepth = sanitizeDepth(sampleDepthAt(sampleIndex));
+    gatherVelocity(layerVelocity(packed), params.velocityScale, maxSpeed, sampleSpeed);
+    const float sampleDepth = sanitizeDepth(layerDepth(packed));
 
     const float z = (centreDepth - sampleDepth) / params.softZExtent;
     float wf = clamp(1.0 + z, 0.0, 1.0) * cone(ds, sampleSpeed);
@@ -88,7 +92,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     wf *= foregroundScale;
     wb *= backgroundScale;
     const float w = wf + wb + ws;
-    const vec4 sampleColor = sanitizeColor(sampleColorAt(sampleIndex));
+    const vec4 sampleColor = sanitizeColor(vec4(layerColor(packed), 1.0));
     weightSum += w;
     sum += w * contributionOf(sampleIndex, sampleColor);
   }

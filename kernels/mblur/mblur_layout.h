@@ -17,7 +17,7 @@
 // allows an invocation), then one lane reduces the 64 lane results.
 #define HMB_TILE_MAX_GROUP_X 8
 #define HMB_TILE_MAX_GROUP_Y 8
-#define HMB_TILE_MAX_BINDING_VELOCITY 0  // vec2 per pixel: G-buffer velocity q, pixels per frame
+#define HMB_TILE_MAX_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples, velocity q in pixels per frame
 #define HMB_TILE_MAX_BINDING_TILES 1     // vec4 per tile (see above)
 #define HMB_TILE_MAX_BINDING_COUNT 2
 
@@ -32,12 +32,10 @@
 #define HMB_GATHER_GROUP_X 8
 #define HMB_GATHER_GROUP_Y 8
 // Every post-process filter's gather (gather, gather_jimenez; filter_bindings.glsl).
-#define HMB_FILTER_BINDING_COLOR 0         // vec4 per pixel, linear
-#define HMB_FILTER_BINDING_NORMAL_DEPTH 1  // vec4 per pixel, w = camera-space depth
-#define HMB_FILTER_BINDING_VELOCITY 2      // vec2 per pixel, pixels per frame
-#define HMB_FILTER_BINDING_NEIGHBOR_MAX 3  // vec4 per tile
-#define HMB_FILTER_BINDING_OUTPUT 4        // vec4 per pixel
-#define HMB_FILTER_BINDING_COUNT 5
+#define HMB_FILTER_BINDING_SAMPLES 0       // uvec4 per pixel: the layer's samples (shared/layer_layout.h)
+#define HMB_FILTER_BINDING_NEIGHBOR_MAX 1  // vec4 per tile
+#define HMB_FILTER_BINDING_OUTPUT 2        // vec4 per pixel
+#define HMB_FILTER_BINDING_COUNT 3
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]

@@ -5,10 +5,11 @@
 // Ties go to the pixel first in row-major image order, whatever order the lanes ran in.
 #extension GL_GOOGLE_include_directive : require
 #include "mblur_layout.h"
+#include "../shared/layer_layout.h"
 
 layout(local_size_x = HMB_TILE_MAX_GROUP_X, local_size_y = HMB_TILE_MAX_GROUP_Y) in;
 
-layout(std430, binding = HMB_TILE_MAX_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
+layout(std430, binding = HMB_TILE_MAX_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
 layout(std430, binding = HMB_TILE_MAX_BINDING_TILES) writeonly buffer Tiles { vec4 tiles[]; };
 layout(push_constant) uniform Params { TileMaxParams params; };
 
@@ -38,7 +39,7 @@ void main() {
     for (uint x = begin.x + lane.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
       const uint index = y * params.width + x;
       float speed;
-      const vec2 v = gatherVelocity(velocity[index], params.velocityScale, float(m), speed);
+      const vec2 v = gatherVelocity(layerVelocity(samples[index]), params.velocityScale, float(m), speed);
       if (better(speed, index, bestSpeed, bestIndex)) {
         bestVelocity = v;
         bestSpeed = speed;

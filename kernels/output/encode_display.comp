@@ -3,10 +3,12 @@
 // sRGB transfer function on RGB, quantize to 8 bits. C++ reference: hmb::io::encodeDisplay.
 #extension GL_GOOGLE_include_directive : require
 #include "encode_display.h"
+#include "../shared/layer_layout.h"
 
 layout(local_size_x = HMB_ENCODE_DISPLAY_GROUP_X, local_size_y = HMB_ENCODE_DISPLAY_GROUP_Y) in;
 
-layout(std430, binding = HMB_ENCODE_DISPLAY_BINDING_LINEAR) readonly buffer LinearImage { vec4 linearRgba[]; };
+layout(constant_id = HMB_SPEC_ENCODE_LAYER_SAMPLES) const bool kLayerSamples = false;
+layout(std430, binding = HMB_ENCODE_DISPLAY_BINDING_LINEAR) readonly buffer Input { uvec4 pixels[]; };
 layout(std430, binding = HMB_ENCODE_DISPLAY_BINDING_RGBA8) writeonly buffer DisplayImage { uint rgba8[]; };
 layout(push_constant) uniform Params { EncodeDisplayParams params; };
 
@@ -23,7 +25,8 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const vec4 c = linearRgba[index];
+  const uvec4 p = pixels[index];
+  const vec4 c = kLayerSamples ? vec4(layerColor(p), 1.0) : uintBitsToFloat(p);
   const uint r = quantize(linearToSrgb(c.r));
   const uint g = quantize(linearToSrgb(c.g));
   const uint b = quantize(linearToSrgb(c.b));

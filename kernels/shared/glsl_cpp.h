@@ -27,9 +27,18 @@
   using uvec4 = glm::uvec4;          \
   using mat4 = glm::mat4;            \
   using glm::abs;                    \
+  using glm::clamp;                  \
   using glm::floatBitsToUint;        \
+  using glm::isinf;                  \
+  using glm::isnan;                  \
+  using glm::max;                    \
+  using glm::min;                    \
+  using glm::normalize;              \
+  using glm::packHalf2x16;           \
+  using glm::packSnorm2x16;          \
   using glm::uintBitsToFloat;        \
-  using glm::min;
+  using glm::unpackHalf2x16;         \
+  using glm::unpackSnorm2x16;
 #define HMB_GPU_END }
 #define HMB_REFERENCE(Type) uint64_t
 #define HMB_SHARED inline

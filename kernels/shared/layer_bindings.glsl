@@ -1,9 +1,10 @@
 // An image layer as a kernel binds it: HMB_LAYER(name, firstBinding, access) declares layer
 // `name` from binding firstBinding on, with access writeonly, readonly or nothing. The plain
-// build binds its four buffers (colour, normal-depth, velocity, object id: HMB_LAYER_BINDINGS
-// slots); builds with HMB_BIND_BY_ADDRESS (devices with few storage-buffer bindings) bind one
-// LayerTable of their addresses. Either way a kernel reads and writes LAYER_COLOR(name, i),
-// LAYER_NORMAL_DEPTH(name, i), LAYER_VELOCITY(name, i) and LAYER_OBJECT_ID(name, i).
+// build binds its two buffers (samples and surfaces: HMB_LAYER_BINDINGS slots); builds with
+// HMB_BIND_BY_ADDRESS (devices with few storage-buffer bindings) bind one LayerTable of their
+// addresses. Either way a kernel reads and writes LAYER_SAMPLE(name, i) and
+// LAYER_SURFACE(name, i) (packed as shared/layer_layout.h says, decoded with its layer*
+// functions), and writes a whole pixel with WRITE_LAYER.
 #ifndef HMB_KERNELS_SHARED_LAYER_BINDINGS_GLSL
 #define HMB_KERNELS_SHARED_LAYER_BINDINGS_GLSL
 
@@ -12,22 +13,21 @@
 #ifdef HMB_BIND_BY_ADDRESS
 #define HMB_LAYER(name, firstBinding, access) \
   layout(std430, binding = firstBinding) readonly buffer name##Table { LayerTable name; };
-#define LAYER_COLOR(name, i) name.color.v[i]
-#define LAYER_NORMAL_DEPTH(name, i) name.normalDepth.v[i]
-#define LAYER_VELOCITY(name, i) name.velocity.v[i]
-#define LAYER_OBJECT_ID(name, i) name.objectId.v[i]
+#define LAYER_SAMPLE(name, i) name.samples.v[i]
+#define LAYER_SURFACE(name, i) name.surfaces.v[i]
 #else
-#define HMB_LAYER(name, firstBinding, access)                                                          \
-  layout(std430, binding = firstBinding + 0) access buffer name##Color { vec4 name##ColorArray[]; };   \
-  layout(std430, binding = firstBinding + 1) access buffer name##NormalDepth {                          \
-    vec4 name##NormalDepthArray[];                                                                     \
-  };                                                                                                   \
-  layout(std430, binding = firstBinding + 2) access buffer name##Velocity { vec2 name##VelocityArray[]; }; \
-  layout(std430, binding = firstBinding + 3) access buffer name##ObjectId { uint name##ObjectIdArray[]; };
-#define LAYER_COLOR(name, i) name##ColorArray[i]
-#define LAYER_NORMAL_DEPTH(name, i) name##NormalDepthArray[i]
-#define LAYER_VELOCITY(name, i) name##VelocityArray[i]
-#define LAYER_OBJECT_ID(name, i) name##ObjectIdArray[i]
+#define HMB_LAYER(name, firstBinding, access)                                                              \
+  layout(std430, binding = firstBinding + 0) access buffer name##Samples { uvec4 name##SampleArray[]; };   \
+  layout(std430, binding = firstBinding + 1) access buffer name##Surfaces { uvec4 name##SurfaceArray[]; };
+#define LAYER_SAMPLE(name, i) name##SampleArray[i]
+#define LAYER_SURFACE(name, i) name##SurfaceArray[i]
 #endif
+
+// Pixel i of the layer: two stores.
+#define WRITE_LAYER(name, i, color, normal, objectId, depth, velocity)              \
+  {                                                                                  \
+    LAYER_SAMPLE(name, i) = packLayerSample(color, depth, velocity);                 \
+    LAYER_SURFACE(name, i) = packLayerSurface(normal, objectId, depth, velocity);    \
+  }
 
 #endif

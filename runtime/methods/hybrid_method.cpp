@@ -54,7 +54,7 @@ class HybridMethod final : public FrameMethod {
     }
     result.plan.run(passes::EncodeDisplayPass::kName);
     const passes::GBufferStage& gbuffer = resources_.gbuffer;
-    const vk::Buffer& beauty = still ? gbuffer.color() : blurred;
+    const Beauty beauty = still ? gbufferBeauty(gbuffer) : linearBeauty(blurred);
     vk::appendTimings(timings, recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
                         if (!still) hybrid_.record(frame, gbuffer, scene, blurred);
                       }));
@@ -85,16 +85,14 @@ class HybridMethod final : public FrameMethod {
       mask = hybrid_.rayMask().mask().download<uint32_t>();
       mask.resize(pixels);
       const passes::ImageLayer& layer = hybrid_.revealed();
-      const std::vector<glm::vec4> revealedAll = layer.color().download<glm::vec4>();
-      const std::vector<glm::vec4> normalDepthAll = layer.normalDepth().download<glm::vec4>();
-      const std::vector<uint32_t> idAll = layer.objectId().download<uint32_t>();
+      const passes::LayerContents revealedAll = passes::downloadLayer(layer, pixels);
       std::vector<uint32_t> traced = hybrid_.rayMask().list().download<uint32_t>();
       traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
       for (const uint32_t i : traced) {
         if (i >= pixels) continue;
-        revealed[i] = revealedAll[i];
-        revealedDepth[i] = glm::vec4(normalDepthAll[i].w, 0.0f, 0.0f, 0.0f);
-        revealedId[i] = idAll[i];
+        revealed[i] = glm::vec4(revealedAll.color[i], 1.0f);
+        revealedDepth[i] = glm::vec4(revealedAll.depth[i], 0.0f, 0.0f, 0.0f);
+        revealedId[i] = revealedAll.objectId[i];
       }
       if (result.hybrid->edgeCandidates == 0)
         result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");

@@ -34,11 +34,10 @@ class PostProcessMethod final : public FrameMethod {
     }
     result.plan.run(passes::EncodeDisplayPass::kName);
     const passes::GBufferStage& gbuffer = resources_.gbuffer;
-    const vk::Buffer& beauty = still ? gbuffer.color() : blurred;
+    const Beauty beauty = still ? gbufferBeauty(gbuffer) : linearBeauty(blurred);
     const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
       if (!still)
-        blur.record(frame, {&gbuffer.color(), &gbuffer.normalDepth(), &gbuffer.velocity(), request.width, request.height},
-                    blurred);
+        blur.record(frame, {&gbuffer.layer().samples(), request.width, request.height}, blurred);
     });
     collectRasterFrame(resources_, request, beauty, result);
     return timings;

@@ -5,11 +5,18 @@
 #include "runtime/frame_plan.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/image_layer.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/renderer.h"
 #include "runtime/vulkan/buffer.h"
 
 namespace hmb {
+
+Beauty linearBeauty(const vk::Buffer& linear) { return {&linear, passes::DisplaySource::LinearRgba}; }
+
+Beauty gbufferBeauty(const passes::GBufferStage& gbuffer) {
+  return {&gbuffer.layer().samples(), passes::DisplaySource::LayerSamples};
+}
 
 io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> channels,
                          const std::vector<glm::vec4>& values) {
@@ -56,17 +63,17 @@ void planBlur(FramePlan& plan, const FramePlan& blurPlan, bool still) {
 }
 
 vk::FrameTimings recordRasterFrame(FrameResources& resources, const FrameRequest& request, const GpuScene& scene,
-                                   const vk::Buffer& beauty,
+                                   const Beauty& beauty,
                                    const std::function<void(vk::FrameRecorder&)>& recordMethodPasses) {
   passes::GBufferStage& gbuffer = resources.gbuffer;
   return passes::submitUntilRasterFits(resources.recorder, gbuffer.rasterizer(), [&](vk::FrameRecorder& frame) {
     gbuffer.record(frame, scene);
     recordMethodPasses(frame);
-    resources.encodeDisplay.record(frame, beauty, request.display, request.width, request.height);
+    resources.encodeDisplay.record(frame, *beauty.buffer, request.display, request.width, request.height, beauty.source);
   });
 }
 
-void collectRasterFrame(FrameResources& resources, const FrameRequest& request, const vk::Buffer& beauty,
+void collectRasterFrame(FrameResources& resources, const FrameRequest& request, const Beauty& beauty,
                         RenderResult& result) {
   const passes::GBufferStage& gbuffer = resources.gbuffer;
   const uint64_t pixels = uint64_t(request.width) * request.height;
@@ -74,18 +81,25 @@ void collectRasterFrame(FrameResources& resources, const FrameRequest& request, 
   result.visibilityScheme = passes::visibilitySchemeName(gbuffer.rasterizer().scheme());
   result.raster = gbuffer.rasterizer().stats();
 
-  const auto normalDepth = gbuffer.normalDepth().download<glm::vec4>();
-  std::vector<glm::vec4> depth(normalDepth.size());
-  for (size_t i = 0; i < depth.size(); ++i) depth[i].x = normalDepth[i].w;
-  std::vector<glm::vec4> velocity;
-  for (const glm::vec2& v : gbuffer.velocity().download<glm::vec2>()) velocity.emplace_back(v, 0.0f, 0.0f);
-  io::ImageLayer objectId{"objectId", {"id"}, true, {}, gbuffer.objectId().download<uint32_t>()};
-  objectId.ids.resize(pixels);
+  passes::LayerContents layer = passes::downloadLayer(gbuffer.layer(), pixels);
+  std::vector<glm::vec4> color, depth, normal, velocity;
+  color.reserve(pixels);
+  depth.reserve(pixels);
+  normal.reserve(pixels);
+  velocity.reserve(pixels);
+  for (uint64_t i = 0; i < pixels; ++i) {
+    color.emplace_back(layer.color[i], 1.0f);
+    depth.emplace_back(layer.depth[i], 0.0f, 0.0f, 0.0f);
+    normal.emplace_back(layer.normal[i], 0.0f);
+    velocity.emplace_back(layer.velocity[i], 0.0f, 0.0f);
+  }
+  if (beauty.source == passes::DisplaySource::LinearRgba) color = beauty.buffer->download<glm::vec4>();
+  io::ImageLayer objectId{"objectId", {"id"}, true, {}, std::move(layer.objectId)};
   result.image = {request.width,
                   request.height,
-                  {vec4Layer("", {"R", "G", "B", "A"}, beauty.download<glm::vec4>()),
-                   vec4Layer("depth", {"Z"}, depth), vec4Layer("normal", {"X", "Y", "Z"}, normalDepth),
-                   vec4Layer("velocity", {"X", "Y"}, velocity), std::move(objectId)}};
+                  {vec4Layer("", {"R", "G", "B", "A"}, color), vec4Layer("depth", {"Z"}, depth),
+                   vec4Layer("normal", {"X", "Y", "Z"}, normal), vec4Layer("velocity", {"X", "Y"}, velocity),
+                   std::move(objectId)}};
 }
 
 }  // namespace hmb

@@ -13,10 +13,24 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/io/image.h"
 #include "runtime/methods/frame_method.h"
+#include "runtime/passes/encode_display_pass.h"
 
 namespace hmb {
 
 class FramePlan;
+
+namespace passes {
+class GBufferStage;
+}
+
+// The image a raster method shows: its own linear RGBA image, or the G-buffer's colour (packed
+// in its samples) where nothing is blurred.
+struct Beauty {
+  const vk::Buffer* buffer = nullptr;
+  passes::DisplaySource source = passes::DisplaySource::LinearRgba;
+};
+Beauty linearBeauty(const vk::Buffer& linear);
+Beauty gbufferBeauty(const passes::GBufferStage& gbuffer);
 
 // A float layer of `values`' first channels.
 io::ImageLayer vec4Layer(const std::string& name, std::vector<std::string> channels,
@@ -42,13 +56,13 @@ void planBlur(FramePlan& plan, const FramePlan& blurPlan, bool still);
 // The G-buffer's passes, the method's own (`recordMethodPasses`), then the display encoding of
 // `beauty`; recorded again with grown buffers while the rasterizer overflows.
 vk::FrameTimings recordRasterFrame(FrameResources& resources, const FrameRequest& request, const GpuScene& scene,
-                                   const vk::Buffer& beauty,
+                                   const Beauty& beauty,
                                    const std::function<void(vk::FrameRecorder&)>& recordMethodPasses);
 
-// After the frame: beauty (the linear image the method made) and the G-buffer's depth, normal,
+// After the frame: beauty (the image the method made) and the G-buffer's depth, normal,
 // velocity and object id as the image's layers, with the G-buffer's bytes per pixel and the
 // rasterizer's statistics.
-void collectRasterFrame(FrameResources& resources, const FrameRequest& request, const vk::Buffer& beauty,
+void collectRasterFrame(FrameResources& resources, const FrameRequest& request, const Beauty& beauty,
                         RenderResult& result);
 
 }  // namespace hmb

@@ -18,7 +18,7 @@ class SharpMethod final : public FrameMethod {
     const GpuScene scene = prepareRasterFrame(resources_, request, result);
     passes::planTexturePath(result.plan, scene);
     result.plan.run(passes::EncodeDisplayPass::kName);
-    const vk::Buffer& beauty = resources_.gbuffer.color();
+    const Beauty beauty = gbufferBeauty(resources_.gbuffer);
     const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [](vk::FrameRecorder&) {});
     collectRasterFrame(resources_, request, beauty, result);
     return timings;

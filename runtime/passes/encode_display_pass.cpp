@@ -5,13 +5,19 @@
 
 namespace hmb::passes {
 
-EncodeDisplayPass::EncodeDisplayPass(const vk::Context& context)
-    : kernel_(context, "output/encode_display", sizeof(gpu::EncodeDisplayParams)) {}
+namespace {
+constexpr uint32_t kFromSamples[] = {1u};  // HMB_SPEC_ENCODE_LAYER_SAMPLES
+}
 
-void EncodeDisplayPass::record(vk::FrameRecorder& frame, const vk::Buffer& linear, const vk::Buffer& rgba8,
-                               uint32_t width, uint32_t height) const {
+EncodeDisplayPass::EncodeDisplayPass(const vk::Context& context)
+    : linearKernel_(context, "output/encode_display", sizeof(gpu::EncodeDisplayParams)),
+      samplesKernel_(context, "output/encode_display", sizeof(gpu::EncodeDisplayParams), kFromSamples) {}
+
+void EncodeDisplayPass::record(vk::FrameRecorder& frame, const vk::Buffer& input, const vk::Buffer& rgba8,
+                               uint32_t width, uint32_t height, DisplaySource source) const {
   const gpu::EncodeDisplayParams params{width, height, 0, 0};
-  frame.dispatch(kName, kernel_, {{HMB_ENCODE_DISPLAY_BINDING_LINEAR, &linear}, {HMB_ENCODE_DISPLAY_BINDING_RGBA8, &rgba8}},
+  const vk::ComputeKernel& kernel = source == DisplaySource::LayerSamples ? samplesKernel_ : linearKernel_;
+  frame.dispatch(kName, kernel, {{HMB_ENCODE_DISPLAY_BINDING_LINEAR, &input}, {HMB_ENCODE_DISPLAY_BINDING_RGBA8, &rgba8}},
                  params,
                  {vk::groupsFor(width, HMB_ENCODE_DISPLAY_GROUP_X), vk::groupsFor(height, HMB_ENCODE_DISPLAY_GROUP_Y),
                   1});

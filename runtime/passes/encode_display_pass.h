@@ -12,16 +12,22 @@ class FrameRecorder;
 
 namespace hmb::passes {
 
+// What the display is encoded from.
+enum class DisplaySource {
+  LinearRgba,    // width * height vec4
+  LayerSamples,  // an image layer's samples (kernels/shared/layer_layout.h): a G-buffer's colour
+};
+
 class EncodeDisplayPass {
  public:
   static constexpr const char* kName = "encode-display";
   explicit EncodeDisplayPass(const vk::Context& context);
-  // linear: width * height vec4; rgba8: width * height uint (R in the low byte).
-  void record(vk::FrameRecorder& frame, const vk::Buffer& linear, const vk::Buffer& rgba8, uint32_t width,
-              uint32_t height) const;
+  // input: width * height pixels as `source` says; rgba8: width * height uint (R in the low byte).
+  void record(vk::FrameRecorder& frame, const vk::Buffer& input, const vk::Buffer& rgba8, uint32_t width,
+              uint32_t height, DisplaySource source = DisplaySource::LinearRgba) const;
 
  private:
-  vk::ComputeKernel kernel_;
+  vk::ComputeKernel linearKernel_, samplesKernel_;
 };
 
 }  // namespace hmb::passes

@@ -32,11 +32,7 @@ class GBufferStage {
   const vk::Buffer& clipCurrent() const { return clipCurrent_; }
   const vk::Buffer& visibility() const { return visibility_; }
   const ImageLayer& layer() const { return layer_; }
-  const vk::Buffer& color() const { return layer_.color(); }
-  const vk::Buffer& normalDepth() const { return layer_.normalDepth(); }
-  const vk::Buffer& velocity() const { return layer_.velocity(); }
-  const vk::Buffer& objectId() const { return layer_.objectId(); }
-  // Bytes per pixel of the per-pixel buffers: visibility, colour, normal-depth, velocity, id.
+  // Bytes per pixel of the per-pixel buffers: visibility, the layer's samples and surfaces.
   double bytesPerPixel(uint32_t width, uint32_t height) const {
     return double(visibility_.size() + layer_.bytes()) / (double(width) * height);
   }

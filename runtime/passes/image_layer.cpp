@@ -1,31 +1,64 @@
 #include "runtime/passes/image_layer.h"
 
+#include <string>
 #include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "kernels/shared/layer_layout.h"
+#include "runtime/error.h"
 
 namespace hmb::passes {
 
-ImageLayer::ImageLayer(vk::Buffer color, vk::Buffer normalDepth, vk::Buffer velocity, vk::Buffer objectId)
-    : color_(std::move(color)),
-      normalDepth_(std::move(normalDepth)),
-      velocity_(std::move(velocity)),
-      objectId_(std::move(objectId)) {}
+ImageLayer::ImageLayer(vk::Buffer samples, vk::Buffer surfaces)
+    : samples_(std::move(samples)), surfaces_(std::move(surfaces)) {}
 
 void ImageLayer::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
-  static_assert(sizeof(gpu::LayerTable) == 4 * sizeof(uint64_t));
-  const vk::Buffer* members[] = {&color_, &normalDepth_, &velocity_, &objectId_};  // gpu::LayerTable's order
+  static_assert(sizeof(gpu::LayerTable) == 2 * sizeof(uint64_t));
+  const vk::Buffer* members[] = {&samples_, &surfaces_};  // gpu::LayerTable's order
   group_.bind(bindings, firstBinding, byAddress, members);
 }
 
 ImageLayer ImageLayer::allocate(const vk::Context& context, uint64_t pixels, const std::string& name) {
-  return ImageLayer(vk::Buffer(context, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, name + " colour"),
-                    vk::Buffer(context, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, name + " normal-depth"),
-                    vk::Buffer(context, pixels * sizeof(glm::vec2), vk::MemoryUse::Device, name + " velocity"),
-                    vk::Buffer(context, pixels * sizeof(uint32_t), vk::MemoryUse::Device, name + " object id"));
+  return ImageLayer(vk::Buffer(context, pixels * sizeof(glm::uvec4), vk::MemoryUse::Device, name + " samples"),
+                    vk::Buffer(context, pixels * sizeof(glm::uvec4), vk::MemoryUse::Device, name + " surfaces"));
+}
+
+LayerContents downloadLayer(const ImageLayer& layer, uint64_t pixels) {
+  const std::vector<glm::uvec4> samples = layer.samples().download<glm::uvec4>();
+  const std::vector<glm::uvec4> surfaces = layer.surfaces().download<glm::uvec4>();
+  if (samples.size() < pixels || surfaces.size() < pixels)
+    throw Error("image layer of " + std::to_string(samples.size()) + " pixels read back as " + std::to_string(pixels));
+  LayerContents out;
+  out.color.reserve(pixels);
+  out.normal.reserve(pixels);
+  out.depth.reserve(pixels);
+  out.velocity.reserve(pixels);
+  out.objectId.reserve(pixels);
+  for (uint64_t i = 0; i < pixels; ++i) {
+    out.color.push_back(gpu::layerColor(samples[i]));
+    out.normal.push_back(gpu::layerNormal(surfaces[i]));
+    out.depth.push_back(gpu::layerDepth(surfaces[i]));
+    out.velocity.push_back(gpu::layerVelocity(surfaces[i]));
+    out.objectId.push_back(gpu::layerObjectId(surfaces[i]));
+  }
+  return out;
+}
+
+PackedLayer packLayer(const LayerContents& c) {
+  const size_t pixels = c.color.size();
+  if (c.normal.size() != pixels || c.depth.size() != pixels || c.velocity.size() != pixels ||
+      c.objectId.size() != pixels)
+    throw Error("packLayer: the layer's components differ in length");
+  PackedLayer out;
+  out.samples.reserve(pixels);
+  out.surfaces.reserve(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    out.samples.push_back(gpu::packLayerSample(c.color[i], c.depth[i], c.velocity[i]));
+    out.surfaces.push_back(gpu::packLayerSurface(c.normal[i], c.objectId[i], c.depth[i], c.velocity[i]));
+  }
+  return out;
 }
 
 }  // namespace hmb::passes

@@ -1,11 +1,13 @@
-// One image layer of per-pixel buffers (kernels/shared/layer_layout.h): colour, normal and
-// depth, velocity, object id, bound together (vk::BufferGroup). The G-buffer and the hybrid's
-// revealed layer are both one.
+// One image layer of per-pixel buffers (kernels/shared/layer_layout.h): the samples every
+// gather reads (colour, depth, velocity) and the surfaces (normal, object id, depth, velocity),
+// bound together (vk::BufferGroup). The G-buffer and the hybrid's revealed layer are both one.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/buffer_group.h"
@@ -15,24 +17,37 @@ namespace hmb::passes {
 class ImageLayer {
  public:
   ImageLayer() = default;
-  // Takes the four buffers (at least `pixels` entries each).
-  ImageLayer(vk::Buffer color, vk::Buffer normalDepth, vk::Buffer velocity, vk::Buffer objectId);
-  // Four new buffers of `pixels` entries, named "<name> colour", "<name> normal-depth", ...
+  // Takes the two buffers (at least `pixels` uvec4 each).
+  ImageLayer(vk::Buffer samples, vk::Buffer surfaces);
+  // Two new buffers of `pixels` entries, named "<name> samples" and "<name> surfaces".
   static ImageLayer allocate(const vk::Context& context, uint64_t pixels, const std::string& name);
 
-  const vk::Buffer& color() const { return color_; }              // vec4 linear RGB, a = 1
-  const vk::Buffer& normalDepth() const { return normalDepth_; }  // vec4 world normal, w camera-space depth
-  const vk::Buffer& velocity() const { return velocity_; }        // vec2 pixels per frame, y down
-  const vk::Buffer& objectId() const { return objectId_; }        // uint, 0 = background
+  const vk::Buffer& samples() const { return samples_; }    // uvec4: colour, depth, velocity
+  const vk::Buffer& surfaces() const { return surfaces_; }  // uvec4: normal, object id, depth, velocity
   // Binds the layer as a kernel declares it (kernels/shared/layer_bindings.glsl) from
-  // firstBinding on: its four buffers, or the table of their addresses for a kernel that binds
+  // firstBinding on: its two buffers, or the table of their addresses for a kernel that binds
   // by address.
   void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
-  uint64_t bytes() const { return color_.size() + normalDepth_.size() + velocity_.size() + objectId_.size(); }
+  uint64_t bytes() const { return samples_.size() + surfaces_.size(); }
 
  private:
-  vk::Buffer color_, normalDepth_, velocity_, objectId_;
+  vk::Buffer samples_, surfaces_;
   vk::BufferGroup group_;
 };
+
+// A layer's first `pixels` entries read back and unpacked on the host, as the kernels decode them.
+struct LayerContents {
+  std::vector<glm::vec3> color;
+  std::vector<glm::vec3> normal;  // 0 where the object id is 0
+  std::vector<float> depth;
+  std::vector<glm::vec2> velocity;
+  std::vector<uint32_t> objectId;
+};
+LayerContents downloadLayer(const ImageLayer& layer, uint64_t pixels);
+// The packed pixels of a layer made on the host (tests' inputs): samples and surfaces.
+struct PackedLayer {
+  std::vector<glm::uvec4> samples, surfaces;
+};
+PackedLayer packLayer(const LayerContents& contents);
 
 }  // namespace hmb::passes

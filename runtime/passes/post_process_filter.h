@@ -30,11 +30,10 @@ enum class GatherRange {
   Adapted,   // the paper (Fig. 3): full per-exposure velocity, samples over X + u v_N, u in (0, 1]
 };
 
-// One layer to blur, width * height entries each, row 0 at the top.
+// One layer to blur: its samples (uvec4 per pixel: colour, depth, velocity in pixels per frame,
+// y down; kernels/shared/layer_layout.h), width * height of them, row 0 at the top.
 struct MotionBlurInputs {
-  const vk::Buffer* color = nullptr;        // vec4 linear
-  const vk::Buffer* normalDepth = nullptr;  // vec4, w camera-space depth
-  const vk::Buffer* velocity = nullptr;     // vec2 pixels per frame, y down
+  const vk::Buffer* samples = nullptr;
   uint32_t width = 0;
   uint32_t height = 0;
 };

@@ -12,9 +12,7 @@ namespace hmb::passes {
 
 vk::Bindings filterBindings(const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
                             const vk::Buffer& output) {
-  return {{HMB_FILTER_BINDING_COLOR, inputs.color},
-          {HMB_FILTER_BINDING_NORMAL_DEPTH, inputs.normalDepth},
-          {HMB_FILTER_BINDING_VELOCITY, inputs.velocity},
+  return {{HMB_FILTER_BINDING_SAMPLES, inputs.samples},
           {HMB_FILTER_BINDING_NEIGHBOR_MAX, &neighborMax},
           {HMB_FILTER_BINDING_OUTPUT, &output}};
 }
@@ -63,7 +61,7 @@ void PostProcessStage::requirePreparedSize(const MotionBlurInputs& inputs) const
 
 void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {
   requirePreparedSize(inputs);
-  tileMaxPass_.record(frame, *inputs.velocity, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
+  tileMaxPass_.record(frame, *inputs.samples, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
                       settings_.velocityScale());
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
 }

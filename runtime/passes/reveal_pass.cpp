@@ -19,7 +19,7 @@ RevealPass::RevealPass(const vk::Context& context)
     : kernel_(context, "hybrid/reveal_background", sizeof(gpu::RevealParams)) {}
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
-                        const vk::Buffer& cameraRays, const vk::Buffer& rasterObjectId, const vk::Buffer& list,
+                        const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,
                         const vk::Buffer& counters, const ImageLayer& output, uint32_t width, uint32_t height,
                         const HybridSettings& settings) const {
   if (ts.timeCount() != 1) throw Error("ray reveal: the trace scene must hold the frame time alone");
@@ -40,7 +40,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
   const vk::ComputeKernel& kernel = kernel_.forScene(gpuScene);
   vk::Bindings bindings = {{HMB_REVEAL_BINDING_CAMERA_RAYS, &cameraRays},
                            {HMB_REVEAL_BINDING_LIST, &list},
-                           {HMB_REVEAL_BINDING_RASTER_ID, &rasterObjectId},
+                           {HMB_REVEAL_BINDING_RASTER_SURFACES, &rasterSurfaces},
                            {HMB_REVEAL_BINDING_COUNTERS, &counters}};
   ts.bind(bindings, HMB_REVEAL_BINDING_TRACE_SCENE, kernel.bindsByAddress());
   gpuScene.bind(bindings, HMB_REVEAL_BINDING_SCENE, kernel.bindsByAddress());

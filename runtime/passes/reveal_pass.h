@@ -25,10 +25,10 @@ class RevealPass {
   static constexpr const char* kName = "ray-reveal";
   explicit RevealPass(const vk::Context& context);
   // traceScene: shutter times set to the frame time alone. cameraRays: one gpu::PinholeCamera
-  // at the frame time. rasterObjectId: the G-buffer's ids. list, counters: RayMaskStage's.
+  // at the frame time. rasterSurfaces: the G-buffer's surfaces (for their object ids). list, counters: RayMaskStage's.
   // output: written at the listed pixels.
   void record(vk::FrameRecorder& frame, const TraceScene& traceScene, const GpuScene& gpuScene,
-              const vk::Buffer& cameraRays, const vk::Buffer& rasterObjectId, const vk::Buffer& list,
+              const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,
               const vk::Buffer& counters, const ImageLayer& output, uint32_t width, uint32_t height,
               const HybridSettings& settings) const;
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/shared/layer_layout.h"
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"
 #include "runtime/passes/gather_pass.h"
@@ -37,16 +38,56 @@ vk::Buffer filledBuffer(vk::Context& context, size_t count, T value, const char*
   return vk::uploadedBuffer(context, std::vector<T>(std::max<size_t>(count, 1), value), name);
 }
 
+// What a test's layer holds, as a layer's contents (object ids 1 where none are given: every
+// pixel on an object, so its normal is kept).
+passes::LayerContents contentsOf(const mblur::Layer& layer, const std::vector<uint32_t>* ids = nullptr) {
+  passes::LayerContents c;
+  const size_t pixels = layer.color.size();
+  for (size_t i = 0; i < pixels; ++i) {
+    c.color.emplace_back(layer.color[i]);
+    c.normal.emplace_back(layer.normalDepth[i]);
+    c.depth.push_back(layer.normalDepth[i].w);
+    c.velocity.push_back(layer.velocity[i]);
+    c.objectId.push_back(ids ? ids->at(i) : 1u);
+  }
+  return c;
+}
+
+passes::LayerContents contentsOf(const MaskLayer& layer) {
+  passes::LayerContents c;
+  const size_t pixels = layer.objectId.size();
+  for (size_t i = 0; i < pixels; ++i) {
+    c.color.emplace_back(0.0f);
+    c.normal.emplace_back(layer.normalDepth[i]);
+    c.depth.push_back(layer.normalDepth[i].w);
+    c.velocity.push_back(layer.velocity[i]);
+    c.objectId.push_back(layer.objectId[i]);
+  }
+  return c;
+}
+
+// A layer read back, as the tests read it: colour with alpha 1, normal and depth together.
+GLayer gLayerOf(const passes::LayerContents& c) {
+  GLayer out;
+  for (size_t i = 0; i < c.color.size(); ++i) {
+    out.color.emplace_back(c.color[i], 1.0f);
+    out.normalDepth.emplace_back(c.normal[i], c.depth[i]);
+  }
+  out.velocity = c.velocity;
+  out.objectId = c.objectId;
+  return out;
+}
+
 }  // namespace
 
 RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters) {
   const size_t pixels = size_t(layer.width) * layer.height;
-  const vk::Buffer normalDepth = vk::uploadedBuffer(context, layer.normalDepth, "test normal-depth");
-  const vk::Buffer velocity = vk::uploadedBuffer(context, layer.velocity, "test velocity");
-  const vk::Buffer objectId = vk::uploadedBuffer(context, layer.objectId, "test object id");
+  const passes::PackedLayer packed = passes::packLayer(contentsOf(layer));
+  const vk::Buffer samples = vk::uploadedBuffer(context, packed.samples, "test samples");
+  const vk::Buffer surfaces = vk::uploadedBuffer(context, packed.surfaces, "test surfaces");
   passes::RayMaskStage stage(context);
   stage.prepare(layer.width, layer.height);
-  const passes::MotionBlurInputs inputs{nullptr, &normalDepth, &velocity, layer.width, layer.height};
+  const passes::MotionBlurInputs inputs{&samples, layer.width, layer.height};
   // The mask passes start from the gather's tile-max, run here at the parameters' tile size.
   const passes::TileMaxPass tileMax(context);
   passes::RayMaskParameters withTiles = parameters;
@@ -59,9 +100,9 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   withTiles.tileMax = &tiles;
   vk::FrameRecorder frame(context);
   frame.begin();
-  tileMax.record(frame, velocity, tiles, layer.width, layer.height, parameters.blur.tileSize,
+  tileMax.record(frame, samples, tiles, layer.width, layer.height, parameters.blur.tileSize,
                  parameters.blur.velocityScale);
-  stage.record(frame, inputs, objectId, withTiles);
+  stage.record(frame, inputs, surfaces, withTiles);
   frame.submitAndWait();
 
   RayMaskReadback out;
@@ -80,11 +121,9 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
                                  const passes::PostProcessSettings& settings) {
   const size_t pixels = size_t(layer.width) * layer.height;
   auto imageLayer = [&](const mblur::Layer& l, const std::vector<uint32_t>* ids, const char* name) {
-    return passes::ImageLayer(vk::uploadedBuffer(context, l.color, std::string(name) + " colour"),
-                              vk::uploadedBuffer(context, l.normalDepth, std::string(name) + " normal-depth"),
-                              vk::uploadedBuffer(context, l.velocity, std::string(name) + " velocity"),
-                              ids ? vk::uploadedBuffer(context, *ids, std::string(name) + " object id")
-                                  : filledBuffer(context, pixels, 0u, "test object id"));
+    const passes::PackedLayer packed = passes::packLayer(contentsOf(l, ids));
+    return passes::ImageLayer(vk::uploadedBuffer(context, packed.samples, std::string(name) + " samples"),
+                              vk::uploadedBuffer(context, packed.surfaces, std::string(name) + " surfaces"));
   };
   const passes::ImageLayer raster = imageLayer(layer, run.objectId, "test raster");
   const vk::Buffer tiles = vk::uploadedBuffer(context, neighborMax, "test neighbor max");
@@ -111,8 +150,7 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   } else {
     if (run.mask) throw std::runtime_error("the post-process gather takes no mask");
     const passes::GatherPass pass(context);
-    pass.record(frame, {&raster.color(), &raster.normalDepth(), &raster.velocity(), layer.width, layer.height}, tiles,
-                output, settings);
+    pass.record(frame, {&raster.samples(), layer.width, layer.height}, tiles, output, settings);
     frame.submitAndWait();
   }
   return downloadFirst<glm::vec4>(output, pixels);
@@ -137,26 +175,22 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
   const vk::Buffer listBuffer = vk::uploadedBuffer(context, list, "test pixel list");
   const vk::Buffer counters = vk::uploadedBuffer(
       context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(list.size()))}, "test counters");
-  const passes::ImageLayer output(filledBuffer(context, pixels, kSentinelColor, "test revealed colour"),
-                                  filledBuffer(context, pixels, kSentinelColor, "test revealed normal-depth"),
-                                  filledBuffer(context, pixels, kSentinelVelocity, "test revealed velocity"),
-                                  filledBuffer(context, pixels, kSentinelId, "test revealed object id"));
+  const glm::uvec4 sentinelSample = gpu::packLayerSample(glm::vec3(kSentinelColor), kSentinelDepth, kSentinelVelocity);
+  const glm::uvec4 sentinelSurface =
+      gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), kSentinelId, kSentinelDepth, kSentinelVelocity);
+  const passes::ImageLayer output(filledBuffer(context, pixels, sentinelSample, "test revealed samples"),
+                                  filledBuffer(context, pixels, sentinelSurface, "test revealed surfaces"));
 
   const passes::RevealPass reveal(context);
   frame.begin();
-  reveal.record(frame, traceScene, gpuScene, cameraRays, gbuffer.objectId(), listBuffer, counters,
+  reveal.record(frame, traceScene, gpuScene, cameraRays, gbuffer.layer().surfaces(), listBuffer, counters,
                 output, width, height, settings);
   frame.submitAndWait();
 
   RevealReadback out;
   out.camera = gpuScene.camera();
-  out.raster = {
-      downloadFirst<glm::vec4>(gbuffer.color(), pixels), downloadFirst<glm::vec4>(gbuffer.normalDepth(), pixels),
-      downloadFirst<glm::vec2>(gbuffer.velocity(), pixels), downloadFirst<uint32_t>(gbuffer.objectId(), pixels)};
-  out.revealed = {downloadFirst<glm::vec4>(output.color(), pixels),
-                  downloadFirst<glm::vec4>(output.normalDepth(), pixels),
-                  downloadFirst<glm::vec2>(output.velocity(), pixels),
-                  downloadFirst<uint32_t>(output.objectId(), pixels)};
+  out.raster = gLayerOf(passes::downloadLayer(gbuffer.layer(), pixels));
+  out.revealed = gLayerOf(passes::downloadLayer(output, pixels));
   out.counters = counters.download<gpu::RayMaskCounters>().at(0);
   return out;
 }

@@ -72,7 +72,10 @@ struct RevealReadback {
   GLayer revealed;
   gpu::RayMaskCounters counters{};
 };
-inline constexpr glm::vec4 kSentinelColor{-7.0f, -7.0f, -7.0f, -7.0f};
+// What the reveal's output layer holds before it runs (packed by runReveal), read back: a pixel
+// the reveal did not write keeps it.
+inline constexpr glm::vec4 kSentinelColor{7.0f, 7.0f, 7.0f, 1.0f};
+inline constexpr float kSentinelDepth = -7.0f;
 inline constexpr glm::vec2 kSentinelVelocity{-7.0f, -7.0f};
 inline constexpr uint32_t kSentinelId = 0xDEADBEEFu;
 RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,

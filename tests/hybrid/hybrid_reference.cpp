@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "kernels/mblur/mblur_layout.h"
+#include "kernels/shared/layer_layout.h"
 
 namespace hmb::test::hybrid {
 
@@ -60,7 +61,10 @@ glm::vec3 sanitizeNormal(glm::vec3 n) {
   return {std::clamp(n.x, -1.0f, 1.0f), std::clamp(n.y, -1.0f, 1.0f), std::clamp(n.z, -1.0f, 1.0f)};
 }
 
-float edgeStrength(const MaskLayer& layer, int x, int y, float depthHere) {
+namespace {
+
+// Eq. 3's x on a layer already as stored.
+float strengthOf(const MaskLayer& layer, int x, int y, float depthHere) {
   const int lastX = int(layer.width) - 1, lastY = int(layer.height) - 1;
   glm::vec4 window[25];
   float largest = 0.0f;
@@ -91,17 +95,45 @@ float edgeStrength(const MaskLayer& layer, int x, int y, float depthHere) {
   return deltaD + deltaN;
 }
 
-std::vector<float> normalizedEdges(const MaskLayer& layer) {
+// Eqs. 1 and 2 on a layer already as stored.
+std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskParameters& p);
+
+}  // namespace
+
+MaskLayer stored(const MaskLayer& layer) {
+  MaskLayer out = layer;
+  for (size_t i = 0; i < layer.objectId.size(); ++i) {
+    const glm::uvec4 surface = gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), layer.objectId[i],
+                                                     layer.normalDepth[i].w, layer.velocity[i]);
+    out.normalDepth[i] = glm::vec4(gpu::layerNormal(surface), gpu::layerDepth(surface));
+    out.velocity[i] = gpu::layerVelocity(surface);
+    out.objectId[i] = gpu::layerObjectId(surface);
+  }
+  return out;
+}
+
+float edgeStrength(const MaskLayer& layer, int x, int y, float depthHere) {
+  return strengthOf(stored(layer), x, y, depthHere);
+}
+
+std::vector<float> normalizedEdges(const MaskLayer& input) {
+  const MaskLayer layer = stored(input);
   std::vector<float> out(size_t(layer.width) * layer.height);
   for (uint32_t y = 0; y < layer.height; ++y)
     for (uint32_t x = 0; x < layer.width; ++x) {
       const size_t index = size_t(y) * layer.width + x;
-      out[index] = normalizedEdge(edgeStrength(layer, int(x), int(y), sanitizeDepth(layer.normalDepth[index].w)));
+      out[index] = normalizedEdge(strengthOf(layer, int(x), int(y), sanitizeDepth(layer.normalDepth[index].w)));
     }
   return out;
 }
 
 std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskParameters& p) {
+  return candidatesOf(stored(layer), p);
+}
+
+namespace {
+
+std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskParameters& p) {
   std::vector<bool> out(size_t(layer.width) * layer.height, false);
   for (uint32_t y = 0; y < layer.height; ++y)
     for (uint32_t x = 0; x < layer.width; ++x) {
@@ -117,21 +149,25 @@ std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskPa
   return out;
 }
 
-std::vector<uint32_t> edgeMask(const MaskLayer& layer, const passes::RayMaskParameters& p) {
-  const std::vector<bool> candidates = edgeCandidates(layer, p);
+}  // namespace
+
+std::vector<uint32_t> edgeMask(const MaskLayer& input, const passes::RayMaskParameters& p) {
+  const MaskLayer layer = stored(input);
+  const std::vector<bool> candidates = candidatesOf(layer, p);
   std::vector<uint32_t> out(candidates.size(), 0u);
   for (uint32_t y = 0; y < layer.height; ++y)
     for (uint32_t x = 0; x < layer.width; ++x) {
       const size_t index = size_t(y) * layer.width + x;
       if (!candidates[index]) continue;
       const float depthHere = sanitizeDepth(layer.normalDepth[index].w);
-      if (normalizedEdge(edgeStrength(layer, int(x), int(y), depthHere)) > p.edgeThreshold) out[index] = 1u;
+      if (normalizedEdge(strengthOf(layer, int(x), int(y), depthHere)) > p.edgeThreshold) out[index] = 1u;
     }
   return out;
 }
 
-std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const std::vector<uint32_t>& edges,
+std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& input, const std::vector<uint32_t>& edges,
                                  uint32_t width, uint32_t height, const passes::RayMaskParameters& p) {
+  const std::vector<glm::vec2> velocity = mblur::storedVelocity(input);
   std::vector<uint32_t> out(size_t(width) * height, 0u);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
@@ -153,8 +189,9 @@ std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const s
   return out;
 }
 
-std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint32_t>& mask,
+std::vector<bool> revealedPixels(const MaskLayer& input, const std::vector<uint32_t>& mask,
                                  const passes::RayMaskParameters& p) {
+  const MaskLayer layer = stored(input);
   std::vector<bool> out(mask.size(), false);
   for (uint32_t y = 0; y < layer.height; ++y)
     for (uint32_t x = 0; x < layer.width; ++x) {
@@ -269,13 +306,14 @@ glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, 
 
 }  // namespace
 
-std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
+std::vector<glm::vec4> compositeGather(const mblur::Layer& input, const std::vector<glm::vec4>& neighborMax,
                                        const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,
                                        const std::vector<uint32_t>& objectId,
                                        const passes::PostProcessSettings& settings, passes::HybridComposite composite,
                                        passes::MaskWeights maskWeights) {
   // Outside the mask (and inside it where the neighbourhood is still) the kernel is the plain
   // gather with the mask flag on.
+  const mblur::Layer layer = mblur::stored(input);
   std::vector<glm::vec4> out = mblur::gather(layer, neighborMax, &mask, settings, maskWeights);
   const CompositeInputs in{layer, background, objectId, settings.softZExtent};
   const uint32_t m = settings.effectiveTileSize();

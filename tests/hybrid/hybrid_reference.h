@@ -26,6 +26,11 @@ struct MaskLayer {
   std::vector<uint32_t> objectId;
 };
 
+// The layer as the kernels read it: every pixel through the packed surface the device holds
+// (kernels/shared/layer_layout.h): octahedral normals (0 where the object id is 0), half-float
+// velocities. The references below that take a MaskLayer read it through this.
+MaskLayer stored(const MaskLayer& layer);
+
 // ray_mask_common.glsl
 bool endsOnDeeperObject(uint32_t idHere, float depthHere, uint32_t idEnd, float depthEnd, float softZExtent);
 float sobelSmooth(int k);

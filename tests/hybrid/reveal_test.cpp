@@ -333,7 +333,7 @@ TEST_F(HybridRevealTest, OnlyListedPixelsAreWritten) {
       ++written;
     } else {
       EXPECT_EQ(r.revealed.objectId[i], kSentinelId) << i;
-      EXPECT_EQ(r.revealed.normalDepth[i], kSentinelColor) << i;
+      EXPECT_EQ(r.revealed.normalDepth[i].w, kSentinelDepth) << i;
       EXPECT_EQ(r.revealed.color[i], kSentinelColor) << i;
       EXPECT_EQ(r.revealed.velocity[i], kSentinelVelocity) << i;
     }

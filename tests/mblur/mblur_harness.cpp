@@ -36,17 +36,15 @@ std::vector<T> downloadFirst(const vk::Buffer& buffer, size_t count) {
   return values;
 }
 
+// The layer's samples, packed as the resolve packs them (kernels/shared/layer_layout.h).
 struct LayerBuffers {
-  vk::Buffer color, normalDepth, velocity;
-  passes::MotionBlurInputs inputs() const {
-    return {&color, &normalDepth, &velocity, width, height};
-  }
+  vk::Buffer samples;
+  passes::MotionBlurInputs inputs() const { return {&samples, width, height}; }
   uint32_t width = 0, height = 0;
 };
 
 LayerBuffers upload(vk::Context& context, const Layer& layer) {
-  return {deviceBuffer(context, layer.color, "test colour"), deviceBuffer(context, layer.normalDepth, "test depth"),
-          deviceBuffer(context, layer.velocity, "test velocity"), layer.width, layer.height};
+  return {deviceBuffer(context, packedSamples(layer), "test samples"), layer.width, layer.height};
 }
 
 }  // namespace
@@ -54,7 +52,11 @@ LayerBuffers upload(vk::Context& context, const Layer& layer) {
 std::vector<glm::vec4> runTileMax(vk::Context& context, const std::vector<glm::vec2>& velocity, uint32_t width,
                                   uint32_t height, uint32_t tileSize, float velocityScale) {
   const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
-  const vk::Buffer in = deviceBuffer(context, velocity, "test velocity");
+  Layer layer;
+  layer.color.assign(velocity.size(), glm::vec4(0.0f));
+  layer.normalDepth.assign(velocity.size(), glm::vec4(0.0f));
+  layer.velocity = velocity;
+  const vk::Buffer in = deviceBuffer(context, packedSamples(layer), "test samples");
   const vk::Buffer out = outputBuffer(context, grid.count(), "test tile max");
   const passes::TileMaxPass pass(context);
   vk::FrameRecorder frame(context);

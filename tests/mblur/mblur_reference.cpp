@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kernels/mblur/mblur_layout.h"
+#include "kernels/shared/layer_layout.h"
 
 namespace hmb::test::mblur {
 
@@ -15,6 +16,30 @@ float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
 bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 float length2(glm::vec2 v) { return std::sqrt(v.x * v.x + v.y * v.y); }
 }  // namespace
+
+std::vector<glm::uvec4> packedSamples(const Layer& layer) {
+  std::vector<glm::uvec4> samples(layer.color.size());
+  for (size_t i = 0; i < samples.size(); ++i)
+    samples[i] = gpu::packLayerSample(glm::vec3(layer.color[i]), layer.normalDepth[i].w, layer.velocity[i]);
+  return samples;
+}
+
+Layer stored(const Layer& layer) {
+  Layer out = layer;
+  const std::vector<glm::uvec4> samples = packedSamples(layer);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    out.color[i] = glm::vec4(gpu::layerColor(samples[i]), 1.0f);
+    out.normalDepth[i].w = gpu::layerDepth(samples[i]);
+    out.velocity[i] = gpu::layerVelocity(samples[i]);
+  }
+  return out;
+}
+
+std::vector<glm::vec2> storedVelocity(const std::vector<glm::vec2>& velocity) {
+  std::vector<glm::vec2> out(velocity.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = gpu::layerVelocity(glm::uvec4(0u, 0u, 0u, gpu::packLayerVelocity(velocity[i])));
+  return out;
+}
 
 glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float& speed) {
   const glm::vec2 v(q.x * velocityScale, q.y * velocityScale);
@@ -68,8 +93,9 @@ AppendixWeights appendixWeights(float targetDepth, float sampleDepth, float targ
           cylinder(sampleSpeed, ds) * cylinder(targetSpeed, ds) * 2.0f};
 }
 
-std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& velocity, uint32_t width, uint32_t height,
+std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& input, uint32_t width, uint32_t height,
                                uint32_t tileSize, float velocityScale) {
+  const std::vector<glm::vec2> velocity = storedVelocity(input);
   const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
   std::vector<glm::vec4> tiles(grid.count());
   for (uint32_t ty = 0; ty < grid.y; ++ty)
@@ -108,9 +134,10 @@ std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes
   return out;
 }
 
-std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& neighborMaxTiles,
+std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& neighborMaxTiles,
                               const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings,
                               passes::MaskWeights maskWeights) {
+  const Layer layer = stored(input);
   const uint32_t width = layer.width, height = layer.height, m = settings.effectiveTileSize();
   const passes::TileGrid grid = passes::tileGridFor(width, height, m);
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
@@ -181,8 +208,9 @@ float jimenezWeight(float centreDepth, float sampleDepth, float offset, float ce
 
 }  // namespace
 
-std::vector<glm::vec4> gatherJimenez(const Layer& layer, const std::vector<glm::vec4>& neighborMaxTiles,
+std::vector<glm::vec4> gatherJimenez(const Layer& input, const std::vector<glm::vec4>& neighborMaxTiles,
                                      const passes::PostProcessSettings& settings) {
+  const Layer layer = stored(input);
   const uint32_t width = layer.width, height = layer.height, tileSize = settings.effectiveTileSize();
   const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
   const float velocityScale = passes::gatherVelocityScale(passes::GatherRange::Centered, settings.exposure, settings.fps);

@@ -25,7 +25,9 @@ constexpr uint32_t kWidth = 160, kHeight = 96;
 constexpr float kExposure = 1.0f / 60.0f, kFps = 120.0f;  // E * fps = 2
 const glm::vec2 kPerExposure(22.0f, 8.0f);                 // v, pixels per exposure
 const glm::vec2 kQuadMin(70.0f, 30.0f), kQuadMax(110.0f, 66.0f);
-const glm::vec4 kBackground(0.2f, 0.4f, 0.8f, 1.0f);
+// Exact in the G-buffer's 13 mantissa bits (kernels/shared/layer_layout.h), so a pixel that
+// gathers only background reads it back to the bit.
+const glm::vec4 kBackground(0.1875f, 0.375f, 0.8125f, 1.0f);
 constexpr float kQuadDepth = 2.0f, kBackgroundDepth = 10.0f;
 
 bool inQuad(glm::dvec2 p) { return p.x >= kQuadMin.x && p.x < kQuadMax.x && p.y >= kQuadMin.y && p.y < kQuadMax.y; }

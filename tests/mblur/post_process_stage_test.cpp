@@ -120,12 +120,11 @@ TEST_F(MblurStageTest, PlansItsPassesAndChecksSizes) {
   EXPECT_EQ(mcguire.tileGrid().x, 3u);
   EXPECT_EQ(mcguire.tileGrid().y, 2u);
   const Layer layer = stillLayer(80, 41);
-  vk::Buffer color = vk::uploadedBuffer(context(), layer.color, "c"), depth = vk::uploadedBuffer(context(), layer.normalDepth, "d");
-  vk::Buffer velocity = vk::uploadedBuffer(context(), layer.velocity, "v");
+  vk::Buffer samples = vk::uploadedBuffer(context(), packedSamples(layer), "s");
   vk::Buffer out(context(), layer.color.size() * sizeof(glm::vec4), vk::MemoryUse::Device, "o");
   vk::FrameRecorder frame(context());
   frame.begin();
-  EXPECT_THROW(mcguire.record(frame, {&color, &depth, &velocity, 80, 41}, out), Error);
+  EXPECT_THROW(mcguire.record(frame, {&samples, 80, 41}, out), Error);
 
   PostProcessSettings bad;
   bad.samples = 0;

@@ -7,6 +7,7 @@
 #include "runtime/error.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/image_layer.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -74,10 +75,14 @@ GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& sc
     out.clipTriangles.doubleSided.push_back(material < scene.materials.size() && scene.materials[material].doubleSided);
   }
   out.visibility = {width, height, stage.visibility().download<glm::uvec2>(), stage.rasterizer().stats(), {}, {}};
-  out.color = stage.color().download<glm::vec4>();
-  out.normalDepth = stage.normalDepth().download<glm::vec4>();
-  out.velocity = stage.velocity().download<glm::vec2>();
-  out.objectId = stage.objectId().download<uint32_t>();
+  // The G-buffer as the kernels decode it (kernels/shared/layer_layout.h).
+  const passes::LayerContents layer = passes::downloadLayer(stage.layer(), uint64_t(width) * height);
+  for (size_t i = 0; i < layer.color.size(); ++i) {
+    out.color.emplace_back(layer.color[i], 1.0f);
+    out.normalDepth.emplace_back(layer.normal[i], layer.depth[i]);
+  }
+  out.velocity = layer.velocity;
+  out.objectId = layer.objectId;
   return out;
 }
 
