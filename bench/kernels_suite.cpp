@@ -11,8 +11,9 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/shared/layer_layout.h"
+#include "bench/floor_pass.h"
 #include "kernels/bvh/bvh_build_layout.h"
+#include "kernels/shared/layer_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
@@ -274,6 +275,21 @@ RandomLayer randomLayer(const vk::Context& context, ImageSize size) {
   return layer;
 }
 
+// The floor pass (bench/floor_pass.h) at `size`, timed as the case is: each per-pixel kernel
+// reports its time as a multiple of it (details: floor_ms, over_floor).
+void addFloor(const vk::Context& context, ImageSize size, const KernelsSuiteOptions& options, KernelCase& c) {
+  const FloorPass floor(context, size.width, size.height);
+  vk::FrameRecorder frame(context);
+  std::vector<double> ms;
+  for (int i = 0; i < options.warmup + options.repeats; ++i) {
+    const double t = floor.run(frame);
+    if (i >= options.warmup) ms.push_back(t);
+  }
+  const double median = summarize(ms).median;
+  c.details["floor_ms"] = median;
+  c.details["over_floor"] = c.milliseconds.median / median;
+}
+
 KernelCase pixelCase(const std::string& kernel, ImageSize size) {
   KernelCase c;
   c.kernel = kernel;
@@ -301,6 +317,7 @@ KernelCase tileMaxCase(const vk::Context& context, ImageSize size, const Kernels
     return passSum(frame.submitAndWait());
   });
   c.details = {{"tile_size", tileSize}, {"tiles", grid.count()}};
+  addFloor(context, size, options, c);
   return c;
 }
 
@@ -327,6 +344,7 @@ KernelCase gatherCase(const vk::Context& context, ImageSize size, const KernelsS
                {"tile_size", settings.effectiveTileSize()},
                {"neighborhood", settings.neighborhood},
                {"range", passes::rangeName(settings.effectiveRange())}};
+  addFloor(context, size, options, c);
   return c;
 }
 
@@ -424,14 +442,18 @@ void writeKernelsCsv(std::ostream& out, const std::vector<KernelCase>& cases) {
 
 void writeKernelsMarkdown(std::ostream& out, const std::vector<KernelCase>& cases, const std::string& context) {
   out << context
-      << "\n\n| kernel | input | median ms | interquartile ms | min - max ms | throughput | other cores busy |\n"
-      << "|---|---|---:|---:|---:|---:|---:|\n";
+      << "\n\n| kernel | input | median ms | interquartile ms | min - max ms | throughput | x floor | other cores busy |\n"
+      << "|---|---|---:|---:|---:|---:|---:|---:|\n";
   for (const KernelCase& c : cases) {
     const Summary& t = c.milliseconds;
+    const std::string overFloor = c.details.contains("over_floor") ? fixed(c.details["over_floor"].get<double>(), 1) : "-";
     out << "| " << c.kernel << " | " << inputName(c) << " | " << fixed(t.median, 2) << " | " << fixed(t.q1, 2) << " - "
         << fixed(t.q3, 2) << " | " << fixed(t.min, 2) << " - " << fixed(t.max, 2) << " | " << fixed(c.throughput, 2)
-        << ' ' << c.unit << " | " << (std::isnan(c.otherCpuLoad) ? "-" : fixed(c.otherCpuLoad, 2)) << " |\n";
+        << ' ' << c.unit << " | " << overFloor << " | " << (std::isnan(c.otherCpuLoad) ? "-" : fixed(c.otherCpuLoad, 2))
+        << " |\n";
   }
+  out << "\nx floor: the kernel's median over that of the floor pass at the same size (one 16-byte read and write "
+         "per pixel, bench/floor_pass.h), timed in the same run.\n";
 }
 
 }  // namespace hmb::bench

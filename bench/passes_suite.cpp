@@ -4,14 +4,29 @@
 #include <map>
 
 #include "bench/bench_scenes.h"
+#include "bench/floor_pass.h"
 #include "runtime/error.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"
+#include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::bench {
 namespace {
 
 double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+
+// The floor pass at `size`: warm-up and repeats as the case's. Its buffers are gone before the
+// case renders, so they do not count in the case's device memory.
+Summary timeFloor(const vk::Context& context, const ImageSize& size, const PassesSuiteOptions& o) {
+  const FloorPass floor(context, size.width, size.height);
+  vk::FrameRecorder frame(context);
+  std::vector<double> ms;
+  for (int i = 0; i < o.warmup + o.repeats; ++i) {
+    const double t = floor.run(frame);
+    if (i >= o.warmup) ms.push_back(t);
+  }
+  return summarize(ms);
+}
 
 PassesCase runCase(Renderer& renderer, const scene::Scene& scene, const std::string& name, const std::string& method,
                    const ImageSize& size, const PassesSuiteOptions& o) {
@@ -74,8 +89,10 @@ std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOp
         progress(name + " " + sizeName(size) + " " + method);
         // A renderer of its own: the peak then counts what this case needs, not what an
         // earlier case left allocated.
+        const Summary floor = timeFloor(context, size, options);
         Renderer renderer(context);
         cases.push_back(runCase(renderer, scene, name, method, size, options));
+        cases.back().floor = floor;
       }
   }
   return cases;
@@ -83,7 +100,8 @@ std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOp
 
 nlohmann::json passesCaseJson(const PassesCase& c) {
   nlohmann::json passes = nlohmann::json::array(), skipped = nlohmann::json::array();
-  for (const auto& [name, times] : c.passes) passes.push_back({{"name", name}, {"ms", summaryJson(times)}});
+  for (const auto& [name, times] : c.passes)
+    passes.push_back({{"name", name}, {"ms", summaryJson(times)}, {"over_floor", times.median / c.floor.median}});
   for (const auto& [name, reason] : c.skipped) skipped.push_back({{"name", name}, {"reason", reason}});
   return {{"scene", c.scene},
           {"method", c.method},
@@ -91,6 +109,7 @@ nlohmann::json passesCaseJson(const PassesCase& c) {
           {"height", c.size.height},
           {"triangles", c.triangles},
           {"frame_ms", summaryJson(c.frameMilliseconds)},
+          {"floor_ms", summaryJson(c.floor)},
           {"passes", passes},
           {"skipped", skipped},
           {"device_memory",
@@ -103,13 +122,15 @@ nlohmann::json passesCaseJson(const PassesCase& c) {
 }
 
 void writePassesCsv(std::ostream& out, const std::vector<PassesCase>& cases) {
-  out << "scene,method,width,height,pass,median_ms,q1_ms,q3_ms\n";
+  out << "scene,method,width,height,pass,median_ms,q1_ms,q3_ms,over_floor\n";
   for (const PassesCase& c : cases) {
-    out << c.scene << ',' << c.method << ',' << c.size.width << ',' << c.size.height << ",frame,"
-        << c.frameMilliseconds.median << ',' << c.frameMilliseconds.q1 << ',' << c.frameMilliseconds.q3 << '\n';
-    for (const auto& [name, t] : c.passes)
+    const auto row = [&](const std::string& name, const Summary& t) {
       out << c.scene << ',' << c.method << ',' << c.size.width << ',' << c.size.height << ',' << name << ','
-          << t.median << ',' << t.q1 << ',' << t.q3 << '\n';
+          << t.median << ',' << t.q1 << ',' << t.q3 << ',' << t.median / c.floor.median << '\n';
+    };
+    row("frame", c.frameMilliseconds);
+    row(FloorPass::kName, c.floor);
+    for (const auto& [name, t] : c.passes) row(name, t);
   }
 }
 
@@ -137,16 +158,23 @@ void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases
       for (const auto& [name, t] : c.passes)
         if (std::find(rows.begin(), rows.end(), name) == rows.end()) rows.push_back(name);
     }
-    out << "\n### " << scene << " (" << columns.front()->triangles << " triangles): median ms per pass\n\n| pass |";
+    out << "\n### " << scene << " (" << columns.front()->triangles
+        << " triangles): median ms per pass (x the floor pass of the same size)\n\n| pass |";
     for (const PassesCase* c : columns) out << ' ' << c->method << ' ' << sizeName(c->size) << " |";
     out << "\n|---|";
     for (size_t i = 0; i < columns.size(); ++i) out << "---:|";
+    out << '\n';
+    out << "| floor (1 read, 1 write per pixel) |";
+    for (const PassesCase* c : columns) out << ' ' << fixed(c->floor.median, 2) << " |";
     out << '\n';
     for (const std::string& row : rows) {
       out << "| " << row << " |";
       for (const PassesCase* c : columns) {
         const auto it = std::find_if(c->passes.begin(), c->passes.end(), [&](const auto& p) { return p.first == row; });
-        out << ' ' << (it == c->passes.end() ? std::string() : fixed(it->second.median, 2)) << " |";
+        out << ' '
+            << (it == c->passes.end() ? std::string()
+                                      : fixed(it->second.median, 2) + " (" + fixed(it->second.median / c->floor.median, 1) + "x)")
+            << " |";
       }
       out << '\n';
     }

@@ -34,6 +34,7 @@ struct PassesCase {
   ImageSize size;
   uint64_t triangles = 0;
   Summary frameMilliseconds;  // scene setup (the hybrid's mesh trees) left out
+  Summary floor;              // the floor pass at this size (bench/floor_pass.h), timed just before the case
   std::vector<std::pair<std::string, Summary>> passes;  // in plan order; skipped passes absent
   std::vector<std::pair<std::string, std::string>> skipped;  // name, reason
   uint64_t peakBytes = 0;

@@ -15,6 +15,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bench/floor_pass.h"
 #include "kernels/raster/raster_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "runtime/error.h"
@@ -124,6 +125,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   }
   const std::vector<oracle::OracleTriangle> triangles = oracleTriangles(stage, gpuScene);
   oracle::GraphicsRasterizer graphics(graphicsContext, size.width, size.height);
+  const FloorPass floor(context, size.width, size.height);
 
   RasterCase result;
   result.scene = sceneName;
@@ -131,7 +133,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   result.visibilityScheme = passes::visibilitySchemeName(stage.rasterizer().scheme());
   result.triangles = gpuScene.triangleCount();
 
-  std::vector<double> visibility, transform, resolve, computeFrame, graphicsDraw, ratio, coverage;
+  std::vector<double> visibility, transform, resolve, computeFrame, graphicsDraw, ratio, coverage, floorMs;
   std::map<std::string, std::vector<double>> passSamples;
   progress(label + ": " + std::to_string(options.warmup) + " warm-up + " + std::to_string(options.repeats) +
            " timed iterations");
@@ -163,7 +165,9 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
       throw Error(label + ": id agreement with the graphics pipeline " + fixed(100.0 * agreement, 3) +
                   "% is below " + fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");
     result.minIdAgreement = std::min(result.minIdAgreement, agreement);
+    const double floorTime = floor.run(frame);
     if (i < options.warmup) continue;
+    floorMs.push_back(floorTime);
 
     double vis = 0, allPasses = 0;
     for (const vk::PassTiming& pass : compute.passes) {
@@ -194,6 +198,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   result.resolve = summarize(resolve);
   result.computeFrame = summarize(computeFrame);
   result.graphicsDraw = summarize(graphicsDraw);
+  result.floor = summarize(floorMs);
   result.ratio = summarize(ratio);
   result.passCoverage = summarize(coverage);
   for (auto& [name, samples] : passSamples) result.passes[name] = summarize(samples);
@@ -267,7 +272,12 @@ nlohmann::json rasterCaseJson(const RasterCase& c) {
         {"resolve_gbuffer", summaryJson(c.resolve)},
         {"compute_frame", summaryJson(c.computeFrame)},
         {"graphics_draw", summaryJson(c.graphicsDraw)},
+        {"floor", summaryJson(c.floor)},
         {"compute_passes", passes}}},
+      {"over_floor",
+       {{"compute_visibility", c.computeVisibility.median / c.floor.median},
+        {"resolve_gbuffer", c.resolve.median / c.floor.median},
+        {"graphics_draw", c.graphicsDraw.median / c.floor.median}}},
       {"ratio_visibility_to_graphics", summaryJson(c.ratio)},
       {"compute_pass_coverage", summaryJson(c.passCoverage)},
   };
@@ -275,22 +285,23 @@ nlohmann::json rasterCaseJson(const RasterCase& c) {
 
 void printRasterTable(std::ostream& out, const std::vector<RasterCase>& cases) {
   char line[256];
-  std::snprintf(line, sizeof(line), "%-12s %-9s %8s %8s %9s %6s %9s %9s %9s %9s %19s %9s\n", "scene", "size",
-                "tris", "setup", "pairs", "large", "transform", "visib.", "resolve", "graphics",
+  std::snprintf(line, sizeof(line), "%-12s %-9s %8s %8s %9s %6s %9s %9s %9s %9s %7s %19s %9s\n", "scene", "size",
+                "tris", "setup", "pairs", "large", "transform", "visib.", "resolve", "graphics", "floor",
                 "visib./graphics", "agreement");
   out << line;
   for (const RasterCase& c : cases) {
     const std::string ratio =
         fixed(c.ratio.median, 2) + " [" + fixed(c.ratio.q1, 2) + "-" + fixed(c.ratio.q3, 2) + "]";
-    std::snprintf(line, sizeof(line), "%-12s %-9s %8u %8u %9u %6u %9.2f %9.2f %9.2f %9.2f %19s %8.3f%%\n",
+    std::snprintf(line, sizeof(line), "%-12s %-9s %8u %8u %9u %6u %9.2f %9.2f %9.2f %9.2f %7.2f %19s %8.3f%%\n",
                   c.scene.c_str(), sizeName(c.size).c_str(), c.triangles, c.setupTriangles, c.tilePairs,
                   c.largeTriangles, c.transform.median, c.computeVisibility.median, c.resolve.median,
-                  c.graphicsDraw.median, ratio.c_str(), 100.0 * c.minIdAgreement);
+                  c.graphicsDraw.median, c.floor.median, ratio.c_str(), 100.0 * c.minIdAgreement);
     out << line;
   }
   out << "Times: device ms, medians. visib. = compute clears through rasterize (transform excluded: the graphics\n"
          "pipeline is given the same clip-space vertices); graphics = render pass clear + draw + store.\n"
-         "visib./graphics: median of per-iteration ratios [interquartile range]; agreement: worst iteration.\n";
+         "visib./graphics: median of per-iteration ratios [interquartile range]; agreement: worst iteration.\n"
+         "floor: one 16-byte read and write per pixel (bench/floor_pass.h), the least a full-screen pass costs.\n";
 }
 
 }  // namespace hmb::bench

@@ -92,6 +92,7 @@ struct RasterCase {
   Summary resolve;            // resolve-gbuffer
   Summary computeFrame;       // the whole G-buffer frame, first pass start to last pass end
   Summary graphicsDraw;       // the oracle's render pass: clear, draws, store
+  Summary floor;              // the floor pass (bench/floor_pass.h) at this size: every pass's yardstick
   Summary ratio;              // computeVisibility / graphicsDraw, paired per iteration
   Summary passCoverage;       // sum of pass times / frame time: near 1 when per-pass stamps are sound
   std::map<std::string, Summary> passes;  // every compute pass by name

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "kernels/bvh/bvh_build_layout.h"
+#include "kernels/debug/floor_pass.h"
 #include "kernels/debug/pack_layer.h"
 #include "kernels/debug/test_pattern.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
@@ -49,6 +50,7 @@ const KernelLayout kLayouts[] = {
     {"bvh/refit_pack", HMB_REFIT_BINDING_COUNT, sizeof(gpu::BvhRefitParams), false},
     {"trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT, sizeof(gpu::TraceParams), false},
     {"trace/trace_rays", HMB_TRACE_BINDING_COUNT, sizeof(gpu::TraceParams), false},
+    {"debug/floor_pass", HMB_FLOOR_BINDING_COUNT, sizeof(gpu::FloorParams), false},
     {"debug/pack_layer", HMB_PACK_LAYER_BINDING_COUNT, sizeof(gpu::PackLayerParams), false},
     {"debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams), false},
     {"output/encode_display", HMB_ENCODE_DISPLAY_BINDING_COUNT, sizeof(gpu::EncodeDisplayParams), false},
