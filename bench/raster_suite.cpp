@@ -24,6 +24,7 @@
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/load_scene.h"
+#include "tests/oracle/graphics_gbuffer.h"
 #include "tests/oracle/graphics_raster.h"
 
 namespace hmb::bench {
@@ -126,6 +127,20 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   const std::vector<oracle::OracleTriangle> triangles = oracleTriangles(stage, gpuScene);
   oracle::GraphicsRasterizer graphics(graphicsContext, size.width, size.height);
   const FloorPass floor(context, size.width, size.height);
+  // The G-buffer oracle draws on the graphics device, from the scene's buffers made there and
+  // the transform kernel's output for this frame.
+  GpuScene graphicsScene(graphicsContext, scene);
+  graphicsScene.setFrame(scene, scene.settings.frameTime, size.width, size.height);
+  if (gpuScene.texturePath()) graphicsScene.keepTexturePath();
+  const auto firstVertices = [&](const vk::Buffer& buffer, auto element) {
+    auto values = buffer.download<decltype(element)>();
+    values.resize(gpuScene.instanceVertexCount());
+    return values;
+  };
+  oracle::GraphicsGBuffer graphicsGBuffer(graphicsContext, graphicsScene, firstVertices(stage.clipCurrent(), glm::vec4()),
+                                          firstVertices(stage.clipPrevious(), glm::vec4()),
+                                          firstVertices(stage.vertexShading(), gpu::GpuVertexShading()), size.width,
+                                          size.height);
 
   RasterCase result;
   result.scene = sceneName;
@@ -134,6 +149,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   result.triangles = gpuScene.triangleCount();
 
   std::vector<double> visibility, transform, resolve, computeFrame, graphicsDraw, ratio, coverage, floorMs;
+  std::vector<double> computeGBuffer, graphicsGBufferMs, gbufferRatio;
   std::map<std::string, std::vector<double>> passSamples;
   progress(label + ": " + std::to_string(options.warmup) + " warm-up + " + std::to_string(options.repeats) +
            " timed iterations");
@@ -141,7 +157,8 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   for (int i = 0; i < options.warmup + options.repeats; ++i) {
     vk::FrameTimings compute;
     oracle::OracleImage image;
-    double drawMs = 0;
+    oracle::GraphicsGBuffer::Image gbufferImage;
+    double drawMs = 0, gbufferMs = 0;
     const auto runCompute = [&] {
       compute = renderCompute();
       if (stage.rasterizer().growIfOverflowed()) throw Error(label + ": rasterizer buffers overflowed during timing");
@@ -149,6 +166,8 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
     const auto runGraphics = [&] {
       image = graphics.rasterize(triangles);
       drawMs = required(graphics.lastDrawMilliseconds(), label);
+      gbufferImage = graphicsGBuffer.render();
+      gbufferMs = required(graphicsGBuffer.lastDrawMilliseconds(), label);
     };
     // Alternate which goes first, so neither always runs on caches the other warmed.
     if (i % 2 == 0) {
@@ -165,6 +184,13 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
       throw Error(label + ": id agreement with the graphics pipeline " + fixed(100.0 * agreement, 3) +
                   "% is below " + fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");
     result.minIdAgreement = std::min(result.minIdAgreement, agreement);
+    const oracle::GBufferAgreement gbuffer = oracle::compareGBuffers(
+        stage.layer().samples().download<glm::uvec4>(), stage.layer().surfaces().download<glm::uvec4>(), gbufferImage);
+    if (gbuffer.objectIds < kMinIdAgreement)
+      throw Error(label + ": object-id agreement with the G-buffer oracle " + fixed(100.0 * gbuffer.objectIds, 3) +
+                  "% is below " + fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");
+    result.minObjectAgreement = std::min(result.minObjectAgreement, gbuffer.objectIds);
+    result.minAttributeAgreement = std::min(result.minAttributeAgreement, gbuffer.attributes);
     const double floorTime = floor.run(frame);
     if (i < options.warmup) continue;
     floorMs.push_back(floorTime);
@@ -181,6 +207,9 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
       if (isVisibilityPass(pass.name)) vis += ms;
     }
     visibility.push_back(vis);
+    computeGBuffer.push_back(vis + resolve.back());
+    graphicsGBufferMs.push_back(gbufferMs);
+    gbufferRatio.push_back(gbufferMs > 0 ? computeGBuffer.back() / gbufferMs : NAN);
     computeFrame.push_back(required(compute.frameMilliseconds, label));
     coverage.push_back(computeFrame.back() > 0 ? allPasses / computeFrame.back() : NAN);
     graphicsDraw.push_back(drawMs);
@@ -199,11 +228,16 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   result.computeFrame = summarize(computeFrame);
   result.graphicsDraw = summarize(graphicsDraw);
   result.floor = summarize(floorMs);
+  result.computeGBuffer = summarize(computeGBuffer);
+  result.graphicsGBuffer = summarize(graphicsGBufferMs);
+  result.gbufferRatio = summarize(gbufferRatio);
   result.ratio = summarize(ratio);
   result.passCoverage = summarize(coverage);
   for (auto& [name, samples] : passSamples) result.passes[name] = summarize(samples);
   progress(label + ": visibility " + fixed(result.computeVisibility.median, 2) + " ms, graphics " +
-           fixed(result.graphicsDraw.median, 2) + " ms, ratio " + fixed(result.ratio.median, 2) + ", agreement " +
+           fixed(result.graphicsDraw.median, 2) + " ms, ratio " + fixed(result.ratio.median, 2) + "; G-buffer " +
+           fixed(result.computeGBuffer.median, 2) + " ms, graphics " + fixed(result.graphicsGBuffer.median, 2) +
+           " ms, ratio " + fixed(result.gbufferRatio.median, 2) + "; agreement " +
            fixed(100.0 * result.minIdAgreement, 3) + "%, other processes " + fixed(result.otherCpuLoad, 2) +
            " cores");
   return result;
@@ -273,34 +307,45 @@ nlohmann::json rasterCaseJson(const RasterCase& c) {
         {"compute_frame", summaryJson(c.computeFrame)},
         {"graphics_draw", summaryJson(c.graphicsDraw)},
         {"floor", summaryJson(c.floor)},
+        {"compute_gbuffer", summaryJson(c.computeGBuffer)},
+        {"graphics_gbuffer", summaryJson(c.graphicsGBuffer)},
         {"compute_passes", passes}}},
       {"over_floor",
        {{"compute_visibility", c.computeVisibility.median / c.floor.median},
         {"resolve_gbuffer", c.resolve.median / c.floor.median},
-        {"graphics_draw", c.graphicsDraw.median / c.floor.median}}},
+        {"graphics_draw", c.graphicsDraw.median / c.floor.median},
+        {"compute_gbuffer", c.computeGBuffer.median / c.floor.median},
+        {"graphics_gbuffer", c.graphicsGBuffer.median / c.floor.median}}},
       {"ratio_visibility_to_graphics", summaryJson(c.ratio)},
+      {"ratio_gbuffer_to_graphics_gbuffer", summaryJson(c.gbufferRatio)},
+      {"gbuffer_oracle_agreement", {{"min_object_ids", c.minObjectAgreement}, {"min_attributes", c.minAttributeAgreement}}},
       {"compute_pass_coverage", summaryJson(c.passCoverage)},
   };
 }
 
 void printRasterTable(std::ostream& out, const std::vector<RasterCase>& cases) {
-  char line[256];
-  std::snprintf(line, sizeof(line), "%-12s %-9s %8s %8s %9s %6s %9s %9s %9s %9s %7s %19s %9s\n", "scene", "size",
-                "tris", "setup", "pairs", "large", "transform", "visib.", "resolve", "graphics", "floor",
-                "visib./graphics", "agreement");
+  char line[320];
+  std::snprintf(line, sizeof(line), "%-12s %-9s %8s %9s %6s %9s %8s %8s %8s %6s %17s %8s %8s %17s %9s %9s\n",
+                "scene", "size", "tris", "pairs", "large", "transform", "visib.", "resolve", "graphics", "floor",
+                "visib./graphics", "G-buffer", "gr. G-b.", "G-buf./graphics", "ids", "G-buffer");
   out << line;
   for (const RasterCase& c : cases) {
-    const std::string ratio =
-        fixed(c.ratio.median, 2) + " [" + fixed(c.ratio.q1, 2) + "-" + fixed(c.ratio.q3, 2) + "]";
-    std::snprintf(line, sizeof(line), "%-12s %-9s %8u %8u %9u %6u %9.2f %9.2f %9.2f %9.2f %7.2f %19s %8.3f%%\n",
-                  c.scene.c_str(), sizeName(c.size).c_str(), c.triangles, c.setupTriangles, c.tilePairs,
-                  c.largeTriangles, c.transform.median, c.computeVisibility.median, c.resolve.median,
-                  c.graphicsDraw.median, c.floor.median, ratio.c_str(), 100.0 * c.minIdAgreement);
+    const auto withRange = [](const Summary& r) {
+      return fixed(r.median, 2) + " [" + fixed(r.q1, 2) + "-" + fixed(r.q3, 2) + "]";
+    };
+    std::snprintf(line, sizeof(line),
+                  "%-12s %-9s %8u %9u %6u %9.2f %8.2f %8.2f %8.2f %6.2f %17s %8.2f %8.2f %17s %8.3f%% %8.3f%%\n",
+                  c.scene.c_str(), sizeName(c.size).c_str(), c.triangles, c.tilePairs, c.largeTriangles,
+                  c.transform.median, c.computeVisibility.median, c.resolve.median, c.graphicsDraw.median,
+                  c.floor.median, withRange(c.ratio).c_str(), c.computeGBuffer.median, c.graphicsGBuffer.median,
+                  withRange(c.gbufferRatio).c_str(), 100.0 * c.minIdAgreement, 100.0 * c.minAttributeAgreement);
     out << line;
   }
   out << "Times: device ms, medians. visib. = compute clears through rasterize (transform excluded: the graphics\n"
-         "pipeline is given the same clip-space vertices); graphics = render pass clear + draw + store.\n"
-         "visib./graphics: median of per-iteration ratios [interquartile range]; agreement: worst iteration.\n"
+         "pipeline is given the same clip-space vertices); graphics = render pass clear + id draw + store.\n"
+         "G-buffer = visib. + resolve; gr. G-b. = the graphics pipeline shading and packing the same G-buffer.\n"
+         "Ratios: medians of per-iteration ratios [interquartile range]. ids: worst iteration's id agreement;\n"
+         "G-buffer: worst iteration's share of pixels where depth, normal, velocity and colour agree.\n"
          "floor: one 16-byte read and write per pixel (bench/floor_pass.h), the least a full-screen pass costs.\n";
 }
 

@@ -1,5 +1,7 @@
 // The `raster` suite: the compute rasterizer (G-buffer stage) against lavapipe's own graphics
-// pipeline (the test oracle) on the same clip-space triangles, same device, same run. Compute
+// pipeline (the test oracles) on the same clip-space triangles, same device, same run: the
+// visibility passes against a depth-tested draw of triangle ids, and the whole G-buffer
+// (visibility and resolve) against a draw whose fragments shade and pack the same layer. Compute
 // and graphics iterations alternate in one loop, so drift hits both alike; every iteration
 // also checks that both saw the same triangle per pixel (a fast wrong rasterizer is no result).
 //
@@ -93,6 +95,10 @@ struct RasterCase {
   Summary computeFrame;       // the whole G-buffer frame, first pass start to last pass end
   Summary graphicsDraw;       // the oracle's render pass: clear, draws, store
   Summary floor;              // the floor pass (bench/floor_pass.h) at this size: every pass's yardstick
+  // The whole G-buffer: compute visibility + resolve against the graphics pipeline doing the same
+  // job (the G-buffer oracle, tests/oracle/graphics_gbuffer.h), paired per iteration.
+  Summary computeGBuffer, graphicsGBuffer, gbufferRatio;
+  double minObjectAgreement = 1.0, minAttributeAgreement = 1.0;  // worst iteration
   Summary ratio;              // computeVisibility / graphicsDraw, paired per iteration
   Summary passCoverage;       // sum of pass times / frame time: near 1 when per-pass stamps are sound
   std::map<std::string, Summary> passes;  // every compute pass by name

@@ -30,6 +30,8 @@ class GBufferStage {
   const RasterizePass& rasterizer() const { return rasterize_; }
   RasterizePass& rasterizer() { return rasterize_; }
   const vk::Buffer& clipCurrent() const { return clipCurrent_; }
+  const vk::Buffer& clipPrevious() const { return clipPrevious_; }
+  const vk::Buffer& vertexShading() const { return vertexShading_; }  // gpu::GpuVertexShading per instance vertex
   const vk::Buffer& visibility() const { return visibility_; }
   const ImageLayer& layer() const { return layer_; }
   // Bytes per pixel of the per-pixel buffers: visibility, the layer's samples and surfaces.

@@ -24,50 +24,18 @@ static_assert(sizeof(Vertex) == 20);
 
 constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
 
-bool supportsDepthAttachment(VkPhysicalDevice device, VkFormat format) {
-  VkFormatProperties props{};
-  vkGetPhysicalDeviceFormatProperties(device, format, &props);
-  const VkFormatFeatureFlags needed =
-      VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
-  return (props.optimalTilingFeatures & needed) == needed;
-}
-
-VkShaderModule createShader(VkDevice device, const uint32_t* words, size_t bytes) {
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = bytes;
-  info.pCode = words;
-  VkShaderModule module = VK_NULL_HANDLE;
-  HMB_VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
-  return module;
-}
-
 }  // namespace
 
 GraphicsRasterizer::GraphicsRasterizer(const vk::Context& context, uint32_t width, uint32_t height)
-    : context_(context), width_(width), height_(height) {
+    : context_(context), width_(width), height_(height), timer_(context) {
   if (width == 0 || height == 0) throw Error("graphics oracle: image size must be at least 1x1");
   const VkPhysicalDeviceLimits& limits = context.limits();
   if (width > limits.maxFramebufferWidth || height > limits.maxFramebufferHeight)
     throw Error("graphics oracle: " + std::to_string(width) + "x" + std::to_string(height) +
                 " exceeds the device's framebuffer limit");
 
-  uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &familyCount, families.data());
-  const VkQueueFamilyProperties& family = families.at(context.queueFamily());
-  if (!(family.queueFlags & VK_QUEUE_GRAPHICS_BIT))
-    throw Error("graphics oracle: the context's queue family has no graphics support");
-
-  // 32-bit float depth keeps the oracle's depth exact to float precision; 24-bit unorm is the
-  // fallback that Vulkan guarantees when D32_SFLOAT is missing.
-  for (VkFormat format : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_X8_D24_UNORM_PACK32}) {
-    if (supportsDepthAttachment(context.physicalDevice(), format)) {
-      depthFormat_ = format;
-      break;
-    }
-  }
-  if (depthFormat_ == VK_FORMAT_UNDEFINED) throw Error("graphics oracle: no usable depth format");
+  requireGraphicsQueue(context, "graphics oracle");
+  depthFormat_ = pickDepthFormat(context, "graphics oracle");
 
   try {
     createRenderPass();
@@ -76,12 +44,6 @@ GraphicsRasterizer::GraphicsRasterizer(const vk::Context& context, uint32_t widt
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
     idsReadback_ = vk::Buffer(context, pixels * 4, vk::MemoryUse::Readback, "oracle ids (readback)");
     depthReadback_ = vk::Buffer(context, pixels * 4, vk::MemoryUse::Readback, "oracle depth (readback)");
-    if (context.info().timestamps) {
-      VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-      queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      queryInfo.queryCount = 2;
-      HMB_VK_CHECK(vkCreateQueryPool(context.device(), &queryInfo, nullptr, &queryPool_));
-    }
   } catch (...) {
     release();
     throw;
@@ -92,17 +54,15 @@ GraphicsRasterizer::~GraphicsRasterizer() { release(); }
 
 void GraphicsRasterizer::release() {
   const VkDevice device = context_.device();
-  if (queryPool_) vkDestroyQueryPool(device, queryPool_, nullptr);
   for (VkPipeline& pipeline : pipelines_)
     if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
   if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
   if (framebuffer_) vkDestroyFramebuffer(device, framebuffer_, nullptr);
   if (renderPass_) vkDestroyRenderPass(device, renderPass_, nullptr);
-  destroy(color_);
-  destroy(depth_);
+  destroyAttachment(context_, color_);
+  destroyAttachment(context_, depth_);
   vertices_ = vk::Buffer();
   staging_ = vk::Buffer();
-  queryPool_ = VK_NULL_HANDLE;
   pipelines_[0] = pipelines_[1] = VK_NULL_HANDLE;
   pipelineLayout_ = VK_NULL_HANDLE;
   framebuffer_ = VK_NULL_HANDLE;
@@ -162,50 +122,11 @@ void GraphicsRasterizer::createRenderPass() {
   HMB_VK_CHECK(vkCreateRenderPass(context_.device(), &info, nullptr, &renderPass_));
 }
 
-GraphicsRasterizer::Attachment GraphicsRasterizer::createAttachment(VkFormat format, VkImageUsageFlags usage,
-                                                                    VkImageAspectFlags aspect) {
-  const VkDevice device = context_.device();
-  Attachment a;
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = format;
-  info.extent = {width_, height_, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  try {
-    HMB_VK_CHECK(vkCreateImage(device, &info, nullptr, &a.image));
-    VkMemoryRequirements req{};
-    vkGetImageMemoryRequirements(device, a.image, &req);
-    uint32_t type = context_.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (type == UINT32_MAX) type = context_.findMemoryType(req.memoryTypeBits, 0);
-    if (type == UINT32_MAX) throw Error("graphics oracle: no memory type fits an attachment");
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = context_.allocationType(type);
-    HMB_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &a.memory));
-    HMB_VK_CHECK(vkBindImageMemory(device, a.image, a.memory, 0));
-
-    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    view.image = a.image;
-    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    view.format = format;
-    view.subresourceRange = {aspect, 0, 1, 0, 1};
-    HMB_VK_CHECK(vkCreateImageView(device, &view, nullptr, &a.view));
-  } catch (...) {
-    destroy(a);
-    throw;
-  }
-  return a;
-}
-
 void GraphicsRasterizer::createAttachments() {
-  color_ = createAttachment(kIdFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-  depth_ = createAttachment(depthFormat_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  color_ = createAttachment(context_, width_, height_, kIdFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                            VK_IMAGE_ASPECT_COLOR_BIT);
+  depth_ = createAttachment(context_, width_, height_, depthFormat_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                            VK_IMAGE_ASPECT_DEPTH_BIT);
   const VkImageView views[2] = {color_.view, depth_.view};
   VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   info.renderPass = renderPass_;
@@ -304,14 +225,6 @@ void GraphicsRasterizer::createPipelines() {
   vkDestroyShaderModule(device, frag, nullptr);
 }
 
-void GraphicsRasterizer::destroy(Attachment& a) {
-  const VkDevice device = context_.device();
-  if (a.view) vkDestroyImageView(device, a.view, nullptr);
-  if (a.image) vkDestroyImage(device, a.image, nullptr);
-  if (a.memory) vkFreeMemory(device, a.memory, nullptr);
-  a = Attachment{};
-}
-
 void* GraphicsRasterizer::reserveVertices(VkDeviceSize bytes) {
   if (vertices_.size() < bytes) {
     // Grow by half again so a benchmark ramping up its triangle count reallocates rarely.
@@ -365,11 +278,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, 0, 1, &after,
                            0, nullptr, 0, nullptr);
     }
-    if (queryPool_) {
-      vkCmdResetQueryPool(cmd, queryPool_, 0, 2);
-      // ALL_COMMANDS: the start stamp waits for the upload above, so it is not timed.
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, queryPool_, 0);
-    }
+    timer_.begin(cmd);  // after the upload above, which is not timed
 
     VkClearValue clears[2]{};
     clears[0].color.uint32[0] = 0;
@@ -393,7 +302,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
       }
     }
     vkCmdEndRenderPass(cmd);
-    if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 1);
+    timer_.end(cmd);
 
     // The render pass left both attachments in TRANSFER_SRC_OPTIMAL (its outgoing dependency
     // orders the copies after the attachment writes).
@@ -411,14 +320,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
                          0, nullptr);
   });
 
-  lastDrawMs_.reset();
-  if (queryPool_) {
-    uint64_t stamps[2] = {0, 0};
-    HMB_VK_CHECK(vkGetQueryPoolResults(context_.device(), queryPool_, 0, 2, sizeof(stamps), stamps,
-                                       sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const double ticks = double((stamps[1] - stamps[0]) & context_.info().timestampMask);
-    lastDrawMs_ = ticks * context_.info().timestampPeriodNs * 1e-6;
-  }
+  lastDrawMs_ = timer_.milliseconds();
 
   OracleImage image;
   image.width = width_;

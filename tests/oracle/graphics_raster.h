@@ -33,6 +33,7 @@
 
 #include "kernels/shared/scene_layout.h"
 #include "runtime/vulkan/buffer.h"
+#include "tests/oracle/oracle_vulkan.h"
 
 namespace hmb::vk {
 class Context;
@@ -75,22 +76,15 @@ class GraphicsRasterizer {
   VkFormat depthFormat() const { return depthFormat_; }
 
  private:
-  struct Attachment {
-    VkImage image = VK_NULL_HANDLE;
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    VkImageView view = VK_NULL_HANDLE;
-  };
-
   void createRenderPass();
   void createAttachments();
   void createPipelines();
-  Attachment createAttachment(VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
-  void destroy(Attachment& attachment);
   void* reserveVertices(VkDeviceSize bytes);  // where the host writes this call's vertices
   void release();
 
   const vk::Context& context_;
   uint32_t width_, height_;
+  DrawTimer timer_;
   VkFormat depthFormat_ = VK_FORMAT_UNDEFINED;
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
@@ -99,7 +93,6 @@ class GraphicsRasterizer {
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
   vk::Buffer vertices_, staging_;  // staging_ only where vertex memory is not host-visible
   vk::Buffer idsReadback_, depthReadback_;
-  VkQueryPool queryPool_ = VK_NULL_HANDLE;
   std::optional<double> lastDrawMs_;
 };
 

@@ -1,0 +1,373 @@
+#include "tests/oracle/graphics_gbuffer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "gbuffer_frag.spv.h"
+#include "gbuffer_vert.spv.h"
+#include "kernels/shared/layer_layout.h"
+#include "runtime/error.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/vulkan/check.h"
+#include "runtime/vulkan/context.h"
+#include "tests/oracle/shaders/gbuffer_oracle_layout.h"
+
+namespace hmb::oracle {
+namespace {
+
+constexpr VkFormat kRecordFormat = VK_FORMAT_R32G32B32A32_UINT;  // one packed record per pixel
+
+}  // namespace
+
+GraphicsGBuffer::GraphicsGBuffer(const vk::Context& context, const GpuScene& scene,
+                                 std::span<const glm::vec4> clipCurrent, std::span<const glm::vec4> clipPrevious,
+                                 std::span<const gpu::GpuVertexShading> shading, uint32_t width, uint32_t height)
+    : context_(context), width_(width), height_(height), timer_(context) {
+  if (width == 0 || height == 0) throw Error("G-buffer oracle: image size must be at least 1x1");
+  if (clipCurrent.size() < scene.instanceVertexCount() || clipPrevious.size() < scene.instanceVertexCount() ||
+      shading.size() < scene.instanceVertexCount())
+    throw Error("G-buffer oracle: fewer transformed vertices than the scene has");
+  requireGraphicsQueue(context, "G-buffer oracle");
+  depthFormat_ = pickDepthFormat(context, "G-buffer oracle");
+
+  // What the resolve writes where no triangle is: the background colour at the far depth.
+  const gpu::GpuCamera camera = scene.cameraBuffer().download<gpu::GpuCamera>().at(0);
+  const float far = scene.camera().zfar;
+  backgroundSample_ = gpu::packLayerSample(glm::vec3(camera.background), far, glm::vec2(0.0f));
+  backgroundSurface_ = gpu::packLayerSurface(glm::vec3(0.0f), 0u, far, glm::vec2(0.0f));
+
+  // Consecutive triangles of the same sidedness share one draw, in id order (equal depths: the
+  // first drawn wins, as the smallest id does in the compute rasterizer).
+  std::vector<gpu::GpuTriangle> triangles = scene.triangles().download<gpu::GpuTriangle>();
+  triangles.resize(scene.triangleCount());
+  const std::vector<gpu::GpuInstance> instances = scene.instances().download<gpu::GpuInstance>();
+  for (uint32_t t = 0; t < triangles.size(); ++t) {
+    const uint32_t pipeline = (instances.at(triangles[t].instance).flags & HMB_INSTANCE_DOUBLE_SIDED) != 0 ? 1 : 0;
+    if (draws_.empty() || draws_.back().pipeline != pipeline) draws_.push_back({pipeline, 3 * t, 0});
+    draws_.back().vertexCount += 3;
+  }
+  auto atLeastOne = [](auto values) {
+    if (values.empty()) values.resize(1);
+    return values;
+  };
+  triangles_ = vk::uploadedBuffer(context, atLeastOne(triangles), "G-buffer oracle triangles");
+  clipCurrent_ = vk::uploadedBuffer(context, atLeastOne(std::vector(clipCurrent.begin(), clipCurrent.end())),
+                                    "G-buffer oracle clip positions");
+  clipPrevious_ = vk::uploadedBuffer(context, atLeastOne(std::vector(clipPrevious.begin(), clipPrevious.end())),
+                                     "G-buffer oracle previous clip positions");
+  shading_ = vk::uploadedBuffer(context, atLeastOne(std::vector(shading.begin(), shading.end())),
+                                "G-buffer oracle vertex shading");
+  try {
+    createRenderPass();
+    createFramebuffer();
+    createDescriptors(scene);
+    createPipelines(scene.texturePath());
+    const VkDeviceSize bytes = VkDeviceSize(width) * height * sizeof(glm::uvec4);
+    samplesReadback_ = vk::Buffer(context, bytes, vk::MemoryUse::Readback, "G-buffer oracle samples (readback)");
+    surfacesReadback_ = vk::Buffer(context, bytes, vk::MemoryUse::Readback, "G-buffer oracle surfaces (readback)");
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+GraphicsGBuffer::~GraphicsGBuffer() { release(); }
+
+void GraphicsGBuffer::release() {
+  const VkDevice device = context_.device();
+  for (VkPipeline& pipeline : pipelines_) {
+    if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
+    pipeline = VK_NULL_HANDLE;
+  }
+  if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
+  if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
+  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+  if (framebuffer_) vkDestroyFramebuffer(device, framebuffer_, nullptr);
+  if (renderPass_) vkDestroyRenderPass(device, renderPass_, nullptr);
+  destroyAttachment(context_, samples_);
+  destroyAttachment(context_, surfaces_);
+  destroyAttachment(context_, depth_);
+  pipelineLayout_ = VK_NULL_HANDLE;
+  pool_ = VK_NULL_HANDLE;
+  set_ = VK_NULL_HANDLE;
+  setLayout_ = VK_NULL_HANDLE;
+  framebuffer_ = VK_NULL_HANDLE;
+  renderPass_ = VK_NULL_HANDLE;
+}
+
+void GraphicsGBuffer::createRenderPass() {
+  VkAttachmentDescription attachments[3]{};
+  attachments[0].format = attachments[1].format = kRecordFormat;
+  attachments[2].format = depthFormat_;
+  for (VkAttachmentDescription& a : attachments) {
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // every frame clears
+    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  }
+  const VkAttachmentReference colorRefs[2] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                              {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
+  const VkAttachmentReference depthRef{2, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 2;
+  subpass.pColorAttachments = colorRefs;
+  subpass.pDepthStencilAttachment = &depthRef;
+
+  constexpr VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                                    VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                                    VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  constexpr VkAccessFlags attachmentWrites =
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkSubpassDependency dependencies[2]{};
+  // The previous frame's readback copies read the attachments before this frame clears them.
+  dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[0].dstSubpass = 0;
+  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[0].dstStageMask = attachmentStages;
+  dependencies[0].dstAccessMask = attachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+  // The readback copies read what the subpass wrote.
+  dependencies[1].srcSubpass = 0;
+  dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[1].srcStageMask = attachmentStages;
+  dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[1].srcAccessMask = attachmentWrites;
+  dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = 3;
+  info.pAttachments = attachments;
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = 2;
+  info.pDependencies = dependencies;
+  HMB_VK_CHECK(vkCreateRenderPass(context_.device(), &info, nullptr, &renderPass_));
+}
+
+void GraphicsGBuffer::createFramebuffer() {
+  samples_ = createAttachment(context_, width_, height_, kRecordFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                              VK_IMAGE_ASPECT_COLOR_BIT);
+  surfaces_ = createAttachment(context_, width_, height_, kRecordFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                               VK_IMAGE_ASPECT_COLOR_BIT);
+  depth_ = createAttachment(context_, width_, height_, depthFormat_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                            VK_IMAGE_ASPECT_DEPTH_BIT);
+  const VkImageView views[3] = {samples_.view, surfaces_.view, depth_.view};
+  VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  info.renderPass = renderPass_;
+  info.attachmentCount = 3;
+  info.pAttachments = views;
+  info.width = width_;
+  info.height = height_;
+  info.layers = 1;
+  HMB_VK_CHECK(vkCreateFramebuffer(context_.device(), &info, nullptr, &framebuffer_));
+}
+
+void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
+  const VkDevice device = context_.device();
+  VkDescriptorSetLayoutBinding bindings[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
+  for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i) {
+    bindings[i].binding = i;
+    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorCount = 1;
+    bindings[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layoutInfo.bindingCount = HMB_GBUFFER_ORACLE_BINDING_COUNT;
+  layoutInfo.pBindings = bindings;
+  HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
+
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, HMB_GBUFFER_ORACLE_BINDING_COUNT};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  HMB_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_));
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = pool_;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &setLayout_;
+  HMB_VK_CHECK(vkAllocateDescriptorSets(device, &alloc, &set_));
+
+  // The order of HMB_GBUFFER_ORACLE_BINDING_*, then the scene's as scene_bindings.glsl has it.
+  const vk::Buffer* buffers[HMB_GBUFFER_ORACLE_BINDING_COUNT] = {
+      &triangles_,          &clipCurrent_,       &clipPrevious_,    &shading_,          &scene.vertices(),
+      &scene.instances(),   &scene.materials(),  &scene.texels(),   &scene.cameraBuffer()};
+  VkDescriptorBufferInfo infos[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
+  VkWriteDescriptorSet writes[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
+  for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i) {
+    infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+    writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[i].dstSet = set_;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(device, HMB_GBUFFER_ORACLE_BINDING_COUNT, writes, 0, nullptr);
+
+  const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(gpu::GBufferOracleParams)};
+  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout_;
+  pipelineLayoutInfo.pushConstantRangeCount = 1;
+  pipelineLayoutInfo.pPushConstantRanges = &push;
+  HMB_VK_CHECK(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_));
+}
+
+void GraphicsGBuffer::createPipelines(bool texturePath) {
+  const VkDevice device = context_.device();
+  VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+  try {
+    vert = createShader(device, kGBuffer_vert, sizeof(kGBuffer_vert));
+    frag = createShader(device, kGBuffer_frag, sizeof(kGBuffer_frag));
+    // The texture path as the resolve kernel is built for this scene (shading.glsl).
+    const VkSpecializationMapEntry entry{HMB_SPEC_TEXTURE_PATH, 0, sizeof(VkBool32)};
+    const VkBool32 texture = texturePath ? VK_TRUE : VK_FALSE;
+    const VkSpecializationInfo specialization{1, &entry, sizeof(texture), &texture};
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vert;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = frag;
+    stages[1].pName = "main";
+    stages[1].pSpecializationInfo = &specialization;
+
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    const VkViewport viewport{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {width_, height_}};
+    VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewportState.viewportCount = 1;
+    viewportState.pViewports = &viewport;
+    viewportState.scissorCount = 1;
+    viewportState.pScissors = &scissor;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.depthClampEnable = VK_FALSE;  // 0 <= z/w <= 1, as the compute rasterizer keeps
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // graphics_raster.h: CCW with y up is front
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = VK_TRUE;
+    depth.depthWriteEnable = VK_TRUE;
+    depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is larger
+    VkPipelineColorBlendAttachmentState blendAttachments[2]{};
+    for (VkPipelineColorBlendAttachmentState& b : blendAttachments)
+      b.colorWriteMask =
+          VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = 2;
+    blend.pAttachments = blendAttachments;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewportState;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.layout = pipelineLayout_;
+    info.renderPass = renderPass_;
+    const VkCullModeFlags cullModes[2] = {VK_CULL_MODE_BACK_BIT, VK_CULL_MODE_NONE};
+    for (int i = 0; i < 2; ++i) {
+      raster.cullMode = cullModes[i];
+      HMB_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines_[i]));
+    }
+  } catch (...) {
+    if (vert) vkDestroyShaderModule(device, vert, nullptr);
+    if (frag) vkDestroyShaderModule(device, frag, nullptr);
+    throw;
+  }
+  vkDestroyShaderModule(device, vert, nullptr);
+  vkDestroyShaderModule(device, frag, nullptr);
+}
+
+GraphicsGBuffer::Image GraphicsGBuffer::render() {
+  context_.submitAndWait([&](VkCommandBuffer cmd) {
+    timer_.begin(cmd);
+    VkClearValue clears[3]{};
+    for (int c = 0; c < 4; ++c) {
+      clears[0].color.uint32[c] = backgroundSample_[c];
+      clears[1].color.uint32[c] = backgroundSurface_[c];
+    }
+    clears[2].depthStencil = {0.0f, 0};  // the far plane
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = renderPass_;
+    begin.framebuffer = framebuffer_;
+    begin.renderArea = {{0, 0}, {width_, height_}};
+    begin.clearValueCount = 3;
+    begin.pClearValues = clears;
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 0, nullptr);
+    const gpu::GBufferOracleParams params{width_, height_, 0, 0};
+    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(params), &params);
+    uint32_t bound = UINT32_MAX;
+    for (const Draw& draw : draws_) {
+      if (draw.pipeline != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[draw.pipeline]);
+      bound = draw.pipeline;
+      vkCmdDraw(cmd, draw.vertexCount, 1, draw.firstVertex, 0);
+    }
+    vkCmdEndRenderPass(cmd);
+    timer_.end(cmd);
+
+    VkBufferImageCopy region{};
+    region.imageExtent = {width_, height_, 1};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    vkCmdCopyImageToBuffer(cmd, samples_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, samplesReadback_.handle(), 1,
+                           &region);
+    vkCmdCopyImageToBuffer(cmd, surfaces_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, surfacesReadback_.handle(), 1,
+                           &region);
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
+                         0, nullptr);
+  });
+  lastDrawMs_ = timer_.milliseconds();
+  return {samplesReadback_.download<glm::uvec4>(), surfacesReadback_.download<glm::uvec4>()};
+}
+
+GBufferAgreement compareGBuffers(std::span<const glm::uvec4> samples, std::span<const glm::uvec4> surfaces,
+                                 const GraphicsGBuffer::Image& oracle) {
+  const size_t pixels = oracle.samples.size();
+  if (samples.size() < pixels || surfaces.size() < pixels) throw Error("G-buffer comparison: the layer is too small");
+  GBufferAgreement a;
+  size_t sameObject = 0, onObject = 0, withinTolerance = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const uint32_t id = gpu::layerObjectId(surfaces[i]);
+    if (id != gpu::layerObjectId(oracle.surfaces[i])) continue;
+    ++sameObject;
+    if (id == 0) continue;
+    ++onObject;
+    const double da = gpu::layerDepth(surfaces[i]), db = gpu::layerDepth(oracle.surfaces[i]);
+    const double depth = std::abs(da - db) / std::max({std::abs(da), std::abs(db), 1e-30});
+    const glm::dvec3 ca = glm::dvec3(gpu::layerColor(samples[i])), cb = glm::dvec3(gpu::layerColor(oracle.samples[i]));
+    const double color = std::max({std::abs(ca.x - cb.x), std::abs(ca.y - cb.y), std::abs(ca.z - cb.z)});
+    const double velocity = glm::length(glm::dvec2(gpu::layerVelocity(surfaces[i])) -
+                                        glm::dvec2(gpu::layerVelocity(oracle.surfaces[i])));
+    const double cosine = glm::dot(glm::dvec3(gpu::layerNormal(surfaces[i])), glm::dvec3(gpu::layerNormal(oracle.surfaces[i])));
+    const double normal = std::acos(std::clamp(cosine, -1.0, 1.0));
+    a.depthRelative = std::max(a.depthRelative, depth);
+    a.color = std::max(a.color, color);
+    a.velocityPixels = std::max(a.velocityPixels, velocity);
+    a.normalRadians = std::max(a.normalRadians, normal);
+    withinTolerance += depth <= kDepthTolerance && color <= kColorTolerance && velocity <= kVelocityTolerance &&
+                       normal <= kNormalTolerance;
+  }
+  if (pixels > 0) a.objectIds = double(sameObject) / double(pixels);
+  if (onObject > 0) a.attributes = double(withinTolerance) / double(onObject);
+  return a;
+}
+
+}  // namespace hmb::oracle
