@@ -5,6 +5,8 @@
 // tens of units long and the back plate shows through the front one; reversed depth keeps
 // them apart (kernels/raster/raster_layout.h).
 #include <cstdlib>
+#include <iostream>
+#include <string>
 
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
@@ -72,6 +74,9 @@ TEST_F(DepthPrecisionTest, SurfacesAPartIn1e4ApartWithNear1eMinus3AndFar1e6Raste
     differing += differs ? 1 : 0;
     red += sharp.display.pixels[i * 4] > sharp.display.pixels[i * 4 + 1] + 64 ? 1 : 0;
   }
+  RecordProperty("pixels_differing", std::to_string(differing));
+  std::cout << "[ depth     ] sharp vs reference: " << differing << " of " << kWidth * kHeight
+            << " pixels differ by more than 2/255; front plate on " << red << "\n";
   EXPECT_LT(differing, 20u) << "pixels where the sharp frame and the 16-spp reference differ by more than 2/255";
   EXPECT_GT(red, size_t(kWidth) * kHeight / 2) << "the front plate fills most of the frame";
 }
