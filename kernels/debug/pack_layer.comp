@@ -20,14 +20,15 @@ void main() {
   if (i >= params.count) return;
   const LayerPixel p = inputs[i];
   const uvec4 s = packLayerSample(p.colorDepth.rgb, p.colorDepth.w, p.velocity);
-  const uvec4 f = packLayerSurface(p.normal.xyz, p.objectId, p.colorDepth.w, p.velocity);
+  const uvec4 f = packLayerSurface(p.normal.xyz, p.objectId, p.velocity);
   samples[i] = s;
   surfaces[i] = f;
   LayerPixel d;
-  d.colorDepth = vec4(layerColor(s), layerDepth(s));
-  d.normal = vec4(layerNormal(f), 0.0);
-  d.velocity = layerVelocity(f);
-  d.objectId = layerObjectId(f);
+  d.colorDepth = vec4(sampleColor(s), sampleDepth(s));
+  d.normal = vec4(surfaceNormal(f), 0.0);
+  d.velocity = surfaceVelocity(f);
+  d.objectId = surfaceObjectId(f);
+  d.sampleVelocity = sampleVelocity(s);
   d.pad0 = 0u;
   decoded[i] = d;
 }

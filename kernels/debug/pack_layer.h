@@ -16,11 +16,14 @@
 HMB_GPU_BEGIN
 // One pixel of a layer, unpacked.
 struct LayerPixel {
-  vec4 colorDepth;  // rgb, w camera-space depth
-  vec4 normal;      // xyz; w unused
-  vec2 velocity;    // pixels per frame
+  vec4 colorDepth;       // rgb, w camera-space depth
+  vec4 normal;           // xyz; w unused
+  vec2 velocity;         // pixels per frame (decoded: the surface's)
+  vec2 sampleVelocity;   // decoded only: the sample's (half floats)
   uint objectId;
   uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 struct PackLayerParams {
@@ -30,7 +33,7 @@ struct PackLayerParams {
   uint pad2;
 };
 HMB_GPU_END
-HMB_CHECK_SIZE(LayerPixel, 48)
+HMB_CHECK_SIZE(LayerPixel, 64)
 HMB_CHECK_SIZE(PackLayerParams, 16)
 
 #endif

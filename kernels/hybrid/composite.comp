@@ -42,11 +42,10 @@ float compositeCentreDepth = 0.0;
 
 uvec4 blurSampleAt(uint i) { return LAYER_SAMPLE(raster, i); }
 
-// Share of sample `sampleIndex` that is background to the pixel (object `object` at `depth`):
-// one load of its surface (object id and depth).
+// Share of sample `sampleIndex` that is background to the pixel (object `object` at `depth`).
 float behindShare(uint sampleIndex, uint object, float depth) {
-  const uvec4 surface = LAYER_SURFACE(raster, sampleIndex);
-  return behindShareOf(layerObjectId(surface), sanitizeDepth(layerDepth(surface)), object, depth, params.softZExtent);
+  return behindShareOf(surfaceObjectId(LAYER_SURFACE(raster, sampleIndex)),
+                       sanitizeDepth(sampleDepth(LAYER_SAMPLE(raster, sampleIndex))), object, depth, params.softZExtent);
 }
 
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
@@ -60,15 +59,15 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
 vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
   const uvec4 own = LAYER_SURFACE(raster, index);
   float speed;
-  const vec2 v = gatherVelocity(layerVelocity(own), params.velocityScale, params.maxSpeed, speed);
-  const uint object = layerObjectId(own);
+  const vec2 v = gatherVelocity(surfaceVelocity(own), params.velocityScale, params.maxSpeed, speed);
+  const uint object = surfaceObjectId(own);
   vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0;
   for (uint i = 0u; i < params.samples; ++i) {
     const ivec2 samplePixel = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float onObject = 1.0 - behindShare(sampleIndex, object, centreDepth);
-    foregroundSum += onObject * sanitizeColor(vec4(layerColor(LAYER_SAMPLE(raster, sampleIndex)), 1.0));
+    foregroundSum += onObject * sanitizeColor(vec4(sampleColor(LAYER_SAMPLE(raster, sampleIndex)), 1.0));
     foregroundCount += onObject;
   }
   const float alpha = foregroundCount / float(params.samples);
@@ -95,7 +94,7 @@ void main() {
   }
   weightsComposite = inMask && !kCoverage;
   blurredBackground = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
-  centreObject = weightsComposite ? layerObjectId(LAYER_SURFACE(raster, index)) : 0u;
+  centreObject = weightsComposite ? surfaceObjectId(LAYER_SURFACE(raster, index)) : 0u;
   compositeCentreDepth = centre.depth;
   outColor[index] = gatherSamples(pixel, centre, foregroundScale, backgroundScale);
 }

@@ -11,7 +11,8 @@
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-// The G-buffer's surfaces (velocity, object id, depth: shared/layer_layout.h).
+// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h.
+layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_EDGE_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
@@ -25,13 +26,12 @@ layout(push_constant) uniform Params { RayMaskParams params; };
 bool isCandidate(uvec2 pixel, uint index) {
   const uvec4 here = surfaces[index];
   float speed;
-  const vec2 v = gatherVelocity(layerVelocity(here), params.blur.velocityScale, params.blur.maxSpeed, speed);
+  const vec2 v = gatherVelocity(surfaceVelocity(here), params.blur.velocityScale, params.blur.maxSpeed, speed);
   if (!(speed > 0.0)) return false;
   const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
   const uint endIndex = uint(end.y) * params.blur.width + uint(end.x);
-  const uvec4 there = surfaces[endIndex];
-  return endsOnDeeperObject(layerObjectId(here), sanitizeDepth(layerDepth(here)), layerObjectId(there),
-                            layerDepth(there), params.blur.softZExtent);
+  return endsOnDeeperObject(surfaceObjectId(here), sanitizeDepth(sampleDepth(samples[index])),
+                            surfaceObjectId(surfaces[endIndex]), sampleDepth(samples[endIndex]), params.blur.softZExtent);
 }
 
 void main() {

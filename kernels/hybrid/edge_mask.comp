@@ -17,7 +17,8 @@
 
 layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
-// The G-buffer's surfaces (normal, depth: shared/layer_layout.h).
+// The G-buffer's samples (depth) and surfaces (normal): shared/layer_layout.h.
+layout(std430, binding = HMB_EDGE_MASK_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
@@ -39,8 +40,8 @@ float edgeStrength(ivec2 pixel, float depthHere) {
   float largest = 0.0;
   for (int k = 0; k < 25; ++k) {
     const ivec2 p = clamp(pixel + ivec2(k % 5 - 2, k / 5 - 2), ivec2(0), last);
-    const uvec4 surface = surfaces[uint(p.y) * params.blur.width + uint(p.x)];
-    window[k] = vec4(sanitizeNormal(layerNormal(surface)), sanitizeDepth(layerDepth(surface)));
+    const uint at = uint(p.y) * params.blur.width + uint(p.x);
+    window[k] = vec4(sanitizeNormal(surfaceNormal(surfaces[at])), sanitizeDepth(sampleDepth(samples[at])));
     largest = max(largest, window[k].w);
   }
   vec2 depthGradient = vec2(0.0);
@@ -64,7 +65,7 @@ void main() {
   if (entry >= counters.candidateCount) return;
   const uint index = candidates[entry];
   const uvec2 pixel = uvec2(index % params.blur.width, index / params.blur.width);
-  const float depthHere = sanitizeDepth(layerDepth(surfaces[index]));
+  const float depthHere = sanitizeDepth(sampleDepth(samples[index]));
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).

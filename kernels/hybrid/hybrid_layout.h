@@ -43,11 +43,12 @@
 #define HMB_MASK_TILE_GROUP_X 8
 #define HMB_MASK_TILE_GROUP_Y 8
 
-#define HMB_EDGE_CANDIDATES_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces (shared/layer_layout.h)
-#define HMB_EDGE_CANDIDATES_BINDING_TILES 1     // uint tile index per moving tile
-#define HMB_EDGE_CANDIDATES_BINDING_COUNTERS 2  // RayMaskCounters: candidateCount
-#define HMB_EDGE_CANDIDATES_BINDING_LIST 3      // uint pixel index per candidate, in no order
-#define HMB_EDGE_CANDIDATES_BINDING_COUNT 4
+#define HMB_EDGE_CANDIDATES_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples (shared/layer_layout.h)
+#define HMB_EDGE_CANDIDATES_BINDING_SURFACES 1  // uvec4 per pixel: the G-buffer's surfaces
+#define HMB_EDGE_CANDIDATES_BINDING_TILES 2     // uint tile index per moving tile
+#define HMB_EDGE_CANDIDATES_BINDING_COUNTERS 3  // RayMaskCounters: candidateCount
+#define HMB_EDGE_CANDIDATES_BINDING_LIST 4      // uint pixel index per candidate, in no order
+#define HMB_EDGE_CANDIDATES_BINDING_COUNT 5
 
 #define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
@@ -55,7 +56,8 @@
 // The edge mask, then the coarse edge mask (HMB_EDGE_BLOCKS_FIRST): 1 in the mask, 0 elsewhere
 // (written at 1s only; the buffer is filled with 0 before).
 #define HMB_EDGE_MASK_BINDING_EDGES 3
-#define HMB_EDGE_MASK_BINDING_COUNT 4
+#define HMB_EDGE_MASK_BINDING_SAMPLES 4      // uvec4 per pixel: the G-buffer's samples (depth)
+#define HMB_EDGE_MASK_BINDING_COUNT 5
 
 // Side of the blocks of the coarse edge image, in pixels. A block is flagged when an edge
 // pixel lies within one pixel of it, so a segment passing through no flagged block passes
@@ -75,7 +77,8 @@
 #define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
 #define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel to reveal, in no order
-#define HMB_RANGE_CHECK_BINDING_COUNT 6
+#define HMB_RANGE_CHECK_BINDING_SAMPLES 6   // uvec4 per pixel: the G-buffer's samples (the coverage test's depths)
+#define HMB_RANGE_CHECK_BINDING_COUNT 7
 
 // Ray mask values: a mask pixel is revealed (listed for the reveal, its revealed surface then
 // written) or not (the coverage composite gives its background no weight).

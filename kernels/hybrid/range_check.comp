@@ -14,7 +14,8 @@
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-// The G-buffer's surfaces (velocity, object id, depth: shared/layer_layout.h).
+// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h.
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGES) readonly buffer Edges { uint edges[]; };
@@ -84,14 +85,13 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
 // the composite gives the revealed background a weight above 0.
 bool meetsBackground(uvec2 pixel, uint index, vec2 v) {
   const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.blur.seed));
-  const uvec4 own = surfaces[index];
-  const uint centreObject = layerObjectId(own);
-  const float centreDepth = sanitizeDepth(layerDepth(own));
+  const uint centreObject = surfaceObjectId(surfaces[index]);
+  const float centreDepth = sanitizeDepth(sampleDepth(samples[index]));
   for (uint i = 0u; i < params.blur.samples; ++i) {
     const ivec2 p = coverageSamplePixel(pixel, v, i, params.blur.samples, jitter, params.blur.width, params.blur.height);
     const uint sampleIndex = uint(p.y) * params.blur.width + uint(p.x);
-    const uvec4 surface = surfaces[sampleIndex];
-    if (behindShareOf(layerObjectId(surface), sanitizeDepth(layerDepth(surface)), centreObject, centreDepth,
+    if (behindShareOf(surfaceObjectId(surfaces[sampleIndex]), sanitizeDepth(sampleDepth(samples[sampleIndex])),
+                      centreObject, centreDepth,
                       params.blur.softZExtent) > 0.0)
       return true;
   }
@@ -103,7 +103,7 @@ void main() {
   if (pixel.x >= params.blur.width || pixel.y >= params.blur.height) return;
   const uint index = pixel.y * params.blur.width + pixel.x;
   float speed;
-  const vec2 v = gatherVelocity(layerVelocity(surfaces[index]), params.blur.velocityScale, params.blur.maxSpeed, speed);
+  const vec2 v = gatherVelocity(surfaceVelocity(surfaces[index]), params.blur.velocityScale, params.blur.maxSpeed, speed);
   if (!(speed > 0.0) || !meetsEdge(pixel, v, speed)) {
     mask[index] = HMB_MASK_NONE;
     return;

@@ -60,7 +60,7 @@ void main() {
   BvhHit hit;
   uint traces = 1u;
   if (params.stop == HMB_REVEAL_STOP_OBJECT_ID) {
-    ray.ignoreObjectId = layerObjectId(rasterSurfaces[index]);
+    ray.ignoreObjectId = surfaceObjectId(rasterSurfaces[index]);
     hit = closestHit(ray, scene);
   } else {
     hit = closestHit(ray, scene);

@@ -44,7 +44,7 @@ void main() {
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   const uvec4 own = samples[index];
-  const vec4 centreColor = sanitizeColor(vec4(layerColor(own), 1.0));
+  const vec4 centreColor = sanitizeColor(vec4(sampleColor(own), 1.0));
 
   uint h = mblurHash(pixel.x, pixel.y, params.seed);
   const float sampleJitter = unitFromHash(h);
@@ -65,9 +65,9 @@ void main() {
   const uint pairs = (params.samples + 1u) / 2u;
   const float pixelsToSampleUnits = float(pairs) / dominant.z;
   float centreSpeed;
-  gatherVelocity(layerVelocity(own), params.velocityScale, m, centreSpeed);
+  gatherVelocity(sampleVelocity(own), params.velocityScale, m, centreSpeed);
   const float centreSpread = centreSpeed * pixelsToSampleUnits;
-  const float centreDepth = sanitizeDepth(layerDepth(own));
+  const float centreDepth = sanitizeDepth(sampleDepth(own));
 
   vec4 sum = vec4(0.0);
   float weightSum = 0.0;
@@ -80,10 +80,10 @@ void main() {
     const uint indexB = uint(pixelB.y) * params.width + uint(pixelB.x);
     const uvec4 sampleA = samples[indexA], sampleB = samples[indexB];
     float speedA, speedB;
-    gatherVelocity(layerVelocity(sampleA), params.velocityScale, m, speedA);
-    gatherVelocity(layerVelocity(sampleB), params.velocityScale, m, speedB);
-    const float depthA = sanitizeDepth(layerDepth(sampleA));
-    const float depthB = sanitizeDepth(layerDepth(sampleB));
+    gatherVelocity(sampleVelocity(sampleA), params.velocityScale, m, speedA);
+    gatherVelocity(sampleVelocity(sampleB), params.velocityScale, m, speedB);
+    const float depthA = sanitizeDepth(sampleDepth(sampleA));
+    const float depthB = sanitizeDepth(sampleDepth(sampleB));
     const float spreadA = speedA * pixelsToSampleUnits, spreadB = speedB * pixelsToSampleUnits;
     float weightA = sampleWeight(centreDepth, depthA, offset, centreSpread, spreadA);
     float weightB = sampleWeight(centreDepth, depthB, offset, centreSpread, spreadB);
@@ -92,7 +92,7 @@ void main() {
     } else if (depthB > depthA && spreadA > spreadB) {
       weightB = weightA;
     }
-    sum += weightA * sanitizeColor(vec4(layerColor(sampleA), 1.0)) + weightB * sanitizeColor(vec4(layerColor(sampleB), 1.0));
+    sum += weightA * sanitizeColor(vec4(sampleColor(sampleA), 1.0)) + weightB * sanitizeColor(vec4(sampleColor(sampleB), 1.0));
     weightSum += weightA + weightB;
   }
   const float sampleCount = float(2u * pairs);

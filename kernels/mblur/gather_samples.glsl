@@ -45,12 +45,12 @@ struct GatherCentre {
 // whole neighbourhood, so that the gather leaves it its own colour.
 bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
   const uvec4 own = blurSampleAt(index);
-  centre.color = sanitizeColor(vec4(layerColor(own), 1.0));
+  centre.color = sanitizeColor(vec4(sampleColor(own), 1.0));
   const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
   if (dominant.z < kMinBlurPixels) return false;
   centre.dominant = dominant.xy;
-  gatherVelocity(layerVelocity(own), params.velocityScale, float(params.tileSize), centre.speed);
-  centre.depth = sanitizeDepth(layerDepth(own));
+  gatherVelocity(sampleVelocity(own), params.velocityScale, float(params.tileSize), centre.speed);
+  centre.depth = sanitizeDepth(sampleDepth(own));
   centre.jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
   return true;
 }
@@ -81,8 +81,8 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     const float ds = length(vec2(samplePixel - ivec2(pixel)));
     const uvec4 packed = blurSampleAt(sampleIndex);
     float sampleSpeed;
-    gatherVelocity(layerVelocity(packed), params.velocityScale, maxSpeed, sampleSpeed);
-    const float sampleDepth = sanitizeDepth(layerDepth(packed));
+    gatherVelocity(sampleVelocity(packed), params.velocityScale, maxSpeed, sampleSpeed);
+    const float sampleDepth = sanitizeDepth(sampleDepth(packed));
 
     const float z = (centreDepth - sampleDepth) / params.softZExtent;
     float wf = clamp(1.0 + z, 0.0, 1.0) * cone(ds, sampleSpeed);
@@ -92,7 +92,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     wf *= foregroundScale;
     wb *= backgroundScale;
     const float w = wf + wb + ws;
-    const vec4 sampleColor = sanitizeColor(vec4(layerColor(packed), 1.0));
+    const vec4 sampleColor = sanitizeColor(vec4(sampleColor(packed), 1.0));
     weightSum += w;
     sum += w * contributionOf(sampleIndex, sampleColor);
   }

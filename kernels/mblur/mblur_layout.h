@@ -17,7 +17,7 @@
 // allows an invocation), then one lane reduces the 64 lane results.
 #define HMB_TILE_MAX_GROUP_X 8
 #define HMB_TILE_MAX_GROUP_Y 8
-#define HMB_TILE_MAX_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples, velocity q in pixels per frame
+#define HMB_TILE_MAX_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces, velocity q in pixels per frame
 #define HMB_TILE_MAX_BINDING_TILES 1     // vec4 per tile (see above)
 #define HMB_TILE_MAX_BINDING_COUNT 2
 

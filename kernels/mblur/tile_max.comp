@@ -9,7 +9,7 @@
 
 layout(local_size_x = HMB_TILE_MAX_GROUP_X, local_size_y = HMB_TILE_MAX_GROUP_Y) in;
 
-layout(std430, binding = HMB_TILE_MAX_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
+layout(std430, binding = HMB_TILE_MAX_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 layout(std430, binding = HMB_TILE_MAX_BINDING_TILES) writeonly buffer Tiles { vec4 tiles[]; };
 layout(push_constant) uniform Params { TileMaxParams params; };
 
@@ -39,7 +39,7 @@ void main() {
     for (uint x = begin.x + lane.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
       const uint index = y * params.width + x;
       float speed;
-      const vec2 v = gatherVelocity(layerVelocity(samples[index]), params.velocityScale, float(m), speed);
+      const vec2 v = gatherVelocity(surfaceVelocity(surfaces[index]), params.velocityScale, float(m), speed);
       if (better(speed, index, bestSpeed, bestIndex)) {
         bestVelocity = v;
         bestSpeed = speed;

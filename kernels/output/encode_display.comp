@@ -26,7 +26,7 @@ void main() {
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   const uvec4 p = pixels[index];
-  const vec4 c = kLayerSamples ? vec4(layerColor(p), 1.0) : uintBitsToFloat(p);
+  const vec4 c = kLayerSamples ? vec4(sampleColor(p), 1.0) : uintBitsToFloat(p);
   const uint r = quantize(linearToSrgb(c.r));
   const uint g = quantize(linearToSrgb(c.g));
   const uint b = quantize(linearToSrgb(c.b));

@@ -3,8 +3,8 @@
 // build binds its two buffers (samples and surfaces: HMB_LAYER_BINDINGS slots); builds with
 // HMB_BIND_BY_ADDRESS (devices with few storage-buffer bindings) bind one LayerTable of their
 // addresses. Either way a kernel reads and writes LAYER_SAMPLE(name, i) and
-// LAYER_SURFACE(name, i) (packed as shared/layer_layout.h says, decoded with its layer*
-// functions), and writes a whole pixel with WRITE_LAYER.
+// LAYER_SURFACE(name, i) (packed as shared/layer_layout.h says, decoded with its
+// functions: sample*, surface*), and writes a whole pixel with WRITE_LAYER.
 #ifndef HMB_KERNELS_SHARED_LAYER_BINDINGS_GLSL
 #define HMB_KERNELS_SHARED_LAYER_BINDINGS_GLSL
 
@@ -27,7 +27,7 @@
 #define WRITE_LAYER(name, i, color, normal, objectId, depth, velocity)              \
   {                                                                                  \
     LAYER_SAMPLE(name, i) = packLayerSample(color, depth, velocity);                 \
-    LAYER_SURFACE(name, i) = packLayerSurface(normal, objectId, depth, velocity);    \
+    LAYER_SURFACE(name, i) = packLayerSurface(normal, objectId, velocity);           \
   }
 
 #endif

@@ -1,21 +1,21 @@
 // An image layer (the G-buffer the resolve writes, the revealed layer the ray reveal writes),
-// packed so that each reader takes what it needs in one 16-byte load per pixel:
+// packed so that each reader takes what it needs in one or two 16-byte loads per pixel:
 //   sample  (uvec4): x, y = linear RGB, 21 bits a channel (r in x's low bits, g across x's top
 //                    11 and y's low 10, b above it), z = camera-space depth (float bits),
-//                    w = half velocity x | half velocity y << 16: what every gather reads of a
-//                    sample (kernels/mblur/gather_samples.glsl);
-//   surface (uvec4): x = world normal (octahedral, snorm16 x 2), y = object id (0: the background,
-//                    whose normal is 0), z and w as in the sample: what the ray mask, the
-//                    composite's coverage test and the AOVs read.
-// Depth and velocity are in both, so neither reader class needs the other's record. Velocity is
-// pixels per frame, y down, in half floats (a step of 1/32 pixel at 40 pixels); a non-finite one
-// is written as none. A colour channel (alpha is 1 everywhere) is a float's top 21 bits: 13
-// mantissa bits, rounded, so within 2^-14 (6.1e-5) of the value relative; negative, subnormal and
-// NaN values are written as 0, values past HMB_LAYER_MAX_COLOR as it. Every decoded value is finite but depth,
-// which readers sanitize.
+//                    w = velocity in half floats (x low, y high): all every gather reads of a
+//                    sample (kernels/mblur/gather_samples.glsl), which takes only its length;
+//   surface (uvec4): x = world normal (octahedral, snorm16 x 2), y = object id (0: the
+//                    background, whose normal is 0), z, w = velocity (float bits): what tile-max
+//                    (whose ranking of speeds decides each tile's blur direction), the ray mask,
+//                    the composite's coverage test and the AOVs read.
+// Velocity is pixels per frame, y down; a non-finite one is written as none (in the sample's
+// halves, a step of 1/32 pixel at 40 pixels, and the direction kept past the largest half). A
+// colour channel (alpha is 1 everywhere) is a float's top 21 bits: 13 mantissa bits, rounded, so
+// within 2^-14 (6.1e-5) of the value relative; negative, subnormal and NaN values are written as
+// 0, values past HMB_LAYER_MAX_COLOR as it. Depth is kept bit for bit (readers sanitize it).
 // On lavapipe every access at a per-pixel address is a loop over the lanes, whatever its width,
-// so two stores and one load per sample replace four and three; on GPUs the layer takes 32 bytes
-// per pixel instead of 44.
+// so two stores and one load per gather sample replace four and three; on GPUs the layer takes
+// 32 bytes per pixel instead of 44.
 //
 // The functions below are shared with the host (readbacks, tests' inputs and references), so
 // both sides round the same way. The layer's two buffers take 2 binding numbers
@@ -96,22 +96,24 @@ HMB_SHARED uvec4 packLayerSample(vec3 color, float depth, vec2 velocity) {
   return uvec4(r | (g << 21u), (g >> 11u) | (b << 10u), floatBitsToUint(depth), packLayerVelocity(velocity));
 }
 
-HMB_SHARED uvec4 packLayerSurface(vec3 normal, uint objectId, float depth, vec2 velocity) {
-  return uvec4(packOctahedral(normal), objectId, floatBitsToUint(depth), packLayerVelocity(velocity));
+HMB_SHARED uvec4 packLayerSurface(vec3 normal, uint objectId, vec2 velocity) {
+  const bool finite = !(isnan(velocity.x) || isnan(velocity.y) || isinf(velocity.x) || isinf(velocity.y));
+  return uvec4(packOctahedral(normal), objectId, finite ? floatBitsToUint(velocity.x) : 0u,
+               finite ? floatBitsToUint(velocity.y) : 0u);
 }
 
 // Of a sample.
-HMB_SHARED vec3 layerColor(uvec4 blurSample) {
+HMB_SHARED vec3 sampleColor(uvec4 blurSample) {
   const uint r = blurSample.x & 0x1FFFFFu, g = (blurSample.x >> 21u) | ((blurSample.y & 0x3FFu) << 11u),
              b = (blurSample.y >> 10u) & 0x1FFFFFu;
   return vec3(unpackColorChannel(r), unpackColorChannel(g), unpackColorChannel(b));
 }
-// Of a sample or a surface.
-HMB_SHARED float layerDepth(uvec4 texel) { return uintBitsToFloat(texel.z); }
-HMB_SHARED vec2 layerVelocity(uvec4 texel) { return unpackHalf2x16(texel.w); }
+HMB_SHARED float sampleDepth(uvec4 blurSample) { return uintBitsToFloat(blurSample.z); }
+HMB_SHARED vec2 sampleVelocity(uvec4 blurSample) { return unpackHalf2x16(blurSample.w); }
 // Of a surface.
-HMB_SHARED uint layerObjectId(uvec4 surface) { return surface.y; }
-HMB_SHARED vec3 layerNormal(uvec4 surface) { return surface.y == 0u ? vec3(0.0f) : unpackOctahedral(surface.x); }
+HMB_SHARED uint surfaceObjectId(uvec4 surface) { return surface.y; }
+HMB_SHARED vec3 surfaceNormal(uvec4 surface) { return surface.y == 0u ? vec3(0.0f) : unpackOctahedral(surface.x); }
+HMB_SHARED vec2 surfaceVelocity(uvec4 surface) { return vec2(uintBitsToFloat(surface.z), uintBitsToFloat(surface.w)); }
 
 HMB_GPU_END
 

@@ -37,7 +37,8 @@ class PostProcessMethod final : public FrameMethod {
     const Beauty beauty = still ? gbufferBeauty(gbuffer) : linearBeauty(blurred);
     const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
       if (!still)
-        blur.record(frame, {&gbuffer.layer().samples(), request.width, request.height}, blurred);
+        blur.record(frame, {&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), request.width, request.height},
+                    blurred);
     });
     collectRasterFrame(resources_, request, beauty, result);
     return timings;

@@ -82,7 +82,7 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
 void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
                          const vk::Buffer& output) const {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
-  const MotionBlurInputs raster{&gbuffer.layer().samples(), size_.width(), size_.height()};
+  const MotionBlurInputs raster{&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), size_.width(), size_.height()};
   postProcess_.recordTiles(frame, raster);
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
@@ -95,7 +95,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   // The coverage composite weights the revealed background by 1 - alpha: pixels whose samples
   // all stay on their object (alpha exactly 1) need no reveal (38% of bistro's mask at 1280x720).
   maskParameters.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
-  rayMask_.record(frame, raster, gbuffer.layer().surfaces(), maskParameters);
+  rayMask_.record(frame, raster, maskParameters);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.layer().surfaces(), rayMask_.list(), rayMask_.counters(),
                  revealed_, size_.width(), size_.height(), settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.

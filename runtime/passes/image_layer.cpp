@@ -37,11 +37,11 @@ LayerContents downloadLayer(const ImageLayer& layer, uint64_t pixels) {
   out.velocity.reserve(pixels);
   out.objectId.reserve(pixels);
   for (uint64_t i = 0; i < pixels; ++i) {
-    out.color.push_back(gpu::layerColor(samples[i]));
-    out.normal.push_back(gpu::layerNormal(surfaces[i]));
-    out.depth.push_back(gpu::layerDepth(surfaces[i]));
-    out.velocity.push_back(gpu::layerVelocity(surfaces[i]));
-    out.objectId.push_back(gpu::layerObjectId(surfaces[i]));
+    out.color.push_back(gpu::sampleColor(samples[i]));
+    out.normal.push_back(gpu::surfaceNormal(surfaces[i]));
+    out.depth.push_back(gpu::sampleDepth(samples[i]));
+    out.velocity.push_back(gpu::surfaceVelocity(surfaces[i]));
+    out.objectId.push_back(gpu::surfaceObjectId(surfaces[i]));
   }
   return out;
 }
@@ -56,7 +56,7 @@ PackedLayer packLayer(const LayerContents& c) {
   out.surfaces.reserve(pixels);
   for (size_t i = 0; i < pixels; ++i) {
     out.samples.push_back(gpu::packLayerSample(c.color[i], c.depth[i], c.velocity[i]));
-    out.surfaces.push_back(gpu::packLayerSurface(c.normal[i], c.objectId[i], c.depth[i], c.velocity[i]));
+    out.surfaces.push_back(gpu::packLayerSurface(c.normal[i], c.objectId[i], c.velocity[i]));
   }
   return out;
 }

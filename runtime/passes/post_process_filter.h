@@ -30,10 +30,12 @@ enum class GatherRange {
   Adapted,   // the paper (Fig. 3): full per-exposure velocity, samples over X + u v_N, u in (0, 1]
 };
 
-// One layer to blur: its samples (uvec4 per pixel: colour, depth, velocity in pixels per frame,
-// y down; kernels/shared/layer_layout.h), width * height of them, row 0 at the top.
+// One layer to blur (kernels/shared/layer_layout.h), width * height pixels, row 0 at the top: its
+// samples (colour, depth, velocity: what the gathers read) and surfaces (the exact velocity,
+// which tile-max ranks).
 struct MotionBlurInputs {
   const vk::Buffer* samples = nullptr;
+  const vk::Buffer* surfaces = nullptr;
   uint32_t width = 0;
   uint32_t height = 0;
 };

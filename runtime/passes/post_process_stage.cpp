@@ -61,7 +61,7 @@ void PostProcessStage::requirePreparedSize(const MotionBlurInputs& inputs) const
 
 void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {
   requirePreparedSize(inputs);
-  tileMaxPass_.record(frame, *inputs.samples, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
+  tileMaxPass_.record(frame, *inputs.surfaces, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
                       settings_.velocityScale());
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
 }

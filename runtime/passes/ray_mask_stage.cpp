@@ -42,7 +42,7 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height) {
   size_.madeFor(width, height);
 }
 
-void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer, const vk::Buffer& surfaces,
+void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
                           const RayMaskParameters& p) const {
   size_.requireMadeFor("ray mask", layer.width, layer.height);
   const uint32_t width = size_.width(), height = size_.height();
@@ -73,7 +73,8 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   const gpu::RayMaskParams params{blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u,
                                   0u};
   frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
-                         {{HMB_EDGE_CANDIDATES_BINDING_SURFACES, &surfaces},
+                         {{HMB_EDGE_CANDIDATES_BINDING_SAMPLES, layer.samples},
+                          {HMB_EDGE_CANDIDATES_BINDING_SURFACES, layer.surfaces},
                           {HMB_EDGE_CANDIDATES_BINDING_TILES, &tiles_},
                           {HMB_EDGE_CANDIDATES_BINDING_COUNTERS, &counters_},
                           {HMB_EDGE_CANDIDATES_BINDING_LIST, &candidates_}},
@@ -81,13 +82,15 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                          counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
   sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_,
-                         {{HMB_EDGE_MASK_BINDING_SURFACES, &surfaces},
+                         {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},
+                          {HMB_EDGE_MASK_BINDING_SAMPLES, layer.samples},
                           {HMB_EDGE_MASK_BINDING_COUNTERS, &counters_},
                           {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
                           {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
                          params, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
   frame.dispatchIndirect(kRangeCheck, rangeKernel_,
-                         {{HMB_RANGE_CHECK_BINDING_SURFACES, &surfaces},
+                         {{HMB_RANGE_CHECK_BINDING_SURFACES, layer.surfaces},
+                          {HMB_RANGE_CHECK_BINDING_SAMPLES, layer.samples},
                           {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},
                           {HMB_RANGE_CHECK_BINDING_TILES, &tiles_},
                           {HMB_RANGE_CHECK_BINDING_MASK, &mask_},

@@ -49,9 +49,9 @@ class RayMaskStage {
   void plan(FramePlan& plan) const;
   // Sizes the buffers for this resolution (reuses them when it is unchanged).
   void prepare(uint32_t width, uint32_t height);
-  // layer: the G-buffer's samples (for its size); surfaces: the G-buffer's surfaces, which the
-  // ray mask reads. After the tile passes.
-  void record(vk::FrameRecorder& frame, const MotionBlurInputs& layer, const vk::Buffer& surfaces,
+  // layer: the G-buffer (its samples' depths, its surfaces' velocities and ids). After the tile
+  // passes.
+  void record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
               const RayMaskParameters& parameters) const;
 
   const vk::Buffer& edges() const { return edges_; }        // uint per pixel, then per coarse block

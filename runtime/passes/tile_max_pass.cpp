@@ -9,13 +9,13 @@ namespace hmb::passes {
 TileMaxPass::TileMaxPass(const vk::Context& context)
     : kernel_(context, "mblur/tile_max", sizeof(gpu::TileMaxParams)) {}
 
-void TileMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& samples, const vk::Buffer& tiles,
+void TileMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& surfaces, const vk::Buffer& tiles,
                          uint32_t width, uint32_t height, uint32_t tileSize, float velocityScale,
                          std::string_view passName) const {
   const TileGrid grid = tileGridFor(width, height, tileSize);
   const gpu::TileMaxParams params{width, height, tileSize, grid.x, grid.y, velocityScale, 0, 0};
   // One group per tile.
-  frame.dispatch(passName, kernel_, {{HMB_TILE_MAX_BINDING_SAMPLES, &samples}, {HMB_TILE_MAX_BINDING_TILES, &tiles}},
+  frame.dispatch(passName, kernel_, {{HMB_TILE_MAX_BINDING_SURFACES, &surfaces}, {HMB_TILE_MAX_BINDING_TILES, &tiles}},
                  params, {grid.x, grid.y, 1});
 }
 

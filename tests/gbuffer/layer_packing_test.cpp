@@ -1,9 +1,10 @@
 // The image layer's packing (kernels/shared/layer_layout.h) on the device against the same
 // functions on the host, on random and adversarial pixels: the kernels pack what the resolve and
 // the reveal write, the host packs the tests' inputs and unpacks every readback, so the two must
-// agree bit for bit (but for the octahedral normal's rounding, within one step). Also what the packing promises: colour within 2^-14 relative (0 for
-// negative, subnormal and NaN, at most HMB_LAYER_MAX_COLOR), depth kept bit for bit, velocity in half
-// floats keeping its direction, normals within 1e-4 radians, object ids exact.
+// agree bit for bit (but for the octahedral normal's rounding, within one step). Also what the
+// packing promises: colour within 2^-14 relative (0 for negative, subnormal and NaN, at most
+// HMB_LAYER_MAX_COLOR), depth kept bit for bit, velocity bit for bit in the surface and in half
+// floats keeping its direction in the sample, normals within 1e-4 radians, object ids exact.
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -43,7 +44,7 @@ float withBits(uint32_t b) {
 std::vector<LayerPixel> pixels() {
   std::vector<LayerPixel> out;
   auto add = [&](glm::vec3 color, float depth, glm::vec3 normal, glm::vec2 velocity, uint32_t id) {
-    out.push_back({glm::vec4(color, depth), glm::vec4(normal, 0.0f), velocity, id, 0u});
+    out.push_back({glm::vec4(color, depth), glm::vec4(normal, 0.0f), velocity, glm::vec2(0.0f), id, 0u, 0u, 0u});
   };
   // Adversarial colours, depths and velocities.
   const float colors[] = {0.0f,  -0.0f,  -1.0f,    withBits(1u), 1e-40f, 1e-30f, 6e-5f, 0.1f, 0.5f, 1.0f,
@@ -105,9 +106,9 @@ TEST_F(LayerPackingTest, DeviceAndHostPackAndUnpackTheSameBits) {
     const LayerPixel& p = in[i];
     const glm::vec3 color(p.colorDepth);
     const glm::uvec4 sample = gpu::packLayerSample(color, p.colorDepth.w, p.velocity);
-    const glm::uvec4 surface = gpu::packLayerSurface(glm::vec3(p.normal), p.objectId, p.colorDepth.w, p.velocity);
+    const glm::uvec4 surface = gpu::packLayerSurface(glm::vec3(p.normal), p.objectId, p.velocity);
     const LayerPixel& d = deviceDecoded[i];
-    const glm::vec3 hostNormal = gpu::layerNormal(surface);
+    const glm::vec3 hostNormal = gpu::surfaceNormal(surface);
     // The octahedral word may differ by one step in either half: GLSL lets a division round to
     // 2.5 ULP (the normal divided by its L1 norm), so a value next to a step's midpoint may
     // round to either side. Every other word is the same bits.
@@ -119,11 +120,13 @@ TEST_F(LayerPackingTest, DeviceAndHostPackAndUnpackTheSameBits) {
                 step(got.x, surface.x, 0) && step(got.x, surface.x, 16);
     // The device's words decoded on the host as on the device; normalize() may round its last
     // bit differently: within 2e-7 per component.
-    const glm::vec3 hostDecodedColor = gpu::layerColor(deviceSamples[i]);
-    const glm::vec3 hostDecodedNormal = gpu::layerNormal(got);
+    const glm::vec3 hostDecodedColor = gpu::sampleColor(deviceSamples[i]);
+    const glm::vec3 hostDecodedNormal = gpu::surfaceNormal(got);
     for (int c = 0; c < 3; ++c) same = same && bitsOf(d.colorDepth[c]) == bitsOf(hostDecodedColor[c]);
-    same = same && bitsOf(d.colorDepth.w) == bitsOf(gpu::layerDepth(deviceSamples[i]));
-    same = same && d.velocity == gpu::layerVelocity(got) && d.objectId == gpu::layerObjectId(got);
+    same = same && bitsOf(d.colorDepth.w) == bitsOf(gpu::sampleDepth(deviceSamples[i]));
+    same = same && d.sampleVelocity == gpu::sampleVelocity(deviceSamples[i]);
+    same = same && bitsOf(d.velocity.x) == bitsOf(gpu::surfaceVelocity(got).x) &&
+           bitsOf(d.velocity.y) == bitsOf(gpu::surfaceVelocity(got).y) && d.objectId == gpu::surfaceObjectId(got);
     for (int c = 0; c < 3; ++c) same = same && std::abs(d.normal[c] - hostDecodedNormal[c]) <= 2e-7f;
     if (!same && mismatches++ < 8)
       ADD_FAILURE() << "pixel " << i << ": colour (" << color.x << ", " << color.y << ", " << color.z << ") depth "
@@ -134,17 +137,23 @@ TEST_F(LayerPackingTest, DeviceAndHostPackAndUnpackTheSameBits) {
                     << surface.x << std::dec;
 
     // What the packing promises, on the host's values (the same bits, checked above).
-    const glm::vec3 c = gpu::layerColor(sample);
+    const glm::vec3 c = gpu::sampleColor(sample);
     for (int k = 0; k < 3; ++k) {
       const float x = color[k];
       const float expected = std::isnan(x) || !(x >= 1.17549435e-38f) ? 0.0f : std::min(x, HMB_LAYER_MAX_COLOR);
       EXPECT_LE(std::abs(c[k] - expected), expected * std::exp2(-14.0f)) << "pixel " << i << " channel " << k;
     }
-    EXPECT_EQ(bitsOf(gpu::layerDepth(sample)), bitsOf(p.colorDepth.w)) << "pixel " << i;
-    EXPECT_EQ(gpu::layerObjectId(surface), p.objectId) << "pixel " << i;
-    const glm::vec2 v = gpu::layerVelocity(sample);
+    EXPECT_EQ(bitsOf(gpu::sampleDepth(sample)), bitsOf(p.colorDepth.w)) << "pixel " << i;
+    EXPECT_EQ(gpu::surfaceObjectId(surface), p.objectId) << "pixel " << i;
+    const glm::vec2 v = gpu::sampleVelocity(sample), exact = gpu::surfaceVelocity(surface);
     EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y)) << "pixel " << i;
     const glm::vec2 q = p.velocity;
+    if (std::isfinite(q.x) && std::isfinite(q.y)) {
+      EXPECT_EQ(bitsOf(exact.x), bitsOf(q.x)) << "pixel " << i << ": the surface keeps the velocity bit for bit";
+      EXPECT_EQ(bitsOf(exact.y), bitsOf(q.y)) << "pixel " << i;
+    } else {
+      EXPECT_EQ(exact, glm::vec2(0.0f)) << "pixel " << i << ": a non-finite velocity is none";
+    }
     if (std::isfinite(q.x) && std::isfinite(q.y) && std::max(std::abs(q.x), std::abs(q.y)) <= 65504.0f) {
       for (int k = 0; k < 2; ++k)  // half: 11 significant bits, or the subnormal step 2^-24
         EXPECT_LE(std::abs(v[k] - q[k]), std::max(std::abs(q[k]) * std::exp2(-11.0f), std::exp2(-24.0f)))

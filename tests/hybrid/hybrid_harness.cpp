@@ -87,7 +87,7 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   const vk::Buffer surfaces = vk::uploadedBuffer(context, packed.surfaces, "test surfaces");
   passes::RayMaskStage stage(context);
   stage.prepare(layer.width, layer.height);
-  const passes::MotionBlurInputs inputs{&samples, layer.width, layer.height};
+  const passes::MotionBlurInputs inputs{&samples, &surfaces, layer.width, layer.height};
   // The mask passes start from the gather's tile-max, run here at the parameters' tile size.
   const passes::TileMaxPass tileMax(context);
   passes::RayMaskParameters withTiles = parameters;
@@ -100,9 +100,9 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   withTiles.tileMax = &tiles;
   vk::FrameRecorder frame(context);
   frame.begin();
-  tileMax.record(frame, samples, tiles, layer.width, layer.height, parameters.blur.tileSize,
+  tileMax.record(frame, surfaces, tiles, layer.width, layer.height, parameters.blur.tileSize,
                  parameters.blur.velocityScale);
-  stage.record(frame, inputs, surfaces, withTiles);
+  stage.record(frame, inputs, withTiles);
   frame.submitAndWait();
 
   RayMaskReadback out;
@@ -150,7 +150,7 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   } else {
     if (run.mask) throw std::runtime_error("the post-process gather takes no mask");
     const passes::GatherPass pass(context);
-    pass.record(frame, {&raster.samples(), layer.width, layer.height}, tiles, output, settings);
+    pass.record(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height}, tiles, output, settings);
     frame.submitAndWait();
   }
   return downloadFirst<glm::vec4>(output, pixels);
@@ -177,7 +177,7 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
       context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(list.size()))}, "test counters");
   const glm::uvec4 sentinelSample = gpu::packLayerSample(glm::vec3(kSentinelColor), kSentinelDepth, kSentinelVelocity);
   const glm::uvec4 sentinelSurface =
-      gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), kSentinelId, kSentinelDepth, kSentinelVelocity);
+      gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), kSentinelId, kSentinelVelocity);
   const passes::ImageLayer output(filledBuffer(context, pixels, sentinelSample, "test revealed samples"),
                                   filledBuffer(context, pixels, sentinelSurface, "test revealed surfaces"));
 

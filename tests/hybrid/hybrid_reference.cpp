@@ -103,11 +103,11 @@ std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskPara
 MaskLayer stored(const MaskLayer& layer) {
   MaskLayer out = layer;
   for (size_t i = 0; i < layer.objectId.size(); ++i) {
-    const glm::uvec4 surface = gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), layer.objectId[i],
-                                                     layer.normalDepth[i].w, layer.velocity[i]);
-    out.normalDepth[i] = glm::vec4(gpu::layerNormal(surface), gpu::layerDepth(surface));
-    out.velocity[i] = gpu::layerVelocity(surface);
-    out.objectId[i] = gpu::layerObjectId(surface);
+    const glm::uvec4 surface =
+        gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), layer.objectId[i], layer.velocity[i]);
+    out.normalDepth[i] = glm::vec4(gpu::surfaceNormal(surface), layer.normalDepth[i].w);  // depth: kept bit for bit
+    out.velocity[i] = gpu::surfaceVelocity(surface);
+    out.objectId[i] = gpu::surfaceObjectId(surface);
   }
   return out;
 }
@@ -224,7 +224,8 @@ gpu::RayMaskCounters dispatchFor(uint32_t maskCount) {
 namespace {
 
 struct CompositeInputs {
-  const mblur::Layer& layer;
+  const mblur::Layer& layer;                        // as the gathers read it (mblur::stored)
+  const std::vector<glm::vec2>& surfaceVelocity;    // as the coverage form reads it (exact)
   const std::vector<glm::vec4>& background;
   const std::vector<uint32_t>& objectId;
   float softZExtent;
@@ -242,7 +243,7 @@ glm::vec4 coverageComposite(const CompositeInputs& in, uint32_t px, uint32_t py,
   const mblur::Layer& layer = in.layer;
   const size_t index = size_t(py) * layer.width + px;
   float speed;
-  const glm::vec2 v = gatherVelocity(layer.velocity[index], velocityScale, coverageMaxSpeed, speed);
+  const glm::vec2 v = gatherVelocity(in.surfaceVelocity[index], velocityScale, coverageMaxSpeed, speed);
   const uint32_t centreObject = in.objectId[index];
   glm::vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0f;
@@ -315,7 +316,8 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& input, const std::vec
   // gather with the mask flag on.
   const mblur::Layer layer = mblur::stored(input);
   std::vector<glm::vec4> out = mblur::gather(layer, neighborMax, &mask, settings, maskWeights);
-  const CompositeInputs in{layer, background, objectId, settings.softZExtent};
+  const std::vector<glm::vec2> surfaceVelocity = mblur::storedVelocity(input.velocity);
+  const CompositeInputs in{layer, surfaceVelocity, background, objectId, settings.softZExtent};
   const uint32_t m = settings.effectiveTileSize();
   const passes::TileGrid grid = passes::tileGridFor(layer.width, layer.height, m);
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);

@@ -27,8 +27,8 @@ struct MaskLayer {
 };
 
 // The layer as the kernels read it: every pixel through the packed surface the device holds
-// (kernels/shared/layer_layout.h): octahedral normals (0 where the object id is 0), half-float
-// velocities. The references below that take a MaskLayer read it through this.
+// (kernels/shared/layer_layout.h): octahedral normals (0 where the object id is 0), non-finite
+// velocities as none. The references below that take a MaskLayer read it through this.
 MaskLayer stored(const MaskLayer& layer);
 
 // ray_mask_common.glsl

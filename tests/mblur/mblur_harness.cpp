@@ -36,15 +36,16 @@ std::vector<T> downloadFirst(const vk::Buffer& buffer, size_t count) {
   return values;
 }
 
-// The layer's samples, packed as the resolve packs them (kernels/shared/layer_layout.h).
+// The layer packed as the resolve packs it (kernels/shared/layer_layout.h).
 struct LayerBuffers {
-  vk::Buffer samples;
-  passes::MotionBlurInputs inputs() const { return {&samples, width, height}; }
+  vk::Buffer samples, surfaces;
+  passes::MotionBlurInputs inputs() const { return {&samples, &surfaces, width, height}; }
   uint32_t width = 0, height = 0;
 };
 
 LayerBuffers upload(vk::Context& context, const Layer& layer) {
-  return {deviceBuffer(context, packedSamples(layer), "test samples"), layer.width, layer.height};
+  return {deviceBuffer(context, packedSamples(layer), "test samples"),
+          deviceBuffer(context, packedSurfaces(layer), "test surfaces"), layer.width, layer.height};
 }
 
 }  // namespace
@@ -56,7 +57,7 @@ std::vector<glm::vec4> runTileMax(vk::Context& context, const std::vector<glm::v
   layer.color.assign(velocity.size(), glm::vec4(0.0f));
   layer.normalDepth.assign(velocity.size(), glm::vec4(0.0f));
   layer.velocity = velocity;
-  const vk::Buffer in = deviceBuffer(context, packedSamples(layer), "test samples");
+  const vk::Buffer in = deviceBuffer(context, packedSurfaces(layer), "test surfaces");
   const vk::Buffer out = outputBuffer(context, grid.count(), "test tile max");
   const passes::TileMaxPass pass(context);
   vk::FrameRecorder frame(context);

@@ -28,16 +28,24 @@ Layer stored(const Layer& layer) {
   Layer out = layer;
   const std::vector<glm::uvec4> samples = packedSamples(layer);
   for (size_t i = 0; i < samples.size(); ++i) {
-    out.color[i] = glm::vec4(gpu::layerColor(samples[i]), 1.0f);
-    out.normalDepth[i].w = gpu::layerDepth(samples[i]);
-    out.velocity[i] = gpu::layerVelocity(samples[i]);
+    out.color[i] = glm::vec4(gpu::sampleColor(samples[i]), 1.0f);
+    out.normalDepth[i].w = gpu::sampleDepth(samples[i]);
+    out.velocity[i] = gpu::sampleVelocity(samples[i]);
   }
   return out;
 }
 
+std::vector<glm::uvec4> packedSurfaces(const Layer& layer) {
+  std::vector<glm::uvec4> surfaces(layer.velocity.size());
+  for (size_t i = 0; i < surfaces.size(); ++i)
+    surfaces[i] = gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), 1u, layer.velocity[i]);
+  return surfaces;
+}
+
 std::vector<glm::vec2> storedVelocity(const std::vector<glm::vec2>& velocity) {
   std::vector<glm::vec2> out(velocity.size());
-  for (size_t i = 0; i < out.size(); ++i) out[i] = gpu::layerVelocity(glm::uvec4(0u, 0u, 0u, gpu::packLayerVelocity(velocity[i])));
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = gpu::surfaceVelocity(gpu::packLayerSurface(glm::vec3(0.0f), 1u, velocity[i]));
   return out;
 }
 

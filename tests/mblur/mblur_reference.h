@@ -23,12 +23,14 @@ struct Layer {
   std::vector<glm::vec2> velocity;     // pixels per frame
 };
 
-// The layer as the kernels read it: every pixel through the packed layer the device holds
-// (kernels/shared/layer_layout.h): colour and velocity in half floats, alpha 1. The references
-// below read their input through it; the harness uploads the same packing.
+// The layer as the gathers read it: every pixel through the packed sample the device holds
+// (kernels/shared/layer_layout.h): colour at 13 mantissa bits, alpha 1, velocity in half floats.
+// The gathers' references read their input through it; the harness uploads the same packing.
 Layer stored(const Layer& layer);
-std::vector<glm::vec2> storedVelocity(const std::vector<glm::vec2>& velocity);
 std::vector<glm::uvec4> packedSamples(const Layer& layer);
+// Velocities as tile-max reads them, through the packed surface: exact, non-finite ones none.
+std::vector<glm::vec2> storedVelocity(const std::vector<glm::vec2>& velocity);
+std::vector<glm::uvec4> packedSurfaces(const Layer& layer);
 
 // mblur_common.glsl
 glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float& speed);

@@ -35,7 +35,7 @@ GraphicsGBuffer::GraphicsGBuffer(const vk::Context& context, const GpuScene& sce
   const gpu::GpuCamera camera = scene.cameraBuffer().download<gpu::GpuCamera>().at(0);
   const float far = scene.camera().zfar;
   backgroundSample_ = gpu::packLayerSample(glm::vec3(camera.background), far, glm::vec2(0.0f));
-  backgroundSurface_ = gpu::packLayerSurface(glm::vec3(0.0f), 0u, far, glm::vec2(0.0f));
+  backgroundSurface_ = gpu::packLayerSurface(glm::vec3(0.0f), 0u, glm::vec2(0.0f));
 
   // Consecutive triangles of the same sidedness share one draw, in id order (equal depths: the
   // first drawn wins, as the smallest id does in the compute rasterizer).
@@ -345,18 +345,18 @@ GBufferAgreement compareGBuffers(std::span<const glm::uvec4> samples, std::span<
   GBufferAgreement a;
   size_t sameObject = 0, onObject = 0, withinTolerance = 0;
   for (size_t i = 0; i < pixels; ++i) {
-    const uint32_t id = gpu::layerObjectId(surfaces[i]);
-    if (id != gpu::layerObjectId(oracle.surfaces[i])) continue;
+    const uint32_t id = gpu::surfaceObjectId(surfaces[i]);
+    if (id != gpu::surfaceObjectId(oracle.surfaces[i])) continue;
     ++sameObject;
     if (id == 0) continue;
     ++onObject;
-    const double da = gpu::layerDepth(surfaces[i]), db = gpu::layerDepth(oracle.surfaces[i]);
+    const double da = gpu::sampleDepth(samples[i]), db = gpu::sampleDepth(oracle.samples[i]);
     const double depth = std::abs(da - db) / std::max({std::abs(da), std::abs(db), 1e-30});
-    const glm::dvec3 ca = glm::dvec3(gpu::layerColor(samples[i])), cb = glm::dvec3(gpu::layerColor(oracle.samples[i]));
+    const glm::dvec3 ca = glm::dvec3(gpu::sampleColor(samples[i])), cb = glm::dvec3(gpu::sampleColor(oracle.samples[i]));
     const double color = std::max({std::abs(ca.x - cb.x), std::abs(ca.y - cb.y), std::abs(ca.z - cb.z)});
-    const double velocity = glm::length(glm::dvec2(gpu::layerVelocity(surfaces[i])) -
-                                        glm::dvec2(gpu::layerVelocity(oracle.surfaces[i])));
-    const double cosine = glm::dot(glm::dvec3(gpu::layerNormal(surfaces[i])), glm::dvec3(gpu::layerNormal(oracle.surfaces[i])));
+    const double velocity = glm::length(glm::dvec2(gpu::surfaceVelocity(surfaces[i])) -
+                                        glm::dvec2(gpu::surfaceVelocity(oracle.surfaces[i])));
+    const double cosine = glm::dot(glm::dvec3(gpu::surfaceNormal(surfaces[i])), glm::dvec3(gpu::surfaceNormal(oracle.surfaces[i])));
     const double normal = std::acos(std::clamp(cosine, -1.0, 1.0));
     a.depthRelative = std::max(a.depthRelative, depth);
     a.color = std::max(a.color, color);

@@ -31,5 +31,5 @@ void main() {
   const vec3 color = shadeSurface(sceneInstances[inInstance].material, kTexturePath ? inUv : vec2(0.0), n);
   const uint objectId = sceneInstances[inInstance].objectId;
   outSample = packLayerSample(color, inDepth, motion);
-  outSurface = packLayerSurface(n, objectId, inDepth, motion);
+  outSurface = packLayerSurface(n, objectId, motion);
 }
