@@ -33,4 +33,13 @@ double FloorPass::run(vk::FrameRecorder& frame) const {
   throw Error("the device gives no timestamps: the floor pass cannot be timed");
 }
 
+std::vector<double> FloorPass::time(vk::FrameRecorder& frame, int warmup, int repeats) const {
+  std::vector<double> ms;
+  for (int i = 0; i < warmup + repeats; ++i) {
+    const double t = run(frame);
+    if (i >= warmup) ms.push_back(t);
+  }
+  return ms;
+}
+
 }  // namespace hmb::bench

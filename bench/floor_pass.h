@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -23,6 +24,8 @@ class FloorPass {
   void record(vk::FrameRecorder& frame) const;
   // Runs it alone once: device milliseconds.
   double run(vk::FrameRecorder& frame) const;
+  // Runs it warmup + repeats times: the timed runs' milliseconds.
+  std::vector<double> time(vk::FrameRecorder& frame, int warmup, int repeats) const;
 
  private:
   vk::ComputeKernel kernel_;

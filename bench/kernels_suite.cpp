@@ -280,14 +280,8 @@ RandomLayer randomLayer(const vk::Context& context, ImageSize size) {
 // The floor pass (bench/floor_pass.h) at `size`, timed as the case is: each per-pixel kernel
 // reports its time as a multiple of it (details: floor_ms, over_floor).
 void addFloor(const vk::Context& context, ImageSize size, const KernelsSuiteOptions& options, KernelCase& c) {
-  const FloorPass floor(context, size.width, size.height);
   vk::FrameRecorder frame(context);
-  std::vector<double> ms;
-  for (int i = 0; i < options.warmup + options.repeats; ++i) {
-    const double t = floor.run(frame);
-    if (i >= options.warmup) ms.push_back(t);
-  }
-  const double median = summarize(ms).median;
+  const double median = summarize(FloorPass(context, size.width, size.height).time(frame, options.warmup, options.repeats)).median;
   c.details["floor_ms"] = median;
   c.details["over_floor"] = c.milliseconds.median / median;
 }

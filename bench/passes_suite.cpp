@@ -18,14 +18,8 @@ double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 // The floor pass at `size`: warm-up and repeats as the case's. Its buffers are gone before the
 // case renders, so they do not count in the case's device memory.
 Summary timeFloor(const vk::Context& context, const ImageSize& size, const PassesSuiteOptions& o) {
-  const FloorPass floor(context, size.width, size.height);
   vk::FrameRecorder frame(context);
-  std::vector<double> ms;
-  for (int i = 0; i < o.warmup + o.repeats; ++i) {
-    const double t = floor.run(frame);
-    if (i >= o.warmup) ms.push_back(t);
-  }
-  return summarize(ms);
+  return summarize(FloorPass(context, size.width, size.height).time(frame, o.warmup, o.repeats));
 }
 
 PassesCase runCase(Renderer& renderer, const scene::Scene& scene, const std::string& name, const std::string& method,

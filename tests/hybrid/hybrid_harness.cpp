@@ -66,18 +66,6 @@ passes::LayerContents contentsOf(const MaskLayer& layer) {
   return c;
 }
 
-// A layer read back, as the tests read it: colour with alpha 1, normal and depth together.
-GLayer gLayerOf(const passes::LayerContents& c) {
-  GLayer out;
-  for (size_t i = 0; i < c.color.size(); ++i) {
-    out.color.emplace_back(c.color[i], 1.0f);
-    out.normalDepth.emplace_back(c.normal[i], c.depth[i]);
-  }
-  out.velocity = c.velocity;
-  out.objectId = c.objectId;
-  return out;
-}
-
 }  // namespace
 
 RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters) {
@@ -189,8 +177,8 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
 
   RevealReadback out;
   out.camera = gpuScene.camera();
-  out.raster = gLayerOf(passes::downloadLayer(gbuffer.layer(), pixels));
-  out.revealed = gLayerOf(passes::downloadLayer(output, pixels));
+  out.raster = readLayer(gbuffer.layer(), pixels);
+  out.revealed = readLayer(output, pixels);
   out.counters = counters.download<gpu::RayMaskCounters>().at(0);
   return out;
 }

@@ -18,6 +18,7 @@
 #include "scenes/scene.h"
 #include "tests/hybrid/hybrid_reference.h"
 #include "tests/mblur/mblur_reference.h"
+#include "tests/support/layer_readback.h"
 
 namespace hmb::vk {
 class Context;
@@ -57,12 +58,7 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
                                  const passes::PostProcessSettings& settings);
 
 // One G-buffer layer as read back.
-struct GLayer {
-  std::vector<glm::vec4> color;
-  std::vector<glm::vec4> normalDepth;
-  std::vector<glm::vec2> velocity;
-  std::vector<uint32_t> objectId;
-};
+using GLayer = LayerReadback;
 
 // The G-buffer of `scene` at `frameTime`, and the ray reveal of the listed pixels written into
 // buffers that start as the sentinels everywhere.

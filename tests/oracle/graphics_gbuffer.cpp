@@ -42,11 +42,8 @@ GraphicsGBuffer::GraphicsGBuffer(const vk::Context& context, const GpuScene& sce
   std::vector<gpu::GpuTriangle> triangles = scene.triangles().download<gpu::GpuTriangle>();
   triangles.resize(scene.triangleCount());
   const std::vector<gpu::GpuInstance> instances = scene.instances().download<gpu::GpuInstance>();
-  for (uint32_t t = 0; t < triangles.size(); ++t) {
-    const uint32_t pipeline = (instances.at(triangles[t].instance).flags & HMB_INSTANCE_DOUBLE_SIDED) != 0 ? 1 : 0;
-    if (draws_.empty() || draws_.back().pipeline != pipeline) draws_.push_back({pipeline, 3 * t, 0});
-    draws_.back().vertexCount += 3;
-  }
+  for (uint32_t t = 0; t < triangles.size(); ++t)
+    addTriangle(draws_, t, (instances.at(triangles[t].instance).flags & HMB_INSTANCE_DOUBLE_SIDED) != 0);
   auto atLeastOne = [](auto values) {
     if (values.empty()) values.resize(1);
     return values;
@@ -97,55 +94,8 @@ void GraphicsGBuffer::release() {
 }
 
 void GraphicsGBuffer::createRenderPass() {
-  VkAttachmentDescription attachments[3]{};
-  attachments[0].format = attachments[1].format = kRecordFormat;
-  attachments[2].format = depthFormat_;
-  for (VkAttachmentDescription& a : attachments) {
-    a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // every frame clears
-    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  }
-  const VkAttachmentReference colorRefs[2] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                              {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
-  const VkAttachmentReference depthRef{2, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 2;
-  subpass.pColorAttachments = colorRefs;
-  subpass.pDepthStencilAttachment = &depthRef;
-
-  constexpr VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                                                    VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
-                                                    VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  constexpr VkAccessFlags attachmentWrites =
-      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkSubpassDependency dependencies[2]{};
-  // The previous frame's readback copies read the attachments before this frame clears them.
-  dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
-  dependencies[0].dstSubpass = 0;
-  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  dependencies[0].dstStageMask = attachmentStages;
-  dependencies[0].dstAccessMask = attachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
-  // The readback copies read what the subpass wrote.
-  dependencies[1].srcSubpass = 0;
-  dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-  dependencies[1].srcStageMask = attachmentStages;
-  dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  dependencies[1].srcAccessMask = attachmentWrites;
-  dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  info.attachmentCount = 3;
-  info.pAttachments = attachments;
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = 2;
-  info.pDependencies = dependencies;
-  HMB_VK_CHECK(vkCreateRenderPass(context_.device(), &info, nullptr, &renderPass_));
+  const VkFormat colorFormats[] = {kRecordFormat, kRecordFormat};
+  renderPass_ = createReadbackRenderPass(context_, colorFormats, depthFormat_);
 }
 
 void GraphicsGBuffer::createFramebuffer() {
@@ -238,52 +188,11 @@ void GraphicsGBuffer::createPipelines(bool texturePath) {
     stages[1].pName = "main";
     stages[1].pSpecializationInfo = &specialization;
 
-    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    const VkViewport viewport{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, {width_, height_}};
-    VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewportState.viewportCount = 1;
-    viewportState.pViewports = &viewport;
-    viewportState.scissorCount = 1;
-    viewportState.pScissors = &scissor;
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.depthClampEnable = VK_FALSE;  // 0 <= z/w <= 1, as the compute rasterizer keeps
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // graphics_raster.h: CCW with y up is front
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is larger
-    VkPipelineColorBlendAttachmentState blendAttachments[2]{};
-    for (VkPipelineColorBlendAttachmentState& b : blendAttachments)
-      b.colorWriteMask =
-          VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend.attachmentCount = 2;
-    blend.pAttachments = blendAttachments;
-
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    info.stageCount = 2;
-    info.pStages = stages;
-    info.pVertexInputState = &vertexInput;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewportState;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pDepthStencilState = &depth;
-    info.pColorBlendState = &blend;
-    info.layout = pipelineLayout_;
-    info.renderPass = renderPass_;
-    const VkCullModeFlags cullModes[2] = {VK_CULL_MODE_BACK_BIT, VK_CULL_MODE_NONE};
-    for (int i = 0; i < 2; ++i) {
-      raster.cullMode = cullModes[i];
-      HMB_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines_[i]));
-    }
+    const VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    createOraclePipelines(device, stages, vertexInput, 2,
+                          VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                              VK_COLOR_COMPONENT_A_BIT,
+                          pipelineLayout_, renderPass_, width_, height_, pipelines_);
   } catch (...) {
     if (vert) vkDestroyShaderModule(device, vert, nullptr);
     if (frag) vkDestroyShaderModule(device, frag, nullptr);
@@ -312,12 +221,7 @@ GraphicsGBuffer::Image GraphicsGBuffer::render() {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 0, nullptr);
     const gpu::GBufferOracleParams params{width_, height_, 0, 0};
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(params), &params);
-    uint32_t bound = UINT32_MAX;
-    for (const Draw& draw : draws_) {
-      if (draw.pipeline != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[draw.pipeline]);
-      bound = draw.pipeline;
-      vkCmdDraw(cmd, draw.vertexCount, 1, draw.firstVertex, 0);
-    }
+    recordDrawSpans(cmd, pipelines_, draws_);
     vkCmdEndRenderPass(cmd);
     timer_.end(cmd);
 
@@ -328,11 +232,7 @@ GraphicsGBuffer::Image GraphicsGBuffer::render() {
                            &region);
     vkCmdCopyImageToBuffer(cmd, surfaces_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, surfacesReadback_.handle(), 1,
                            &region);
-    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
-                         0, nullptr);
+    barrierToHost(cmd);
   });
   lastDrawMs_ = timer_.milliseconds();
   return {samplesReadback_.download<glm::uvec4>(), surfacesReadback_.download<glm::uvec4>()};

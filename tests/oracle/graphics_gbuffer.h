@@ -53,16 +53,12 @@ class GraphicsGBuffer {
   void createPipelines(bool texturePath);
   void release();
 
-  struct Draw {
-    uint32_t pipeline, firstVertex, vertexCount;
-  };
-
   const vk::Context& context_;
   uint32_t width_, height_;
   DrawTimer timer_;
   VkFormat depthFormat_ = VK_FORMAT_UNDEFINED;
   glm::uvec4 backgroundSample_{0u}, backgroundSurface_{0u};
-  std::vector<Draw> draws_;
+  std::vector<DrawSpan> draws_;
   vk::Buffer triangles_, clipCurrent_, clipPrevious_, shading_;
   vk::Buffer samplesReadback_, surfacesReadback_;
   Attachment samples_, surfaces_, depth_;

@@ -70,56 +70,8 @@ void GraphicsRasterizer::release() {
 }
 
 void GraphicsRasterizer::createRenderPass() {
-  VkAttachmentDescription attachments[2]{};
-  // Both attachments are cleared on load and left ready to be copied to the readback buffers.
-  attachments[0].format = kIdFormat;
-  attachments[1].format = depthFormat_;
-  for (VkAttachmentDescription& a : attachments) {
-    a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // every call clears, old contents are not needed
-    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  }
-  const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  const VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 1;
-  subpass.pColorAttachments = &colorRef;
-  subpass.pDepthStencilAttachment = &depthRef;
-
-  constexpr VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                                                    VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
-                                                    VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  constexpr VkAccessFlags attachmentWrites =
-      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkSubpassDependency dependencies[2]{};
-  // The previous call's readback copies read the attachments before this call clears them.
-  dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
-  dependencies[0].dstSubpass = 0;
-  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  dependencies[0].dstStageMask = attachmentStages;
-  dependencies[0].srcAccessMask = 0;
-  dependencies[0].dstAccessMask = attachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
-  // The readback copies read what the subpass wrote.
-  dependencies[1].srcSubpass = 0;
-  dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-  dependencies[1].srcStageMask = attachmentStages;
-  dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  dependencies[1].srcAccessMask = attachmentWrites;
-  dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  info.attachmentCount = 2;
-  info.pAttachments = attachments;
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = 2;
-  info.pDependencies = dependencies;
-  HMB_VK_CHECK(vkCreateRenderPass(context_.device(), &info, nullptr, &renderPass_));
+  const VkFormat colorFormats[] = {kIdFormat};
+  renderPass_ = createReadbackRenderPass(context_, colorFormats, depthFormat_);
 }
 
 void GraphicsRasterizer::createAttachments() {
@@ -167,55 +119,8 @@ void GraphicsRasterizer::createPipelines() {
     vertexInput.vertexAttributeDescriptionCount = 2;
     vertexInput.pVertexAttributeDescriptions = attributes;
 
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-
-    const VkViewport viewport{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, {width_, height_}};
-    VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewportState.viewportCount = 1;
-    viewportState.pViewports = &viewport;
-    viewportState.scissorCount = 1;
-    viewportState.pScissors = &scissor;
-
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.depthClampEnable = VK_FALSE;  // clip to 0 <= z/w <= 1 like the compute rasterizer
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // see the header: CCW with y up is front
-    raster.lineWidth = 1.0f;
-
-    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-
-    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is larger
-
-    VkPipelineColorBlendAttachmentState blendAttachment{};
-    blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;
-    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend.attachmentCount = 1;
-    blend.pAttachments = &blendAttachment;
-
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    info.stageCount = 2;
-    info.pStages = stages;
-    info.pVertexInputState = &vertexInput;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewportState;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pDepthStencilState = &depth;
-    info.pColorBlendState = &blend;
-    info.layout = pipelineLayout_;
-    info.renderPass = renderPass_;
-    info.subpass = 0;
-    const VkCullModeFlags cullModes[2] = {VK_CULL_MODE_BACK_BIT, VK_CULL_MODE_NONE};
-    for (int i = 0; i < 2; ++i) {
-      raster.cullMode = cullModes[i];
-      HMB_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines_[i]));
-    }
+    createOraclePipelines(device, stages, vertexInput, 1, VK_COLOR_COMPONENT_R_BIT, pipelineLayout_, renderPass_,
+                          width_, height_, pipelines_);
   } catch (...) {
     if (vert) vkDestroyShaderModule(device, vert, nullptr);
     if (frag) vkDestroyShaderModule(device, frag, nullptr);
@@ -242,12 +147,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
   const VkDeviceSize vertexBytes = VkDeviceSize(triangles.size()) * 3 * sizeof(Vertex);
   if (triangles.size() > UINT32_MAX / 3) throw Error("graphics oracle: too many triangles for one draw");
 
-  // Consecutive triangles with the same sidedness share one draw, so the draw order (which
-  // decides equal-depth ties) is the span's order.
-  struct Draw {
-    uint32_t pipeline, firstVertex, vertexCount;
-  };
-  std::vector<Draw> draws;
+  std::vector<DrawSpan> draws;
   if (!triangles.empty()) {
     auto* out = static_cast<Vertex*>(reserveVertices(vertexBytes));
     for (size_t t = 0; t < triangles.size(); ++t) {
@@ -257,10 +157,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
         std::memcpy(vertex.clip, &tri.clip[v], sizeof(vertex.clip));
         vertex.id = tri.id;
       }
-      const uint32_t pipeline = tri.doubleSided ? 1 : 0;
-      if (draws.empty() || draws.back().pipeline != pipeline)
-        draws.push_back({pipeline, uint32_t(3 * t), 0});
-      draws.back().vertexCount += 3;
+      addTriangle(draws, uint32_t(t), tri.doubleSided);
     }
   }
 
@@ -294,12 +191,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
       const VkDeviceSize offset = 0;
       const VkBuffer vertexBuffer = vertices_.handle();
       vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
-      uint32_t bound = UINT32_MAX;
-      for (const Draw& draw : draws) {
-        if (draw.pipeline != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[draw.pipeline]);
-        bound = draw.pipeline;
-        vkCmdDraw(cmd, draw.vertexCount, 1, draw.firstVertex, 0);
-      }
+      recordDrawSpans(cmd, pipelines_, draws);
     }
     vkCmdEndRenderPass(cmd);
     timer_.end(cmd);
@@ -313,11 +205,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
     region.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
     vkCmdCopyImageToBuffer(cmd, depth_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depthReadback_.handle(), 1,
                            &region);
-    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
-                         0, nullptr);
+    barrierToHost(cmd);
   });
 
   lastDrawMs_ = timer_.milliseconds();

@@ -87,6 +87,131 @@ void destroyAttachment(const vk::Context& context, Attachment& a) {
   a = Attachment{};
 }
 
+VkRenderPass createReadbackRenderPass(const vk::Context& context, std::span<const VkFormat> colorFormats,
+                                      VkFormat depthFormat) {
+  std::vector<VkAttachmentDescription> attachments(colorFormats.size() + 1);
+  std::vector<VkAttachmentReference> colorRefs;
+  for (size_t i = 0; i < attachments.size(); ++i) {
+    VkAttachmentDescription& a = attachments[i];
+    a.format = i < colorFormats.size() ? colorFormats[i] : depthFormat;
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // every frame clears: old contents are not needed
+    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    if (i < colorFormats.size()) colorRefs.push_back({uint32_t(i), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
+  }
+  const VkAttachmentReference depthRef{uint32_t(colorFormats.size()), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = uint32_t(colorRefs.size());
+  subpass.pColorAttachments = colorRefs.data();
+  subpass.pDepthStencilAttachment = &depthRef;
+
+  constexpr VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                                    VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                                    VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  constexpr VkAccessFlags attachmentWrites =
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkSubpassDependency dependencies[2]{};
+  dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[0].dstSubpass = 0;
+  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[0].dstStageMask = attachmentStages;
+  dependencies[0].dstAccessMask = attachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+  dependencies[1].srcSubpass = 0;
+  dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[1].srcStageMask = attachmentStages;
+  dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[1].srcAccessMask = attachmentWrites;
+  dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = uint32_t(attachments.size());
+  info.pAttachments = attachments.data();
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = 2;
+  info.pDependencies = dependencies;
+  VkRenderPass renderPass = VK_NULL_HANDLE;
+  HMB_VK_CHECK(vkCreateRenderPass(context.device(), &info, nullptr, &renderPass));
+  return renderPass;
+}
+
+void createOraclePipelines(VkDevice device, std::span<const VkPipelineShaderStageCreateInfo> stages,
+                           const VkPipelineVertexInputStateCreateInfo& vertexInput, uint32_t colorAttachments,
+                           VkColorComponentFlags writeMask, VkPipelineLayout layout, VkRenderPass renderPass,
+                           uint32_t width, uint32_t height, VkPipeline pipelines[2]) {
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  const VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {width, height}};
+  VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewportState.viewportCount = 1;
+  viewportState.pViewports = &viewport;
+  viewportState.scissorCount = 1;
+  viewportState.pScissors = &scissor;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.depthClampEnable = VK_FALSE;
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = VK_TRUE;
+  depth.depthWriteEnable = VK_TRUE;
+  depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is larger
+  std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(colorAttachments);
+  for (VkPipelineColorBlendAttachmentState& b : blendAttachments) b.colorWriteMask = writeMask;
+  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = colorAttachments;
+  blend.pAttachments = blendAttachments.data();
+
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.stageCount = uint32_t(stages.size());
+  info.pStages = stages.data();
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewportState;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blend;
+  info.layout = layout;
+  info.renderPass = renderPass;
+  const VkCullModeFlags cullModes[2] = {VK_CULL_MODE_BACK_BIT, VK_CULL_MODE_NONE};
+  for (int i = 0; i < 2; ++i) {
+    raster.cullMode = cullModes[i];
+    HMB_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines[i]));
+  }
+}
+
+void addTriangle(std::vector<DrawSpan>& spans, uint32_t t, bool doubleSided) {
+  const uint32_t pipeline = doubleSided ? 1 : 0;
+  if (spans.empty() || spans.back().pipeline != pipeline) spans.push_back({pipeline, 3 * t, 0});
+  spans.back().vertexCount += 3;
+}
+
+void recordDrawSpans(VkCommandBuffer cmd, const VkPipeline pipelines[2], std::span<const DrawSpan> spans) {
+  uint32_t bound = UINT32_MAX;
+  for (const DrawSpan& span : spans) {
+    if (span.pipeline != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines[span.pipeline]);
+    bound = span.pipeline;
+    vkCmdDraw(cmd, span.vertexCount, 1, span.firstVertex, 0);
+  }
+}
+
+void barrierToHost(VkCommandBuffer cmd) {
+  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                       nullptr);
+}
+
 DrawTimer::DrawTimer(const vk::Context& context) : context_(context) {
   if (!context.info().timestamps) return;
   VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -32,6 +34,32 @@ struct Attachment {
 Attachment createAttachment(const vk::Context& context, uint32_t width, uint32_t height, VkFormat format,
                             VkImageUsageFlags usage, VkImageAspectFlags aspect);
 void destroyAttachment(const vk::Context& context, Attachment& attachment);
+
+// One subpass drawing into colour attachments of `colorFormats` and a depth attachment (last),
+// all cleared on load and left in TRANSFER_SRC_OPTIMAL: the dependencies order the previous
+// frame's readback copies before the clears, and this frame's copies after the draws.
+VkRenderPass createReadbackRenderPass(const vk::Context& context, std::span<const VkFormat> colorFormats,
+                                      VkFormat depthFormat);
+
+// The oracles' two pipelines, [0] culling back faces and [1] none: triangle lists over the whole
+// width x height viewport, depth clamp off (0 <= z/w <= 1, as the compute rasterizer keeps),
+// counter-clockwise front faces (graphics_raster.h), reversed depth (GREATER test), one sample
+// per pixel, `colorAttachments` attachments written with `writeMask`.
+void createOraclePipelines(VkDevice device, std::span<const VkPipelineShaderStageCreateInfo> stages,
+                           const VkPipelineVertexInputStateCreateInfo& vertexInput, uint32_t colorAttachments,
+                           VkColorComponentFlags writeMask, VkPipelineLayout layout, VkRenderPass renderPass,
+                           uint32_t width, uint32_t height, VkPipeline pipelines[2]);
+
+// Consecutive triangles of one sidedness, drawn with one of the two pipelines above in one call,
+// so the draw order (which decides equal-depth ties) is the triangles' order.
+struct DrawSpan {
+  uint32_t pipeline, firstVertex, vertexCount;
+};
+// Appends triangle t (vertices 3t..3t+2) to the spans.
+void addTriangle(std::vector<DrawSpan>& spans, uint32_t t, bool doubleSided);
+void recordDrawSpans(VkCommandBuffer cmd, const VkPipeline pipelines[2], std::span<const DrawSpan> spans);
+// Makes the readback copies recorded before it visible to the host.
+void barrierToHost(VkCommandBuffer cmd);
 
 // Two timestamps around a draw.
 class DrawTimer {

@@ -75,14 +75,7 @@ GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& sc
     out.clipTriangles.doubleSided.push_back(material < scene.materials.size() && scene.materials[material].doubleSided);
   }
   out.visibility = {width, height, stage.visibility().download<glm::uvec2>(), stage.rasterizer().stats(), {}, {}};
-  // The G-buffer as the kernels decode it (kernels/shared/layer_layout.h).
-  const passes::LayerContents layer = passes::downloadLayer(stage.layer(), uint64_t(width) * height);
-  for (size_t i = 0; i < layer.color.size(); ++i) {
-    out.color.emplace_back(layer.color[i], 1.0f);
-    out.normalDepth.emplace_back(layer.normal[i], layer.depth[i]);
-  }
-  out.velocity = layer.velocity;
-  out.objectId = layer.objectId;
+  static_cast<LayerReadback&>(out) = readLayer(stage.layer(), uint64_t(width) * height);
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include "runtime/passes/rasterize_pass.h"
 #include "scenes/scene.h"
 #include "tests/oracle/graphics_raster.h"
+#include "tests/support/layer_readback.h"
 
 namespace hmb::vk {
 class Context;
@@ -49,12 +50,9 @@ Visibility rasterizeClipTriangles(const vk::Context& context, const ClipTriangle
 std::vector<oracle::OracleTriangle> oracleTriangles(const ClipTriangles& input);
 
 // A scene through transform -> rasterize -> resolve at its frame time.
-struct GBufferReadback {
+struct GBufferReadback : LayerReadback {  // the G-buffer's layer
   ClipTriangles clipTriangles;  // the transform kernel's output with the scene's triangles
   Visibility visibility;
-  std::vector<glm::vec4> color, normalDepth;
-  std::vector<glm::vec2> velocity;
-  std::vector<uint32_t> objectId;
 };
 
 GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
