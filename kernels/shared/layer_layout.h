@@ -14,8 +14,8 @@
 // within 2^-14 (6.1e-5) of the value relative; negative, subnormal and NaN values are written as
 // 0, values past HMB_LAYER_MAX_COLOR as it. Depth is kept bit for bit (readers sanitize it).
 // On lavapipe every access at a per-pixel address is a loop over the lanes, whatever its width,
-// so two stores and one load per gather sample replace four and three; on GPUs the layer takes
-// 32 bytes per pixel instead of 44.
+// so two stores per pixel and one load per gather sample replace four and three; on GPUs the
+// layer takes 32 bytes per pixel instead of 44.
 //
 // The functions below are shared with the host (readbacks, tests' inputs and references), so
 // both sides round the same way. The layer's two buffers take 2 binding numbers
@@ -46,8 +46,9 @@ HMB_CHECK_SIZE(LayerTable, 16)
 
 HMB_GPU_BEGIN
 
-// The largest finite half float; the brightest colour a layer holds (the gathers' bound too).
+// The largest finite half float: the sample's velocity keeps within it.
 const float kLayerHalfMax = 65504.0f;
+// The brightest colour a layer holds: the gathers clamp to the same (HMB_MBLUR_MAX_COLOR).
 #define HMB_LAYER_MAX_COLOR 65504.0f
 // The least normal float: smaller magnitudes pack as 0, as devices that flush subnormals see them.
 const float kLayerLeastNormal = 1.17549435e-38f;
