@@ -179,23 +179,24 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
     }
 
     // Validate while timing: every iteration, warm-up included.
+    const auto requireAgreement = [&](const std::string& what, double share) {
+      if (share < kMinIdAgreement)
+        throw Error(label + ": " + what + " " + fixed(100.0 * share, 3) + "% is below " +
+                    fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");
+    };
     const double agreement = oracle::idAgreement(stage.visibility().download<glm::uvec2>(), image);
-    if (agreement < kMinIdAgreement)
-      throw Error(label + ": id agreement with the graphics pipeline " + fixed(100.0 * agreement, 3) +
-                  "% is below " + fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");
+    requireAgreement("id agreement with the graphics pipeline", agreement);
     result.minIdAgreement = std::min(result.minIdAgreement, agreement);
     const oracle::GBufferAgreement gbuffer = oracle::compareGBuffers(
         stage.layer().samples().download<glm::uvec4>(), stage.layer().surfaces().download<glm::uvec4>(), gbufferImage);
-    if (gbuffer.objectIds < kMinIdAgreement)
-      throw Error(label + ": object-id agreement with the G-buffer oracle " + fixed(100.0 * gbuffer.objectIds, 3) +
-                  "% is below " + fixed(100.0 * kMinIdAgreement, 1) + "% (iteration " + std::to_string(i) + ")");
+    requireAgreement("object-id agreement with the G-buffer oracle", gbuffer.objectIds);
     result.minObjectAgreement = std::min(result.minObjectAgreement, gbuffer.objectIds);
     result.minAttributeAgreement = std::min(result.minAttributeAgreement, gbuffer.attributes);
     const double floorTime = floor.run(frame);
     if (i < options.warmup) continue;
     floorMs.push_back(floorTime);
 
-    double vis = 0, allPasses = 0;
+    double vis = 0, resolveMs = 0, allPasses = 0;
     for (const vk::PassTiming& pass : compute.passes) {
       const double ms = required(pass.milliseconds, label);
       passSamples[pass.name].push_back(ms);
@@ -203,11 +204,12 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
       if (pass.name == passes::TransformVerticesPass::kName)
         transform.push_back(ms);
       else if (pass.name == passes::ResolveGBufferPass::kName)
-        resolve.push_back(ms);
+        resolveMs = ms;
       if (isVisibilityPass(pass.name)) vis += ms;
     }
     visibility.push_back(vis);
-    computeGBuffer.push_back(vis + resolve.back());
+    resolve.push_back(resolveMs);
+    computeGBuffer.push_back(vis + resolveMs);
     graphicsGBufferMs.push_back(gbufferMs);
     gbufferRatio.push_back(gbufferMs > 0 ? computeGBuffer.back() / gbufferMs : NAN);
     computeFrame.push_back(required(compute.frameMilliseconds, label));

@@ -82,18 +82,19 @@ void collectRasterFrame(FrameResources& resources, const FrameRequest& request, 
   result.raster = gbuffer.rasterizer().stats();
 
   passes::LayerContents layer = passes::downloadLayer(gbuffer.layer(), pixels);
-  std::vector<glm::vec4> color, depth, normal, velocity;
-  color.reserve(pixels);
+  // The beauty: the method's own linear image, or the G-buffer's colour where nothing was blurred.
+  const bool fromLayer = beauty.source == passes::DisplaySource::LayerSamples;
+  std::vector<glm::vec4> color = fromLayer ? std::vector<glm::vec4>() : beauty.buffer->download<glm::vec4>();
+  std::vector<glm::vec4> depth, normal, velocity;
   depth.reserve(pixels);
   normal.reserve(pixels);
   velocity.reserve(pixels);
   for (uint64_t i = 0; i < pixels; ++i) {
-    color.emplace_back(layer.color[i], 1.0f);
+    if (fromLayer) color.emplace_back(layer.color[i], 1.0f);
     depth.emplace_back(layer.depth[i], 0.0f, 0.0f, 0.0f);
     normal.emplace_back(layer.normal[i], 0.0f);
     velocity.emplace_back(layer.velocity[i], 0.0f, 0.0f);
   }
-  if (beauty.source == passes::DisplaySource::LinearRgba) color = beauty.buffer->download<glm::vec4>();
   io::ImageLayer objectId{"objectId", {"id"}, true, {}, std::move(layer.objectId)};
   result.image = {request.width,
                   request.height,

@@ -38,32 +38,28 @@ vk::Buffer filledBuffer(vk::Context& context, size_t count, T value, const char*
   return vk::uploadedBuffer(context, std::vector<T>(std::max<size_t>(count, 1), value), name);
 }
 
-// What a test's layer holds, as a layer's contents (object ids 1 where none are given: every
-// pixel on an object, so its normal is kept).
-passes::LayerContents contentsOf(const mblur::Layer& layer, const std::vector<uint32_t>* ids = nullptr) {
+// A test's per-pixel vectors as a layer's contents (black where no colour is given).
+passes::LayerContents contentsOf(const std::vector<glm::vec4>& normalDepth, const std::vector<glm::vec2>& velocity,
+                                 const std::vector<uint32_t>& ids, const std::vector<glm::vec4>* color) {
   passes::LayerContents c;
-  const size_t pixels = layer.color.size();
-  for (size_t i = 0; i < pixels; ++i) {
-    c.color.emplace_back(layer.color[i]);
-    c.normal.emplace_back(layer.normalDepth[i]);
-    c.depth.push_back(layer.normalDepth[i].w);
-    c.velocity.push_back(layer.velocity[i]);
-    c.objectId.push_back(ids ? ids->at(i) : 1u);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    c.color.emplace_back(color ? glm::vec3(color->at(i)) : glm::vec3(0.0f));
+    c.normal.emplace_back(normalDepth[i]);
+    c.depth.push_back(normalDepth[i].w);
+    c.velocity.push_back(velocity[i]);
+    c.objectId.push_back(ids[i]);
   }
   return c;
 }
 
+// Object ids 1 where none are given: every pixel on an object, so its normal is kept.
+passes::LayerContents contentsOf(const mblur::Layer& layer, const std::vector<uint32_t>* ids = nullptr) {
+  return contentsOf(layer.normalDepth, layer.velocity, ids ? *ids : std::vector<uint32_t>(layer.color.size(), 1u),
+                    &layer.color);
+}
+
 passes::LayerContents contentsOf(const MaskLayer& layer) {
-  passes::LayerContents c;
-  const size_t pixels = layer.objectId.size();
-  for (size_t i = 0; i < pixels; ++i) {
-    c.color.emplace_back(0.0f);
-    c.normal.emplace_back(layer.normalDepth[i]);
-    c.depth.push_back(layer.normalDepth[i].w);
-    c.velocity.push_back(layer.velocity[i]);
-    c.objectId.push_back(layer.objectId[i]);
-  }
-  return c;
+  return contentsOf(layer.normalDepth, layer.velocity, layer.objectId, nullptr);
 }
 
 }  // namespace
