@@ -49,7 +49,8 @@ int componentCount(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;  // matrices are never vertex or animation data we read
+    case TINYGLTF_TYPE_MAT4: return 16;  // a skin's inverse bind matrices
+    default: return 0;  // other matrices are never data we read
   }
 }
 
@@ -104,7 +105,8 @@ std::optional<AnimationPath> animationPath(const std::string& path) {
   if (path == "translation") return AnimationPath::Translation;
   if (path == "rotation") return AnimationPath::Rotation;
   if (path == "scale") return AnimationPath::Scale;
-  return std::nullopt;  // "weights" and extension paths: not part of the scene model
+  if (path == "weights") return AnimationPath::Weights;
+  return std::nullopt;  // extension paths: not part of the scene model
 }
 
 std::optional<Interpolation> interpolationOf(const std::string& name) {
@@ -132,6 +134,7 @@ class GltfImporter {
     scene_.name = path_.stem().string();
     checkExtensions();
     buildNodes();
+    readSkins();
     readAnimations();
     placeContent();
     return std::move(scene_);
@@ -252,7 +255,6 @@ class GltfImporter {
       if (ext.find("compression") != std::string::npos) fail("requires extension " + ext + ", which is not supported");
       warn("required extension " + ext + " is ignored");
     }
-    if (!model_.skins.empty()) warn("skins are ignored: skinned meshes are drawn in their bind pose");
   }
 
   // --- nodes ------------------------------------------------------------------------------
@@ -327,6 +329,10 @@ class GltfImporter {
       const tinygltf::Node& src = model_.nodes[i];
       scene_.nodes[i].name = src.name.empty() ? "node " + std::to_string(i) : src.name;
       scene_.nodes[i].local = nodeTrs(src, i);
+      if (!src.weights.empty()) {
+        requireFinite(src.weights, "node " + std::to_string(i) + " weights");
+        scene_.nodes[i].weights.assign(src.weights.begin(), src.weights.end());
+      }
     }
     for (size_t i = 0; i < count; ++i) {
       for (int child : model_.nodes[i].children) {
@@ -388,6 +394,36 @@ class GltfImporter {
       for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(static_cast<uint32_t>(*it));
     }
     return order;
+  }
+
+  // --- skins ------------------------------------------------------------------------------
+
+  void readSkins() {
+    for (size_t k = 0; k < model_.skins.size(); ++k) {
+      const tinygltf::Skin& src = model_.skins[k];
+      const std::string what = "skin " + std::to_string(k);
+      Skin skin;
+      skin.name = src.name.empty() ? what : src.name;
+      if (src.joints.empty()) fail(what + " has no joints");
+      for (const int joint : src.joints) {
+        if (joint < 0 || static_cast<size_t>(joint) >= scene_.nodes.size())
+          fail(what + " has joint " + std::to_string(joint) + ", which does not exist");
+        skin.joints.push_back(static_cast<uint32_t>(joint));
+      }
+      skin.inverseBindMatrices.assign(skin.joints.size(), glm::mat4(1.0f));
+      if (src.inverseBindMatrices >= 0) {
+        const std::vector<double> values =
+            readAccessor(src.inverseBindMatrices, "inverse bind matrices of " + what, {TINYGLTF_TYPE_MAT4});
+        requireFinite(values, "accessor " + std::to_string(src.inverseBindMatrices) + " (inverse bind matrices of " +
+                                  what + ")");
+        if (values.size() / 16 < skin.joints.size())
+          fail(what + " has " + std::to_string(values.size() / 16) + " inverse bind matrices for " +
+               std::to_string(skin.joints.size()) + " joints");
+        for (size_t j = 0; j < skin.joints.size(); ++j)
+          skin.inverseBindMatrices[j] = glm::mat4(glm::make_mat4(values.data() + 16 * j));
+      }
+      scene_.skins.push_back(std::move(skin));
+    }
   }
 
   // --- materials and textures -------------------------------------------------------------
@@ -550,7 +586,6 @@ class GltfImporter {
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
       fail(what + " has unknown mode " + std::to_string(mode));
     ++scene_.stats.trianglePrimitives;
-    if (!prim.targets.empty()) warn(what + ": morph targets ignored");
 
     const auto position = prim.attributes.find("POSITION");
     if (position == prim.attributes.end()) {
@@ -601,6 +636,8 @@ class GltfImporter {
     mesh.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material) : defaultMaterial();
 
     readNormals(prim, what, mesh);
+    readSkinInfluences(prim, what, mesh);
+    readMorphTargets(prim, what, mesh);
     const std::string uvName = "TEXCOORD_" + std::to_string(materialUvSet_[mesh.material]);
     if (const auto uv = prim.attributes.find(uvName); uv != prim.attributes.end()) {
       const std::vector<double> uvs = readAccessor(uv->second, uvName + " of " + what, {TINYGLTF_TYPE_VEC2});
@@ -641,6 +678,99 @@ class GltfImporter {
       }
     }
     if (replaced > 0) warn(what + ": " + std::to_string(replaced) + " invalid normals replaced");
+  }
+
+  // JOINTS_n / WEIGHTS_n (n = 0, 1): 4 influences a set. Weights must be finite and not
+  // negative; each vertex's are normalized to sum to 1 (exporters leave them a little off, and
+  // the blend of joint matrices needs it), and a vertex with no weight follows its first joint.
+  void readSkinInfluences(const tinygltf::Primitive& prim, const std::string& what, Mesh& mesh) {
+    const size_t vertexCount = mesh.positions.size();
+    uint32_t sets = 0;
+    while (sets < 2 && prim.attributes.count("JOINTS_" + std::to_string(sets))) ++sets;
+    if (sets == 0) {
+      if (prim.attributes.count("WEIGHTS_0")) warn(what + ": WEIGHTS_0 without JOINTS_0; not skinned");
+      return;
+    }
+    if (prim.attributes.count("JOINTS_2")) warn(what + ": joint influences past JOINTS_1 ignored");
+    std::vector<double> joints, weights;
+    for (uint32_t set = 0; set < sets; ++set) {
+      const std::string jointsName = "JOINTS_" + std::to_string(set), weightsName = "WEIGHTS_" + std::to_string(set);
+      const auto weightsAttribute = prim.attributes.find(weightsName);
+      if (weightsAttribute == prim.attributes.end()) fail(what + " has " + jointsName + " but no " + weightsName);
+      const int jointsAccessor = prim.attributes.at(jointsName);
+      if (jointsAccessor >= 0 && static_cast<size_t>(jointsAccessor) < model_.accessors.size()) {
+        const int type = model_.accessors[static_cast<size_t>(jointsAccessor)].componentType;
+        if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+          fail("accessor " + std::to_string(jointsAccessor) + " (" + jointsName + " of " + what +
+               ") is not of unsigned byte or short components");
+      }
+      const std::vector<double> j = readAccessor(jointsAccessor, jointsName + " of " + what, {TINYGLTF_TYPE_VEC4});
+      const std::vector<double> w =
+          readAccessor(weightsAttribute->second, weightsName + " of " + what, {TINYGLTF_TYPE_VEC4});
+      if (j.size() / 4 != vertexCount || w.size() / 4 != vertexCount)
+        fail(what + ": " + jointsName + " or " + weightsName + " count differs from POSITION count");
+      for (size_t i = 0; i < w.size(); ++i)
+        if (!std::isfinite(w[i]) || w[i] < 0.0)
+          fail("accessor " + std::to_string(weightsAttribute->second) + " (" + weightsName + " of " + what +
+               ") has a negative or non-finite weight at vertex " + std::to_string(i / 4));
+      joints.insert(joints.end(), j.begin(), j.end());
+      weights.insert(weights.end(), w.begin(), w.end());
+    }
+    mesh.influences = 4 * sets;
+    mesh.joints.resize(vertexCount * mesh.influences);
+    mesh.weights.resize(vertexCount * mesh.influences);
+    size_t unweighted = 0;
+    for (size_t v = 0; v < vertexCount; ++v) {
+      double sum = 0.0;
+      for (uint32_t set = 0; set < sets; ++set)
+        for (size_t c = 0; c < 4; ++c) sum += weights[(set * vertexCount + v) * 4 + c];
+      if (!(sum > 0.0)) ++unweighted;
+      for (uint32_t set = 0; set < sets; ++set)
+        for (size_t c = 0; c < 4; ++c) {
+          const size_t from = (set * vertexCount + v) * 4 + c, to = v * mesh.influences + set * 4 + c;
+          mesh.joints[to] = static_cast<uint32_t>(joints[from]);
+          mesh.weights[to] = sum > 0.0 ? static_cast<float>(weights[from] / sum) : (to % mesh.influences == 0 ? 1.0f : 0.0f);
+        }
+    }
+    if (unweighted > 0) warn(what + ": " + std::to_string(unweighted) + " vertices without joint weights follow their first joint");
+  }
+
+  // Morph targets' POSITION and NORMAL displacements (other attributes are not rendered).
+  void readMorphTargets(const tinygltf::Primitive& prim, const std::string& what, Mesh& mesh) {
+    const size_t vertexCount = mesh.positions.size();
+    for (size_t k = 0; k < prim.targets.size(); ++k) {
+      const std::string target = what + " morph target " + std::to_string(k);
+      MorphTarget morph;
+      for (const auto& [name, accessor] : prim.targets[k]) {
+        if (name != "POSITION" && name != "NORMAL") {
+          if (name != "TANGENT") warn(target + ": " + name + " displacements ignored");
+          continue;
+        }
+        const std::vector<double> values = readAccessor(accessor, name + " of " + target, {TINYGLTF_TYPE_VEC3});
+        requireFinite(values, "accessor " + std::to_string(accessor) + " (" + name + " of " + target + ")");
+        if (values.size() / 3 != vertexCount)
+          fail(target + " has " + std::to_string(values.size() / 3) + " " + name + " displacements for " +
+               std::to_string(vertexCount) + " vertices");
+        std::vector<glm::vec3>& out = name == "POSITION" ? morph.positions : morph.normals;
+        out.resize(vertexCount);
+        for (size_t v = 0; v < vertexCount; ++v) out[v] = glm::vec3(values[v * 3], values[v * 3 + 1], values[v * 3 + 2]);
+      }
+      mesh.targets.push_back(std::move(morph));
+    }
+  }
+
+  // The morph target count of a glTF mesh, the same for all its primitives (glTF requires it),
+  // with its default weights checked against it.
+  size_t morphTargetCount(int meshIndex) const {
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(meshIndex)];
+    const std::string what = "mesh " + std::to_string(meshIndex);
+    const size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    for (const tinygltf::Primitive& prim : mesh.primitives)
+      if (prim.targets.size() != targets) fail(what + ": its primitives have different numbers of morph targets");
+    if (!mesh.weights.empty() && mesh.weights.size() != targets)
+      fail(what + " has " + std::to_string(mesh.weights.size()) + " weights for " + std::to_string(targets) +
+           " morph targets");
+    return targets;
   }
 
   const std::vector<uint32_t>& meshesOf(int meshIndex, size_t nodeIndex) {
@@ -688,11 +818,24 @@ class GltfImporter {
         const std::vector<double> times = readAccessor(sampler.input, "input of " + what, {TINYGLTF_TYPE_SCALAR});
         requireFinite(times, "accessor " + std::to_string(sampler.input) + " (input of " + what + ")");
         const bool rotation = channel.path == AnimationPath::Rotation;
+        const bool weights = channel.path == AnimationPath::Weights;
+        if (weights) {
+          const int mesh = model_.nodes[static_cast<size_t>(src.target_node)].mesh;
+          const size_t targets =
+              mesh >= 0 && static_cast<size_t>(mesh) < model_.meshes.size() ? morphTargetCount(mesh) : 0;
+          if (targets == 0) {
+            warn(what + ": weights of a node without morph targets; ignored");
+            continue;
+          }
+          channel.weightCount = static_cast<uint32_t>(targets);
+        }
         int components = 0;
-        const std::vector<double> values = readAccessor(
-            sampler.output, "output of " + what, {rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3}, &components);
+        const std::vector<double> values =
+            readAccessor(sampler.output, "output of " + what,
+                         {weights ? TINYGLTF_TYPE_SCALAR : rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3}, &components);
         requireFinite(values, "accessor " + std::to_string(sampler.output) + " (output of " + what + ")");
         const size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+        if (weights) components = static_cast<int>(channel.weightCount);  // one element per weight
         if (times.empty()) {
           warn(what + ": no keys; ignored");
           continue;
@@ -707,7 +850,11 @@ class GltfImporter {
           channel.times.push_back(static_cast<float>(times[k]));
           for (size_t j = 0; j < perKey; ++j) {
             const size_t e = (k * perKey + j) * static_cast<size_t>(components);
-            channel.values.emplace_back(values[e], values[e + 1], values[e + 2], rotation ? values[e + 3] : 0.0);
+            if (weights)
+              channel.weights.insert(channel.weights.end(), values.begin() + static_cast<std::ptrdiff_t>(e),
+                                     values.begin() + static_cast<std::ptrdiff_t>(e + channel.weightCount));
+            else
+              channel.values.emplace_back(values[e], values[e + 1], values[e + 2], rotation ? values[e + 3] : 0.0);
           }
         }
         if (channel.times.size() < times.size()) warn(what + ": keys with repeated times dropped");
@@ -791,11 +938,73 @@ class GltfImporter {
       const tinygltf::Node& node = model_.nodes[nodeIndex];
       if (node.mesh >= 0) {
         const std::vector<uint32_t>& meshes = meshesOf(node.mesh, nodeIndex);
-        for (uint32_t mesh : meshes) scene_.instances.push_back(Instance{mesh, nodeIndex, nextObjectId});
+        for (uint32_t mesh : meshes) scene_.instances.push_back(deformingInstance(node, nodeIndex, mesh, nextObjectId));
         if (!meshes.empty()) ++nextObjectId;
       }
       readCamera(node, nodeIndex);
       readLight(node, nodeIndex);
+    }
+    giveDeformingInstancesTheirOwnMeshes();
+  }
+
+  // The instance of one of a node's meshes, with what deforms it: the node's skin when the mesh
+  // has joint influences (the instance then sits on an identity root of its own, since glTF
+  // ignores the transform of a skinned mesh's node), and the node's weights when it has morph
+  // targets.
+  Instance deformingInstance(const tinygltf::Node& node, uint32_t nodeIndex, uint32_t mesh, uint32_t objectId) {
+    Instance instance{mesh, nodeIndex, objectId};
+    const std::string what = "node " + std::to_string(nodeIndex);
+    const Mesh& m = scene_.meshes[mesh];
+    if (node.skin >= 0 && static_cast<size_t>(node.skin) >= scene_.skins.size())
+      fail(what + " refers to skin " + std::to_string(node.skin) + ", which does not exist");
+    if (node.skin >= 0 && m.influences > 0) {
+      const Skin& skin = scene_.skins[static_cast<size_t>(node.skin)];
+      const auto worst = std::max_element(m.joints.begin(), m.joints.end());
+      if (*worst >= skin.joints.size())
+        fail(m.name + " names joint " + std::to_string(*worst) + " of skin " + std::to_string(node.skin) +
+             ", which has " + std::to_string(skin.joints.size()));
+      instance.skin = node.skin;
+      if (!skinnedRoot_[nodeIndex]) {
+        Node root;
+        root.name = scene_.nodes[nodeIndex].name + " (skinned)";
+        skinnedRoot_[nodeIndex] = static_cast<uint32_t>(scene_.nodes.size());
+        scene_.nodes.push_back(std::move(root));
+      }
+      instance.node = *skinnedRoot_[nodeIndex];
+    } else if (node.skin >= 0) {
+      warn(what + ": skin " + std::to_string(node.skin) + " on a mesh without joint influences; not skinned");
+    } else if (m.influences > 0) {
+      warn(what + ": " + m.name + " has joint influences but the node has no skin; drawn in its bind pose");
+    }
+    if (!m.targets.empty()) {
+      const size_t targets = morphTargetCount(node.mesh);
+      std::vector<float>& weights = scene_.nodes[nodeIndex].weights;
+      if (weights.empty()) {
+        const std::vector<double>& meshWeights = model_.meshes[static_cast<size_t>(node.mesh)].weights;
+        requireFinite(meshWeights, "mesh " + std::to_string(node.mesh) + " weights");
+        weights.assign(meshWeights.begin(), meshWeights.end());
+      } else if (weights.size() != targets) {
+        fail(what + " has " + std::to_string(weights.size()) + " weights for " + std::to_string(targets) +
+             " morph targets");
+      }
+      instance.morphNode = static_cast<int32_t>(nodeIndex);
+    }
+    return instance;
+  }
+
+  // A deforming instance changes its mesh's vertices on the device, so it must not share them:
+  // every mesh used by a deforming instance and by others is copied for each deforming one
+  // but the last.
+  void giveDeformingInstancesTheirOwnMeshes() {
+    std::vector<uint32_t> uses(scene_.meshes.size(), 0);
+    for (const Instance& instance : scene_.instances) ++uses[instance.mesh];
+    for (Instance& instance : scene_.instances) {
+      if (!instance.deforms() || uses[instance.mesh] <= 1) continue;
+      --uses[instance.mesh];
+      Mesh copy = scene_.meshes[instance.mesh];
+      instance.mesh = static_cast<uint32_t>(scene_.meshes.size());
+      scene_.meshes.push_back(std::move(copy));
+      uses.push_back(1);
     }
   }
 
@@ -804,6 +1013,7 @@ class GltfImporter {
   Scene scene_;
   std::map<int, int32_t> textureOfImage_;
   std::map<int, std::vector<uint32_t>> meshesOfGltfMesh_;
+  std::map<uint32_t, std::optional<uint32_t>> skinnedRoot_;  // per skinned node, its identity root
   std::vector<int> materialUvSet_;
   std::optional<uint32_t> defaultMaterial_;
   bool haveLight_ = false;

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scenes/deformation.h"
+
 namespace hmb::scene {
 namespace {
 
@@ -45,19 +47,13 @@ bool sampleChannel(const AnimationChannel& ch, float t, glm::vec4& out, bool isR
   if (ch.values.size() < keys * stride) return false;
   auto keyValue = [&](size_t k) { return ch.values[k * stride + valueOffset]; };
 
-  if (!(t > ch.times.front())) {  // also catches NaN t
-    out = keyValue(0);
+  const KeySegment segment = keySegment(ch.times, t);
+  if (segment.k0 == segment.k1) {
+    out = keyValue(segment.k0);
     return true;
   }
-  if (t >= ch.times.back()) {
-    out = keyValue(keys - 1);
-    return true;
-  }
-  // First key strictly after t; the segment is [k0, k0 + 1].
-  const size_t k1 = static_cast<size_t>(std::upper_bound(ch.times.begin(), ch.times.end(), t) - ch.times.begin());
-  const size_t k0 = k1 - 1;
-  const float dt = ch.times[k1] - ch.times[k0];
-  const float u = dt > 0.0f ? std::clamp((t - ch.times[k0]) / dt, 0.0f, 1.0f) : 1.0f;
+  const size_t k0 = segment.k0, k1 = segment.k1;
+  const float dt = segment.dt, u = segment.u;
 
   switch (ch.interpolation) {
     case Interpolation::Step: out = keyValue(k0); return true;
@@ -89,6 +85,19 @@ bool sampleChannel(const AnimationChannel& ch, float t, glm::vec4& out, bool isR
 }
 
 }  // namespace
+
+KeySegment keySegment(const std::vector<float>& times, float t) {
+  const size_t keys = times.size();
+  if (keys == 0) return {};
+  if (!(t > times.front())) return {0, 0, 0.0f, 0.0f};  // also catches NaN t
+  if (t >= times.back()) return {keys - 1, keys - 1, 0.0f, 0.0f};
+  // First key strictly after t; the segment is [k0, k0 + 1].
+  const size_t k1 = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+  const size_t k0 = k1 - 1;
+  const float dt = times[k1] - times[k0];
+  const float u = dt > 0.0f ? std::clamp((t - times[k0]) / dt, 0.0f, 1.0f) : 1.0f;
+  return {k0, k1, u, dt};
+}
 
 Scene singleMeshScene(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
   Scene scene;
@@ -124,13 +133,14 @@ Trs Scene::localTrsAt(uint32_t node, float t) const {
   if (node >= nodes.size()) return Trs{};
   Trs trs = nodes[node].local;
   for (const AnimationChannel& ch : channels) {
-    if (ch.node != node) continue;
+    if (ch.node != node || ch.path == AnimationPath::Weights) continue;
     glm::vec4 v;
     if (!sampleChannel(ch, t, v, ch.path == AnimationPath::Rotation)) continue;
     switch (ch.path) {
       case AnimationPath::Translation: trs.translation = glm::vec3(v); break;
       case AnimationPath::Rotation: trs.rotation = normalizedOrIdentity(toQuat(v)); break;
       case AnimationPath::Scale: trs.scale = glm::vec3(v); break;
+      case AnimationPath::Weights: break;  // not a transform (scenes/deformation.h)
     }
   }
   return trs;
@@ -151,7 +161,7 @@ bool Scene::isAnimated(uint32_t node) const {
   int64_t current = node;
   for (size_t steps = 0; current >= 0 && static_cast<size_t>(current) < nodes.size() && steps < nodes.size(); ++steps) {
     for (const AnimationChannel& ch : channels)
-      if (ch.node == static_cast<uint32_t>(current)) return true;
+      if (ch.node == static_cast<uint32_t>(current) && ch.path != AnimationPath::Weights) return true;
     current = nodes[static_cast<size_t>(current)].parent;
   }
   return false;
@@ -164,9 +174,18 @@ Aabb Scene::boundsAt(float t) const {
   Aabb bounds;
   for (const Instance& inst : instances) {
     if (inst.mesh >= meshes.size()) continue;
-    bounds.grow(transformed(meshBounds[inst.mesh], worldMatrixAt(inst.node, t)));
+    Aabb box = meshBounds[inst.mesh];
+    if (inst.deforms()) {
+      box = Aabb{};
+      for (const glm::vec3& p : deformedMeshAt(*this, inst, t).positions) box.grow(p);
+    }
+    bounds.grow(transformed(box, worldMatrixAt(inst.node, t)));
   }
   return bounds;
+}
+
+bool Scene::hasDeformation() const {
+  return std::any_of(instances.begin(), instances.end(), [](const Instance& i) { return i.deforms(); });
 }
 
 uint64_t Scene::triangleCount() const {

@@ -29,6 +29,13 @@ struct Material {
   bool doubleSided = false;         // glTF: back faces are culled unless set
 };
 
+// One glTF morph target: displacements added to the mesh's vertices, scaled by the target's
+// weight. Either list may be empty (the target moves nothing of that kind).
+struct MorphTarget {
+  std::vector<glm::vec3> positions;  // per vertex
+  std::vector<glm::vec3> normals;    // per vertex
+};
+
 // One triangle list with one material (a glTF primitive). Positions are in the mesh's own space.
 struct Mesh {
   std::string name;
@@ -37,7 +44,21 @@ struct Mesh {
   std::vector<glm::vec2> uvs;      // per vertex or empty
   std::vector<uint32_t> indices;   // 3 per triangle
   uint32_t material = 0;           // index into Scene::materials
+  // Skin influences (glTF JOINTS_n / WEIGHTS_n): `influences` per vertex, 0 (not skinned), 4
+  // or 8; joints index the instance's Skin::joints, and each vertex's weights sum to 1 (the
+  // loader normalizes them).
+  uint32_t influences = 0;
+  std::vector<uint32_t> joints;
+  std::vector<float> weights;
+  std::vector<MorphTarget> targets;
   uint32_t triangleCount() const { return static_cast<uint32_t>(indices.size() / 3); }
+};
+
+// A glTF skin: the joint nodes, and the matrix taking each joint's bind pose to its space.
+struct Skin {
+  std::string name;
+  std::vector<uint32_t> joints;                 // node indices
+  std::vector<glm::mat4> inverseBindMatrices;   // per joint
 };
 
 // A node's local transform: translation, rotation, scale (glTF order T * R * S).
@@ -52,27 +73,44 @@ struct Node {
   std::string name;
   int32_t parent = -1;  // index into Scene::nodes, -1 for a root
   Trs local;            // rest transform, overridden per channel by animation
+  std::vector<float> weights;  // rest morph weights of its mesh's targets (node's, else mesh's)
 };
 
-enum class AnimationPath { Translation, Rotation, Scale };
+enum class AnimationPath { Translation, Rotation, Scale, Weights };
 enum class Interpolation { Step, Linear, CubicSpline };
 
 // One animated property of one node. For CubicSpline, values holds (in-tangent, value,
-// out-tangent) triples per key, as in glTF. Rotations are stored as (x, y, z, w).
+// out-tangent) triples per key, as in glTF. Rotations are stored as (x, y, z, w). Morph
+// weights (path Weights) are in `weights` instead: weightCount per element, the same layout.
 struct AnimationChannel {
   uint32_t node = 0;
   AnimationPath path = AnimationPath::Translation;
   Interpolation interpolation = Interpolation::Linear;
   std::vector<float> times;  // seconds, strictly increasing
   std::vector<glm::vec4> values;
+  uint32_t weightCount = 0;
+  std::vector<float> weights;
 };
+
+// Where time t falls among a channel's keys: the segment k0..k1 = k0 + 1 at fraction u of
+// its dt seconds, or k0 == k1 before the first key or from the last one on (also for NaN).
+struct KeySegment {
+  size_t k0 = 0, k1 = 0;
+  float u = 0.0f, dt = 0.0f;
+};
+KeySegment keySegment(const std::vector<float>& times, float t);
 
 // Draws one mesh with the world transform of one node. Instances of the same node share
 // an object id: the id names an object, not a draw.
+// A deforming instance (skinned, or with morph targets) has a mesh of its own. A skinned one
+// sits on an identity root node, as glTF ignores the transform of a skinned mesh's node.
 struct Instance {
   uint32_t mesh = 0;
   uint32_t node = 0;
   uint32_t objectId = 0;
+  int32_t skin = -1;       // index into Scene::skins when the mesh is skinned
+  int32_t morphNode = -1;  // the node whose weights drive the mesh's morph targets, when it has any
+  bool deforms() const { return skin >= 0 || morphNode >= 0; }
 };
 
 struct Camera {
@@ -114,6 +152,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Node> nodes;
+  std::vector<Skin> skins;
   std::vector<AnimationChannel> channels;
   std::vector<Instance> instances;
   std::optional<Camera> camera;  // none: deriveDefaults places one
@@ -128,8 +167,10 @@ struct Scene {
   glm::mat4 worldMatrixAt(uint32_t node, float t) const;
   // True when any channel targets the node or one of its ancestors.
   bool isAnimated(uint32_t node) const;
-  // World-space bounds of every instance at time t.
+  // World-space bounds of every instance at time t (deforming ones deformed at t).
   Aabb boundsAt(float t) const;
+  // Whether any instance deforms (scenes/deformation.h).
+  bool hasDeformation() const;
   uint64_t triangleCount() const;
 };
 

@@ -60,11 +60,21 @@ TEST(GltfRealFilesTest, AnimatedFiles) {
   const Scene skin = loadGltf(root / "simple_skin/simple_skin.gltf");
   EXPECT_FALSE(skin.channels.empty());
   EXPECT_GT(skin.triangleCount(), 0u);
-  EXPECT_FALSE(skin.stats.warnings.empty());  // skins are ignored, and says so
+  EXPECT_TRUE(skin.stats.warnings.empty());
+  ASSERT_EQ(skin.skins.size(), 1u);
+  EXPECT_EQ(skin.skins[0].joints, (std::vector<uint32_t>{1, 2}));
+  ASSERT_EQ(skin.instances.size(), 1u);
+  EXPECT_EQ(skin.instances[0].skin, 0);
+  EXPECT_TRUE(skin.hasDeformation());
+  EXPECT_EQ(skin.meshes[0].influences, 4u);
   const Scene morph = loadGltf(root / "glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
   EXPECT_EQ(morph.triangleCount(), 12u);
-  EXPECT_TRUE(morph.channels.empty());  // weights animation: ignored with a warning
-  EXPECT_FALSE(morph.stats.warnings.empty());
+  ASSERT_EQ(morph.channels.size(), 1u);
+  EXPECT_EQ(morph.channels[0].path, AnimationPath::Weights);
+  EXPECT_EQ(morph.channels[0].weightCount, 2u);
+  EXPECT_EQ(morph.meshes[0].targets.size(), 2u);
+  EXPECT_TRUE(morph.hasDeformation());
+  EXPECT_TRUE(morph.stats.warnings.empty());
 }
 
 TEST(GltfRealFilesTest, PrimitiveModes) {

@@ -70,6 +70,48 @@ def edited(edit):
     return doc
 
 
+def with_data(doc, raw, accessors):
+    """Appends raw bytes to the document's buffer, one view per accessor (kind, count, component,
+    byte length), and returns the new accessors' indices."""
+    old = base64.b64decode(doc["buffers"][0]["uri"].split(",", 1)[1])
+    offset = len(old)
+    doc["buffers"][0] = {"byteLength": len(old) + len(raw), "uri": data_uri(old + raw)}
+    indices = []
+    for kind, count, component, length in accessors:
+        doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": length})
+        doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, "componentType": component,
+                                 "count": count, "type": kind})
+        indices.append(len(doc["accessors"]) - 1)
+        offset += length
+    return indices
+
+
+def skinned_triangle(joints=(0, 1, 0, 0) * 3, weights=(0.5, 0.5, 0, 0) * 3, inverse_binds=2):
+    """The triangle skinned to two joint nodes (1 and 2) by JOINTS_0 / WEIGHTS_0."""
+    doc = triangle_gltf()
+    joint_bytes = struct.pack("<12H", *joints)
+    weight_bytes = struct.pack("<12f", *weights)
+    binds = struct.pack("<%df" % (16 * inverse_binds), *([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] * inverse_binds))
+    j, w, m = with_data(doc, joint_bytes + weight_bytes + binds,
+                        [("VEC4", 3, 5123, len(joint_bytes)), ("VEC4", 3, 5126, len(weight_bytes)),
+                         ("MAT4", inverse_binds, 5126, len(binds))])
+    doc["meshes"][0]["primitives"][0]["attributes"].update(JOINTS_0=j, WEIGHTS_0=w)
+    doc["nodes"] = [{"mesh": 0, "skin": 0}, {"children": [2]}, {"translation": [1.0, 0.0, 0.0]}]
+    doc["scenes"][0]["nodes"] = [0, 1]
+    doc["skins"] = [{"joints": [1, 2], "inverseBindMatrices": m}]
+    return doc
+
+
+def morphing_triangle(target_positions=3, mesh_weights=(0.5,)):
+    """The triangle with one morph target moving it along z."""
+    doc = triangle_gltf()
+    raw = struct.pack("<%df" % (3 * target_positions), *([0.0, 0.0, 1.0] * target_positions))
+    (t,) = with_data(doc, raw, [("VEC3", target_positions, 5126, len(raw))])
+    doc["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": t}]
+    doc["meshes"][0]["weights"] = list(mesh_weights)
+    return doc
+
+
 def write(name, content):
     path = os.path.join(HERE, name)
     mode = "wb" if isinstance(content, bytes) else "w"
@@ -120,6 +162,19 @@ def main():
     write("animation-bad-sampler.gltf",
           edited(lambda d: d.update(animations=[{"channels": [{"sampler": 3, "target": {"node": 0, "path": "translation"}}],
                                                   "samplers": []}])))
+    write("skin-joint-out-of-range.gltf", skinned_triangle(joints=(0, 5, 0, 0) * 3))
+    write("skin-negative-weight.gltf", skinned_triangle(weights=(1.5, -0.5, 0, 0) * 3))
+    write("skin-nan-weight.gltf", skinned_triangle(weights=(math.nan, 0.5, 0, 0) * 3))
+    write("skin-joint-missing.gltf", edited(lambda d: d.update(skins=[{"joints": [9]}])))
+    write("skin-no-joints.gltf", edited(lambda d: d.update(skins=[{"joints": []}])))
+    write("skin-few-inverse-binds.gltf", skinned_triangle(inverse_binds=1))
+    write("skin-missing.gltf", edited(lambda d: d["nodes"][0].update(skin=3)))
+    write("skin-joints-without-weights.gltf",
+          (lambda d: (d["meshes"][0]["primitives"][0]["attributes"].pop("WEIGHTS_0"), d)[1])(skinned_triangle()))
+    write("morph-target-count-differs.gltf", morphing_triangle(target_positions=2))
+    write("morph-weights-count-differs.gltf", morphing_triangle(mesh_weights=(0.5, 0.5)))
+    write("morph-node-weights-count-differs.gltf",
+          (lambda d: (d["nodes"][0].update(weights=[1.0, 2.0, 3.0]), d)[1])(morphing_triangle()))
     pos, idx = triangle_buffer()
     document = triangle_gltf()
     document["buffers"] = [{"byteLength": len(pos) + len(idx)}]
@@ -153,6 +208,10 @@ def write_valid_seeds(directory):
     animated["meshes"][0]["primitives"][0]["material"] = 0
     with open(os.path.join(directory, "valid-triangle.gltf"), "w") as f:
         json.dump(triangle_gltf(), f)
+    with open(os.path.join(directory, "valid-skinned.gltf"), "w") as f:
+        json.dump(skinned_triangle(), f)
+    with open(os.path.join(directory, "valid-morphing.gltf"), "w") as f:
+        json.dump(morphing_triangle(), f)
     with open(os.path.join(directory, "valid-animated.gltf"), "w") as f:
         json.dump(animated, f)
     pos, idx = triangle_buffer()
