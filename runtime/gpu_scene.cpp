@@ -7,7 +7,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "runtime/deformed_vertices.h"
 #include "runtime/error.h"
+#include "scenes/deformation.h"
 
 namespace hmb {
 namespace {
@@ -66,7 +68,8 @@ bool anythingMovesOnScreen(const scene::Scene& scene, float t) {
   const float previous = t - 1.0f / scene.settings.fps;
   if (cameraWorld(scene, t) != cameraWorld(scene, previous)) return true;
   return std::any_of(scene.instances.begin(), scene.instances.end(), [&](const scene::Instance& instance) {
-    return scene.worldMatrixAt(instance.node, t) != scene.worldMatrixAt(instance.node, previous);
+    return scene.worldMatrixAt(instance.node, t) != scene.worldMatrixAt(instance.node, previous) ||
+           (instance.deforms() && scene::deformationDiffers(scene, instance, t, previous));
   });
 }
 
@@ -134,6 +137,25 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
                           vk::MemoryUse::Device, "instances");
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
+  if (scene.hasDeformation()) {
+    deformation_ = std::make_unique<DeformedVertices>(context, scene, meshVertexBase);
+    previousVertices_ = vk::uploadedBuffer(context, vertices, "scene vertices (previous frame)");
+  }
+}
+
+GpuScene::GpuScene(GpuScene&&) noexcept = default;
+GpuScene::~GpuScene() = default;
+
+void GpuScene::recordFrameDeformation(vk::FrameRecorder& frame) const {
+  if (!deformation_) return;
+  deformation_->record(frame, 1, previousVertices_);
+  deformation_->record(frame, 0, vertices_);
+}
+
+void GpuScene::recordDeformationAt(const scene::Scene& scene, float t, vk::FrameRecorder& frame) {
+  if (!deformation_) return;
+  deformation_->setTime(scene, 0, t);
+  deformation_->record(frame, 0, vertices_);
 }
 
 void GpuScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
@@ -158,6 +180,10 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
     instances.push_back(g);
   }
   if (!instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(instances));
+  if (deformation_) {
+    deformation_->setTime(scene, 0, t);
+    deformation_->setTime(scene, 1, previous);
+  }
 
   camera_ = frameCamera(scene, t, width, height);
   gpu::GpuCamera c{};

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -12,7 +13,13 @@
 #include "runtime/vulkan/buffer_group.h"
 #include "scenes/scene.h"
 
+namespace hmb::vk {
+class FrameRecorder;
+}
+
 namespace hmb {
+
+class DeformedVertices;
 
 // The camera of one frame on the host: what the kernels get, and what tests need to check them.
 struct FrameCamera {
@@ -29,16 +36,29 @@ struct FrameCamera {
 FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
 
 // Whether anything can move on screen between the previous frame (t - 1/fps) and t: the
-// camera or any instance's world transform differs. When nothing does, every screen velocity
+// camera, any instance's world transform or any mesh's deformation differs. When nothing does, every screen velocity
 // is 0 and the blur passes return the sharp colour.
 bool anythingMovesOnScreen(const scene::Scene& scene, float t);
 
 class GpuScene {
  public:
   GpuScene(const vk::Context& context, const scene::Scene& scene);
+  GpuScene(GpuScene&&) noexcept;
+  ~GpuScene();
 
-  // Writes instance transforms at t and t - 1/fps and the camera for the frame.
+  // Writes instance transforms at t and t - 1/fps and the camera for the frame, and the
+  // deformation at both times (recordFrameDeformation applies it).
   void setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
+
+  // Whether the scene has skinned or morphing meshes: their vertices are then deformed on the
+  // device (runtime/deformed_vertices.h) before anything reads them.
+  bool deforms() const { return deformation_ != nullptr; }
+  // Records the deformation of the frame set by setFrame: the meshes' vertices at t into
+  // vertices(), at t - 1/fps into previousVertices().
+  void recordFrameDeformation(vk::FrameRecorder& frame) const;
+  // Records the meshes' vertices deformed at time t into vertices() (for a ray traced at t);
+  // the frame's deformation at t is replaced by this one.
+  void recordDeformationAt(const scene::Scene& scene, float t, vk::FrameRecorder& frame);
 
   uint32_t triangleCount() const { return triangleCount_; }
   uint32_t instanceVertexCount() const { return instanceVertexCount_; }
@@ -48,7 +68,10 @@ class GpuScene {
   bool texturePath() const { return texturePath_; }
   void keepTexturePath() { texturePath_ = true; }
 
+  // Per mesh vertex (GpuVertex): deformed ones hold their deformation at the frame time.
   const vk::Buffer& vertices() const { return vertices_; }
+  // The same at the previous frame (t - 1/fps): vertices() itself when nothing deforms.
+  const vk::Buffer& previousVertices() const { return deformation_ ? previousVertices_ : vertices_; }
   const vk::Buffer& instanceVertices() const { return instanceVertices_; }
   const vk::Buffer& triangles() const { return triangles_; }
   const vk::Buffer& instances() const { return instances_; }
@@ -73,6 +96,8 @@ class GpuScene {
   vk::Buffer texels_;
   vk::Buffer cameraBuffer_;
   vk::BufferGroup shading_;  // the buffers above that shading kernels bind together
+  std::unique_ptr<DeformedVertices> deformation_;
+  vk::Buffer previousVertices_;
 };
 
 }  // namespace hmb

@@ -7,6 +7,7 @@
 
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
+#include "runtime/deformed_vertices.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 
@@ -75,6 +76,7 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
     : context_(context),
       triangleBoundsKernel_(context, "bvh/triangle_bounds", sizeof(uint32_t)),
       motionBoundsKernel_(context, "trace/instance_motion_bounds", sizeof(gpu::TraceParams)),
+      deformedLeavesKernel_(context, "bvh/deformed_leaf_triangles", sizeof(uint32_t)),
       meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF),
       instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF) {
   std::vector<glm::vec4> positions;
@@ -127,6 +129,29 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
   leafTriangles_ = vk::uploadedBuffer(context, leafTriangles, "trace triangles (leaf order)");
 }
 
+vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float t, GpuScene& gpuScene,
+                                              vk::FrameRecorder& frame) {
+  vk::FrameTimings timings;
+  if (!gpuScene.deforms() || triangleCount_ == 0) return timings;
+  if (deformedBoxes_.size() < uint64_t(triangleCount_) * sizeof(gpu::BvhBox))
+    deformedBoxes_ = vk::Buffer(context_, uint64_t(triangleCount_) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
+                                "deformed triangle boxes");
+  frame.begin();
+  gpuScene.recordDeformationAt(scene, t, frame);
+  frame.dispatch(kDeformedLeaves, deformedLeavesKernel_,
+                 {{HMB_DEFORMED_LEAVES_BINDING_VERTICES, &gpuScene.vertices()},
+                  {HMB_DEFORMED_LEAVES_BINDING_PRIMITIVES, &meshBvh_.primitives()},
+                  {HMB_DEFORMED_LEAVES_BINDING_LEAF_TRIANGLES, &leafTriangles_},
+                  {HMB_DEFORMED_LEAVES_BINDING_BOXES, &deformedBoxes_}},
+                 triangleCount_, vk::foldedGroups(vk::groupsFor(triangleCount_, HMB_BVH_BUILD_GROUP)));
+  timings = frame.submitAndWait();
+  const double refitMs = meshBvh_.refit(frame, deformedBoxes_);
+  vk::appendTimings(timings, {{{kRefit, refitMs}}, refitMs});
+  builtTransforms_.clear();  // the instances' boxes moved: the top level must be built again
+  group_.forgetTable();
+  return timings;
+}
+
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
 
 bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const float> times) const {
@@ -176,6 +201,14 @@ void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddr
                                  &meshBvh_.links(),     &meshBvh_.primitives(), &leafTriangles_,
                                  &instanceBvh_.frames(), &meshBvh_.frames()};
   group_.bind(bindings, firstBinding, byAddress, members);
+}
+
+void planDeformedTrees(FramePlan& plan, const scene::Scene& scene) {
+  for (const char* pass : {TraceScene::kDeformedLeaves, TraceScene::kRefit})
+    if (scene.hasDeformation())
+      plan.run(pass);
+    else
+      plan.skip(pass, "no skinned or morphing mesh: the mesh trees keep their bounds");
 }
 
 bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene) {

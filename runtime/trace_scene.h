@@ -22,11 +22,13 @@
 
 namespace hmb::vk {
 class FrameRecorder;
+struct FrameTimings;
 }
 
 namespace hmb {
 
 class FramePlan;
+class GpuScene;
 
 // The camera at time t as rays (kernels/trace/trace_layout.h): the same pinhole the
 // rasterizer projects with, so a ray through a pixel centre meets what the raster sees there.
@@ -36,6 +38,8 @@ class TraceScene {
  public:
   static constexpr const char* kTriangleBounds = "bvh-triangle-bounds";
   static constexpr const char* kMotionBounds = "bvh-instance-motion-bounds";
+  static constexpr const char* kDeformedLeaves = "bvh-deformed-leaves";
+  static constexpr const char* kRefit = "bvh-refit";
 
   // Uploads the meshes and builds their trees (submits on `frame`).
   TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame);
@@ -43,6 +47,13 @@ class TraceScene {
   // Transforms of every instance at each shutter time, and the top level over the instances'
   // boxes merged over those times (submits on `frame`). Rays name a time by its index here.
   void setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame);
+
+  // A scene with skinned or morphing meshes: deforms `gpuScene`'s vertices to time t, takes the
+  // trace triangles from them and refits the mesh trees to their new boxes (topology kept; the
+  // trees were built over the rest pose). Call setShutterTimes after it: the instances' boxes
+  // changed. Returns the device times of the three steps (DeformedVertices::kName,
+  // kDeformedLeaves, kRefit).
+  vk::FrameTimings followDeformation(const scene::Scene& scene, float t, GpuScene& gpuScene, vk::FrameRecorder& frame);
 
   // Whether this trace scene was built from meshes with the same positions and triangles as
   // `scene`'s (a 64-bit fingerprint of them), so its mesh trees serve that scene.
@@ -75,6 +86,7 @@ class TraceScene {
   const vk::Context& context_;
   vk::ComputeKernel triangleBoundsKernel_;
   vk::ComputeKernel motionBoundsKernel_;
+  vk::ComputeKernel deformedLeavesKernel_;
   passes::BvhBuildPass meshBvh_;
   passes::BvhBuildPass instanceBvh_;
   uint32_t meshCount_ = 0;
@@ -90,6 +102,7 @@ class TraceScene {
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
+  vk::Buffer deformedBoxes_;  // BvhBox per triangle, for refits (deforming scenes only)
   vk::BufferGroup group_;     // the buffers above, as tracing kernels bind them
 };
 
@@ -98,6 +111,9 @@ class TraceScene {
 // `kept` has the scene's meshes, and returns whether it has. prepareKeptMeshTrees builds
 // `kept` afresh when the plan runs `buildPass` (the old trees go first: the two never take
 // memory at once) and returns the build's device milliseconds, nullopt when the kept serve.
+// Enters TraceScene::followDeformation's passes in the plan: run for a scene with deforming
+// meshes, skipped (with the reason) for one without.
+void planDeformedTrees(FramePlan& plan, const scene::Scene& scene);
 bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene);
 std::optional<double> prepareKeptMeshTrees(std::unique_ptr<TraceScene>& kept, std::string_view buildPass,
                                            const FramePlan& plan, const vk::Context& context, const scene::Scene& scene,

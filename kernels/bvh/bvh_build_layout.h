@@ -54,6 +54,13 @@
 #define HMB_TRIANGLE_BOUNDS_BINDING_BOXES 2      // BvhBox per triangle
 #define HMB_TRIANGLE_BOUNDS_BINDING_COUNT 3
 
+// deformed_leaf_triangles
+#define HMB_DEFORMED_LEAVES_BINDING_VERTICES 0        // GpuVertex per mesh vertex (deformed)
+#define HMB_DEFORMED_LEAVES_BINDING_PRIMITIVES 1      // the leaf order: triangle of each entry
+#define HMB_DEFORMED_LEAVES_BINDING_LEAF_TRIANGLES 2  // 3 vec4 per entry (xyz rewritten, w kept)
+#define HMB_DEFORMED_LEAVES_BINDING_BOXES 3           // BvhBox per triangle
+#define HMB_DEFORMED_LEAVES_BINDING_COUNT 4
+
 // begin_build, build_level and size_build_dispatch share one binding table.
 #define HMB_BUILD_BINDING_BOXES 0       // BvhBox per primitive
 #define HMB_BUILD_BINDING_ROOTS 1       // uvec2 (first primitive, count) per tree

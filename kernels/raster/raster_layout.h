@@ -27,7 +27,11 @@
 #define HMB_TRANSFORM_BINDING_CLIP_CURRENT 4
 #define HMB_TRANSFORM_BINDING_CLIP_PREVIOUS 5
 #define HMB_TRANSFORM_BINDING_SHADING 6  // GpuVertexShading per instance vertex
-#define HMB_TRANSFORM_BINDING_COUNT 7
+#define HMB_TRANSFORM_BINDING_PREVIOUS_VERTICES 7  // GpuVertex per mesh vertex at t - 1/fps (deforming scenes)
+#define HMB_TRANSFORM_BINDING_COUNT 8
+// Specialization constant: true for a scene with deforming meshes, whose previous positions
+// are their own (GpuScene::previousVertices); false reads only the one vertex buffer.
+#define HMB_SPEC_TRANSFORM_DEFORMED 0
 
 // setup_triangles
 #define HMB_SETUP_BINDING_TRIANGLES 0

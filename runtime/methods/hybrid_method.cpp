@@ -25,7 +25,7 @@ class HybridMethod final : public FrameMethod {
 
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
     const RenderSettings& settings = request.settings;
-    const GpuScene scene = prepareRasterFrame(resources_, request, result);
+    GpuScene scene = prepareRasterFrame(resources_, request, result);
     const bool still = nothingMovesOnScreen(request);
     result.hybrid.emplace();
     result.hybrid->settings = hybridSettingsFor(request.scene, settings);
@@ -45,8 +45,8 @@ class HybridMethod final : public FrameMethod {
       blurred = linearImageBuffer(resources_, request, "post-process colour");
       // The trace scene's mesh trees (setup, reported apart) and its instance tree at the frame
       // time (part of the frame) are built where the plan runs them, kept where it skips them.
-      const auto prepared = hybrid_.prepare(resources_.recorder, request.scene, request.frameTime, request.width,
-                                            request.height, result.hybrid->settings, result.plan);
+      const auto prepared = hybrid_.prepare(resources_.recorder, request.scene, scene, request.frameTime,
+                                            request.width, request.height, result.hybrid->settings, result.plan);
       result.hybrid->setupMilliseconds = prepared.setup.frameMilliseconds;
       timings = prepared.frame;
       // The setup passes are listed with their times, but not added to the frame's.

@@ -42,7 +42,7 @@ GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& reque
   gpuScene.setFrame(request.scene, request.frameTime, request.width, request.height);
   if (!request.settings.skipUnneededPasses) gpuScene.keepTexturePath();
   resources.gbuffer.prepare(gpuScene, request.width, request.height);
-  resources.gbuffer.plan(result.plan);
+  resources.gbuffer.plan(result.plan, gpuScene);
   return gpuScene;
 }
 

@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/scene_layout.h"
+#include "runtime/deformed_vertices.h"
 #include "runtime/frame_plan.h"
 #include "runtime/gpu_scene.h"
 
@@ -13,7 +14,11 @@ namespace hmb::passes {
 GBufferStage::GBufferStage(const vk::Context& context, VisibilityScheme scheme)
     : context_(context), transform_(context), rasterize_(context, scheme), resolve_(context) {}
 
-void GBufferStage::plan(FramePlan& plan) const {
+void GBufferStage::plan(FramePlan& plan, const GpuScene& scene) const {
+  if (scene.deforms())
+    plan.run(DeformedVertices::kName);
+  else
+    plan.skip(DeformedVertices::kName, "no skinned or morphing mesh in the scene");
   plan.run(TransformVerticesPass::kName);
   rasterize_.plan(plan);
   plan.run(ResolveGBufferPass::kName);
@@ -39,6 +44,7 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
 }
 
 void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const {
+  scene.recordFrameDeformation(frame);
   transform_.record(frame, scene, clipCurrent_, clipPrevious_, vertexShading_);
   const RasterInputs inputs{&scene.triangles(), &scene.instances(), &clipCurrent_, scene.triangleCount()};
   rasterize_.record(frame, inputs, visibility_, size_.width(), size_.height());

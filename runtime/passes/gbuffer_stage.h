@@ -21,7 +21,8 @@ class GBufferStage {
  public:
   GBufferStage(const vk::Context& context, VisibilityScheme scheme);
 
-  void plan(FramePlan& plan) const;
+  // Deforms the scene's skinned and morphing meshes first when it has any.
+  void plan(FramePlan& plan, const GpuScene& scene) const;
 
   // Sizes the buffers for this scene and resolution (reuses them when they fit).
   void prepare(const GpuScene& scene, uint32_t width, uint32_t height);

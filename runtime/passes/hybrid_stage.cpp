@@ -35,8 +35,9 @@ void HybridStage::forgetTraceScene() { traceScene_.reset(); }
 
 void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const {
   const bool sameMeshes = planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
+  planDeformedTrees(plan, scene);
   const float times[] = {frameTime};
-  if (sameMeshes && traceScene_->hasShutterTimes(scene, times))
+  if (sameMeshes && !scene.hasDeformation() && traceScene_->hasShutterTimes(scene, times))
     plan.skip(kBvhInstances, "the top-level tree of the last frame serves this one: no instance moved since");
   else
     plan.run(kBvhInstances);
@@ -48,7 +49,7 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
 }
 
 HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene,
-                                                 float frameTime, uint32_t width, uint32_t height,
+                                                 GpuScene& gpuScene, float frameTime, uint32_t width, uint32_t height,
                                                  const HybridSettings& settings, const FramePlan& plan) {
   validate(settings);
   if (postProcess_.settings() != settings.blur)
@@ -59,10 +60,12 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   if (const std::optional<double> meshMs = prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
     timings.setup = {{{kBvhMeshes, *meshMs}}, *meshMs};
   const float times[] = {frameTime};
+  if (plan.runs(TraceScene::kRefit))
+    vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
   if (plan.runs(kBvhInstances)) {
     traceScene_->setShutterTimes(scene, times, frame);
     const double instanceMs = traceScene_->instanceBvh().stats().deviceMilliseconds;
-    timings.frame = {{{kBvhInstances, instanceMs}}, instanceMs};
+    vk::appendTimings(timings.frame, {{{kBvhInstances, instanceMs}}, instanceMs});
   }
   cameraRays_ = vk::uploadedBuffer(context_, std::vector<gpu::PinholeCamera>{pinholeCamera(scene, frameTime, width, height)},
                                    "reveal camera rays");

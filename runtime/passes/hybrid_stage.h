@@ -47,7 +47,8 @@ class HybridStage {
   ~HybridStage();
 
   // The hybrid's passes for a frame of `scene` at `frameTime`: the trace scene's trees are
-  // skipped when the last frame's serve (same meshes; no instance moved), as prepare() does.
+  // skipped when the last frame's serve (same meshes; no instance moved, nothing deforms), as
+  // prepare() does. Deforming meshes are refitted every frame.
   void plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const;
   // Builds the trace scene of `scene` (its mesh trees: returned as setup time) and its
   // instance tree at the frame time (returned as frame time) where `plan` (this stage's
@@ -57,8 +58,9 @@ class HybridStage {
     vk::FrameTimings setup;
     vk::FrameTimings frame;
   };
-  PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, float frameTime, uint32_t width,
-                         uint32_t height, const HybridSettings& settings, const FramePlan& plan);
+  // `gpuScene`'s deforming meshes are deformed to the frame time for the refit.
+  PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, GpuScene& gpuScene, float frameTime,
+                         uint32_t width, uint32_t height, const HybridSettings& settings, const FramePlan& plan);
   // After the G-buffer in the same frame: writes the blurred, composited colour to `output`.
   void record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
               const vk::Buffer& output) const;

@@ -13,7 +13,9 @@
 #include "kernels/reference/reference_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
+#include "runtime/deformed_vertices.h"
 #include "runtime/frame_plan.h"
+#include "scenes/deformation.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/trace_scene.h"
 
@@ -44,21 +46,30 @@ bool sameCamera(const gpu::PinholeCamera& a, const gpu::PinholeCamera& b) {
   return a.eye == b.eye && a.right == b.right && a.down == b.down && a.forward == b.forward;
 }
 
-// World boxes of every animated instance, each the union of its mesh's box carried to the
-// world at every sample time: nothing it shows at those times lies outside.
+// Whether the instance can show something else at another time: it is animated, or its
+// deformation is.
+bool instanceMoves(const scene::Scene& scene, const scene::Instance& instance) {
+  return scene.isAnimated(instance.node) || (instance.deforms() && scene::deformationIsAnimated(scene, instance));
+}
+
+// World boxes of every moving instance, each the union of its mesh's box (deformed at each
+// time, for a deforming one) carried to the world at every sample time: nothing it shows at
+// those times lies outside.
 std::vector<glm::vec4> sweptBoxesOfMovingInstances(const scene::Scene& scene, std::span<const float> times) {
   std::vector<glm::vec4> boxes;
   for (const scene::Instance& instance : scene.instances) {
-    if (!scene.isAnimated(instance.node)) continue;
+    if (!instanceMoves(scene, instance)) continue;
     const scene::Mesh& mesh = scene.meshes.at(instance.mesh);
     if (mesh.positions.empty()) continue;
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const glm::vec3& p : mesh.positions) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
     glm::vec3 worldLo(std::numeric_limits<float>::max()), worldHi(-std::numeric_limits<float>::max());
     for (const float t : times) {
+      const std::vector<glm::vec3> positions =
+          instance.deforms() ? scene::deformedMeshAt(scene, instance, t).positions : mesh.positions;
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (const glm::vec3& p : positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
       const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
       for (int corner = 0; corner < 8; ++corner) {
         const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
@@ -236,12 +247,17 @@ vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scen
 void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime, uint32_t width,
                           uint32_t height, const ReferenceSettings& settings) const {
   planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
+  if (scene.hasDeformation())
+    plan.run(DeformedVertices::kName);
+  else
+    plan.skip(DeformedVertices::kName, "no skinned or morphing mesh in the scene");
+  planDeformedTrees(plan, scene);
   plan.run(kBvhInstances);
   const std::vector<float> times =
       referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
   const std::string reason = whyEveryPixelIsSampled(scene, times, width, height, settings);
   const bool anythingMoves = std::any_of(scene.instances.begin(), scene.instances.end(),
-                                         [&](const scene::Instance& i) { return scene.isAnimated(i.node); });
+                                         [&](const scene::Instance& i) { return instanceMoves(scene, i); });
   if (!reason.empty())
     plan.skip(kMovingPixels, reason);
   else if (!anythingMoves)
@@ -252,7 +268,7 @@ void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float fram
   plan.run(kAverage);
 }
 
-vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::Scene& scene, const GpuScene& gpuScene,
+vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::Scene& scene, GpuScene& gpuScene,
                                         float frameTime, uint32_t width, uint32_t height,
                                         const ReferenceSettings& settings, const FramePlan& plan,
                                         const vk::Buffer& color,
@@ -280,8 +296,11 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     const vk::Buffer pixelList = findMovingPixels(frame, scene, times, width, height, settings, tMin, tMax, total);
     while (progress_.samplesDone < settings.samplesPerPixel) {
       const uint32_t first = progress_.samplesDone;
-      const uint32_t count = std::min(settings.timesPerBatch, settings.samplesPerPixel - first);
+      // A deforming mesh has one shape per time: its trees are refitted to each time's alone.
+      const uint32_t perBatch = gpuScene.deforms() ? 1u : settings.timesPerBatch;
+      const uint32_t count = std::min(perBatch, settings.samplesPerPixel - first);
       const std::span<const float> batch(times.data() + first, count);
+      if (gpuScene.deforms()) vk::appendTimings(total, traceScene.followDeformation(scene, batch[0], gpuScene, frame));
       traceScene.setShutterTimes(scene, batch, frame);
       const double bvhMs = traceScene.instanceBvh().stats().deviceMilliseconds;
       vk::appendTimings(total, {{{kBvhInstances, bvhMs}}, bvhMs});

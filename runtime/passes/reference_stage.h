@@ -78,9 +78,10 @@ class ReferenceStage {
 
   // Renders the mean of the samples into `color` (vec4 per pixel, row 0 at the top) and
   // returns the device time of every submission it made, merged. `gpuScene` must have its
-  // frame set (materials, the light); `plan` is this frame's, from plan(). `progress` is
-  // called after every submission.
-  vk::FrameTimings render(vk::FrameRecorder& frame, const scene::Scene& scene, const GpuScene& gpuScene,
+  // frame set (materials, the light); its deforming meshes are deformed to each shutter time
+  // in turn (one time per batch). `plan` is this frame's, from plan(). `progress` is called
+  // after every submission.
+  vk::FrameTimings render(vk::FrameRecorder& frame, const scene::Scene& scene, GpuScene& gpuScene,
                           float frameTime, uint32_t width, uint32_t height, const ReferenceSettings& settings,
                           const FramePlan& plan, const vk::Buffer& color,
                           const std::function<void(const ReferenceProgress&)>& progress);

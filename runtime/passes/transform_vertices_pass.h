@@ -26,7 +26,8 @@ class TransformVerticesPass {
               const vk::Buffer& clipPrevious, const vk::Buffer& shading) const;
 
  private:
-  vk::ComputeKernel kernel_;
+  vk::ComputeKernel rigid_;     // every vertex at its mesh's position at both times
+  vk::ComputeKernel deformed_;  // previous positions of their own (GpuScene::deforms)
 };
 
 }  // namespace hmb::passes

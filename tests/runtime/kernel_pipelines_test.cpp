@@ -17,6 +17,7 @@
 #include "kernels/output/encode_display.h"
 #include "kernels/raster/raster_layout.h"
 #include "kernels/reference/reference_layout.h"
+#include "kernels/deform/deform_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/vulkan/buffer.h"
@@ -40,6 +41,8 @@ struct KernelLayout {
 
 const KernelLayout kLayouts[] = {
     {"bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t), false},
+    {"bvh/deformed_leaf_triangles", HMB_DEFORMED_LEAVES_BINDING_COUNT, sizeof(uint32_t), false},
+    {"deform/deform_vertices", HMB_DEFORM_BINDING_COUNT, sizeof(gpu::DeformParams), false},
     {"bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
     {"bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
     {"bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},

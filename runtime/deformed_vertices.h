@@ -1,0 +1,46 @@
+// The deforming meshes of a scene on the device (kernels/deform/): their rest vertices, joint
+// influences and target displacements uploaded once; per time slot, the joint matrices and
+// morph weights at that slot's time. record() deforms the meshes' vertices at one slot into a
+// vertex buffer laid out as the scene's (gpu::GpuVertex): the scene's own for the frame time,
+// or a copy for the previous frame.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/compute_kernel.h"
+#include "scenes/scene.h"
+
+namespace hmb::vk {
+class FrameRecorder;
+}
+
+namespace hmb {
+
+class DeformedVertices {
+ public:
+  static constexpr const char* kName = "deform-vertices";
+  static constexpr uint32_t kSlots = 2;  // the frame time and the previous frame
+
+  // meshVertexBase: each mesh's first vertex in the scene's vertex buffer.
+  DeformedVertices(const vk::Context& context, const scene::Scene& scene, std::span<const uint32_t> meshVertexBase);
+
+  uint32_t vertexCount() const { return vertexCount_; }
+  // The joint matrices and weights of slot `slot` at time t.
+  void setTime(const scene::Scene& scene, uint32_t slot, float t);
+  // Writes every deformed vertex's position and normal at the slot's time into `vertices`.
+  void record(vk::FrameRecorder& frame, uint32_t slot, const vk::Buffer& vertices) const;
+
+ private:
+  const vk::Context& context_;
+  vk::ComputeKernel kernel_;
+  uint32_t vertexCount_ = 0;
+  uint32_t jointsPerSlot_ = 0;
+  uint32_t weightsPerSlot_ = 0;
+  std::vector<uint32_t> deformingInstances_;  // scene instance of each deformer
+  vk::Buffer rest_, influences_, displacements_, deformers_, joints_, weights_;
+};
+
+}  // namespace hmb
