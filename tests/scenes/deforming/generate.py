@@ -5,8 +5,10 @@ not need Python; run it again after editing):
 - skinned-arm.gltf: a tube of three joints, each swinging about z at 2 Hz (the tip moves about
   20 units a second), in front of a wall;
 - morphing-sphere.gltf: a sphere with two morph targets (an inflation along the normals; a
-  stretch along y, with its normal displacements), their weights animated at 6 Hz, in front of a
-  wall.
+  stretch along y that narrows it in x and z, with its normal displacements), their weights
+  animated at 6 Hz in opposition, in front of a wall. At the default frame time (0.5 s) the
+  inflation gives way to the stretch fastest: the sides sweep in, uncovering the wall; 1/12 s
+  later the other way round, the sphere growing over the wall.
 
 Both animate over [0, 1] s with linear keys every 1/120 s; past 1 s they hold still.
 """
@@ -144,9 +146,9 @@ def morphing_sphere():
             positions += list(n)
             normals += list(n)
             inflate += [0.8 * c for c in n]
-            stretch += [0.0, 0.6 * n[1], 0.0]
-            # The stretched sphere's normal (x, y / 1.6, z), normalized, minus the sphere's.
-            m = (n[0], n[1] / 1.6, n[2])
+            stretch += [-0.3 * n[0], 0.6 * n[1], -0.3 * n[2]]
+            # The stretched sphere's normal (x / 0.7, y / 1.6, z / 0.7), normalized, minus the sphere's.
+            m = (n[0] / 0.7, n[1] / 1.6, n[2] / 0.7)
             length = math.sqrt(sum(c * c for c in m))
             stretch_normals += [m[i] / length - n[i] for i in range(3)]
     for s in range(stacks):
@@ -163,7 +165,8 @@ def morphing_sphere():
     times = d.accessor(KEY_TIMES, "SCALAR", minmax=True)
     values = []
     for t in KEY_TIMES:
-        values += [0.5 + 0.5 * math.sin(2.0 * math.pi * 6.0 * t), 0.5 + 0.5 * math.cos(2.0 * math.pi * 6.0 * t)]
+        phase = math.sin(2.0 * math.pi * 6.0 * t)
+        values += [0.5 - 0.5 * phase, 0.5 + 0.5 * phase]
     d.doc["animations"] = [{"name": "breathe",
                             "samplers": [{"input": times, "output": d.accessor(values, "SCALAR"), "interpolation": "LINEAR"}],
                             "channels": [{"sampler": 0, "target": {"node": sphere, "path": "weights"}}]}]
