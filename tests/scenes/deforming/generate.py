@@ -11,12 +11,16 @@ not need Python; run it again after editing):
   later the other way round, the sphere growing over the wall.
 
 Both animate over [0, 1] s with linear keys every 1/120 s; past 1 s they hold still.
+
+`generate.py --dense DIR` writes skinned-arm-dense.gltf into DIR instead: the same arm with
+52,224 vertices, for the benchmark of deformation's cost (bench/results/passes/deforming/).
 """
 import base64
 import json
 import math
 import os
 import struct
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FLOAT, UNSIGNED_SHORT, UNSIGNED_INT = 5126, 5123, 5125
@@ -72,21 +76,21 @@ class Document:
         self.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 100.0}}]
         self.node({"camera": 0, "translation": list(eye), "name": "camera"})
 
-    def write(self, name):
+    def write(self, name, directory=HERE):
         self.doc["buffers"] = [{"byteLength": len(self.bin),
                                 "uri": "data:application/octet-stream;base64," + base64.b64encode(self.bin).decode()}]
-        with open(os.path.join(HERE, name), "w") as f:
+        with open(os.path.join(directory, name), "w") as f:
             json.dump(self.doc, f, indent=1)
 
 
 KEY_TIMES = [k / 120.0 for k in range(121)]
 
 
-def skinned_arm():
+def skinned_arm(rings=31, around=16, name="skinned-arm.gltf", directory=HERE):
     d = Document()
     d.camera((1.5, 0.3, 4.5))
     d.wall(-2.0, 8.0, (0.25, 0.35, 0.6))
-    rings, around, radius, length = 31, 16, 0.25, 3.0
+    radius, length = 0.25, 3.0
     positions, normals, joints, weights, indices = [], [], [], [], []
     for r in range(rings):
         x = length * r / (rings - 1)
@@ -129,7 +133,7 @@ def skinned_arm():
         samplers.append({"input": times, "output": d.accessor(rotations, "VEC4"), "interpolation": "LINEAR"})
         channels.append({"sampler": len(samplers) - 1, "target": {"node": joint, "path": "rotation"}})
     d.doc["animations"] = [{"name": "swing", "channels": channels, "samplers": samplers}]
-    d.write("skinned-arm.gltf")
+    d.write(name, directory)
 
 
 def morphing_sphere():
@@ -174,5 +178,9 @@ def morphing_sphere():
 
 
 if __name__ == "__main__":
-    skinned_arm()
-    morphing_sphere()
+    if len(sys.argv) == 3 and sys.argv[1] == "--dense":
+        os.makedirs(sys.argv[2], exist_ok=True)
+        skinned_arm(rings=408, around=128, name="skinned-arm-dense.gltf", directory=sys.argv[2])
+    else:
+        skinned_arm()
+        morphing_sphere()
