@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "scenes/deformation.h"
 #include "scenes/scene.h"
 
 namespace hmb::scene {
@@ -23,7 +24,7 @@ std::vector<float> shutterSampleTimes(const Settings& s) {
   return times;
 }
 
-// World bounds of each instance, united over the given times.
+// World bounds of each instance, united over the given times (a deforming one deformed at each).
 std::vector<Aabb> instanceBounds(const Scene& scene, const std::vector<float>& times) {
   std::vector<Aabb> meshBounds(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m)
@@ -32,7 +33,14 @@ std::vector<Aabb> instanceBounds(const Scene& scene, const std::vector<float>& t
   for (const Instance& inst : scene.instances) {
     if (inst.mesh >= scene.meshes.size() || meshBounds[inst.mesh].empty()) continue;
     Aabb box;
-    for (float t : times) box.grow(transformed(meshBounds[inst.mesh], scene.worldMatrixAt(inst.node, t)));
+    for (float t : times) {
+      Aabb local = meshBounds[inst.mesh];
+      if (inst.deforms()) {
+        local = Aabb{};
+        for (const glm::vec3& p : deformedMeshAt(scene, inst, t).positions) local.grow(p);
+      }
+      box.grow(transformed(local, scene.worldMatrixAt(inst.node, t)));
+    }
     out.push_back(box);
   }
   return out;
