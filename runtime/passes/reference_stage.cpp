@@ -294,6 +294,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     TraceScene& traceScene = *traceScene_;
     const float tMin = gpuScene.camera().znear, tMax = gpuScene.camera().zfar;
     const vk::Buffer pixelList = findMovingPixels(frame, scene, times, width, height, settings, tMin, tMax, total);
+    uint32_t savedSamples = progress_.samplesDone;
     while (progress_.samplesDone < settings.samplesPerPixel) {
       const uint32_t first = progress_.samplesDone;
       // A deforming mesh has one shape per time: its trees are refitted to each time's alone.
@@ -343,8 +344,14 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
         ++progress_.samplesDone;
         if (progress) progress(progress_);
       }
-      if (!settings.checkpoint.empty())
+      // Saved every timesPerBatch samples (a deforming scene's batches are single times) and
+      // at the end.
+      const bool saveNow = progress_.samplesDone - savedSamples >= settings.timesPerBatch ||
+                           progress_.samplesDone == settings.samplesPerPixel;
+      if (!settings.checkpoint.empty() && saveNow) {
         writeCheckpoint(settings.checkpoint, identity, progress_.samplesDone, sum.download<glm::vec4>());
+        savedSamples = progress_.samplesDone;
+      }
     }
   }
 

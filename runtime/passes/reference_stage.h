@@ -35,7 +35,7 @@ struct ReferenceSettings {
   bool pixelJitter = false;       // a random point in the pixel per sample instead of its centre
   uint32_t timesPerBatch = 64;    // shutter times whose transforms are on the device at once
   bool sampleStillPixelsOnce = true;  // with a still camera: pixels nothing moving crosses take one sample
-  std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten per batch
+  std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten every timesPerBatch samples
 };
 
 // Every reference setting a user can choose, each described once (runtime/setting.h). None
