@@ -76,18 +76,23 @@
 #define HMB_BUILD_BINDING_FRAMES 7        // BvhFrame per tree: what its packed bounds count steps in
 #define HMB_BUILD_BINDING_COUNT 8
 
-// refit_parents, refit_depths, refit_bounds (once per depth, deepest first) and refit_pack: a
+// refit_parents and refit_places (once per build: the trees keep only the way down), then per
+// refit refit_bounds (once per depth, deepest first, over that depth's nodes) and refit_pack: a
 // built tree's bounds from new primitive boxes, its topology, links and primitive order kept
-// (deforming meshes).
+// (deforming meshes). Each kernel binds only what it uses (at most 6 buffers).
 #define HMB_REFIT_BINDING_BOXES 0         // BvhBox per primitive, the new ones
 #define HMB_REFIT_BINDING_ROOTS 1         // uvec2 (first primitive, count) per tree
 #define HMB_REFIT_BINDING_PRIMITIVES 2    // the built primitive order the leaves index
 #define HMB_REFIT_BINDING_PACKED_NODES 3  // rewritten: bounds in the tree's new frame
 #define HMB_REFIT_BINDING_FRAMES 4        // rewritten: from each root's new box
 #define HMB_REFIT_BINDING_EXACT 5         // BvhBox per node: the refitted exact bounds (scratch)
-#define HMB_REFIT_BINDING_PARENTS 6       // uint per node (scratch)
-#define HMB_REFIT_BINDING_DEPTHS 7        // uint per node: steps from its root (scratch)
-#define HMB_REFIT_BINDING_COUNT 8
+#define HMB_REFIT_BINDING_PARENTS 6       // uint per node
+#define HMB_REFIT_BINDING_PLACES 7        // uvec2 per node: its depth (steps from its root) and its root
+#define HMB_REFIT_BINDING_ORDER 8         // uint per node: the nodes by depth (the host sorts the places)
+#define HMB_REFIT_PARENTS_BINDINGS 3      // roots, packed nodes, parents
+#define HMB_REFIT_PLACES_BINDINGS 2       // parents, places
+#define HMB_REFIT_BOUNDS_BINDINGS 6       // boxes, roots, primitives, packed nodes, exact, order
+#define HMB_REFIT_PACK_BINDINGS 5         // roots, packed nodes, frames, exact, places
 #define HMB_REFIT_GROUP 64
 
 HMB_GPU_BEGIN
@@ -95,8 +100,8 @@ HMB_GPU_BEGIN
 struct BvhRefitParams {
   uint nodeCount;
   uint treeCount;  // roots are nodes 0..treeCount-1
-  uint depth;      // refit_bounds: the depth whose nodes it bounds
-  uint pad0;
+  uint first;      // refit_bounds: its depth's first node in the order
+  uint count;      // refit_bounds: that depth's nodes
 };
 
 // A primitive's bounds (w unused). Empty: min > max.

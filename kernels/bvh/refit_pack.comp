@@ -4,11 +4,16 @@
 #extension GL_GOOGLE_include_directive : require
 #include "refit_common.glsl"
 
+REFIT_ROOTS
+REFIT_PACKED_NODES
+REFIT_FRAMES
+REFIT_EXACT
+REFIT_PLACES
+
 void main() {
   const uint node = linearInvocationIndex(HMB_REFIT_GROUP);
-  if (node >= params.nodeCount || isEmptyRoot(node)) return;
-  uint tree = node;
-  while (tree >= params.treeCount) tree = parents[tree];
+  if (node >= params.nodeCount || IS_EMPTY_ROOT(node)) return;
+  const uint tree = places[node].y;
   const BvhBox root = exact[tree];
   const BvhFrame frame = frameOf(root.min.xyz, root.max.xyz);
   if (node == tree) frames[tree] = frame;

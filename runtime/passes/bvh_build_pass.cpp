@@ -63,7 +63,7 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)),
       smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams)),
       refitParentsKernel_(context, "bvh/refit_parents", sizeof(gpu::BvhRefitParams)),
-      refitDepthsKernel_(context, "bvh/refit_depths", sizeof(gpu::BvhRefitParams)),
+      refitPlacesKernel_(context, "bvh/refit_places", sizeof(gpu::BvhRefitParams)),
       refitBoundsKernel_(context, "bvh/refit_bounds", sizeof(gpu::BvhRefitParams)),
       refitPackKernel_(context, "bvh/refit_pack", sizeof(gpu::BvhRefitParams)) {
   if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
@@ -152,6 +152,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
                                 {HMB_BUILD_BINDING_FRAMES, &frames_}};
   gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, 0, 0, 0};
   stats_ = {};
+  refits_ = {};  // the old trees' places and order
   uint32_t largestTree = 0;
   for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);
   uint32_t level = 0;
@@ -197,37 +198,67 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   return stats_;
 }
 
+void BvhBuildPass::prepareRefits(vk::FrameRecorder& frame) {
+  const uint64_t nodes = stats_.nodes;
+  refits_.roots = vk::uploadedBuffer(context_, roots_, name_ + " refit roots");
+  refits_.exact = vk::Buffer(context_, nodes * sizeof(gpu::BvhBox), vk::MemoryUse::Device, name_ + " refit bounds");
+  const vk::Buffer parents(context_, nodes * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " refit parents");
+  refits_.places = vk::Buffer(context_, nodes * sizeof(glm::uvec2), vk::MemoryUse::Device, name_ + " refit places");
+  const gpu::BvhRefitParams params{stats_.nodes, static_cast<uint32_t>(roots_.size()), 0, 0};
+  const glm::uvec3 groups = vk::foldedGroups(vk::groupsFor(stats_.nodes, HMB_REFIT_GROUP));
+  frame.begin();
+  frame.dispatch(kRefitParents, refitParentsKernel_,
+                 {{HMB_REFIT_BINDING_ROOTS, &refits_.roots},
+                  {HMB_REFIT_BINDING_PACKED_NODES, &packedNodes_},
+                  {HMB_REFIT_BINDING_PARENTS, &parents}},
+                 params, groups);
+  frame.dispatch(kRefitPlaces, refitPlacesKernel_,
+                 {{HMB_REFIT_BINDING_PARENTS, &parents}, {HMB_REFIT_BINDING_PLACES, &refits_.places}}, params, groups);
+  refits_.preparedMilliseconds = frame.submitAndWait().frameMilliseconds.value_or(0.0);
+  // The nodes by depth, deepest last (a counting sort of their depths): refit_bounds then
+  // dispatches over each depth's nodes alone.
+  const std::vector<glm::uvec2> places = refits_.places.download<glm::uvec2>();
+  uint32_t deepest = 0;
+  for (uint64_t n = 0; n < nodes; ++n) deepest = std::max(deepest, places[n].x);
+  refits_.depthStart.assign(size_t(deepest) + 2, 0u);
+  for (uint64_t n = 0; n < nodes; ++n) ++refits_.depthStart[places[n].x + 1];
+  for (size_t d = 1; d < refits_.depthStart.size(); ++d) refits_.depthStart[d] += refits_.depthStart[d - 1];
+  std::vector<uint32_t> order(nodes), next(refits_.depthStart.begin(), refits_.depthStart.end() - 1);
+  for (uint64_t n = 0; n < nodes; ++n) order[next[places[n].x]++] = static_cast<uint32_t>(n);
+  refits_.order = vk::uploadedBuffer(context_, order, name_ + " refit order");
+}
+
 double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes) {
   if (stats_.nodes == 0) throw Error(name_ + ": refit() before a build");
   if (boxes.size() < uint64_t(primitiveCount_) * sizeof(gpu::BvhBox))
     throw Error(name_ + ": refit() needs a box for each of the " + std::to_string(primitiveCount_) + " primitives");
-  const uint64_t nodes = stats_.nodes;
-  // Scratch for this refit alone.
-  const vk::Buffer roots = vk::uploadedBuffer(context_, roots_, name_ + " refit roots");
-  const vk::Buffer exact(context_, nodes * sizeof(gpu::BvhBox), vk::MemoryUse::Device, name_ + " refit bounds");
-  const vk::Buffer parents(context_, nodes * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " refit parents");
-  const vk::Buffer depths(context_, nodes * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " refit depths");
-  const vk::Bindings bindings = {{HMB_REFIT_BINDING_BOXES, &boxes},
-                                 {HMB_REFIT_BINDING_ROOTS, &roots},
-                                 {HMB_REFIT_BINDING_PRIMITIVES, &primitives_},
-                                 {HMB_REFIT_BINDING_PACKED_NODES, &packedNodes_},
-                                 {HMB_REFIT_BINDING_FRAMES, &frames_},
-                                 {HMB_REFIT_BINDING_EXACT, &exact},
-                                 {HMB_REFIT_BINDING_PARENTS, &parents},
-                                 {HMB_REFIT_BINDING_DEPTHS, &depths}};
-  gpu::BvhRefitParams params{stats_.nodes, static_cast<uint32_t>(roots_.size()), 0, 0};
-  const glm::uvec3 groups = vk::foldedGroups(vk::groupsFor(stats_.nodes, HMB_REFIT_GROUP));
-  frame.begin();
-  frame.dispatch(kRefitParents, refitParentsKernel_, bindings, params, groups);
-  frame.dispatch(kRefitDepths, refitDepthsKernel_, bindings, params, groups);
-  // No node lies deeper than the build's level count (stats_.levels counts depth + 1 of every
-  // node that was split, and a leaf is one below such a node).
-  for (uint32_t depth = stats_.levels + 1; depth-- > 0;) {
-    params.depth = depth;
-    frame.dispatch(kRefitBounds, refitBoundsKernel_, bindings, params, groups);
+  double milliseconds = 0.0;
+  if (refits_.depthStart.empty()) {
+    prepareRefits(frame);
+    milliseconds += refits_.preparedMilliseconds;
   }
-  frame.dispatch(kRefitPack, refitPackKernel_, bindings, params, groups);
-  return frame.submitAndWait().frameMilliseconds.value_or(0.0);
+  gpu::BvhRefitParams params{stats_.nodes, static_cast<uint32_t>(roots_.size()), 0, 0};
+  frame.begin();
+  for (size_t depth = refits_.depthStart.size() - 1; depth-- > 0;) {
+    params.first = refits_.depthStart[depth];
+    params.count = refits_.depthStart[depth + 1] - params.first;
+    frame.dispatch(kRefitBounds, refitBoundsKernel_,
+                   {{HMB_REFIT_BINDING_BOXES, &boxes},
+                    {HMB_REFIT_BINDING_ROOTS, &refits_.roots},
+                    {HMB_REFIT_BINDING_PRIMITIVES, &primitives_},
+                    {HMB_REFIT_BINDING_PACKED_NODES, &packedNodes_},
+                    {HMB_REFIT_BINDING_EXACT, &refits_.exact},
+                    {HMB_REFIT_BINDING_ORDER, &refits_.order}},
+                   params, vk::foldedGroups(vk::groupsFor(params.count, HMB_REFIT_GROUP)));
+  }
+  frame.dispatch(kRefitPack, refitPackKernel_,
+                 {{HMB_REFIT_BINDING_ROOTS, &refits_.roots},
+                  {HMB_REFIT_BINDING_PACKED_NODES, &packedNodes_},
+                  {HMB_REFIT_BINDING_FRAMES, &frames_},
+                  {HMB_REFIT_BINDING_EXACT, &refits_.exact},
+                  {HMB_REFIT_BINDING_PLACES, &refits_.places}},
+                 params, vk::foldedGroups(vk::groupsFor(stats_.nodes, HMB_REFIT_GROUP)));
+  return milliseconds + frame.submitAndWait().frameMilliseconds.value_or(0.0);
 }
 
 void BvhBuildPass::compact(vk::FrameRecorder& frame) {

@@ -64,7 +64,7 @@ class BvhBuildPass {
   static constexpr const char* kSmallTasks = "bvh-build-small-tasks";
   static constexpr const char* kCompact = "bvh-compact";
   static constexpr const char* kRefitParents = "bvh-refit-parents";
-  static constexpr const char* kRefitDepths = "bvh-refit-depths";
+  static constexpr const char* kRefitPlaces = "bvh-refit-places";
   static constexpr const char* kRefitBounds = "bvh-refit-bounds";
   static constexpr const char* kRefitPack = "bvh-refit-pack";
   // Levels recorded in the first submission: what a tree of the largest root's size needs
@@ -104,6 +104,9 @@ class BvhBuildPass {
   // links and primitive order kept. Compacted trees refit too. Returns the device time (ms).
   // The SAH cost drifts as the primitives move from where the build split them; a build
   // restores it.
+  // The first refit after a build also finds each node's parent, depth and root, and sorts the
+  // nodes by depth (a round trip through the host), kept for the next refits of the same trees:
+  // each refit then bounds every node once, a dispatch per depth, and packs them.
   double refit(vk::FrameRecorder& frame, const vk::Buffer& boxes);
 
   const BvhBuildStats& stats() const { return stats_; }
@@ -136,6 +139,17 @@ class BvhBuildPass {
 
  private:
   void reserve(uint32_t primitiveCount, uint32_t treeCount);
+  void prepareRefits(vk::FrameRecorder& frame);
+
+  // What refits of the last build's trees keep (empty until the first refit).
+  struct Refits {
+    vk::Buffer roots;   // roots_ on the device
+    vk::Buffer exact;   // BvhBox per node: the refitted exact bounds
+    vk::Buffer places;  // uvec2 per node: depth, root
+    vk::Buffer order;   // the nodes by depth
+    std::vector<uint32_t> depthStart;  // depth d's nodes: order[depthStart[d] .. depthStart[d + 1])
+    double preparedMilliseconds = 0.0;
+  };
 
   const vk::Context& context_;
   std::string name_;
@@ -146,7 +160,7 @@ class BvhBuildPass {
   vk::ComputeKernel sizeDispatchKernel_;
   vk::ComputeKernel smallTasksKernel_;
   vk::ComputeKernel refitParentsKernel_;
-  vk::ComputeKernel refitDepthsKernel_;
+  vk::ComputeKernel refitPlacesKernel_;
   vk::ComputeKernel refitBoundsKernel_;
   vk::ComputeKernel refitPackKernel_;
   uint32_t taskCapacity_ = 0;
@@ -160,6 +174,7 @@ class BvhBuildPass {
   vk::Buffer links_;
   vk::Buffer tasks_;  // gpu::BvhBuildCounters, then the tasks of two levels
   BvhBuildStats stats_;
+  Refits refits_;
 };
 
 }  // namespace hmb::passes

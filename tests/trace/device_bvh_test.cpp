@@ -214,8 +214,16 @@ TEST_F(DeviceBvh, RefitBoundsDeformedTrianglesWithTheTopologyKept) {
   builder.build(frame, before, count, roots);
   const std::vector<uint32_t> links = builder.downloadLinks();
   const std::vector<Aabb> bentBounds = bvh::triangleBounds(bent.view()).bounds;
+  const std::vector<Aabb> restBounds = bvh::triangleBounds(mesh.view()).bounds;
   for (const bool compacted : {false, true}) {
-    if (compacted) builder.compact(frame);
+    if (compacted) {
+      builder.compact(frame);
+      // Refits after the first reuse its parents, depths and order: back to the rest pose and
+      // bent again, each bounded right.
+      builder.refit(frame, before);
+      const std::vector<Aabb> treeBounds(restBounds.begin(), restBounds.begin() + roots[0].y);
+      EXPECT_EQ(bvh::test::structuralProblem(builder.download(0), treeBounds, HMB_BVH_MAX_LEAF), "") << "rest pose";
+    }
     builder.refit(frame, after);
     for (uint32_t tree = 0; tree < 3; ++tree) {
       const glm::uvec2 range = roots[tree];
