@@ -5,10 +5,18 @@
 
 #include "kernels/deform/deform_layout.h"
 #include "runtime/error.h"
+#include "runtime/frame_plan.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 
 namespace hmb {
+
+void planDeformation(FramePlan& plan, const scene::Scene& scene) {
+  if (scene.hasDeformation())
+    plan.run(DeformedVertices::kName);
+  else
+    plan.skip(DeformedVertices::kName, kNoDeformationReason);
+}
 
 DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scene& scene,
                                    std::span<const uint32_t> meshVertexBase)
@@ -17,10 +25,20 @@ DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scen
   std::vector<gpu::GpuSkinInfluences> influences;
   std::vector<gpu::GpuMorphDisplacement> displacements;
   std::vector<gpu::GpuDeformer> deformers;
+  uint64_t jointCount = 0, weightCount = 0;  // per time slot
+  std::vector<uint32_t> meshUses(scene.meshes.size(), 0);
+  for (const scene::Instance& instance : scene.instances) ++meshUses.at(instance.mesh);
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const scene::Instance& instance = scene.instances[i];
     if (!instance.deforms()) continue;
     const scene::Mesh& mesh = scene.meshes.at(instance.mesh);
+    if (meshUses[instance.mesh] > 1)
+      throw Error("deform-vertices: mesh '" + mesh.name + "' deforms in one instance and is drawn by another");
+    if (instance.skin >= 0)
+      for (const uint32_t joint : mesh.joints)
+        if (joint >= scene.skins.at(size_t(instance.skin)).joints.size())
+          throw Error("deform-vertices: mesh '" + mesh.name + "' names joint " + std::to_string(joint) +
+                      ", past its skin's");
     const auto vertices = static_cast<uint32_t>(mesh.positions.size());
     gpu::GpuDeformer d{};
     d.firstVertex = static_cast<uint32_t>(rest.size());
@@ -29,8 +47,8 @@ DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scen
     d.firstInfluence = static_cast<uint32_t>(influences.size());
     d.targetCount = instance.morphNode >= 0 ? static_cast<uint32_t>(mesh.targets.size()) : 0u;
     d.firstDisplacement = static_cast<uint32_t>(displacements.size());
-    d.firstJoint = instance.skin >= 0 ? jointsPerSlot_ : HMB_DEFORM_NO_SKIN;
-    d.firstWeight = weightsPerSlot_;
+    d.firstJoint = instance.skin >= 0 ? static_cast<uint32_t>(jointCount) : HMB_DEFORM_NO_SKIN;
+    d.firstWeight = static_cast<uint32_t>(weightCount);
     const auto deformer = static_cast<uint32_t>(deformers.size());
     for (uint32_t v = 0; v < vertices; ++v) {
       const glm::vec3 normal = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -51,12 +69,16 @@ DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scen
         displacements.push_back({glm::vec4(v < target.positions.size() ? target.positions[v] : glm::vec3(0.0f), 0.0f),
                                  glm::vec4(v < target.normals.size() ? target.normals[v] : glm::vec3(0.0f), 0.0f)});
     }
-    if (instance.skin >= 0) jointsPerSlot_ += static_cast<uint32_t>(scene.skins.at(size_t(instance.skin)).joints.size());
-    weightsPerSlot_ += d.targetCount;
+    if (instance.skin >= 0) jointCount += scene.skins.at(size_t(instance.skin)).joints.size();
+    weightCount += d.targetCount;
     deformers.push_back(d);
     deformingInstances_.push_back(i);
   }
-  if (rest.size() >= 0x7fffffffu) throw Error("the scene has more deforming vertices than one frame can address");
+  for (const uint64_t count : {uint64_t(rest.size()), uint64_t(influences.size()), uint64_t(displacements.size()),
+                               jointCount * kSlots, weightCount * kSlots})
+    if (count >= 0x7fffffffu) throw Error("the scene deforms more than one frame can address");
+  jointsPerSlot_ = static_cast<uint32_t>(jointCount);
+  weightsPerSlot_ = static_cast<uint32_t>(weightCount);
   vertexCount_ = static_cast<uint32_t>(rest.size());
   // Every buffer holds at least one element: a kernel binds them all.
   if (influences.empty()) influences.emplace_back();

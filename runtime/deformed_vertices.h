@@ -19,12 +19,24 @@ class FrameRecorder;
 
 namespace hmb {
 
+class FramePlan;
+
+// Why the deformation's passes are skipped in a scene without deforming meshes.
+inline constexpr const char* kNoDeformationReason = "no skinned or morphing mesh in the scene";
+
+// Enters DeformedVertices::kName in the plan: run when the scene has deforming meshes, else
+// skipped with kNoDeformationReason.
+void planDeformation(FramePlan& plan, const scene::Scene& scene);
+
 class DeformedVertices {
  public:
   static constexpr const char* kName = "deform-vertices";
-  static constexpr uint32_t kSlots = 2;  // the frame time and the previous frame
+  // Time slots: the frame time, the previous frame, and any other time (a ray's).
+  static constexpr uint32_t kFrameSlot = 0, kPreviousSlot = 1, kAnyTimeSlot = 2, kSlots = 3;
 
-  // meshVertexBase: each mesh's first vertex in the scene's vertex buffer.
+  // meshVertexBase: each mesh's first vertex in the scene's vertex buffer. Throws hmb::Error
+  // for a scene the loader would not make: a deforming mesh shared with another instance, a
+  // joint index past its skin, more than 2^31 of anything.
   DeformedVertices(const vk::Context& context, const scene::Scene& scene, std::span<const uint32_t> meshVertexBase);
 
   uint32_t vertexCount() const { return vertexCount_; }

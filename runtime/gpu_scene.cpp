@@ -148,14 +148,15 @@ GpuScene::~GpuScene() = default;
 
 void GpuScene::recordFrameDeformation(vk::FrameRecorder& frame) const {
   if (!deformation_) return;
-  deformation_->record(frame, 1, previousVertices_);
-  deformation_->record(frame, 0, vertices_);
+  deformation_->record(frame, DeformedVertices::kPreviousSlot, previousVertices_);
+  if (!verticesAtFrameTime_) deformation_->record(frame, DeformedVertices::kFrameSlot, vertices_);
 }
 
 void GpuScene::recordDeformationAt(const scene::Scene& scene, float t, vk::FrameRecorder& frame) {
   if (!deformation_) return;
-  deformation_->setTime(scene, 0, t);
-  deformation_->record(frame, 0, vertices_);
+  deformation_->setTime(scene, DeformedVertices::kAnyTimeSlot, t);
+  deformation_->record(frame, DeformedVertices::kAnyTimeSlot, vertices_);
+  verticesAtFrameTime_ = t == frameTime_;
 }
 
 void GpuScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
@@ -181,9 +182,11 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
   }
   if (!instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(instances));
   if (deformation_) {
-    deformation_->setTime(scene, 0, t);
-    deformation_->setTime(scene, 1, previous);
+    deformation_->setTime(scene, DeformedVertices::kFrameSlot, t);
+    deformation_->setTime(scene, DeformedVertices::kPreviousSlot, previous);
   }
+  frameTime_ = t;
+  verticesAtFrameTime_ = false;
 
   camera_ = frameCamera(scene, t, width, height);
   gpu::GpuCamera c{};

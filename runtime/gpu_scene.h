@@ -53,11 +53,11 @@ class GpuScene {
   // Whether the scene has skinned or morphing meshes: their vertices are then deformed on the
   // device (runtime/deformed_vertices.h) before anything reads them.
   bool deforms() const { return deformation_ != nullptr; }
-  // Records the deformation of the frame set by setFrame: the meshes' vertices at t into
-  // vertices(), at t - 1/fps into previousVertices().
+  // Records the deformation of the frame set by setFrame: the meshes' vertices at
+  // t - 1/fps into previousVertices(), and at t into vertices() unless they already hold it
+  // (recordDeformationAt(t), submitted before).
   void recordFrameDeformation(vk::FrameRecorder& frame) const;
-  // Records the meshes' vertices deformed at time t into vertices() (for a ray traced at t);
-  // the frame's deformation at t is replaced by this one.
+  // Records the meshes' vertices deformed at time t into vertices() (for rays traced at t).
   void recordDeformationAt(const scene::Scene& scene, float t, vk::FrameRecorder& frame);
 
   uint32_t triangleCount() const { return triangleCount_; }
@@ -98,6 +98,8 @@ class GpuScene {
   vk::BufferGroup shading_;  // the buffers above that shading kernels bind together
   std::unique_ptr<DeformedVertices> deformation_;
   vk::Buffer previousVertices_;
+  float frameTime_ = 0.0f;
+  bool verticesAtFrameTime_ = false;  // recordDeformationAt(frameTime_) was the last to write vertices_
 };
 
 }  // namespace hmb

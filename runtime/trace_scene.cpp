@@ -208,7 +208,7 @@ void planDeformedTrees(FramePlan& plan, const scene::Scene& scene) {
     if (scene.hasDeformation())
       plan.run(pass);
     else
-      plan.skip(pass, "no skinned or morphing mesh: the mesh trees keep their bounds");
+      plan.skip(pass, kNoDeformationReason);
 }
 
 bool planKeptMeshTrees(FramePlan& plan, std::string_view buildPass, const TraceScene* kept, const scene::Scene& scene) {

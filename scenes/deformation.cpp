@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace hmb::scene {
 namespace {
@@ -23,9 +24,7 @@ bool sampleWeights(const AnimationChannel& ch, float t, std::vector<float>& out)
     } else if (ch.interpolation == Interpolation::Linear) {
       out[w] = at(s.k0, 0, w) + s.u * (at(s.k1, 0, w) - at(s.k0, 0, w));
     } else {
-      const float u = s.u, u2 = u * u, u3 = u2 * u;
-      out[w] = (2.0f * u3 - 3.0f * u2 + 1.0f) * at(s.k0, 1, w) + (u3 - 2.0f * u2 + u) * s.dt * at(s.k0, 2, w) +
-               (-2.0f * u3 + 3.0f * u2) * at(s.k1, 1, w) + (u3 - u2) * s.dt * at(s.k1, 0, w);
+      out[w] = cubicSpline(at(s.k0, 1, w), at(s.k0, 2, w), at(s.k1, 1, w), at(s.k1, 0, w), s.u, s.dt);
     }
   }
   return true;
@@ -52,11 +51,37 @@ std::vector<float> morphWeightsAt(const Scene& scene, const Instance& instance, 
 std::vector<glm::mat4> jointMatricesAt(const Scene& scene, const Instance& instance, float t) {
   if (instance.skin < 0 || static_cast<size_t>(instance.skin) >= scene.skins.size()) return {};
   const Skin& skin = scene.skins[static_cast<size_t>(instance.skin)];
+  // Each node's world matrix once: joints share their ancestors (a chain of n joints would
+  // otherwise take n^2 / 2 local transforms).
+  std::unordered_map<uint32_t, glm::mat4> world;
+  std::vector<uint32_t> chain;
+  const auto worldOf = [&](uint32_t joint) {
+    chain.clear();
+    for (int64_t node = joint; node >= 0 && static_cast<size_t>(node) < scene.nodes.size() &&
+                               chain.size() <= scene.nodes.size() && !world.count(static_cast<uint32_t>(node));
+         node = scene.nodes[static_cast<size_t>(node)].parent)
+      chain.push_back(static_cast<uint32_t>(node));
+    glm::mat4 above(1.0f);
+    if (!chain.empty()) {
+      const int32_t parent = chain.back() < scene.nodes.size() ? scene.nodes[chain.back()].parent : -1;
+      if (parent >= 0 && world.count(static_cast<uint32_t>(parent))) above = world[static_cast<uint32_t>(parent)];
+    } else if (world.count(joint)) {
+      return world[joint];
+    }
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) above = world[*it] = above * scene.localTrsAt(*it, t).matrix();
+    return above;
+  };
   std::vector<glm::mat4> matrices(skin.joints.size());
   for (size_t j = 0; j < skin.joints.size(); ++j)
-    matrices[j] = scene.worldMatrixAt(skin.joints[j], t) *
+    matrices[j] = worldOf(skin.joints[j]) *
                   (j < skin.inverseBindMatrices.size() ? skin.inverseBindMatrices[j] : glm::mat4(1.0f));
   return matrices;
+}
+
+Aabb deformedBoundsAt(const Scene& scene, const Instance& instance, float t) {
+  Aabb box;
+  for (const glm::vec3& p : deformedMeshAt(scene, instance, t).positions) box.grow(p);
+  return box;
 }
 
 DeformedVertex deformVertex(const Mesh& mesh, uint32_t vertex, std::span<const float> morphWeights,

@@ -40,6 +40,9 @@ struct DeformedMesh {
 // The instance's mesh deformed at time t (its rest vertices when it does not deform).
 DeformedMesh deformedMeshAt(const Scene& scene, const Instance& instance, float t);
 
+// The bounds of the instance's mesh deformed at time t, in its node's space.
+Aabb deformedBoundsAt(const Scene& scene, const Instance& instance, float t);
+
 // Whether any animation channel drives the instance's deformation: one of its skin's joints
 // (or their ancestors) is animated, or its morph node's weights are.
 bool deformationIsAnimated(const Scene& scene, const Instance& instance);

@@ -34,11 +34,7 @@ std::vector<Aabb> instanceBounds(const Scene& scene, const std::vector<float>& t
     if (inst.mesh >= scene.meshes.size() || meshBounds[inst.mesh].empty()) continue;
     Aabb box;
     for (float t : times) {
-      Aabb local = meshBounds[inst.mesh];
-      if (inst.deforms()) {
-        local = Aabb{};
-        for (const glm::vec3& p : deformedMeshAt(scene, inst, t).positions) local.grow(p);
-      }
+      const Aabb local = inst.deforms() ? deformedBoundsAt(scene, inst, t) : meshBounds[inst.mesh];
       box.grow(transformed(local, scene.worldMatrixAt(inst.node, t)));
     }
     out.push_back(box);

@@ -176,7 +176,8 @@ class GltfImporter {
     const int components = componentCount(acc.type);
     const int size = componentSize(acc.componentType);
     if (size == 0) fail(name + " has an unsupported component type " + std::to_string(acc.componentType));
-    if (acc.count > kMaxElements) fail(name + " has an absurd element count " + std::to_string(acc.count));
+    if (acc.count > kMaxElements || acc.count * uint64_t(std::max(components, 1)) > 4 * kMaxElements)
+      fail(name + " has an absurd element count " + std::to_string(acc.count));
     if (componentsOut) *componentsOut = components;
 
     const size_t elementSize = static_cast<size_t>(size) * static_cast<size_t>(components);
@@ -617,10 +618,12 @@ class GltfImporter {
       warn(what + ": index count not a multiple of 3; trailing indices ignored");
     const std::vector<uint32_t> triangles = toTriangleList(mode, order);
     mesh.indices.reserve(triangles.size());
+    // A deforming primitive keeps triangles of no area at rest: a morph or a skin may open them.
+    const bool deforms = !prim.targets.empty() || prim.attributes.count("JOINTS_0") != 0;
     for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
       const uint32_t a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
       const glm::vec3 area = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
-      if (a == b || b == c || a == c || glm::dot(area, area) == 0.0f) {
+      if (a == b || b == c || a == c || (!deforms && glm::dot(area, area) == 0.0f)) {
         ++scene_.stats.degenerateTriangles;
         continue;
       }
@@ -728,8 +731,9 @@ class GltfImporter {
       for (uint32_t set = 0; set < sets; ++set)
         for (size_t c = 0; c < 4; ++c) {
           const size_t from = (set * vertexCount + v) * 4 + c, to = v * mesh.influences + set * 4 + c;
-          mesh.joints[to] = static_cast<uint32_t>(joints[from]);
           mesh.weights[to] = sum > 0.0 ? static_cast<float>(weights[from] / sum) : (to % mesh.influences == 0 ? 1.0f : 0.0f);
+          // A joint without weight is not read; glTF lets it name any index, so it becomes 0.
+          mesh.joints[to] = mesh.weights[to] != 0.0f ? static_cast<uint32_t>(joints[from]) : 0u;
         }
     }
     if (unweighted > 0) warn(what + ": " + std::to_string(unweighted) + " vertices without joint weights follow their first joint");
@@ -964,13 +968,13 @@ class GltfImporter {
         fail(m.name + " names joint " + std::to_string(*worst) + " of skin " + std::to_string(node.skin) +
              ", which has " + std::to_string(skin.joints.size()));
       instance.skin = node.skin;
-      if (!skinnedRoot_[nodeIndex]) {
-        Node root;
-        root.name = scene_.nodes[nodeIndex].name + " (skinned)";
-        skinnedRoot_[nodeIndex] = static_cast<uint32_t>(scene_.nodes.size());
-        scene_.nodes.push_back(std::move(root));
+      auto [root, added] = skinnedRoot_.try_emplace(nodeIndex, static_cast<uint32_t>(scene_.nodes.size()));
+      if (added) {
+        Node identity;
+        identity.name = scene_.nodes[nodeIndex].name + " (skinned)";
+        scene_.nodes.push_back(std::move(identity));
       }
-      instance.node = *skinnedRoot_[nodeIndex];
+      instance.node = root->second;
     } else if (node.skin >= 0) {
       warn(what + ": skin " + std::to_string(node.skin) + " on a mesh without joint influences; not skinned");
     } else if (m.influences > 0) {
@@ -994,14 +998,21 @@ class GltfImporter {
 
   // A deforming instance changes its mesh's vertices on the device, so it must not share them:
   // every mesh used by a deforming instance and by others is copied for each deforming one
-  // but the last.
+  // but the last. What the copies and their targets hold is capped, as an accessor is: a small
+  // file naming one large mesh from many nodes cannot exhaust memory.
   void giveDeformingInstancesTheirOwnMeshes() {
     std::vector<uint32_t> uses(scene_.meshes.size(), 0);
     for (const Instance& instance : scene_.instances) ++uses[instance.mesh];
+    uint64_t deformedElements = 0;
     for (Instance& instance : scene_.instances) {
-      if (!instance.deforms() || uses[instance.mesh] <= 1) continue;
+      if (!instance.deforms()) continue;
+      const Mesh& mesh = scene_.meshes[instance.mesh];
+      deformedElements += uint64_t(mesh.positions.size()) * (1 + mesh.targets.size());
+      if (deformedElements > kMaxElements)
+        fail("deforms more than " + std::to_string(kMaxElements) + " vertices and target displacements in all");
+      if (uses[instance.mesh] <= 1) continue;
       --uses[instance.mesh];
-      Mesh copy = scene_.meshes[instance.mesh];
+      Mesh copy = mesh;
       instance.mesh = static_cast<uint32_t>(scene_.meshes.size());
       scene_.meshes.push_back(std::move(copy));
       uses.push_back(1);
@@ -1013,7 +1024,7 @@ class GltfImporter {
   Scene scene_;
   std::map<int, int32_t> textureOfImage_;
   std::map<int, std::vector<uint32_t>> meshesOfGltfMesh_;
-  std::map<uint32_t, std::optional<uint32_t>> skinnedRoot_;  // per skinned node, its identity root
+  std::map<uint32_t, uint32_t> skinnedRoot_;  // per skinned node, its identity root
   std::vector<int> materialUvSet_;
   std::optional<uint32_t> defaultMaterial_;
   bool haveLight_ = false;

@@ -66,14 +66,8 @@ bool sampleChannel(const AnimationChannel& ch, float t, glm::vec4& out, bool isR
       }
       return true;
     case Interpolation::CubicSpline: {
-      // glTF Hermite spline: tangents are per second, so they scale with the key spacing.
-      const glm::vec4 v0 = ch.values[k0 * 3 + 1];
-      const glm::vec4 outTangent0 = ch.values[k0 * 3 + 2];
-      const glm::vec4 inTangent1 = ch.values[k1 * 3 + 0];
-      const glm::vec4 v1 = ch.values[k1 * 3 + 1];
-      const float u2 = u * u, u3 = u2 * u;
-      out = (2.0f * u3 - 3.0f * u2 + 1.0f) * v0 + (u3 - 2.0f * u2 + u) * dt * outTangent0 +
-            (-2.0f * u3 + 3.0f * u2) * v1 + (u3 - u2) * dt * inTangent1;
+      out = cubicSpline(ch.values[k0 * 3 + 1], ch.values[k0 * 3 + 2], ch.values[k1 * 3 + 1], ch.values[k1 * 3 + 0], u,
+                        dt);
       if (isRotation) {
         const glm::quat q = normalizedOrIdentity(toQuat(out));
         out = glm::vec4(q.x, q.y, q.z, q.w);
@@ -174,11 +168,7 @@ Aabb Scene::boundsAt(float t) const {
   Aabb bounds;
   for (const Instance& inst : instances) {
     if (inst.mesh >= meshes.size()) continue;
-    Aabb box = meshBounds[inst.mesh];
-    if (inst.deforms()) {
-      box = Aabb{};
-      for (const glm::vec3& p : deformedMeshAt(*this, inst, t).positions) box.grow(p);
-    }
+    const Aabb box = inst.deforms() ? deformedBoundsAt(*this, inst, t) : meshBounds[inst.mesh];
     bounds.grow(transformed(box, worldMatrixAt(inst.node, t)));
   }
   return bounds;

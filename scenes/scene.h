@@ -100,6 +100,15 @@ struct KeySegment {
 };
 KeySegment keySegment(const std::vector<float>& times, float t);
 
+// glTF's cubic spline from key value v0 to v1 at fraction u of a segment of dt seconds; the
+// tangents are per second, so they scale with the key spacing.
+template <class T>
+T cubicSpline(const T& v0, const T& outTangent0, const T& v1, const T& inTangent1, float u, float dt) {
+  const float u2 = u * u, u3 = u2 * u;
+  return (2.0f * u3 - 3.0f * u2 + 1.0f) * v0 + (u3 - 2.0f * u2 + u) * dt * outTangent0 +
+         (-2.0f * u3 + 3.0f * u2) * v1 + (u3 - u2) * dt * inTangent1;
+}
+
 // Draws one mesh with the world transform of one node. Instances of the same node share
 // an object id: the id names an object, not a draw.
 // A deforming instance (skinned, or with morph targets) has a mesh of its own. A skinned one

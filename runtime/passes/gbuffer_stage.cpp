@@ -18,7 +18,7 @@ void GBufferStage::plan(FramePlan& plan, const GpuScene& scene) const {
   if (scene.deforms())
     plan.run(DeformedVertices::kName);
   else
-    plan.skip(DeformedVertices::kName, "no skinned or morphing mesh in the scene");
+    plan.skip(DeformedVertices::kName, kNoDeformationReason);
   plan.run(TransformVerticesPass::kName);
   rasterize_.plan(plan);
   plan.run(ResolveGBufferPass::kName);

@@ -61,15 +61,12 @@ std::vector<glm::vec4> sweptBoxesOfMovingInstances(const scene::Scene& scene, st
     if (!instanceMoves(scene, instance)) continue;
     const scene::Mesh& mesh = scene.meshes.at(instance.mesh);
     if (mesh.positions.empty()) continue;
+    Aabb rest;
+    for (const glm::vec3& p : mesh.positions) rest.grow(p);
     glm::vec3 worldLo(std::numeric_limits<float>::max()), worldHi(-std::numeric_limits<float>::max());
     for (const float t : times) {
-      const std::vector<glm::vec3> positions =
-          instance.deforms() ? scene::deformedMeshAt(scene, instance, t).positions : mesh.positions;
-      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-      for (const glm::vec3& p : positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-      }
+      const Aabb box = instance.deforms() ? scene::deformedBoundsAt(scene, instance, t) : rest;
+      const glm::vec3 lo = box.min, hi = box.max;
       const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
       for (int corner = 0; corner < 8; ++corner) {
         const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
@@ -247,10 +244,7 @@ vk::Buffer ReferenceStage::findMovingPixels(vk::FrameRecorder& frame, const scen
 void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime, uint32_t width,
                           uint32_t height, const ReferenceSettings& settings) const {
   planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
-  if (scene.hasDeformation())
-    plan.run(DeformedVertices::kName);
-  else
-    plan.skip(DeformedVertices::kName, "no skinned or morphing mesh in the scene");
+  planDeformation(plan, scene);
   planDeformedTrees(plan, scene);
   plan.run(kBvhInstances);
   const std::vector<float> times =
@@ -294,11 +288,15 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     TraceScene& traceScene = *traceScene_;
     const float tMin = gpuScene.camera().znear, tMax = gpuScene.camera().zfar;
     const vk::Buffer pixelList = findMovingPixels(frame, scene, times, width, height, settings, tMin, tMax, total);
+    const bool shapesChange = std::any_of(scene.instances.begin(), scene.instances.end(), [&](const scene::Instance& i) {
+      return i.deforms() && scene::deformationIsAnimated(scene, i);
+    });
     uint32_t savedSamples = progress_.samplesDone;
     while (progress_.samplesDone < settings.samplesPerPixel) {
       const uint32_t first = progress_.samplesDone;
-      // A deforming mesh has one shape per time: its trees are refitted to each time's alone.
-      const uint32_t perBatch = gpuScene.deforms() ? 1u : settings.timesPerBatch;
+      // A mesh whose deformation is animated has one shape per time: its trees are refitted to
+      // each time's alone.
+      const uint32_t perBatch = shapesChange ? 1u : settings.timesPerBatch;
       const uint32_t count = std::min(perBatch, settings.samplesPerPixel - first);
       const std::span<const float> batch(times.data() + first, count);
       if (gpuScene.deforms()) vk::appendTimings(total, traceScene.followDeformation(scene, batch[0], gpuScene, frame));

@@ -10,6 +10,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "runtime/deformed_vertices.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
@@ -43,7 +44,7 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
 std::vector<std::string> skippedPasses(const RenderResult& result) {
   std::vector<std::string> names;
   for (const PlannedPass& pass : result.plan.passes())
-    if (!pass.run && pass.reason.find("no skinned or morphing mesh") == std::string::npos) names.push_back(pass.name);
+    if (!pass.run && pass.reason != kNoDeformationReason) names.push_back(pass.name);
   return names;
 }
 

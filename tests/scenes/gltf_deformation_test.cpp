@@ -23,12 +23,13 @@ using test::GltfWriter;
 std::filesystem::path dir() { return test::testDataDir("deformation"); }
 
 // A quad skinned to two joints with JOINTS_0/1 and WEIGHTS_0/1: vertex 0 on joint 0 alone
-// (weights given as 2: normalized to 1), vertex 1 split over both sets, vertex 2 without any
-// weight, vertex 3 on joint 1.
+// (weights given as 2: normalized to 1; its second influence names joint 77 with no weight,
+// which glTF allows), vertex 1 split over both sets, vertex 2 without any weight, vertex 3 on
+// joint 1.
 GltfWriter skinnedQuad(int instances) {
   GltfWriter w;
   json prim = test::addQuadPrimitive(w);
-  const std::vector<uint16_t> joints0 = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0};
+  const std::vector<uint16_t> joints0 = {0, 77, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0};
   const std::vector<uint16_t> joints1 = {0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   prim["attributes"]["JOINTS_0"] = w.addAccessor(w.addView(joints0.data(), 32), test::kUnsignedShort, 4, "VEC4");
   prim["attributes"]["JOINTS_1"] = w.addAccessor(w.addView(joints1.data(), 32), test::kUnsignedShort, 4, "VEC4");
@@ -57,6 +58,7 @@ TEST(GltfDeformationTest, JointInfluencesAreReadNormalizedAndSkinnedMeshesSitOnA
   const Mesh& mesh = scene.meshes[instance.mesh];
   ASSERT_EQ(mesh.influences, 8u);
   EXPECT_EQ(mesh.weights[0], 1.0f);
+  EXPECT_EQ(mesh.joints[1], 0u);  // without weight: never read, named 0
   EXPECT_EQ(mesh.weights[8], 0.25f);  // 1 of 1 + 3
   EXPECT_EQ(mesh.weights[12], 0.75f);
   EXPECT_EQ(mesh.joints[12], 1u);
