@@ -72,7 +72,8 @@ struct BvhCase {
   std::vector<double> deviceLevelMilliseconds;  // of the median build
   uint32_t deviceSmallTasks = 0;                // subtrees build_small_tasks finished
   double deviceSmallTaskMilliseconds = 0;       // its time in the median build
-  Summary deviceRefitMilliseconds;              // refit of the built tree to its boxes
+  Summary deviceRefitMilliseconds;              // refit of the built tree to its boxes, after the first
+  double deviceFirstRefitMilliseconds = 0.0;    // the first, which prepares the others
   bool anchorMeasured = false;                  // the driver's ray queries ran (RayQueryAnchor)
   Summary anchorBuildMilliseconds;              // its bottom and top level builds
   uint32_t deviceLevels = 0;
