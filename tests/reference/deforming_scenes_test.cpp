@@ -22,6 +22,7 @@
 #include "runtime/renderer.h"
 #include "scenes/assimp_test_models.h"
 #include "scenes/load_scene.h"
+#include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -39,16 +40,7 @@ scene::Scene deformingScene(const std::string& name) {
 RenderResult renderWith(const scene::Scene& scene, const std::string& method, uint32_t width, uint32_t height,
                         uint32_t spp = 1, uint32_t seed = 1, std::optional<float> frameTime = std::nullopt,
                         bool skipUnneededPasses = true) {
-  static Renderer renderer(VulkanTest::context());
-  RenderSettings settings;
-  settings.method = parseMethod(method);
-  settings.width = width;
-  settings.height = height;
-  settings.frameTime = frameTime;
-  settings.reference.samplesPerPixel = spp;
-  settings.reference.seed = seed;
-  settings.skipUnneededPasses = skipUnneededPasses;
-  return renderer.render(scene, settings);
+  return renderScene(scene, method, spp, seed, frameTime, width, height, skipUnneededPasses);
 }
 
 std::vector<float> beauty(const RenderResult& result) { return result.image.find("")->values; }

@@ -16,6 +16,7 @@
 #include "runtime/metrics/metrics.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
+#include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -29,15 +30,7 @@ constexpr uint32_t kWidth = 96, kHeight = 54;
 RenderResult renderWith(const scene::Scene& scene, const std::string& method, uint32_t spp, uint32_t seed = 1,
                         std::optional<float> frameTime = std::nullopt, uint32_t width = kWidth,
                         uint32_t height = kHeight) {
-  static Renderer renderer(VulkanTest::context());
-  RenderSettings settings;
-  settings.method = parseMethod(method);
-  settings.width = width;
-  settings.height = height;
-  settings.frameTime = frameTime;
-  settings.reference.samplesPerPixel = spp;
-  settings.reference.seed = seed;
-  return renderer.render(scene, settings);
+  return renderScene(scene, method, spp, seed, frameTime, width, height);
 }
 
 double displayMse(const io::Rgba8Image& a, const io::Rgba8Image& b) {
