@@ -74,6 +74,7 @@ struct BvhCase {
   double deviceSmallTaskMilliseconds = 0;       // its time in the median build
   Summary deviceRefitMilliseconds;              // refit of the built tree to its boxes, after the first
   double deviceFirstRefitMilliseconds = 0.0;    // the first, which prepares the others
+  Summary setupWallMilliseconds;                // the trace scene's whole setup, host clock
   bool anchorMeasured = false;                  // the driver's ray queries ran (RayQueryAnchor)
   Summary anchorBuildMilliseconds;              // its bottom and top level builds
   uint32_t deviceLevels = 0;
