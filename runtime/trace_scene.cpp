@@ -76,7 +76,7 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
     : context_(context),
       triangleBoundsKernel_(context, "bvh/triangle_bounds", sizeof(uint32_t)),
       motionBoundsKernel_(context, "trace/instance_motion_bounds", sizeof(gpu::TraceParams)),
-      deformedLeavesKernel_(context, "bvh/deformed_leaf_triangles", sizeof(uint32_t)),
+      deformedLeavesKernel_(context, "bvh/deformed_leaf_triangles", sizeof(glm::uvec2)),
       meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF),
       instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF) {
   std::vector<glm::vec4> positions;
@@ -136,16 +136,25 @@ vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float 
   if (deformedBoxes_.size() < uint64_t(triangleCount_) * sizeof(gpu::BvhBox))
     deformedBoxes_ = vk::Buffer(context_, uint64_t(triangleCount_) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
                                 "deformed triangle boxes");
+  // Only the deforming meshes' trees: a static mesh keeps its triangles and its bounds.
+  std::vector<uint32_t> trees;
+  for (const scene::Instance& instance : scene.instances)
+    if (instance.deforms()) trees.push_back(instance.mesh);
+  std::sort(trees.begin(), trees.end());
+  trees.erase(std::unique(trees.begin(), trees.end()), trees.end());
   frame.begin();
   gpuScene.recordDeformationAt(scene, t, frame);
-  frame.dispatch(kDeformedLeaves, deformedLeavesKernel_,
-                 {{HMB_DEFORMED_LEAVES_BINDING_VERTICES, &gpuScene.vertices()},
-                  {HMB_DEFORMED_LEAVES_BINDING_PRIMITIVES, &meshBvh_.primitives()},
-                  {HMB_DEFORMED_LEAVES_BINDING_LEAF_TRIANGLES, &leafTriangles_},
-                  {HMB_DEFORMED_LEAVES_BINDING_BOXES, &deformedBoxes_}},
-                 triangleCount_, vk::foldedGroups(vk::groupsFor(triangleCount_, HMB_BVH_BUILD_GROUP)));
+  for (const uint32_t mesh : trees) {
+    const glm::uvec2 entries(meshFirstTriangle_.at(mesh), scene.meshes.at(mesh).triangleCount());
+    frame.dispatch(kDeformedLeaves, deformedLeavesKernel_,
+                   {{HMB_DEFORMED_LEAVES_BINDING_VERTICES, &gpuScene.vertices()},
+                    {HMB_DEFORMED_LEAVES_BINDING_PRIMITIVES, &meshBvh_.primitives()},
+                    {HMB_DEFORMED_LEAVES_BINDING_LEAF_TRIANGLES, &leafTriangles_},
+                    {HMB_DEFORMED_LEAVES_BINDING_BOXES, &deformedBoxes_}},
+                   entries, vk::foldedGroups(vk::groupsFor(entries.y, HMB_BVH_BUILD_GROUP)));
+  }
   timings = frame.submitAndWait();
-  const double refitMs = meshBvh_.refit(frame, deformedBoxes_);
+  const double refitMs = meshBvh_.refit(frame, deformedBoxes_, trees);
   vk::appendTimings(timings, {{{kRefit, refitMs}}, refitMs});
   builtTransforms_.clear();  // the instances' boxes moved: the top level must be built again
   group_.forgetTable();

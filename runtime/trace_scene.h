@@ -49,8 +49,9 @@ class TraceScene {
   void setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame);
 
   // A scene with skinned or morphing meshes: deforms `gpuScene`'s vertices to time t, takes the
-  // trace triangles from them and refits the mesh trees to their new boxes (topology kept; the
-  // trees were built over the rest pose). Call setShutterTimes after it: the instances' boxes
+  // deforming meshes' trace triangles from them and refits those meshes' trees to their new
+  // boxes (topology kept; the trees were built over the rest pose). Static meshes' trees are
+  // left as they are. Call setShutterTimes after it: the instances' boxes
   // changed. Returns the device times of the three steps (DeformedVertices::kName,
   // kDeformedLeaves, kRefit).
   vk::FrameTimings followDeformation(const scene::Scene& scene, float t, GpuScene& gpuScene, vk::FrameRecorder& frame);

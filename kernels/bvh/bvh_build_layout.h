@@ -96,7 +96,7 @@
 #define HMB_REFIT_PARENTS_BINDINGS 3      // roots, packed nodes, parents
 #define HMB_REFIT_PLACES_BINDINGS 2       // parents, places
 #define HMB_REFIT_BOUNDS_BINDINGS 6       // boxes, roots, primitives, packed nodes, exact, order
-#define HMB_REFIT_PACK_BINDINGS 5         // roots, packed nodes, frames, exact, places
+#define HMB_REFIT_PACK_BINDINGS 6         // roots, packed nodes, frames, exact, places, order
 #define HMB_REFIT_GROUP 64
 
 HMB_GPU_BEGIN
@@ -104,8 +104,8 @@ HMB_GPU_BEGIN
 struct BvhRefitParams {
   uint nodeCount;
   uint treeCount;  // roots are nodes 0..treeCount-1
-  uint first;      // refit_bounds: its depth's first node in the order
-  uint count;      // refit_bounds: that depth's nodes
+  uint first;      // refit_bounds: its depth's first node in the order; refit_pack: 0
+  uint count;      // refit_bounds: that depth's nodes; refit_pack: all the order's
 };
 
 // A primitive's bounds (w unused). Empty: min > max.

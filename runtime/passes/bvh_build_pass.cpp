@@ -215,28 +215,47 @@ void BvhBuildPass::prepareRefits(vk::FrameRecorder& frame) {
   frame.dispatch(kRefitPlaces, refitPlacesKernel_,
                  {{HMB_REFIT_BINDING_PARENTS, &parents}, {HMB_REFIT_BINDING_PLACES, &refits_.places}}, params, groups);
   refits_.preparedMilliseconds = frame.submitAndWait().frameMilliseconds.value_or(0.0);
-  // The nodes by depth, deepest last (a counting sort of their depths): refit_bounds then
-  // dispatches over each depth's nodes alone.
-  const std::vector<glm::uvec2> places = refits_.places.download<glm::uvec2>();
-  uint32_t deepest = 0;
-  for (uint64_t n = 0; n < nodes; ++n) deepest = std::max(deepest, places[n].x);
-  refits_.depthStart.assign(size_t(deepest) + 2, 0u);
-  for (uint64_t n = 0; n < nodes; ++n) ++refits_.depthStart[places[n].x + 1];
-  for (size_t d = 1; d < refits_.depthStart.size(); ++d) refits_.depthStart[d] += refits_.depthStart[d - 1];
-  std::vector<uint32_t> order(nodes), next(refits_.depthStart.begin(), refits_.depthStart.end() - 1);
-  for (uint64_t n = 0; n < nodes; ++n) order[next[places[n].x]++] = static_cast<uint32_t>(n);
-  refits_.order = vk::uploadedBuffer(context_, order, name_ + " refit order");
+  refits_.hostPlaces = refits_.places.download<glm::uvec2>();
+  refits_.hostPlaces.resize(nodes);
+  refits_.trees.clear();
+  refits_.depthStart.clear();
 }
 
-double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes) {
+void BvhBuildPass::sortRefitNodes(std::span<const uint32_t> trees) {
+  // The nodes of the trees refitted, by depth, deepest last (a counting sort of their depths):
+  // refit_bounds then dispatches over each depth's nodes alone.
+  std::vector<uint8_t> refitted(roots_.size(), trees.empty() ? 1 : 0);
+  for (const uint32_t tree : trees) {
+    if (tree >= roots_.size()) throw Error(name_ + ": refit() of tree " + std::to_string(tree) + ", which does not exist");
+    refitted[tree] = 1;
+  }
+  const std::vector<glm::uvec2>& places = refits_.hostPlaces;
+  uint32_t deepest = 0;
+  for (const glm::uvec2& place : places)
+    if (refitted[place.y]) deepest = std::max(deepest, place.x);
+  refits_.depthStart.assign(size_t(deepest) + 2, 0u);
+  for (const glm::uvec2& place : places)
+    if (refitted[place.y]) ++refits_.depthStart[place.x + 1];
+  for (size_t d = 1; d < refits_.depthStart.size(); ++d) refits_.depthStart[d] += refits_.depthStart[d - 1];
+  std::vector<uint32_t> order(std::max(refits_.depthStart.back(), 1u)),
+      next(refits_.depthStart.begin(), refits_.depthStart.end() - 1);
+  for (uint32_t n = 0; n < places.size(); ++n)
+    if (refitted[places[n].y]) order[next[places[n].x]++] = n;
+  refits_.order = vk::uploadedBuffer(context_, order, name_ + " refit order");
+  refits_.trees.assign(trees.begin(), trees.end());
+}
+
+double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::span<const uint32_t> trees) {
   if (stats_.nodes == 0) throw Error(name_ + ": refit() before a build");
   if (boxes.size() < uint64_t(primitiveCount_) * sizeof(gpu::BvhBox))
     throw Error(name_ + ": refit() needs a box for each of the " + std::to_string(primitiveCount_) + " primitives");
   double milliseconds = 0.0;
-  if (refits_.depthStart.empty()) {
+  if (refits_.hostPlaces.empty()) {
     prepareRefits(frame);
     milliseconds += refits_.preparedMilliseconds;
   }
+  if (refits_.depthStart.empty() || !std::equal(trees.begin(), trees.end(), refits_.trees.begin(), refits_.trees.end()))
+    sortRefitNodes(trees);
   gpu::BvhRefitParams params{stats_.nodes, static_cast<uint32_t>(roots_.size()), 0, 0};
   frame.begin();
   for (size_t depth = refits_.depthStart.size() - 1; depth-- > 0;) {
@@ -251,13 +270,16 @@ double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes) {
                     {HMB_REFIT_BINDING_ORDER, &refits_.order}},
                    params, vk::foldedGroups(vk::groupsFor(params.count, HMB_REFIT_GROUP)));
   }
+  params.first = 0;
+  params.count = refits_.depthStart.back();
   frame.dispatch(kRefitPack, refitPackKernel_,
                  {{HMB_REFIT_BINDING_ROOTS, &refits_.roots},
                   {HMB_REFIT_BINDING_PACKED_NODES, &packedNodes_},
                   {HMB_REFIT_BINDING_FRAMES, &frames_},
                   {HMB_REFIT_BINDING_EXACT, &refits_.exact},
-                  {HMB_REFIT_BINDING_PLACES, &refits_.places}},
-                 params, vk::foldedGroups(vk::groupsFor(stats_.nodes, HMB_REFIT_GROUP)));
+                  {HMB_REFIT_BINDING_PLACES, &refits_.places},
+                  {HMB_REFIT_BINDING_ORDER, &refits_.order}},
+                 params, vk::foldedGroups(vk::groupsFor(params.count, HMB_REFIT_GROUP)));
   return milliseconds + frame.submitAndWait().frameMilliseconds.value_or(0.0);
 }
 

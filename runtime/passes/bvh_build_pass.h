@@ -104,10 +104,12 @@ class BvhBuildPass {
   // links and primitive order kept. Compacted trees refit too. Returns the device time (ms).
   // The SAH cost drifts as the primitives move from where the build split them; a build
   // restores it.
-  // The first refit after a build also finds each node's parent, depth and root, and sorts the
-  // nodes by depth (a round trip through the host), kept for the next refits of the same trees:
-  // each refit then bounds every node once, a dispatch per depth, and packs them.
-  double refit(vk::FrameRecorder& frame, const vk::Buffer& boxes);
+  // Only `trees` are refitted (all when empty): the others keep their bounds, whatever their
+  // boxes say. The first refit after a build also finds each node's parent, depth and root
+  // (a round trip through the host), kept for the next refits; their nodes are sorted by depth
+  // again only when the trees asked for change. Each refit then bounds every node of its trees
+  // once, a dispatch per depth, and packs them.
+  double refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::span<const uint32_t> trees = {});
 
   const BvhBuildStats& stats() const { return stats_; }
   // The trees' buffers on the device: exact and packed nodes, links, primitive indices and
@@ -140,13 +142,16 @@ class BvhBuildPass {
  private:
   void reserve(uint32_t primitiveCount, uint32_t treeCount);
   void prepareRefits(vk::FrameRecorder& frame);
+  void sortRefitNodes(std::span<const uint32_t> trees);
 
   // What refits of the last build's trees keep (empty until the first refit).
   struct Refits {
     vk::Buffer roots;   // roots_ on the device
     vk::Buffer exact;   // BvhBox per node: the refitted exact bounds
     vk::Buffer places;  // uvec2 per node: depth, root
-    vk::Buffer order;   // the nodes by depth
+    std::vector<glm::uvec2> hostPlaces;  // the same on the host
+    std::vector<uint32_t> trees;         // the trees refitted (empty: all)
+    vk::Buffer order;   // their nodes by depth
     std::vector<uint32_t> depthStart;  // depth d's nodes: order[depthStart[d] .. depthStart[d + 1])
     double preparedMilliseconds = 0.0;
   };

@@ -41,7 +41,7 @@ struct KernelLayout {
 
 const KernelLayout kLayouts[] = {
     {"bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t), false},
-    {"bvh/deformed_leaf_triangles", HMB_DEFORMED_LEAVES_BINDING_COUNT, sizeof(uint32_t), false},
+    {"bvh/deformed_leaf_triangles", HMB_DEFORMED_LEAVES_BINDING_COUNT, sizeof(glm::uvec2), false},
     {"deform/deform_vertices", HMB_DEFORM_BINDING_COUNT, sizeof(gpu::DeformParams), false},
     {"bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},
     {"bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false},

@@ -251,6 +251,22 @@ TEST_F(DeviceBvh, RefitBoundsDeformedTrianglesWithTheTopologyKept) {
   const double drift = bvh::sahCost(refitted) / bvh::sahCost(fresh.download(0));
   std::printf("[ refit    ] bent cube sphere, %u triangles: SAH %.3fx a fresh build's\n", roots[0].y, drift);
   EXPECT_GE(drift, 0.9);
+
+  // A refit of some trees leaves the others as they were, whatever their boxes say.
+  builder.refit(frame, before);
+  const bvh::Bvh restTree0 = builder.download(0), restTree2 = builder.download(2);
+  const uint32_t onlyTree1[] = {1};
+  builder.refit(frame, after, onlyTree1);
+  const std::vector<Aabb> bentTree1(bentBounds.begin() + roots[1].x, bentBounds.begin() + roots[1].x + roots[1].y);
+  EXPECT_EQ(bvh::test::structuralProblem(builder.download(1), bentTree1, HMB_BVH_MAX_LEAF), "") << "tree 1 refitted alone";
+  for (const auto& [tree, rest] : {std::pair{0u, &restTree0}, std::pair{2u, &restTree2}}) {
+    const bvh::Bvh kept = builder.download(tree);
+    ASSERT_EQ(kept.nodes.size(), rest->nodes.size()) << "tree " << tree;
+    for (size_t n = 0; n < kept.nodes.size(); ++n) {
+      EXPECT_EQ(bvh::boundsOf(kept.nodes[n]).min, bvh::boundsOf(rest->nodes[n]).min) << "tree " << tree << " node " << n;
+      EXPECT_EQ(bvh::boundsOf(kept.nodes[n]).max, bvh::boundsOf(rest->nodes[n]).max) << "tree " << tree << " node " << n;
+    }
+  }
 }
 
 TEST_F(DeviceBvh, PackedNodesAreTheHostsPackingOfTheExactNodes) {
