@@ -61,17 +61,21 @@ float medianEdgeLength(const Scene& scene, float t) {
     if (inst.mesh >= scene.meshes.size()) continue;
     const Mesh& mesh = scene.meshes[inst.mesh];
     const glm::mat4 world = scene.worldMatrixAt(inst.node, t);
+    // A deforming mesh as it is at t: a skeleton's scale or a morph changes its edges.
+    const std::vector<glm::vec3> deformed = inst.deforms() ? deformedMeshAt(scene, inst, t).positions
+                                                           : std::vector<glm::vec3>();
+    const std::vector<glm::vec3>& positions = inst.deforms() ? deformed : mesh.positions;
     for (uint32_t tri = 0; tri < mesh.triangleCount(); ++tri, ++globalTriangle) {
       if (globalTriangle % stride != 0) continue;
       glm::vec3 p[3];
       bool valid = true;
       for (int k = 0; k < 3; ++k) {
         const uint32_t index = mesh.indices[tri * 3 + k];
-        if (index >= mesh.positions.size()) {
+        if (index >= positions.size()) {
           valid = false;
           break;
         }
-        p[k] = glm::vec3(world * glm::vec4(mesh.positions[index], 1.0f));
+        p[k] = glm::vec3(world * glm::vec4(positions[index], 1.0f));
       }
       if (!valid) continue;
       for (int k = 0; k < 3; ++k) {
