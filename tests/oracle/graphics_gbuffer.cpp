@@ -73,24 +73,15 @@ GraphicsGBuffer::~GraphicsGBuffer() { release(); }
 
 void GraphicsGBuffer::release() {
   const VkDevice device = context_.device();
-  for (VkPipeline& pipeline : pipelines_) {
-    if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
-    pipeline = VK_NULL_HANDLE;
-  }
-  if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
+  destroyOracleDraw(device, pipelines_, pipelineLayout_, framebuffer_, renderPass_);
   if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
   if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  if (framebuffer_) vkDestroyFramebuffer(device, framebuffer_, nullptr);
-  if (renderPass_) vkDestroyRenderPass(device, renderPass_, nullptr);
   destroyAttachment(context_, samples_);
   destroyAttachment(context_, surfaces_);
   destroyAttachment(context_, depth_);
-  pipelineLayout_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;
   set_ = VK_NULL_HANDLE;
   setLayout_ = VK_NULL_HANDLE;
-  framebuffer_ = VK_NULL_HANDLE;
-  renderPass_ = VK_NULL_HANDLE;
 }
 
 void GraphicsGBuffer::createRenderPass() {
@@ -106,14 +97,7 @@ void GraphicsGBuffer::createFramebuffer() {
   depth_ = createAttachment(context_, width_, height_, depthFormat_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                             VK_IMAGE_ASPECT_DEPTH_BIT);
   const VkImageView views[3] = {samples_.view, surfaces_.view, depth_.view};
-  VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  info.renderPass = renderPass_;
-  info.attachmentCount = 3;
-  info.pAttachments = views;
-  info.width = width_;
-  info.height = height_;
-  info.layers = 1;
-  HMB_VK_CHECK(vkCreateFramebuffer(context_.device(), &info, nullptr, &framebuffer_));
+  framebuffer_ = createReadbackFramebuffer(context_, renderPass_, views, width_, height_);
 }
 
 void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
@@ -169,37 +153,15 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
 }
 
 void GraphicsGBuffer::createPipelines(bool texturePath) {
-  const VkDevice device = context_.device();
-  VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
-  try {
-    vert = createShader(device, kGBuffer_vert, sizeof(kGBuffer_vert));
-    frag = createShader(device, kGBuffer_frag, sizeof(kGBuffer_frag));
-    // The texture path as the resolve kernel is built for this scene (shading.glsl).
-    const VkSpecializationMapEntry entry{HMB_SPEC_TEXTURE_PATH, 0, sizeof(VkBool32)};
-    const VkBool32 texture = texturePath ? VK_TRUE : VK_FALSE;
-    const VkSpecializationInfo specialization{1, &entry, sizeof(texture), &texture};
-    VkPipelineShaderStageCreateInfo stages[2]{};
-    stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    stages[0].module = vert;
-    stages[0].pName = "main";
-    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[1].module = frag;
-    stages[1].pName = "main";
-    stages[1].pSpecializationInfo = &specialization;
-
-    const VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    createOraclePipelines(device, stages, vertexInput, 2,
-                          VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                              VK_COLOR_COMPONENT_A_BIT,
-                          pipelineLayout_, renderPass_, width_, height_, pipelines_);
-  } catch (...) {
-    if (vert) vkDestroyShaderModule(device, vert, nullptr);
-    if (frag) vkDestroyShaderModule(device, frag, nullptr);
-    throw;
-  }
-  vkDestroyShaderModule(device, vert, nullptr);
-  vkDestroyShaderModule(device, frag, nullptr);
+  // The texture path as the resolve kernel is built for this scene (shading.glsl).
+  const VkSpecializationMapEntry entry{HMB_SPEC_TEXTURE_PATH, 0, sizeof(VkBool32)};
+  const VkBool32 texture = texturePath ? VK_TRUE : VK_FALSE;
+  const VkSpecializationInfo specialization{1, &entry, sizeof(texture), &texture};
+  const VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  createOraclePipelines(context_.device(), {kGBuffer_vert, kGBuffer_frag, &specialization}, vertexInput, 2,
+                        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                            VK_COLOR_COMPONENT_A_BIT,
+                        pipelineLayout_, renderPass_, width_, height_, pipelines_);
 }
 
 GraphicsGBuffer::Image GraphicsGBuffer::render() {
@@ -211,13 +173,7 @@ GraphicsGBuffer::Image GraphicsGBuffer::render() {
       clears[1].color.uint32[c] = backgroundSurface_[c];
     }
     clears[2].depthStencil = {0.0f, 0};  // the far plane
-    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    begin.renderPass = renderPass_;
-    begin.framebuffer = framebuffer_;
-    begin.renderArea = {{0, 0}, {width_, height_}};
-    begin.clearValueCount = 3;
-    begin.pClearValues = clears;
-    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    beginReadbackPass(cmd, renderPass_, framebuffer_, width_, height_, clears);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 0, nullptr);
     const gpu::GBufferOracleParams params{width_, height_, 0, 0};
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(params), &params);

@@ -53,20 +53,11 @@ GraphicsRasterizer::GraphicsRasterizer(const vk::Context& context, uint32_t widt
 GraphicsRasterizer::~GraphicsRasterizer() { release(); }
 
 void GraphicsRasterizer::release() {
-  const VkDevice device = context_.device();
-  for (VkPipeline& pipeline : pipelines_)
-    if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
-  if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
-  if (framebuffer_) vkDestroyFramebuffer(device, framebuffer_, nullptr);
-  if (renderPass_) vkDestroyRenderPass(device, renderPass_, nullptr);
+  destroyOracleDraw(context_.device(), pipelines_, pipelineLayout_, framebuffer_, renderPass_);
   destroyAttachment(context_, color_);
   destroyAttachment(context_, depth_);
   vertices_ = vk::Buffer();
   staging_ = vk::Buffer();
-  pipelines_[0] = pipelines_[1] = VK_NULL_HANDLE;
-  pipelineLayout_ = VK_NULL_HANDLE;
-  framebuffer_ = VK_NULL_HANDLE;
-  renderPass_ = VK_NULL_HANDLE;
 }
 
 void GraphicsRasterizer::createRenderPass() {
@@ -80,14 +71,7 @@ void GraphicsRasterizer::createAttachments() {
   depth_ = createAttachment(context_, width_, height_, depthFormat_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                             VK_IMAGE_ASPECT_DEPTH_BIT);
   const VkImageView views[2] = {color_.view, depth_.view};
-  VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  info.renderPass = renderPass_;
-  info.attachmentCount = 2;
-  info.pAttachments = views;
-  info.width = width_;
-  info.height = height_;
-  info.layers = 1;
-  HMB_VK_CHECK(vkCreateFramebuffer(context_.device(), &info, nullptr, &framebuffer_));
+  framebuffer_ = createReadbackFramebuffer(context_, renderPass_, views, width_, height_);
 }
 
 void GraphicsRasterizer::createPipelines() {
@@ -95,39 +79,18 @@ void GraphicsRasterizer::createPipelines() {
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   HMB_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &pipelineLayout_));
 
-  VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
-  try {
-    vert = createShader(device, kOracle_vert, sizeof(kOracle_vert));
-    frag = createShader(device, kOracle_frag, sizeof(kOracle_frag));
-    VkPipelineShaderStageCreateInfo stages[2]{};
-    stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    stages[0].module = vert;
-    stages[0].pName = "main";
-    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[1].module = frag;
-    stages[1].pName = "main";
-
-    const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    const VkVertexInputAttributeDescription attributes[2] = {
-        {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, clip)},
-        {1, 0, VK_FORMAT_R32_UINT, offsetof(Vertex, id)},
-    };
-    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vertexInput.vertexBindingDescriptionCount = 1;
-    vertexInput.pVertexBindingDescriptions = &binding;
-    vertexInput.vertexAttributeDescriptionCount = 2;
-    vertexInput.pVertexAttributeDescriptions = attributes;
-
-    createOraclePipelines(device, stages, vertexInput, 1, VK_COLOR_COMPONENT_R_BIT, pipelineLayout_, renderPass_,
-                          width_, height_, pipelines_);
-  } catch (...) {
-    if (vert) vkDestroyShaderModule(device, vert, nullptr);
-    if (frag) vkDestroyShaderModule(device, frag, nullptr);
-    throw;
-  }
-  vkDestroyShaderModule(device, vert, nullptr);
-  vkDestroyShaderModule(device, frag, nullptr);
+  const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+  const VkVertexInputAttributeDescription attributes[2] = {
+      {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, clip)},
+      {1, 0, VK_FORMAT_R32_UINT, offsetof(Vertex, id)},
+  };
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vertexInput.vertexBindingDescriptionCount = 1;
+  vertexInput.pVertexBindingDescriptions = &binding;
+  vertexInput.vertexAttributeDescriptionCount = 2;
+  vertexInput.pVertexAttributeDescriptions = attributes;
+  createOraclePipelines(device, {kOracle_vert, kOracle_frag}, vertexInput, 1, VK_COLOR_COMPONENT_R_BIT,
+                        pipelineLayout_, renderPass_, width_, height_, pipelines_);
 }
 
 void* GraphicsRasterizer::reserveVertices(VkDeviceSize bytes) {
@@ -180,13 +143,7 @@ OracleImage GraphicsRasterizer::rasterize(std::span<const OracleTriangle> triang
     VkClearValue clears[2]{};
     clears[0].color.uint32[0] = 0;
     clears[1].depthStencil = {0.0f, 0};  // the far plane
-    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    begin.renderPass = renderPass_;
-    begin.framebuffer = framebuffer_;
-    begin.renderArea = {{0, 0}, {width_, height_}};
-    begin.clearValueCount = 2;
-    begin.pClearValues = clears;
-    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    beginReadbackPass(cmd, renderPass_, framebuffer_, width_, height_, clears);
     if (!draws.empty()) {
       const VkDeviceSize offset = 0;
       const VkBuffer vertexBuffer = vertices_.handle();

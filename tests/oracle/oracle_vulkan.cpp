@@ -8,6 +8,7 @@
 #include "runtime/vulkan/context.h"
 
 namespace hmb::oracle {
+namespace {
 
 VkShaderModule createShader(VkDevice device, const uint32_t* words, size_t bytes) {
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -17,6 +18,8 @@ VkShaderModule createShader(VkDevice device, const uint32_t* words, size_t bytes
   HMB_VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
   return module;
 }
+
+}  // namespace
 
 void requireGraphicsQueue(const vk::Context& context, const char* who) {
   uint32_t familyCount = 0;
@@ -140,10 +143,38 @@ VkRenderPass createReadbackRenderPass(const vk::Context& context, std::span<cons
   return renderPass;
 }
 
-void createOraclePipelines(VkDevice device, std::span<const VkPipelineShaderStageCreateInfo> stages,
-                           const VkPipelineVertexInputStateCreateInfo& vertexInput, uint32_t colorAttachments,
-                           VkColorComponentFlags writeMask, VkPipelineLayout layout, VkRenderPass renderPass,
-                           uint32_t width, uint32_t height, VkPipeline pipelines[2]) {
+VkFramebuffer createReadbackFramebuffer(const vk::Context& context, VkRenderPass renderPass,
+                                        std::span<const VkImageView> views, uint32_t width, uint32_t height) {
+  VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  info.renderPass = renderPass;
+  info.attachmentCount = uint32_t(views.size());
+  info.pAttachments = views.data();
+  info.width = width;
+  info.height = height;
+  info.layers = 1;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  HMB_VK_CHECK(vkCreateFramebuffer(context.device(), &info, nullptr, &framebuffer));
+  return framebuffer;
+}
+
+void beginReadbackPass(VkCommandBuffer cmd, VkRenderPass renderPass, VkFramebuffer framebuffer, uint32_t width,
+                       uint32_t height, std::span<const VkClearValue> clears) {
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = renderPass;
+  begin.framebuffer = framebuffer;
+  begin.renderArea = {{0, 0}, {width, height}};
+  begin.clearValueCount = uint32_t(clears.size());
+  begin.pClearValues = clears.data();
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+}
+
+namespace {
+
+// Both pipelines from the shader stages.
+void createPipelinesFromStages(VkDevice device, std::span<const VkPipelineShaderStageCreateInfo> stages,
+                               const VkPipelineVertexInputStateCreateInfo& vertexInput, uint32_t colorAttachments,
+                               VkColorComponentFlags writeMask, VkPipelineLayout layout, VkRenderPass renderPass,
+                               uint32_t width, uint32_t height, VkPipeline pipelines[2]) {
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   const VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
@@ -187,6 +218,50 @@ void createOraclePipelines(VkDevice device, std::span<const VkPipelineShaderStag
     raster.cullMode = cullModes[i];
     HMB_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines[i]));
   }
+}
+
+}  // namespace
+
+void createOraclePipelines(VkDevice device, const OracleShaders& shaders,
+                           const VkPipelineVertexInputStateCreateInfo& vertexInput, uint32_t colorAttachments,
+                           VkColorComponentFlags writeMask, VkPipelineLayout layout, VkRenderPass renderPass,
+                           uint32_t width, uint32_t height, VkPipeline pipelines[2]) {
+  VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+  try {
+    vert = createShader(device, shaders.vertex.data(), shaders.vertex.size_bytes());
+    frag = createShader(device, shaders.fragment.data(), shaders.fragment.size_bytes());
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vert;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = frag;
+    stages[1].pName = "main";
+    stages[1].pSpecializationInfo = shaders.fragmentSpecialization;
+    createPipelinesFromStages(device, stages, vertexInput, colorAttachments, writeMask, layout, renderPass, width,
+                              height, pipelines);
+  } catch (...) {
+    if (vert) vkDestroyShaderModule(device, vert, nullptr);
+    if (frag) vkDestroyShaderModule(device, frag, nullptr);
+    throw;
+  }
+  vkDestroyShaderModule(device, vert, nullptr);
+  vkDestroyShaderModule(device, frag, nullptr);
+}
+
+void destroyOracleDraw(VkDevice device, VkPipeline pipelines[2], VkPipelineLayout& layout, VkFramebuffer& framebuffer,
+                       VkRenderPass& renderPass) {
+  for (int i = 0; i < 2; ++i) {
+    if (pipelines[i]) vkDestroyPipeline(device, pipelines[i], nullptr);
+    pipelines[i] = VK_NULL_HANDLE;
+  }
+  if (layout) vkDestroyPipelineLayout(device, layout, nullptr);
+  if (framebuffer) vkDestroyFramebuffer(device, framebuffer, nullptr);
+  if (renderPass) vkDestroyRenderPass(device, renderPass, nullptr);
+  layout = VK_NULL_HANDLE;
+  framebuffer = VK_NULL_HANDLE;
+  renderPass = VK_NULL_HANDLE;
 }
 
 void addTriangle(std::vector<DrawSpan>& spans, uint32_t t, bool doubleSided) {

@@ -1,5 +1,6 @@
-// What the graphics-pipeline oracles (graphics_raster.h, graphics_gbuffer.h) build alike: shader
-// modules, attachments, the depth format, the graphics-queue check and the draw's timestamps.
+// What the graphics-pipeline oracles (graphics_raster.h, graphics_gbuffer.h) build alike: their
+// pipelines from their shaders, attachments, render pass and framebuffer, the depth format, the
+// graphics-queue check, the draw's spans and timestamps.
 #pragma once
 
 #include <cstddef>
@@ -15,8 +16,6 @@ class Context;
 }
 
 namespace hmb::oracle {
-
-VkShaderModule createShader(VkDevice device, const uint32_t* words, size_t bytes);
 
 // Throws hmb::Error naming `who` when the context's queue family cannot draw.
 void requireGraphicsQueue(const vk::Context& context, const char* who);
@@ -41,14 +40,32 @@ void destroyAttachment(const vk::Context& context, Attachment& attachment);
 VkRenderPass createReadbackRenderPass(const vk::Context& context, std::span<const VkFormat> colorFormats,
                                       VkFormat depthFormat);
 
+// The framebuffer of such a render pass over `views` (colour attachments, then depth).
+VkFramebuffer createReadbackFramebuffer(const vk::Context& context, VkRenderPass renderPass,
+                                        std::span<const VkImageView> views, uint32_t width, uint32_t height);
+// Begins the render pass over the whole framebuffer with one clear value per attachment.
+void beginReadbackPass(VkCommandBuffer cmd, VkRenderPass renderPass, VkFramebuffer framebuffer, uint32_t width,
+                       uint32_t height, std::span<const VkClearValue> clears);
+
+// An oracle's SPIR-V (vertex and fragment shader words), and the fragment shader's
+// specialization if any.
+struct OracleShaders {
+  std::span<const uint32_t> vertex, fragment;
+  const VkSpecializationInfo* fragmentSpecialization = nullptr;
+};
+
 // The oracles' two pipelines, [0] culling back faces and [1] none: triangle lists over the whole
 // width x height viewport, depth clamp off (0 <= z/w <= 1, as the compute rasterizer keeps),
 // counter-clockwise front faces (graphics_raster.h), reversed depth (GREATER test), one sample
 // per pixel, `colorAttachments` attachments written with `writeMask`.
-void createOraclePipelines(VkDevice device, std::span<const VkPipelineShaderStageCreateInfo> stages,
+void createOraclePipelines(VkDevice device, const OracleShaders& shaders,
                            const VkPipelineVertexInputStateCreateInfo& vertexInput, uint32_t colorAttachments,
                            VkColorComponentFlags writeMask, VkPipelineLayout layout, VkRenderPass renderPass,
                            uint32_t width, uint32_t height, VkPipeline pipelines[2]);
+
+// Destroys what an oracle draws with (each handle that is set) and clears the handles.
+void destroyOracleDraw(VkDevice device, VkPipeline pipelines[2], VkPipelineLayout& layout, VkFramebuffer& framebuffer,
+                       VkRenderPass& renderPass);
 
 // Consecutive triangles of one sidedness, drawn with one of the two pipelines above in one call,
 // so the draw order (which decides equal-depth ties) is the triangles' order.
