@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <map>
 
 #include "kernels/deform/deform_layout.h"
 #include "runtime/error.h"
@@ -26,6 +27,7 @@ DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scen
   std::vector<gpu::GpuMorphDisplacement> displacements;
   std::vector<gpu::GpuDeformer> deformers;
   uint64_t jointCount = 0, weightCount = 0;  // per time slot
+  std::map<int32_t, uint32_t> skinFirstJoint;  // one set of joint matrices per skin, shared by its meshes
   std::vector<uint32_t> meshUses(scene.meshes.size(), 0);
   for (const scene::Instance& instance : scene.instances) ++meshUses.at(instance.mesh);
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
@@ -47,7 +49,15 @@ DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scen
     d.firstInfluence = static_cast<uint32_t>(influences.size());
     d.targetCount = instance.morphNode >= 0 ? static_cast<uint32_t>(mesh.targets.size()) : 0u;
     d.firstDisplacement = static_cast<uint32_t>(displacements.size());
-    d.firstJoint = instance.skin >= 0 ? static_cast<uint32_t>(jointCount) : HMB_DEFORM_NO_SKIN;
+    d.firstJoint = HMB_DEFORM_NO_SKIN;
+    if (instance.skin >= 0) {
+      const auto [at, added] = skinFirstJoint.try_emplace(instance.skin, static_cast<uint32_t>(jointCount));
+      if (added) {
+        jointCount += scene.skins.at(size_t(instance.skin)).joints.size();
+        paletteSkins_.push_back(i);
+      }
+      d.firstJoint = at->second;
+    }
     d.firstWeight = static_cast<uint32_t>(weightCount);
     const auto deformer = static_cast<uint32_t>(deformers.size());
     for (uint32_t v = 0; v < vertices; ++v) {
@@ -69,7 +79,6 @@ DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scen
         displacements.push_back({glm::vec4(v < target.positions.size() ? target.positions[v] : glm::vec3(0.0f), 0.0f),
                                  glm::vec4(v < target.normals.size() ? target.normals[v] : glm::vec3(0.0f), 0.0f)});
     }
-    if (instance.skin >= 0) jointCount += scene.skins.at(size_t(instance.skin)).joints.size();
     weightCount += d.targetCount;
     deformers.push_back(d);
     deformingInstances_.push_back(i);
@@ -99,11 +108,12 @@ void DeformedVertices::setTime(const scene::Scene& scene, uint32_t slot, float t
   if (slot >= kSlots) throw Error("deform-vertices: no time slot " + std::to_string(slot));
   std::vector<glm::mat4> joints;
   std::vector<float> weights;
-  for (const uint32_t i : deformingInstances_) {
-    const scene::Instance& instance = scene.instances.at(i);
-    const std::vector<glm::mat4> matrices = scene::jointMatricesAt(scene, instance, t);
+  for (const uint32_t i : paletteSkins_) {
+    const std::vector<glm::mat4> matrices = scene::jointMatricesAt(scene, scene.instances.at(i), t);
     joints.insert(joints.end(), matrices.begin(), matrices.end());
-    const std::vector<float> w = scene::morphWeightsAt(scene, instance, t);
+  }
+  for (const uint32_t i : deformingInstances_) {
+    const std::vector<float> w = scene::morphWeightsAt(scene, scene.instances.at(i), t);
     weights.insert(weights.end(), w.begin(), w.end());
   }
   if (joints.size() != jointsPerSlot_ || weights.size() != weightsPerSlot_)

@@ -52,6 +52,7 @@ class DeformedVertices {
   uint32_t jointsPerSlot_ = 0;
   uint32_t weightsPerSlot_ = 0;
   std::vector<uint32_t> deformingInstances_;  // scene instance of each deformer
+  std::vector<uint32_t> paletteSkins_;        // per skin in the joint matrices, an instance it deforms
   vk::Buffer rest_, influences_, displacements_, deformers_, joints_, weights_;
 };
 
