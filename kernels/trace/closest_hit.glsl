@@ -64,8 +64,8 @@ bool testLeaf(MeshRay m, uint first, uint count, inout BvhHit best) {
     // The triangles' vertices are stored in the leaves' order: no indirection through the
     // leaf's primitive indices, which name the triangle once, for the closest hit.
     const uint entry = first + k;
-    const vec3 p0 = leafTriangles[3u * entry].xyz, p1 = leafTriangles[3u * entry + 1u].xyz,
-               p2 = leafTriangles[3u * entry + 2u].xyz;
+    const vec3 p0 = leafTriangle(3u * entry).xyz, p1 = leafTriangle(3u * entry + 1u).xyz,
+               p2 = leafTriangle(3u * entry + 2u).xyz;
     float t, u, v;
     if (!intersectTriangle(m.r, p0, p1, p2, t, u, v)) continue;
     if (!(t >= m.tMin) || t > best.t) continue;
@@ -91,7 +91,7 @@ bool walkLinked(MeshRay m, inout BvhHit best) {
   bool nearest = false;
   uint node = m.mesh;
   while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = meshNodes[node];
+    const uvec4 n = meshNode(node);
     const uint link = meshLinks[node * HMB_BVH_OCTANTS + m.r.octant];
     if (intersectBox(m.r, packedLower(n, m.frame), packedUpper(n, m.frame), m.tMin, best.t)) {
       const uint count = packedCount(n);
@@ -169,7 +169,7 @@ bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
   overflowed = false;
   bool nearest = false;
   uint pending = 0u;
-  const uvec4 root = meshNodes[m.mesh];
+  const uvec4 root = meshNode(m.mesh);
   float entry;
   if (!intersectBoxEntry(m.r, packedLower(root, m.frame), packedUpper(root, m.frame), m.tMin, best.t, entry))
     return false;
@@ -178,7 +178,7 @@ bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
     bool left = true;  // a subtree is left to walk
     while (left && isInterior(word)) {
       const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      left = interiorStep(MESH_WALK, meshNodes[first], meshNodes[first + 1u], m.r, m.frame, m.tMin, best.t, pending,
+      left = interiorStep(MESH_WALK, meshNode(first), meshNode(first + 1u), m.r, m.frame, m.tMin, best.t, pending,
                           word, overflowed);
     }
     if (!left) return nearest;
@@ -228,7 +228,7 @@ void refineClosestHit(TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   const PreparedRay r = instanceRay(best.instance, ray, scene, linear);
   const uint at = 3u * best.entry;
   const float refined =
-      planeHitDistance(r, leafTriangles[at].xyz, leafTriangles[at + 1u].xyz, leafTriangles[at + 2u].xyz, best.t);
+      planeHitDistance(r, leafTriangle(at).xyz, leafTriangle(at + 1u).xyz, leafTriangle(at + 2u).xyz, best.t);
   best.t = clamp(refined, ray.originTMin.w, ray.directionTMax.w);
 }
 
@@ -248,7 +248,7 @@ bool walkTopStacked(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout Bvh
   uint pending = 0u;
   const BvhFrame frame = topFrame;
   const float tMin = ray.originTMin.w;
-  const uvec4 root = topNodes[HMB_BVH_ROOT];
+  const uvec4 root = topNode(HMB_BVH_ROOT);
   float entry;
   if (!intersectBoxEntry(r, packedLower(root, frame), packedUpper(root, frame), tMin, best.t, entry)) return true;
   uint word = root.w;
@@ -256,7 +256,7 @@ bool walkTopStacked(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout Bvh
     bool left = true;
     while (left && isInterior(word)) {
       const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      left = interiorStep(TOP_WALK, topNodes[first], topNodes[first + 1u], r, frame, tMin, best.t, pending, word,
+      left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), r, frame, tMin, best.t, pending, word,
                           overflowed);
     }
     if (!left) return !overflowed;
@@ -271,7 +271,7 @@ void walkTopLinked(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhH
   const BvhFrame frame = topFrame;
   uint node = HMB_BVH_ROOT;
   while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = topNodes[node];
+    const uvec4 n = topNode(node);
     const uint link = topLinks[node * HMB_BVH_OCTANTS + r.octant];
     if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), ray.originTMin.w, best.t)) {
       const uint count = packedCount(n);

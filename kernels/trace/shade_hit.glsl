@@ -14,8 +14,8 @@ struct HitSurface {
 
 // transformIndex: the hit instance's transform at the ray's time (instance * timeCount + time).
 HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
-  const vec4 a = leafTriangles[3u * hit.entry], b3 = leafTriangles[3u * hit.entry + 1u],
-             c = leafTriangles[3u * hit.entry + 2u];
+  const vec4 a = leafTriangle(3u * hit.entry), b3 = leafTriangle(3u * hit.entry + 1u),
+             c = leafTriangle(3u * hit.entry + 2u);
   const uvec3 tri = floatBitsToUint(vec3(a.w, b3.w, c.w));
   const vec3 b = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
   const vec3 objectNormal = b.x * vertices[tri.x].normal.xyz + b.y * vertices[tri.y].normal.xyz +

@@ -1,7 +1,13 @@
 // The trace scene as a kernel binds it, from its binding HMB_TRACE_SCENE_BINDING on (defined
 // by the including kernel): the 11 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
 // with few storage-buffer bindings) one TraceSceneTable of their addresses. Either way the
-// kernels read the same names: topNodes[i], transforms[i], ...
+// kernels read the same names: transforms[i], ..., and topNode(i), meshNode(i) and
+// leafTriangle(i) for the three arrays every ray step reads.
+// Those three are uniform texel buffers in the plain build: fetched through the texture path,
+// which on lavapipe is one hardware gather per component across the SIMD lanes where a
+// storage-buffer load at per-lane addresses is a loop over the lanes (1.2-1.25x the trace
+// rate, bench/results/bvh-vs-embree.md), and on GPUs the read-only cached path that BVH
+// traversal has long used for nodes and triangles. Every record is 16 bytes (RGBA32UI).
 #ifndef HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
 #define HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
 
@@ -20,20 +26,27 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING) readonly buffer TraceScene { T
 #define leafTriangles traceScene.leafTriangles.v
 #define topFrame traceScene.topFrame.v[0]
 #define meshFrames traceScene.meshFrames.v
+uvec4 topNode(uint i) { return topNodes[i]; }
+uvec4 meshNode(uint i) { return meshNodes[i]; }
+vec4 leafTriangle(uint i) { return leafTriangles[i]; }
 #else
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 0) readonly buffer TopNodes { uvec4 topNodes[]; };
+#extension GL_EXT_samplerless_texture_functions : require
+layout(binding = HMB_TRACE_SCENE_BINDING + 0) uniform utextureBuffer topNodeTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 1) readonly buffer TopLinks { uint topLinks[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 2) readonly buffer TopPrimitives { uint topPrimitives[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 3) readonly buffer TraceInstances { TraceInstance traceInstances[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 4) readonly buffer Transforms { InstanceTransform transforms[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 5) readonly buffer MeshNodes { uvec4 meshNodes[]; };
+layout(binding = HMB_TRACE_SCENE_BINDING + 5) uniform utextureBuffer meshNodeTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 6) readonly buffer MeshLinks { uint meshLinks[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
 // Each triangle's three vertices in the leaves' order (entry e at 3e..3e+2): a leaf's triangles
 // are three loads each, with no indirection through vertex indices.
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 8) readonly buffer LeafTriangles { vec4 leafTriangles[]; };
+layout(binding = HMB_TRACE_SCENE_BINDING + 8) uniform utextureBuffer leafTriangleTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) readonly buffer TopFrame { BvhFrame topFrame; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 10) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
+uvec4 topNode(uint i) { return texelFetch(topNodeTexels, int(i)); }
+uvec4 meshNode(uint i) { return texelFetch(meshNodeTexels, int(i)); }
+vec4 leafTriangle(uint i) { return uintBitsToFloat(texelFetch(leafTriangleTexels, int(i))); }
 #endif
 
 #endif

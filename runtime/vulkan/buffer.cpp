@@ -26,8 +26,9 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
 
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = bytes;
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | extraUsage;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+               VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | extraUsage;
   const bool addressable = context.info().bufferDeviceAddress;
   if (addressable) info.usage |= VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
@@ -108,6 +109,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     mapped_ = std::exchange(other.mapped_, nullptr);
     readDirectly_ = other.readDirectly_;
     address_ = std::exchange(other.address_, 0);
+    texelView_ = std::exchange(other.texelView_, VK_NULL_HANDLE);
     name_ = std::move(other.name_);
   }
   return *this;
@@ -117,6 +119,7 @@ void Buffer::release() {
   if (!context_) return;
   const VkDevice device = context_->device();
   if (mapped_) vkUnmapMemory(device, memory_);
+  if (texelView_) vkDestroyBufferView(device, texelView_, nullptr);
   if (buffer_) vkDestroyBuffer(device, buffer_, nullptr);
   if (memory_) vkFreeMemory(device, memory_, nullptr);
   if (allocated_) context_->countRelease(heap_, allocated_);
@@ -125,6 +128,25 @@ void Buffer::release() {
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;
   address_ = 0;
+  texelView_ = VK_NULL_HANDLE;
+}
+
+VkBufferView Buffer::texelView() const {
+  if (texelView_) return texelView_;
+  constexpr VkDeviceSize kTexelBytes = 16;  // RGBA32UI
+  const VkDeviceSize texels = size_ / kTexelBytes;
+  if (texels == 0 || texels > context_->limits().maxTexelBufferElements)
+    throw Error("buffer '" + name_ + "' holds " + std::to_string(texels) +
+                " 16-byte records; a texel view of it needs 1 to " +
+                std::to_string(context_->limits().maxTexelBufferElements) +
+                " (maxTexelBufferElements); --bind-by-address reads it as a storage buffer");
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = buffer_;
+  info.format = VK_FORMAT_R32G32B32A32_UINT;
+  info.offset = 0;
+  info.range = texels * kTexelBytes;
+  HMB_VK_CHECK(vkCreateBufferView(context_->device(), &info, nullptr, &texelView_));
+  return texelView_;
 }
 
 void Buffer::write(std::span<const std::byte> bytes, VkDeviceSize offset) {

@@ -41,6 +41,10 @@ class Buffer {
   VkDeviceAddress address() const { return address_; }
   const std::string& name() const { return name_; }
   const Context& context() const { return *context_; }
+  // A view of the whole buffer as RGBA32UI texels (16-byte records), for kernels that read it
+  // as a uniform texel buffer; made on first use. Throws hmb::Error when the buffer holds more
+  // texels than the device's maxTexelBufferElements.
+  VkBufferView texelView() const;
   // Host pointer when the memory is host-visible and coherent, else nullptr.
   void* mapped() const { return mapped_; }
 
@@ -71,6 +75,7 @@ class Buffer {
   void* mapped_ = nullptr;
   bool readDirectly_ = false;  // mapped and cached, or no cached memory to stage through
   VkDeviceAddress address_ = 0;
+  mutable VkBufferView texelView_ = VK_NULL_HANDLE;
   std::string name_;
 };
 

@@ -1,5 +1,6 @@
 #include "runtime/vulkan/compute_kernel.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "runtime/error.h"
@@ -39,6 +40,9 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
     throw Error("kernel '" + name_ + "' reads buffers by device address, which the device lacks (bufferDeviceAddress)");
   const EmbeddedKernel& spirv = *spirvBuild;
   bindings_ = declared.storageBufferBindings;
+  texelBindings_ = declared.texelBufferBindings;
+  bindings_.insert(bindings_.end(), texelBindings_.begin(), texelBindings_.end());
+  std::sort(bindings_.begin(), bindings_.end());
   if (declared.uniformBuffers != 0 || declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
     throw Error("kernel '" + name_ + "' declares descriptors other than storage buffers in set 0");
   if (declared.pushConstantBytes > pushConstantBytes)
@@ -54,7 +58,8 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
     std::vector<VkDescriptorSetLayoutBinding> bindings(bindings_.size());
     for (size_t i = 0; i < bindings_.size(); ++i) {
       bindings[i].binding = bindings_[i];
-      bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      bindings[i].descriptorType =
+          isTexelBinding(bindings_[i]) ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       bindings[i].descriptorCount = 1;
       bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
@@ -98,6 +103,10 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
 }
 
 ComputeKernel::~ComputeKernel() { release(); }
+
+bool ComputeKernel::isTexelBinding(uint32_t index) const {
+  return std::binary_search(texelBindings_.begin(), texelBindings_.end(), index);
+}
 
 void ComputeKernel::release() {
   const VkDevice device = context_.device();

@@ -1,5 +1,6 @@
-// One compute pipeline built from an embedded kernel. Its bindings are storage buffers in set 0,
-// and its parameters one push-constant block: every kernel follows that shape. The kernel's
+// One compute pipeline built from an embedded kernel. Its bindings are buffers in set 0 (storage
+// buffers, and uniform texel buffers where a kernel reads 16-byte records through the texture
+// path), and its parameters one push-constant block: every kernel follows that shape. The kernel's
 // SPIR-V says which binding numbers it declares. A kernel with an address build (its
 // groups of buffers bound as tables of device addresses) uses that build where its plain one
 // has more bindings than the device allows, or always with ContextOptions::bindByAddress.
@@ -28,10 +29,13 @@ class ComputeKernel {
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
   const std::string& name() const { return name_; }
-  uint32_t storageBufferCount() const { return uint32_t(bindings_.size()); }
+  uint32_t storageBufferCount() const { return uint32_t(bindings_.size() - texelBindings_.size()); }
   // The binding numbers it declares, ascending. An address build keeps its plain build's
   // numbers: each group's table sits at the group's first number, the rest stay unused.
   const std::vector<uint32_t>& bindings() const { return bindings_; }
+  // Those of bindings() that it reads through a texel view (RGBA32UI), ascending.
+  const std::vector<uint32_t>& texelBindings() const { return texelBindings_; }
+  bool isTexelBinding(uint32_t index) const;
   // Whether the address build runs: the passes then bind each group's table, not its buffers.
   bool bindsByAddress() const { return bindsByAddress_; }
   uint32_t pushConstantBytes() const { return pushConstantBytes_; }
@@ -45,6 +49,7 @@ class ComputeKernel {
   const Context& context_;
   std::string name_;
   std::vector<uint32_t> bindings_;
+  std::vector<uint32_t> texelBindings_;
   uint32_t pushConstantBytes_ = 0;
   bool bindsByAddress_ = false;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;

@@ -295,6 +295,8 @@ Context::Context(const ContextOptions& options) : options_(options) {
       limits_.maxDescriptorSetStorageBuffers =
           std::min(limits_.maxDescriptorSetStorageBuffers, options.storageBufferLimit);
     }
+    if (options.texelBufferLimit > 0)
+      limits_.maxTexelBufferElements = std::min(limits_.maxTexelBufferElements, options.texelBufferLimit);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
     for (uint32_t t = 0; t < memoryProperties_.memoryTypeCount; ++t) allocationTypes_[t] = t;
     if (options.hostVisibleDeviceLocalBytes > 0) pretendDiscreteMemory(options.hostVisibleDeviceLocalBytes);

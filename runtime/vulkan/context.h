@@ -43,6 +43,7 @@ struct ContextOptions {
   bool disableInt64Atomics = false;    // pretend the device lacks them (tests of fallbacks)
   uint64_t memoryLimitBytes = 0;       // > 0: pretend no memory heap holds more (tests of running out)
   uint32_t storageBufferLimit = 0;     // > 0: pretend no stage or set takes more storage buffers
+  uint32_t texelBufferLimit = 0;       // > 0: pretend texel views hold at most this many texels
   // Kernels with an address build (vk::ComputeKernel) bind their groups of buffers as tables of
   // device addresses: always when true, else only where their bindings exceed the device's limits.
   bool bindByAddress = false;

@@ -39,11 +39,13 @@ FrameRecorder::FrameRecorder(const Context& context, uint32_t maxPasses)
   allocInfo.commandBufferCount = 1;
   HMB_VK_CHECK(vkAllocateCommandBuffers(device, &allocInfo, &commandBuffer_));
 
-  const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, maxPasses * kMaxBindingsPerPass};
+  const VkDescriptorPoolSize poolSizes[] = {
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, maxPasses * kMaxBindingsPerPass},
+      {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, maxPasses * kMaxBindingsPerPass}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = maxPasses;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &poolSize;
+  poolInfo.poolSizeCount = 2;
+  poolInfo.pPoolSizes = poolSizes;
   HMB_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool_));
 
   if (context.info().timestamps) {
@@ -123,6 +125,7 @@ uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKer
     HMB_VK_CHECK(vkAllocateDescriptorSets(context_.device(), &allocInfo, &set));
 
     std::vector<VkDescriptorBufferInfo> infos(bindings.size());
+    std::vector<VkBufferView> views(bindings.size());
     std::vector<VkWriteDescriptorSet> writes(bindings.size());
     for (size_t i = 0; i < bindings.size(); ++i) {
       const Buffer* buffer = bindings[i].buffer;
@@ -133,8 +136,14 @@ uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKer
       writes[i].dstSet = set;
       writes[i].dstBinding = bindings[i].index;
       writes[i].descriptorCount = 1;
-      writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-      writes[i].pBufferInfo = &infos[i];
+      if (kernel.isTexelBinding(bindings[i].index)) {
+        views[i] = buffer->texelView();
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+        writes[i].pTexelBufferView = &views[i];
+      } else {
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &infos[i];
+      }
     }
     vkUpdateDescriptorSets(context_.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
   }

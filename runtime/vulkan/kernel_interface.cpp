@@ -63,9 +63,19 @@ KernelInterface reflectKernel(const EmbeddedKernel& kernel) {
     setOf(r);
     ++result.uniformBuffers;
   }
-  for (spvc_resource_type type :
-       {SPVC_RESOURCE_TYPE_STORAGE_IMAGE, SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, SPVC_RESOURCE_TYPE_SEPARATE_IMAGE,
-        SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS, SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE})
+  // A buffer texture (textureBuffer, read with texelFetch) is a uniform texel buffer; any other
+  // image is not a descriptor this project binds.
+  for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, raw, kernel)) {
+    const spvc_type type = spvc_compiler_get_type_handle(compiler, r.type_id);
+    if (setOf(r) == 0 && spvc_type_get_image_dimension(type) == SpvDimBuffer &&
+        !spvc_type_get_image_is_storage(type))
+      result.texelBufferBindings.push_back(spvc_compiler_get_decoration(compiler, r.id, SpvDecorationBinding));
+    else
+      ++result.otherDescriptors;
+  }
+  std::sort(result.texelBufferBindings.begin(), result.texelBufferBindings.end());
+  for (spvc_resource_type type : {SPVC_RESOURCE_TYPE_STORAGE_IMAGE, SPVC_RESOURCE_TYPE_SAMPLED_IMAGE,
+                                  SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS, SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE})
     result.otherDescriptors += uint32_t(resourcesOf(resources, type, raw, kernel).size());
 
   for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_PUSH_CONSTANT, raw, kernel)) {
@@ -94,6 +104,12 @@ std::string whyKernelDoesNotFit(const std::string& kernelName, const KernelInter
             limits.maxPerStageDescriptorStorageBuffers);
   fitsUnder(why, kernelName, "storage buffers in one set", storageBuffers, "maxDescriptorSetStorageBuffers",
             limits.maxDescriptorSetStorageBuffers);
+  // Uniform texel buffers count against the sampled-image limits.
+  const auto texelBuffers = uint64_t(kernel.texelBufferBindings.size());
+  fitsUnder(why, kernelName, "texel buffers in one stage", texelBuffers, "maxPerStageDescriptorSampledImages",
+            limits.maxPerStageDescriptorSampledImages);
+  fitsUnder(why, kernelName, "texel buffers in one set", texelBuffers, "maxDescriptorSetSampledImages",
+            limits.maxDescriptorSetSampledImages);
   fitsUnder(why, kernelName, "bytes of push constants", kernel.pushConstantBytes, "maxPushConstantsSize",
             limits.maxPushConstantsSize);
   const char* axes[] = {"maxComputeWorkGroupSize[0]", "maxComputeWorkGroupSize[1]", "maxComputeWorkGroupSize[2]"};

@@ -16,6 +16,9 @@ struct EmbeddedKernel;
 
 struct KernelInterface {
   std::vector<uint32_t> storageBufferBindings;  // binding numbers in set 0, ascending
+  // Buffers read through a texel view (uniform texel buffers), binding numbers in set 0,
+  // ascending: 16-byte records fetched as RGBA32UI texels.
+  std::vector<uint32_t> texelBufferBindings;
   uint32_t uniformBuffers = 0;
   uint32_t otherDescriptors = 0;     // images, samplers, acceleration structures (none expected)
   uint32_t highestDescriptorSet = 0;

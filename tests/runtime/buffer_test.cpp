@@ -7,6 +7,8 @@
 
 #include "runtime/error.h"
 #include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/context.h"
+#include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -63,6 +65,28 @@ TEST_F(BufferTest, BadSizesAndRangesAreClearErrors) {
   std::vector<std::byte> bytes(32);
   EXPECT_THROW(small.write(bytes), Error);
   EXPECT_THROW(small.read(bytes), Error);
+}
+
+// Kernels read some buffers as uniform texel buffers (16-byte records): the view is made once,
+// and a buffer that does not fit one is a one-line error naming the limit and the way around it.
+TEST_F(BufferTest, TexelViewsAreMadeOnceAndRefusedPastTheDevicesLimit) {
+  vk::Buffer records(context(), 64, vk::MemoryUse::Device, "records");
+  const VkBufferView view = records.texelView();
+  EXPECT_NE(view, VkBufferView(VK_NULL_HANDLE));
+  EXPECT_EQ(records.texelView(), view);
+  vk::Buffer word(context(), 4, vk::MemoryUse::Device, "one word");
+  expectError([&] { word.texelView(); }, "buffer 'one word' holds 0 16-byte records");
+
+  vk::ContextOptions options;
+  options.validation = true;
+  options.texelBufferLimit = 3;
+  vk::Context small(options);
+  ASSERT_EQ(small.limits().maxTexelBufferElements, 3u);
+  vk::Buffer four(small, 64, vk::MemoryUse::Device, "four records");
+  expectError([&] { four.texelView(); },
+              "buffer 'four records' holds 4 16-byte records; a texel view of it needs 1 to 3 "
+              "(maxTexelBufferElements); --bind-by-address reads it as a storage buffer");
+  EXPECT_EQ(small.validationErrors(), 0u);
 }
 
 TEST_F(BufferTest, MoveLeavesTheSourceEmpty) {

@@ -37,6 +37,8 @@ struct KernelLayout {
   uint32_t pushBytes;
   bool needsInt64Atomics;
   bool shades = false;  // includes shared/shading.glsl: also built without the texture path
+  uint32_t texelBindings = 0;  // of `bindings`, those read as uniform texel buffers (plain build)
+  uint32_t storageBindings() const { return bindings - texelBindings; }
 };
 
 const KernelLayout kLayouts[] = {
@@ -52,7 +54,8 @@ const KernelLayout kLayouts[] = {
     {"bvh/refit_bounds", HMB_REFIT_BOUNDS_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"bvh/refit_pack", HMB_REFIT_PACK_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT, sizeof(gpu::TraceParams), false},
-    {"trace/trace_rays", HMB_TRACE_BINDING_COUNT, sizeof(gpu::TraceParams), false},
+    {"trace/trace_rays", HMB_TRACE_BINDING_COUNT, sizeof(gpu::TraceParams), false, false,
+     HMB_TRACE_SCENE_TEXEL_BUFFERS},
     {"debug/floor_pass", HMB_FLOOR_BINDING_COUNT, sizeof(gpu::FloorParams), false},
     {"debug/pack_layer", HMB_PACK_LAYER_BINDING_COUNT, sizeof(gpu::PackLayerParams), false},
     {"debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams), false},
@@ -65,7 +68,8 @@ const KernelLayout kLayouts[] = {
     {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
     {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false, true},
-    {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false, true},
+    {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false, true,
+     HMB_TRACE_SCENE_TEXEL_BUFFERS},
     {"reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), false},
     {"reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), false},
     {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
@@ -79,7 +83,8 @@ const KernelLayout kLayouts[] = {
     {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
     {"hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
     {"hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
-    {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false, true},
+    {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false, true,
+     HMB_TRACE_SCENE_TEXEL_BUFFERS},
 };
 
 using KernelPipelinesTest = VulkanTest;
@@ -99,11 +104,13 @@ TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
     const KernelLayout& layout = layoutOf(kernel.name);
     if (layout.needsInt64Atomics && !context().info().int64BufferAtomics) continue;
     const vk::ComputeKernel built(context(), kernel.name, layout.pushBytes);
-    const bool fits = layout.bindings <= context().limits().maxPerStageDescriptorStorageBuffers &&
-                      layout.bindings <= context().limits().maxDescriptorSetStorageBuffers;
+    const bool fits = layout.storageBindings() <= context().limits().maxPerStageDescriptorStorageBuffers &&
+                      layout.storageBindings() <= context().limits().maxDescriptorSetStorageBuffers;
     EXPECT_EQ(built.bindsByAddress(), !fits) << kernel.name;
     if (fits) {
-      EXPECT_EQ(built.storageBufferCount(), layout.bindings) << kernel.name;
+      EXPECT_EQ(built.storageBufferCount(), layout.storageBindings()) << kernel.name;
+      EXPECT_EQ(built.texelBindings().size(), layout.texelBindings) << kernel.name;
+      EXPECT_EQ(built.bindings().size(), layout.bindings) << kernel.name;
     }
     if (layout.shades) {
       uint32_t untextured[HMB_SPEC_TEXTURE_PATH + 1] = {};
@@ -121,13 +128,16 @@ TEST_F(KernelPipelinesTest, ReflectionReadsWhatEachKernelDeclares) {
     EXPECT_LE(reflected.pushConstantBytes, layout.pushBytes) << kernel.name;
     EXPECT_GE(reflected.localSize[0] * reflected.localSize[1] * reflected.localSize[2], 1u) << kernel.name;
     if (!isAddressBuild(kernel.name)) {
-      EXPECT_EQ(reflected.storageBufferBindings.size(), layout.bindings) << kernel.name;
+      EXPECT_EQ(reflected.storageBufferBindings.size(), layout.storageBindings()) << kernel.name;
+      EXPECT_EQ(reflected.texelBufferBindings.size(), layout.texelBindings) << kernel.name;
+      EXPECT_EQ(reflected.otherDescriptors, 0u) << kernel.name;
       EXPECT_FALSE(reflected.usesDeviceAddresses) << kernel.name << ": plain builds run without device addresses";
       continue;
     }
     EXPECT_TRUE(reflected.usesDeviceAddresses) << kernel.name;
     // An address build binds each group (trace scene, shading scene, image layer) as one table.
     ++addressBuilds;
+    EXPECT_TRUE(reflected.texelBufferBindings.empty()) << kernel.name << ": address builds read storage buffers only";
     EXPECT_LE(reflected.storageBufferBindings.size(), 8u) << kernel.name;
     EXPECT_LT(reflected.storageBufferBindings.size(), layout.bindings) << kernel.name;
   }
@@ -180,7 +190,7 @@ TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersTakesAddressBuildsOr
     const KernelLayout& layout = layoutOf(kernel.name);
     if (layout.needsInt64Atomics && !small.info().int64BufferAtomics) continue;
     const vk::EmbeddedKernel* byAddress = vk::findKernelIfBuilt(std::string(kernel.name) + std::string(vk::kByAddressSuffix));
-    if (layout.bindings <= limit) {
+    if (layout.storageBindings() <= limit) {
       const vk::ComputeKernel built(small, kernel.name, layout.pushBytes);
       EXPECT_FALSE(built.bindsByAddress()) << kernel.name;
     } else if (byAddress && vk::reflectKernel(*byAddress).storageBufferBindings.size() <= limit &&
@@ -192,7 +202,7 @@ TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersTakesAddressBuildsOr
     } else {
       ++refused;
       expectError([&] { vk::ComputeKernel(small, kernel.name, layout.pushBytes); },
-                  "kernel '" + std::string(kernel.name) + "' needs " + std::to_string(layout.bindings) +
+                  "kernel '" + std::string(kernel.name) + "' needs " + std::to_string(layout.storageBindings()) +
                       " storage buffers in one stage; the device allows " + std::to_string(limit) +
                       " (maxPerStageDescriptorStorageBuffers)");
     }
@@ -218,7 +228,7 @@ TEST(KernelLimitsTest, EveryKernelBuildsOnADeviceWithEightStorageBuffers) {
     const bool hasAddressBuild =
         vk::findKernelIfBuilt(std::string(kernel.name) + std::string(vk::kByAddressSuffix)) != nullptr;
     if (!hasAddressBuild) {
-      EXPECT_LE(layout.bindings, kMali) << kernel.name;
+      EXPECT_LE(layout.storageBindings(), kMali) << kernel.name;
     } else if (!small.info().bufferDeviceAddress) {
       continue;
     }
