@@ -113,6 +113,8 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
     texels.resize(start + count);
     std::memcpy(texels.data() + start, texture.rgba8.data(), std::min(texture.rgba8.size(), count * 4));
   }
+  // Kernels read the texels four to a 16-byte record (shared/scene_bindings.glsl).
+  texels.resize(std::max<size_t>(4, (texels.size() + 3) / 4 * 4));
   for (const scene::Material& m : scene.materials) {
     gpu::GpuMaterial g{};
     g.baseColor = m.baseColorFactor;

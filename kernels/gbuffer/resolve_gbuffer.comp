@@ -12,15 +12,24 @@
 layout(local_size_x = HMB_RESOLVE_GROUP_X, local_size_y = HMB_RESOLVE_GROUP_Y) in;
 
 layout(std430, binding = HMB_RESOLVE_BINDING_VISIBILITY) readonly buffer Visibility { uvec2 visibility[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_TRIANGLES) readonly buffer Triangles { GpuTriangle triangles[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_CURRENT) readonly buffer ClipCurrent { vec4 clipCurrent[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_CLIP_PREVIOUS) readonly buffer ClipPrevious { vec4 clipPrevious[]; };
-layout(std430, binding = HMB_RESOLVE_BINDING_SHADING) readonly buffer Shading { GpuVertexShading shading[]; };
+// What it reads at the seen triangle's addresses comes through uniform texel buffers (16-byte
+// records): on lavapipe a texel fetch is one hardware gather per component across the SIMD
+// lanes where a storage-buffer load is a loop over the lanes; on GPUs the cached read-only path.
+#extension GL_EXT_samplerless_texture_functions : require
+layout(binding = HMB_RESOLVE_BINDING_TRIANGLES) uniform utextureBuffer triangleTexels;        // GpuTriangle
+layout(binding = HMB_RESOLVE_BINDING_CLIP_CURRENT) uniform utextureBuffer clipCurrentTexels;  // vec4
+layout(binding = HMB_RESOLVE_BINDING_CLIP_PREVIOUS) uniform utextureBuffer clipPreviousTexels;
+layout(binding = HMB_RESOLVE_BINDING_SHADING) uniform utextureBuffer shadingTexels;  // GpuVertexShading: 2 each
 #define HMB_SCENE_BINDING HMB_RESOLVE_BINDING_SCENE
 #include "../shared/scene_bindings.glsl"
 #include "../shared/layer_bindings.glsl"
 HMB_LAYER(gbuffer, HMB_RESOLVE_BINDING_GBUFFER, writeonly)
 layout(push_constant) uniform Params { ResolveParams params; };
+
+vec3 clipCurrentXYW(uint v) { return uintBitsToFloat(texelFetch(clipCurrentTexels, int(v)).xyw); }
+vec3 clipPreviousXYW(uint v) { return uintBitsToFloat(texelFetch(clipPreviousTexels, int(v)).xyw); }
+vec3 shadingNormal(uint v) { return uintBitsToFloat(texelFetch(shadingTexels, int(2u * v)).xyz); }
+vec2 shadingUv(uint v) { return uintBitsToFloat(texelFetch(shadingTexels, int(2u * v + 1u)).xy); }
 
 #include "../shared/shading.glsl"
 
@@ -54,23 +63,24 @@ void main() {
 
   // Every word a kernel loads at a per-pixel address costs a gather on CPU devices, so this
   // reads only what it needs: clip x, y, w (w is camera-space depth), world normals and uvs.
-  const GpuTriangle tri = triangles[triangleId];
+  const uvec4 triangle = texelFetch(triangleTexels, int(triangleId));
+  const GpuTriangle tri = GpuTriangle(triangle.x, triangle.y, triangle.z, triangle.w);
   const vec2 centre = vec2(pixel) + 0.5;
   const vec2 ndc = centre / vec2(params.width, params.height) * 2.0 - 1.0;
-  const vec3 c0 = clipCurrent[tri.v0].xyw, c1 = clipCurrent[tri.v1].xyw, c2 = clipCurrent[tri.v2].xyw;
+  const vec3 c0 = clipCurrentXYW(tri.v0), c1 = clipCurrentXYW(tri.v1), c2 = clipCurrentXYW(tri.v2);
   const vec3 b = clipBarycentrics(c0, c1, c2, ndc);
 
-  vec3 n = b.x * shading[tri.v0].normal.xyz + b.y * shading[tri.v1].normal.xyz + b.z * shading[tri.v2].normal.xyz;
+  vec3 n = b.x * shadingNormal(tri.v0) + b.y * shadingNormal(tri.v1) + b.z * shadingNormal(tri.v2);
   n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
   // A triangle seen from behind (only double-sided ones reach here) shades with its normal
   // turned to the viewer. The homogeneous determinant has the sign of the screen-space area
   // (positive: back face, y down) and stays right for vertices behind the camera.
   if (dot(c0, cross(c1, c2)) > 0.0) n = -n;
   const vec2 uv =
-      kTexturePath ? b.x * shading[tri.v0].uv + b.y * shading[tri.v1].uv + b.z * shading[tri.v2].uv : vec2(0.0);
+      kTexturePath ? b.x * shadingUv(tri.v0) + b.y * shadingUv(tri.v1) + b.z * shadingUv(tri.v2) : vec2(0.0);
 
   const vec3 previousClip =
-      b.x * clipPrevious[tri.v0].xyw + b.y * clipPrevious[tri.v1].xyw + b.z * clipPrevious[tri.v2].xyw;
+      b.x * clipPreviousXYW(tri.v0) + b.y * clipPreviousXYW(tri.v1) + b.z * clipPreviousXYW(tri.v2);
   // A point behind the camera at the previous frame has no screen position: no velocity.
   const vec2 motion = previousClip.z > 0.0 ? centre - clipToPixel(previousClip) : vec2(0.0);
 

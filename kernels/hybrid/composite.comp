@@ -24,6 +24,7 @@
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 
 layout(std430, binding = HMB_COMPOSITE_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
+vec4 neighborMaxAt(uint tile) { return neighborMax[tile]; }
 layout(std430, binding = HMB_COMPOSITE_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };

@@ -12,6 +12,7 @@
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 
 layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
+vec4 neighborMaxAt(uint tile) { return neighborMax[tile]; }
 layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_LIST) readonly buffer List { uint pixelList[]; };
 layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };

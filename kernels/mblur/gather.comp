@@ -7,7 +7,7 @@
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 layout(push_constant) uniform Params { GatherParams params; };
 
-uvec4 blurSampleAt(uint i) { return samples[i]; }
+uvec4 blurSampleAt(uint i) { return layerSampleAt(i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 
 #include "gather_samples.glsl"

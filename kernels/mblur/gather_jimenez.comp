@@ -43,7 +43,7 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const uvec4 own = samples[index];
+  const uvec4 own = layerSampleAt(index);
   const vec4 centreColor = sanitizeColor(vec4(sampleColor(own), 1.0));
 
   uint h = mblurHash(pixel.x, pixel.y, params.seed);
@@ -56,7 +56,7 @@ void main() {
   const float m = float(params.tileSize);
   const vec2 lookup = centre / m + (vec2(jitterX, jitterY) * 2.0 - 1.0) * params.tileJitter;
   const ivec2 tile = clamp(ivec2(floor(lookup)), ivec2(0), ivec2(params.tilesX, params.tilesY) - 1);
-  const vec4 dominant = neighborMax[uint(tile.y) * params.tilesX + uint(tile.x)];
+  const vec4 dominant = neighborMaxAt(uint(tile.y) * params.tilesX + uint(tile.x));
   if (dominant.z < kMinBlurPixels) {
     outColor[index] = centreColor;
     return;
@@ -78,7 +78,7 @@ void main() {
     const ivec2 pixelB = nearestPixel(centre - step, params.width, params.height);
     const uint indexA = uint(pixelA.y) * params.width + uint(pixelA.x);
     const uint indexB = uint(pixelB.y) * params.width + uint(pixelB.x);
-    const uvec4 sampleA = samples[indexA], sampleB = samples[indexB];
+    const uvec4 sampleA = layerSampleAt(indexA), sampleB = layerSampleAt(indexB);
     float speedA, speedB;
     gatherVelocity(sampleVelocity(sampleA), params.velocityScale, m, speedA);
     gatherVelocity(sampleVelocity(sampleB), params.velocityScale, m, speedB);

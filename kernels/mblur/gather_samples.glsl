@@ -21,11 +21,11 @@
 //
 // Shared by the post-process gather (mblur/gather.comp) and the hybrid's gathers
 // (hybrid/gather_background.comp, hybrid/composite.comp). The including kernel declares
-// `params` (GatherParams) and `neighborMax[]` and defines, before including this file, what a
-// sample reads:
+// `params` (GatherParams) and defines, before including this file, what a sample reads:
 //   uvec4 blurSampleAt(uint i)  (pixel i's packed sample: colour, depth, velocity, one load;
 //                                shared/layer_layout.h),
-//   vec4 contributionOf(uint sampleIndex, vec4 sampleColor)  (the colour a sample adds).
+//   vec4 contributionOf(uint sampleIndex, vec4 sampleColor)  (the colour a sample adds),
+//   vec4 neighborMaxAt(uint tile)  (the tile's neighbour-max velocity).
 #ifndef HMB_KERNELS_MBLUR_GATHER_SAMPLES_GLSL
 #define HMB_KERNELS_MBLUR_GATHER_SAMPLES_GLSL
 
@@ -46,7 +46,7 @@ struct GatherCentre {
 bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
   const uvec4 own = blurSampleAt(index);
   centre.color = sanitizeColor(vec4(sampleColor(own), 1.0));
-  const vec4 dominant = neighborMax[(pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize];
+  const vec4 dominant = neighborMaxAt((pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize);
   if (dominant.z < kMinBlurPixels) return false;
   centre.dominant = dominant.xy;
   gatherVelocity(sampleVelocity(own), params.velocityScale, float(params.tileSize), centre.speed);

@@ -36,6 +36,7 @@
 #define HMB_FILTER_BINDING_NEIGHBOR_MAX 1  // vec4 per tile
 #define HMB_FILTER_BINDING_OUTPUT 2        // vec4 per pixel
 #define HMB_FILTER_BINDING_COUNT 3
+#define HMB_FILTER_TEXEL_BUFFERS 2  // samples and neighbour-max, read as uniform texel buffers
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]

@@ -14,7 +14,7 @@ vec3 srgbToLinear(vec3 c) {
 
 // Texel (x, y) of the texture at `offset` with rows of `width`, as linear RGBA.
 vec4 texelLinear(uint offset, uint width, uint x, uint y) {
-  const vec4 c = unpackUnorm4x8(texels[offset + y * width + x]);
+  const vec4 c = unpackUnorm4x8(textureTexel(offset + y * width + x));
   return vec4(srgbToLinear(c.rgb), c.a);
 }
 

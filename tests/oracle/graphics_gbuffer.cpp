@@ -102,10 +102,16 @@ void GraphicsGBuffer::createFramebuffer() {
 
 void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
   const VkDevice device = context_.device();
+  // The shading function reads the textures' texels as a uniform texel buffer
+  // (kernels/shared/scene_bindings.glsl); every other binding is a storage buffer.
+  constexpr uint32_t kTexelsBinding = HMB_GBUFFER_ORACLE_BINDING_SCENE + 3;
+  auto typeOf = [](uint32_t binding) {
+    return binding == kTexelsBinding ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  };
   VkDescriptorSetLayoutBinding bindings[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
   for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i) {
     bindings[i].binding = i;
-    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorType = typeOf(i);
     bindings[i].descriptorCount = 1;
     bindings[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   }
@@ -114,11 +120,12 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
   layoutInfo.pBindings = bindings;
   HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
 
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, HMB_GBUFFER_ORACLE_BINDING_COUNT};
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, HMB_GBUFFER_ORACLE_BINDING_COUNT},
+                                        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &size;
+  poolInfo.poolSizeCount = 2;
+  poolInfo.pPoolSizes = sizes;
   HMB_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_));
   VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   alloc.descriptorPool = pool_;
@@ -132,14 +139,18 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
       &scene.instances(),   &scene.materials(),  &scene.texels(),   &scene.cameraBuffer()};
   VkDescriptorBufferInfo infos[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
   VkWriteDescriptorSet writes[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
+  const VkBufferView texelsView = scene.texels().texelView();
   for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i) {
     infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
     writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     writes[i].dstSet = set_;
     writes[i].dstBinding = i;
     writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &infos[i];
+    writes[i].descriptorType = typeOf(i);
+    if (typeOf(i) == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER)
+      writes[i].pTexelBufferView = &texelsView;
+    else
+      writes[i].pBufferInfo = &infos[i];
   }
   vkUpdateDescriptorSets(device, HMB_GBUFFER_ORACLE_BINDING_COUNT, writes, 0, nullptr);
 
