@@ -32,7 +32,7 @@ void main() {
   for (uint k = lane; k < range.y; k += HMB_BVH_BUILD_GROUP) {
     const uint primitive = range.x + k;
     primitives[primitive] = primitive;
-    const BvhBox box = boxes[primitive];
+    const BvhBox box = boxAt(primitive);
     const vec3 c = centroidOf(box);
     lo = min(lo, box.min.xyz);
     hi = max(hi, box.max.xyz);

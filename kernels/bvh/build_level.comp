@@ -71,7 +71,7 @@ void binWithAtomics(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint 
   }
   barrier();
   for (uint k = lane; k < task.count; k += GROUP) {
-    const BvhBox box = boxes[primitives[inBase + task.first + k]];
+    const BvhBox box = boxAt(primitives[inBase + task.first + k]);
     const vec3 c = centroidOf(box);
     for (uint a = 0; a < 3; ++a) {
       if (scale[a] == 0.0) continue;
@@ -98,7 +98,7 @@ void binPerLane(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane
   for (uint base = lane; base < task.count; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
     const uint k = base + u * GROUP;
     if (k >= task.count) break;
-    const BvhBox box = boxes[primitives[inBase + task.first + k]];
+    const BvhBox box = boxAt(primitives[inBase + task.first + k]);
     const vec3 c = centroidOf(box);
     for (uint a = 0; a < 3; ++a) {
       if (scale[a] == 0.0) continue;
@@ -233,7 +233,7 @@ void main() {
     const uint k = base + u * GROUP;
     if (k >= task.count) break;
     const uint primitive = primitives[inBase + task.first + k];
-    const BvhBox box = boxes[primitive];
+    const BvhBox box = boxAt(primitive);
     const vec3 c = centroidOf(box);
     const bool right = split == MEDIAN_SPLIT
                            ? k >= leftCount

@@ -68,7 +68,7 @@ void main() {
       hiX0[a] = hiX1[a] = hiY0[a] = hiY1[a] = hiZ0[a] = hiZ1[a] = vec4(-kInfinity);
     }
     for (uint k = 0; k < count; ++k) {
-      const BvhBox box = boxes[order[first + k]];
+      const BvhBox box = boxAt(order[first + k]);
       const vec3 c = centroidOf(box);
 #define BIN_AXIS(a)                                                                        \
       {                                                                                    \
@@ -161,7 +161,7 @@ void main() {
     uint leftAt = 0u, rightAt = bestLeft;
     for (uint k = 0; k < count; ++k) {
       const uint primitive = order[first + k];
-      const vec3 c = centroidOf(boxes[primitive]);
+      const vec3 c = centroidOf(boxAt(primitive));
       const bool toRight = halved ? k >= bestLeft : binOf(c[bestAxis], centreLo[bestAxis], scale[bestAxis]) > bestBin;
       if (toRight) sideCentreLo[1] = min(sideCentreLo[1], c), sideCentreHi[1] = max(sideCentreHi[1], c);
       else sideCentreLo[0] = min(sideCentreLo[0], c), sideCentreHi[0] = max(sideCentreHi[0], c);
@@ -182,7 +182,7 @@ void main() {
       if (halved) {
         lo = vec3(kInfinity), hi = -lo;
         for (uint k = 0; k < childCount; ++k) {
-          const BvhBox box = boxes[order[childFirst + k]];
+          const BvhBox box = boxAt(order[childFirst + k]);
           lo = min(lo, box.min.xyz);
           hi = max(hi, box.max.xyz);
         }

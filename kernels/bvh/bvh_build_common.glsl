@@ -6,7 +6,10 @@
 #include "bvh_build_layout.h"
 #include "packed_node.glsl"
 
-layout(std430, binding = HMB_BUILD_BINDING_BOXES) readonly buffer Boxes { BvhBox boxes[]; };
+// Primitive boxes are read at per-lane addresses through a uniform texel buffer (two RGBA32UI
+// records a box): see trace/trace_scene_bindings.glsl for why.
+#extension GL_EXT_samplerless_texture_functions : require
+layout(binding = HMB_BUILD_BINDING_BOXES) uniform utextureBuffer boxTexels;
 layout(std430, binding = HMB_BUILD_BINDING_ROOTS) readonly buffer Roots { uvec2 roots[]; };
 layout(std430, binding = HMB_BUILD_BINDING_PRIMITIVES) buffer Primitives { uint primitives[]; };
 layout(std430, binding = HMB_BUILD_BINDING_NODES) buffer Nodes { BvhNode nodes[]; };
@@ -19,6 +22,13 @@ layout(std430, binding = HMB_BUILD_BINDING_TASKS) buffer Tasks {
 layout(std430, binding = HMB_BUILD_BINDING_PACKED_NODES) buffer PackedNodes { uvec4 packedNodes[]; };
 layout(std430, binding = HMB_BUILD_BINDING_FRAMES) buffer Frames { BvhFrame frames[]; };
 layout(push_constant) uniform Params { BvhBuildParams params; };
+
+BvhBox boxAt(uint primitive) {
+  BvhBox box;
+  box.min = uintBitsToFloat(texelFetch(boxTexels, int(2u * primitive)));
+  box.max = uintBitsToFloat(texelFetch(boxTexels, int(2u * primitive + 1u)));
+  return box;
+}
 
 // The centre of an empty box (a primitive with no area to hit) is the origin, as on the host
 // (Aabb::center): it still needs a place in the tree, and adds nothing to any node's bounds.
