@@ -97,7 +97,7 @@ struct SceneTable {
   HMB_REFERENCE(GpuVerticesRef) vertices;    // per mesh vertex (normals, uvs)
   HMB_REFERENCE(GpuInstancesRef) instances;  // material, transforms, object id
   HMB_REFERENCE(GpuMaterialsRef) materials;
-  HMB_REFERENCE(GpuTexelsRef) texels;        // RGBA8, sRGB
+  HMB_REFERENCE(GpuTexelsRef) texels;        // linear RGBA, two half floats a word: 2 words a texel
   HMB_REFERENCE(GpuCamerasRef) camera;       // one: the frame's camera, light and background
 };
 

@@ -8,15 +8,9 @@
 // False for scenes without textures: the texture path and the uv reads that feed it fold away.
 layout(constant_id = HMB_SPEC_TEXTURE_PATH) const bool kTexturePath = true;
 
-vec3 srgbToLinear(vec3 c) {
-  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
-}
-
-// Texel (x, y) of the texture at `offset` with rows of `width`, as linear RGBA.
-vec4 texelLinear(uint offset, uint width, uint x, uint y) {
-  const vec4 c = unpackUnorm4x8(textureTexel(offset + y * width + x));
-  return vec4(srgbToLinear(c.rgb), c.a);
-}
+// Texel (x, y) of the texture at `offset` with rows of `width`, as linear RGBA (decoded from
+// sRGB on upload: runtime/gpu_scene.cpp).
+vec4 texelLinear(uint offset, uint width, uint x, uint y) { return textureTexel(offset + y * width + x); }
 
 vec4 baseColor(uint material, vec2 uv) {
   const uint offset = materials[material].textureOffset;
