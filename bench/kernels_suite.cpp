@@ -121,8 +121,8 @@ KernelCase rasterCase(const vk::Context& context, ImageSize size, uint32_t count
   const vk::Buffer clip = vk::uploadedBuffer(context, soup.clip, "bench clip positions");
   const vk::Buffer triangles = vk::uploadedBuffer(context, soup.triangles, "bench triangles");
   const vk::Buffer instances = vk::uploadedBuffer(context, std::vector{instance}, "bench instance");
-  const vk::Buffer visibility(context, uint64_t(size.width) * size.height * sizeof(uint64_t), vk::MemoryUse::Device,
-                              "bench visibility");
+  const vk::Buffer visibility(context, passes::RasterizePass::visibilityBytes(size.width, size.height),
+                              vk::MemoryUse::Device, "bench visibility");
   passes::RasterizePass pass(context, passes::defaultVisibilityScheme(context.info()));
   pass.reserve(count, size.width, size.height);
   const passes::RasterInputs inputs{&triangles, &instances, &clip, count};

@@ -20,8 +20,9 @@
 #define HMB_RESOLVE_BINDING_SCENE 5
 #define HMB_RESOLVE_BINDING_GBUFFER (HMB_RESOLVE_BINDING_SCENE + HMB_SCENE_BINDINGS)
 #define HMB_RESOLVE_BINDING_COUNT (HMB_RESOLVE_BINDING_GBUFFER + HMB_LAYER_BINDINGS)
-// Read as uniform texel buffers: triangles, both clip positions, shading, and the scene's texels.
-#define HMB_RESOLVE_TEXEL_BUFFERS (4 + HMB_SCENE_TEXEL_BUFFERS)
+// Read as uniform texel buffers: visibility, triangles, both clip positions, shading, and the
+// scene's (scene_layout.h).
+#define HMB_RESOLVE_TEXEL_BUFFERS (5 + HMB_SCENE_TEXEL_BUFFERS)
 
 HMB_GPU_BEGIN
 struct ResolveParams {

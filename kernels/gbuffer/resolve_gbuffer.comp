@@ -11,11 +11,11 @@
 
 layout(local_size_x = HMB_RESOLVE_GROUP_X, local_size_y = HMB_RESOLVE_GROUP_Y) in;
 
-layout(std430, binding = HMB_RESOLVE_BINDING_VISIBILITY) readonly buffer Visibility { uvec2 visibility[]; };
-// What it reads at the seen triangle's addresses comes through uniform texel buffers (16-byte
-// records): on lavapipe a texel fetch is one hardware gather per component across the SIMD
-// lanes where a storage-buffer load is a loop over the lanes; on GPUs the cached read-only path.
+// What it reads comes through uniform texel buffers (16-byte records): on lavapipe a texel
+// fetch is one hardware gather per component across the SIMD lanes where a storage-buffer
+// load is a loop over the lanes; on GPUs the cached read-only path.
 #extension GL_EXT_samplerless_texture_functions : require
+layout(binding = HMB_RESOLVE_BINDING_VISIBILITY) uniform utextureBuffer visibilityTexels;  // 2 entries a record
 layout(binding = HMB_RESOLVE_BINDING_TRIANGLES) uniform utextureBuffer triangleTexels;        // GpuTriangle
 layout(binding = HMB_RESOLVE_BINDING_CLIP_CURRENT) uniform utextureBuffer clipCurrentTexels;  // vec4
 layout(binding = HMB_RESOLVE_BINDING_CLIP_PREVIOUS) uniform utextureBuffer clipPreviousTexels;
@@ -54,7 +54,9 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  const uint triangleId = visibility[index].x;
+  // The entry's low word: the triangle (raster_layout.h).
+  const uvec4 two = texelFetch(visibilityTexels, int(index >> 1u));
+  const uint triangleId = (index & 1u) == 0u ? two.x : two.z;
   if (triangleId == HMB_VIS_EMPTY) {
     const vec3 background = camera.background.rgb;  // not inside the macro: `camera` is one
     WRITE_LAYER(gbuffer, index, background, vec3(0.0), 0u, params.backgroundDepth, vec2(0.0));
@@ -86,7 +88,7 @@ void main() {
 
   // Clip w of a perspective projection is the camera-space depth, and linear in barycentrics.
   const float depth = dot(b, vec3(c0.z, c1.z, c2.z));
-  const vec3 color = shadeSurface(sceneInstances[tri.instance].material, uv, n);
-  const uint objectId = sceneInstances[tri.instance].objectId;
+  const vec3 color = shadeSurface(instanceMaterial(tri.instance), uv, n);
+  const uint objectId = instanceObjectId(tri.instance);
   WRITE_LAYER(gbuffer, index, color, n, objectId, depth, motion);  // non-finite motion packs as none
 }

@@ -87,12 +87,12 @@ void main() {
   // frame-time transform and out again with the previous one.
   const vec3 world = ray.originTMin.xyz + hit.t * direction;
   const vec4 objectPoint = transforms[hit.instance].objectFromWorld * vec4(world, 1.0);
-  const vec4 previousClip = camera.viewProjPrevious * (sceneInstances[hit.instance].worldPrevious * objectPoint);
+  const vec4 previousClip = camera.viewProjPrevious * (instanceWorldPrevious(hit.instance) * objectPoint);
   vec2 motion = vec2(0.0);
   if (previousClip.w > 0.0) motion = centre - (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(params.width, params.height);
 
   const HitSurface surface = hitSurface(hit, direction, hit.instance);
-  const vec3 shaded = shadeSurface(sceneInstances[hit.instance].material, surface.uv, surface.normal);
+  const vec3 shaded = shadeSurface(instanceMaterial(hit.instance), surface.uv, surface.normal);
   const vec3 color = finite3(shaded) ? shaded : vec3(0.0);
   const uint objectId = traceInstances[hit.instance].objectId;
   WRITE_LAYER(revealed, index, color, surface.normal, objectId, hit.t, motion);  // non-finite motion packs as none

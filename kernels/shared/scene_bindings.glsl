@@ -1,8 +1,11 @@
 // The scene's shading buffers as a kernel binds them, from its binding HMB_SCENE_BINDING on
 // (defined by the including kernel): vertices, instances, materials, texels and camera, or in
 // builds with HMB_BIND_BY_ADDRESS one SceneTable of their addresses. Either way the kernels
-// (and shared/shading.glsl) read the same names: vertices[i], sceneInstances[i], camera, ...,
-// and textureTexel(i) for texel i of the textures (linear RGBA).
+// (and shared/shading.glsl) read them through the functions below (vertexNormal(i),
+// instanceMaterial(i), textureTexel(i), ...) and `camera`. In the plain build the four arrays
+// read at per-pixel addresses are uniform texel buffers of 16-byte records (see
+// trace/trace_scene_bindings.glsl for why): a GpuVertex is 3 records, a GpuInstance 13, a
+// GpuMaterial 2, and a record holds two texels (linear RGBA, half floats).
 #ifndef HMB_KERNELS_SHARED_SCENE_BINDINGS_GLSL
 #define HMB_KERNELS_SHARED_SCENE_BINDINGS_GLSL
 
@@ -15,18 +18,38 @@ layout(std430, binding = HMB_SCENE_BINDING) readonly buffer Scene { SceneTable s
 #define materials sceneTable.materials.v
 #define texels sceneTable.texels.v
 #define camera sceneTable.camera.v[0]
+vec3 vertexNormal(uint i) { return vertices[i].normal.xyz; }
+vec2 vertexUv(uint i) { return vertices[i].uv; }
+uint instanceObjectId(uint i) { return sceneInstances[i].objectId; }
+uint instanceMaterial(uint i) { return sceneInstances[i].material; }
+mat4 instanceWorldPrevious(uint i) { return sceneInstances[i].worldPrevious; }
+vec4 materialBaseColor(uint m) { return materials[m].baseColor; }
+uvec3 materialTexture(uint m) {  // first texel (HMB_NO_TEXTURE: none), width, height
+  return uvec3(materials[m].textureOffset, materials[m].textureWidth, materials[m].textureHeight);
+}
 vec4 textureTexel(uint i) {
   return vec4(unpackHalf2x16(texels[2u * i]), unpackHalf2x16(texels[2u * i + 1u]));
 }
 #else
-// The textures' texels are read at per-pixel addresses through a uniform texel buffer (two
-// linear half-float RGBA texels a record; see trace/trace_scene_bindings.glsl for why).
 #extension GL_EXT_samplerless_texture_functions : require
-layout(std430, binding = HMB_SCENE_BINDING + 0) readonly buffer Vertices { GpuVertex vertices[]; };
-layout(std430, binding = HMB_SCENE_BINDING + 1) readonly buffer SceneInstances { GpuInstance sceneInstances[]; };
-layout(std430, binding = HMB_SCENE_BINDING + 2) readonly buffer Materials { GpuMaterial materials[]; };
+layout(binding = HMB_SCENE_BINDING + 0) uniform utextureBuffer vertexTexels;
+layout(binding = HMB_SCENE_BINDING + 1) uniform utextureBuffer instanceTexels;
+layout(binding = HMB_SCENE_BINDING + 2) uniform utextureBuffer materialTexels;
 layout(binding = HMB_SCENE_BINDING + 3) uniform utextureBuffer textureTexels2;
 layout(std430, binding = HMB_SCENE_BINDING + 4) readonly buffer Camera { GpuCamera camera; };
+vec3 vertexNormal(uint i) { return uintBitsToFloat(texelFetch(vertexTexels, int(3u * i + 1u)).xyz); }
+vec2 vertexUv(uint i) { return uintBitsToFloat(texelFetch(vertexTexels, int(3u * i + 2u)).xy); }
+// Record 12 of an instance: objectId, material, flags.
+uint instanceObjectId(uint i) { return texelFetch(instanceTexels, int(13u * i + 12u)).x; }
+uint instanceMaterial(uint i) { return texelFetch(instanceTexels, int(13u * i + 12u)).y; }
+mat4 instanceWorldPrevious(uint i) {  // records 4-7, its columns
+  return mat4(uintBitsToFloat(texelFetch(instanceTexels, int(13u * i + 4u))),
+              uintBitsToFloat(texelFetch(instanceTexels, int(13u * i + 5u))),
+              uintBitsToFloat(texelFetch(instanceTexels, int(13u * i + 6u))),
+              uintBitsToFloat(texelFetch(instanceTexels, int(13u * i + 7u))));
+}
+vec4 materialBaseColor(uint m) { return uintBitsToFloat(texelFetch(materialTexels, int(2u * m))); }
+uvec3 materialTexture(uint m) { return texelFetch(materialTexels, int(2u * m + 1u)).xyz; }
 vec4 textureTexel(uint i) {
   const uvec4 two = texelFetch(textureTexels2, int(i >> 1u));
   const uvec2 texel = (i & 1u) == 0u ? two.xy : two.zw;

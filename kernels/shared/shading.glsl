@@ -13,12 +13,13 @@ layout(constant_id = HMB_SPEC_TEXTURE_PATH) const bool kTexturePath = true;
 vec4 texelLinear(uint offset, uint width, uint x, uint y) { return textureTexel(offset + y * width + x); }
 
 vec4 baseColor(uint material, vec2 uv) {
-  const uint offset = materials[material].textureOffset;
-  if (!kTexturePath || offset == HMB_NO_TEXTURE) return materials[material].baseColor;
+  const uvec3 texture = kTexturePath ? materialTexture(material) : uvec3(HMB_NO_TEXTURE, 0u, 0u);
+  const uint offset = texture.x;
+  if (offset == HMB_NO_TEXTURE) return materialBaseColor(material);
   if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
   // Repeat wrap without integer division: fract puts uv in [0, 1], so the texel to the left
   // of a sample is in [-1, size - 1] and wraps with one comparison per axis.
-  const ivec2 size = ivec2(materials[material].textureWidth, materials[material].textureHeight);
+  const ivec2 size = ivec2(texture.yz);
   const vec2 st = fract(uv) * vec2(size) - 0.5;
   const vec2 f = st - floor(st);
   const ivec2 i = clamp(ivec2(floor(st)), ivec2(-1), size - 1);
@@ -29,7 +30,7 @@ vec4 baseColor(uint material, vec2 uv) {
   const vec4 c10 = texelLinear(offset, width, hi.x, lo.y);
   const vec4 c01 = texelLinear(offset, width, lo.x, hi.y);
   const vec4 c11 = texelLinear(offset, width, hi.x, hi.y);
-  return materials[material].baseColor * mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+  return materialBaseColor(material) * mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
 // n: unit world normal facing the viewer. Light from the frame's camera block: lightDirection

@@ -3,7 +3,7 @@
 // to world space with the instance's transform at the ray's time and turned to the viewer
 // when a (double-sided) back face is seen, as the G-buffer resolve does, then the shading
 // function every method shares. Needs closest_hit.glsl and shared/shading.glsl included first
-// and the kernel's `vertices` (GpuVertex) and `sceneInstances` (GpuInstance) buffers.
+// and the scene's vertices and instances (shared/scene_bindings.glsl).
 #ifndef HMB_KERNELS_TRACE_SHADE_HIT_GLSL
 #define HMB_KERNELS_TRACE_SHADE_HIT_GLSL
 
@@ -18,10 +18,9 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
              c = leafTriangle(3u * hit.entry + 2u);
   const uvec3 tri = floatBitsToUint(vec3(a.w, b3.w, c.w));
   const vec3 b = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
-  const vec3 objectNormal = b.x * vertices[tri.x].normal.xyz + b.y * vertices[tri.y].normal.xyz +
-                            b.z * vertices[tri.z].normal.xyz;
+  const vec3 objectNormal = b.x * vertexNormal(tri.x) + b.y * vertexNormal(tri.y) + b.z * vertexNormal(tri.z);
   HitSurface s;
-  s.uv = kTexturePath ? b.x * vertices[tri.x].uv + b.y * vertices[tri.y].uv + b.z * vertices[tri.z].uv : vec2(0.0);
+  s.uv = kTexturePath ? b.x * vertexUv(tri.x) + b.y * vertexUv(tri.y) + b.z * vertexUv(tri.z) : vec2(0.0);
   const mat3 objectFromWorld = mat3(transforms[transformIndex].objectFromWorld);
   const mat3 normalToWorld = transpose(objectFromWorld);
   vec3 n = normalToWorld * objectNormal;
@@ -37,7 +36,7 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
 
 vec3 shadeHit(BvhHit hit, vec3 direction, uint transformIndex) {
   const HitSurface s = hitSurface(hit, direction, transformIndex);
-  return shadeSurface(sceneInstances[hit.instance].material, s.uv, s.normal);
+  return shadeSurface(instanceMaterial(hit.instance), s.uv, s.normal);
 }
 
 #endif

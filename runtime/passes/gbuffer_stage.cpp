@@ -35,7 +35,8 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
   }
   if (size_.changesTo(width, height)) {
     const uint64_t pixels = uint64_t(width) * height;
-    visibility_ = vk::Buffer(context_, pixels * sizeof(uint64_t), vk::MemoryUse::Device, "visibility");
+    visibility_ = vk::Buffer(context_, RasterizePass::visibilityBytes(width, height), vk::MemoryUse::Device,
+                             "visibility");
     layer_ = {};  // the old layer goes first: the two never take memory at once
     layer_ = ImageLayer::allocate(context_, pixels, "gbuffer");
     size_.madeFor(width, height);

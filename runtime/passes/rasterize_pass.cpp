@@ -100,9 +100,9 @@ void RasterizePass::reserve(uint32_t triangleCount, uint32_t width, uint32_t hei
 void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs, const vk::Buffer& visibility,
                            uint32_t width, uint32_t height) const {
   if (!setup_.handle()) throw Error("RasterizePass::record() before reserve()");
-  if (visibility.size() < uint64_t(width) * height * sizeof(uint64_t))
+  if (visibility.size() < visibilityBytes(width, height))
     throw Error("visibility buffer '" + visibility.name() + "' is smaller than " + std::to_string(width) + "x" +
-                std::to_string(height) + " entries");
+                std::to_string(height) + " entries in whole 16-byte records");
   gpu::RasterParams params{};
   params.width = width;
   params.height = height;

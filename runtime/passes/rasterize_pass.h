@@ -77,7 +77,12 @@ class RasterizePass {
   // Makes room for a frame of this many triangles at this size (keeps larger buffers).
   void reserve(uint32_t triangleCount, uint32_t width, uint32_t height);
 
-  // visibility: width * height uint64. Call reserve() first.
+  // The bytes a visibility buffer of width x height takes: 8 per pixel, rounded up to whole
+  // 16-byte records, since resolve_gbuffer reads it as a texel buffer.
+  static uint64_t visibilityBytes(uint32_t width, uint32_t height) {
+    return (uint64_t(width) * height * sizeof(uint64_t) + 15) / 16 * 16;
+  }
+  // visibility: width * height uint64 (visibilityBytes). Call reserve() first.
   void record(vk::FrameRecorder& frame, const RasterInputs& inputs, const vk::Buffer& visibility, uint32_t width,
               uint32_t height) const;
 

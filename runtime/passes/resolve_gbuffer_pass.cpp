@@ -1,10 +1,13 @@
 #include "runtime/passes/resolve_gbuffer_pass.h"
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "kernels/gbuffer/gbuffer_layout.h"
+#include "runtime/error.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 
@@ -17,6 +20,10 @@ void ResolveGBufferPass::record(vk::FrameRecorder& frame, const GpuScene& scene,
                                 const vk::Buffer& clipCurrent, const vk::Buffer& clipPrevious,
                                 const vk::Buffer& vertexShading, const ImageLayer& target, uint32_t width,
                                 uint32_t height) const {
+  // The kernel reads the visibility entries as whole 16-byte records.
+  if (visibility.size() < RasterizePass::visibilityBytes(width, height))
+    throw Error("resolve-gbuffer: visibility buffer '" + visibility.name() + "' is smaller than " +
+                std::to_string(width) + "x" + std::to_string(height) + " entries in whole 16-byte records");
   // Empty pixels lie at the far plane, so depth comparisons treat them as the farthest surface.
   const gpu::ResolveParams params{width, height, scene.camera().zfar, 0};
   const vk::ComputeKernel& kernel = kernel_.forScene(scene);

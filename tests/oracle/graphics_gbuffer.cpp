@@ -102,11 +102,13 @@ void GraphicsGBuffer::createFramebuffer() {
 
 void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
   const VkDevice device = context_.device();
-  // The shading function reads the textures' texels as a uniform texel buffer
-  // (kernels/shared/scene_bindings.glsl); every other binding is a storage buffer.
-  constexpr uint32_t kTexelsBinding = HMB_GBUFFER_ORACLE_BINDING_SCENE + 3;
+  // The shading function reads the scene's vertices, instances, materials and texels as
+  // uniform texel buffers (kernels/shared/scene_bindings.glsl); every other binding is a
+  // storage buffer.
   auto typeOf = [](uint32_t binding) {
-    return binding == kTexelsBinding ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return binding >= HMB_GBUFFER_ORACLE_BINDING_SCENE && binding < HMB_GBUFFER_ORACLE_BINDING_SCENE + 4
+               ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   };
   VkDescriptorSetLayoutBinding bindings[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
   for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i) {
@@ -121,7 +123,7 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
   HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
 
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, HMB_GBUFFER_ORACLE_BINDING_COUNT},
-                                        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
+                                        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 4}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
   poolInfo.poolSizeCount = 2;
@@ -139,7 +141,10 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
       &scene.instances(),   &scene.materials(),  &scene.texels(),   &scene.cameraBuffer()};
   VkDescriptorBufferInfo infos[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
   VkWriteDescriptorSet writes[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
-  const VkBufferView texelsView = scene.texels().texelView();
+  VkBufferView views[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
+  for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i)
+    if (typeOf(i) == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) views[i] = buffers[i]->texelView();
+
   for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i) {
     infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
     writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
@@ -148,7 +153,7 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = typeOf(i);
     if (typeOf(i) == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER)
-      writes[i].pTexelBufferView = &texelsView;
+      writes[i].pTexelBufferView = &views[i];
     else
       writes[i].pBufferInfo = &infos[i];
   }

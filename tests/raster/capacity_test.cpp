@@ -42,7 +42,8 @@ TEST_F(CapacityTest, OverflowGrowsTheBuffersAndTheSecondFrameMatchesARoomyPass) 
     const vk::Buffer clip = vk::uploadedBuffer(context(), input.clip, "clip");
     const vk::Buffer triangles = vk::uploadedBuffer(context(), input.triangles, "triangles");
     const vk::Buffer instanceBuffer = vk::uploadedBuffer(context(), instances, "instances");
-    vk::Buffer visibility(context(), uint64_t(kWidth) * kHeight * 8, vk::MemoryUse::Device, "visibility");
+    vk::Buffer visibility(context(), passes::RasterizePass::visibilityBytes(kWidth, kHeight), vk::MemoryUse::Device,
+                          "visibility");
     const passes::RasterInputs inputs{&triangles, &instanceBuffer, &clip, uint32_t(input.triangles.size())};
 
     // Reserved for one triangle: both the setup and the pair capacity overflow.

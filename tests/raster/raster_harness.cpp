@@ -8,6 +8,7 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/image_layer.h"
+#include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -33,7 +34,7 @@ Visibility rasterizeClipTriangles(const vk::Context& context, const ClipTriangle
   const vk::Buffer clip = vk::uploadedBuffer(context, input.clip, "test clip positions");
   const vk::Buffer triangles = vk::uploadedBuffer(context, input.triangles, "test triangles");
   const vk::Buffer instanceBuffer = vk::uploadedBuffer(context, instances, "test instances");
-  const vk::Buffer visibility(context, uint64_t(width) * height * sizeof(uint64_t), vk::MemoryUse::Device,
+  const vk::Buffer visibility(context, passes::RasterizePass::visibilityBytes(width, height), vk::MemoryUse::Device,
                               "test visibility");
 
   passes::RasterizePass pass(context, scheme);

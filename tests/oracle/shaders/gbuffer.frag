@@ -28,8 +28,8 @@ void main() {
   const vec2 motion = inPreviousClip.z > 0.0
                           ? centre - (inPreviousClip.xy / inPreviousClip.z * 0.5 + 0.5) * vec2(params.width, params.height)
                           : vec2(0.0);
-  const vec3 color = shadeSurface(sceneInstances[inInstance].material, kTexturePath ? inUv : vec2(0.0), n);
-  const uint objectId = sceneInstances[inInstance].objectId;
+  const vec3 color = shadeSurface(instanceMaterial(inInstance), kTexturePath ? inUv : vec2(0.0), n);
+  const uint objectId = instanceObjectId(inInstance);
   outSample = packLayerSample(color, inDepth, motion);
   outSurface = packLayerSurface(n, objectId, motion);
 }
