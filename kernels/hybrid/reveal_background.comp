@@ -86,7 +86,7 @@ void main() {
   // The hit point now and at the previous frame: carried into the instance's space with the
   // frame-time transform and out again with the previous one.
   const vec3 world = ray.originTMin.xyz + hit.t * direction;
-  const vec4 objectPoint = transforms[hit.instance].objectFromWorld * vec4(world, 1.0);
+  const vec4 objectPoint = objectFromWorldAt(hit.instance) * vec4(world, 1.0);
   const vec4 previousClip = camera.viewProjPrevious * (instanceWorldPrevious(hit.instance) * objectPoint);
   vec2 motion = vec2(0.0);
   if (previousClip.w > 0.0) motion = centre - (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(params.width, params.height);
@@ -94,6 +94,6 @@ void main() {
   const HitSurface surface = hitSurface(hit, direction, hit.instance);
   const vec3 shaded = shadeSurface(instanceMaterial(hit.instance), surface.uv, surface.normal);
   const vec3 color = finite3(shaded) ? shaded : vec3(0.0);
-  const uint objectId = traceInstances[hit.instance].objectId;
+  const uint objectId = traceInstanceAt(hit.instance).objectId;
   WRITE_LAYER(revealed, index, color, surface.normal, objectId, hit.t, motion);  // non-finite motion packs as none
 }

@@ -190,7 +190,7 @@ bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
 // The ray carried into the instance's space at its shutter time.
 PreparedRay instanceRay(uint instance, TraceRay ray, TraceSceneInfo scene, out mat3 linear) {
   const uint time = min(ray.time, scene.timeCount - 1u);
-  const mat4 objectFromWorld = transforms[instance * scene.timeCount + time].objectFromWorld;
+  const mat4 objectFromWorld = objectFromWorldAt(instance * scene.timeCount + time);
   linear = mat3(objectFromWorld);
   return prepareRay((objectFromWorld * vec4(ray.originTMin.xyz, 1.0)).xyz, linear * ray.directionTMax.xyz);
 }
@@ -213,7 +213,7 @@ void traceInstance(uint instance, TraceInstance record, TraceRay ray, TraceScene
            (record.flags & HMB_TRACE_INSTANCE_SINGLE_SIDED) != 0u;
   m.handedness = determinant(linear) < 0.0 ? -1.0 : 1.0;
   m.tMin = ray.originTMin.w;
-  m.frame = meshFrames[m.mesh];
+  m.frame = meshFrameAt(m.mesh);
   bool overflowed;
   bool nearestHere = walkStacked(m, best, overflowed);
   if (overflowed && walkLinked(m, best)) nearestHere = true;
@@ -237,7 +237,7 @@ void refineClosestHit(TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
 void traceTopLeaf(uint first, uint count, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   for (uint k = 0; k < count; ++k) {
     const uint instance = topPrimitives[first + k];
-    const TraceInstance record = traceInstances[instance];  // read once for all it gives
+    const TraceInstance record = traceInstanceAt(instance);  // read once for all it gives
     if (record.objectId != ray.ignoreObjectId) traceInstance(instance, record, ray, scene, best);
   }
 }

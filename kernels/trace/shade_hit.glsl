@@ -21,7 +21,7 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
   const vec3 objectNormal = b.x * vertexNormal(tri.x) + b.y * vertexNormal(tri.y) + b.z * vertexNormal(tri.z);
   HitSurface s;
   s.uv = kTexturePath ? b.x * vertexUv(tri.x) + b.y * vertexUv(tri.y) + b.z * vertexUv(tri.z) : vec2(0.0);
-  const mat3 objectFromWorld = mat3(transforms[transformIndex].objectFromWorld);
+  const mat3 objectFromWorld = mat3(objectFromWorldAt(transformIndex));
   const mat3 normalToWorld = transpose(objectFromWorld);
   vec3 n = normalToWorld * objectNormal;
   n = dot(n, n) > 0.0 && !any(isinf(n)) ? normalize(n) : vec3(0.0, 0.0, 1.0);

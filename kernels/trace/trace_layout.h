@@ -16,9 +16,10 @@
 // first and leave the others unused, so both builds keep the same numbers for the host.
 #define HMB_TRACE_SCENE_BUFFERS 11
 #define HMB_TRACE_SCENE_BINDINGS HMB_TRACE_SCENE_BUFFERS
-// Of those, the top-level nodes, the mesh nodes and the leaf triangles are uniform texel
-// buffers in the plain build (trace_scene_bindings.glsl says why); the rest storage buffers.
-#define HMB_TRACE_SCENE_TEXEL_BUFFERS 3
+// Of those, the top-level nodes, the instances' records and transforms, the mesh nodes, the
+// leaf triangles and the mesh frames are uniform texel buffers in the plain build
+// (trace_scene_bindings.glsl says why); the rest storage buffers.
+#define HMB_TRACE_SCENE_TEXEL_BUFFERS 6
 
 // trace_rays
 #define HMB_TRACE_BINDING_RAYS 0  // TraceRay[]

@@ -1,9 +1,10 @@
 // The trace scene as a kernel binds it, from its binding HMB_TRACE_SCENE_BINDING on (defined
 // by the including kernel): the 11 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
 // with few storage-buffer bindings) one TraceSceneTable of their addresses. Either way the
-// kernels read the same names: transforms[i], ..., and topNode(i), meshNode(i) and
-// leafTriangle(i) for the three arrays every ray step reads.
-// Those three are uniform texel buffers in the plain build: fetched through the texture path,
+// kernels read the same names: topPrimitives[i], ..., and topNode(i), meshNode(i),
+// leafTriangle(i), traceInstanceAt(i), objectFromWorldAt(i) and meshFrameAt(i) for the arrays
+// a ray reads at its own addresses.
+// Those six are uniform texel buffers in the plain build: fetched through the texture path,
 // which on lavapipe is one hardware gather per component across the SIMD lanes where a
 // storage-buffer load at per-lane addresses is a loop over the lanes (1.2-1.25x the trace
 // rate, bench/results/bvh-vs-embree.md), and on GPUs the read-only cached path that BVH
@@ -28,14 +29,17 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING) readonly buffer TraceScene { T
 #define meshFrames traceScene.meshFrames.v
 uvec4 topNode(uint i) { return topNodes[i]; }
 uvec4 meshNode(uint i) { return meshNodes[i]; }
+TraceInstance traceInstanceAt(uint i) { return traceInstances[i]; }
+mat4 objectFromWorldAt(uint i) { return transforms[i].objectFromWorld; }
+BvhFrame meshFrameAt(uint mesh) { return meshFrames[mesh]; }
 vec4 leafTriangle(uint i) { return leafTriangles[i]; }
 #else
 #extension GL_EXT_samplerless_texture_functions : require
 layout(binding = HMB_TRACE_SCENE_BINDING + 0) uniform utextureBuffer topNodeTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 1) readonly buffer TopLinks { uint topLinks[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 2) readonly buffer TopPrimitives { uint topPrimitives[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 3) readonly buffer TraceInstances { TraceInstance traceInstances[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 4) readonly buffer Transforms { InstanceTransform transforms[]; };
+layout(binding = HMB_TRACE_SCENE_BINDING + 3) uniform utextureBuffer traceInstanceTexels;  // 1 record each
+layout(binding = HMB_TRACE_SCENE_BINDING + 4) uniform utextureBuffer transformTexels;      // 8 records each
 layout(binding = HMB_TRACE_SCENE_BINDING + 5) uniform utextureBuffer meshNodeTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 6) readonly buffer MeshLinks { uint meshLinks[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
@@ -43,8 +47,22 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer MeshPrimit
 // are three loads each, with no indirection through vertex indices.
 layout(binding = HMB_TRACE_SCENE_BINDING + 8) uniform utextureBuffer leafTriangleTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) readonly buffer TopFrame { BvhFrame topFrame; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 10) readonly buffer MeshFrames { BvhFrame meshFrames[]; };
+layout(binding = HMB_TRACE_SCENE_BINDING + 10) uniform utextureBuffer meshFrameTexels;  // 2 records each
 uvec4 topNode(uint i) { return texelFetch(topNodeTexels, int(i)); }
+TraceInstance traceInstanceAt(uint i) {
+  const uvec4 r = texelFetch(traceInstanceTexels, int(i));
+  return TraceInstance(r.x, r.y, r.z, r.w);
+}
+mat4 objectFromWorldAt(uint i) {  // records 4-7 of an InstanceTransform: its columns
+  return mat4(uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 4u))),
+              uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 5u))),
+              uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 6u))),
+              uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 7u))));
+}
+BvhFrame meshFrameAt(uint mesh) {
+  return BvhFrame(uintBitsToFloat(texelFetch(meshFrameTexels, int(2u * mesh))),
+                  uintBitsToFloat(texelFetch(meshFrameTexels, int(2u * mesh + 1u))));
+}
 uvec4 meshNode(uint i) { return texelFetch(meshNodeTexels, int(i)); }
 vec4 leafTriangle(uint i) { return uintBitsToFloat(texelFetch(leafTriangleTexels, int(i))); }
 #endif
