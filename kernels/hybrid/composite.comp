@@ -28,7 +28,7 @@ vec4 neighborMaxAt(uint tile) { return neighborMax[tile]; }
 layout(std430, binding = HMB_COMPOSITE_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
-HMB_LAYER(raster, HMB_COMPOSITE_BINDING_RASTER, readonly)
+HMB_LAYER_TEXELS(raster, HMB_COMPOSITE_BINDING_RASTER)
 layout(push_constant) uniform Params { GatherParams params; };
 
 layout(constant_id = HMB_SPEC_COMPOSITE_COVERAGE) const bool kCoverage = true;
@@ -41,12 +41,12 @@ vec4 blurredBackground = vec4(0.0);
 uint centreObject = 0u;
 float compositeCentreDepth = 0.0;
 
-uvec4 blurSampleAt(uint i) { return LAYER_SAMPLE(raster, i); }
+uvec4 blurSampleAt(uint i) { return READ_LAYER_SAMPLE(raster, i); }
 
 // Share of sample `sampleIndex` that is background to the pixel (object `object` at `depth`).
 float behindShare(uint sampleIndex, uint object, float depth) {
-  return behindShareOf(surfaceObjectId(LAYER_SURFACE(raster, sampleIndex)),
-                       sanitizeDepth(sampleDepth(LAYER_SAMPLE(raster, sampleIndex))), object, depth, params.softZExtent);
+  return behindShareOf(surfaceObjectId(READ_LAYER_SURFACE(raster, sampleIndex)),
+                       sanitizeDepth(sampleDepth(READ_LAYER_SAMPLE(raster, sampleIndex))), object, depth, params.softZExtent);
 }
 
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
@@ -58,7 +58,7 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
 
 // The coverage form at a mask pixel (see above).
 vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
-  const uvec4 own = LAYER_SURFACE(raster, index);
+  const uvec4 own = READ_LAYER_SURFACE(raster, index);
   float speed;
   const vec2 v = gatherVelocity(surfaceVelocity(own), params.velocityScale, params.maxSpeed, speed);
   const uint object = surfaceObjectId(own);
@@ -68,7 +68,7 @@ vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDe
     const ivec2 samplePixel = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float onObject = 1.0 - behindShare(sampleIndex, object, centreDepth);
-    foregroundSum += onObject * sanitizeColor(vec4(sampleColor(LAYER_SAMPLE(raster, sampleIndex)), 1.0));
+    foregroundSum += onObject * sanitizeColor(vec4(sampleColor(READ_LAYER_SAMPLE(raster, sampleIndex)), 1.0));
     foregroundCount += onObject;
   }
   const float alpha = foregroundCount / float(params.samples);
@@ -95,7 +95,7 @@ void main() {
   }
   weightsComposite = inMask && !kCoverage;
   blurredBackground = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
-  centreObject = weightsComposite ? surfaceObjectId(LAYER_SURFACE(raster, index)) : 0u;
+  centreObject = weightsComposite ? surfaceObjectId(READ_LAYER_SURFACE(raster, index)) : 0u;
   compositeCentreDepth = centre.depth;
   outColor[index] = gatherSamples(pixel, centre, foregroundScale, backgroundScale);
 }

@@ -17,12 +17,12 @@ layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_MASK) readonly buffer Mas
 layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_LIST) readonly buffer List { uint pixelList[]; };
 layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_BACKGROUND_GATHER_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
-HMB_LAYER(raster, HMB_BACKGROUND_GATHER_BINDING_RASTER, readonly)
-HMB_LAYER(revealed, HMB_BACKGROUND_GATHER_BINDING_REVEALED, readonly)
+HMB_LAYER_TEXELS(raster, HMB_BACKGROUND_GATHER_BINDING_RASTER)
+HMB_LAYER_TEXELS(revealed, HMB_BACKGROUND_GATHER_BINDING_REVEALED)
 layout(push_constant) uniform Params { GatherParams params; };
 
 bool overlaid(uint i) { return mask[i] == HMB_MASK_REVEALED; }
-uvec4 blurSampleAt(uint i) { return overlaid(i) ? LAYER_SAMPLE(revealed, i) : LAYER_SAMPLE(raster, i); }
+uvec4 blurSampleAt(uint i) { return overlaid(i) ? READ_LAYER_SAMPLE(revealed, i) : READ_LAYER_SAMPLE(raster, i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 
 #include "../mblur/gather_samples.glsl"

@@ -124,6 +124,7 @@
 #define HMB_BACKGROUND_GATHER_BINDING_RASTER 5        // the G-buffer (shared/layer_bindings.glsl)
 #define HMB_BACKGROUND_GATHER_BINDING_REVEALED (HMB_BACKGROUND_GATHER_BINDING_RASTER + HMB_LAYER_BINDINGS)
 #define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_REVEALED + HMB_LAYER_BINDINGS)
+#define HMB_BACKGROUND_GATHER_TEXEL_BUFFERS 4  // both layers, read as uniform texel buffers
 
 // composite: every pixel; the form is a specialization constant.
 #define HMB_COMPOSITE_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
@@ -132,6 +133,7 @@
 #define HMB_COMPOSITE_BINDING_OUTPUT 3        // vec4 per pixel
 #define HMB_COMPOSITE_BINDING_RASTER 4        // the G-buffer (shared/layer_bindings.glsl)
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
+#define HMB_COMPOSITE_TEXEL_BUFFERS 2  // the G-buffer layer, read as uniform texel buffers
 #define HMB_SPEC_COMPOSITE_COVERAGE 0  // true: the coverage form; false: the weights form
 
 // RevealParams.stop
