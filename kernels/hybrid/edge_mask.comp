@@ -18,8 +18,13 @@
 layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
 // The G-buffer's samples (depth) and surfaces (normal): shared/layer_layout.h.
-layout(std430, binding = HMB_EDGE_MASK_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
-layout(std430, binding = HMB_EDGE_MASK_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
+// The layer's samples and surfaces, read at per-pixel addresses as uniform texel buffers (one
+// 16-byte record a pixel each; see trace/trace_scene_bindings.glsl for why).
+#extension GL_EXT_samplerless_texture_functions : require
+layout(binding = HMB_EDGE_MASK_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
+layout(binding = HMB_EDGE_MASK_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
+uvec4 sampleAt(uint i) { return texelFetch(sampleTexels, int(i)); }
+uvec4 surfaceAt(uint i) { return texelFetch(surfaceTexels, int(i)); }
 layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
@@ -41,7 +46,7 @@ float edgeStrength(ivec2 pixel, float depthHere) {
   for (int k = 0; k < 25; ++k) {
     const ivec2 p = clamp(pixel + ivec2(k % 5 - 2, k / 5 - 2), ivec2(0), last);
     const uint at = uint(p.y) * params.blur.width + uint(p.x);
-    window[k] = vec4(sanitizeNormal(surfaceNormal(surfaces[at])), sanitizeDepth(sampleDepth(samples[at])));
+    window[k] = vec4(sanitizeNormal(surfaceNormal(surfaceAt(at))), sanitizeDepth(sampleDepth(sampleAt(at))));
     largest = max(largest, window[k].w);
   }
   vec2 depthGradient = vec2(0.0);
@@ -65,7 +70,7 @@ void main() {
   if (entry >= counters.candidateCount) return;
   const uint index = candidates[entry];
   const uvec2 pixel = uvec2(index % params.blur.width, index / params.blur.width);
-  const float depthHere = sanitizeDepth(sampleDepth(samples[index]));
+  const float depthHere = sanitizeDepth(sampleDepth(sampleAt(index)));
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).

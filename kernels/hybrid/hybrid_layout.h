@@ -134,6 +134,10 @@
 #define HMB_COMPOSITE_BINDING_RASTER 4        // the G-buffer (shared/layer_bindings.glsl)
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
 #define HMB_COMPOSITE_TEXEL_BUFFERS 2  // the G-buffer layer, read as uniform texel buffers
+// edge_mask reads the G-buffer's samples and surfaces as uniform texel buffers: its 5x5 window
+// uses most of each record. edge_candidates and range_check read one or two words of a record,
+// which a storage-buffer load fetches for less than a texel fetch's four gathers.
+#define HMB_EDGE_MASK_TEXEL_BUFFERS 2
 #define HMB_SPEC_COMPOSITE_COVERAGE 0  // true: the coverage form; false: the weights form
 
 // RevealParams.stop
