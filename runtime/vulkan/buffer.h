@@ -1,5 +1,7 @@
 // Storage buffers. Every kernel reads and writes plain buffers (no images): lavapipe has
-// 64-bit buffer atomics but no 64-bit image atomics, and buffers keep layouts explicit.
+// 64-bit buffer atomics but no 64-bit image atomics, and buffers keep layouts explicit. Kernels
+// that read 16-byte records at per-lane addresses read them through a texel view of the same
+// buffer (texelView(): a uniform texel buffer, gathered on CPU devices, cached on GPUs).
 #pragma once
 
 #include <cstddef>
