@@ -1,6 +1,7 @@
 #include "runtime/gpu_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -10,6 +11,7 @@
 
 #include "runtime/deformed_vertices.h"
 #include "runtime/error.h"
+#include "runtime/io/image.h"
 #include "scenes/deformation.h"
 
 namespace hmb {
@@ -111,18 +113,17 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   // relative, far inside one 8-bit step.
   std::vector<uint32_t> texels;
   std::vector<uint32_t> textureOffset;  // in texels
-  const auto decode = [](uint8_t code) {
-    const double c = code / 255.0;
-    return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-  };
+  // 256 codes: decoded once each, not once per texel.
+  std::array<float, 256> decode{};
+  for (size_t code = 0; code < decode.size(); ++code) decode[code] = float(io::srgbToLinear(code / 255.0));
   for (const scene::Texture& texture : scene.textures) {
     textureOffset.push_back(static_cast<uint32_t>(texels.size() / 2));
     const size_t count = size_t(texture.width) * texture.height;
     for (size_t t = 0; t < count; ++t) {
       uint8_t rgba[4] = {0, 0, 0, 0};
       if (4 * t + 3 < texture.rgba8.size()) std::memcpy(rgba, texture.rgba8.data() + 4 * t, 4);
-      texels.push_back(glm::packHalf2x16(glm::vec2(decode(rgba[0]), decode(rgba[1]))));
-      texels.push_back(glm::packHalf2x16(glm::vec2(decode(rgba[2]), rgba[3] / 255.0f)));
+      texels.push_back(glm::packHalf2x16(glm::vec2(decode[rgba[0]], decode[rgba[1]])));
+      texels.push_back(glm::packHalf2x16(glm::vec2(decode[rgba[2]], rgba[3] / 255.0f)));
     }
   }
   // Kernels read the texels two to a 16-byte record (shared/scene_bindings.glsl).

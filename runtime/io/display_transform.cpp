@@ -26,6 +26,10 @@ float linearToSrgb(float linear) {
   return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
 }
 
+double srgbToLinear(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
 uint8_t encodeSrgb8(float linear) { return quantizeUnit(linearToSrgb(sanitizeUnit(linear))); }
 
 Rgba8Image encodeDisplay(uint32_t width, uint32_t height, std::span<const glm::vec4> linearRgba) {

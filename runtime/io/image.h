@@ -48,6 +48,8 @@ Rgba8Image readPng(const std::filesystem::path& path);
 // Linear value -> NaN/Inf to 0 -> clamp [0, 1] -> sRGB transfer function -> round to 8 bits.
 // Alpha is clamped and quantized without the transfer function.
 float linearToSrgb(float linear);
+// Its inverse, the sRGB EOTF, exact (in double): encoded value in [0, 1] -> linear.
+double srgbToLinear(double encoded);
 uint8_t encodeSrgb8(float linear);
 Rgba8Image encodeDisplay(uint32_t width, uint32_t height, std::span<const glm::vec4> linearRgba);
 

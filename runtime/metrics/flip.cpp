@@ -26,6 +26,7 @@
 #include <numbers>
 
 #include "runtime/error.h"
+#include "runtime/io/image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/metrics/separable_filter.h"
 
@@ -68,10 +69,6 @@ Vec3 multiply(const double (&m)[3][3], const Vec3& v) {
 
 // The white the opponent and CIELAB spaces are relative to: XYZ of linear RGB (1, 1, 1).
 const Vec3 kWhite = multiply(kRgbToXyz, {1.0, 1.0, 1.0});
-
-double srgbToLinear(double encoded) {
-  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
-}
 
 Vec3 xyzToYyCxCz(const Vec3& xyz) {
   const double x = xyz[0] / kWhite[0], y = xyz[1] / kWhite[1], z = xyz[2] / kWhite[2];
@@ -152,8 +149,8 @@ std::array<Plane, 3> opponentPlanes(const DisplayImage& image) {
     plane.values.resize(image.pixelCount());
   }
   for (size_t i = 0; i < image.pixelCount(); ++i) {
-    const Vec3 linear = {srgbToLinear(image.rgb[i * 3]), srgbToLinear(image.rgb[i * 3 + 1]),
-                         srgbToLinear(image.rgb[i * 3 + 2])};
+    const Vec3 linear = {io::srgbToLinear(image.rgb[i * 3]), io::srgbToLinear(image.rgb[i * 3 + 1]),
+                         io::srgbToLinear(image.rgb[i * 3 + 2])};
     const Vec3 opponent = xyzToYyCxCz(multiply(kRgbToXyz, linear));
     for (size_t c = 0; c < 3; ++c) planes[c].values[i] = float(opponent[c]);
   }
