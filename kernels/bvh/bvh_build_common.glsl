@@ -6,9 +6,9 @@
 #include "bvh_build_layout.h"
 #include "packed_node.glsl"
 
-// Primitive boxes are read at per-lane addresses through a uniform texel buffer (two RGBA32UI
-// records a box): see trace/trace_scene_bindings.glsl for why.
-#extension GL_EXT_samplerless_texture_functions : require
+// Primitive boxes are read at per-lane addresses through a uniform texel buffer (two records a
+// box: ../shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
 layout(binding = HMB_BUILD_BINDING_BOXES) uniform utextureBuffer boxTexels;
 layout(std430, binding = HMB_BUILD_BINDING_ROOTS) readonly buffer Roots { uvec2 roots[]; };
 layout(std430, binding = HMB_BUILD_BINDING_PRIMITIVES) buffer Primitives { uint primitives[]; };
@@ -25,8 +25,8 @@ layout(push_constant) uniform Params { BvhBuildParams params; };
 
 BvhBox boxAt(uint primitive) {
   BvhBox box;
-  box.min = uintBitsToFloat(texelFetch(boxTexels, int(2u * primitive)));
-  box.max = uintBitsToFloat(texelFetch(boxTexels, int(2u * primitive + 1u)));
+  box.min = floatRecordAt(boxTexels, 2u * primitive);
+  box.max = floatRecordAt(boxTexels, 2u * primitive + 1u);
   return box;
 }
 

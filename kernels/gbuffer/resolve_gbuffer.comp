@@ -11,10 +11,8 @@
 
 layout(local_size_x = HMB_RESOLVE_GROUP_X, local_size_y = HMB_RESOLVE_GROUP_Y) in;
 
-// What it reads comes through uniform texel buffers (16-byte records): on lavapipe a texel
-// fetch is one hardware gather per component across the SIMD lanes where a storage-buffer
-// load is a loop over the lanes; on GPUs the cached read-only path.
-#extension GL_EXT_samplerless_texture_functions : require
+// What it reads comes through uniform texel buffers (shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
 layout(binding = HMB_RESOLVE_BINDING_VISIBILITY) uniform utextureBuffer visibilityTexels;  // 2 entries a record
 layout(binding = HMB_RESOLVE_BINDING_TRIANGLES) uniform utextureBuffer triangleTexels;        // GpuTriangle
 layout(binding = HMB_RESOLVE_BINDING_CLIP_CURRENT) uniform utextureBuffer clipCurrentTexels;  // vec4
@@ -26,10 +24,10 @@ layout(binding = HMB_RESOLVE_BINDING_SHADING) uniform utextureBuffer shadingTexe
 HMB_LAYER(gbuffer, HMB_RESOLVE_BINDING_GBUFFER, writeonly)
 layout(push_constant) uniform Params { ResolveParams params; };
 
-vec3 clipCurrentXYW(uint v) { return uintBitsToFloat(texelFetch(clipCurrentTexels, int(v)).xyw); }
-vec3 clipPreviousXYW(uint v) { return uintBitsToFloat(texelFetch(clipPreviousTexels, int(v)).xyw); }
-vec3 shadingNormal(uint v) { return uintBitsToFloat(texelFetch(shadingTexels, int(2u * v)).xyz); }
-vec2 shadingUv(uint v) { return uintBitsToFloat(texelFetch(shadingTexels, int(2u * v + 1u)).xy); }
+vec3 clipCurrentXYW(uint v) { return floatRecordAt(clipCurrentTexels, v).xyw; }
+vec3 clipPreviousXYW(uint v) { return floatRecordAt(clipPreviousTexels, v).xyw; }
+vec3 shadingNormal(uint v) { return floatRecordAt(shadingTexels, 2u * v).xyz; }
+vec2 shadingUv(uint v) { return floatRecordAt(shadingTexels, 2u * v + 1u).xy; }
 
 #include "../shared/shading.glsl"
 
@@ -55,8 +53,7 @@ void main() {
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   // The entry's low word: the triangle (raster_layout.h).
-  const uvec4 two = texelFetch(visibilityTexels, int(index >> 1u));
-  const uint triangleId = (index & 1u) == 0u ? two.x : two.z;
+  const uint triangleId = halfRecordAt(visibilityTexels, index).x;
   if (triangleId == HMB_VIS_EMPTY) {
     const vec3 background = camera.background.rgb;  // not inside the macro: `camera` is one
     WRITE_LAYER(gbuffer, index, background, vec3(0.0), 0u, params.backgroundDepth, vec2(0.0));
@@ -65,7 +62,7 @@ void main() {
 
   // Every word a kernel loads at a per-pixel address costs a gather on CPU devices, so this
   // reads only what it needs: clip x, y, w (w is camera-space depth), world normals and uvs.
-  const uvec4 triangle = texelFetch(triangleTexels, int(triangleId));
+  const uvec4 triangle = recordAt(triangleTexels, triangleId);
   const GpuTriangle tri = GpuTriangle(triangle.x, triangle.y, triangle.z, triangle.w);
   const vec2 centre = vec2(pixel) + 0.5;
   const vec2 ndc = centre / vec2(params.width, params.height) * 2.0 - 1.0;

@@ -19,12 +19,12 @@ layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
 // The G-buffer's samples (depth) and surfaces (normal): shared/layer_layout.h.
 // The layer's samples and surfaces, read at per-pixel addresses as uniform texel buffers (one
-// 16-byte record a pixel each; see trace/trace_scene_bindings.glsl for why).
-#extension GL_EXT_samplerless_texture_functions : require
+// record a pixel each: shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
 layout(binding = HMB_EDGE_MASK_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
 layout(binding = HMB_EDGE_MASK_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
-uvec4 sampleAt(uint i) { return texelFetch(sampleTexels, int(i)); }
-uvec4 surfaceAt(uint i) { return texelFetch(surfaceTexels, int(i)); }
+uvec4 sampleAt(uint i) { return recordAt(sampleTexels, i); }
+uvec4 surfaceAt(uint i) { return recordAt(surfaceTexels, i); }
 layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).

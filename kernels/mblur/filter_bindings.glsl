@@ -8,15 +8,14 @@
 #include "../shared/layer_layout.h"
 
 // The layer's samples (colour, depth, velocity: shared/layer_layout.h) and the tiles'
-// neighbour-max velocities are read at per-pixel addresses, as uniform texel buffers: on
-// lavapipe a texel fetch is one hardware gather per component across the SIMD lanes where a
-// storage-buffer load is a loop over the lanes; on GPUs it is the cached read-only path.
-#extension GL_EXT_samplerless_texture_functions : require
+// neighbour-max velocities are read at per-pixel addresses, as uniform texel buffers
+// (shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
 layout(binding = HMB_FILTER_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
 layout(binding = HMB_FILTER_BINDING_NEIGHBOR_MAX) uniform utextureBuffer neighborMaxTexels;
 layout(std430, binding = HMB_FILTER_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
 
-uvec4 layerSampleAt(uint i) { return texelFetch(sampleTexels, int(i)); }
-vec4 neighborMaxAt(uint tile) { return uintBitsToFloat(texelFetch(neighborMaxTexels, int(tile))); }
+uvec4 layerSampleAt(uint i) { return recordAt(sampleTexels, i); }
+vec4 neighborMaxAt(uint tile) { return floatRecordAt(neighborMaxTexels, tile); }
 
 #endif

@@ -25,19 +25,19 @@
 
 // A layer the kernel only reads, at per-pixel addresses: HMB_LAYER_TEXELS(name, firstBinding)
 // declares it, READ_LAYER_SAMPLE(name, i) and READ_LAYER_SURFACE(name, i) read it. In the plain
-// build its two buffers are uniform texel buffers (one 16-byte record a pixel each; see
-// trace/trace_scene_bindings.glsl for why); address builds read the table as HMB_LAYER does.
+// build its two buffers are uniform texel buffers (one record a pixel each:
+// texel_records.glsl); address builds read the table as HMB_LAYER does.
 #ifdef HMB_BIND_BY_ADDRESS
 #define HMB_LAYER_TEXELS(name, firstBinding) HMB_LAYER(name, firstBinding, readonly)
 #define READ_LAYER_SAMPLE(name, i) LAYER_SAMPLE(name, i)
 #define READ_LAYER_SURFACE(name, i) LAYER_SURFACE(name, i)
 #else
-#extension GL_EXT_samplerless_texture_functions : require
+#include "texel_records.glsl"
 #define HMB_LAYER_TEXELS(name, firstBinding)                                    \
   layout(binding = firstBinding + 0) uniform utextureBuffer name##SampleTexels; \
   layout(binding = firstBinding + 1) uniform utextureBuffer name##SurfaceTexels;
-#define READ_LAYER_SAMPLE(name, i) texelFetch(name##SampleTexels, int(i))
-#define READ_LAYER_SURFACE(name, i) texelFetch(name##SurfaceTexels, int(i))
+#define READ_LAYER_SAMPLE(name, i) recordAt(name##SampleTexels, i)
+#define READ_LAYER_SURFACE(name, i) recordAt(name##SurfaceTexels, i)
 #endif
 
 // Pixel i of the layer: two stores.

@@ -109,8 +109,8 @@ HMB_CHECK_SIZE(SceneTable, 40)
 // The scene takes 5 binding numbers (shared/scene_bindings.glsl); HMB_BIND_BY_ADDRESS builds
 // bind one table at the first and leave the others unused, keeping the numbers after it.
 #define HMB_SCENE_BINDINGS 5
-// Of those, vertices, instances, materials and texels are uniform texel buffers in the plain
-// build (scene_bindings.glsl); the camera is a storage buffer.
+// Of those, the first four (vertices, instances, materials, texels) are uniform texel buffers
+// in the plain build (scene_bindings.glsl); the camera, the last, is a storage buffer.
 #define HMB_SCENE_TEXEL_BUFFERS 4
 HMB_CHECK_SIZE(GpuVertex, 48)
 HMB_CHECK_SIZE(GpuTriangle, 16)

@@ -4,11 +4,9 @@
 // kernels read the same names: topPrimitives[i], ..., and topNode(i), meshNode(i),
 // leafTriangle(i), traceInstanceAt(i), objectFromWorldAt(i) and meshFrameAt(i) for the arrays
 // a ray reads at its own addresses.
-// Those six are uniform texel buffers in the plain build: fetched through the texture path,
-// which on lavapipe is one hardware gather per component across the SIMD lanes where a
-// storage-buffer load at per-lane addresses is a loop over the lanes (1.2-1.25x the trace
-// rate, bench/results/bvh-vs-embree.md), and on GPUs the read-only cached path that BVH
-// traversal has long used for nodes and triangles. Every record is 16 bytes (RGBA32UI).
+// Those six are uniform texel buffers in the plain build (shared/texel_records.glsl: 1.2-1.25x
+// the trace rate on lavapipe, bench/results/bvh-vs-embree.md; on GPUs the read-only cached
+// path that BVH traversal has long used for nodes and triangles).
 #ifndef HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
 #define HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
 
@@ -34,7 +32,7 @@ mat4 objectFromWorldAt(uint i) { return transforms[i].objectFromWorld; }
 BvhFrame meshFrameAt(uint mesh) { return meshFrames[mesh]; }
 vec4 leafTriangle(uint i) { return leafTriangles[i]; }
 #else
-#extension GL_EXT_samplerless_texture_functions : require
+#include "../shared/texel_records.glsl"
 layout(binding = HMB_TRACE_SCENE_BINDING + 0) uniform utextureBuffer topNodeTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 1) readonly buffer TopLinks { uint topLinks[]; };
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 2) readonly buffer TopPrimitives { uint topPrimitives[]; };
@@ -48,23 +46,17 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer MeshPrimit
 layout(binding = HMB_TRACE_SCENE_BINDING + 8) uniform utextureBuffer leafTriangleTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) readonly buffer TopFrame { BvhFrame topFrame; };
 layout(binding = HMB_TRACE_SCENE_BINDING + 10) uniform utextureBuffer meshFrameTexels;  // 2 records each
-uvec4 topNode(uint i) { return texelFetch(topNodeTexels, int(i)); }
+uvec4 topNode(uint i) { return recordAt(topNodeTexels, i); }
 TraceInstance traceInstanceAt(uint i) {
-  const uvec4 r = texelFetch(traceInstanceTexels, int(i));
+  const uvec4 r = recordAt(traceInstanceTexels, i);
   return TraceInstance(r.x, r.y, r.z, r.w);
 }
-mat4 objectFromWorldAt(uint i) {  // records 4-7 of an InstanceTransform: its columns
-  return mat4(uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 4u))),
-              uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 5u))),
-              uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 6u))),
-              uintBitsToFloat(texelFetch(transformTexels, int(8u * i + 7u))));
-}
+mat4 objectFromWorldAt(uint i) { return mat4RecordsAt(transformTexels, 8u * i + 4u); }  // records 4-7 of 8
 BvhFrame meshFrameAt(uint mesh) {
-  return BvhFrame(uintBitsToFloat(texelFetch(meshFrameTexels, int(2u * mesh))),
-                  uintBitsToFloat(texelFetch(meshFrameTexels, int(2u * mesh + 1u))));
+  return BvhFrame(floatRecordAt(meshFrameTexels, 2u * mesh), floatRecordAt(meshFrameTexels, 2u * mesh + 1u));
 }
-uvec4 meshNode(uint i) { return texelFetch(meshNodeTexels, int(i)); }
-vec4 leafTriangle(uint i) { return uintBitsToFloat(texelFetch(leafTriangleTexels, int(i))); }
+uvec4 meshNode(uint i) { return recordAt(meshNodeTexels, i); }
+vec4 leafTriangle(uint i) { return floatRecordAt(leafTriangleTexels, i); }
 #endif
 
 #endif

@@ -106,9 +106,9 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
   // uniform texel buffers (kernels/shared/scene_bindings.glsl); every other binding is a
   // storage buffer.
   auto typeOf = [](uint32_t binding) {
-    return binding >= HMB_GBUFFER_ORACLE_BINDING_SCENE && binding < HMB_GBUFFER_ORACLE_BINDING_SCENE + 4
-               ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
-               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    const bool texels = binding >= HMB_GBUFFER_ORACLE_BINDING_SCENE &&
+                        binding < HMB_GBUFFER_ORACLE_BINDING_SCENE + HMB_SCENE_TEXEL_BUFFERS;
+    return texels ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   };
   VkDescriptorSetLayoutBinding bindings[HMB_GBUFFER_ORACLE_BINDING_COUNT]{};
   for (uint32_t i = 0; i < HMB_GBUFFER_ORACLE_BINDING_COUNT; ++i) {
@@ -123,7 +123,7 @@ void GraphicsGBuffer::createDescriptors(const GpuScene& scene) {
   HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
 
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, HMB_GBUFFER_ORACLE_BINDING_COUNT},
-                                        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 4}};
+                                        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, HMB_SCENE_TEXEL_BUFFERS}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
   poolInfo.poolSizeCount = 2;
