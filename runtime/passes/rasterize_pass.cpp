@@ -97,12 +97,17 @@ void RasterizePass::reserve(uint32_t triangleCount, uint32_t width, uint32_t hei
     allocate(std::max(setupCapacity, setupCapacity_), std::max(pairCapacity, pairCapacity_));
 }
 
+void RasterizePass::requireVisibilityBuffer(const vk::Buffer& visibility, uint32_t width, uint32_t height,
+                                            const std::string& pass) {
+  if (visibility.size() < visibilityBytes(width, height))
+    throw Error(pass + ": visibility buffer '" + visibility.name() + "' is smaller than " + std::to_string(width) +
+                "x" + std::to_string(height) + " entries in whole 16-byte records");
+}
+
 void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs, const vk::Buffer& visibility,
                            uint32_t width, uint32_t height) const {
   if (!setup_.handle()) throw Error("RasterizePass::record() before reserve()");
-  if (visibility.size() < visibilityBytes(width, height))
-    throw Error("visibility buffer '" + visibility.name() + "' is smaller than " + std::to_string(width) + "x" +
-                std::to_string(height) + " entries in whole 16-byte records");
+  requireVisibilityBuffer(visibility, width, height, kRasterize);
   gpu::RasterParams params{};
   params.width = width;
   params.height = height;

@@ -82,6 +82,9 @@ class RasterizePass {
   static uint64_t visibilityBytes(uint32_t width, uint32_t height) {
     return (uint64_t(width) * height * sizeof(uint64_t) + 15) / 16 * 16;
   }
+  // Throws hmb::Error, naming `pass`, when `visibility` is smaller than visibilityBytes.
+  static void requireVisibilityBuffer(const vk::Buffer& visibility, uint32_t width, uint32_t height,
+                                      const std::string& pass);
   // visibility: width * height uint64 (visibilityBytes). Call reserve() first.
   void record(vk::FrameRecorder& frame, const RasterInputs& inputs, const vk::Buffer& visibility, uint32_t width,
               uint32_t height) const;

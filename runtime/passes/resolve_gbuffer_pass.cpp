@@ -1,11 +1,9 @@
 #include "runtime/passes/resolve_gbuffer_pass.h"
 
 #include <span>
-#include <string>
 #include <vector>
 
 #include "kernels/gbuffer/gbuffer_layout.h"
-#include "runtime/error.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -21,9 +19,7 @@ void ResolveGBufferPass::record(vk::FrameRecorder& frame, const GpuScene& scene,
                                 const vk::Buffer& vertexShading, const ImageLayer& target, uint32_t width,
                                 uint32_t height) const {
   // The kernel reads the visibility entries as whole 16-byte records.
-  if (visibility.size() < RasterizePass::visibilityBytes(width, height))
-    throw Error("resolve-gbuffer: visibility buffer '" + visibility.name() + "' is smaller than " +
-                std::to_string(width) + "x" + std::to_string(height) + " entries in whole 16-byte records");
+  RasterizePass::requireVisibilityBuffer(visibility, width, height, kName);
   // Empty pixels lie at the far plane, so depth comparisons treat them as the farthest surface.
   const gpu::ResolveParams params{width, height, scene.camera().zfar, 0};
   const vk::ComputeKernel& kernel = kernel_.forScene(scene);

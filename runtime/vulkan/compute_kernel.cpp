@@ -44,7 +44,7 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
   bindings_.insert(bindings_.end(), texelBindings_.begin(), texelBindings_.end());
   std::sort(bindings_.begin(), bindings_.end());
   if (declared.uniformBuffers != 0 || declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
-    throw Error("kernel '" + name_ + "' declares descriptors other than storage buffers in set 0");
+    throw Error("kernel '" + name_ + "' declares descriptors other than storage and uniform texel buffers in set 0");
   if (declared.pushConstantBytes > pushConstantBytes)
     throw Error("kernel '" + name_ + "' declares " + std::to_string(declared.pushConstantBytes) +
                 " bytes of push constants but its host passes " + std::to_string(pushConstantBytes));
