@@ -205,10 +205,9 @@ void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const floa
 void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
   static_assert(sizeof(gpu::TraceSceneTable) == HMB_TRACE_SCENE_BUFFERS * sizeof(uint64_t));
   // The order of kernels/trace/trace_scene_bindings.glsl and of gpu::TraceSceneTable.
-  const vk::Buffer* members[] = {&instanceBvh_.nodes(), &instanceBvh_.links(), &instanceBvh_.primitives(),
-                                 &instances_,           &transforms_,          &meshBvh_.nodes(),
-                                 &meshBvh_.links(),     &meshBvh_.primitives(), &leafTriangles_,
-                                 &instanceBvh_.frames(), &meshBvh_.frames()};
+  const vk::Buffer* members[] = {&instanceBvh_.nodes(), &instanceBvh_.primitives(), &instances_,
+                                 &transforms_,          &meshBvh_.nodes(),        &meshBvh_.primitives(),
+                                 &leafTriangles_,       &instanceBvh_.frames(),   &meshBvh_.frames()};
   group_.bind(bindings, firstBinding, byAddress, members);
 }
 

@@ -1,8 +1,7 @@
 #version 450
 // One workgroup per tree: the root's bounds and centroid bounds over its primitive range,
 // the identity order of that range, the tree's frame (the root box: its packed bounds count
-// steps across it), and the root's task for level 0. Roots are nodes 0..treeCount-1; their
-// links all end the traversal.
+// steps across it), and the root's task for level 0. Roots are nodes 0..treeCount-1.
 #extension GL_GOOGLE_include_directive : require
 #include "bvh_build_common.glsl"
 #include "../shared/indexing.glsl"
@@ -47,7 +46,6 @@ void main() {
   }
   barrier();
 
-  if (lane < HMB_BVH_OCTANTS) linkQuads[tree * 2u + (lane >> 2u)][lane & 3u] = HMB_BVH_LINK_END;
   if (lane != 0) return;
   BvhNode root;
   root.minX = orderedFloat(boundsMin[0]);
@@ -56,8 +54,9 @@ void main() {
   root.maxX = orderedFloat(boundsMax[0]);
   root.maxY = orderedFloat(boundsMax[1]);
   root.maxZ = orderedFloat(boundsMax[2]);
-  // A lone primitive is a leaf now; an empty tree an empty leaf-less root that no ray enters.
-  root.leftOrFirst = range.y <= 1u ? range.x : HMB_BVH_LINK_END;
+  // A lone primitive is a leaf now; an empty tree an empty leaf-less root that no ray enters;
+  // a root with children gets their index from its task.
+  root.leftOrFirst = range.x;
   root.count = range.y == 1u ? 1u : 0u;
   nodes[tree] = root;
   const vec3 rootLo = vec3(root.minX, root.minY, root.minZ), rootHi = vec3(root.maxX, root.maxY, root.maxZ);

@@ -3,7 +3,8 @@
 // task's primitives by centroid on each axis (up to HMB_BVH_BINS bins across the centroid
 // bounds), costs every bin boundary by the surface area heuristic, and either makes the node a
 // leaf (at most params.maxLeaf primitives and no split cheaper) or partitions the range into
-// two child nodes. A child of one primitive becomes a leaf at once; others are the next
+// two child nodes; halved in the middle instead where the split would leave its larger side
+// too many primitives for the levels left (HMB_BVH_MAX_DEPTH). A child of one primitive becomes a leaf at once; others are the next
 // level's tasks. Primitive ranges alternate between the two halves of the primitive buffer by
 // level parity; every leaf leaves its primitives in the first half, the final order.
 #extension GL_GOOGLE_include_directive : require
@@ -195,6 +196,10 @@ void main() {
     const bool mayBeLeaf = task.count <= params.maxLeaf;
     if (mayBeLeaf && (best == LEAF_SPLIT || float(task.count) <= bestCost)) best = LEAF_SPLIT;
     else if (best == LEAF_SPLIT) best = MEDIAN_SPLIT;  // centroids coincide: halve the range
+    else {
+      const uint left = uint(leftAreaCount[uint(best) * BINS + axisSplit[best]].y);
+      if (!keepsDepthBound(params.level, max(left, task.count - left))) best = MEDIAN_SPLIT;
+    }
     chosenSplit = best;
     if (best != LEAF_SPLIT) {
       firstChild = atomicAdd(counters.nodeCount, 2u);
@@ -266,19 +271,15 @@ void main() {
   barrier();
 
   const uint left = firstChild;
-  // Jobs 0..7: the links of each octant; 8: the node; 9 and 10: the two children.
-  for (uint job = lane; job < HMB_BVH_OCTANTS + 3u; job += GROUP) {
-    if (job < HMB_BVH_OCTANTS) {
-      linkChildren(task.node, left, axis, job);
-      continue;
-    }
-    if (job == HMB_BVH_OCTANTS) {
+  // Job 0: the node; 1 and 2: the two children.
+  for (uint job = lane; job < 3u; job += GROUP) {
+    if (job == 0u) {
       nodes[task.node].leftOrFirst = left;
       nodes[task.node].count = 0u;
       packedNodes[task.node].w = packLeftOrFirstCount(left, 0u);
       continue;
     }
-    const uint side = job - (HMB_BVH_OCTANTS + 1u);
+    const uint side = job - 1u;
     const uint b = side * 4;
     const uint first = task.first + (side == 0u ? 0u : leftCount);
     const uint count = side == 0u ? leftCount : rightCount;

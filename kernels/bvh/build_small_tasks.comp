@@ -2,8 +2,9 @@
 // The subtrees of the small tasks build_level set aside (at most HMB_BVH_SMALL_TASK primitives
 // each), one invocation per task, after the levels: top-down, each node split at the cheapest
 // bin boundary by the surface area heuristic, as build_level does, or made a leaf when it may
-// be one and that costs no more. Nodes, packed nodes and links are written as build_level
-// writes them, so traversal cannot tell the two apart; the subtree's primitives end in their
+// be one and that costs no more, or halved where the depth bound asks (keepsDepthBound). Nodes
+// and packed nodes are written as build_level writes them, so traversal cannot tell the two
+// apart; the subtree's primitives end in their
 // final order in the first half of the primitive array.
 //
 // The bins live in registers: every bin is named by a constant once the loops over bins are
@@ -152,8 +153,9 @@ void main() {
       atomicAdd(counters.leafCount, 1u);
       continue;
     }
-    // No split of finite cost (every centroid in one place): the range is halved as it is.
-    const bool halved = bestLeft == 0u;
+    // No split of finite cost (every centroid in one place), or one that would leave too many
+    // primitives for the levels left: the range is halved as it is.
+    const bool halved = bestLeft == 0u || !keepsDepthBound(level, max(bestLeft, count - bestLeft));
     if (halved) bestLeft = count / 2u;
     // Stable partition (the left side first, each side in the order it had), and each side's
     // centroid bounds.
@@ -171,7 +173,6 @@ void main() {
       for (uint k = 0; k < count; ++k) order[first + k] = reordered[k];
     const uint left = atomicAdd(counters.nodeCount, 2u);
     atomicMax(counters.levels, level + 2u);
-    linkChildrenAllOctants(node, left, bestAxis);
     nodes[node].leftOrFirst = left;
     nodes[node].count = 0u;
     packedNodes[node].w = packLeftOrFirstCount(left, 0u);

@@ -13,8 +13,6 @@ layout(binding = HMB_BUILD_BINDING_BOXES) uniform utextureBuffer boxTexels;
 layout(std430, binding = HMB_BUILD_BINDING_ROOTS) readonly buffer Roots { uvec2 roots[]; };
 layout(std430, binding = HMB_BUILD_BINDING_PRIMITIVES) buffer Primitives { uint primitives[]; };
 layout(std430, binding = HMB_BUILD_BINDING_NODES) buffer Nodes { BvhNode nodes[]; };
-// A node's 8 link words (one per direction octant) as two uvec4: octants 0-3, then 4-7.
-layout(std430, binding = HMB_BUILD_BINDING_LINKS) buffer Links { uvec4 linkQuads[]; };
 layout(std430, binding = HMB_BUILD_BINDING_TASKS) buffer Tasks {
   BvhBuildCounters counters;
   BvhBuildTask tasks[];
@@ -59,30 +57,13 @@ void writeChild(uint index, uint first, uint count, uint tree, vec3 lo, vec3 hi)
   if (count == 1u) atomicAdd(counters.leafCount, 1u);
 }
 
-// The links of one direction octant when `node` splits along `axis` into children left and
-// left + 1: the child on the ray's side of the split first, the other after it, and after that
-// wherever the node led before. One word each (build_level gives each octant its own lane).
-void linkChildren(uint node, uint left, uint axis, uint octant) {
-  const uint rightFirst = (octant >> axis) & 1u;
-  const uint quad = octant >> 2u, word = octant & 3u;
-  const uint escape = linkQuads[node * 2u + quad][word] & HMB_BVH_LINK_NEXT_MASK;
-  linkQuads[(left + rightFirst) * 2u + quad][word] = left + 1u - rightFirst;
-  linkQuads[(left + 1u - rightFirst) * 2u + quad][word] = escape;
-  linkQuads[node * 2u + quad][word] = escape | (rightFirst != 0u ? HMB_BVH_LINK_RIGHT_FIRST : 0u);
-}
+// Halvings that take n primitives down to one: ceil(log2(n)).
+uint halvingsToOne(uint n) { return n <= 1u ? 0u : uint(findMSB(n - 1u)) + 1u; }
 
-// linkChildren for all 8 octants at once, for one invocation that splits a node alone
-// (build_small_tasks): two loads and six stores of four words, where a word at a time is 32
-// accesses (on lavapipe each a loop over the lanes).
-void linkChildrenAllOctants(uint node, uint left, uint axis) {
-  for (uint quad = 0u; quad < 2u; ++quad) {
-    const uvec4 octants = uvec4(0u, 1u, 2u, 3u) + 4u * quad;
-    const bvec4 rightFirst = notEqual((octants >> axis) & 1u, uvec4(0u));
-    const uvec4 escape = linkQuads[node * 2u + quad] & HMB_BVH_LINK_NEXT_MASK;
-    linkQuads[left * 2u + quad] = mix(uvec4(left + 1u), escape, rightFirst);
-    linkQuads[(left + 1u) * 2u + quad] = mix(escape, uvec4(left), rightFirst);
-    linkQuads[node * 2u + quad] = escape | mix(uvec4(0u), uvec4(HMB_BVH_LINK_RIGHT_FIRST), rightFirst);
-  }
-}
+// True when a node at `level` may split into children whose larger side holds `larger`
+// primitives: halving from there on still ends every leaf within params.maxDepth levels
+// (HMB_BVH_MAX_DEPTH). A median split always may, where its node did (ceil(n / 2) needs one
+// halving fewer).
+bool keepsDepthBound(uint level, uint larger) { return level + 1u + halvingsToOne(larger) <= params.maxDepth; }
 
 #endif

@@ -51,6 +51,12 @@
 // set-up in its space) costs more than the node visits that keep instances apart, and bistro's
 // reveal rays took 6% less time than with leaves of up to four.
 #define HMB_BVH_MAX_INSTANCE_LEAF 1u
+// No node lies more than this many levels below its root, so a walk that keeps one pending
+// subtree per level (kernels/trace/closest_hit.glsl) never runs out of stack and needs no
+// stackless fallback. The builder keeps it by halving a range (a median split) wherever the
+// SAH split's larger side could not end within the levels left; 2^21 primitives need 21.
+// (BvhBuildParams::maxDepth carries it, so that tests can build under a tighter bound.)
+#define HMB_BVH_MAX_DEPTH 64u
 
 // triangle_bounds
 #define HMB_TRIANGLE_BOUNDS_BINDING_POSITIONS 0  // vec4 per vertex (xyz)
@@ -70,20 +76,19 @@
 #define HMB_BUILD_BINDING_ROOTS 1       // uvec2 (first primitive, count) per tree
 #define HMB_BUILD_BINDING_PRIMITIVES 2  // uint[2 * primitiveCount]: the final array, then a scratch copy
 #define HMB_BUILD_BINDING_NODES 3       // BvhNode[]: exact bounds, the build's working copy
-#define HMB_BUILD_BINDING_LINKS 4       // uint[8 * node capacity], see HMB_BVH_LINK_*
 // The task queue: BvhBuildCounters (its head: the levels' task counts and indirect
 // dispatches), then BvhBuildTask[3 * taskCapacity] from byte sizeof(BvhBuildCounters) (a
 // multiple of a task's 16-byte alignment): this level's, the next level's, and the small
 // tasks build_small_tasks finishes.
-#define HMB_BUILD_BINDING_TASKS 5
-#define HMB_BUILD_BINDING_PACKED_NODES 6  // BvhPackedNode[]: the nodes as traversal reads them
-#define HMB_BUILD_BINDING_FRAMES 7        // BvhFrame per tree: what its packed bounds count steps in
-#define HMB_BUILD_BINDING_COUNT 8
+#define HMB_BUILD_BINDING_TASKS 4
+#define HMB_BUILD_BINDING_PACKED_NODES 5  // BvhPackedNode[]: the nodes as traversal reads them
+#define HMB_BUILD_BINDING_FRAMES 6        // BvhFrame per tree: what its packed bounds count steps in
+#define HMB_BUILD_BINDING_COUNT 7
 #define HMB_BUILD_TEXEL_BUFFERS 1  // the boxes, read as a uniform texel buffer (bvh_build_common.glsl)
 
 // refit_parents and refit_places (once per build: the trees keep only the way down), then per
 // refit refit_bounds (once per depth, deepest first, over that depth's nodes) and refit_pack: a
-// built tree's bounds from new primitive boxes, its topology, links and primitive order kept
+// built tree's bounds from new primitive boxes, its topology and primitive order kept
 // (deforming meshes). Each kernel binds only what it uses (at most 6 buffers).
 #define HMB_REFIT_BINDING_BOXES 0         // BvhBox per primitive, the new ones
 #define HMB_REFIT_BINDING_ROOTS 1         // uvec2 (first primitive, count) per tree
@@ -121,7 +126,7 @@ struct BvhBuildParams {
   uint taskCapacity;  // tasks one level can hold (each half of the task buffer)
   uint level;         // build_level / size_build_dispatch: the level being built (0 = roots)
   uint maxLeaf;       // the most primitives a leaf may hold (>= 1)
-  uint pad0;
+  uint maxDepth;      // levels a node may lie below its root: HMB_BVH_MAX_DEPTH, or fewer in tests
   uint pad1;
   uint pad2;
 };
@@ -150,17 +155,6 @@ struct BvhBuildCounters {
 };
 
 HMB_GPU_END
-
-// Stackless traversal in front-to-back order. Every node has 8 link words, one per ray
-// direction octant (bit a set: the ray's direction is negative along axis a). The low bits
-// are where to go after the node (when its box is missed, or after its leaf's primitives):
-// the node visited next in that octant's order, HMB_BVH_LINK_END after the last. Bit 31 of an
-// interior node's word: visit its right child first in that octant (the child on the ray's
-// side of the split axis).
-#define HMB_BVH_LINK_END 0x7fffffffu
-#define HMB_BVH_LINK_NEXT_MASK 0x7fffffffu
-#define HMB_BVH_LINK_RIGHT_FIRST 0x80000000u
-#define HMB_BVH_OCTANTS 8u
 
 HMB_CHECK_SIZE(BvhBox, 32)
 HMB_CHECK_SIZE(BvhBuildParams, 32)

@@ -1,8 +1,10 @@
 // The closest hit of a ray through the two-level BVH: the top level over instances, then each
-// instance's mesh tree, both walked depth first with a short stack. A ray that would need more
-// hands over to the linked walk, stackless: each node's link for the ray's direction octant
-// says where to go next (kernels/bvh/bvh_build_layout.h). Instances of the ignored object are
-// skipped whole, so a reveal ray finds the first surface behind the object it starts on.
+// instance's mesh tree, both walked depth first with a stack of pending subtrees, one per level
+// at most: the builder bounds every tree's depth (HMB_BVH_MAX_DEPTH), so no walk needs a
+// stackless fallback. (One was here: on lavapipe, which runs both sides of every branch under
+// a mask, its code cost 10-15% of the trace rate though no ray took it.) Instances of the
+// ignored object are skipped whole, so a reveal ray finds the first surface behind the object
+// it starts on.
 // Binds the trace scene from the including kernel's HMB_TRACE_SCENE_BINDING on
 // (trace_scene_bindings.glsl).
 #ifndef HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
@@ -13,9 +15,7 @@
 #include "../bvh/packed_node.glsl"
 #include "trace_scene_bindings.glsl"
 
-// Pending subtrees a ray may keep per mesh tree walk (walkStacked); a specialization constant,
-// so tests can force the linked walk that takes over past it.
-layout(constant_id = HMB_SPEC_TRACE_STACK) const uint kTraceStackSize = HMB_TRACE_STACK_SIZE;
+const uint kTraceStackSize = HMB_TRACE_STACK_SIZE;
 
 // What a trace needs to know of the scene beside its buffers.
 struct TraceSceneInfo {
@@ -23,11 +23,6 @@ struct TraceSceneInfo {
   uint timeCount;  // transforms per instance
   uint flags;      // HMB_TRACE_*
 };
-
-// Where traversal goes after entering interior node n whose link word is `link`.
-uint firstChildOf(uvec4 n, uint link) {
-  return packedLeftOrFirst(n) + ((link & HMB_BVH_LINK_RIGHT_FIRST) != 0u ? 1u : 0u);
-}
 
 BvhHit missedHit(float tMax) {
   BvhHit hit;
@@ -42,7 +37,7 @@ BvhHit missedHit(float tMax) {
   return hit;
 }
 
-// What both walks through an instance's mesh tree need: the ray in the instance's space, the
+// What the walk through an instance's mesh tree needs: the ray in the instance's space, the
 // interval's start, the tree's frame, and how back faces are culled.
 struct MeshRay {
   PreparedRay r;
@@ -84,28 +79,6 @@ bool testLeaf(MeshRay m, uint first, uint count, inout BvhHit best) {
   return nearest;
 }
 
-// The stackless walk: every node's link for the ray's direction octant says where to go next
-// (kernels/bvh/bvh_build_layout.h), so no tree is too deep for it. Each box tested costs a node
-// and a link load. True when a hit in this tree became the closest.
-bool walkLinked(MeshRay m, inout BvhHit best) {
-  bool nearest = false;
-  uint node = m.mesh;
-  while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = meshNode(node);
-    const uint link = meshLinks[node * HMB_BVH_OCTANTS + m.r.octant];
-    if (intersectBox(m.r, packedLower(n, m.frame), packedUpper(n, m.frame), m.tMin, best.t)) {
-      const uint count = packedCount(n);
-      if (count == 0u) {
-        node = firstChildOf(n, link);
-        continue;
-      }
-      if (testLeaf(m, packedLeftOrFirst(n), count, best)) nearest = true;
-    }
-    node = link & HMB_BVH_LINK_NEXT_MASK;
-  }
-  return nearest;
-}
-
 // The subtrees a walk has put off: each one's range word and the distance at which the ray
 // enters it, one stack for the top-level walk and one for the mesh walk it runs per instance.
 // Module scope, so that the steps below read them without a copy.
@@ -129,21 +102,20 @@ bool popPending(uint walk, inout uint pending, float bestT, out uint word) {
 // One interior step of a stacked walk: the entered node's children a and b (loaded by the
 // caller from its tree) tested, the nearer one hit entered and the farther put off, or the
 // nearest put-off subtree taken up when neither is hit. Returns false when nothing is left to
-// walk; sets `overflowed` (and returns false) when a subtree cannot be put off.
+// walk. A walk at depth d holds at most d pending subtrees, and no node is deeper than the
+// stack is long (HMB_TRACE_STACK_SIZE); the index is clamped all the same, so that a tree
+// that broke the bound could only cost hits, never write past the stack.
 bool interiorStep(uint walk, uvec4 a, uvec4 b, PreparedRay r, BvhFrame frame, float tMin, float bestT,
-                  inout uint pending, inout uint word, inout bool overflowed) {
+                  inout uint pending, inout uint word) {
   float entryA, entryB;
   const bool hitA = intersectBoxEntry(r, packedLower(a, frame), packedUpper(a, frame), tMin, bestT, entryA);
   const bool hitB = intersectBoxEntry(r, packedLower(b, frame), packedUpper(b, frame), tMin, bestT, entryB);
   if (hitA && hitB) {
-    if (pending == kTraceStackSize) {
-      overflowed = true;
-      return false;
-    }
     const bool aFirst = entryA <= entryB;
-    pendingWords[walk][pending] = aFirst ? b.w : a.w;
-    pendingEntries[walk][pending] = aFirst ? entryB : entryA;
-    ++pending;
+    const uint slot = min(pending, kTraceStackSize - 1u);
+    pendingWords[walk][slot] = aFirst ? b.w : a.w;
+    pendingEntries[walk][slot] = aFirst ? entryB : entryA;
+    pending = slot + 1u;
     word = aFirst ? a.w : b.w;
     return true;
   }
@@ -156,17 +128,14 @@ bool interiorStep(uint walk, uvec4 a, uvec4 b, PreparedRay r, BvhFrame frame, fl
 
 bool isInterior(uint word) { return (word & HMB_BVH_PACKED_MAX_COUNT) == 0u; }
 
-// Depth first with a short stack, the nearer child first. A node's two children are adjacent,
-// and each packed node carries its own child range, so one step loads both children and tests
-// both boxes: two loads per entered node where the linked walk pays two per box tested (on
-// lavapipe every load at per-lane addresses is a loop over the lanes). The far child waits on
+// Depth first, the nearer child first. A node's two children are adjacent, and each packed node
+// carries its own child range, so one step loads both children and tests both boxes: two loads
+// per entered node (on lavapipe each texel fetch is a gather per word). The far child waits on
 // the stack with its entry distance, and is dropped when a nearer hit has been found meanwhile.
 // Interior steps repeat until the ray holds a leaf, so that the lanes of a SIMD group test
-// their leaves together (the while-while form of Aila and Laine). `overflowed` is set, with the
-// walk abandoned, when a ray needs more than kTraceStackSize pending subtrees: the caller then
-// finishes with the linked walk (best only ever shrinks, so what was found stays right).
-bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
-  overflowed = false;
+// their leaves together (the while-while form of Aila and Laine). True when a hit in this tree
+// became the closest.
+bool walkMesh(MeshRay m, inout BvhHit best) {
   bool nearest = false;
   uint pending = 0u;
   const uvec4 root = meshNode(m.mesh);
@@ -179,7 +148,7 @@ bool walkStacked(MeshRay m, inout BvhHit best, out bool overflowed) {
     while (left && isInterior(word)) {
       const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
       left = interiorStep(MESH_WALK, meshNode(first), meshNode(first + 1u), m.r, m.frame, m.tMin, best.t, pending,
-                          word, overflowed);
+                          word);
     }
     if (!left) return nearest;
     if (testLeaf(m, word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, best)) nearest = true;
@@ -214,10 +183,7 @@ void traceInstance(uint instance, TraceInstance record, TraceRay ray, TraceScene
   m.handedness = determinant(linear) < 0.0 ? -1.0 : 1.0;
   m.tMin = ray.originTMin.w;
   m.frame = meshFrameAt(m.mesh);
-  bool overflowed;
-  bool nearestHere = walkStacked(m, best, overflowed);
-  if (overflowed && walkLinked(m, best)) nearestHere = true;
-  if (nearestHere) best.triangle = meshPrimitives[best.entry];
+  if (walkMesh(m, best)) best.triangle = meshPrimitives[best.entry];
 }
 
 // The closest hit's distance from its triangle's plane (planeHitDistance), in its instance's
@@ -242,46 +208,24 @@ void traceTopLeaf(uint first, uint count, TraceRay ray, TraceSceneInfo scene, in
   }
 }
 
-// The top level walked as walkStacked walks a mesh tree; false when it overflowed its stack.
-bool walkTopStacked(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
-  bool overflowed = false;
+// The top level walked as walkMesh walks a mesh tree.
+void walkTop(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   uint pending = 0u;
   const BvhFrame frame = topFrame;
   const float tMin = ray.originTMin.w;
   const uvec4 root = topNode(HMB_BVH_ROOT);
   float entry;
-  if (!intersectBoxEntry(r, packedLower(root, frame), packedUpper(root, frame), tMin, best.t, entry)) return true;
+  if (!intersectBoxEntry(r, packedLower(root, frame), packedUpper(root, frame), tMin, best.t, entry)) return;
   uint word = root.w;
   for (;;) {
     bool left = true;
     while (left && isInterior(word)) {
       const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), r, frame, tMin, best.t, pending, word,
-                          overflowed);
+      left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), r, frame, tMin, best.t, pending, word);
     }
-    if (!left) return !overflowed;
+    if (!left) return;
     traceTopLeaf(word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, ray, scene, best);
-    if (!popPending(TOP_WALK, pending, best.t, word)) return true;
-  }
-}
-
-// The top level's linked walk, for a ray that overflowed the stacked one: from the root again,
-// with what was found so far.
-void walkTopLinked(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
-  const BvhFrame frame = topFrame;
-  uint node = HMB_BVH_ROOT;
-  while (node != HMB_BVH_LINK_END) {
-    const uvec4 n = topNode(node);
-    const uint link = topLinks[node * HMB_BVH_OCTANTS + r.octant];
-    if (intersectBox(r, packedLower(n, frame), packedUpper(n, frame), ray.originTMin.w, best.t)) {
-      const uint count = packedCount(n);
-      if (count == 0u) {
-        node = firstChildOf(n, link);
-        continue;
-      }
-      traceTopLeaf(packedLeftOrFirst(n), count, ray, scene, best);
-    }
-    node = link & HMB_BVH_LINK_NEXT_MASK;
+    if (!popPending(TOP_WALK, pending, best.t, word)) return;
   }
 }
 
@@ -290,7 +234,7 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
   BvhHit best = missedHit(ray.directionTMax.w);
   const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
   if (!r.valid || scene.instanceCount == 0u) return best;
-  if (!walkTopStacked(r, ray, scene, best)) walkTopLinked(r, ray, scene, best);
+  walkTop(r, ray, scene, best);
   refineClosestHit(ray, scene, best);
   return best;
 }

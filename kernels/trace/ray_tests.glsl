@@ -14,7 +14,6 @@ struct PreparedRay {
   vec3 direction;
   vec3 inverseDirection;  // +-inf for a zero component, by its sign
   bvec3 negative;         // direction < 0 (or -0) per axis: the box planes swap
-  uint octant;            // bit a set: negative along axis a (selects the traversal order)
   bool valid;             // false for a zero or non-finite direction: it hits nothing
   // Watertight triangle test (Woop, Benthin, Wald 2013): kz is the dominant axis, kx and ky
   // the other two in an order that keeps the winding; the shear maps the ray to +z.
@@ -28,7 +27,6 @@ PreparedRay prepareRay(vec3 origin, vec3 direction) {
   r.direction = direction;
   r.inverseDirection = 1.0 / direction;
   r.negative = lessThan(r.inverseDirection, vec3(0.0));
-  r.octant = (r.negative.x ? 1u : 0u) | (r.negative.y ? 2u : 0u) | (r.negative.z ? 4u : 0u);
   r.valid = !any(isnan(direction)) && !any(isinf(direction)) && any(notEqual(direction, vec3(0.0)));
   const vec3 a = abs(direction);
   r.kz = a.x >= a.y ? (a.x >= a.z ? 0u : 2u) : (a.y >= a.z ? 1u : 2u);

@@ -11,10 +11,10 @@
 
 #define HMB_TRACE_GROUP 64
 
-// The trace scene takes 11 binding numbers (trace_scene_bindings.glsl); a kernel that traces
+// The trace scene takes 9 binding numbers (trace_scene_bindings.glsl); a kernel that traces
 // puts it after its own bindings. HMB_BIND_BY_ADDRESS builds bind one table of addresses at the
 // first and leave the others unused, so both builds keep the same numbers for the host.
-#define HMB_TRACE_SCENE_BUFFERS 11
+#define HMB_TRACE_SCENE_BUFFERS 9
 #define HMB_TRACE_SCENE_BINDINGS HMB_TRACE_SCENE_BUFFERS
 // Of those, the top-level nodes, the instances' records and transforms, the mesh nodes, the
 // leaf triangles and the mesh frames are uniform texel buffers in the plain build
@@ -39,10 +39,9 @@
 // (the renderer's rays); without it every face is hit (tests against brute force and Embree).
 #define HMB_TRACE_CULL_BACK_FACES 1u
 
-// Pending subtrees one walk through a mesh tree keeps (closest_hit.glsl, walkStacked), and
-// the specialization constant that changes it: past it, the linked walk takes over.
-#define HMB_TRACE_STACK_SIZE 32
-#define HMB_SPEC_TRACE_STACK 1
+// Pending subtrees one walk through a tree keeps (closest_hit.glsl): one per level below the
+// root, which the builder bounds, so no walk runs out.
+#define HMB_TRACE_STACK_SIZE HMB_BVH_MAX_DEPTH
 
 // TraceInstance.flags
 #define HMB_TRACE_INSTANCE_SINGLE_SIDED 1u  // its material is not double-sided
@@ -117,12 +116,10 @@ HMB_GPU_BEGIN
 // (runtime/trace_scene.h writes it).
 struct TraceSceneTable {
   HMB_REFERENCE(PackedNodesRef) topNodes;           // over instances
-  HMB_REFERENCE(WordsRef) topLinks;                 // 8 per node
   HMB_REFERENCE(WordsRef) topPrimitives;            // instance per leaf entry
   HMB_REFERENCE(TraceInstancesRef) instances;
   HMB_REFERENCE(InstanceTransformsRef) transforms;  // [instance * timeCount + time]
   HMB_REFERENCE(PackedNodesRef) meshNodes;          // of every mesh, mesh m's root at node m
-  HMB_REFERENCE(WordsRef) meshLinks;                // 8 per node
   HMB_REFERENCE(WordsRef) meshPrimitives;           // triangle per leaf entry (the scene's numbering)
   HMB_REFERENCE(Vec4sRef) leafTriangles;            // 3 per leaf entry: vertex xyz, its index in w's bits
   HMB_REFERENCE(BvhFramesRef) topFrame;             // one
@@ -131,7 +128,7 @@ struct TraceSceneTable {
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(TraceSceneTable, 88)
+HMB_CHECK_SIZE(TraceSceneTable, 72)
 #endif
 HMB_CHECK_SIZE(TraceParams, 16)
 HMB_CHECK_SIZE(TraceRay, 48)

@@ -1,5 +1,5 @@
 // The trace scene as a kernel binds it, from its binding HMB_TRACE_SCENE_BINDING on (defined
-// by the including kernel): the 11 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
+// by the including kernel): the 9 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
 // with few storage-buffer bindings) one TraceSceneTable of their addresses. Either way the
 // kernels read the same names: topPrimitives[i], ..., and topNode(i), meshNode(i),
 // leafTriangle(i), traceInstanceAt(i), objectFromWorldAt(i) and meshFrameAt(i) for the arrays
@@ -15,12 +15,10 @@
 #ifdef HMB_BIND_BY_ADDRESS
 layout(std430, binding = HMB_TRACE_SCENE_BINDING) readonly buffer TraceScene { TraceSceneTable traceScene; };
 #define topNodes traceScene.topNodes.v
-#define topLinks traceScene.topLinks.v
 #define topPrimitives traceScene.topPrimitives.v
 #define traceInstances traceScene.instances.v
 #define transforms traceScene.transforms.v
 #define meshNodes traceScene.meshNodes.v
-#define meshLinks traceScene.meshLinks.v
 #define meshPrimitives traceScene.meshPrimitives.v
 #define leafTriangles traceScene.leafTriangles.v
 #define topFrame traceScene.topFrame.v[0]
@@ -34,18 +32,16 @@ vec4 leafTriangle(uint i) { return leafTriangles[i]; }
 #else
 #include "../shared/texel_records.glsl"
 layout(binding = HMB_TRACE_SCENE_BINDING + 0) uniform utextureBuffer topNodeTexels;
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 1) readonly buffer TopLinks { uint topLinks[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 2) readonly buffer TopPrimitives { uint topPrimitives[]; };
-layout(binding = HMB_TRACE_SCENE_BINDING + 3) uniform utextureBuffer traceInstanceTexels;  // 1 record each
-layout(binding = HMB_TRACE_SCENE_BINDING + 4) uniform utextureBuffer transformTexels;      // 8 records each
-layout(binding = HMB_TRACE_SCENE_BINDING + 5) uniform utextureBuffer meshNodeTexels;
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 6) readonly buffer MeshLinks { uint meshLinks[]; };
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 1) readonly buffer TopPrimitives { uint topPrimitives[]; };
+layout(binding = HMB_TRACE_SCENE_BINDING + 2) uniform utextureBuffer traceInstanceTexels;  // 1 record each
+layout(binding = HMB_TRACE_SCENE_BINDING + 3) uniform utextureBuffer transformTexels;      // 8 records each
+layout(binding = HMB_TRACE_SCENE_BINDING + 4) uniform utextureBuffer meshNodeTexels;
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 5) readonly buffer MeshPrimitives { uint meshPrimitives[]; };
 // Each triangle's three vertices in the leaves' order (entry e at 3e..3e+2): a leaf's triangles
 // are three loads each, with no indirection through vertex indices.
-layout(binding = HMB_TRACE_SCENE_BINDING + 8) uniform utextureBuffer leafTriangleTexels;
-layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) readonly buffer TopFrame { BvhFrame topFrame; };
-layout(binding = HMB_TRACE_SCENE_BINDING + 10) uniform utextureBuffer meshFrameTexels;  // 2 records each
+layout(binding = HMB_TRACE_SCENE_BINDING + 6) uniform utextureBuffer leafTriangleTexels;
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer TopFrame { BvhFrame topFrame; };
+layout(binding = HMB_TRACE_SCENE_BINDING + 8) uniform utextureBuffer meshFrameTexels;  // 2 records each
 uvec4 topNode(uint i) { return recordAt(topNodeTexels, i); }
 TraceInstance traceInstanceAt(uint i) {
   const uvec4 r = recordAt(traceInstanceTexels, i);

@@ -94,11 +94,8 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
     primitives_ = vk::Buffer(context_, primitiveBytes, vk::MemoryUse::Device, name_ + " primitives");
   if (nodes_.size() < nodes * sizeof(gpu::BvhNode))
     nodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhNode), vk::MemoryUse::Device, name_ + " exact nodes");
-  if (packedNodes_.size() < nodes * sizeof(gpu::BvhPackedNode)) {
+  if (packedNodes_.size() < nodes * sizeof(gpu::BvhPackedNode))
     packedNodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhPackedNode), vk::MemoryUse::Device, name_ + " nodes");
-    links_ = vk::Buffer(context_, nodes * HMB_BVH_OCTANTS * sizeof(uint32_t), vk::MemoryUse::Device,
-                        name_ + " links");
-  }
   if (frames_.size() < treeCount * sizeof(gpu::BvhFrame))
     frames_ = vk::Buffer(context_, treeCount * sizeof(gpu::BvhFrame), vk::MemoryUse::Device, name_ + " frames");
   if (tasks > taskCapacity_) {
@@ -110,6 +107,13 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
   }
   if (rootBuffer_.size() < treeCount * sizeof(glm::uvec2))
     rootBuffer_ = vk::Buffer(context_, treeCount * sizeof(glm::uvec2), vk::MemoryUse::Device, name_ + " roots");
+}
+
+void BvhBuildPass::limitDepth(uint32_t levels) {
+  if (levels == 0 || levels > HMB_BVH_MAX_DEPTH)
+    throw Error(name_ + ": the depth bound must be 1 to " + std::to_string(HMB_BVH_MAX_DEPTH) +
+                " levels (traversal's stack holds no more)");
+  maxDepth_ = levels;
 }
 
 uint32_t BvhBuildPass::firstSubmissionLevels(uint32_t largestTree) {
@@ -146,15 +150,19 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
                                 {HMB_BUILD_BINDING_ROOTS, &rootBuffer_},
                                 {HMB_BUILD_BINDING_PRIMITIVES, &primitives_},
                                 {HMB_BUILD_BINDING_NODES, &nodes_},
-                                {HMB_BUILD_BINDING_LINKS, &links_},
                                 {HMB_BUILD_BINDING_TASKS, &tasks_},
                                 {HMB_BUILD_BINDING_PACKED_NODES, &packedNodes_},
                                 {HMB_BUILD_BINDING_FRAMES, &frames_}};
-  gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, 0, 0, 0};
-  stats_ = {};
-  refits_ = {};  // the old trees' places and order
   uint32_t largestTree = 0;
   for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);
+  // Halving every range takes the largest tree to single primitives in this many levels.
+  const auto halvings = static_cast<uint32_t>(std::bit_width(std::max(largestTree, 1u) - 1u));
+  if (halvings > maxDepth_)
+    throw Error(name_ + ": a tree of " + std::to_string(largestTree) + " primitives needs " + std::to_string(halvings) +
+                " levels, more than the depth bound of " + std::to_string(maxDepth_));
+  gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, maxDepth_, 0, 0};
+  stats_ = {};
+  refits_ = {};  // the old trees' places and order
   uint32_t level = 0;
   for (;;) {
     frame.begin();
@@ -292,27 +300,23 @@ void BvhBuildPass::compact(vk::FrameRecorder& frame) {
   nodes_ = {};
   taskCapacity_ = 0;
   const uint64_t nodeBytes = uint64_t(stats_.nodes) * sizeof(gpu::BvhPackedNode);
-  const uint64_t linkBytes = uint64_t(stats_.nodes) * HMB_BVH_OCTANTS * sizeof(uint32_t);
   const uint64_t primitiveBytes = uint64_t(std::max(primitiveCount_, 1u)) * sizeof(uint32_t);
   vk::Buffer nodes(context_, nodeBytes, vk::MemoryUse::Device, name_ + " nodes");
-  vk::Buffer links(context_, linkBytes, vk::MemoryUse::Device, name_ + " links");
   vk::Buffer primitives(context_, primitiveBytes, vk::MemoryUse::Device, name_ + " primitives");
   const uint64_t frameBytes = roots_.size() * sizeof(gpu::BvhFrame);
   vk::Buffer frames(context_, frameBytes, vk::MemoryUse::Device, name_ + " frames");
   frame.begin();
   frame.copy(kCompact, packedNodes_, nodes, nodeBytes);
-  frame.copy(kCompact, links_, links, linkBytes);
   frame.copy(kCompact, primitives_, primitives, primitiveBytes);
   frame.copy(kCompact, frames_, frames, frameBytes);
   stats_.deviceMilliseconds += frame.submitAndWait().frameMilliseconds.value_or(0.0);
   packedNodes_ = std::move(nodes);
-  links_ = std::move(links);
   primitives_ = std::move(primitives);
   frames_ = std::move(frames);
 }
 
 uint64_t BvhBuildPass::usedTreeBytes() const {
-  return uint64_t(stats_.nodes) * (sizeof(gpu::BvhPackedNode) + HMB_BVH_OCTANTS * sizeof(uint32_t)) +
+  return uint64_t(stats_.nodes) * sizeof(gpu::BvhPackedNode) +
          uint64_t(primitiveCount_) * sizeof(uint32_t) + roots_.size() * sizeof(gpu::BvhFrame);
 }
 
@@ -361,7 +365,5 @@ bvh::Bvh BvhBuildPass::download(uint32_t root) const {
   }
   return out;
 }
-
-std::vector<uint32_t> BvhBuildPass::downloadLinks() const { return links_.download<uint32_t>(); }
 
 }  // namespace hmb::passes

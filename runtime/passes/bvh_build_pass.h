@@ -84,6 +84,8 @@ class BvhBuildPass {
   BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf);
   BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf, const BvhBuildShape& shape);
   const BvhBuildShape& shape() const { return shape_; }
+  // Tests: bound the trees' depth tighter than HMB_BVH_MAX_DEPTH (what traversal's stack holds).
+  void limitDepth(uint32_t levels);
 
   // Builds the trees over `boxes` (BvhBox per primitive, primitiveCount of them) with
   // the given roots, whose ranges must not overlap. `before` records passes that must run
@@ -100,8 +102,8 @@ class BvhBuildPass {
   void compact(vk::FrameRecorder& frame);
 
   // Refits the last build's trees to new boxes of the same primitives (a deforming mesh): every
-  // node's bounds from its leaves up, each tree's frame from its root's new box, the topology,
-  // links and primitive order kept. Compacted trees refit too. Returns the device time (ms).
+  // node's bounds from its leaves up, each tree's frame from its root's new box, the topology
+  // and primitive order kept. Compacted trees refit too. Returns the device time (ms).
   // The SAH cost drifts as the primitives move from where the build split them; a build
   // restores it.
   // Only `trees` are refitted (all when empty): the others keep their bounds, whatever their
@@ -112,20 +114,19 @@ class BvhBuildPass {
   double refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::span<const uint32_t> trees = {});
 
   const BvhBuildStats& stats() const { return stats_; }
-  // The trees' buffers on the device: exact and packed nodes, links, primitive indices and
+  // The trees' buffers on the device: exact and packed nodes, primitive indices and
   // frames, allocated for the worst case (a leaf per primitive, primitive indices twice for the
   // partitions) until compact() fits them to the trees and frees the exact nodes.
   uint64_t allocatedTreeBytes() const {
-    return nodes_.size() + packedNodes_.size() + links_.size() + primitives_.size() + frames_.size();
+    return nodes_.size() + packedNodes_.size() + primitives_.size() + frames_.size();
   }
-  // What the last build filled of them: its packed nodes with their links, one index per
-  // primitive, a frame per tree.
+  // What the last build filled of them: its packed nodes, one index per primitive, a frame per
+  // tree.
   uint64_t usedTreeBytes() const;
-  // Valid after build(): the packed nodes (tree r rooted at node r), each tree's frame, 8
-  // links per node, and the primitive order the leaves index (the first primitiveCount entries).
+  // Valid after build(): the packed nodes (tree r rooted at node r), each tree's frame, and the
+  // primitive order the leaves index (the first primitiveCount entries).
   const vk::Buffer& nodes() const { return packedNodes_; }
   const vk::Buffer& frames() const { return frames_; }
-  const vk::Buffer& links() const { return links_; }
   const vk::Buffer& primitives() const { return primitives_; }
   uint32_t primitiveCount() const { return primitiveCount_; }
 
@@ -137,7 +138,6 @@ class BvhBuildPass {
   std::vector<gpu::BvhNode> downloadNodes() const;
   // The exact float nodes the build kept before packing (tests); gone after compact().
   const vk::Buffer& exactNodes() const { return nodes_; }
-  std::vector<uint32_t> downloadLinks() const;
 
  private:
   void reserve(uint32_t primitiveCount, uint32_t treeCount);
@@ -159,6 +159,7 @@ class BvhBuildPass {
   const vk::Context& context_;
   std::string name_;
   uint32_t maxLeaf_;
+  uint32_t maxDepth_ = HMB_BVH_MAX_DEPTH;
   BvhBuildShape shape_;
   vk::ComputeKernel beginKernel_;
   vk::ComputeKernel levelKernel_;
@@ -176,7 +177,6 @@ class BvhBuildPass {
   vk::Buffer nodes_;  // exact bounds: the build's working copy, freed by compact()
   vk::Buffer packedNodes_;
   vk::Buffer frames_;
-  vk::Buffer links_;
   vk::Buffer tasks_;  // gpu::BvhBuildCounters, then the tasks of two levels
   BvhBuildStats stats_;
   Refits refits_;

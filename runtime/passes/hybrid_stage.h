@@ -69,7 +69,7 @@ class HybridStage {
   void forgetTraceScene();
 
   const RayMaskStage& rayMask() const { return rayMask_; }
-  // After prepare(): the meshes' trees (nodes, links, triangle indices) in bytes per mesh
+  // After prepare(): the meshes' trees (nodes, triangle indices) in bytes per mesh
   // triangle (each mesh's tree is built once, however many instances it has), as allocated
   // and as built; none without triangles.
   struct TreeBytes {

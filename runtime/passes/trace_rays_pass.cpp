@@ -1,10 +1,5 @@
 #include "runtime/passes/trace_rays_pass.h"
 
-#include <array>
-
-#include <span>
-#include <vector>
-
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
 #include "runtime/trace_scene.h"
@@ -13,17 +8,8 @@
 
 namespace hmb::passes {
 
-namespace {
-// Specialization constants by id: HMB_SPEC_TRACE_STACK is 1 (id 0 is not the trace's).
-std::array<uint32_t, 2> traceSpecialization(uint32_t stackSize) {
-  static_assert(HMB_SPEC_TRACE_STACK == 1);
-  if (stackSize == 0) throw Error("trace-rays: the stack must hold at least one pending subtree");
-  return {0u, stackSize};
-}
-}  // namespace
-
-TraceRaysPass::TraceRaysPass(const vk::Context& context, uint32_t stackSize)
-    : kernel_(context, "trace/trace_rays", sizeof(gpu::TraceParams), traceSpecialization(stackSize)) {}
+TraceRaysPass::TraceRaysPass(const vk::Context& context)
+    : kernel_(context, "trace/trace_rays", sizeof(gpu::TraceParams)) {}
 
 void TraceRaysPass::record(vk::FrameRecorder& frame, const TraceScene& scene, const vk::Buffer& rays,
                            const vk::Buffer& hits, uint32_t rayCount, uint32_t flags) const {

@@ -20,9 +20,7 @@ class TraceRaysPass {
  public:
   static constexpr const char* kName = "trace-rays";
 
-  // stackSize: pending subtrees a ray keeps per mesh tree before the linked walk takes over
-  // (kernels/trace/closest_hit.glsl); smaller only in tests of that hand-over.
-  explicit TraceRaysPass(const vk::Context& context, uint32_t stackSize = HMB_TRACE_STACK_SIZE);
+  explicit TraceRaysPass(const vk::Context& context);
 
   // rays: TraceRay[rayCount]; hits: BvhHit[rayCount]. The scene needs its shutter times set.
   // flags: HMB_TRACE_* (kernels/trace/trace_layout.h), e.g. culling back faces as the rasterizer does.

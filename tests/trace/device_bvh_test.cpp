@@ -1,6 +1,6 @@
 // The device BVH builder (kernels/bvh/) against the CPU yardsticks: every tree is well formed
-// (each primitive in exactly one leaf, every node bounding its children), its links visit every
-// node once in each octant, and its SAH cost is within 1.15x of the full-sweep SAH build.
+// (each primitive in exactly one leaf, every node bounding its children), no node deeper than
+// HMB_BVH_MAX_DEPTH, and its SAH cost within 1.15x of the full-sweep SAH build.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "bvh/packed_node.h"
 #include "bvh/reference_builder.h"
+#include "runtime/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/reference_scenes.h"
 #include "tests/support/vulkan_test.h"
@@ -42,8 +44,7 @@ class DeviceBvh : public hmb::test::VulkanTest {
     const bvh::Bvh device = traceScene.meshBvh().download(0);
     const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
     EXPECT_EQ(bvh::test::structuralProblem(device, input.bounds, HMB_BVH_MAX_LEAF), "") << what;
-    const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().downloadNodes();
-    EXPECT_EQ(linkProblem(nodes, traceScene.meshBvh().downloadLinks(), 0), "") << what;
+    EXPECT_LE(treeDepth(device), HMB_BVH_MAX_DEPTH) << what;
     const bvh::Bvh reference = bvh::buildReferenceSah(input.bounds, input.centroids);
     const double ratio = bvh::sahCost(device) / bvh::sahCost(reference);
     const passes::BvhBuildStats& stats = traceScene.meshBvh().stats();
@@ -93,6 +94,54 @@ TEST_F(DeviceBvh, ATreeDeeperThanTheFirstBatchOfLevelsIsFinishedInLaterSubmissio
   EXPECT_EQ(stats.leaves, traceScene.meshBvh().download(0).nodes.size() / 2 + 1);
 }
 
+// Triangles along the x axis, each 1.6 times as far out and as large as the one before: the
+// SAH peels a few of the largest off at each level, a tree several times deeper than a
+// balanced one.
+TriangleMesh geometricChain(uint32_t count) {
+  TriangleMesh mesh;
+  double x = 1e-9;
+  for (uint32_t i = 0; i < count; ++i, x *= 1.6) {
+    const auto w = static_cast<float>(0.1 * x);
+    const glm::vec3 corner(static_cast<float>(x), 0.0f, 0.0f);
+    mesh.addTriangle(corner, corner + glm::vec3(w, 0.0f, 0.0f), corner + glm::vec3(0.0f, w, 0.0f), 1);
+  }
+  return mesh;
+}
+
+// Traversal keeps one pending subtree per level and nothing past that, so the build bounds
+// every tree's depth (HMB_BVH_MAX_DEPTH). No SAH tree of a float scene has come near 64 levels,
+// so the bound is checked here tighter than the trees' own depth: in the level-by-level
+// splits (the chain's first levels hold more than HMB_BVH_SMALL_TASK triangles) and in the
+// small tasks' subtrees.
+TEST_F(DeviceBvh, TreesStayWithinTheDepthBound) {
+  // 120 triangles: the bound binds first in build_level; 60: in build_small_tasks (the root's
+  // children are small tasks). Each needs 7 or 6 halvings.
+  for (const auto& [triangles, bound] : {std::pair{120u, 10u}, std::pair{60u, 7u}}) {
+    const TriangleMesh chain = geometricChain(triangles);
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(chain.view());
+    const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "chain boxes");
+    const glm::uvec2 roots[] = {{0u, triangles}};
+    vk::FrameRecorder frame(context());
+    passes::BvhBuildPass unbounded(context(), "chain", HMB_BVH_MAX_LEAF);
+    unbounded.build(frame, buffer, triangles, roots);
+    const uint32_t ownDepth = treeDepth(unbounded.download(0));
+    ASSERT_GT(ownDepth, bound + 8) << triangles;
+    passes::BvhBuildPass bounded(context(), "bounded chain", HMB_BVH_MAX_LEAF);
+    bounded.limitDepth(bound);
+    bounded.build(frame, buffer, triangles, roots);
+    const bvh::Bvh tree = bounded.download(0);
+    EXPECT_EQ(bvh::test::structuralProblem(tree, input.bounds, HMB_BVH_MAX_LEAF), "") << triangles;
+    EXPECT_LE(treeDepth(tree), bound) << triangles;
+    std::printf("[ depth    ] geometric chain, %u triangles: %u levels below the root, %u under a bound of %u\n",
+                triangles, ownDepth, treeDepth(tree), bound);
+    // A bound the tree cannot keep even when halved throughout is refused.
+    bounded.limitDepth(bound - 4);
+    EXPECT_THROW(bounded.build(frame, buffer, triangles, roots), hmb::Error) << triangles;
+  }
+  passes::BvhBuildPass builder(context(), "any", HMB_BVH_MAX_LEAF);
+  EXPECT_THROW(builder.limitDepth(HMB_BVH_MAX_DEPTH + 1), hmb::Error);
+}
+
 TEST_F(DeviceBvh, LeavesHoldNoMorePrimitivesThanTheBuildAllows) {
   // Six coincident boxes: no split is cheaper than a leaf, so only the limit divides them
   // (median splits: 3 + 3 under a limit of 4, down to single boxes under a limit of 1).
@@ -124,7 +173,6 @@ TEST_F(DeviceBvh, CompactingKeepsTheTreesInBuffersOfTheirSizeAndABuildMayFollow)
   vk::FrameRecorder frame(context());
   builder.build(frame, buffer, count, roots);
   const bvh::Bvh before = builder.download(1);
-  const std::vector<uint32_t> linksBefore = builder.downloadLinks();
   builder.compact(frame);
   EXPECT_EQ(builder.allocatedTreeBytes(), builder.usedTreeBytes());
   const bvh::Bvh after = builder.download(1);
@@ -134,8 +182,6 @@ TEST_F(DeviceBvh, CompactingKeepsTheTreesInBuffersOfTheirSizeAndABuildMayFollow)
     EXPECT_EQ(bvh::boundsOf(after.nodes[i]).max, bvh::boundsOf(before.nodes[i]).max) << "node " << i;
   }
   EXPECT_EQ(after.primitiveIndices, before.primitiveIndices);
-  const std::vector<uint32_t> linksAfter = builder.downloadLinks();
-  EXPECT_TRUE(std::equal(linksAfter.begin(), linksAfter.end(), linksBefore.begin()));
   // The buffers were fitted to these trees; a build over all the boxes as one tree regrows them.
   const glm::uvec2 whole(0u, count);
   builder.build(frame, buffer, count, std::span(&whole, 1));
@@ -212,7 +258,7 @@ TEST_F(DeviceBvh, RefitBoundsDeformedTrianglesWithTheTopologyKept) {
   passes::BvhBuildPass builder(context(), "refitted", HMB_BVH_MAX_LEAF);
   vk::FrameRecorder frame(context());
   builder.build(frame, before, count, roots);
-  const std::vector<uint32_t> links = builder.downloadLinks();
+  const std::vector<gpu::BvhNode> built = builder.downloadNodes();
   const std::vector<Aabb> bentBounds = bvh::triangleBounds(bent.view()).bounds;
   const std::vector<Aabb> restBounds = bvh::triangleBounds(mesh.view()).bounds;
   for (const bool compacted : {false, true}) {
@@ -232,8 +278,11 @@ TEST_F(DeviceBvh, RefitBoundsDeformedTrianglesWithTheTopologyKept) {
           << "tree " << tree << (compacted ? ", compacted" : "");
     }
     EXPECT_TRUE(builder.download(3).nodes.empty());
-    const std::vector<uint32_t> linksAfter = builder.downloadLinks();
-    EXPECT_TRUE(std::equal(links.begin(), links.begin() + std::min(links.size(), linksAfter.size()), linksAfter.begin()));
+    // The topology is the build's: every node's children or primitive range.
+    const std::vector<gpu::BvhNode> refitted = builder.downloadNodes();
+    ASSERT_EQ(refitted.size(), built.size());
+    for (size_t n = 0; n < built.size(); ++n)
+      EXPECT_TRUE(refitted[n].leftOrFirst == built[n].leftOrFirst && refitted[n].count == built[n].count) << "node " << n;
   }
   // Tree 0 traced on the host over the deformed triangles of its range, against brute force.
   TriangleMesh first;
@@ -247,7 +296,7 @@ TEST_F(DeviceBvh, RefitBoundsDeformedTrianglesWithTheTopologyKept) {
   EXPECT_GE(agreement.hits, 1000u);
   // The drift: the kept topology against a fresh build over the deformed boxes.
   passes::BvhBuildPass fresh(context(), "fresh", HMB_BVH_MAX_LEAF);
-  fresh.build(frame, after, count, std::span(roots, 1));
+  fresh.build(frame, after, count, roots);
   const double drift = bvh::sahCost(refitted) / bvh::sahCost(fresh.download(0));
   std::printf("[ refit    ] bent cube sphere, %u triangles: SAH %.3fx a fresh build's\n", roots[0].y, drift);
   EXPECT_GE(drift, 0.9);
@@ -341,13 +390,11 @@ TEST_F(DeviceBvh, ManyMeshesBuildTogether) {
   scene.meshes.push_back({});  // a mesh without triangles
   vk::FrameRecorder frame(context());
   const TraceScene traceScene(context(), scene, frame);
-  const std::vector<gpu::BvhNode> nodes = traceScene.meshBvh().downloadNodes();
-  const std::vector<uint32_t> links = traceScene.meshBvh().downloadLinks();
   for (uint32_t m = 0; m < meshes.size(); ++m) {
     const bvh::PrimitiveBounds input = bvh::triangleBounds(meshes[m].view());
-    EXPECT_EQ(bvh::test::structuralProblem(traceScene.meshBvh().download(m), input.bounds, HMB_BVH_MAX_LEAF), "")
-        << "mesh " << m;
-    EXPECT_EQ(linkProblem(nodes, links, m), "") << "mesh " << m;
+    const bvh::Bvh tree = traceScene.meshBvh().download(m);
+    EXPECT_EQ(bvh::test::structuralProblem(tree, input.bounds, HMB_BVH_MAX_LEAF), "") << "mesh " << m;
+    EXPECT_LE(treeDepth(tree), HMB_BVH_MAX_DEPTH) << "mesh " << m;
   }
   EXPECT_TRUE(traceScene.meshBvh().download(4).nodes.empty());
 }

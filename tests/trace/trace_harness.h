@@ -21,18 +21,15 @@ scene::Scene sceneOf(const bvh::test::TriangleMesh& mesh);
 
 gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time = 0, uint32_t ignoreObjectId = HMB_IGNORE_NONE);
 
-// Closest hits of `rays` through the scene (its shutter times must be set); flags: HMB_TRACE_*;
-// stackSize: the trace kernel's (passes::TraceRaysPass).
+// Closest hits of `rays` through the scene (its shutter times must be set); flags: HMB_TRACE_*.
 std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceScene& scene,
-                                       std::span<const gpu::TraceRay> rays, uint32_t flags = 0,
-                                       uint32_t stackSize = HMB_TRACE_STACK_SIZE);
+                                       std::span<const gpu::TraceRay> rays, uint32_t flags = 0);
 
 // Closest hits of `rays` through `mesh` as a one-instance scene at one shutter time.
 std::vector<gpu::BvhHit> traceMesh(const vk::Context& context, const bvh::test::TriangleMesh& mesh,
                                    std::span<const bvh::Ray> rays);
 
-// Empty when, in every octant, following the links from `root` with every box hit visits each
-// node of the tree once, children after their parent, and ends; else the first problem.
-std::string linkProblem(std::span<const gpu::BvhNode> nodes, std::span<const uint32_t> links, uint32_t root);
+// Levels below the root of the tree's deepest node (0 for a root alone or an empty tree).
+uint32_t treeDepth(const bvh::Bvh& tree);
 
 }  // namespace hmb::trace::test

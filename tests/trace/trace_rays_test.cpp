@@ -113,48 +113,6 @@ TEST_F(TraceRays, RandomSoupMatchesBruteForce) {
   EXPECT_GE(c.hits, 1500u);
 }
 
-// The rays' hits with the full stack, checked to be `handedOver` (traced with a stack of one)
-// bit for bit; returns how many rays hit.
-uint32_t hitsOfAShortStack(const vk::Context& context, const TraceScene& scene, std::span<const gpu::TraceRay> rays,
-                           const std::vector<gpu::BvhHit>& handedOver) {
-  const std::vector<gpu::BvhHit> full = traceOnDevice(context, scene, rays);
-  uint32_t hits = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    if (full[i].triangle != HMB_NO_HIT) ++hits;
-    EXPECT_EQ(handedOver[i].triangle, full[i].triangle) << "ray " << i;
-    EXPECT_EQ(handedOver[i].instance, full[i].instance) << "ray " << i;
-    EXPECT_EQ(handedOver[i].t, full[i].t) << "ray " << i;
-    EXPECT_EQ(handedOver[i].u, full[i].u) << "ray " << i;
-    EXPECT_EQ(handedOver[i].v, full[i].v) << "ray " << i;
-    if (::testing::Test::HasFailure()) break;
-  }
-  return hits;
-}
-
-// A ray that needs more pending subtrees than the stack holds finishes with the linked walk: with
-// room for one, nearly every ray hands over, and the hits stay those of the full stack, bit for
-// bit (the closest hit and its ties do not depend on the visiting order).
-TEST_F(TraceRays, AShortStackHandsOverToTheLinkedWalkWithTheSameHits) {
-  const TriangleMesh mesh = bvh::test::randomSoup(4000, 0.1f, 21);
-  const scene::Scene scene = sceneOf(mesh);
-  vk::FrameRecorder frame(context());
-  TraceScene traceScene(context(), scene, frame);
-  const float time = 0.0f;
-  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
-  std::vector<gpu::TraceRay> rays;
-  for (const Ray& ray : bvh::test::mixedRays(mesh, 3000, 22)) rays.push_back(traceRay(ray));
-  const std::vector<gpu::BvhHit> handedOver = traceOnDevice(context(), traceScene, rays, 0, 1);
-  EXPECT_GE(hitsOfAShortStack(context(), traceScene, rays, handedOver), 1000u);
-  // And both are right: the full stack against brute force.
-  TriangleMesh oneObject = mesh;
-  oneObject.objectIds.assign(mesh.triangleCount(), 1u);
-  Comparison c;
-  const std::vector<Ray> hostRays = bvh::test::mixedRays(mesh, 3000, 22);
-  for (size_t i = 0; i < hostRays.size(); ++i)
-    c.add(i, bvh::bruteForceClosestHit(oneObject.view(), hostRays[i]), handedOver[i], 0u, 1e-5f);
-  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
-}
-
 TEST_F(TraceRays, AxisAlignedRaysMatchBruteForce) {
   const TriangleMesh mesh = bvh::test::cubeSphere(12);
   const Comparison c = compareOnMesh(mesh, axisRays(mesh, 3000, 13));
@@ -387,25 +345,6 @@ TEST_F(TwoLevelScene, MotionBoundsHoldEveryInstanceAtEveryShutterTime) {
   for (const gpu::BvhBox& b : boxes) instanceBoxes.push_back({glm::vec3(b.min), glm::vec3(b.max)});
   instanceBoxes.resize(scene_.instances.size());
   EXPECT_EQ(bvh::test::structuralProblem(top, instanceBoxes, HMB_BVH_MAX_INSTANCE_LEAF), "");
-}
-
-// The top level is walked like the mesh trees, with the same hand-over to the linked walk: with
-// room for one pending subtree, the rays through four moving instances, at every shutter time
-// and with ignored objects, get the same hits, bit for bit, as with the full stack.
-TEST_F(TwoLevelScene, AShortStackHandsOverToTheLinkedWalksOnBothLevels) {
-  vk::FrameRecorder frame(context());
-  TraceScene traceScene(context(), scene_, frame);
-  traceScene.setShutterTimes(scene_, times_, frame);
-  TriangleMesh all;
-  for (uint32_t i = 0; i < scene_.instances.size(); ++i)
-    all.append(scene_.meshes[scene_.instances[i].mesh], scene_.worldMatrixAt(scene_.instances[i].node, 0.0f), i);
-  std::vector<gpu::TraceRay> rays;
-  const std::vector<Ray> mixed = bvh::test::mixedRays(all, 3000, 37);
-  for (size_t r = 0; r < mixed.size(); ++r)
-    rays.push_back(traceRay(mixed[r], static_cast<uint32_t>(r % times_.size()),
-                            r % 3 == 0 ? 10 + static_cast<uint32_t>(r % 4) : HMB_IGNORE_NONE));
-  const std::vector<gpu::BvhHit> handedOver = traceOnDevice(context(), traceScene, rays, 0, 1);
-  EXPECT_GE(hitsOfAShortStack(context(), traceScene, rays, handedOver), 700u);
 }
 
 TEST_F(TwoLevelScene, RaysAtEachShutterTimeMatchBruteForceWithAndWithoutIgnoredObject) {
