@@ -15,8 +15,6 @@
 #include "../bvh/packed_node.glsl"
 #include "trace_scene_bindings.glsl"
 
-const uint kTraceStackSize = HMB_TRACE_STACK_SIZE;
-
 // What a trace needs to know of the scene beside its buffers.
 struct TraceSceneInfo {
   uint instanceCount;
@@ -84,8 +82,8 @@ bool testLeaf(MeshRay m, uint first, uint count, inout BvhHit best) {
 // Module scope, so that the steps below read them without a copy.
 #define TOP_WALK 0
 #define MESH_WALK 1
-uint pendingWords[2][kTraceStackSize];
-float pendingEntries[2][kTraceStackSize];
+uint pendingWords[2][HMB_TRACE_STACK_SIZE];
+float pendingEntries[2][HMB_TRACE_STACK_SIZE];
 
 // The nearest put-off subtree that can still hold a nearer hit (as intersectBox widens): false
 // when none is left.
@@ -112,7 +110,7 @@ bool interiorStep(uint walk, uvec4 a, uvec4 b, PreparedRay r, BvhFrame frame, fl
   const bool hitB = intersectBoxEntry(r, packedLower(b, frame), packedUpper(b, frame), tMin, bestT, entryB);
   if (hitA && hitB) {
     const bool aFirst = entryA <= entryB;
-    const uint slot = min(pending, kTraceStackSize - 1u);
+    const uint slot = min(pending, HMB_TRACE_STACK_SIZE - 1u);
     pendingWords[walk][slot] = aFirst ? b.w : a.w;
     pendingEntries[walk][slot] = aFirst ? entryB : entryA;
     pending = slot + 1u;

@@ -34,6 +34,10 @@ std::array<uint32_t, 2> levelSpecialization(const BvhBuildShape& shape) {
   static_assert(HMB_SPEC_BVH_LEVEL_GROUP == 0 && HMB_SPEC_BVH_LANE_BINS == 1);
   return {shape.levelGroup, shape.laneBins ? 1u : 0u};
 }
+
+// Levels that halving every range takes n primitives down to one in: ceil(log2(n)), as
+// kernels/bvh/bvh_build_common.glsl's halvingsToOne.
+uint32_t halvingsToOne(uint32_t n) { return static_cast<uint32_t>(std::bit_width(std::max(n, 1u) - 1u)); }
 }  // namespace
 
 BvhBuildShape BvhBuildShape::forDevice(const vk::Context& context) {
@@ -117,8 +121,7 @@ void BvhBuildPass::limitDepth(uint32_t levels) {
 }
 
 uint32_t BvhBuildPass::firstSubmissionLevels(uint32_t largestTree) {
-  const auto log2Ceil = static_cast<uint32_t>(std::bit_width(std::max(largestTree, 1u) - 1u));
-  return std::min(kMaxLevelsPerSubmission, log2Ceil + kLevelMargin);
+  return std::min(kMaxLevelsPerSubmission, halvingsToOne(largestTree) + kLevelMargin);
 }
 
 const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
@@ -155,8 +158,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
                                 {HMB_BUILD_BINDING_FRAMES, &frames_}};
   uint32_t largestTree = 0;
   for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);
-  // Halving every range takes the largest tree to single primitives in this many levels.
-  const auto halvings = static_cast<uint32_t>(std::bit_width(std::max(largestTree, 1u) - 1u));
+  const uint32_t halvings = halvingsToOne(largestTree);
   if (halvings > maxDepth_)
     throw Error(name_ + ": a tree of " + std::to_string(largestTree) + " primitives needs " + std::to_string(halvings) +
                 " levels, more than the depth bound of " + std::to_string(maxDepth_));

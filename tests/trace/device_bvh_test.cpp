@@ -44,7 +44,7 @@ class DeviceBvh : public hmb::test::VulkanTest {
     const bvh::Bvh device = traceScene.meshBvh().download(0);
     const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
     EXPECT_EQ(bvh::test::structuralProblem(device, input.bounds, HMB_BVH_MAX_LEAF), "") << what;
-    EXPECT_LE(treeDepth(device), HMB_BVH_MAX_DEPTH) << what;
+    EXPECT_LE(levelsBelowRoot(device), HMB_BVH_MAX_DEPTH) << what;
     const bvh::Bvh reference = bvh::buildReferenceSah(input.bounds, input.centroids);
     const double ratio = bvh::sahCost(device) / bvh::sahCost(reference);
     const passes::BvhBuildStats& stats = traceScene.meshBvh().stats();
@@ -124,16 +124,16 @@ TEST_F(DeviceBvh, TreesStayWithinTheDepthBound) {
     vk::FrameRecorder frame(context());
     passes::BvhBuildPass unbounded(context(), "chain", HMB_BVH_MAX_LEAF);
     unbounded.build(frame, buffer, triangles, roots);
-    const uint32_t ownDepth = treeDepth(unbounded.download(0));
+    const uint32_t ownDepth = levelsBelowRoot(unbounded.download(0));
     ASSERT_GT(ownDepth, bound + 8) << triangles;
     passes::BvhBuildPass bounded(context(), "bounded chain", HMB_BVH_MAX_LEAF);
     bounded.limitDepth(bound);
     bounded.build(frame, buffer, triangles, roots);
     const bvh::Bvh tree = bounded.download(0);
     EXPECT_EQ(bvh::test::structuralProblem(tree, input.bounds, HMB_BVH_MAX_LEAF), "") << triangles;
-    EXPECT_LE(treeDepth(tree), bound) << triangles;
+    EXPECT_LE(levelsBelowRoot(tree), bound) << triangles;
     std::printf("[ depth    ] geometric chain, %u triangles: %u levels below the root, %u under a bound of %u\n",
-                triangles, ownDepth, treeDepth(tree), bound);
+                triangles, ownDepth, levelsBelowRoot(tree), bound);
     // A bound the tree cannot keep even when halved throughout is refused.
     bounded.limitDepth(bound - 4);
     EXPECT_THROW(bounded.build(frame, buffer, triangles, roots), hmb::Error) << triangles;
@@ -394,7 +394,7 @@ TEST_F(DeviceBvh, ManyMeshesBuildTogether) {
     const bvh::PrimitiveBounds input = bvh::triangleBounds(meshes[m].view());
     const bvh::Bvh tree = traceScene.meshBvh().download(m);
     EXPECT_EQ(bvh::test::structuralProblem(tree, input.bounds, HMB_BVH_MAX_LEAF), "") << "mesh " << m;
-    EXPECT_LE(treeDepth(tree), HMB_BVH_MAX_DEPTH) << "mesh " << m;
+    EXPECT_LE(levelsBelowRoot(tree), HMB_BVH_MAX_DEPTH) << "mesh " << m;
   }
   EXPECT_TRUE(traceScene.meshBvh().download(4).nodes.empty());
 }

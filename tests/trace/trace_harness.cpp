@@ -1,7 +1,6 @@
 #include "tests/trace/trace_harness.h"
 
 #include <algorithm>
-#include <utility>
 
 #include "runtime/passes/trace_rays_pass.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -41,20 +40,6 @@ std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceSc
   std::vector<gpu::BvhHit> out = hits.download<gpu::BvhHit>();
   out.resize(rays.size());
   return out;
-}
-
-uint32_t treeDepth(const bvh::Bvh& tree) {
-  if (tree.nodes.empty()) return 0;
-  uint32_t deepest = 0;
-  std::vector<std::pair<uint32_t, uint32_t>> pending{{0u, 0u}};  // node, depth
-  while (!pending.empty()) {
-    const auto [n, depth] = pending.back();
-    pending.pop_back();
-    deepest = std::max(deepest, depth);
-    if (!bvh::isLeaf(tree.nodes.at(n)))
-      pending.insert(pending.end(), {{tree.nodes[n].leftOrFirst, depth + 1}, {tree.nodes[n].leftOrFirst + 1, depth + 1}});
-  }
-  return deepest;
 }
 
 }  // namespace hmb::trace::test

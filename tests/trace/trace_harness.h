@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bvh/bvh.h"
 #include "bvh/bvh_layout.h"
 #include "bvh/ray_intersection.h"
 #include "kernels/trace/trace_layout.h"
@@ -29,7 +30,8 @@ std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceSc
 std::vector<gpu::BvhHit> traceMesh(const vk::Context& context, const bvh::test::TriangleMesh& mesh,
                                    std::span<const bvh::Ray> rays);
 
-// Levels below the root of the tree's deepest node (0 for a root alone or an empty tree).
-uint32_t treeDepth(const bvh::Bvh& tree);
+// Levels below the root of the tree's deepest node, as HMB_BVH_MAX_DEPTH counts them (0 for a
+// root alone or an empty tree; bvh::depthOf counts the root as one).
+inline uint32_t levelsBelowRoot(const bvh::Bvh& tree) { return tree.nodes.empty() ? 0 : bvh::depthOf(tree) - 1; }
 
 }  // namespace hmb::trace::test
