@@ -10,10 +10,10 @@ namespace hmb::metrics {
 
 namespace {
 
-float displayValue(float linear) {
-  if (!std::isfinite(linear)) return 0.0f;
-  return io::linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
-}
+// The display value the PNG of this pixel holds: quantized to 8 bits, so that a PNG and an EXR
+// of the same render score the same (FLIP's power laws turn the quantization steps alone into
+// a mean error of about 0.01 where one image is quantized and the other not).
+float displayValue(float linear) { return float(io::encodeSrgb8(linear)) / 255.0f; }
 
 std::string lowerExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();

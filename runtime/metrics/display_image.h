@@ -1,5 +1,6 @@
 // The image every metric works on: display values (linear -> NaN/Inf to 0 -> clamp [0, 1] ->
-// sRGB), three floats per pixel, not quantized when made from floats.
+// sRGB -> 8 bits, the display transform of the PNGs), three floats per pixel. Made from floats
+// it is quantized as the PNG of the same image is, so both score the same.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +24,7 @@ struct DisplayImage {
 // 8-bit display pixels: value / 255; alpha is ignored.
 DisplayImage displayImageFromRgba8(const io::Rgba8Image& image);
 
-// Linear RGBA floats, 4 per pixel: NaN/Inf -> 0, clamp [0, 1], sRGB transfer function.
+// Linear RGBA floats, 4 per pixel: NaN/Inf -> 0, clamp [0, 1], sRGB transfer function, 8 bits.
 DisplayImage displayImageFromLinearRgba(uint32_t width, uint32_t height, std::span<const float> linearRgba);
 
 // The beauty layer (channels R, G, B) of a layered float image, through the display transform.

@@ -24,15 +24,17 @@ TEST(DisplayImage, FromRgba8DividesBy255AndDropsAlpha) {
   for (size_t i = 0; i < expected.size(); ++i) EXPECT_FLOAT_EQ(display.rgb[i], expected[i]) << i;
 }
 
-TEST(DisplayImage, FromLinearAppliesTheDisplayTransformWithoutQuantizing) {
+// Made from floats, the display values are the 8-bit codes the PNG of the same image holds.
+TEST(DisplayImage, FromLinearAppliesTheDisplayTransformQuantizedAsAPng) {
   const std::vector<float> rgba = {0.5f, 0.001f, 0.2f, 1.0f};
   const DisplayImage display = displayImageFromLinearRgba(1, 1, rgba);
-  EXPECT_FLOAT_EQ(display.rgb[0], io::linearToSrgb(0.5f));
-  EXPECT_FLOAT_EQ(display.rgb[1], io::linearToSrgb(0.001f));
-  EXPECT_FLOAT_EQ(display.rgb[2], io::linearToSrgb(0.2f));
-  // Not rounded to an 8-bit code.
-  const float code = display.rgb[0] * 255.0f;
-  EXPECT_GT(std::abs(code - std::round(code)), 1e-3f);
+  for (size_t c = 0; c < 3; ++c) {
+    EXPECT_FLOAT_EQ(display.rgb[c], float(io::encodeSrgb8(rgba[c])) / 255.0f) << c;
+    EXPECT_NEAR(display.rgb[c], io::linearToSrgb(rgba[c]), 0.5f / 255.0f) << c;
+  }
+  const std::vector<glm::vec4> pixel = {glm::vec4(rgba[0], rgba[1], rgba[2], rgba[3])};
+  const io::Rgba8Image png = io::encodeDisplay(1, 1, pixel);
+  EXPECT_EQ(display.rgb, displayImageFromRgba8(png).rgb);
 }
 
 TEST(DisplayImage, NonFiniteAndOutOfRangeLinearValuesAreSanitized) {
@@ -54,7 +56,7 @@ TEST(DisplayImage, FromLayeredFindsTheBeautyChannelsByName) {
   image.layers.push_back({.name = "depth", .channels = {"Z"}, .values = {5.0f}});
   image.layers.push_back({.name = "", .channels = {"A", "B", "G", "R"}, .values = {1.0f, 0.0f, 1.0f, 0.5f}});
   const DisplayImage display = displayImageFromLayered(image);
-  EXPECT_FLOAT_EQ(display.rgb[0], io::linearToSrgb(0.5f));
+  EXPECT_FLOAT_EQ(display.rgb[0], float(io::encodeSrgb8(0.5f)) / 255.0f);
   EXPECT_FLOAT_EQ(display.rgb[1], 1.0f);
   EXPECT_FLOAT_EQ(display.rgb[2], 0.0f);
 }
@@ -71,7 +73,7 @@ TEST(DisplayImage, LoadsPngAndExr) {
   io::writeExr(exr, layered);
   const DisplayImage fromExr = loadDisplayImage(exr);
   ASSERT_EQ(fromExr.height, 2u);
-  EXPECT_FLOAT_EQ(fromExr.rgb[0], io::linearToSrgb(0.25f));
+  EXPECT_FLOAT_EQ(fromExr.rgb[0], float(io::encodeSrgb8(0.25f)) / 255.0f);
   EXPECT_FLOAT_EQ(fromExr.rgb[5], 1.0f);
 }
 
