@@ -11,6 +11,7 @@
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "runtime/error.h"
@@ -121,6 +122,14 @@ bool finiteAsFloat(double v) { return std::isfinite(static_cast<float>(v)); }
 
 bool allFinite(const std::vector<double>& values) { return std::all_of(values.begin(), values.end(), finiteAsFloat); }
 
+// The extensions this loader implements (glTF 2.0 spec, 3.12): a file that requires any other
+// is refused; one that only uses another loads without it, with a warning. Quantized
+// geometry needs nothing more than readAccessor, which decodes every component type;
+// punctual lights are read where directional (others are ignored with a warning).
+bool implementedExtension(const std::string& name) {
+  return name == "KHR_mesh_quantization" || name == "KHR_lights_punctual";
+}
+
 struct Bytes {
   const uint8_t* data = nullptr;
   size_t size = 0;
@@ -133,10 +142,12 @@ class GltfImporter {
   Scene run() {
     scene_.name = path_.stem().string();
     checkExtensions();
+    warnOfIgnoredMaterialProperties();
     buildNodes();
     readSkins();
     readAnimations();
     placeContent();
+    if (scene_.triangleCount() == 0) warn("no triangles to draw: the image shows the background only");
     return std::move(scene_);
   }
 
@@ -250,12 +261,27 @@ class GltfImporter {
 
   // --- file level -------------------------------------------------------------------------
 
+  // Required extensions were refused before parsing (refuseWhatCannotLoad); what is only used
+  // is drawn without.
   void checkExtensions() {
-    for (const std::string& ext : model_.extensionsRequired) {
-      // Compressed geometry would silently load as empty accessors: refuse it instead.
-      if (ext.find("compression") != std::string::npos) fail("requires extension " + ext + ", which is not supported");
-      warn("required extension " + ext + " is ignored");
+    for (const std::string& ext : model_.extensionsUsed)
+      if (!implementedExtension(ext)) warn("extension " + ext + " is not implemented; drawn without it");
+  }
+
+  // Material properties the shading leaves out, one warning per kind with its count.
+  void warnOfIgnoredMaterialProperties() {
+    size_t emissive = 0, blended = 0, masked = 0;
+    for (const tinygltf::Material& m : model_.materials) {
+      const bool glows = m.emissiveTexture.index >= 0 ||
+                         std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(), [](double v) { return v != 0.0; });
+      emissive += glows;
+      blended += m.alphaMode == "BLEND";
+      masked += m.alphaMode == "MASK";
     }
+    const auto count = [](size_t n) { return std::to_string(n) + (n == 1 ? " material" : " materials"); };
+    if (emissive > 0) warn(count(emissive) + ": emission ignored");
+    if (blended > 0) warn(count(blended) + ": alphaMode BLEND drawn opaque");
+    if (masked > 0) warn(count(masked) + ": alphaMode MASK drawn opaque (no cutout)");
   }
 
   // --- nodes ------------------------------------------------------------------------------
@@ -1058,7 +1084,59 @@ void requireGlbVersion2(const fs::path& path) {
   if (in.gcount() < 8) return;  // too short: the parser says so
   const uint32_t version = header[4] | header[5] << 8 | header[6] << 16 | uint32_t(header[7]) << 24;
   if (version != 2)
-    throw Error(path.string() + ": binary glTF version " + std::to_string(version) + "; only version 2 is supported");
+    throw Error(path.string() + ": binary glTF version " + std::to_string(version) +
+                (version == 1 ? " (glTF 1.0)" : "") + "; only glTF 2.0 is supported");
+}
+
+// The file's JSON (a .gltf, or a .glb's first chunk), or null where it is not JSON (the parser
+// then says why). Read at most 256 MiB: no real scene description is larger.
+nlohmann::json fileJson(const fs::path& path, bool binary) {
+  constexpr uint64_t kMaxJsonBytes = uint64_t{256} << 20;
+  std::ifstream in(path, std::ios::binary);
+  uint64_t length = 0;
+  if (binary) {
+    unsigned char header[20] = {};
+    in.read(reinterpret_cast<char*>(header), sizeof(header));
+    if (in.gcount() < 20 || std::memcmp(header + 16, "JSON", 4) != 0) return nullptr;
+    length = header[12] | header[13] << 8 | header[14] << 16 | uint64_t(header[15]) << 24;
+  } else {
+    std::error_code ec;
+    length = fs::file_size(path, ec);
+    if (ec) return nullptr;
+  }
+  if (length > kMaxJsonBytes) return nullptr;
+  std::string text(length, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(length));
+  text.resize(static_cast<size_t>(in.gcount()));
+  return nlohmann::json::parse(text, nullptr, false);
+}
+
+// Refuses, with the reason, what the parser would misread or fail on obscurely: files of
+// another glTF version, and required extensions this loader does not implement (Draco's
+// compressed accessors have no buffer view, which the parser reports as "invalid bufferView").
+void refuseWhatCannotLoad(const fs::path& path, const nlohmann::json& json) {
+  if (!json.is_object()) return;
+  const auto asset = json.find("asset");
+  std::string version;
+  if (asset != json.end() && asset->is_object()) {
+    const auto v = asset->find("version");
+    if (v != asset->end() && v->is_string()) version = v->get<std::string>();
+    if (v != asset->end() && v->is_number()) version = v->dump();
+  }
+  if (version.empty())
+    throw Error(path.string() + ": no asset version (a glTF 1.0 file?); only glTF 2.0 is supported");
+  if (version.rfind("2.", 0) != 0 && version != "2")
+    throw Error(path.string() + ": a glTF " + version + " file; only glTF 2.0 is supported");
+  const auto required = json.find("extensionsRequired");
+  if (required == json.end() || !required->is_array()) return;
+  for (const nlohmann::json& entry : *required) {
+    if (!entry.is_string() || implementedExtension(entry.get<std::string>())) continue;
+    const std::string ext = entry.get<std::string>();
+    if (ext == "KHR_draco_mesh_compression")
+      throw Error(path.string() + ": requires KHR_draco_mesh_compression (Draco-compressed geometry), which this "
+                                  "loader does not decode; export it uncompressed");
+    throw Error(path.string() + ": requires extension " + ext + ", which this loader does not implement");
+  }
 }
 
 }  // namespace
@@ -1071,6 +1149,7 @@ Scene loadGltf(const std::filesystem::path& path) {
   bool ok = false;
   const bool binary = looksBinary(path);
   if (binary) requireGlbVersion2(path);
+  refuseWhatCannotLoad(path, fileJson(path, binary));
   try {
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(&decodeLater, nullptr);

@@ -1,10 +1,14 @@
 // Loading valid glTF files written by the tests themselves.
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
+#include "runtime/error.h"
 #include "scenes/gltf_loader.h"
+#include "scenes/load_scene.h"
 #include "tests/scenes/gltf_writer.h"
 
 namespace hmb::scene {
@@ -322,6 +326,141 @@ TEST(GltfLoaderTest, SceneWithoutNodesOrScenes) {
   noScenes.addNode({{"mesh", noScenes.addMesh({test::addQuadPrimitive(noScenes)})}});
   const Scene roots = loadGltf(noScenes.writeGltf(dir() / "noscenes.gltf"));
   EXPECT_EQ(roots.instances.size(), 1u);
+}
+
+// The glTF spec (3.12): a file that requires an extension the loader does not implement is
+// refused, saying which; Draco's accessors would otherwise fail as an "invalid bufferView".
+TEST(GltfLoaderTest, RequiredExtensionsItDoesNotImplementAreRefused) {
+  const auto refusal = [](GltfWriter& w, const std::string& name) {
+    try {
+      loadGltf(w.writeGltf(dir() / name));
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  GltfWriter transform;
+  transform.setSceneRoots({transform.addNode({{"mesh", transform.addMesh({test::addQuadPrimitive(transform)})}})});
+  transform.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  transform.doc["extensionsRequired"] = {"KHR_texture_transform"};
+  EXPECT_NE(refusal(transform, "requires-transform.gltf").find("requires extension KHR_texture_transform"),
+            std::string::npos);
+
+  GltfWriter draco;
+  json primitive = test::addQuadPrimitive(draco);
+  draco.doc["accessors"][primitive["attributes"]["POSITION"].get<int>()].erase("bufferView");
+  primitive["extensions"]["KHR_draco_mesh_compression"] = {{"bufferView", 0}, {"attributes", {{"POSITION", 0}}}};
+  draco.setSceneRoots({draco.addNode({{"mesh", draco.addMesh({primitive})}})});
+  draco.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  draco.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  EXPECT_NE(refusal(draco, "draco.gltf").find("Draco"), std::string::npos) << refusal(draco, "draco.gltf");
+
+  // What it implements may be required.
+  GltfWriter quantized;
+  quantized.setSceneRoots({quantized.addNode({{"mesh", quantized.addMesh({test::addQuadPrimitive(quantized)})}})});
+  quantized.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
+  quantized.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+  EXPECT_EQ(refusal(quantized, "quantized.gltf"), "loaded");
+}
+
+TEST(GltfLoaderTest, OtherGltfVersionsAreRefusedWithTheReason) {
+  const auto refusal = [](const std::filesystem::path& path) {
+    try {
+      loadGltf(path);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  GltfWriter w;
+  w.setSceneRoots({w.addNode({{"mesh", w.addMesh({test::addQuadPrimitive(w)})}})});
+  w.doc["asset"]["version"] = "1.0";
+  EXPECT_NE(refusal(w.writeGltf(dir() / "version1.gltf")).find("a glTF 1.0 file; only glTF 2.0"), std::string::npos);
+  w.doc.erase("asset");
+  EXPECT_NE(refusal(w.writeGltf(dir() / "no-asset.gltf")).find("no asset version"), std::string::npos);
+  // A binary glTF 1.0 container.
+  GltfWriter binary;
+  binary.setSceneRoots({binary.addNode({{"mesh", binary.addMesh({test::addQuadPrimitive(binary)})}})});
+  std::vector<uint8_t> bytes = binary.glbBytes();
+  bytes[4] = 1;
+  const std::filesystem::path glb = dir() / "version1.glb";
+  std::ofstream(glb, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  EXPECT_NE(refusal(glb).find("(glTF 1.0); only glTF 2.0"), std::string::npos) << refusal(glb);
+}
+
+// What the shading leaves out is said: extensions used but not implemented, emission, alpha
+// modes, and a file with nothing to draw.
+TEST(GltfLoaderTest, WhatTheShadingLeavesOutIsAWarning) {
+  const auto has = [](const Scene& scene, const std::string& text) {
+    return std::any_of(scene.stats.warnings.begin(), scene.stats.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+  };
+  GltfWriter w;
+  json quad = test::addQuadPrimitive(w);
+  quad["material"] = 0;
+  w.doc["materials"] = json::array({{{"emissiveFactor", {1.0, 0.5, 0.0}}, {"alphaMode", "BLEND"}},
+                                    {{"alphaMode", "MASK"}}});
+  w.doc["extensionsUsed"] = {"KHR_materials_clearcoat"};
+  w.setSceneRoots({w.addNode({{"mesh", w.addMesh({quad})}})});
+  const Scene scene = loadGltf(w.writeGltf(dir() / "left-out.gltf"));
+  EXPECT_TRUE(has(scene, "extension KHR_materials_clearcoat is not implemented"));
+  EXPECT_TRUE(has(scene, "1 material: emission ignored"));
+  EXPECT_TRUE(has(scene, "1 material: alphaMode BLEND drawn opaque"));
+  EXPECT_TRUE(has(scene, "1 material: alphaMode MASK"));
+  EXPECT_FALSE(has(scene, "no triangles"));
+
+  GltfWriter points;
+  json point = test::addQuadPrimitive(points);
+  point["mode"] = 0;
+  points.setSceneRoots({points.addNode({{"mesh", points.addMesh({point})}})});
+  const Scene nothing = loadGltf(points.writeGltf(dir() / "points-only.gltf"));
+  EXPECT_TRUE(has(nothing, "no triangles to draw"));
+}
+
+// A file or folder given as the scene that is not glTF is refused saying what it is; a glTF
+// file named otherwise is read by its content.
+TEST(LoadSceneTest, WhatIsNotAGltfFileIsRefusedSayingWhatItIs) {
+  const auto refusal = [](const std::filesystem::path& path) {
+    try {
+      loadScene(path.string());
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  const std::filesystem::path png = dir() / "picture.png";
+  const std::vector<uint8_t> bytes = test::encodePng(1, 1, 3, 8, {255, 0, 0});
+  std::ofstream(png, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  EXPECT_NE(refusal(png).find("a PNG image, not a scene"), std::string::npos) << refusal(png);
+  EXPECT_NE(refusal(dir()).find("a directory, not a glTF file"), std::string::npos) << refusal(dir());
+  const std::filesystem::path text = dir() / "notes.txt";
+  std::ofstream(text) << "not a scene";
+  EXPECT_NE(refusal(text).find("not a glTF file"), std::string::npos) << refusal(text);
+
+  GltfWriter w;
+  w.setSceneRoots({w.addNode({{"mesh", w.addMesh({test::addQuadPrimitive(w)})}})});
+  const std::filesystem::path renamed = dir() / "quad.bin-scene";
+  std::filesystem::copy_file(w.writeGlb(dir() / "quad-for-rename.glb"), renamed,
+                             std::filesystem::copy_options::overwrite_existing);
+  EXPECT_EQ(loadScene(renamed.string()).triangleCount(), 2u);
+}
+
+// The shutter a render asks for replaces the scene's; absurd values are refused.
+TEST(LoadSceneTest, ShutterChoiceReplacesTheScenesOwn) {
+  GltfWriter w;
+  w.setSceneRoots({w.addNode({{"mesh", w.addMesh({test::addQuadPrimitive(w)})}})});
+  const std::string path = w.writeGltf(dir() / "shutter.gltf").string();
+  const Scene scene = loadScene(path, ShutterChoice{.fps = 24.0f, .exposureSeconds = 0.01f});
+  EXPECT_FLOAT_EQ(scene.settings.fps, 24.0f);
+  EXPECT_FLOAT_EQ(scene.settings.exposure, 0.01f);
+  const Scene angle = loadScene(path, ShutterChoice{.fps = 60.0f, .shutterAngleDegrees = 180.0f});
+  EXPECT_FLOAT_EQ(angle.settings.exposure, 1.0f / 120.0f);
+  const Scene defaults = loadScene(path);
+  EXPECT_FLOAT_EQ(defaults.settings.fps, Settings{}.fps);
+  EXPECT_THROW(loadScene(path, ShutterChoice{.fps = 0.0f}), Error);
+  EXPECT_THROW(loadScene(path, ShutterChoice{.exposureSeconds = -1.0f}), Error);
+  EXPECT_THROW(loadScene(path, ShutterChoice{.exposureSeconds = std::nanf("")}), Error);
+  EXPECT_THROW(loadScene(path, ShutterChoice{.exposureSeconds = 0.01f, .shutterAngleDegrees = 90.0f}), Error);
 }
 
 }  // namespace
