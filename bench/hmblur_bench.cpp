@@ -48,7 +48,7 @@ struct GlobalOptions {
 };
 
 struct RasterOptions {
-  std::string out = "bench/results/raster-vs-graphics.json";
+  std::string out = "out/bench/raster-vs-graphics.json";
   std::vector<std::string> sizes = {"640x360", "1280x720", "1920x1080"};
   std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
   int warmup = 3;
@@ -56,7 +56,7 @@ struct RasterOptions {
 };
 
 struct BvhOptions {
-  std::string out = "bench/results/bvh-vs-embree.json";
+  std::string out = "out/bench/bvh-vs-embree.json";
   std::vector<std::string> scenes = [] {
     std::vector<std::string> names = hmb::scene::referenceSceneNames();
     names.push_back(hmb::bench::kCubeSphere1m);
@@ -70,7 +70,7 @@ struct BvhOptions {
 };
 
 struct ErrorTimeOptions {
-  std::string out = "bench/results/error-vs-time/error-vs-time.json";
+  std::string out = "out/bench/error-vs-time/error-vs-time.json";
   std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
   std::string size = "1280x720";
   std::string referenceDir;
@@ -82,7 +82,7 @@ struct ErrorTimeOptions {
 };
 
 struct PassesOptions {
-  std::string out = "bench/results/passes/passes.json";
+  std::string out = "out/bench/passes/passes.json";
   std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
   std::vector<std::string> sizes = {"640x360", "1280x720", "1920x1080"};
   std::vector<std::string> methods = {"sharp", "postprocess", "hybrid"};
@@ -91,7 +91,7 @@ struct PassesOptions {
 };
 
 struct KernelsOptions {
-  std::string out = "bench/results/kernels/kernels.json";
+  std::string out = "out/bench/kernels/kernels.json";
   hmb::bench::KernelsSuiteOptions suite;
   std::vector<std::string> sizes = [] {
     std::vector<std::string> names;
@@ -114,11 +114,16 @@ std::string commandLine(int argc, char** argv) {
   return line;
 }
 
-// Fails before any work when --out names a file in a directory that does not exist.
+// Before any work: --out's folder is made if missing, and refused if it cannot be. Results go
+// under out/bench/ unless --out says otherwise: the committed ones in bench/results/ change
+// only when a command names them.
 void checkOutputDirectory(const std::string& out) {
   const fs::path parent = fs::path(out).parent_path();
-  if (!out.empty() && !parent.empty() && !fs::is_directory(parent))
-    throw hmb::Error("--out '" + out + "': directory '" + parent.string() + "' does not exist");
+  if (out.empty() || parent.empty()) return;
+  std::error_code error;
+  fs::create_directories(parent, error);
+  if (!fs::is_directory(parent))
+    throw hmb::Error("--out '" + out + "': cannot create the folder '" + parent.string() + "'");
 }
 
 // Progress lines on stderr unless --quiet.

@@ -50,7 +50,7 @@ passes::PostProcessSettings validated(passes::PostProcessSettings s) {
 // One table's settings as a render's: `choices` picks the table's choices out of RenderSettings.
 template <class Choices, class Settings>
 void addDescriptions(std::vector<RenderSettingDescription>& out, const settings::Table<Choices, Settings>& table,
-                     Choices RenderSettings::*choices, const Settings& defaults,
+                     Choices RenderSettings::*choices, const Settings& defaults, std::vector<Method> methods,
                      const Settings* hybridDefaults = nullptr) {
   for (const auto& setting : table) {
     std::string defaultText = setting.defaultText;
@@ -63,8 +63,10 @@ void addDescriptions(std::vector<RenderSettingDescription>& out, const settings:
     const auto read = [read = setting.read, choices](RenderSettings& r, std::string_view text) { read(r.*choices, text); };
     const auto same = std::find_if(out.begin(), out.end(), [&](const auto& d) { return d.name == setting.name; });
     if (same == out.end()) {
-      out.push_back({std::string(setting.name), help, std::string(setting.valueName), setting.flag, read});
+      out.push_back({std::string(setting.name), help, std::string(setting.valueName), setting.flag, methods, read});
     } else {
+      for (Method m : methods)
+        if (std::find(same->methods.begin(), same->methods.end(), m) == same->methods.end()) same->methods.push_back(m);
       help[0] = char(std::tolower(static_cast<unsigned char>(help[0])));
       same->help += "; " + help;
       same->read = [first = same->read, read](RenderSettings& r, std::string_view text) {
@@ -90,9 +92,11 @@ std::vector<RenderSettingDescription> renderSettingDescriptions() {
   std::vector<RenderSettingDescription> out;
   const passes::PostProcessSettings hybridBlur = passes::HybridSettings{}.blur;
   addDescriptions(out, passes::postProcessSettingTable(), &RenderSettings::postprocess, passes::PostProcessSettings{},
-                  &hybridBlur);
-  addDescriptions(out, passes::hybridSettingTable(), &RenderSettings::hybrid, passes::HybridSettings{});
-  addDescriptions(out, passes::referenceSettingTable(), &RenderSettings::reference, passes::ReferenceSettings{});
+                  {Method::PostProcess, Method::Hybrid}, &hybridBlur);
+  addDescriptions(out, passes::hybridSettingTable(), &RenderSettings::hybrid, passes::HybridSettings{},
+                  {Method::Hybrid});
+  addDescriptions(out, passes::referenceSettingTable(), &RenderSettings::reference, passes::ReferenceSettings{},
+                  {Method::Reference});
   return out;
 }
 

@@ -98,6 +98,7 @@ struct RenderSettingDescription {
   std::string help;
   std::string valueName;  // "N", "X", "NAME", "FILE"
   bool flag = false;      // a switch without a value
+  std::vector<Method> methods;  // the methods it is a setting of
   // The text a user typed into the settings' choices (throws hmb::Error naming the setting).
   std::function<void(RenderSettings&, std::string_view text)> read;
 };

@@ -55,6 +55,7 @@ nlohmann::json sceneJson(const scene::Scene& scene) {
         {"edge_threshold", scene.settings.edgeThreshold},
         {"fps", scene.settings.fps},
         {"exposure_s", scene.settings.exposure},
+        {"shutter_angle_deg", scene.settings.exposure * scene.settings.fps * 360.0f},
         {"frame_time_s", scene.settings.frameTime}}},
       {"skipped",
        {{"line_primitives", scene.stats.linePrimitives},
@@ -100,6 +101,7 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
     if (result.reference) {
       json["samples_done"] = result.reference->samplesDone;
       json["samples_resumed"] = result.reference->samplesResumed;
+      json["pixel_samples"] = result.reference->pixelSamples;
       // Pixels that took every sample (the rest see one surface all shutter long); null: all.
       json["moving_pixels"] = result.reference->movingPixels ? nlohmann::json(*result.reference->movingPixels)
                                                              : nlohmann::json(nullptr);

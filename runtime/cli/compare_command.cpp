@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "runtime/cli/output_paths.h"
 #include "runtime/error.h"
 #include "runtime/io/image.h"
 #include "runtime/metrics/metrics.h"
@@ -19,20 +20,6 @@ namespace hmb::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lowerExtension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
-
-void checkJsonPath(const std::string& path) {
-  if (path.empty()) return;
-  if (lowerExtension(path) != ".json") throw Error("--json '" + path + "' must end in .json");
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw Error("--json '" + path + "': directory '" + parent.string() + "' does not exist");
-}
 
 metrics::DisplayImage loadSized(const std::string& path, const metrics::DisplayImage* reference,
                                 const std::string& referencePath) {
@@ -82,7 +69,8 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
 }
 
 int runCompare(const CompareOptions& options) {
-  checkJsonPath(options.json);
+  prepareOutputFile(options.json, {".json"}, "--json");
+  prepareOutputFolder(options.errorImagesDir, "--error-images");
   if (!(options.pixelsPerDegree > 0.0f) || !std::isfinite(options.pixelsPerDegree))
     throw Error("--ppd must be a positive number");
   metrics::MetricOptions metricOptions;
@@ -93,12 +81,6 @@ int runCompare(const CompareOptions& options) {
   if (!options.sharp.empty()) {
     const metrics::DisplayImage sharp = loadSized(options.sharp, &reference, options.reference);
     region = metrics::blurRegion(reference, sharp, metricOptions.blurRegionThreshold);
-  }
-  if (!options.errorImagesDir.empty()) {
-    std::error_code error;
-    fs::create_directories(options.errorImagesDir, error);
-    if (error || !fs::is_directory(options.errorImagesDir))
-      throw Error("--error-images '" + options.errorImagesDir + "': cannot create the folder");
   }
 
   nlohmann::json report = {

@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/cli/compare_command.h"
+#include "runtime/cli/output_paths.h"
 #include "runtime/error.h"
 #include "runtime/io/image.h"
 #include "runtime/metrics/display_image.h"
@@ -30,10 +31,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum ExitCode { kOk = 0, kError = 1, kValidationFailed = 3 };
+enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kValidationFailed = 3 };
 
 struct GlobalOptions {
   bool quiet = false;
+  bool strict = false;  // what the loader leaves out is an error, not a warning
   int device = -1;
   bool validation = false;
   bool bindByAddress = false;
@@ -49,6 +51,8 @@ struct RenderOptions {
   std::string report;
   std::string referenceImage;  // compare the result with this image (.exr or .png)
   std::string errorImage;      // FLIP error map of that comparison (.png)
+  hmb::scene::ShutterChoice shutter;
+  uint32_t repeat = 1;         // timed frames after the warm-up one; the median is printed
 };
 
 struct DemoOptions {
@@ -62,28 +66,33 @@ void progress(const GlobalOptions& global, const std::string& message) {
   if (!global.quiet) std::cerr << "hmblur: " << message << '\n';
 }
 
-std::string lowerExtension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
+// The most loader warnings printed; the report lists them all.
+constexpr size_t kMaxWarningsPrinted = 20;
 
-// Fails before any work when an output path cannot be written as asked.
-void checkOutputPath(const std::string& path, std::initializer_list<const char*> extensions, const char* what) {
-  if (path.empty()) return;
-  const std::string ext = lowerExtension(path);
-  if (std::none_of(extensions.begin(), extensions.end(), [&](const char* e) { return ext == e; })) {
-    std::string list;
-    for (const char* e : extensions) list += (list.empty() ? "" : " or ") + std::string(e);
-    throw hmb::Error(std::string(what) + " '" + path + "' must end in " + list);
+// Loads the scene and says what the loader left out: each distinct warning once on stderr
+// (none with --quiet); with --strict the first one is the error.
+hmb::scene::Scene loadSceneSaying(const GlobalOptions& global, const std::string& name,
+                                  const hmb::scene::ShutterChoice& shutter = {}) {
+  progress(global, "loading scene " + name);
+  hmb::scene::Scene scene = hmb::scene::loadScene(name, shutter);
+  std::vector<std::string> distinct;
+  for (const std::string& w : scene.stats.warnings)
+    if (std::find(distinct.begin(), distinct.end(), w) == distinct.end()) distinct.push_back(w);
+  if (global.strict && !distinct.empty())
+    throw hmb::Error(name + ": " + distinct.front() + " (--strict; " + std::to_string(distinct.size()) +
+                     " warning(s) in all)");
+  if (!global.quiet) {
+    for (size_t i = 0; i < std::min(distinct.size(), kMaxWarningsPrinted); ++i)
+      std::cerr << "hmblur: warning: " << name << ": " << distinct[i] << '\n';
+    if (distinct.size() > kMaxWarningsPrinted)
+      std::cerr << "hmblur: warning: " << name << ": " << distinct.size() - kMaxWarningsPrinted
+                << " more warnings (--report lists them all)\n";
   }
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw hmb::Error(std::string(what) + " '" + path + "': directory '" + parent.string() + "' does not exist");
+  return scene;
 }
 
 void writeImage(const fs::path& path, const hmb::RenderResult& result) {
-  if (lowerExtension(path) == ".exr")
+  if (hmb::cli::lowerExtension(path) == ".exr")
     hmb::io::writeExr(path, result.image);
   else
     hmb::io::writePng(path, result.display);
@@ -105,33 +114,44 @@ int validationVerdict(const hmb::vk::Context& context) {
   return kValidationFailed;
 }
 
+// Three significant digits at most: run-to-run noise is larger than the fourth.
 std::string formatMs(const std::optional<double>& ms) {
   if (!ms) return "n/a";
   char text[32];
-  std::snprintf(text, sizeof(text), "%.3f ms", *ms);
+  std::snprintf(text, sizeof(text), *ms >= 100.0 ? "%.0f ms" : *ms >= 10.0 ? "%.1f ms" : "%.2f ms", *ms);
   return text;
 }
 
-// Progress of the reference on stderr: samples done, rays per second, time left.
+// Progress of the reference on stderr: samples done, pixel samples taken per second, time
+// left. Where only moving pixels take the later samples, the rate counts what was taken.
 std::function<void(const hmb::passes::ReferenceProgress&)> referenceProgressPrinter(uint32_t width, uint32_t height) {
   using Clock = std::chrono::steady_clock;
-  auto start = std::make_shared<std::optional<Clock::time_point>>();
+  struct Start {
+    Clock::time_point time;
+    uint64_t pixelSamples = 0;
+  };
+  auto start = std::make_shared<std::optional<Start>>();
   auto lastPrint = std::make_shared<Clock::time_point>();
   return [=](const hmb::passes::ReferenceProgress& p) {
     const Clock::time_point now = Clock::now();
-    if (!*start) *start = now;
+    // The first sample starts the clock, so rates count the samples after it.
+    if (!*start) *start = Start{now, p.pixelSamples};
     const bool last = p.samplesDone == p.samplesTotal;
     if (!last && now - *lastPrint < std::chrono::seconds(2)) return;
     *lastPrint = now;
-    const double seconds = std::chrono::duration<double>(now - **start).count();
-    const uint32_t rendered = p.samplesDone - p.samplesResumed;
-    char line[160];
-    // The first sample starts the clock, so rates count the samples after it.
-    const double rate = rendered > 1 && seconds > 0.0 ? (rendered - 1) / seconds : 0.0;
+    const double seconds = std::chrono::duration<double>(now - (*start)->time).count();
+    const double rate = seconds > 0.0 ? double(p.pixelSamples - (*start)->pixelSamples) / seconds : 0.0;
+    const uint64_t perSample = p.movingPixels ? *p.movingPixels : uint64_t(width) * height;
+    const double left = rate > 0.0 ? double(p.samplesTotal - p.samplesDone) * double(perSample) / rate : 0.0;
+    char line[200];
     std::snprintf(line, sizeof(line), "hmblur: reference %u/%u spp, %.2f M pixel samples/s, %.0f s left", p.samplesDone,
-                  p.samplesTotal, rate * width * height * 1e-6,
-                  rate > 0.0 ? (p.samplesTotal - p.samplesDone) / rate : 0.0);
-    std::cerr << line << '\n';
+                  p.samplesTotal, rate * 1e-6, left);
+    std::string text = line;
+    if (last && p.movingPixels)
+      text += "; " + std::to_string(*p.movingPixels) + " of " + std::to_string(uint64_t(width) * height) +
+              " pixels see motion and took every sample, the rest one (" + std::to_string(p.pixelSamples) +
+              " pixel samples in all)";
+    std::cerr << text << '\n';
   };
 }
 
@@ -216,8 +236,7 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
     throw hmb::Error("--frames and --frame-time exclude each other: a frame's time is frame / fps");
   if (!options.referenceImage.empty() || !settings.reference.checkpoint.empty())
     throw hmb::Error("--frames renders a sequence: --reference and --checkpoint take one frame");
-  progress(global, "loading scene " + options.scene);
-  const hmb::scene::Scene scene = hmb::scene::loadScene(options.scene);
+  const hmb::scene::Scene scene = loadSceneSaying(global, options.scene, options.shutter);
   hmb::vk::Context context(contextOptions(global));
   progress(global, "device: " + context.info().name);
   hmb::Renderer renderer(context);
@@ -237,13 +256,13 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
                             {"time_s", *settings.frameTime},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
                             {"passes", hmb::passesJson(result.plan)}};
-    std::string line = "frame " + std::to_string(frame) + ": " + formatMs(result.frameMilliseconds);
-    if (!options.out.empty()) {
-      const fs::path path = framePath(options.out, frame, range.last);
-      writeImage(path, result);
-      entry["image"] = path.string();
-      line += " -> " + path.string();
-    }
+    // The first frame compiles the kernels and builds every tree; the next ones keep them.
+    std::string line = "frame " + std::to_string(frame) + ": " + formatMs(result.frameMilliseconds) +
+                       (frame == range.first ? " (first frame: kernels compiled)" : "");
+    const fs::path path = framePath(options.out, frame, range.last);
+    writeImage(path, result);
+    entry["image"] = path.string();
+    line += " -> " + path.string();
     report["frames"].push_back(entry);
     progress(global, line);
   }
@@ -251,15 +270,118 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
   return validationVerdict(context);
 }
 
-int render(const GlobalOptions& global, const RenderOptions& options) {
+// The name an image gets without --out: the scene's (a reference name, or the file's stem)
+// and the method's, in the working folder.
+std::string defaultOutput(const std::string& scene, const std::string& method) {
+  const fs::path path(scene);
+  const std::string ext = hmb::cli::lowerExtension(path);
+  const std::string stem = ext == ".gltf" || ext == ".glb" || fs::exists(path) ? path.stem().string() : scene;
+  return stem + "-" + method + ".png";
+}
+
+// The untimed first frame of a method: lavapipe compiles a kernel at its first dispatch, so a
+// method's first frame costs far more than the next. The reference takes one sample per pixel
+// in it (a full one would double the command's time); the rest render the frame as asked.
+hmb::RenderSettings warmUpSettings(hmb::RenderSettings settings) {
+  settings.onProgress = nullptr;
+  settings.reference.samplesPerPixel = 1;
+  settings.reference.checkpoint.clear();
+  return settings;
+}
+
+struct TimedRender {
+  hmb::RenderResult result;            // the last timed frame
+  std::optional<double> coldMs;        // the warm-up frame's device time
+  std::vector<double> framesMs;        // each timed frame's device time
+  std::optional<double> medianMs() const {
+    if (framesMs.empty()) return std::nullopt;
+    std::vector<double> sorted = framesMs;
+    std::sort(sorted.begin(), sorted.end());
+    const size_t n = sorted.size();
+    return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  }
+};
+
+// A warm-up frame, then `repeat` timed ones, each paying what a new frame does (no trees kept
+// from the frame before), as hmblur-bench times them.
+TimedRender renderTimed(hmb::Renderer& renderer, const hmb::scene::Scene& scene, hmb::RenderSettings settings,
+                        uint32_t repeat) {
+  settings.reuseAcrossFrames = false;
+  TimedRender timed;
+  timed.coldMs = renderer.render(scene, warmUpSettings(settings)).frameMilliseconds;
+  for (uint32_t i = 0; i < repeat; ++i) {
+    timed.result = renderer.render(scene, settings);
+    if (timed.result.frameMilliseconds) timed.framesMs.push_back(*timed.result.frameMilliseconds);
+  }
+  return timed;
+}
+
+nlohmann::json timingJson(const TimedRender& timed, hmb::Method method) {
+  const auto [low, high] = std::minmax_element(timed.framesMs.begin(), timed.framesMs.end());
+  return {{"frames_ms", timed.framesMs},
+          {"median_ms", hmb::optionalNumber(timed.medianMs())},
+          {"min_ms", timed.framesMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(*low)},
+          {"max_ms", timed.framesMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(*high)},
+          {"cold_ms", hmb::optionalNumber(timed.coldMs)},
+          {"cold_frame", method == hmb::Method::Reference ? "1 sample per pixel, kernels compiled on first use"
+                                                          : "the same frame, kernels compiled on first use"}};
+}
+
+// "12.3 ms (median of 5, 12.1-12.9; cold 812 ms)": the warm time first, the cold one labelled.
+std::string timingText(const TimedRender& timed, hmb::Method method) {
+  std::string text = formatMs(timed.medianMs());
+  if (timed.framesMs.size() > 1) {
+    const auto [low, high] = std::minmax_element(timed.framesMs.begin(), timed.framesMs.end());
+    text += " (median of " + std::to_string(timed.framesMs.size()) + ", " + formatMs(*low) + " to " + formatMs(*high);
+  } else {
+    text += " (";
+  }
+  text += std::string(timed.framesMs.size() > 1 ? "; " : "") + "first frame " + formatMs(timed.coldMs) +
+          (method == hmb::Method::Reference ? " at 1 spp" : "") + ", compiling kernels)";
+  return text;
+}
+
+// A method setting given for a method it does not belong to is an error naming its methods.
+void requireSettingsOfTheMethod(const std::vector<std::pair<hmb::RenderSettingDescription, std::optional<std::string>>>& given,
+                                hmb::Method method) {
+  for (const auto& [description, text] : given) {
+    if (!text || std::find(description.methods.begin(), description.methods.end(), method) != description.methods.end())
+      continue;
+    std::string owners;
+    for (hmb::Method m : description.methods)
+      owners += (owners.empty() ? "" : " or ") + std::string(hmb::methodName(m));
+    throw hmb::Error("--" + description.name + " is a setting of --method " + owners + ", not of --method " +
+                     std::string(hmb::methodName(method)));
+  }
+}
+
+// What `render` was asked, checked before anything is read or written: a wrong value here is
+// a usage error (exit 2), not a failure of the work.
+void checkRenderArguments(const RenderOptions& options,
+                          const std::vector<std::pair<hmb::RenderSettingDescription, std::optional<std::string>>>& given) {
+  hmb::RenderSettings settings = options.settings;
+  settings.method = hmb::parseMethod(options.method);
+  requireSettingsOfTheMethod(given, settings.method);
+  hmb::validateRenderSettings(settings);
+  if (options.repeat == 0 || options.repeat > 1000) throw hmb::Error("--repeat must be 1 to 1000");
+  hmb::scene::Settings shutterCheck;
+  hmb::scene::applyShutterChoice(options.shutter, shutterCheck);
+  if (!options.frames.empty()) parseFrames(options.frames);
+  if (!options.errorImage.empty() && options.referenceImage.empty())
+    throw hmb::Error("--error-image needs --reference");
+}
+
+int render(const GlobalOptions& global, RenderOptions options) {
   hmb::RenderSettings settings = options.settings;
   settings.method = hmb::parseMethod(options.method);
   settings.skipUnneededPasses = !options.runEveryPass;
   if (!global.quiet) settings.onProgress = referenceProgressPrinter(settings.width, settings.height);
   hmb::validateRenderSettings(settings);
-  checkOutputPath(options.out, {".exr", ".png"}, "--out");
-  checkOutputPath(options.report, {".json"}, "--report");
-  checkOutputPath(options.errorImage, {".png"}, "--error-image");
+  if (options.repeat == 0 || options.repeat > 1000) throw hmb::Error("--repeat must be 1 to 1000");
+  if (options.out.empty()) options.out = defaultOutput(options.scene, options.method);
+  hmb::cli::prepareOutputFile(options.out, {".exr", ".png"}, "--out");
+  hmb::cli::prepareOutputFile(options.report, {".json"}, "--report");
+  hmb::cli::prepareOutputFile(options.errorImage, {".png"}, "--error-image");
   if (!options.errorImage.empty() && options.referenceImage.empty())
     throw hmb::Error("--error-image needs --reference");
   if (!options.frames.empty()) return renderFrames(global, options, settings);
@@ -273,17 +395,19 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
                        hmb::metrics::sizeText(settings.width, settings.height));
   }
 
-  progress(global, "loading scene " + options.scene);
-  const hmb::scene::Scene scene = hmb::scene::loadScene(options.scene);
+  const hmb::scene::Scene scene = loadSceneSaying(global, options.scene, options.shutter);
   hmb::vk::Context context(contextOptions(global));
   progress(global, "device: " + context.info().name);
   hmb::Renderer renderer(context);
   progress(global, "rendering " + options.method + " at " + std::to_string(settings.width) + "x" +
                        std::to_string(settings.height));
-  const hmb::RenderResult result = renderer.render(scene, settings);
+  const TimedRender timed = renderTimed(renderer, scene, settings, options.repeat);
+  const hmb::RenderResult& result = timed.result;
 
-  if (!options.out.empty()) writeImage(options.out, result);
+  writeImage(options.out, result);
   nlohmann::json report = hmb::renderReport(context.info(), hmb::querySystemInfo(), scene, result);
+  report["timing"] = timingJson(timed, settings.method);
+  report["image"] = options.out;
   if (referenceImage) {
     // The blur region is where the reference differs from the sharp frame of the same instant.
     hmb::RenderSettings sharpSettings = settings;
@@ -301,7 +425,8 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
   }
   if (!options.report.empty()) hmb::writeJson(options.report, report);
   if (!global.quiet) {
-    std::cout << options.method << ": " << formatMs(result.frameMilliseconds) << " on " << context.info().name << '\n';
+    std::cout << options.method << ": " << timingText(timed, settings.method) << " on " << context.info().name
+              << " -> " << options.out << '\n';
     for (const auto& pass : result.plan.passes())
       std::cout << "  " << pass.name << ": "
                 << (!pass.run ? "skipped (" + pass.reason + ")"
@@ -315,10 +440,9 @@ int render(const GlobalOptions& global, const RenderOptions& options) {
 
 // The main job: the default scene with every method this build has, images and one report.
 int demo(const GlobalOptions& global, const DemoOptions& options) {
-  fs::create_directories(options.outDir);
+  hmb::cli::prepareOutputFolder(options.outDir, "--out-dir");
   const std::string sceneName = hmb::scene::referenceSceneNames().front();
-  progress(global, "loading scene " + sceneName);
-  const hmb::scene::Scene scene = hmb::scene::loadScene(sceneName);
+  const hmb::scene::Scene scene = loadSceneSaying(global, sceneName);
   hmb::vk::Context context(contextOptions(global));
   progress(global, "device: " + context.info().name);
   hmb::Renderer renderer(context);
@@ -344,7 +468,8 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     settings.reference.samplesPerPixel = options.referenceSpp;
     if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
     progress(global, "rendering " + method);
-    const hmb::RenderResult result = renderer.render(scene, settings);
+    const TimedRender timed = renderTimed(renderer, scene, settings, 1);
+    const hmb::RenderResult& result = timed.result;
     const fs::path stem = fs::path(options.outDir) / (sceneName + "-" + method);
     hmb::io::writePng(stem.string() + ".png", result.display);
     hmb::io::writeExr(stem.string() + ".exr", result.image);
@@ -354,11 +479,12 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     if (settings.method == hmb::Method::Sharp) sharp = display;
     nlohmann::json entry = {{"method", method},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
+                            {"timing", timingJson(timed, settings.method)},
                             {"settings", hmb::methodSettingsJson(result)},
                             {"passes", hmb::passesJson(result.plan)},
                             {"raster", hmb::rasterJson(result)},
                             {"images", {stem.string() + ".png", stem.string() + ".exr"}}};
-    std::string line = method + ": " + formatMs(result.frameMilliseconds);
+    std::string line = method + ": " + timingText(timed, settings.method);
     if (judge && method != "reference") {
       const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*judge, sharp.value_or(display));
       const hmb::metrics::Comparison comparison = hmb::metrics::compareImages(*judge, display, &region);
@@ -368,7 +494,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
       line += ", " + metrics.substr(0, metrics.size() - 1);
     }
     report["methods"].push_back(entry);
-    std::cout << line << " -> " << stem.string() << ".png\n";
+    if (!global.quiet) std::cout << line << " -> " << stem.string() << ".png\n";
   }
   // Side by side, sharp to reference: what a newcomer looks at first.
   std::vector<hmb::io::Rgba8Image> strip;
@@ -382,14 +508,14 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
   const fs::path stripPath = fs::path(options.outDir) / (sceneName + "-strip.png");
   hmb::io::writePng(stripPath, side);
   report["strip"] = {{"image", stripPath.string()}, {"order", hmb::methodNames()}};
-  std::cout << "strip (" << [&] {
+  if (!global.quiet) std::cout << "strip (" << [&] {
     std::string names;
     for (const std::string& m : hmb::methodNames()) names += (names.empty() ? "" : ", ") + m;
     return names;
   }() << "): " << stripPath.string() << '\n';
   const fs::path reportPath = fs::path(options.outDir) / "report.json";
   hmb::writeJson(reportPath, report);
-  std::cout << "report: " << reportPath.string() << '\n';
+  if (!global.quiet) std::cout << "report: " << reportPath.string() << '\n';
   return validationVerdict(context);
 }
 
@@ -400,8 +526,12 @@ int main(int argc, char** argv) {
                "all in Vulkan compute"};
   app.require_subcommand(1);
   app.fallthrough();
+  app.set_version_flag("--version", std::string("hmblur ") + HMB_VERSION);
   GlobalOptions global;
-  app.add_flag("-q,--quiet", global.quiet, "Print nothing but errors and results");
+  app.add_flag("-q,--quiet", global.quiet, "Print nothing but errors and results (no progress, no warnings)");
+  app.add_flag("--strict", global.strict,
+               "Refuse a scene the loader cannot draw whole: every warning (a skipped primitive, an ignored "
+               "extension or material property) is an error");
   app.add_option("--device", global.device, "Vulkan device index (see list-devices); default: best compute device")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--validation", global.validation,
@@ -422,13 +552,28 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--height", renderOptions.settings.height, "Image height in pixels")->capture_default_str();
   renderCmd->add_option("--frame-time", renderOptions.settings.frameTime,
                         "Time of the frame in seconds (shutter closes then); default: the scene's");
+  renderCmd->add_option("--fps", renderOptions.shutter.fps,
+                        "Frame rate: the previous frame, whose positions give the post-process methods their "
+                        "velocities, is 1/fps before; default: the scene's (a glTF file: 120)");
+  renderCmd->add_option("--exposure", renderOptions.shutter.exposureSeconds,
+                        "Shutter open time in seconds, ending at the frame time: the span every method blurs "
+                        "over; default: the scene's (a glTF file: 1/60 s)")
+      ->type_name("SECONDS");
+  renderCmd->add_option("--shutter-angle", renderOptions.shutter.shutterAngleDegrees,
+                        "The exposure as a shutter angle: 360 degrees is the whole frame interval (1/fps)")
+      ->type_name("DEGREES");
+  renderCmd->add_option("--repeat", renderOptions.repeat,
+                        "Time the frame this many times after an untimed first one; prints the median")
+      ->capture_default_str();
   renderCmd->add_option("--frames", renderOptions.frames,
                         "Render frames FIRST:LAST (at frame / fps) as an image sequence: --out NAME.png writes "
                         "NAME.0001.png ...; the report lists every frame");
   renderCmd->add_flag("--run-every-pass", renderOptions.runEveryPass,
                       "Run the passes that cannot change this frame too (by default they are skipped; the report "
                       "says which and why)");
-  renderCmd->add_option("--out", renderOptions.out, "Output image: .exr (beauty + AOV layers) or .png (display)");
+  renderCmd->add_option("--out", renderOptions.out,
+                        "Output image: .exr (beauty + AOV layers) or .png (display); default: SCENE-METHOD.png "
+                        "in the working folder. Missing folders are made");
   renderCmd->add_option("--report", renderOptions.report, "JSON report: device, settings, per-pass times");
   // Every method setting, from its one description; read once the command line is parsed.
   std::vector<std::pair<hmb::RenderSettingDescription, std::optional<std::string>>> methodSettings;
@@ -458,12 +603,20 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    const int code = app.exit(e);  // prints the help, the version or the error
+    return code == 0 ? kOk : kUsage;
   }
 
   try {
     for (const auto& [description, text] : methodSettings)
       if (text) description.read(renderOptions.settings, *text);
+    if (*renderCmd) checkRenderArguments(renderOptions, methodSettings);
+  } catch (const std::exception& e) {
+    std::cerr << "hmblur: error: " << e.what() << '\n';
+    return kUsage;
+  }
+
+  try {
     if (*listDevicesCmd) return listDevices();
     if (*listScenesCmd) return listScenes();
     if (*renderCmd) return render(global, renderOptions);

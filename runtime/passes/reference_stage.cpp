@@ -339,6 +339,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
           frame.dispatch(kAccumulate, kernel, bindings, params, groups);
         }
         vk::appendTimings(total, frame.submitAndWait());
+        progress_.pixelSamples += listed ? listLength : pixels;
         ++progress_.samplesDone;
         if (progress) progress(progress_);
       }

@@ -56,6 +56,9 @@ struct ReferenceProgress {
   // With a still camera, only pixels whose ray meets a moving instance's swept box take more
   // than one sample (the rest see one surface all shutter long); absent when all pixels do.
   std::optional<uint64_t> movingPixels;
+  // Samples taken by this call, over all pixels: the first sample takes every pixel, later
+  // ones only the moving pixels where they are listed (none on a still frame).
+  uint64_t pixelSamples = 0;
 };
 
 class ReferenceStage {

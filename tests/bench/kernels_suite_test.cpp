@@ -130,6 +130,18 @@ TEST(KernelsSuite, SceneIsAnAliasOfScenes) {
   EXPECT_EQ(report.at("cases").at(0).at("frame_ms").at("samples").size(), 1u);
 }
 
+// Without --out a suite writes under out/bench/ of the working folder, never into the
+// committed bench/results/.
+TEST(KernelsSuite, ResultsGoUnderOutBenchUnlessToldOtherwise) {
+  const fs::path dir = tempDir("bench_default_out");
+  fs::create_directories(dir / "bench" / "results");
+  const CliRun run = runProgram("cd " + dir.string() + " && " + std::string(HMB_BENCH_PATH),
+                                "--validation --quiet kernels --kernels tile-max --sizes 32x32 --warmup 0 --repeat 1");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "bench" / "kernels" / "kernels.json"));
+  EXPECT_TRUE(fs::is_empty(dir / "bench" / "results"));
+}
+
 TEST(KernelsSuite, UnknownSuiteOrOptionFails) {
   expectOneLineError(bench("--suite nosuch --repeat 1"), "unknown suite 'nosuch'");
   const CliRun unknownOption = bench("--suite kernels --no-such-option 1 --out ''");

@@ -15,6 +15,7 @@
 
 #include "runtime/io/image.h"
 #include "tests/cli/cli_harness.h"
+#include "tests/scenes/gltf_writer.h"
 #include "tests/scenes/malformed_corpus.h"
 
 namespace hmb::test {
@@ -129,10 +130,40 @@ TEST(CliTest, BadSizesAreRejected) {
   EXPECT_NE(hmblur("render --method test-pattern --height -5").exitCode, 0);
 }
 
+// One rule for every output: missing folders are made, and a place that cannot be written is
+// an error before anything is loaded or rendered.
 TEST(CliTest, BadOutputPathsFailBeforeRendering) {
+  const fs::path dir = tempDir("outputs");
+  std::ofstream(dir / "file.txt") << "a file, not a folder";
   expectOneLineError(hmblur("--quiet render --method test-pattern --out frame.bmp"), "must end in .exr or .png");
-  expectOneLineError(hmblur("--quiet render --method test-pattern --out /nonexistent-dir/frame.png"), "does not exist");
   expectOneLineError(hmblur("--quiet render --method test-pattern --report report.txt"), ".json");
+  // A 64-spp reference of the living room takes seconds; the error must come at once, before
+  // the scene is loaded (the progress lines would show it).
+  const CliRun blocked = hmblur("render --method reference --spp 64 --out " + (dir / "file.txt" / "frame.png").string());
+  expectOneLineError(blocked, "cannot create the folder");
+  EXPECT_EQ(blocked.output.find("loading scene"), std::string::npos) << blocked.output;
+  expectOneLineError(hmblur("--quiet render --method test-pattern --width 8 --height 8 --report " +
+                            (dir / "file.txt" / "r.json").string()),
+                     "cannot create the folder");
+  fs::create_directories(dir / "folder.png");
+  expectOneLineError(hmblur("--quiet render --method test-pattern --out " + (dir / "folder.png").string()),
+                     "is a folder");
+  expectOneLineError(hmblur("--quiet demo --out-dir " + (dir / "file.txt").string()), "is a file");
+
+  const CliRun made = hmblur("--quiet render --method test-pattern --width 8 --height 8 --out " +
+                             (dir / "new" / "deeper" / "frame.png").string());
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  EXPECT_TRUE(fs::exists(dir / "new" / "deeper" / "frame.png"));
+}
+
+// Without --out the image still gets written, under a name the command prints.
+TEST(CliTest, RenderWithoutOutWritesADefaultNameAndSaysWhere) {
+  const fs::path dir = tempDir("default_out");
+  const CliRun run = runProgram("cd " + dir.string() + " && " + std::string(HMB_CLI_PATH),
+                                "--validation render --scene temple --method sharp --width 16 --height 9");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "temple-sharp.png"));
+  EXPECT_NE(run.output.find("temple-sharp.png"), std::string::npos) << run.output;
 }
 
 // The default method renders the scene's G-buffer: its EXR carries the AOVs, its report the
@@ -160,6 +191,7 @@ TEST(CliTest, DemoWritesImagesAndAReport) {
   const fs::path dir = tempDir("demo");
   const CliRun run = hmblur("--quiet demo --width 32 --height 18 --out-dir " + dir.string());
   ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(run.output, "");  // --quiet: nothing but errors
   std::ifstream in(dir / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
   ASSERT_FALSE(report["methods"].empty());
@@ -184,6 +216,11 @@ TEST(CliTest, ReferenceRenderAndMetricsAgainstIt) {
   EXPECT_EQ(report["settings"]["spp"], 8);
   EXPECT_EQ(report["settings"]["seed"], 3);
   EXPECT_EQ(report["settings"]["samples_done"], 8);
+  // Only pixels the moving vase crosses take the later samples: the report counts what was taken.
+  const uint64_t pixels = 40 * 24, moving = report["settings"]["moving_pixels"].get<uint64_t>();
+  EXPECT_GT(moving, 0u);
+  EXPECT_LT(moving, pixels);
+  EXPECT_EQ(report["settings"]["pixel_samples"].get<uint64_t>(), pixels + 7 * moving);
 
   run = hmblur("--quiet render --scene living-room --method sharp" + size + " --reference " +
                (dir / "reference.exr").string() + " --report " + (dir / "sharp.json").string() + " --error-image " +
@@ -251,6 +288,98 @@ TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
   expectOneLineError(hmblur("--quiet render --method hybrid --max-recursion 0 --width 8 --height 8"), "recursion");
   expectOneLineError(hmblur("--quiet render --method hybrid --filter jimenez --width 8 --height 8"), "McGuire");
   expectOneLineError(hmblur("--quiet render --method hybrid --range centered --width 8 --height 8"), "adapted");
+}
+
+// What the loader leaves out reaches the terminal once per warning; --quiet silences it and
+// --strict refuses the scene.
+TEST(CliTest, LoaderWarningsReachStderrAndStrictRefusesThem) {
+  const fs::path dir = tempDir("warnings");
+  scene::test::GltfWriter w;
+  nlohmann::json quad = scene::test::addQuadPrimitive(w);
+  nlohmann::json points = quad;
+  points["mode"] = 0;
+  w.doc["extensionsUsed"] = {"KHR_materials_clearcoat"};
+  w.setSceneRoots({w.addNode({{"mesh", w.addMesh({quad, points})}}), w.addNode({{"mesh", 0}})});
+  const std::string scene = w.writeGltf(dir / "warned.gltf").string();
+  const std::string args = "render --scene " + scene + " --width 8 --height 8 --out " + (dir / "f.png").string();
+
+  const CliRun run = hmblur(args);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const auto count = [&](const std::string& text) {
+    size_t n = 0;
+    for (size_t at = run.output.find(text); at != std::string::npos; at = run.output.find(text, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("hmblur: warning: "), 2u) << run.output;  // the points primitive is one warning, used twice
+  EXPECT_EQ(count("KHR_materials_clearcoat is not implemented"), 1u) << run.output;
+  EXPECT_EQ(count("points skipped"), 1u) << run.output;
+
+  const CliRun quiet = hmblur("--quiet " + args);
+  ASSERT_EQ(quiet.exitCode, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("warning"), std::string::npos) << quiet.output;
+
+  expectOneLineError(hmblur("--quiet --strict " + args), "(--strict; 2 warning(s) in all)");
+}
+
+TEST(CliTest, VersionAndUsageErrorsExitTwo) {
+  const CliRun version = hmblur("--version");
+  EXPECT_EQ(version.exitCode, 0);
+  EXPECT_EQ(version.output.rfind("hmblur ", 0), 0u) << version.output;
+  EXPECT_EQ(hmblur("render --no-such-flag").exitCode, 2);
+  EXPECT_EQ(hmblur("render --width abc").exitCode, 2);
+  EXPECT_EQ(hmblur("no-such-command").exitCode, 2);
+  for (const auto& [args, needle] : std::vector<std::pair<std::string, std::string>>{
+           {"--method magic", "unknown method"},
+           {"--method sharp --spp 4", "--spp is a setting of --method reference, not of --method sharp"},
+           {"--method postprocess --edge-threshold 0.5", "--method hybrid"},
+           {"--method test-pattern --repeat 0", "--repeat"},
+           {"--method test-pattern --fps 0", "fps"},
+           {"--method test-pattern --exposure 0.01 --shutter-angle 90", "not both"},
+           {"--method test-pattern --frames 5", "FIRST:LAST"}}) {
+    const CliRun run = hmblur("--quiet render " + args);
+    EXPECT_EQ(run.exitCode, 2) << args << ": " << run.output;
+    expectOneLineError(run, needle);
+  }
+}
+
+// --fps, --exposure and --shutter-angle replace the scene's shutter, in the image and the report.
+TEST(CliTest, ShutterChoicesReachTheImageAndTheReport) {
+  const fs::path dir = tempDir("shutter");
+  const auto render = [&](const std::string& name, const std::string& shutter) {
+    const CliRun run = hmblur("--quiet render --scene temple --method postprocess --width 48 --height 27 " + shutter +
+                              " --out " + (dir / (name + ".png")).string() + " --report " +
+                              (dir / (name + ".json")).string());
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    nlohmann::json report;
+    std::ifstream(dir / (name + ".json")) >> report;
+    return report;
+  };
+  const nlohmann::json scenes = render("scenes", "");
+  const nlohmann::json chosen = render("chosen", "--fps 30 --exposure 0.004");
+  EXPECT_FLOAT_EQ(chosen["scene"]["settings"]["fps"].get<float>(), 30.0f);
+  EXPECT_FLOAT_EQ(chosen["scene"]["settings"]["exposure_s"].get<float>(), 0.004f);
+  EXPECT_NE(scenes["scene"]["settings"]["exposure_s"], chosen["scene"]["settings"]["exposure_s"]);
+  const nlohmann::json angle = render("angle", "--fps 60 --shutter-angle 180");
+  EXPECT_FLOAT_EQ(angle["scene"]["settings"]["exposure_s"].get<float>(), 1.0f / 120.0f);
+  EXPECT_FLOAT_EQ(angle["scene"]["settings"]["shutter_angle_deg"].get<float>(), 180.0f);
+  EXPECT_NE(io::readPng(dir / "scenes.png").pixels, io::readPng(dir / "chosen.png").pixels);
+}
+
+// `render` times a frame after an untimed first one (kernels compile on first use); --repeat
+// times it several times. The report keeps both, labelled.
+TEST(CliTest, RenderTimesWarmFramesAndReportsTheColdOneApart) {
+  const fs::path dir = tempDir("timing");
+  const CliRun run = hmblur("render --scene temple --method sharp --width 32 --height 18 --repeat 3 --out " +
+                            (dir / "f.png").string() + " --report " + (dir / "r.json").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("(median of 3, "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("first frame "), std::string::npos) << run.output;
+  nlohmann::json report;
+  std::ifstream(dir / "r.json") >> report;
+  EXPECT_EQ(report["timing"]["frames_ms"].size(), 3u);
+  EXPECT_TRUE(report["timing"]["median_ms"].is_number());
+  EXPECT_TRUE(report["timing"]["cold_ms"].is_number());
+  EXPECT_LE(report["timing"]["min_ms"].get<double>(), report["timing"]["median_ms"].get<double>());
 }
 
 TEST(CliTest, HelpListsTheSubcommands) {

@@ -96,6 +96,32 @@ TEST(CompareCli, IdenticalImagesShowAnInfinitePsnrAndWriteNull) {
   EXPECT_TRUE(json["sharp"].is_null());
 }
 
+// Metrics judge what a PNG shows: an EXR of the same render is quantized as its PNG is, so the
+// two score the same, as reference or as test. The tolerance allows the host's display
+// transform and the device's to round a pixel to neighbouring codes.
+TEST(CompareCli, APngAndAnExrOfTheSameRenderScoreTheSame) {
+  const fs::path dir = tempDir("compare_formats");
+  const std::string size = " --scene temple --width 48 --height 27 --out ";
+  for (const char* name : {"reference.exr", "reference.png"})
+    ASSERT_EQ(hmblur("--quiet render --method reference --spp 4" + size + (dir / name).string()).exitCode, 0);
+  for (const char* name : {"post.exr", "post.png"})
+    ASSERT_EQ(hmblur("--quiet render --method postprocess" + size + (dir / name).string()).exitCode, 0);
+  for (const char* reference : {"reference.exr", "reference.png"}) {
+    const fs::path json = dir / (std::string(reference) + ".json");
+    const CliRun run = hmblur("--quiet compare " + (dir / reference).string() + " " + (dir / "post.exr").string() +
+                              " " + (dir / "post.png").string() + " --json " + json.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    nlohmann::json metrics;
+    std::ifstream(json) >> metrics;
+    const auto& exr = metrics["images"][0]["metrics"]["frame"];
+    const auto& png = metrics["images"][1]["metrics"]["frame"];
+    EXPECT_GT(exr["flip"].get<double>(), 0.001) << reference;  // the post-process frame is not the reference
+    EXPECT_NEAR(exr["flip"].get<double>(), png["flip"].get<double>(), 1e-4) << reference;
+    EXPECT_NEAR(exr["psnr_db"].get<double>(), png["psnr_db"].get<double>(), 0.01) << reference;
+    EXPECT_NEAR(exr["ssim"].get<double>(), png["ssim"].get<double>(), 1e-4) << reference;
+  }
+}
+
 TEST(CompareCli, MissingFileIsAOneLineError) {
   const fs::path dir = tempDir("compare_missing");
   io::writePng(dir / "a.png", frame(5));
@@ -122,7 +148,11 @@ TEST(CompareCli, BadArgumentsFail) {
   io::writePng(dir / "a.png", frame(5));
   const std::string a = (dir / "a.png").string();
   expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --json metrics.txt"), "must end in .json");
-  expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --json /nonexistent-dir/m.json"), "does not exist");
+  // Missing folders are made; a folder that cannot be (a file stands in the way) is an error.
+  expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --json " + (dir / "a.png" / "m.json").string()),
+                     "cannot create the folder");
+  EXPECT_EQ(hmblur("--quiet compare " + a + " " + a + " --json " + (dir / "new" / "m.json").string()).exitCode, 0);
+  EXPECT_TRUE(fs::exists(dir / "new" / "m.json"));
   expectOneLineError(hmblur("--quiet compare " + a + " " + a + " --ppd 0"), "--ppd");
   EXPECT_NE(hmblur("compare " + a).exitCode, 0);  // no image to measure
   EXPECT_NE(hmblur("compare").exitCode, 0);
