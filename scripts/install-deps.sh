@@ -7,6 +7,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libtinygltf-dev libopenexr-dev libstb-dev
+  libfreetype-dev libfontconfig-dev fonts-dejavu-core  # captions on comparison strips
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev
   python3-matplotlib assimp-testmodels
   libembree-dev  # the CPU anchor of the bvh benchmark (optional: bench/CMakeLists.txt)

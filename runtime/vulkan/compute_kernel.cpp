@@ -93,7 +93,7 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
     pipelineInfo.stage.pName = "main";
     pipelineInfo.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specializationInfo;
     pipelineInfo.layout = layout_;
-    HMB_VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline_));
+    HMB_VK_CHECK(vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &pipelineInfo, nullptr, &pipeline_));
     vkDestroyShaderModule(device, module, nullptr);
   } catch (...) {
     if (module) vkDestroyShaderModule(device, module, nullptr);

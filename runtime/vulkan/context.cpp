@@ -355,6 +355,7 @@ Context::Context(const ContextOptions& options) : options_(options) {
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = queueFamily_;
     HMB_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
+    pipelineCache_ = std::make_unique<PipelineCache>(device_, physicalDevice_, options.pipelineCacheFolder);
   } catch (...) {
     releaseHandles();
     throw;
@@ -366,6 +367,7 @@ Context::~Context() { releaseHandles(); }
 void Context::releaseHandles() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    pipelineCache_.reset();
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
     vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;

@@ -5,12 +5,16 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
+
+#include "runtime/vulkan/pipeline_cache.h"
 
 namespace hmb::vk {
 
@@ -51,6 +55,8 @@ struct ContextOptions {
   // this many bytes (256 MiB on such GPUs): device-local memory the host cannot map, that small
   // heap, and system memory for staging. Tests that frames fit such devices.
   uint64_t hostVisibleDeviceLocalBytes = 0;
+  // Where compiled kernels are kept across runs (pipeline_cache.h); empty: in memory only.
+  std::filesystem::path pipelineCacheFolder = PipelineCache::defaultFolder();
 };
 
 class Context {
@@ -69,6 +75,8 @@ class Context {
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
   VkCommandPool commandPool() const { return commandPool_; }
+  // Every kernel's pipeline is made through it (and kept on disk when the options say where).
+  const PipelineCache& pipelineCache() const { return *pipelineCache_; }
   const DeviceInfo& info() const { return info_; }
   const VkPhysicalDeviceLimits& limits() const { return limits_; }
   bool validationEnabled() const { return validationEnabled_; }
@@ -120,6 +128,7 @@ class Context {
   VkQueue queue_ = VK_NULL_HANDLE;
   uint32_t queueFamily_ = 0;
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  std::unique_ptr<PipelineCache> pipelineCache_;
   VkPhysicalDeviceLimits limits_{};
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
   std::array<uint32_t, VK_MAX_MEMORY_TYPES> allocationTypes_{};  // memoryProperties_ type -> the device's

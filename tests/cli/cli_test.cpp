@@ -111,6 +111,20 @@ TEST(CliTest, EveryMalformedCorpusFileIsAOneLineError) {
   EXPECT_GE(files.size(), kMalformedCorpusMinFiles);
 }
 
+// A PNG or a folder given as the scene, a glTF 1.0 file and a Draco-compressed one are each
+// refused saying what they are.
+TEST(CliTest, FilesThatAreNotGltf2ScenesSayWhatTheyAre) {
+  const fs::path dir = tempDir("not_scenes");
+  io::writePng(dir / "picture.png", io::Rgba8Image{.width = 1, .height = 1, .pixels = {1, 2, 3, 255}});
+  expectOneLineError(hmblur("--quiet render --scene " + (dir / "picture.png").string()), "a PNG image, not a scene");
+  expectOneLineError(hmblur("--quiet render --scene " + dir.string()), "a directory, not a glTF file");
+  const fs::path corpus = HMB_MALFORMED_CORPUS_DIR;
+  expectOneLineError(hmblur("--quiet render --scene " + (corpus / "gltf-version-1.gltf").string()),
+                     "only glTF 2.0 is supported");
+  expectOneLineError(hmblur("--quiet render --scene " + (corpus / "requires-draco.gltf").string()),
+                     "KHR_draco_mesh_compression (Draco-compressed geometry)");
+}
+
 TEST(CliTest, UnknownSceneIsAOneLineErrorNamingTheScenes) {
   const CliRun run = hmblur("--quiet render --scene no-such-scene --method test-pattern");
   expectOneLineError(run, "no-such-scene");
@@ -200,8 +214,19 @@ TEST(CliTest, DemoWritesImagesAndAReport) {
     // Every method but the judge is measured against the reference.
     EXPECT_EQ(method.contains("metrics"), method["method"] != "reference") << method["method"];
   }
-  EXPECT_EQ(io::readPng(report["strip"]["image"].get<std::string>()).width,
-            32u * report["strip"]["order"].size());
+  const io::Rgba8Image strip = io::readPng(report["strip"]["image"].get<std::string>());
+  EXPECT_EQ(strip.width, 32u * report["strip"]["order"].size());
+  // Under the panels a band holds each one's caption (method, warm time, PSNR): light text on
+  // dark grey.
+  ASSERT_GT(strip.height, 18u);
+  EXPECT_TRUE(report["strip"]["captioned"].get<bool>());
+  size_t lit = 0;
+  for (size_t i = size_t(18) * strip.width * 4; i < strip.pixels.size(); i += 4) lit += strip.pixels[i] > 128;
+  EXPECT_GT(lit, 20u);
+  for (const auto& method : report["methods"]) {
+    EXPECT_TRUE(method["timing"]["median_ms"].is_number()) << method.dump();
+    EXPECT_TRUE(method["timing"]["cold_ms"].is_number()) << method.dump();
+  }
 }
 
 // The reference with its settings in the report, and another method measured against it.

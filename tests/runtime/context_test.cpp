@@ -1,6 +1,14 @@
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
 #include <gtest/gtest.h>
 
+#include "kernels/debug/test_pattern.h"
 #include "runtime/error.h"
+#include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "tests/support/vulkan_test.h"
@@ -24,6 +32,49 @@ TEST_F(ContextTest, ListDevicesIncludesTheChosenDevice) {
   ASSERT_FALSE(devices.empty());
   ASSERT_LT(context().info().index, devices.size());
   EXPECT_EQ(devices[context().info().index].name, context().info().name);
+}
+
+// Compiled kernels are kept on disk across runs: a file per device and driver build, written
+// when the context ends, whose header names that device; one that names another is replaced.
+TEST_F(ContextTest, PipelineCacheIsKeptOnDiskPerDevice) {
+  const std::filesystem::path folder = std::filesystem::path(testing::TempDir()) / "hmblur_pipeline_cache";
+  std::filesystem::remove_all(folder);
+  vk::ContextOptions options;
+  options.validation = true;
+  options.pipelineCacheFolder = folder;
+  std::filesystem::path file;
+  {
+    vk::Context owned(options);
+    file = owned.pipelineCache().file();
+    EXPECT_EQ(file.parent_path(), folder);
+    vk::ComputeKernel kernel(owned, "debug/test_pattern", sizeof(gpu::TestPatternParams));
+    EXPECT_EQ(owned.validationErrors(), 0u);
+  }
+  ASSERT_TRUE(std::filesystem::exists(file));
+  std::ifstream in(file, std::ios::binary);
+  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GE(data.size(), 16u + VK_UUID_SIZE);
+  VkPhysicalDeviceProperties props{};
+  vkGetPhysicalDeviceProperties(context().physicalDevice(), &props);
+  uint32_t vendor = 0, device = 0;
+  std::memcpy(&vendor, data.data() + 8, 4);
+  std::memcpy(&device, data.data() + 12, 4);
+  EXPECT_EQ(vendor, props.vendorID);
+  EXPECT_EQ(device, props.deviceID);
+
+  // A file of another device or of garbage is not handed to the driver, and is replaced.
+  std::ofstream(file, std::ios::binary) << "not a pipeline cache";
+  {
+    vk::Context again(options);
+    vk::ComputeKernel kernel(again, "debug/test_pattern", sizeof(gpu::TestPatternParams));
+    EXPECT_EQ(again.validationErrors(), 0u);
+  }
+  EXPECT_GE(std::filesystem::file_size(file), 16u + VK_UUID_SIZE);
+
+  // No folder: nothing written.
+  options.pipelineCacheFolder.clear();
+  vk::Context inMemory(options);
+  EXPECT_TRUE(inMemory.pipelineCache().file().empty());
 }
 
 TEST_F(ContextTest, DeviceIndexOutOfRangeIsAClearError) {

@@ -129,6 +129,18 @@ def main():
     write("truncated.gltf", valid[: len(valid) // 2])
     write("json-array.gltf", "[1, 2, 3]")
     write("no-asset.gltf", edited(lambda d: d.pop("asset")))
+    write("gltf-version-1.gltf", edited(lambda d: d["asset"].update(version="1.0")))
+    write("requires-unimplemented-extension.gltf",
+          edited(lambda d: d.update(extensionsUsed=["KHR_texture_transform"], extensionsRequired=["KHR_texture_transform"])))
+
+    def draco(d):
+        # Compressed geometry: the accessor has no buffer view, the primitive decodes it.
+        d["accessors"][0].pop("bufferView")
+        d["meshes"][0]["primitives"][0]["extensions"] = {
+            "KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}
+        d["extensionsUsed"] = d["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+
+    write("requires-draco.gltf", edited(draco))
     write("wrong-type-count.gltf", edited(lambda d: d["accessors"][0].update(count="three")))
     write("wrong-type-component.gltf", edited(lambda d: d["accessors"][0].update(componentType="FLOAT")))
     write("wrong-accessor-type.gltf", edited(lambda d: d["accessors"][0].update(type="VEC2")))
