@@ -234,10 +234,6 @@ fs::path framePath(const fs::path& out, uint32_t frame, uint32_t lastFrame) {
 // the next can use (the hybrid's trees) is kept. One report lists every frame's passes.
 int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb::RenderSettings settings) {
   const FrameRange range = parseFrames(options.frames);
-  if (settings.frameTime)
-    throw hmb::Error("--frames and --frame-time exclude each other: a frame's time is frame / fps");
-  if (!options.referenceImage.empty() || !settings.reference.checkpoint.empty())
-    throw hmb::Error("--frames renders a sequence: --reference and --checkpoint take one frame");
   const hmb::scene::Scene scene = loadSceneSaying(global, options.scene, options.shutter);
   hmb::vk::Context context(contextOptions(global));
   progress(global, "device: " + context.info().name);
@@ -368,24 +364,28 @@ void checkRenderArguments(const RenderOptions& options,
   if (options.repeat == 0 || options.repeat > 1000) throw hmb::Error("--repeat must be 1 to 1000");
   hmb::scene::Settings shutterCheck;
   hmb::scene::applyShutterChoice(options.shutter, shutterCheck);
-  if (!options.frames.empty()) parseFrames(options.frames);
+  if (!options.frames.empty()) {
+    parseFrames(options.frames);
+    if (settings.frameTime)
+      throw hmb::Error("--frames and --frame-time exclude each other: a frame's time is frame / fps");
+    if (!options.referenceImage.empty() || !settings.reference.checkpoint.empty())
+      throw hmb::Error("--frames renders a sequence: --reference and --checkpoint take one frame");
+    if (options.repeat != 1) throw hmb::Error("--repeat times one frame; --frames renders each frame once");
+  }
   if (!options.errorImage.empty() && options.referenceImage.empty())
     throw hmb::Error("--error-image needs --reference");
 }
 
+// After checkRenderArguments.
 int render(const GlobalOptions& global, RenderOptions options) {
   hmb::RenderSettings settings = options.settings;
   settings.method = hmb::parseMethod(options.method);
   settings.skipUnneededPasses = !options.runEveryPass;
   if (!global.quiet) settings.onProgress = referenceProgressPrinter(settings.width, settings.height);
-  hmb::validateRenderSettings(settings);
-  if (options.repeat == 0 || options.repeat > 1000) throw hmb::Error("--repeat must be 1 to 1000");
   if (options.out.empty()) options.out = defaultOutput(options.scene, options.method);
   hmb::cli::prepareOutputFile(options.out, {".exr", ".png"}, "--out");
   hmb::cli::prepareOutputFile(options.report, {".json"}, "--report");
   hmb::cli::prepareOutputFile(options.errorImage, {".png"}, "--error-image");
-  if (!options.errorImage.empty() && options.referenceImage.empty())
-    throw hmb::Error("--error-image needs --reference");
   if (!options.frames.empty()) return renderFrames(global, options, settings);
   // Read before rendering, so a bad reference fails at once.
   std::optional<hmb::metrics::DisplayImage> referenceImage;

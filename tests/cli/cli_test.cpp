@@ -360,7 +360,9 @@ TEST(CliTest, VersionAndUsageErrorsExitTwo) {
            {"--method test-pattern --repeat 0", "--repeat"},
            {"--method test-pattern --fps 0", "fps"},
            {"--method test-pattern --exposure 0.01 --shutter-angle 90", "not both"},
-           {"--method test-pattern --frames 5", "FIRST:LAST"}}) {
+           {"--method test-pattern --frames 5", "FIRST:LAST"},
+           {"--method test-pattern --frames 1:2 --repeat 3", "--repeat times one frame"},
+           {"--method test-pattern --frames 1:2 --frame-time 0.5", "exclude each other"}}) {
     const CliRun run = hmblur("--quiet render " + args);
     EXPECT_EQ(run.exitCode, 2) << args << ": " << run.output;
     expectOneLineError(run, needle);
