@@ -1,9 +1,9 @@
 // Reads of 16-byte records through uniform texel buffers (RGBA32UI views of storage buffers:
 // vk::Buffer::texelView). Kernels read what they fetch at per-lane addresses this way: on
-// lavapipe a texel fetch is one hardware gather per component across the SIMD lanes where a
-// storage-buffer load is a loop over the lanes; on GPUs it is the cached read-only path. A
-// fetch gathers all four words, so a kernel that needs one or two words of a record keeps the
-// storage-buffer load.
+// Mesa 22.3's lavapipe a texel fetch is one unconditional 16-byte load per lane and a transpose
+// where a storage-buffer load is a loop over the lanes with a branch each; on GPUs it is the
+// cached read-only path. A fetch loads all four words, so a kernel that needs one or two words
+// of a record keeps the storage-buffer load.
 #ifndef HMB_KERNELS_SHARED_TEXEL_RECORDS_GLSL
 #define HMB_KERNELS_SHARED_TEXEL_RECORDS_GLSL
 
