@@ -208,8 +208,7 @@ std::vector<DeviceInfo> Context::listDevices() {
   return infos;
 }
 
-Context::Context(const ContextOptions& options) : options_(options) {
-  InstanceSetup setup = portableSetup();
+VkDebugUtilsMessengerCreateInfoEXT Context::messengerCreateInfo() {
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messengerInfo.messageSeverity =
       VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -218,6 +217,12 @@ Context::Context(const ContextOptions& options) : options_(options) {
                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
   messengerInfo.pfnUserCallback = &Context::onDebugMessage;
   messengerInfo.pUserData = this;
+  return messengerInfo;
+}
+
+Context::Context(const ContextOptions& options) : options_(options) {
+  InstanceSetup setup = portableSetup();
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo = messengerCreateInfo();
 
   const bool debugUtils = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   if (options.validation) {
@@ -285,28 +290,10 @@ Context::Context(const ContextOptions& options) : options_(options) {
 
     physicalDevice_ = devices[chosen];
     info_ = infos[chosen];
-    if (options.disableInt64Atomics) info_.int64BufferAtomics = false;
+    queueFamily_ = static_cast<uint32_t>(pickQueueFamily(physicalDevice_));
+    readDevice(options);
     VkPhysicalDeviceProperties props{};
     vkGetPhysicalDeviceProperties(physicalDevice_, &props);
-    limits_ = props.limits;
-    if (options.storageBufferLimit > 0) {
-      limits_.maxPerStageDescriptorStorageBuffers =
-          std::min(limits_.maxPerStageDescriptorStorageBuffers, options.storageBufferLimit);
-      limits_.maxDescriptorSetStorageBuffers =
-          std::min(limits_.maxDescriptorSetStorageBuffers, options.storageBufferLimit);
-    }
-    if (options.texelBufferLimit > 0)
-      limits_.maxTexelBufferElements = std::min(limits_.maxTexelBufferElements, options.texelBufferLimit);
-    vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-    for (uint32_t t = 0; t < memoryProperties_.memoryTypeCount; ++t) allocationTypes_[t] = t;
-    if (options.hostVisibleDeviceLocalBytes > 0) pretendDiscreteMemory(options.hostVisibleDeviceLocalBytes);
-    if (options.memoryLimitBytes > 0) {
-      for (uint32_t h = 0; h < memoryProperties_.memoryHeapCount; ++h)
-        memoryProperties_.memoryHeaps[h].size =
-            std::min(memoryProperties_.memoryHeaps[h].size, options.memoryLimitBytes);
-      info_.deviceLocalBytes = std::min(info_.deviceLocalBytes, options.memoryLimitBytes);
-    }
-    queueFamily_ = static_cast<uint32_t>(pickQueueFamily(physicalDevice_));
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -350,26 +337,120 @@ Context::Context(const ContextOptions& options) : options_(options) {
     deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
     HMB_VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
-
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = queueFamily_;
-    HMB_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
-    pipelineCache_ = std::make_unique<PipelineCache>(device_, physicalDevice_, options.pipelineCacheFolder);
+    createOwnObjects(options);
   } catch (...) {
     releaseHandles();
     throw;
   }
 }
 
+Context::Context(const AdoptedVulkan& adopted, const ContextOptions& options) : options_(options), adopted_(true) {
+  const auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw Error("the adopted Vulkan device: " + what);
+  };
+  require(adopted.instance && adopted.physicalDevice && adopted.device,
+          "instance, physical device and device must all be given");
+  require(adopted.apiVersion >= VK_API_VERSION_1_1,
+          "needs an instance of Vulkan 1.1 or later (AdoptedVulkan::apiVersion says " +
+              versionString(adopted.apiVersion) + ")");
+  instance_ = adopted.instance;
+  physicalDevice_ = adopted.physicalDevice;
+  device_ = adopted.device;
+  try {
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(physicalDevice_, &props);
+    require(props.apiVersion >= VK_API_VERSION_1_1, "the physical device supports only Vulkan " +
+                                                        versionString(props.apiVersion) + "; 1.1 is needed");
+    uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+    require(adopted.queueFamily < familyCount, "queue family " + std::to_string(adopted.queueFamily) +
+                                                   " does not exist (" + std::to_string(familyCount) + " families)");
+    const VkQueueFamilyProperties& family = families[adopted.queueFamily];
+    require((family.queueFlags & VK_QUEUE_COMPUTE_BIT) != 0,
+            "queue family " + std::to_string(adopted.queueFamily) + " has no compute (VK_QUEUE_COMPUTE_BIT)");
+    require(adopted.queueIndex < family.queueCount, "queue " + std::to_string(adopted.queueIndex) + " of family " +
+                                                        std::to_string(adopted.queueFamily) + " does not exist (" +
+                                                        std::to_string(family.queueCount) + " queues)");
+    require(!options.bindByAddress || adopted.bufferDeviceAddress,
+            "binding by address needs bufferDeviceAddress (VkPhysicalDeviceBufferDeviceAddressFeatures) enabled "
+            "at vkCreateDevice");
+    require(!options.validation || adopted.debugUtils,
+            "counting validation messages needs VK_EXT_debug_utils enabled on the instance");
+
+    uint32_t index = 0;
+    const auto devices = physicalDevices(instance_);
+    for (uint32_t i = 0; i < devices.size(); ++i)
+      if (devices[i] == physicalDevice_) index = i;
+    info_ = describe(physicalDevice_, index);
+    // What the engine enabled, not what the device could: a kernel may use only those.
+    info_.int64BufferAtomics = info_.int64BufferAtomics && adopted.shaderInt64 && adopted.shaderBufferInt64Atomics;
+    info_.bufferDeviceAddress = info_.bufferDeviceAddress && adopted.bufferDeviceAddress;
+    info_.timestamps = family.timestampValidBits > 0 && props.limits.timestampPeriod > 0.0f;
+    info_.timestampMask = family.timestampValidBits >= 64 ? ~0ull : ((1ull << family.timestampValidBits) - 1);
+    queueFamily_ = adopted.queueFamily;
+    readDevice(options);
+    vkGetDeviceQueue(device_, queueFamily_, adopted.queueIndex, &queue_);
+
+    // The engine's instance keeps its own messengers; this one only counts what the library's
+    // work brings up, as an owned context's does.
+    if (options.validation) {
+      VkDebugUtilsMessengerCreateInfoEXT messengerInfo = messengerCreateInfo();
+      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+      require(create != nullptr, "vkCreateDebugUtilsMessengerEXT is missing (VK_EXT_debug_utils not enabled?)");
+      HMB_VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
+      validationEnabled_ = true;
+    }
+    createOwnObjects(options);
+  } catch (...) {
+    releaseHandles();
+    throw;
+  }
+}
+
+void Context::readDevice(const ContextOptions& options) {
+  if (options.disableInt64Atomics) info_.int64BufferAtomics = false;
+  VkPhysicalDeviceProperties props{};
+  vkGetPhysicalDeviceProperties(physicalDevice_, &props);
+  limits_ = props.limits;
+  if (options.storageBufferLimit > 0) {
+    limits_.maxPerStageDescriptorStorageBuffers =
+        std::min(limits_.maxPerStageDescriptorStorageBuffers, options.storageBufferLimit);
+    limits_.maxDescriptorSetStorageBuffers = std::min(limits_.maxDescriptorSetStorageBuffers, options.storageBufferLimit);
+  }
+  if (options.texelBufferLimit > 0)
+    limits_.maxTexelBufferElements = std::min(limits_.maxTexelBufferElements, options.texelBufferLimit);
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+  for (uint32_t t = 0; t < memoryProperties_.memoryTypeCount; ++t) allocationTypes_[t] = t;
+  if (options.hostVisibleDeviceLocalBytes > 0) pretendDiscreteMemory(options.hostVisibleDeviceLocalBytes);
+  if (options.memoryLimitBytes > 0) {
+    for (uint32_t h = 0; h < memoryProperties_.memoryHeapCount; ++h)
+      memoryProperties_.memoryHeaps[h].size = std::min(memoryProperties_.memoryHeaps[h].size, options.memoryLimitBytes);
+    info_.deviceLocalBytes = std::min(info_.deviceLocalBytes, options.memoryLimitBytes);
+  }
+}
+
+void Context::createOwnObjects(const ContextOptions& options) {
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = queueFamily_;
+  HMB_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
+  pipelineCache_ = std::make_unique<PipelineCache>(device_, physicalDevice_, options.pipelineCacheFolder);
+}
+
 Context::~Context() { releaseHandles(); }
 
+// What the context made is destroyed; an adopted instance and device are left to their owner
+// (waiting on the adopted queue only: the engine's other queues are its own business).
 void Context::releaseHandles() {
   if (device_) {
-    vkDeviceWaitIdle(device_);
+    if (adopted_ && queue_) vkQueueWaitIdle(queue_);
+    if (!adopted_) vkDeviceWaitIdle(device_);
     pipelineCache_.reset();
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
-    vkDestroyDevice(device_, nullptr);
+    if (!adopted_) vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
     commandPool_ = VK_NULL_HANDLE;
   }
@@ -380,7 +461,7 @@ void Context::releaseHandles() {
     messenger_ = VK_NULL_HANDLE;
   }
   if (instance_) {
-    vkDestroyInstance(instance_, nullptr);
+    if (!adopted_) vkDestroyInstance(instance_, nullptr);
     instance_ = VK_NULL_HANDLE;
   }
 }

@@ -59,9 +59,34 @@ struct ContextOptions {
   std::filesystem::path pipelineCacheFolder = PipelineCache::defaultFolder();
 };
 
+// An engine's own Vulkan objects, for a context that adopts them (an engine's fallback backend):
+// the library records and submits its work there and never destroys them. Vulkan cannot be
+// asked what a device was created with, so the engine says which of the features the library
+// can use it enabled; the library uses no others. It submits to and waits on the given queue,
+// which the engine must not use from another thread meanwhile (Vulkan's external
+// synchronization rule).
+struct AdoptedVulkan {
+  VkInstance instance = VK_NULL_HANDLE;
+  uint32_t apiVersion = 0;  // the instance's VkApplicationInfo::apiVersion: 1.1 or later
+  bool debugUtils = false;  // VK_EXT_debug_utils enabled on the instance (ContextOptions::validation)
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;  // must have VK_QUEUE_COMPUTE_BIT
+  uint32_t queueIndex = 0;
+  // Enabled at vkCreateDevice. Without them the rasterizer takes its 32-bit visibility path and
+  // kernels bind buffers by name (a device with too few bindings then cannot run them).
+  bool shaderInt64 = false;
+  bool shaderBufferInt64Atomics = false;
+  bool bufferDeviceAddress = false;
+};
+
 class Context {
  public:
   explicit Context(const ContextOptions& options = {});
+  // Adopts the engine's objects (throws hmb::Error naming what is missing or wrong). Of the
+  // options, those about a device's choice (deviceIndex) do not apply; validation counts the
+  // messages the library's work brings up, through a messenger of its own on the instance.
+  explicit Context(const AdoptedVulkan& adopted, const ContextOptions& options = {});
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -75,6 +100,7 @@ class Context {
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
   VkCommandPool commandPool() const { return commandPool_; }
+  bool adopted() const { return adopted_; }  // the instance and device are the engine's
   // Every kernel's pipeline is made through it (and kept on disk when the options say where).
   const PipelineCache& pipelineCache() const { return *pipelineCache_; }
   const DeviceInfo& info() const { return info_; }
@@ -116,6 +142,9 @@ class Context {
 
  private:
   void releaseHandles();
+  void readDevice(const ContextOptions& options);        // limits, memory, the options' pretences
+  void createOwnObjects(const ContextOptions& options);  // command pool, pipeline cache
+  VkDebugUtilsMessengerCreateInfoEXT messengerCreateInfo();
   void pretendDiscreteMemory(uint64_t barBytes);
   static VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
@@ -134,6 +163,7 @@ class Context {
   std::array<uint32_t, VK_MAX_MEMORY_TYPES> allocationTypes_{};  // memoryProperties_ type -> the device's
   DeviceInfo info_;
   ContextOptions options_;
+  bool adopted_ = false;
   bool validationEnabled_ = false;
 
   mutable std::atomic<uint64_t> memoryPeak_{0};
