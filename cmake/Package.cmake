@@ -1,0 +1,37 @@
+# `cmake --install`: the library as a CMake package (find_package(hmblur CONFIG), target
+# hmblur::hmblur), a pkg-config file, the public headers under include/hmblur/ with the
+# umbrella <hmblur/hmblur.h>, and the hmblur command. The layers are static libraries, so the
+# package config finds what they link.
+include(CMakePackageConfigHelpers)
+
+# The one target an engine links: every layer of the library.
+add_library(hmblur_library INTERFACE)
+target_link_libraries(hmblur_library INTERFACE hmb)
+set_target_properties(hmblur_library PROPERTIES EXPORT_NAME hmblur)
+add_library(hmblur::hmblur ALIAS hmblur_library)
+
+set(HMB_LAYERS hmb hmb_metrics hmb_io hmb_scenes hmb_bvh hmb_kernels)
+install(TARGETS ${HMB_LAYERS} hmblur_library EXPORT hmblurTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS hmblur RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(EXPORT hmblurTargets NAMESPACE hmblur:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/hmblur)
+
+# The headers the library's headers include, with their repository paths; the command line's
+# and the tests' stay out.
+install(DIRECTORY runtime scenes bvh kernels DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hmblur
+        FILES_MATCHING PATTERN "*.h"
+        PATTERN "cli" EXCLUDE)
+install(FILES runtime/hmblur.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hmblur)
+
+configure_package_config_file(cmake/hmblurConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/hmblurConfig.cmake
+                              INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/hmblur)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/hmblurConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/hmblurConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/hmblurConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/hmblur)
+
+# The .pc file finds its prefix from where it lies (pkg-config's ${pcfiledir}), so an install
+# under any --prefix describes itself.
+file(RELATIVE_PATH HMB_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+configure_file(cmake/hmblur.pc.in ${CMAKE_CURRENT_BINARY_DIR}/hmblur.pc @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/hmblur.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

@@ -1,0 +1,10 @@
+// The library's public API in one header, installed as <hmblur/hmblur.h>: a Vulkan context (its
+// own device, or an engine's adopted one), scenes, the renderer and its report.
+#pragma once
+
+#include "runtime/error.h"
+#include "runtime/renderer.h"
+#include "runtime/report.h"
+#include "runtime/vulkan/context.h"
+#include "scenes/load_scene.h"
+#include "scenes/scene.h"
