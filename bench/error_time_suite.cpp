@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "runtime/error.h"
+#include "runtime/io/image_files.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/vulkan/context.h"

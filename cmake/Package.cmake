@@ -10,7 +10,7 @@ target_link_libraries(hmblur_library INTERFACE hmb)
 set_target_properties(hmblur_library PROPERTIES EXPORT_NAME hmblur)
 add_library(hmblur::hmblur ALIAS hmblur_library)
 
-set(HMB_LAYERS hmb hmb_metrics hmb_io hmb_scenes hmb_bvh hmb_kernels)
+set(HMB_LAYERS hmb hmb_image hmb_scenes hmb_bvh hmb_kernels)
 install(TARGETS ${HMB_LAYERS} hmblur_library EXPORT hmblurTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS hmblur RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

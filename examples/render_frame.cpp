@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "runtime/renderer.h"
 #include "runtime/vulkan/context.h"
 #include "scenes/load_scene.h"

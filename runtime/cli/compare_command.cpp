@@ -11,7 +11,7 @@
 
 #include "runtime/cli/output_paths.h"
 #include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/report.h"
 

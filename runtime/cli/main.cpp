@@ -18,7 +18,7 @@
 #include "runtime/cli/compare_command.h"
 #include "runtime/cli/output_paths.h"
 #include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"

@@ -17,7 +17,7 @@
 #include <string_view>
 
 #include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 
 namespace hmb::io {
 

@@ -1,4 +1,6 @@
-// Images on the host: a layered float image for EXR (beauty + AOVs) and 8-bit RGBA for PNG.
+// Images on the host: a layered float image (beauty + AOVs, what an EXR holds) and 8-bit RGBA
+// (what a PNG holds), and the display transform between them. Reading and writing the files is
+// image_files.h, in a library of its own (hmb_io): the renderer needs none of it.
 #pragma once
 
 #include <cstdint>
@@ -34,15 +36,6 @@ struct Rgba8Image {
   uint32_t height = 0;
   std::vector<uint8_t> pixels;  // width * height * 4, top row first
 };
-
-// EXR: every layer's channels are written as "<layer>.<channel>" ("R" for the beauty layer),
-// FLOAT or UINT, ZIP-compressed. Non-finite floats are written as 0. Throws hmb::Error.
-void writeExr(const std::filesystem::path& path, const LayeredImage& image);
-LayeredImage readExr(const std::filesystem::path& path);
-
-// PNG through stb. Throws hmb::Error.
-void writePng(const std::filesystem::path& path, const Rgba8Image& image);
-Rgba8Image readPng(const std::filesystem::path& path);
 
 // The display transform, on the CPU: the plain C++ reference of the encode_display kernel.
 // Linear value -> NaN/Inf to 0 -> clamp [0, 1] -> sRGB transfer function -> round to 8 bits.

@@ -31,7 +31,7 @@
 #endif
 
 #include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 
 namespace hmb::io {
 

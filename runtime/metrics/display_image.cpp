@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "runtime/error.h"
+#include "runtime/io/image_files.h"
 
 namespace hmb::metrics {
 

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "tests/cli/cli_harness.h"
 #include "tests/scenes/gltf_writer.h"
 #include "tests/scenes/malformed_corpus.h"

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "tests/cli/cli_harness.h"
 
 namespace hmb::test {

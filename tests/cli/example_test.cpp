@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "tests/cli/cli_harness.h"
 
 namespace hmb::test {

@@ -2,6 +2,8 @@
 // the tree finds it (find_package(hmblur CONFIG), hmblur::hmblur, <hmblur/hmblur.h>), builds
 // and renders a frame; pkg-config describes the same library.
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -27,6 +29,15 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
                            "lib/pkgconfig/hmblur.pc", "bin/hmblur"})
     EXPECT_TRUE(fs::exists(prefix / file)) << file;
   EXPECT_FALSE(fs::exists(prefix / "include/hmblur/runtime/cli")) << "the command line's headers are not the API";
+  // The library needs Vulkan and what the renderer truly uses: not the command line's parser,
+  // nor the image files' and captions' libraries.
+  for (const char* file : {"lib/cmake/hmblur/hmblurConfig.cmake", "lib/cmake/hmblur/hmblurTargets.cmake",
+                           "lib/pkgconfig/hmblur.pc"}) {
+    std::ifstream in(prefix / file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* dependency : {"CLI11", "OpenEXR", "Freetype", "freetype", "fontconfig", "Fontconfig"})
+      EXPECT_EQ(text.find(dependency), std::string::npos) << file << " names " << dependency;
+  }
 
   const CliRun configure = runProgram(cmake, "-S " + quoted(HMB_CONSUMER_DIR) + " -B " + quoted(build) +
                                                  " -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" + quoted(prefix));

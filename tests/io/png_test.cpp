@@ -3,7 +3,7 @@
 #include <string>
 
 #include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "tests/io/test_files.h"
 
 namespace hmb::io {

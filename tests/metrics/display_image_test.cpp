@@ -4,7 +4,7 @@
 #include <limits>
 #include <vector>
 
-#include "runtime/io/image.h"
+#include "runtime/io/image_files.h"
 #include "runtime/metrics/display_image.h"
 #include "tests/metrics/metrics_test_images.h"
 
