@@ -35,6 +35,48 @@ BvhHit missedHit(float tMax) {
   return hit;
 }
 
+// A ray against one tree's packed boxes, in the tree's steps: the plane q steps from the
+// frame's origin is met at t = q a + c on its axis (a = step / d, c = (origin - o) / d), one
+// fused multiply-add where decoding the bound and intersecting it took four operations. That t
+// differs from the one through the stored float bound by the roundings of a, c and the fma and
+// by the bound's own rounding (origin + q step), together under 8 ulps of
+// q_max |a| + |c| + |origin / d|: the entry planes are moved nearer and the exit planes farther
+// by that much (cEntry, cExit), so every box the exact test meets is met. A zero direction
+// component makes its axis NaN or infinite both ways, which the test leaves out.
+struct TreeRay {
+  vec3 a;
+  vec3 cEntry;
+  vec3 cExit;
+  bvec3 negative;
+};
+
+TreeRay treeRay(PreparedRay r, BvhFrame frame) {
+  TreeRay t;
+  t.a = frame.step.xyz * r.inverseDirection;
+  const vec3 c = (frame.origin.xyz - r.origin) * r.inverseDirection;
+  const vec3 slack = (abs(t.a) * float(HMB_BVH_QUANTUM_MAX) + abs(c) + abs(frame.origin.xyz * r.inverseDirection)) *
+                     (8.0 / 16777216.0);
+  t.cEntry = c - slack;
+  t.cExit = c + slack;
+  t.negative = r.negative;
+  return t;
+}
+
+// intersectBoxEntry for a packed node of the tree, through its TreeRay.
+bool intersectPackedBox(TreeRay t, uvec4 node, float tMin, float tMax, out float near) {
+  const uvec3 lower = node.xyz & 0xffffu, upper = node.xyz >> 16u;
+  const vec3 entry = fma(vec3(mix(lower, upper, t.negative)), t.a, t.cEntry);
+  const vec3 exit = fma(vec3(mix(upper, lower, t.negative)), t.a, t.cExit);
+  float far = tMax;
+  near = tMin;
+  for (uint a = 0; a < 3; ++a) {
+    near = entry[a] > near ? entry[a] : near;
+    far = exit[a] < far ? exit[a] : far;
+  }
+  far += abs(far) * kBoxSlack;
+  return near <= far;
+}
+
 // What the walk through an instance's mesh tree needs: the ray in the instance's space, the
 // interval's start, the tree's frame, and how back faces are culled.
 struct MeshRay {
@@ -103,11 +145,11 @@ bool popPending(uint walk, inout uint pending, float bestT, out uint word) {
 // walk. A walk at depth d holds at most d pending subtrees, and no node is deeper than the
 // stack is long (HMB_TRACE_STACK_SIZE); the index is clamped all the same, so that a tree
 // that broke the bound could only cost hits, never write past the stack.
-bool interiorStep(uint walk, uvec4 a, uvec4 b, PreparedRay r, BvhFrame frame, float tMin, float bestT,
-                  inout uint pending, inout uint word) {
+bool interiorStep(uint walk, uvec4 a, uvec4 b, TreeRay tree, float tMin, float bestT, inout uint pending,
+                  inout uint word) {
   float entryA, entryB;
-  const bool hitA = intersectBoxEntry(r, packedLower(a, frame), packedUpper(a, frame), tMin, bestT, entryA);
-  const bool hitB = intersectBoxEntry(r, packedLower(b, frame), packedUpper(b, frame), tMin, bestT, entryB);
+  const bool hitA = intersectPackedBox(tree, a, tMin, bestT, entryA);
+  const bool hitB = intersectPackedBox(tree, b, tMin, bestT, entryB);
   if (hitA && hitB) {
     const bool aFirst = entryA <= entryB;
     const uint slot = min(pending, HMB_TRACE_STACK_SIZE - 1u);
@@ -137,16 +179,15 @@ bool walkMesh(MeshRay m, inout BvhHit best) {
   bool nearest = false;
   uint pending = 0u;
   const uvec4 root = meshNode(m.mesh);
+  const TreeRay tree = treeRay(m.r, m.frame);
   float entry;
-  if (!intersectBoxEntry(m.r, packedLower(root, m.frame), packedUpper(root, m.frame), m.tMin, best.t, entry))
-    return false;
+  if (!intersectPackedBox(tree, root, m.tMin, best.t, entry)) return false;
   uint word = root.w;  // the entered node's range: children, or triangles
   for (;;) {
     bool left = true;  // a subtree is left to walk
     while (left && isInterior(word)) {
       const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      left = interiorStep(MESH_WALK, meshNode(first), meshNode(first + 1u), m.r, m.frame, m.tMin, best.t, pending,
-                          word);
+      left = interiorStep(MESH_WALK, meshNode(first), meshNode(first + 1u), tree, m.tMin, best.t, pending, word);
     }
     if (!left) return nearest;
     if (testLeaf(m, word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, best)) nearest = true;
@@ -212,14 +253,15 @@ void walkTop(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit bes
   const BvhFrame frame = topFrame;
   const float tMin = ray.originTMin.w;
   const uvec4 root = topNode(HMB_BVH_ROOT);
+  const TreeRay tree = treeRay(r, frame);
   float entry;
-  if (!intersectBoxEntry(r, packedLower(root, frame), packedUpper(root, frame), tMin, best.t, entry)) return;
+  if (!intersectPackedBox(tree, root, tMin, best.t, entry)) return;
   uint word = root.w;
   for (;;) {
     bool left = true;
     while (left && isInterior(word)) {
       const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), r, frame, tMin, best.t, pending, word);
+      left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), tree, tMin, best.t, pending, word);
     }
     if (!left) return;
     traceTopLeaf(word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, ray, scene, best);

@@ -113,6 +113,41 @@ TEST_F(TraceRays, RandomSoupMatchesBruteForce) {
   EXPECT_GE(c.hits, 1500u);
 }
 
+// The trace meets each packed box through its tree's ray constants (t = q a + c per plane),
+// widened by the roundings of those constants and of the stored bounds. Far from the origin the
+// bounds' rounding dominates, and rays that start a hair from a triangle see the tightest
+// boxes: every such ray must still find what brute force finds.
+TEST_F(TraceRays, RaysStartingNextToTrianglesFarFromTheOriginMatchBruteForce) {
+  // 4 units of soup 400,000 units out: a float there is 1/32 apart, a tree's step 1/16,000.
+  TriangleMesh mesh = bvh::test::randomSoup(1500, 0.3f, 21);
+  const glm::vec3 offset(400000.0f, -300000.0f, 450000.0f);
+  for (glm::vec3& p : mesh.positions) p = p * 4.0f + offset;
+  std::mt19937 rng(22);
+  std::uniform_int_distribution<uint32_t> pick(0, mesh.triangleCount() - 1);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<Ray> rays;
+  for (uint32_t i = 0; i < 4000; ++i) {
+    const uint32_t t = pick(rng);
+    const glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
+                    c = mesh.positions[mesh.indices[3 * t + 2]];
+    float u = unit(rng), v = unit(rng);
+    if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+    const glm::vec3 point = a + u * (b - a) + v * (c - a);
+    const glm::vec3 normal = glm::normalize(glm::cross(b - a, c - a));
+    const float side = i % 2 ? 1.0f : -1.0f, gap = 0.1f * float(1 + i % 7);
+    const glm::vec3 origin = point + side * gap * normal;
+    // Back at the triangle, along it, or away into the soup.
+    const glm::vec3 jitter(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
+    const glm::vec3 direction = i % 3 == 0 ? -side * normal + 0.05f * jitter
+                                : i % 3 == 1 ? glm::cross(normal, jitter) + 1e-3f * normal
+                                             : jitter;
+    rays.push_back(Ray{origin, direction});
+  }
+  const Comparison c = compareOnMesh(mesh, rays);
+  EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
+  EXPECT_GE(c.hits, 1300u);
+}
+
 TEST_F(TraceRays, AxisAlignedRaysMatchBruteForce) {
   const TriangleMesh mesh = bvh::test::cubeSphere(12);
   const Comparison c = compareOnMesh(mesh, axisRays(mesh, 3000, 13));
