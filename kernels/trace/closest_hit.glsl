@@ -67,14 +67,7 @@ bool intersectPackedBox(TreeRay t, uvec4 node, float tMin, float tMax, out float
   const uvec3 lower = node.xyz & 0xffffu, upper = node.xyz >> 16u;
   const vec3 entry = fma(vec3(mix(lower, upper, t.negative)), t.a, t.cEntry);
   const vec3 exit = fma(vec3(mix(upper, lower, t.negative)), t.a, t.cExit);
-  float far = tMax;
-  near = tMin;
-  for (uint a = 0; a < 3; ++a) {
-    near = entry[a] > near ? entry[a] : near;
-    far = exit[a] < far ? exit[a] : far;
-  }
-  far += abs(far) * kBoxSlack;
-  return near <= far;
+  return slabsMeet(entry, exit, tMin, tMax, near);
 }
 
 // What the walk through an instance's mesh tree needs: the ray in the instance's space, the

@@ -41,13 +41,10 @@ PreparedRay prepareRay(vec3 origin, vec3 direction) {
   return r;
 }
 
-// True when the ray's [tMin, tMax] meets the box. A 0 * inf (a ray in a slab's boundary plane)
-// is NaN and leaves the interval as it was; an empty box (min > max) is never met.
-// `near` is where the ray enters the box (at least tMin).
-bool intersectBoxEntry(PreparedRay r, vec3 lo, vec3 hi, float tMin, float tMax, out float near) {
-  const vec3 entryPlane = mix(lo, hi, r.negative), exitPlane = mix(hi, lo, r.negative);
-  const vec3 entry = (entryPlane - r.origin) * r.inverseDirection;
-  const vec3 exit = (exitPlane - r.origin) * r.inverseDirection;
+// True when [tMin, tMax] meets three slabs, each given by the distances where the ray enters
+// and leaves it. A NaN distance (0 * inf: a ray in a slab's boundary plane) leaves the interval
+// as it was. `near` is where the ray enters them all (at least tMin).
+bool slabsMeet(vec3 entry, vec3 exit, float tMin, float tMax, out float near) {
   float far = tMax;
   near = tMin;
   for (uint a = 0; a < 3; ++a) {
@@ -56,6 +53,14 @@ bool intersectBoxEntry(PreparedRay r, vec3 lo, vec3 hi, float tMin, float tMax, 
   }
   far += abs(far) * kBoxSlack;
   return near <= far;
+}
+
+// True when the ray's [tMin, tMax] meets the box; an empty box (min > max) is never met.
+// `near` is where the ray enters the box (at least tMin).
+bool intersectBoxEntry(PreparedRay r, vec3 lo, vec3 hi, float tMin, float tMax, out float near) {
+  const vec3 entryPlane = mix(lo, hi, r.negative), exitPlane = mix(hi, lo, r.negative);
+  return slabsMeet((entryPlane - r.origin) * r.inverseDirection, (exitPlane - r.origin) * r.inverseDirection, tMin,
+                   tMax, near);
 }
 
 bool intersectBox(PreparedRay r, vec3 lo, vec3 hi, float tMin, float tMax) {
