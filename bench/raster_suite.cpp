@@ -69,13 +69,6 @@ double otherLoad(const CpuSample& from, const CpuSample& to) {
 namespace {
 
 // Linear interpolation between order statistics (the common "type 7" quantile).
-double quantile(const std::vector<double>& sorted, double q) {
-  const double pos = q * double(sorted.size() - 1);
-  const auto lo = static_cast<size_t>(std::floor(pos));
-  const size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (pos - double(lo)) * (sorted[hi] - sorted[lo]);
-}
-
 double required(const std::optional<double>& ms, const std::string& what) {
   if (!ms) throw Error(what + ": the device has no timestamps; the benchmark needs them");
   return *ms;
@@ -247,29 +240,12 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
 
 }  // namespace
 
-nlohmann::json summaryJson(const Summary& s) {
-  return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"q1", s.q1}, {"q3", s.q3}, {"samples", s.samples}};
-}
-
 ImageSize parseImageSize(const std::string& text) {
   unsigned width = 0, height = 0;
   char tail = 0;
   if (std::sscanf(text.c_str(), "%ux%u%c", &width, &height, &tail) != 2 || width == 0 || height == 0)
     throw Error("image size '" + text + "' must be WIDTHxHEIGHT, e.g. 1280x720");
   return {width, height};
-}
-
-Summary summarize(std::vector<double> samples) {
-  Summary s;
-  s.samples = samples;
-  if (samples.empty()) return s;
-  std::sort(samples.begin(), samples.end());
-  s.min = samples.front();
-  s.max = samples.back();
-  s.median = quantile(samples, 0.5);
-  s.q1 = quantile(samples, 0.25);
-  s.q3 = quantile(samples, 0.75);
-  return s;
 }
 
 std::vector<RasterCase> runRasterSuite(const vk::Context& compute, const vk::Context& graphics,

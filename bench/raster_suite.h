@@ -23,6 +23,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "runtime/sample_summary.h"
+
 namespace hmb::vk {
 class Context;
 }
@@ -71,16 +73,6 @@ struct RasterSuiteOptions {
   int warmup = 3;
   int repeats = 15;
 };
-
-// Median and spread of one quantity over the timed repeats.
-struct Summary {
-  double median = 0, min = 0, max = 0, q1 = 0, q3 = 0;  // q1/q3: the interquartile range
-  std::vector<double> samples;                         // in iteration order
-};
-
-Summary summarize(std::vector<double> samples);
-// Its JSON: median, min, max, q1, q3 and every sample.
-nlohmann::json summaryJson(const Summary& s);
 
 struct RasterCase {
   std::string scene;

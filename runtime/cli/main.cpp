@@ -24,6 +24,7 @@
 #include "runtime/metrics/metrics.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"
+#include "runtime/sample_summary.h"
 #include "runtime/system_info.h"
 #include "runtime/vulkan/context.h"
 #include "scenes/load_scene.h"
@@ -288,15 +289,11 @@ hmb::RenderSettings warmUpSettings(hmb::RenderSettings settings) {
 }
 
 struct TimedRender {
-  hmb::RenderResult result;            // the last timed frame
-  std::optional<double> coldMs;        // the warm-up frame's device time
-  std::vector<double> framesMs;        // each timed frame's device time
+  hmb::RenderResult result;      // the last timed frame
+  std::optional<double> coldMs;  // the warm-up frame's device time
+  hmb::Summary frames;           // the timed frames' device times (none without timestamps)
   std::optional<double> medianMs() const {
-    if (framesMs.empty()) return std::nullopt;
-    std::vector<double> sorted = framesMs;
-    std::sort(sorted.begin(), sorted.end());
-    const size_t n = sorted.size();
-    return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    return frames.samples.empty() ? std::nullopt : std::optional<double>(frames.median);
   }
 };
 
@@ -307,36 +304,36 @@ TimedRender renderTimed(hmb::Renderer& renderer, const hmb::scene::Scene& scene,
   settings.reuseAcrossFrames = false;
   TimedRender timed;
   timed.coldMs = renderer.render(scene, warmUpSettings(settings)).frameMilliseconds;
+  std::vector<double> framesMs;
   for (uint32_t i = 0; i < repeat; ++i) {
     timed.result = renderer.render(scene, settings);
-    if (timed.result.frameMilliseconds) timed.framesMs.push_back(*timed.result.frameMilliseconds);
+    if (timed.result.frameMilliseconds) framesMs.push_back(*timed.result.frameMilliseconds);
   }
+  timed.frames = hmb::summarize(std::move(framesMs));
   return timed;
 }
 
 nlohmann::json timingJson(const TimedRender& timed, hmb::Method method) {
-  const auto [low, high] = std::minmax_element(timed.framesMs.begin(), timed.framesMs.end());
-  return {{"frames_ms", timed.framesMs},
+  const bool any = !timed.frames.samples.empty();
+  return {{"frames_ms", timed.frames.samples},
           {"median_ms", hmb::optionalNumber(timed.medianMs())},
-          {"min_ms", timed.framesMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(*low)},
-          {"max_ms", timed.framesMs.empty() ? nlohmann::json(nullptr) : nlohmann::json(*high)},
+          {"min_ms", any ? nlohmann::json(timed.frames.min) : nlohmann::json(nullptr)},
+          {"max_ms", any ? nlohmann::json(timed.frames.max) : nlohmann::json(nullptr)},
           {"cold_ms", hmb::optionalNumber(timed.coldMs)},
           {"cold_frame", method == hmb::Method::Reference ? "1 sample per pixel, kernels compiled on first use"
                                                           : "the same frame, kernels compiled on first use"}};
 }
 
-// "12.3 ms (median of 5, 12.1-12.9; cold 812 ms)": the warm time first, the cold one labelled.
+// "12.3 ms (median of 5, 12.1 ms to 12.9 ms; first frame 812 ms, compiling kernels)": the warm
+// time first, the cold one labelled.
 std::string timingText(const TimedRender& timed, hmb::Method method) {
-  std::string text = formatMs(timed.medianMs());
-  if (timed.framesMs.size() > 1) {
-    const auto [low, high] = std::minmax_element(timed.framesMs.begin(), timed.framesMs.end());
-    text += " (median of " + std::to_string(timed.framesMs.size()) + ", " + formatMs(*low) + " to " + formatMs(*high);
-  } else {
-    text += " (";
-  }
-  text += std::string(timed.framesMs.size() > 1 ? "; " : "") + "first frame " + formatMs(timed.coldMs) +
-          (method == hmb::Method::Reference ? " at 1 spp" : "") + ", compiling kernels)";
-  return text;
+  const size_t n = timed.frames.samples.size();
+  std::string text = formatMs(timed.medianMs()) + " (";
+  if (n > 1)
+    text += "median of " + std::to_string(n) + ", " + formatMs(timed.frames.min) + " to " +
+            formatMs(timed.frames.max) + "; ";
+  return text + "first frame " + formatMs(timed.coldMs) + (method == hmb::Method::Reference ? " at 1 spp" : "") +
+         ", compiling kernels)";
 }
 
 // A method setting given for a method it does not belong to is an error naming its methods.
