@@ -68,12 +68,25 @@ int typeRank(VkPhysicalDeviceType type) {
   }
 }
 
-// The compute queue family: compute with timestamps first, then any compute family.
-int pickQueueFamily(VkPhysicalDevice device) {
+std::vector<VkQueueFamilyProperties> queueFamilies(VkPhysicalDevice device) {
   uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  return families;
+}
+
+// Whether the queue family times work (timestamps), and the mask of its valid bits.
+void describeTimestamps(DeviceInfo& info, const VkQueueFamilyProperties& family, float timestampPeriod) {
+  const uint32_t bits = family.timestampValidBits;
+  info.timestamps = bits > 0 && timestampPeriod > 0.0f;
+  info.timestampMask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+}
+
+// The compute queue family: compute with timestamps first, then any compute family.
+int pickQueueFamily(VkPhysicalDevice device) {
+  const std::vector<VkQueueFamilyProperties> families = queueFamilies(device);
+  const auto count = static_cast<uint32_t>(families.size());
   int best = -1;
   for (uint32_t i = 0; i < count; ++i) {
     if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
@@ -126,15 +139,7 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
 
   const int family = pickQueueFamily(device);
   info.computeCapable = family >= 0;
-  if (family >= 0) {
-    uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-    const uint32_t bits = families[family].timestampValidBits;
-    info.timestamps = bits > 0 && props.limits.timestampPeriod > 0.0f;
-    info.timestampMask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
-  }
+  if (family >= 0) describeTimestamps(info, queueFamilies(device)[family], props.limits.timestampPeriod);
 
   VkPhysicalDeviceMemoryProperties memory{};
   vkGetPhysicalDeviceMemoryProperties(device, &memory);
@@ -220,6 +225,13 @@ VkDebugUtilsMessengerCreateInfoEXT Context::messengerCreateInfo() {
   return messengerInfo;
 }
 
+void Context::createMessenger(const VkDebugUtilsMessengerCreateInfoEXT& info) {
+  auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+  if (!create) throw Error("validation requested but vkCreateDebugUtilsMessengerEXT is missing (VK_EXT_debug_utils)");
+  HMB_VK_CHECK(create(instance_, &info, nullptr, &messenger_));
+}
+
 Context::Context(const ContextOptions& options) : options_(options) {
   InstanceSetup setup = portableSetup();
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo = messengerCreateInfo();
@@ -251,12 +263,7 @@ Context::Context(const ContextOptions& options) : options_(options) {
   instance_ = createInstance(setup, next);
 
   try {
-    if (validationEnabled_) {
-      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-      if (!create) throw Error("validation requested but vkCreateDebugUtilsMessengerEXT is missing");
-      HMB_VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
-    }
+    if (validationEnabled_) createMessenger(messengerInfo);
 
     const auto devices = physicalDevices(instance_);
     if (devices.empty()) throw Error("no Vulkan device found (on Debian, mesa-vulkan-drivers provides lavapipe)");
@@ -361,10 +368,8 @@ Context::Context(const AdoptedVulkan& adopted, const ContextOptions& options) : 
     vkGetPhysicalDeviceProperties(physicalDevice_, &props);
     require(props.apiVersion >= VK_API_VERSION_1_1, "the physical device supports only Vulkan " +
                                                         versionString(props.apiVersion) + "; 1.1 is needed");
-    uint32_t familyCount = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
-    std::vector<VkQueueFamilyProperties> families(familyCount);
-    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+    const std::vector<VkQueueFamilyProperties> families = queueFamilies(physicalDevice_);
+    const auto familyCount = static_cast<uint32_t>(families.size());
     require(adopted.queueFamily < familyCount, "queue family " + std::to_string(adopted.queueFamily) +
                                                    " does not exist (" + std::to_string(familyCount) + " families)");
     const VkQueueFamilyProperties& family = families[adopted.queueFamily];
@@ -387,8 +392,7 @@ Context::Context(const AdoptedVulkan& adopted, const ContextOptions& options) : 
     // What the engine enabled, not what the device could: a kernel may use only those.
     info_.int64BufferAtomics = info_.int64BufferAtomics && adopted.shaderInt64 && adopted.shaderBufferInt64Atomics;
     info_.bufferDeviceAddress = info_.bufferDeviceAddress && adopted.bufferDeviceAddress;
-    info_.timestamps = family.timestampValidBits > 0 && props.limits.timestampPeriod > 0.0f;
-    info_.timestampMask = family.timestampValidBits >= 64 ? ~0ull : ((1ull << family.timestampValidBits) - 1);
+    describeTimestamps(info_, family, props.limits.timestampPeriod);
     queueFamily_ = adopted.queueFamily;
     readDevice(options);
     vkGetDeviceQueue(device_, queueFamily_, adopted.queueIndex, &queue_);
@@ -396,11 +400,7 @@ Context::Context(const AdoptedVulkan& adopted, const ContextOptions& options) : 
     // The engine's instance keeps its own messengers; this one only counts what the library's
     // work brings up, as an owned context's does.
     if (options.validation) {
-      VkDebugUtilsMessengerCreateInfoEXT messengerInfo = messengerCreateInfo();
-      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-      require(create != nullptr, "vkCreateDebugUtilsMessengerEXT is missing (VK_EXT_debug_utils not enabled?)");
-      HMB_VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
+      createMessenger(messengerCreateInfo());
       validationEnabled_ = true;
     }
     createOwnObjects(options);

@@ -145,6 +145,7 @@ class Context {
   void readDevice(const ContextOptions& options);        // limits, memory, the options' pretences
   void createOwnObjects(const ContextOptions& options);  // command pool, pipeline cache
   VkDebugUtilsMessengerCreateInfoEXT messengerCreateInfo();
+  void createMessenger(const VkDebugUtilsMessengerCreateInfoEXT& info);  // counts into this context
   void pretendDiscreteMemory(uint64_t barBytes);
   static VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
