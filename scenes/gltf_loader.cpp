@@ -261,7 +261,7 @@ class GltfImporter {
 
   // --- file level -------------------------------------------------------------------------
 
-  // Required extensions were refused before parsing (refuseWhatCannotLoad); what is only used
+  // Required extensions were refused after parsing (refuseWhatCannotLoad); what is only used
   // is drawn without.
   void checkExtensions() {
     for (const std::string& ext : model_.extensionsUsed)
@@ -1111,32 +1111,41 @@ nlohmann::json fileJson(const fs::path& path, bool binary) {
   return nlohmann::json::parse(text, nullptr, false);
 }
 
-// Refuses, with the reason, what the parser would misread or fail on obscurely: files of
-// another glTF version, and required extensions this loader does not implement (Draco's
-// compressed accessors have no buffer view, which the parser reports as "invalid bufferView").
-void refuseWhatCannotLoad(const fs::path& path, const nlohmann::json& json) {
-  if (!json.is_object()) return;
-  const auto asset = json.find("asset");
-  std::string version;
-  if (asset != json.end() && asset->is_object()) {
-    const auto v = asset->find("version");
-    if (v != asset->end() && v->is_string()) version = v->get<std::string>();
-    if (v != asset->end() && v->is_number()) version = v->dump();
-  }
+// Refuses, with the reason, files of another glTF version and files that require an extension
+// this loader does not implement.
+void refuseWhatCannotLoad(const fs::path& path, const std::string& version, const std::vector<std::string>& required) {
   if (version.empty())
     throw Error(path.string() + ": no asset version (a glTF 1.0 file?); only glTF 2.0 is supported");
   if (version.rfind("2.", 0) != 0 && version != "2")
     throw Error(path.string() + ": a glTF " + version + " file; only glTF 2.0 is supported");
-  const auto required = json.find("extensionsRequired");
-  if (required == json.end() || !required->is_array()) return;
-  for (const nlohmann::json& entry : *required) {
-    if (!entry.is_string() || implementedExtension(entry.get<std::string>())) continue;
-    const std::string ext = entry.get<std::string>();
+  for (const std::string& ext : required) {
+    if (implementedExtension(ext)) continue;
     if (ext == "KHR_draco_mesh_compression")
       throw Error(path.string() + ": requires KHR_draco_mesh_compression (Draco-compressed geometry), which this "
                                   "loader does not decode; export it uncompressed");
     throw Error(path.string() + ": requires extension " + ext + ", which this loader does not implement");
   }
+}
+
+// Where the parser failed, the file's own JSON says whether the reason is one of the above: a
+// glTF 1.0 layout, or Draco's compressed accessors, which have no buffer view (the parser
+// reports "invalid bufferView"). Returns when the JSON shows neither.
+void explainParseFailure(const fs::path& path, bool binary) {
+  const nlohmann::json json = fileJson(path, binary);
+  if (!json.is_object()) return;
+  std::string version;
+  const auto asset = json.find("asset");
+  if (asset != json.end() && asset->is_object()) {
+    const auto v = asset->find("version");
+    if (v != asset->end() && v->is_string()) version = v->get<std::string>();
+    if (v != asset->end() && v->is_number()) version = v->dump();
+  }
+  std::vector<std::string> required;
+  const auto listed = json.find("extensionsRequired");
+  if (listed != json.end() && listed->is_array())
+    for (const nlohmann::json& entry : *listed)
+      if (entry.is_string()) required.push_back(entry.get<std::string>());
+  refuseWhatCannotLoad(path, version, required);
 }
 
 }  // namespace
@@ -1149,16 +1158,21 @@ Scene loadGltf(const std::filesystem::path& path) {
   bool ok = false;
   const bool binary = looksBinary(path);
   if (binary) requireGlbVersion2(path);
-  refuseWhatCannotLoad(path, fileJson(path, binary));
   try {
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(&decodeLater, nullptr);
     ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path.string())
                 : parser.LoadASCIIFromFile(&model, &err, &warn, path.string());
   } catch (const std::exception& e) {
+    explainParseFailure(path, binary);
     throw Error(path.string() + ": " + oneLine(e.what()));
   }
-  if (!ok) throw Error(path.string() + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+  if (!ok) {
+    explainParseFailure(path, binary);
+    throw Error(path.string() + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+  }
+  // A file the parser read may still be one of another version, or need what is not here.
+  refuseWhatCannotLoad(path, model.asset.version, model.extensionsRequired);
 
   GltfImporter importer(path, model);
   Scene scene;

@@ -1,7 +1,6 @@
 #include "runtime/cli/compare_command.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
