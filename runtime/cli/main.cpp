@@ -467,9 +467,9 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     settings.reference.samplesPerPixel = options.referenceSpp;
     if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
     progress(global, "rendering " + method);
-    // The median of five frames: one frame's time moves by a third between runs here. The
+    // The median of nine frames: one frame's time moves by a third between runs here. The
     // reference, seconds long, is timed once.
-    const uint32_t repeat = settings.method == hmb::Method::Reference ? 1 : 5;
+    const uint32_t repeat = settings.method == hmb::Method::Reference ? 1 : 9;
     const TimedRender timed = renderTimed(renderer, scene, settings, repeat);
     const hmb::RenderResult& result = timed.result;
     const fs::path stem = fs::path(options.outDir) / (sceneName + "-" + method);
