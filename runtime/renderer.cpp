@@ -134,9 +134,9 @@ std::vector<std::string> methodNames() {
 }
 
 struct Renderer::Shared {
-  explicit Shared(vk::Context& context)
+  Shared(vk::Context& context, passes::VisibilityScheme visibilityScheme)
       : encodeDisplay(context),
-        gbuffer(context, passes::defaultVisibilityScheme(context.info())),
+        gbuffer(context, visibilityScheme),
         postProcess(context, passes::PostProcessSettings{}),
         recorder(context),
         resources{context, recorder, encodeDisplay, gbuffer, postProcess} {}
@@ -148,7 +148,7 @@ struct Renderer::Shared {
   std::map<Method, std::unique_ptr<FrameMethod>> methods;
 };
 
-Renderer::Renderer(vk::Context& context) : context_(context) {}
+Renderer::Renderer(vk::Context& context, RendererOptions options) : context_(context), options_(options) {}
 Renderer::~Renderer() = default;
 
 FrameMethod& Renderer::methodFor(Method method) {
@@ -159,7 +159,9 @@ FrameMethod& Renderer::methodFor(Method method) {
 
 RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& settings) {
   validateRenderSettings(settings);
-  if (!shared_) shared_ = std::make_unique<Shared>(context_);
+  if (!shared_)
+    shared_ = std::make_unique<Shared>(
+        context_, options_.visibilityScheme.value_or(passes::defaultVisibilityScheme(context_.info())));
   FrameMethod& method = methodFor(settings.method);
 
   context_.resetMemoryPeak();

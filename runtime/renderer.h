@@ -124,9 +124,16 @@ class FrameMethod;
 // Renders frames with any method on one device. It owns what the methods share (the G-buffer,
 // the post-process blur, the display encoding, the frame recorder) and each method's
 // FrameMethod, made on its first frame and kept with what it keeps across frames.
+// How a Renderer is built for its device (every choice has a default from the device).
+struct RendererOptions {
+  // The G-buffer rasterizer's visibility scheme; default: passes::defaultVisibilityScheme
+  // (tile lists on CPU devices, 64-bit atomics on GPUs that have them, else 32-bit two-pass).
+  std::optional<passes::VisibilityScheme> visibilityScheme;
+};
+
 class Renderer {
  public:
-  explicit Renderer(vk::Context& context);
+  explicit Renderer(vk::Context& context, RendererOptions options = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -138,6 +145,7 @@ class Renderer {
   FrameMethod& methodFor(Method method);
 
   vk::Context& context_;
+  RendererOptions options_;
   std::unique_ptr<Shared> shared_;  // pipelines are created once, on first use
 };
 

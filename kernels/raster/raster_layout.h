@@ -62,6 +62,21 @@
 #define HMB_RASTERIZE_BINDING_VISIBILITY 3
 #define HMB_RASTERIZE_BINDING_COUNT 4
 
+// link_tile_pairs (the tile-lists scheme): each pair's .y, its tile, becomes the next pair of
+// that tile's list; heads[tile] is the list's first pair, HMB_TILE_LIST_END ends a list.
+#define HMB_LINK_BINDING_PAIRS 0
+#define HMB_LINK_BINDING_COUNTERS 1
+#define HMB_LINK_BINDING_HEADS 2
+#define HMB_LINK_BINDING_COUNT 3
+#define HMB_TILE_LIST_END 0xffffffffu
+
+// rasterize_tile_lists
+#define HMB_TILE_LISTS_BINDING_SETUP 0
+#define HMB_TILE_LISTS_BINDING_PAIRS 1
+#define HMB_TILE_LISTS_BINDING_HEADS 2
+#define HMB_TILE_LISTS_BINDING_VISIBILITY 3
+#define HMB_TILE_LISTS_BINDING_COUNT 4
+
 HMB_GPU_BEGIN
 
 // Depth is reversed (runtime/gpu_scene.cpp): z/w is 1 at the near plane and falls towards 0

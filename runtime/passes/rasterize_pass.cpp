@@ -12,7 +12,12 @@ namespace hmb::passes {
 namespace {
 
 const char* rasterizeKernelName(VisibilityScheme scheme) {
-  return scheme == VisibilityScheme::Int64Atomics ? "raster/rasterize_tiles" : "raster/rasterize_tiles_depth32";
+  switch (scheme) {
+    case VisibilityScheme::Int64Atomics: return "raster/rasterize_tiles";
+    case VisibilityScheme::Depth32TwoPass: return "raster/rasterize_tiles_depth32";
+    case VisibilityScheme::TileLists: return "raster/rasterize_tile_lists";
+  }
+  return "";
 }
 
 uint32_t tilesAlong(uint32_t pixels) { return vk::groupsFor(pixels, HMB_RASTER_TILE); }
@@ -27,10 +32,18 @@ constexpr int kMaxRecordAttempts = 3;
 }  // namespace
 
 const char* visibilitySchemeName(VisibilityScheme scheme) {
-  return scheme == VisibilityScheme::Int64Atomics ? "int64-atomics" : "depth32-two-pass";
+  switch (scheme) {
+    case VisibilityScheme::Int64Atomics: return "int64-atomics";
+    case VisibilityScheme::Depth32TwoPass: return "depth32-two-pass";
+    case VisibilityScheme::TileLists: return "tile-lists";
+  }
+  return "";
 }
 
 VisibilityScheme defaultVisibilityScheme(const vk::DeviceInfo& device) {
+  // A CPU runs a tile's 64 pixels as vector code over several tiles at once, so per-pixel
+  // atomics (each a locked instruction per lane) are what it can skip; GPUs keep atomics.
+  if (device.type == "cpu") return VisibilityScheme::TileLists;
   return device.int64BufferAtomics ? VisibilityScheme::Int64Atomics : VisibilityScheme::Depth32TwoPass;
 }
 
@@ -44,11 +57,19 @@ RasterizePass::RasterizePass(const vk::Context& context, VisibilityScheme scheme
       rasterizeKernel_(context, rasterizeKernelName(scheme), sizeof(gpu::RasterParams)) {
   if (scheme == VisibilityScheme::Int64Atomics && !context.info().int64BufferAtomics)
     throw Error("device '" + context.info().name + "' lacks shaderBufferInt64Atomics; use the depth32-two-pass scheme");
+  if (scheme == VisibilityScheme::TileLists)
+    linkKernel_.emplace(context, "raster/link_tile_pairs", sizeof(gpu::RasterParams));
   counters_ = vk::Buffer(context, sizeof(gpu::RasterCounters), vk::MemoryUse::Device, "raster counters");
 }
 
 void RasterizePass::plan(FramePlan& plan) const {
-  plan.run(kClearVisibility);
+  const std::string scheme = std::string(kVisibilitySchemeReason) + visibilitySchemeName(scheme_) + ": ";
+  if (scheme_ == VisibilityScheme::TileLists) {
+    plan.skip(kClearVisibility, scheme + "rasterize-tile-lists writes every entry");
+    plan.run(kClearTileLists);
+  } else {
+    plan.run(kClearVisibility);
+  }
   plan.run(kClearCounters);
   plan.run(kSetup);
   plan.run(kSizeClipDispatch);
@@ -57,8 +78,12 @@ void RasterizePass::plan(FramePlan& plan) const {
   plan.run(kBinLarge);
   if (scheme_ == VisibilityScheme::Int64Atomics) {
     plan.run(kRasterize);
+  } else if (scheme_ == VisibilityScheme::TileLists) {
+    plan.skip(kRasterize, scheme + "a CPU device keeps each tile's pixels in registers, no per-pixel atomics");
+    plan.run(kLinkTilePairs);
+    plan.run(kRasterizeTileLists);
   } else {
-    plan.skip(kRasterize, "device lacks shaderBufferInt64Atomics: 32-bit two-pass visibility instead");
+    plan.skip(kRasterize, scheme + "device lacks shaderBufferInt64Atomics: 32-bit two-pass visibility instead");
     plan.run(kRasterizeDepth32);
     plan.run(kRasterizeIds32);
   }
@@ -95,6 +120,10 @@ void RasterizePass::reserve(uint32_t triangleCount, uint32_t width, uint32_t hei
   if (clipCapacity > clipCapacity_) allocateClipList(clipCapacity);
   if (setupCapacity > setupCapacity_ || pairCapacity > pairCapacity_)
     allocate(std::max(setupCapacity, setupCapacity_), std::max(pairCapacity, pairCapacity_));
+  if (scheme_ == VisibilityScheme::TileLists && tiles > tileCapacity_) {
+    tileHeads_ = vk::Buffer(context_, tiles * sizeof(uint32_t), vk::MemoryUse::Device, "raster tile list heads");
+    tileCapacity_ = static_cast<uint32_t>(tiles);
+  }
 }
 
 void RasterizePass::requireVisibilityBuffer(const vk::Buffer& visibility, uint32_t width, uint32_t height,
@@ -117,7 +146,13 @@ void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs,
   params.tilesX = tilesAlong(width);
   params.clipCapacity = clipCapacity_;
 
-  frame.fill(kClearVisibility, visibility, HMB_VIS_EMPTY);
+  const uint64_t tiles = uint64_t(params.tilesX) * tilesAlong(height);
+  if (scheme_ == VisibilityScheme::TileLists) {
+    if (tiles > tileCapacity_) throw Error("RasterizePass::record() at a larger size than reserve() was given");
+    frame.fill(kClearTileLists, tileHeads_, HMB_TILE_LIST_END);
+  } else {
+    frame.fill(kClearVisibility, visibility, HMB_VIS_EMPTY);
+  }
   frame.fill(kClearCounters, counters_, 0u);
   const vk::Bindings setupBindings = {{HMB_SETUP_BINDING_TRIANGLES, inputs.triangles},
                                       {HMB_SETUP_BINDING_INSTANCES, inputs.instances},
@@ -148,6 +183,18 @@ void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs,
   if (scheme_ == VisibilityScheme::Int64Atomics) {
     frame.dispatchIndirect(kRasterize, rasterizeKernel_, rasterizeBindings, params, counters_,
                            HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+  } else if (scheme_ == VisibilityScheme::TileLists) {
+    frame.dispatchIndirect(kLinkTilePairs, *linkKernel_,
+                           {{HMB_LINK_BINDING_PAIRS, &pairs_},
+                            {HMB_LINK_BINDING_COUNTERS, &counters_},
+                            {HMB_LINK_BINDING_HEADS, &tileHeads_}},
+                           params, counters_, HMB_RASTER_COUNTERS_RASTERIZE_OFFSET);
+    frame.dispatch(kRasterizeTileLists, rasterizeKernel_,
+                   {{HMB_TILE_LISTS_BINDING_SETUP, &setup_},
+                    {HMB_TILE_LISTS_BINDING_PAIRS, &pairs_},
+                    {HMB_TILE_LISTS_BINDING_HEADS, &tileHeads_},
+                    {HMB_TILE_LISTS_BINDING_VISIBILITY, &visibility}},
+                   params, vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(tiles), HMB_RASTER_GROUP)));
   } else {
     params.pass = 0;
     frame.dispatchIndirect(kRasterizeDepth32, rasterizeKernel_, rasterizeBindings, params, counters_,

@@ -1,6 +1,7 @@
 // Host side of the compute rasterizer's visibility passes: clears, setup_triangles,
 // clip_triangles (for the triangles setup lists), bin_large_triangles and rasterize_tiles (or
-// its 32-bit two-pass fallback), with size_dispatch sizing the indirect ones.
+// its 32-bit two-pass fallback, or on CPU devices link_tile_pairs and rasterize_tile_lists),
+// with size_dispatch sizing the indirect ones.
 // Input: clip-space triangles; output: the visibility buffer (uint64 per pixel, read as uvec2
 // (triangle id, depth key), HMB_VIS_EMPTY where nothing is hit).
 //
@@ -11,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "runtime/vulkan/buffer.h"
@@ -31,9 +33,15 @@ namespace hmb::passes {
 enum class VisibilityScheme {
   Int64Atomics,    // one atomicMin of (depth key << 32 | triangle id) per covered pixel
   Depth32TwoPass,  // without shaderBufferInt64Atomics: atomicMin depth, then id where depth matches
+  // CPU devices: each tile's pairs linked into a list, one invocation per tile keeps its 64
+  // pixels' nearest surface in registers and writes them once (kernels/raster/rasterize_tile_lists.comp)
+  TileLists,
 };
 
 const char* visibilitySchemeName(VisibilityScheme scheme);
+// Every pass the rasterizer's plan leaves out because of its scheme (the device's choice, not
+// the frame's content) gives a reason that starts with this.
+inline constexpr const char* kVisibilitySchemeReason = "visibility scheme ";
 VisibilityScheme defaultVisibilityScheme(const vk::DeviceInfo& device);
 
 // Clip-space triangles to rasterize: GpuTriangle (v0, v1, v2, instance), GpuInstance (for the
@@ -66,6 +74,9 @@ class RasterizePass {
   static constexpr const char* kRasterize = "rasterize-tiles";
   static constexpr const char* kRasterizeDepth32 = "rasterize-depth32";
   static constexpr const char* kRasterizeIds32 = "rasterize-ids32";
+  static constexpr const char* kClearTileLists = "clear-tile-lists";
+  static constexpr const char* kLinkTilePairs = "link-tile-pairs";
+  static constexpr const char* kRasterizeTileLists = "rasterize-tile-lists";
 
   RasterizePass(const vk::Context& context, VisibilityScheme scheme);
 
@@ -100,6 +111,8 @@ class RasterizePass {
   // The intermediate buffers, for tests of the setup and binning kernels.
   const vk::Buffer& setupBuffer() const { return setup_; }
   const vk::Buffer& pairBuffer() const { return pairs_; }
+  // The tile-lists scheme's list heads (a uint per tile); its pairs' .y hold the next pair.
+  const vk::Buffer& tileHeadBuffer() const { return tileHeads_; }
 
  private:
   void allocate(uint32_t setupCapacity, uint32_t pairCapacity);
@@ -112,6 +125,7 @@ class RasterizePass {
   vk::ComputeKernel sizeDispatchKernel_;
   vk::ComputeKernel binLargeKernel_;
   vk::ComputeKernel rasterizeKernel_;
+  std::optional<vk::ComputeKernel> linkKernel_;  // the tile-lists scheme only
   uint32_t setupCapacity_ = 0;
   uint32_t pairCapacity_ = 0;
   uint32_t clipCapacity_ = 0;
@@ -120,6 +134,8 @@ class RasterizePass {
   vk::Buffer clipList_;  // uint[clipCapacity]
   vk::Buffer pairs_;     // uvec2[pairCapacity]
   vk::Buffer counters_;  // RasterCounters
+  vk::Buffer tileHeads_; // uint per screen tile: the first pair of its list (tile-lists scheme)
+  uint32_t tileCapacity_ = 0;
   RasterStats stats_;
 };
 

@@ -35,7 +35,8 @@ ClipTriangles crowd(uint32_t count) {
 TEST_F(CapacityTest, OverflowGrowsTheBuffersAndTheSecondFrameMatchesARoomyPass) {
   constexpr uint32_t kWidth = 64, kHeight = 48;
   const ClipTriangles input = crowd(3000);
-  for (auto scheme : {passes::VisibilityScheme::Int64Atomics, passes::VisibilityScheme::Depth32TwoPass}) {
+  for (auto scheme : {passes::VisibilityScheme::Int64Atomics, passes::VisibilityScheme::Depth32TwoPass,
+                       passes::VisibilityScheme::TileLists}) {
     SCOPED_TRACE(passes::visibilitySchemeName(scheme));
     std::vector<gpu::GpuInstance> instances(input.doubleSided.size());
     for (auto& instance : instances) instance.flags = HMB_INSTANCE_DOUBLE_SIDED;

@@ -45,7 +45,8 @@ TEST_P(OracleAgreementTest, ComputeVisibilityMatchesGraphicsPipeline) {
 std::vector<AgreementCase> agreementCases() {
   std::vector<AgreementCase> cases;
   for (const std::string& name : scene::referenceSceneNames())
-    for (auto scheme : {passes::VisibilityScheme::Int64Atomics, passes::VisibilityScheme::Depth32TwoPass})
+    for (auto scheme : {passes::VisibilityScheme::Int64Atomics, passes::VisibilityScheme::Depth32TwoPass,
+                       passes::VisibilityScheme::TileLists})
       cases.push_back({name, scheme});
   return cases;
 }

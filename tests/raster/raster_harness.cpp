@@ -26,6 +26,27 @@ void ClipTriangles::add(glm::vec4 a, glm::vec4 b, glm::vec4 c, bool isDoubleSide
   doubleSided.push_back(isDoubleSided);
 }
 
+namespace {
+
+// The tile-lists scheme turned each pair's tile into its list's next pair: walks every tile's
+// list and gives each pair its tile back, so the binning checks read the same pairs as for the
+// other schemes. A pair no list reaches, or that two reach, keeps an impossible tile.
+std::vector<glm::uvec2> pairsFromTileLists(const passes::RasterizePass& pass, std::vector<glm::uvec2> linked) {
+  const std::vector<uint32_t> heads = pass.tileHeadBuffer().download<uint32_t>();
+  std::vector<glm::uvec2> pairs(linked.size(), glm::uvec2(~0u));
+  std::vector<uint32_t> visits(linked.size(), 0);
+  for (uint32_t tile = 0; tile < heads.size(); ++tile) {
+    size_t steps = 0;
+    for (uint32_t p = heads[tile]; p != HMB_TILE_LIST_END && steps <= linked.size(); p = linked[p].y, ++steps) {
+      if (p >= linked.size()) break;
+      pairs[p] = ++visits[p] == 1 ? glm::uvec2(linked[p].x, tile) : glm::uvec2(~0u);
+    }
+  }
+  return pairs;
+}
+
+}  // namespace
+
 Visibility rasterizeClipTriangles(const vk::Context& context, const ClipTriangles& input, uint32_t width,
                                   uint32_t height, passes::VisibilityScheme scheme) {
   std::vector<gpu::GpuInstance> instances(std::max<size_t>(1, input.doubleSided.size()));
@@ -46,10 +67,12 @@ Visibility rasterizeClipTriangles(const vk::Context& context, const ClipTriangle
     pass.record(f, inputs, visibility, width, height);
   });
   Visibility out{width, height, visibility.download<glm::uvec2>(), pass.stats(), {}, {}};
+  out.entries.resize(size_t(width) * height);  // the buffer's padding to whole 16-byte records is no pixel
   out.setup = pass.setupBuffer().download<gpu::SetupTriangle>();
   out.setup.resize(out.stats.setupTriangles);
   out.pairs = pass.pairBuffer().download<glm::uvec2>();
   out.pairs.resize(out.stats.tilePairs);
+  if (scheme == passes::VisibilityScheme::TileLists) out.pairs = pairsFromTileLists(pass, out.pairs);
   return out;
 }
 

@@ -25,7 +25,8 @@ namespace hmb::test {
 namespace {
 
 using passes::VisibilityScheme;
-constexpr VisibilityScheme kSchemes[] = {VisibilityScheme::Int64Atomics, VisibilityScheme::Depth32TwoPass};
+constexpr VisibilityScheme kSchemes[] = {VisibilityScheme::Int64Atomics, VisibilityScheme::Depth32TwoPass,
+                                         VisibilityScheme::TileLists};
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 

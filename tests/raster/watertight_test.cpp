@@ -232,7 +232,7 @@ TEST_F(WatertightCheckTest, SeesHolesAndDoubleHits) {
   missing.triangles.erase(missing.triangles.begin() + victim);
   ClipTriangles extra = mesh;
   extra.triangles.insert(extra.triangles.begin() + 100, mesh.triangles[victim]);
-  for (VisibilityScheme scheme : {VisibilityScheme::Int64Atomics, VisibilityScheme::Depth32TwoPass}) {
+  for (VisibilityScheme scheme : {VisibilityScheme::Int64Atomics, VisibilityScheme::Depth32TwoPass, VisibilityScheme::TileLists}) {
     SCOPED_TRACE(passes::visibilitySchemeName(scheme));
     const CoverageFaults withHole = renderAndCount(missing, kWidth, kHeight, scheme);
     EXPECT_GT(withHole.holes, 0u);
@@ -248,7 +248,7 @@ std::vector<WatertightCase> watertightCases() {
   for (Mesh mesh : {Mesh::JitteredGrid, Mesh::Fan, Mesh::FanThroughNearPlane})
     for (bool perspective : {false, true})
       for (auto [width, height] : {std::pair<uint32_t, uint32_t>{301, 157}, {67, 43}})
-        for (VisibilityScheme scheme : {VisibilityScheme::Int64Atomics, VisibilityScheme::Depth32TwoPass})
+        for (VisibilityScheme scheme : {VisibilityScheme::Int64Atomics, VisibilityScheme::Depth32TwoPass, VisibilityScheme::TileLists})
           cases.push_back({mesh, perspective, width, height, scheme});
   return cases;
 }

@@ -169,7 +169,7 @@ TEST(AdoptedContextTest, RendersOnTheEnginesDeviceAndLeavesItToTheEngine) {
 }
 
 // A device without the optional features still renders: the library uses only what was enabled
-// (the rasterizer's 32-bit path without 64-bit atomics).
+// (on a CPU device the tile-lists rasterizer, elsewhere the 32-bit path without 64-bit atomics).
 TEST(AdoptedContextTest, UsesOnlyTheFeaturesTheEngineEnabled) {
   Engine engine(/*enableFeatures=*/false);
   vk::Context context(engine.adopted(), countingOptions());
@@ -178,7 +178,7 @@ TEST(AdoptedContextTest, UsesOnlyTheFeaturesTheEngineEnabled) {
   Renderer renderer(context);
   RenderSettings settings = hybridAt(48, 27);
   const RenderResult result = renderer.render(scene::loadScene("temple"), settings);
-  EXPECT_EQ(result.visibilityScheme, "depth32-two-pass");
+  EXPECT_EQ(result.visibilityScheme, context.info().type == "cpu" ? "tile-lists" : "depth32-two-pass");
   EXPECT_EQ(context.validationErrors(), 0u);
 }
 

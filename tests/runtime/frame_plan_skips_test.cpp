@@ -44,7 +44,8 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
 std::vector<std::string> skippedPasses(const RenderResult& result) {
   std::vector<std::string> names;
   for (const PlannedPass& pass : result.plan.passes())
-    if (!pass.run && pass.reason != kNoDeformationReason) names.push_back(pass.name);
+    if (!pass.run && pass.reason != kNoDeformationReason && !pass.reason.starts_with(passes::kVisibilitySchemeReason))
+      names.push_back(pass.name);
   return names;
 }
 

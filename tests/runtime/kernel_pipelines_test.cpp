@@ -67,6 +67,8 @@ const KernelLayout kLayouts[] = {
     {"raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
     {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
+    {"raster/link_tile_pairs", HMB_LINK_BINDING_COUNT, sizeof(gpu::RasterParams), false},
+    {"raster/rasterize_tile_lists", HMB_TILE_LISTS_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false, true,
      HMB_RESOLVE_TEXEL_BUFFERS},
     {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false, true,

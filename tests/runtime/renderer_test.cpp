@@ -156,7 +156,7 @@ TEST_F(RendererTest, DeviceWithoutInt64AtomicsRendersTheSameFrameWithTheFallback
   RenderSettings settings;
   settings.width = 80;
   settings.height = 45;
-  Renderer fallback(fallbackContext);
+  Renderer fallback(fallbackContext, {passes::VisibilityScheme::Depth32TwoPass});
   const RenderResult a = fallback.render(scene, settings);
   EXPECT_EQ(fallbackContext.validationErrors(), 0u);
   EXPECT_EQ(a.visibilityScheme, "depth32-two-pass");
@@ -168,8 +168,38 @@ TEST_F(RendererTest, DeviceWithoutInt64AtomicsRendersTheSameFrameWithTheFallback
   ASSERT_NE(skipped, a.plan.passes().end());
   EXPECT_NE(skipped->reason.find("shaderBufferInt64Atomics"), std::string::npos) << skipped->reason;
 
-  Renderer native(context());
+  Renderer native(context(), {passes::VisibilityScheme::Int64Atomics});
   const RenderResult b = native.render(scene, settings);
+  EXPECT_EQ(b.visibilityScheme, "int64-atomics");
+  EXPECT_EQ(a.display.pixels, b.display.pixels);
+  EXPECT_EQ(a.image.find("objectId")->ids, b.image.find("objectId")->ids);
+}
+
+// A CPU device rasterizes with per-tile lists (no atomics, no 64-bit types); the frame is the
+// one the atomic scheme renders, byte for byte, also on a device without 64-bit atomics.
+TEST_F(RendererTest, CpuDevicesRasterizeWithTileListsAndRenderTheSameFrame) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  RenderSettings settings;
+  settings.method = Method::PostProcess;
+  settings.width = 96;
+  settings.height = 52;  // tiles cut by the right and bottom edges
+  vk::ContextOptions options;
+  options.validation = true;
+  options.disableInt64Atomics = true;
+  vk::Context without64(options);
+  Renderer lists(without64, {passes::VisibilityScheme::TileLists});
+  const RenderResult a = lists.render(scene, settings);
+  EXPECT_EQ(without64.validationErrors(), 0u);
+  EXPECT_EQ(a.visibilityScheme, "tile-lists");
+  EXPECT_TRUE(a.plan.runs("link-tile-pairs"));
+  EXPECT_TRUE(a.plan.runs("rasterize-tile-lists"));
+  EXPECT_FALSE(a.plan.runs("clear-visibility"));
+  if (context().info().type == "cpu") {
+    Renderer byDefault(context());
+    EXPECT_EQ(byDefault.render(scene, settings).visibilityScheme, "tile-lists");
+  }
+  Renderer atomics(context(), {passes::VisibilityScheme::Int64Atomics});
+  const RenderResult b = atomics.render(scene, settings);
   EXPECT_EQ(a.display.pixels, b.display.pixels);
   EXPECT_EQ(a.image.find("objectId")->ids, b.image.find("objectId")->ids);
 }
