@@ -1,7 +1,9 @@
 // The library's public API in one header, installed as <hmblur/hmblur.h>: a Vulkan context (its
-// own device, or an engine's adopted one), scenes, the renderer and its report.
+// own device, or an engine's adopted one), scenes, the renderer and its report, and the engine
+// backend (post-process blur recorded into an engine's command buffer).
 #pragma once
 
+#include "runtime/engine_motion_blur.h"
 #include "runtime/error.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"

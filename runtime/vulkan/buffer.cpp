@@ -93,6 +93,17 @@ Buffer::Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::s
   }
 }
 
+Buffer Buffer::adopt(const Context& context, VkBuffer buffer, VkDeviceSize bytes, std::string name) {
+  if (!buffer) throw Error("buffer '" + name + "' to adopt is VK_NULL_HANDLE");
+  Buffer adopted;
+  adopted.context_ = &context;
+  adopted.buffer_ = buffer;
+  adopted.size_ = bytes;
+  adopted.adopted_ = true;
+  adopted.name_ = std::move(name);
+  return adopted;
+}
+
 Buffer::~Buffer() { release(); }
 
 Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
@@ -110,6 +121,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     readDirectly_ = other.readDirectly_;
     address_ = std::exchange(other.address_, 0);
     texelView_ = std::exchange(other.texelView_, VK_NULL_HANDLE);
+    adopted_ = std::exchange(other.adopted_, false);
     name_ = std::move(other.name_);
   }
   return *this;
@@ -120,7 +132,7 @@ void Buffer::release() {
   const VkDevice device = context_->device();
   if (mapped_) vkUnmapMemory(device, memory_);
   if (texelView_) vkDestroyBufferView(device, texelView_, nullptr);
-  if (buffer_) vkDestroyBuffer(device, buffer_, nullptr);
+  if (buffer_ && !adopted_) vkDestroyBuffer(device, buffer_, nullptr);
   if (memory_) vkFreeMemory(device, memory_, nullptr);
   if (allocated_) context_->countRelease(heap_, allocated_);
   allocated_ = 0;
@@ -129,6 +141,7 @@ void Buffer::release() {
   mapped_ = nullptr;
   address_ = 0;
   texelView_ = VK_NULL_HANDLE;
+  adopted_ = false;
 }
 
 VkBufferView Buffer::texelView() const {

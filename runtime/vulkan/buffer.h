@@ -30,6 +30,9 @@ class Buffer {
   // extraUsage adds to the storage/transfer/indirect usage every buffer has (e.g. vertex input).
   Buffer(const Context& context, VkDeviceSize bytes, MemoryUse use, std::string name,
          VkBufferUsageFlags extraUsage = 0);
+  // A buffer someone else made (an engine's): storage-buffer usage, at least `bytes` long. The
+  // Buffer binds it and never destroys it; it has no memory of its own to map or count.
+  static Buffer adopt(const Context& context, VkBuffer buffer, VkDeviceSize bytes, std::string name);
   ~Buffer();
   Buffer(Buffer&& other) noexcept;
   Buffer& operator=(Buffer&& other) noexcept;
@@ -78,6 +81,7 @@ class Buffer {
   bool readDirectly_ = false;  // mapped and cached, or no cached memory to stage through
   VkDeviceAddress address_ = 0;
   mutable VkBufferView texelView_ = VK_NULL_HANDLE;
+  bool adopted_ = false;  // someone else's: never destroyed here
   std::string name_;
 };
 

@@ -37,7 +37,7 @@ FrameRecorder::FrameRecorder(const Context& context, uint32_t maxPasses)
   allocInfo.commandPool = context.commandPool();
   allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   allocInfo.commandBufferCount = 1;
-  HMB_VK_CHECK(vkAllocateCommandBuffers(device, &allocInfo, &commandBuffer_));
+  HMB_VK_CHECK(vkAllocateCommandBuffers(device, &allocInfo, &ownCommandBuffer_));
 
   const VkDescriptorPoolSize poolSizes[] = {
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, maxPasses * kMaxBindingsPerPass},
@@ -61,18 +61,49 @@ FrameRecorder::~FrameRecorder() {
   vkDeviceWaitIdle(device);
   if (queryPool_) vkDestroyQueryPool(device, queryPool_, nullptr);
   if (descriptorPool_) vkDestroyDescriptorPool(device, descriptorPool_, nullptr);
-  if (commandBuffer_) vkFreeCommandBuffers(device, context_.commandPool(), 1, &commandBuffer_);
+  if (ownCommandBuffer_) vkFreeCommandBuffers(device, context_.commandPool(), 1, &ownCommandBuffer_);
 }
 
 void FrameRecorder::begin() {
-  HMB_VK_CHECK(vkResetDescriptorPool(context_.device(), descriptorPool_, 0));
-  HMB_VK_CHECK(vkResetCommandBuffer(commandBuffer_, 0));
+  HMB_VK_CHECK(vkResetCommandBuffer(ownCommandBuffer_, 0));
   VkCommandBufferBeginInfo beginInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   beginInfo.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  HMB_VK_CHECK(vkBeginCommandBuffer(commandBuffer_, &beginInfo));
+  HMB_VK_CHECK(vkBeginCommandBuffer(ownCommandBuffer_, &beginInfo));
+  startFrame(ownCommandBuffer_, false);
+}
+
+void FrameRecorder::beginInto(VkCommandBuffer commandBuffer) {
+  if (!commandBuffer) throw Error("beginInto() a VK_NULL_HANDLE command buffer");
+  startFrame(commandBuffer, true);
+  // What the command buffer's earlier commands (and earlier submissions on the queue) wrote,
+  // the first pass reads.
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                          VK_ACCESS_TRANSFER_WRITE_BIT;
+  vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+}
+
+void FrameRecorder::startFrame(VkCommandBuffer commandBuffer, bool external) {
+  HMB_VK_CHECK(vkResetDescriptorPool(context_.device(), descriptorPool_, 0));
+  commandBuffer_ = commandBuffer;
+  external_ = external;
   if (queryPool_) vkCmdResetQueryPool(commandBuffer_, queryPool_, 0, 2 * maxPasses_);
   passNames_.clear();
   recording_ = true;
+}
+
+void FrameRecorder::endInto() {
+  if (!recording_ || !external_) throw Error("endInto() without beginInto()");
+  recording_ = false;
+  // The passes' writes, for every later command of the engine's.
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+  vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
 uint32_t FrameRecorder::beginPass(std::string_view pass) {
@@ -198,13 +229,17 @@ void FrameRecorder::copy(std::string_view pass, const Buffer& from, const Buffer
 }
 
 FrameTimings FrameRecorder::submitAndWait() {
-  if (!recording_) throw Error("submitAndWait() without begin()");
+  if (!recording_ || external_) throw Error("submitAndWait() without begin()");
   recording_ = false;
   // The host reads results after the fence: make every write visible to it.
   passBarrier(commandBuffer_, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
   HMB_VK_CHECK(vkEndCommandBuffer(commandBuffer_));
   context_.submitAndWait(commandBuffer_);
+  return readTimings();
+}
 
+FrameTimings FrameRecorder::readTimings() const {
+  if (recording_) throw Error("readTimings() while the frame is being recorded");
   FrameTimings timings;
   const auto passCount = static_cast<uint32_t>(passNames_.size());
   std::vector<uint64_t> stamps(2 * passCount);

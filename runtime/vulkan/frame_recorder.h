@@ -53,8 +53,20 @@ class FrameRecorder {
   FrameRecorder(const FrameRecorder&) = delete;
   FrameRecorder& operator=(const FrameRecorder&) = delete;
 
-  // Starts a new frame; the previous frame's command buffer and descriptor sets are reused.
+  // Starts a new frame in the recorder's own command buffer; the previous frame's command buffer
+  // and descriptor sets are reused.
   void begin();
+  // Starts a frame in a command buffer someone else owns and submits (an engine's): recording,
+  // outside a render pass, for a queue of the context's queue family. A barrier first makes
+  // every earlier write on that queue visible to the passes. The descriptor sets are reused per
+  // frame, so the frame this recorder recorded before must have completed on the device.
+  void beginInto(VkCommandBuffer commandBuffer);
+  // Ends a frame begun with beginInto(): a barrier makes the passes' writes visible to every
+  // later command. Submitting is the owner's.
+  void endInto();
+  // The device time of the last frame's passes, once it completed on the device (submitAndWait()
+  // returns them itself); empty times when the queue has no timestamps.
+  FrameTimings readTimings() const;
 
   // bindings: a buffer at each binding number the kernel declares (its layout header's names).
   void dispatch(std::string_view pass, const ComputeKernel& kernel, std::span<const Binding> bindings,
@@ -100,12 +112,15 @@ class FrameRecorder {
   // Checks the bindings, binds pipeline, descriptors and push constants, opens the pass.
   uint32_t bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel, std::span<const Binding> bindings,
                             std::span<const std::byte> pushConstants);
+  void startFrame(VkCommandBuffer commandBuffer, bool external);
   uint32_t beginPass(std::string_view pass);
   void endPass(uint32_t index);
 
   const Context& context_;
   uint32_t maxPasses_;
-  VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
+  VkCommandBuffer ownCommandBuffer_ = VK_NULL_HANDLE;
+  VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;  // the frame's: the own one or the owner's (beginInto)
+  bool external_ = false;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
   std::vector<std::string> passNames_;

@@ -18,6 +18,7 @@
 #include "kernels/raster/raster_layout.h"
 #include "kernels/reference/reference_layout.h"
 #include "kernels/deform/deform_layout.h"
+#include "kernels/engine/engine_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/vulkan/buffer.h"
@@ -67,6 +68,7 @@ const KernelLayout kLayouts[] = {
     {"raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
     {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
+    {"engine/pack_engine_gbuffer", HMB_ENGINE_BINDING_COUNT, sizeof(gpu::EngineGBufferParams), false},
     {"raster/link_tile_pairs", HMB_LINK_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"raster/rasterize_tile_lists", HMB_TILE_LISTS_BINDING_COUNT, sizeof(gpu::RasterParams), false},
     {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false, true,

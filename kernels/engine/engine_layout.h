@@ -1,0 +1,38 @@
+// Layout of the engine backend's kernels (runtime/engine_motion_blur.h): an engine's own
+// G-buffer, in the formats the public header documents, read into the library's packed layer.
+#ifndef HMB_KERNELS_ENGINE_ENGINE_LAYOUT_H
+#define HMB_KERNELS_ENGINE_ENGINE_LAYOUT_H
+
+#include "../shared/glsl_cpp.h"
+
+#define HMB_ENGINE_GROUP_X 8
+#define HMB_ENGINE_GROUP_Y 8
+
+// pack_engine_gbuffer
+#define HMB_ENGINE_BINDING_COLOR 0     // vec4 per pixel: linear RGB (alpha ignored)
+#define HMB_ENGINE_BINDING_DEPTH 1     // float per pixel: params.depthConvention
+#define HMB_ENGINE_BINDING_VELOCITY 2  // vec2 per pixel: pixels per frame, current - previous, y down
+#define HMB_ENGINE_BINDING_SAMPLES 3   // the packed layer's samples (uvec4), written
+#define HMB_ENGINE_BINDING_SURFACES 4  // the packed layer's surfaces (uvec4), written
+#define HMB_ENGINE_BINDING_COUNT 5
+
+// What the engine's depth values are (EngineDepth on the host).
+#define HMB_ENGINE_DEPTH_VIEW 0         // camera-space depth: distance along the view axis, > 0
+#define HMB_ENGINE_DEPTH_STANDARD_Z 1   // z/w in [0, 1], 0 at near, 1 at far (perspective)
+#define HMB_ENGINE_DEPTH_REVERSED_Z 2   // z/w in [0, 1], 1 at near, 0 at far (far may be infinite)
+
+HMB_GPU_BEGIN
+struct EngineGBufferParams {
+  uint width;
+  uint height;
+  uint depthConvention;  // HMB_ENGINE_DEPTH_*
+  uint pad0;
+  float near;            // the projection's near plane (z/w conventions only)
+  float far;             // its far plane; infinity for an infinite reversed-z projection
+  uint pad1;
+  uint pad2;
+};
+HMB_GPU_END
+HMB_CHECK_SIZE(EngineGBufferParams, 32)
+
+#endif

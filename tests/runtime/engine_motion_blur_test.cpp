@@ -1,0 +1,161 @@
+// The engine backend: an engine's G-buffer, in its own buffers on its own device, blurred by
+// commands recorded into its own command buffer, equals what the renderer's post-process method
+// makes of its G-buffer.
+#include <cstring>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <gtest/gtest.h>
+
+#include "runtime/engine_motion_blur.h"
+#include "runtime/renderer.h"
+#include "scenes/load_scene.h"
+#include "tests/support/engine_device.h"
+#include "tests/support/expect_error.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+constexpr uint32_t kWidth = 96, kHeight = 54;
+
+vk::ContextOptions countingOptions() {
+  vk::ContextOptions options;
+  options.validation = true;
+  options.pipelineCacheFolder.clear();
+  return options;
+}
+
+// The renderer's G-buffer of a moving frame (the sharp method's layers) and its post-process
+// frame with the settings it derived.
+struct Frames {
+  std::vector<glm::vec4> color;
+  std::vector<float> depth;
+  std::vector<glm::vec2> velocity;
+  std::vector<glm::vec4> blurred;
+  passes::PostProcessSettings settings;
+};
+
+Frames renderedFrames(const char* sceneName) {
+  const scene::Scene scene = scene::loadScene(sceneName);
+  Renderer renderer(VulkanTest::context());
+  RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  settings.method = Method::Sharp;
+  const RenderResult sharp = renderer.render(scene, settings);
+  settings.method = Method::PostProcess;
+  const RenderResult blurred = renderer.render(scene, settings);
+  Frames f;
+  f.settings = *blurred.postprocess;
+  const auto& rgba = sharp.image.find("")->values;
+  const auto& z = sharp.image.find("depth")->values;
+  const auto& v = sharp.image.find("velocity")->values;
+  const auto& out = blurred.image.find("")->values;
+  for (uint32_t i = 0; i < kWidth * kHeight; ++i) {
+    f.color.emplace_back(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], rgba[4 * i + 3]);
+    f.depth.push_back(z[i]);
+    f.velocity.emplace_back(v[2 * i], v[2 * i + 1]);
+    f.blurred.emplace_back(out[4 * i], out[4 * i + 1], out[4 * i + 2], out[4 * i + 3]);
+  }
+  return f;
+}
+
+template <class T>
+std::span<const std::byte> bytesOf(const std::vector<T>& values) {
+  return std::as_bytes(std::span<const T>(values));
+}
+
+// Runs the backend on the engine's device over `depth` (in `convention`) and returns the output.
+std::vector<glm::vec4> blurOnTheEngine(Engine& engine, const Frames& f, const std::vector<float>& depth,
+                                       EngineDepth convention, vk::FrameTimings* timings = nullptr) {
+  std::vector<glm::vec4> result(f.color.size());
+  {
+    vk::Context context(engine.adopted(), countingOptions());
+    EngineMotionBlur blur(context, kWidth, kHeight, f.settings, convention);
+    Engine::OwnBuffer color = engine.makeBuffer(f.color.size() * sizeof(glm::vec4), bytesOf(f.color));
+    Engine::OwnBuffer z = engine.makeBuffer(depth.size() * sizeof(float), bytesOf(depth));
+    Engine::OwnBuffer velocity = engine.makeBuffer(f.velocity.size() * sizeof(glm::vec2), bytesOf(f.velocity));
+    Engine::OwnBuffer output = engine.makeBuffer(result.size() * sizeof(glm::vec4));
+    const VkCommandBuffer commands = engine.beginCommands();
+    blur.record(commands, {color.buffer, z.buffer, velocity.buffer}, output.buffer);
+    engine.submitAndWait(commands);
+    const std::vector<std::byte> bytes = engine.read(output);
+    std::memcpy(result.data(), bytes.data(), result.size() * sizeof(glm::vec4));
+    if (timings) *timings = blur.timings();
+    EXPECT_EQ(context.validationErrors(), 0u);
+    for (Engine::OwnBuffer* b : {&color, &z, &velocity, &output}) engine.destroy(*b);
+  }
+  EXPECT_TRUE(engine.errors.empty()) << engine.errors.front();
+  EXPECT_TRUE(engine.stillUsable());
+  return result;
+}
+
+class EngineMotionBlurScenes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EngineMotionBlurScenes, BlursTheEnginesGBufferAsThePostProcessMethodBlursItsOwn) {
+  const Frames f = renderedFrames(GetParam());
+  size_t moving = 0;
+  for (const glm::vec2 v : f.velocity) moving += glm::length(v) > 1.0f;
+  ASSERT_GT(moving, 50u) << "the frame must move for the comparison to mean anything";
+  Engine engine(/*enableFeatures=*/true);
+  vk::FrameTimings timings;
+  const std::vector<glm::vec4> out = blurOnTheEngine(engine, f, f.depth, {}, &timings);
+  size_t differ = 0, blurredPixels = 0;
+  for (size_t i = 0; i < out.size(); ++i) {
+    differ += std::memcmp(&out[i], &f.blurred[i], sizeof(glm::vec4)) != 0;
+    blurredPixels += glm::any(glm::notEqual(f.blurred[i], f.color[i]));
+  }
+  EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
+  EXPECT_GT(blurredPixels, 50u);
+  std::vector<std::string> names;
+  for (const vk::PassTiming& pass : timings.passes) names.push_back(pass.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"pack-engine-gbuffer", "tile-max", "neighbor-max", "gather"}));
+}
+
+INSTANTIATE_TEST_SUITE_P(EngineMotionBlurTest, EngineMotionBlurScenes, ::testing::Values("living-room", "temple"));
+
+// Depth as z/w (standard and reversed, finite and infinite far) reads back as the same
+// camera-space depth, up to the rounding of the conversion.
+TEST(EngineMotionBlurTest, ZOverWDepthBuffersBlurAsCameraSpaceDepth) {
+  const Frames f = renderedFrames("temple");
+  Engine engine(/*enableFeatures=*/false);
+  const float nearPlane = 0.05f, farPlane = 500.0f;
+  const auto convert = [&](EngineDepth::Convention convention, float far) {
+    std::vector<float> zw;
+    for (const float d : f.depth) {
+      const double n = nearPlane, fa = far, dd = d;
+      double value = 0.0;
+      if (convention == EngineDepth::Convention::StandardZ) value = fa * (dd - n) / (dd * (fa - n));
+      else value = std::isinf(fa) ? n / dd : n * (fa - dd) / (dd * (fa - n));
+      zw.push_back(static_cast<float>(value));
+    }
+    return zw;
+  };
+  for (auto [convention, far] : {std::pair{EngineDepth::Convention::StandardZ, farPlane},
+                                 std::pair{EngineDepth::Convention::ReversedZ, farPlane},
+                                 std::pair{EngineDepth::Convention::ReversedZ, INFINITY}}) {
+    SCOPED_TRACE(std::to_string(int(convention)) + " far " + std::to_string(far));
+    const std::vector<glm::vec4> out = blurOnTheEngine(engine, f, convert(convention, far), {convention, nearPlane, far});
+    size_t close = 0;
+    for (size_t i = 0; i < out.size(); ++i)
+      close += glm::all(glm::lessThanEqual(glm::abs(glm::vec3(out[i]) - glm::vec3(f.blurred[i])), glm::vec3(1e-4f)));
+    EXPECT_GE(double(close) / double(out.size()), 0.999);
+  }
+}
+
+TEST(EngineMotionBlurTest, DepthConventionsWithoutTheirPlanesAreOneLineErrors) {
+  const passes::PostProcessSettings settings;
+  const vk::Context& context = VulkanTest::context();
+  using C = EngineDepth::Convention;
+  expectError([&] { EngineMotionBlur(context, 8, 8, settings, {C::ReversedZ, 0.0f, 10.0f}); },
+                        "near plane");
+  expectError([&] { EngineMotionBlur(context, 8, 8, settings, {C::StandardZ, 0.1f, INFINITY}); },
+                        "finite far plane");
+  expectError([&] { EngineMotionBlur(context, 8, 8, settings, {C::StandardZ, 1.0f, 0.5f}); },
+                        "beyond the near plane");
+  expectError([&] { EngineMotionBlur(context, 0, 8, settings); }, "empty image");
+}
+
+}  // namespace
+}  // namespace hmb::test
