@@ -182,6 +182,7 @@ void Buffer::read(std::span<std::byte> bytes, VkDeviceSize offset) const {
   if (offset + bytes.size() > size_)
     throw Error("read of " + std::to_string(bytes.size()) + " bytes past the end of buffer '" + name_ + "'");
   if (bytes.empty()) return;
+  context_->countReadback();
   if (mapped_ && readDirectly_) {
     std::memcpy(bytes.data(), static_cast<const std::byte*>(mapped_) + offset, bytes.size());
     return;

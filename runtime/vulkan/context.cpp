@@ -526,6 +526,7 @@ uint32_t Context::findDeviceMemoryType(uint32_t allowedTypes) const {
 }
 
 void Context::submitAndWait(VkCommandBuffer commandBuffer) const {
+  ++hostWaits_;
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VkFence fence = VK_NULL_HANDLE;
   HMB_VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence));

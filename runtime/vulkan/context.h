@@ -135,6 +135,13 @@ class Context {
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
   void submitAndWait(VkCommandBuffer commandBuffer) const;
 
+  // Since creation: the library's own waits on the device (submitAndWait) and the reads of
+  // buffer contents back to the host (vk::Buffer::read), so a caller can hold a path to neither
+  // (an engine's recorded frame).
+  uint64_t hostWaits() const { return hostWaits_.load(); }
+  uint64_t hostReadbacks() const { return hostReadbacks_.load(); }
+  void countReadback() const { ++hostReadbacks_; }
+
   // Validation messages seen since creation (errors and warnings counted separately).
   uint32_t validationErrors() const { return validationErrors_.load(); }
   uint32_t validationWarnings() const { return validationWarnings_.load(); }
@@ -170,6 +177,8 @@ class Context {
   mutable std::atomic<uint64_t> memoryPeak_{0};
   mutable std::array<std::atomic<uint64_t>, VK_MAX_MEMORY_HEAPS> heapInUse_{};
   std::atomic<uint32_t> validationErrors_{0};
+  mutable std::atomic<uint64_t> hostWaits_{0};
+  mutable std::atomic<uint64_t> hostReadbacks_{0};
   std::atomic<uint32_t> validationWarnings_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;

@@ -32,6 +32,37 @@ TEST_F(BufferTest, RoundTripThroughEveryMemoryUse) {
   }
 }
 
+// Host reads and waits are counted (what the engine backend's tests hold at zero per frame).
+TEST_F(BufferTest, ReadsBackAndWaitsAreCounted) {
+  vk::Buffer buffer(context(), 64, vk::MemoryUse::Device, "counted");
+  const uint64_t readbacks = context().hostReadbacks(), waits = context().hostWaits();
+  buffer.download<uint32_t>();
+  EXPECT_EQ(context().hostReadbacks(), readbacks + 1);
+  context().submitAndWait([](VkCommandBuffer) {});
+  EXPECT_GE(context().hostWaits(), waits + 1);
+}
+
+// An adopted buffer is bound like any other and left to its owner.
+TEST_F(BufferTest, AnAdoptedBufferIsNeverDestroyed) {
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = 256;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  VkBuffer own = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateBuffer(context().device(), &info, nullptr, &own), VK_SUCCESS);
+  {
+    vk::Buffer adopted = vk::Buffer::adopt(context(), own, 256, "an engine's");
+    EXPECT_EQ(adopted.handle(), own);
+    EXPECT_EQ(adopted.size(), 256u);
+    vk::Buffer moved = std::move(adopted);
+    EXPECT_EQ(moved.handle(), own);
+  }
+  // Still the owner's: destroying it is valid exactly once (the validation layer counts).
+  const uint32_t errors = context().validationErrors();
+  vkDestroyBuffer(context().device(), own, nullptr);
+  EXPECT_EQ(context().validationErrors(), errors);
+  expectError([&] { vk::Buffer::adopt(context(), VK_NULL_HANDLE, 16, "none"); }, "VK_NULL_HANDLE");
+}
+
 TEST_F(BufferTest, PartialWriteAndReadAtAnOffset) {
   vk::Buffer buffer(context(), 64, vk::MemoryUse::Device, "offsets");
   const std::vector<uint32_t> zeros(16, 0);

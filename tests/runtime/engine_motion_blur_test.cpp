@@ -78,7 +78,11 @@ std::vector<glm::vec4> blurOnTheEngine(Engine& engine, const Frames& f, const st
     Engine::OwnBuffer velocity = engine.makeBuffer(f.velocity.size() * sizeof(glm::vec2), bytesOf(f.velocity));
     Engine::OwnBuffer output = engine.makeBuffer(result.size() * sizeof(glm::vec4));
     const VkCommandBuffer commands = engine.beginCommands();
+    const uint64_t waits = context.hostWaits(), readbacks = context.hostReadbacks();
     blur.record(commands, {color.buffer, z.buffer, velocity.buffer}, output.buffer);
+    // Recording a frame neither waits on the device nor reads anything back.
+    EXPECT_EQ(context.hostWaits(), waits);
+    EXPECT_EQ(context.hostReadbacks(), readbacks);
     engine.submitAndWait(commands);
     const std::vector<std::byte> bytes = engine.read(output);
     std::memcpy(result.data(), bytes.data(), result.size() * sizeof(glm::vec4));
