@@ -22,6 +22,7 @@
 #include "bench/bvh_suite.h"
 #include "bench/driver_files.h"
 #include "bench/embree_reference.h"
+#include "bench/engine_suite.h"
 #include "bench/error_time_suite.h"
 #include "bench/kernels_suite.h"
 #include "bench/passes_suite.h"
@@ -88,6 +89,14 @@ struct PassesOptions {
   std::vector<std::string> methods = {"sharp", "postprocess", "hybrid"};
   int warmup = 1;
   int repeats = 3;
+};
+
+struct EngineOptions {
+  std::string out = "out/bench/engine/engine.json";
+  std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
+  std::vector<std::string> sizes = {"1280x720"};
+  int warmup = 2;
+  int repeats = 9;
 };
 
 struct KernelsOptions {
@@ -373,6 +382,40 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   return validationVerdict({&context});
 }
 
+int engine(const GlobalOptions& global, const EngineOptions& options, const std::string& command) {
+  hmb::bench::EngineSuiteOptions suite;
+  suite.scenes = options.scenes;
+  suite.sizes.clear();
+  for (const std::string& size : options.sizes) suite.sizes.push_back(hmb::bench::parseImageSize(size));
+  suite.warmup = options.warmup;
+  suite.repeats = options.repeats;
+  checkOutputDirectory(options.out);
+  hmb::vk::Context context = openContext(global);
+  const auto progress = progressPrinter(global);
+  progress("device: " + context.info().name);
+  const std::vector<hmb::bench::EngineCase> cases = hmb::bench::runEngineSuite(context, suite, progress);
+
+  const hmb::SystemInfo system = hmb::querySystemInfo();
+  std::ostringstream header;
+  header << machineLine(context, system) << " Median device time (timestamp queries) of " << suite.repeats
+         << " frames of each path after " << suite.warmup << " warm-up, the two paths alternated. Command: `"
+         << command << "`";
+  hmb::bench::writeEngineMarkdown(std::cout, cases, header.str());
+  if (options.out.empty()) return validationVerdict({&context});
+  nlohmann::json report = reportHead(
+      "engine", "the engine backend's post-process frame from an engine's G-buffer beside the command line's", command,
+      context, system);
+  report["settings"] = {{"sizes", options.sizes}, {"warmup", suite.warmup}, {"repeats", suite.repeats}};
+  report["cases"] = nlohmann::json::array();
+  for (const auto& c : cases) report["cases"].push_back(hmb::bench::engineCaseJson(c));
+  hmb::writeJson(options.out, report);
+  writeBeside(
+      options.out, [&](std::ostream& out) { hmb::bench::writeEngineCsv(out, cases); },
+      [&](std::ostream& out) { hmb::bench::writeEngineMarkdown(out, cases, header.str()); });
+  progress("wrote " + options.out + " and the .csv and .md beside it");
+  return validationVerdict({&context});
+}
+
 std::string shellQuoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -596,6 +639,15 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"sharp", "postprocess", "hybrid"}))
       ->capture_default_str();
 
+  EngineOptions engineOptions;
+  CLI::App* engineCmd = app.add_subcommand(
+      "engine", "The engine backend's post-process frame from an engine's G-buffer beside the command line's");
+  addCommonOptions(*engineCmd, engineOptions.out, engineOptions.warmup, engineOptions.repeats);
+  addScenesOption(*engineCmd, engineOptions.scenes, "Reference scenes or glTF files");
+  engineCmd->add_option("--sizes", engineOptions.sizes, "Image sizes, WIDTHxHEIGHT, comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+
   KernelsOptions kernelsOptions;
   CLI::App* kernelsCmd = app.add_subcommand(
       "kernels", "Single kernels (raster, BVH build, trace, tile-max, gather) on synthetic inputs of chosen sizes");
@@ -661,6 +713,7 @@ int main(int argc, char** argv) {
     if (*errorTimeCmd) return errorTime(global, errorTimeOptions, commandLine(argc, argv));
     if (*passesCmd) return passes(global, passesOptions, commandLine(argc, argv));
     if (*kernelsCmd) return kernels(global, kernelsOptions, commandLine(argc, argv));
+    if (*engineCmd) return engine(global, engineOptions, commandLine(argc, argv));
   } catch (const std::exception& e) {
     std::cerr << "hmblur-bench: error: " << e.what() << '\n';
     return kError;
