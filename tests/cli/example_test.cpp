@@ -1,5 +1,6 @@
-// The example program (examples/render_frame.cpp) renders through the library API alone; run
-// as a user would, with validation on (a validation error is exit code 3).
+// The example programs run as a user would, with validation on (a validation message is exit
+// code 3): render_frame renders through the library API alone; engine_backend draws its own
+// G-buffer on its own device and has the library blur it in its own command buffer.
 #include <filesystem>
 #include <string>
 
@@ -42,6 +43,31 @@ TEST(LibraryExampleTest, BadInputIsAOneLineErrorAndANonZeroExit) {
   const CliRun method = example("living-room magic " + (dir / "x.png").string());
   EXPECT_EQ(method.exitCode, 1) << method.output;
   expectOneLineError(method, "unknown method 'magic'");
+}
+
+// Under the validation layer with synchronization validation, on the engine's own instance:
+// frames written, blurred where the boxes move, untouched where nothing does.
+TEST(EngineExampleTest, BlursItsOwnGBufferWithoutAValidationMessage) {
+  const fs::path dir = tempDir("engine-example");
+  const CliRun run = runProgram(HMB_ENGINE_EXAMPLE_PATH, "--validation --frames 2 --size 96x54 " + dir.string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("frame-01: blurred in"), std::string::npos) << run.output;
+  for (const char* frame : {"frame-00", "frame-01"}) {
+    const io::Rgba8Image blurred = io::readPng(dir / (std::string(frame) + ".png"));
+    const io::Rgba8Image sharp = io::readPng(dir / (std::string(frame) + "-sharp.png"));
+    ASSERT_EQ(blurred.width, 96u);
+    ASSERT_EQ(blurred.height, 54u);
+    size_t changed = 0, changedInSky = 0;
+    for (size_t i = 0; i < blurred.pixels.size(); i += 4) {
+      const bool differs = std::abs(int(blurred.pixels[i]) - int(sharp.pixels[i])) > 2;
+      changed += differs;
+      changedInSky += differs && i / 4 < 96u * 12u;  // the top rows: sky only
+    }
+    EXPECT_GT(changed, 20u) << frame;
+    EXPECT_EQ(changedInSky, 0u) << frame;
+  }
+  const CliRun usage = runProgram(HMB_ENGINE_EXAMPLE_PATH, "--size 0x0 " + dir.string());
+  EXPECT_EQ(usage.exitCode, 2) << usage.output;
 }
 
 }  // namespace

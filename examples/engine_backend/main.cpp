@@ -1,0 +1,652 @@
+// A small engine that owns its Vulkan instance, device and frame, draws its own G-buffer with a
+// graphics pipeline (a box sliding fast over a floor, one turning, one still, under a still
+// camera), and hands the G-buffer to hybrid-mblur to blur, frame by frame, through the public
+// API alone (<hmblur/hmblur.h>): an adopted context and hmb::EngineMotionBlur recorded into the
+// engine's own command buffer. Each frame is written as OUT_DIR/frame-NN.png, with the sharp
+// G-buffer colour beside it as OUT_DIR/frame-NN-sharp.png.
+//
+// Usage: engine_backend [--validation] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR
+//   --validation: the Khronos validation layer with synchronization validation on the engine's
+//   instance; any message it reports makes the exit code 3.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <hmblur/hmblur.h>
+#include <vulkan/vulkan.h>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb/stb_image_write.h>
+
+#include "gbuffer_frag.spv.h"
+#include "gbuffer_vert.spv.h"
+
+namespace {
+
+void check(VkResult result, const char* what) {
+  if (result != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
+}
+
+constexpr float kFps = 60.0f;
+constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kDepthOutFormat = VK_FORMAT_R32_SFLOAT;
+constexpr VkFormat kVelocityFormat = VK_FORMAT_R32G32_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+struct Vertex {
+  glm::vec3 position, normal;
+};
+
+// What the shaders read per object (a storage buffer indexed by the draw's first instance).
+struct ObjectData {
+  glm::mat4 clipNow, clipPrevious, model;
+  glm::vec4 albedo;
+};
+
+struct Mesh {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;
+};
+
+Mesh boxMesh() {
+  Mesh m;
+  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const glm::vec3& n : normals) {
+    const glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    const glm::vec3 v = glm::cross(n, u);
+    const auto base = static_cast<uint32_t>(m.vertices.size());
+    for (const glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+      m.vertices.push_back({0.5f * (n + c.x * u + c.y * v), n});
+    // Wound so the face is counter-clockwise seen from outside, whatever the basis' handedness.
+    const glm::vec3 e1 = m.vertices[base + 1].position - m.vertices[base].position;
+    const glm::vec3 e2 = m.vertices[base + 2].position - m.vertices[base].position;
+    if (glm::dot(glm::cross(e1, e2), n) > 0)
+      m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    else
+      m.indices.insert(m.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+  }
+  return m;
+}
+
+// The engine's own Vulkan: instance (with validation when asked), device, one queue that does
+// graphics and compute, a command pool.
+struct Engine {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t family = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  bool validation = false;
+  uint32_t messages = 0;
+
+  explicit Engine(bool withValidation) : validation(withValidation) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "engine_backend";
+    app.apiVersion = VK_API_VERSION_1_2;
+    const char* layer = "VK_LAYER_KHRONOS_validation";
+    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enables;
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pApplicationInfo = &app;
+    if (validation) {
+      info.pNext = &features;
+      info.enabledLayerCount = 1;
+      info.ppEnabledLayerNames = &layer;
+      info.enabledExtensionCount = 1;
+      info.ppEnabledExtensionNames = &extension;
+    }
+    check(vkCreateInstance(&info, nullptr, &instance), "vkCreateInstance");
+    if (validation) {
+      VkDebugUtilsMessengerCreateInfoEXT m{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+      m.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+      m.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+      m.pfnUserCallback = [](VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) -> VkBool32 {
+        ++static_cast<Engine*>(user)->messages;
+        std::fprintf(stderr, "engine_backend: validation: %s\n", data->pMessage ? data->pMessage : "");
+        return VK_FALSE;
+      };
+      m.pUserData = this;
+      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+          vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+      check(create(instance, &m, nullptr, &messenger), "vkCreateDebugUtilsMessengerEXT");
+    }
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(instance, &count, devices.data());
+    for (VkPhysicalDevice candidate : devices) {
+      uint32_t families = 0;
+      vkGetPhysicalDeviceQueueFamilyProperties(candidate, &families, nullptr);
+      std::vector<VkQueueFamilyProperties> properties(families);
+      vkGetPhysicalDeviceQueueFamilyProperties(candidate, &families, properties.data());
+      for (uint32_t f = 0; f < families && !physicalDevice; ++f)
+        if ((properties[f].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (properties[f].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+          physicalDevice = candidate;
+          family = f;
+        }
+    }
+    if (!physicalDevice) throw std::runtime_error("no device with a graphics and compute queue");
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = family;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    check(vkCreateDevice(physicalDevice, &deviceInfo, nullptr, &device), "vkCreateDevice");
+    vkGetDeviceQueue(device, family, 0, &queue);
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = family;
+    check(vkCreateCommandPool(device, &poolInfo, nullptr, &pool), "vkCreateCommandPool");
+  }
+
+  ~Engine() {
+    vkDestroyCommandPool(device, pool, nullptr);
+    vkDestroyDevice(device, nullptr);
+    if (messenger) {
+      auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+          vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+      destroy(instance, messenger, nullptr);
+    }
+    vkDestroyInstance(instance, nullptr);
+  }
+
+  // The library works on this device, using none of the optional features (none enabled).
+  hmb::vk::AdoptedVulkan adopted() const {
+    hmb::vk::AdoptedVulkan a;
+    a.instance = instance;
+    a.apiVersion = VK_API_VERSION_1_2;
+    a.debugUtils = validation;
+    a.physicalDevice = physicalDevice;
+    a.device = device;
+    a.queueFamily = family;
+    return a;
+  }
+
+  uint32_t memoryType(uint32_t allowed, VkMemoryPropertyFlags wanted) const {
+    VkPhysicalDeviceMemoryProperties memory{};
+    vkGetPhysicalDeviceMemoryProperties(physicalDevice, &memory);
+    for (uint32_t t = 0; t < memory.memoryTypeCount; ++t)
+      if ((allowed >> t & 1u) && (memory.memoryTypes[t].propertyFlags & wanted) == wanted) return t;
+    throw std::runtime_error("no memory type with the wanted properties");
+  }
+};
+
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* mapped = nullptr;  // host-visible buffers are mapped for their lifetime
+};
+
+Buffer makeBuffer(const Engine& e, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
+  Buffer b;
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = usage;
+  check(vkCreateBuffer(e.device, &info, nullptr, &b.buffer), "vkCreateBuffer");
+  VkMemoryRequirements needs{};
+  vkGetBufferMemoryRequirements(e.device, b.buffer, &needs);
+  VkMemoryAllocateInfo allocation{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  allocation.allocationSize = needs.size;
+  allocation.memoryTypeIndex = e.memoryType(
+      needs.memoryTypeBits, hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                        : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  check(vkAllocateMemory(e.device, &allocation, nullptr, &b.memory), "vkAllocateMemory");
+  check(vkBindBufferMemory(e.device, b.buffer, b.memory, 0), "vkBindBufferMemory");
+  if (hostVisible) check(vkMapMemory(e.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
+  return b;
+}
+
+void destroy(const Engine& e, Buffer& b) {
+  vkDestroyBuffer(e.device, b.buffer, nullptr);
+  vkFreeMemory(e.device, b.memory, nullptr);
+  b = {};
+}
+
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+};
+
+Image makeImage(const Engine& e, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                VkImageAspectFlags aspect) {
+  Image i;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  check(vkCreateImage(e.device, &info, nullptr, &i.image), "vkCreateImage");
+  VkMemoryRequirements needs{};
+  vkGetImageMemoryRequirements(e.device, i.image, &needs);
+  VkMemoryAllocateInfo allocation{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  allocation.allocationSize = needs.size;
+  allocation.memoryTypeIndex = e.memoryType(needs.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  check(vkAllocateMemory(e.device, &allocation, nullptr, &i.memory), "vkAllocateMemory");
+  check(vkBindImageMemory(e.device, i.image, i.memory, 0), "vkBindImageMemory");
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = i.image;
+  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.format = format;
+  view.subresourceRange = {aspect, 0, 1, 0, 1};
+  check(vkCreateImageView(e.device, &view, nullptr, &i.view), "vkCreateImageView");
+  return i;
+}
+
+void destroy(const Engine& e, Image& i) {
+  vkDestroyImageView(e.device, i.view, nullptr);
+  vkDestroyImage(e.device, i.image, nullptr);
+  vkFreeMemory(e.device, i.memory, nullptr);
+  i = {};
+}
+
+VkShaderModule shaderModule(const Engine& e, const uint32_t* code, size_t words) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = words * sizeof(uint32_t);
+  info.pCode = code;
+  VkShaderModule module = VK_NULL_HANDLE;
+  check(vkCreateShaderModule(e.device, &info, nullptr, &module), "vkCreateShaderModule");
+  return module;
+}
+
+// The G-buffer pass: three colour attachments (colour, camera-space depth, velocity) and a depth
+// buffer; the colour attachments end ready to be copied into the buffers the library reads.
+struct GBufferPass {
+  VkRenderPass renderPass = VK_NULL_HANDLE;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  Image color, depthOut, velocity, depth;
+
+  GBufferPass(const Engine& e, uint32_t width, uint32_t height, VkBuffer objects) {
+    const VkImageUsageFlags target = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    color = makeImage(e, width, height, kColorFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
+    depthOut = makeImage(e, width, height, kDepthOutFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
+    velocity = makeImage(e, width, height, kVelocityFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
+    depth = makeImage(e, width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                      VK_IMAGE_ASPECT_DEPTH_BIT);
+
+    std::array<VkAttachmentDescription, 4> attachments{};
+    const VkFormat formats[4] = {kColorFormat, kDepthOutFormat, kVelocityFormat, kDepthFormat};
+    for (int a = 0; a < 4; ++a) {
+      attachments[a].format = formats[a];
+      attachments[a].samples = VK_SAMPLE_COUNT_1_BIT;
+      attachments[a].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+      attachments[a].storeOp = a < 3 ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+      attachments[a].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+      attachments[a].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+      attachments[a].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+      attachments[a].finalLayout =
+          a < 3 ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    }
+    const VkAttachmentReference colorRefs[3] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                                {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                                {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
+    const VkAttachmentReference depthRef{3, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 3;
+    subpass.pColorAttachments = colorRefs;
+    subpass.pDepthStencilAttachment = &depthRef;
+    // Before: the last frame's copies out of the attachments and its depth tests. After: this
+    // frame's copies out of them.
+    std::array<VkSubpassDependency, 2> dependencies{};
+    dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[0].dstSubpass = 0;
+    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    dependencies[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
+    dependencies[0].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    dependencies[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                                    VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    dependencies[1].srcSubpass = 0;
+    dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    passInfo.attachmentCount = 4;
+    passInfo.pAttachments = attachments.data();
+    passInfo.subpassCount = 1;
+    passInfo.pSubpasses = &subpass;
+    passInfo.dependencyCount = 2;
+    passInfo.pDependencies = dependencies.data();
+    check(vkCreateRenderPass(e.device, &passInfo, nullptr, &renderPass), "vkCreateRenderPass");
+    const VkImageView views[4] = {color.view, depthOut.view, velocity.view, depth.view};
+    VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fb.renderPass = renderPass;
+    fb.attachmentCount = 4;
+    fb.pAttachments = views;
+    fb.width = width;
+    fb.height = height;
+    fb.layers = 1;
+    check(vkCreateFramebuffer(e.device, &fb, nullptr, &framebuffer), "vkCreateFramebuffer");
+
+    VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = 1;
+    setInfo.pBindings = &binding;
+    check(vkCreateDescriptorSetLayout(e.device, &setInfo, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout;
+    check(vkCreatePipelineLayout(e.device, &layoutInfo, nullptr, &layout), "vkCreatePipelineLayout");
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    check(vkCreateDescriptorPool(e.device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
+    VkDescriptorSetAllocateInfo allocation{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocation.descriptorPool = pool;
+    allocation.descriptorSetCount = 1;
+    allocation.pSetLayouts = &setLayout;
+    check(vkAllocateDescriptorSets(e.device, &allocation, &set), "vkAllocateDescriptorSets");
+    const VkDescriptorBufferInfo bufferInfo{objects, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    write.pBufferInfo = &bufferInfo;
+    vkUpdateDescriptorSets(e.device, 1, &write, 0, nullptr);
+
+    const VkShaderModule vert = shaderModule(e, kSpvGbufferVert, sizeof(kSpvGbufferVert) / sizeof(uint32_t));
+    const VkShaderModule frag = shaderModule(e, kSpvGbufferFrag, sizeof(kSpvGbufferFrag) / sizeof(uint32_t));
+    const float viewport[2] = {float(width), float(height)};
+    const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(float)}, {1, sizeof(float), sizeof(float)}};
+    const VkSpecializationInfo specialization{2, entries, sizeof(viewport), viewport};
+    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vert;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = frag;
+    stages[1].pName = "main";
+    stages[1].pSpecializationInfo = &specialization;
+    const VkVertexInputBindingDescription vertexBinding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const VkVertexInputAttributeDescription vertexAttributes[2] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertexInput.vertexBindingDescriptionCount = 1;
+    vertexInput.pVertexBindingDescriptions = &vertexBinding;
+    vertexInput.vertexAttributeDescriptionCount = 2;
+    vertexInput.pVertexAttributeDescriptions = vertexAttributes;
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    const VkViewport vp{0, 0, float(width), float(height), 0, 1};
+    const VkRect2D scissor{{0, 0}, {width, height}};
+    VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewportState.viewportCount = 1;
+    viewportState.pViewports = &vp;
+    viewportState.scissorCount = 1;
+    viewportState.pScissors = &scissor;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE;  // closed boxes under a depth test: culling would only save time
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depthState{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depthState.depthTestEnable = VK_TRUE;
+    depthState.depthWriteEnable = VK_TRUE;
+    depthState.depthCompareOp = VK_COMPARE_OP_LESS;
+    std::array<VkPipelineColorBlendAttachmentState, 3> blend{};
+    for (auto& b : blend) b.colorWriteMask = 0xf;
+    VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blendState.attachmentCount = 3;
+    blendState.pAttachments = blend.data();
+    VkGraphicsPipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    pipelineInfo.stageCount = 2;
+    pipelineInfo.pStages = stages;
+    pipelineInfo.pVertexInputState = &vertexInput;
+    pipelineInfo.pInputAssemblyState = &assembly;
+    pipelineInfo.pViewportState = &viewportState;
+    pipelineInfo.pRasterizationState = &raster;
+    pipelineInfo.pMultisampleState = &multisample;
+    pipelineInfo.pDepthStencilState = &depthState;
+    pipelineInfo.pColorBlendState = &blendState;
+    pipelineInfo.layout = layout;
+    pipelineInfo.renderPass = renderPass;
+    check(vkCreateGraphicsPipelines(e.device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline),
+          "vkCreateGraphicsPipelines");
+    vkDestroyShaderModule(e.device, vert, nullptr);
+    vkDestroyShaderModule(e.device, frag, nullptr);
+  }
+
+  void destroyWith(const Engine& e) {
+    vkDestroyPipeline(e.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(e.device, layout, nullptr);
+    vkDestroyDescriptorPool(e.device, pool, nullptr);
+    vkDestroyDescriptorSetLayout(e.device, setLayout, nullptr);
+    vkDestroyFramebuffer(e.device, framebuffer, nullptr);
+    vkDestroyRenderPass(e.device, renderPass, nullptr);
+    for (Image* i : {&color, &depthOut, &velocity, &depth}) destroy(e, *i);
+  }
+};
+
+// The scene's objects at time t: the floor, a box sliding fast, a box turning, a box still.
+std::vector<ObjectData> objectsAt(float t, const glm::mat4& viewProjection) {
+  struct Placement {
+    glm::mat4 model;
+    glm::vec4 albedo;
+  };
+  const auto place = [](float time) {
+    std::vector<Placement> p;
+    p.push_back({glm::scale(glm::translate(glm::mat4(1), {0, -0.55f, 0}), {12, 0.1f, 12}), {0.55f, 0.55f, 0.5f, 0}});
+    const float x = -2.5f + 5.0f * std::fmod(time * 3.0f, 1.0f);  // 15 units a second across the view
+    p.push_back({glm::translate(glm::mat4(1), {x, 0, 0.8f}), {0.9f, 0.3f, 0.2f, 0}});
+    p.push_back({glm::rotate(glm::translate(glm::mat4(1), {1.2f, 0, -1.5f}), 20.0f * time, {0, 1, 0}),
+                 {0.2f, 0.5f, 0.9f, 0}});
+    p.push_back({glm::translate(glm::mat4(1), {-1.6f, 0, -1.2f}), {0.3f, 0.8f, 0.3f, 0}});
+    return p;
+  };
+  const std::vector<Placement> now = place(t), before = place(t - 1.0f / kFps);
+  std::vector<ObjectData> objects;
+  for (size_t i = 0; i < now.size(); ++i)
+    objects.push_back({viewProjection * now[i].model, viewProjection * before[i].model, now[i].model, now[i].albedo});
+  return objects;
+}
+
+float srgb(float linear) {
+  const float c = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+void writePng(const std::filesystem::path& path, const float* rgba, uint32_t width, uint32_t height) {
+  std::vector<uint8_t> pixels(size_t(width) * height * 4);
+  for (size_t i = 0; i < size_t(width) * height; ++i) {
+    for (int c = 0; c < 3; ++c) pixels[4 * i + c] = static_cast<uint8_t>(std::lround(255.0f * srgb(rgba[4 * i + c])));
+    pixels[4 * i + 3] = 255;
+  }
+  if (!stbi_write_png(path.string().c_str(), int(width), int(height), 4, pixels.data(), int(width) * 4))
+    throw std::runtime_error("could not write " + path.string());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool validation = false;
+  int frames = 4;
+  uint32_t width = 640, height = 360;
+  std::filesystem::path outDir;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--validation") validation = true;
+    else if (arg == "--frames" && a + 1 < argc) frames = std::max(1, std::atoi(argv[++a]));
+    else if (arg == "--size" && a + 1 < argc) {
+      if (std::sscanf(argv[++a], "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 ||
+          height > 8192) {
+        std::fprintf(stderr, "engine_backend: --size takes WIDTHxHEIGHT, 1 to 8192 each\n");
+        return 2;
+      }
+    } else if (outDir.empty() && arg[0] != '-') outDir = arg;
+    else {
+      std::fprintf(stderr, "usage: engine_backend [--validation] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR\n");
+      return 2;
+    }
+  }
+  if (outDir.empty()) {
+    std::fprintf(stderr, "usage: engine_backend [--validation] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR\n");
+    return 2;
+  }
+  try {
+    std::filesystem::create_directories(outDir);
+    Engine engine(validation);
+    const size_t pixels = size_t(width) * height;
+    // The engine's buffers: the G-buffer copied out of its attachments, and the blurred output.
+    const VkBufferUsageFlags gbufferUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    Buffer color = makeBuffer(engine, pixels * 16, gbufferUsage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    Buffer depth = makeBuffer(engine, pixels * 4, gbufferUsage, false);
+    Buffer velocity = makeBuffer(engine, pixels * 8, gbufferUsage, false);
+    Buffer blurred = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    Buffer sharp = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const Mesh box = boxMesh();
+    Buffer vertices = makeBuffer(engine, box.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
+    Buffer indices = makeBuffer(engine, box.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, true);
+    std::memcpy(vertices.mapped, box.vertices.data(), box.vertices.size() * sizeof(Vertex));
+    std::memcpy(indices.mapped, box.indices.data(), box.indices.size() * 4);
+    constexpr uint32_t kObjects = 4;
+    Buffer objects = makeBuffer(engine, kObjects * sizeof(ObjectData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    GBufferPass gbuffer(engine, width, height, objects.buffer);
+
+    // The camera: Vulkan's clip space (y down the framebuffer, depth 0 to 1).
+    glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(50.0f), float(width) / float(height), 0.1f, 100.0f);
+    projection[1][1] *= -1.0f;
+    const glm::mat4 viewProjection = projection * glm::lookAt(glm::vec3(0, 2.2f, 5.5f), {0, 0, 0}, {0, 1, 0});
+
+    {
+      hmb::vk::ContextOptions options;
+      options.validation = validation;  // the library's messages are counted too
+      hmb::vk::Context context(engine.adopted(), options);
+      hmb::passes::PostProcessSettings settings;
+      settings.exposure = 0.5f / kFps;  // a 180-degree shutter
+      settings.fps = kFps;
+      settings.softZExtent = 0.05f;  // scene units
+      hmb::EngineMotionBlur motionBlur(context, width, height, settings);
+
+      VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+      allocation.commandPool = engine.pool;
+      allocation.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+      allocation.commandBufferCount = 1;
+      VkCommandBuffer commands = VK_NULL_HANDLE;
+      check(vkAllocateCommandBuffers(engine.device, &allocation, &commands), "vkAllocateCommandBuffers");
+      VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+      VkFence fence = VK_NULL_HANDLE;
+      check(vkCreateFence(engine.device, &fenceInfo, nullptr, &fence), "vkCreateFence");
+
+      for (int f = 0; f < frames; ++f) {
+        const float t = 0.35f + float(f) / kFps;
+        const std::vector<ObjectData> data = objectsAt(t, viewProjection);
+        std::memcpy(objects.mapped, data.data(), data.size() * sizeof(ObjectData));
+
+        check(vkResetCommandBuffer(commands, 0), "vkResetCommandBuffer");
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        check(vkBeginCommandBuffer(commands, &begin), "vkBeginCommandBuffer");
+        // The engine's own frame: the G-buffer pass ...
+        VkClearValue clears[4] = {};
+        clears[0].color = {{0.62f, 0.74f, 0.9f, 1.0f}};  // sky
+        clears[1].color = {{0.0f, 0, 0, 0}};              // depth 0: nothing there (the background)
+        clears[2].color = {{0.0f, 0, 0, 0}};              // the still camera: the sky does not move
+        clears[3].depthStencil = {1.0f, 0};
+        VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        passBegin.renderPass = gbuffer.renderPass;
+        passBegin.framebuffer = gbuffer.framebuffer;
+        passBegin.renderArea = {{0, 0}, {width, height}};
+        passBegin.clearValueCount = 4;
+        passBegin.pClearValues = clears;
+        vkCmdBeginRenderPass(commands, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
+        vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer.pipeline);
+        vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer.layout, 0, 1, &gbuffer.set, 0, nullptr);
+        const VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(commands, 0, 1, &vertices.buffer, &offset);
+        vkCmdBindIndexBuffer(commands, indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+        for (uint32_t o = 0; o < kObjects; ++o)
+          vkCmdDrawIndexed(commands, static_cast<uint32_t>(box.indices.size()), 1, 0, 0, o);  // instance o: object o
+        vkCmdEndRenderPass(commands);
+        // ... copied into the buffers the library reads (after the last frame's reads of them) ...
+        VkMemoryBarrier afterLastFrame{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        afterLastFrame.srcAccessMask = 0;  // write after read: ordering alone
+        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &afterLastFrame, 0, nullptr, 0, nullptr);
+        const VkBufferImageCopy region{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {width, height, 1}};
+        vkCmdCopyImageToBuffer(commands, gbuffer.color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(commands, gbuffer.depthOut.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth.buffer, 1,
+                               &region);
+        vkCmdCopyImageToBuffer(commands, gbuffer.velocity.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, velocity.buffer,
+                               1, &region);
+        // ... blurred by the library, in this command buffer ...
+        motionBlur.record(commands, {color.buffer, depth.buffer, velocity.buffer}, blurred.buffer);
+        // ... and the sharp colour kept to compare; the host reads both after the fence.
+        const VkBufferCopy whole{0, 0, pixels * 16};
+        vkCmdCopyBuffer(commands, color.buffer, sharp.buffer, 1, &whole);
+        VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        toHost.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
+        check(vkEndCommandBuffer(commands), "vkEndCommandBuffer");
+        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &commands;
+        check(vkQueueSubmit(engine.queue, 1, &submit, fence), "vkQueueSubmit");
+        check(vkWaitForFences(engine.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        check(vkResetFences(engine.device, 1, &fence), "vkResetFences");
+
+        char name[32];
+        std::snprintf(name, sizeof(name), "frame-%02d", f);
+        writePng(outDir / (std::string(name) + ".png"), static_cast<const float*>(blurred.mapped), width, height);
+        writePng(outDir / (std::string(name) + "-sharp.png"), static_cast<const float*>(sharp.mapped), width, height);
+        const hmb::vk::FrameTimings timings = motionBlur.timings();
+        std::printf("%s: blurred in %.2f ms (", name, timings.frameMilliseconds.value_or(0.0));
+        for (size_t p = 0; p < timings.passes.size(); ++p)
+          std::printf("%s%s %.2f", p ? ", " : "", timings.passes[p].name.c_str(), timings.passes[p].milliseconds.value_or(0.0));
+        std::printf(")\n");
+      }
+      vkDestroyFence(engine.device, fence, nullptr);
+      vkFreeCommandBuffers(engine.device, engine.pool, 1, &commands);
+    }
+    gbuffer.destroyWith(engine);
+    for (Buffer* b : {&color, &depth, &velocity, &blurred, &sharp, &vertices, &indices, &objects}) destroy(engine, *b);
+    std::printf("wrote %d frames to %s\n", frames, outDir.string().c_str());
+    if (validation && engine.messages > 0) {
+      std::fprintf(stderr, "engine_backend: %u validation messages\n", engine.messages);
+      return 3;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "engine_backend: %s\n", e.what());
+    return 1;
+  }
+}
