@@ -8,6 +8,11 @@
 // Usage: engine_backend [--validation] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR
 //   --validation: the Khronos validation layer with synchronization validation on the engine's
 //   instance; any message it reports makes the exit code 3.
+// Each frame prints the library's device times (EngineMotionBlur::timings). On lavapipe a
+// timestamp written while the command buffer's draws are still unrasterized is taken when they
+// are, so after draws in one command buffer its pass times there are not the passes' own (the
+// frame total still spans them); `hmblur-bench engine` times the passes in a command buffer
+// of their own.
 #include <algorithm>
 #include <array>
 #include <cmath>
