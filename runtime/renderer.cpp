@@ -10,6 +10,7 @@
 #include "runtime/methods/frame_method.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/hit_shading.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
@@ -134,12 +135,14 @@ std::vector<std::string> methodNames() {
 }
 
 struct Renderer::Shared {
-  Shared(vk::Context& context, passes::VisibilityScheme visibilityScheme)
-      : encodeDisplay(context),
+  Shared(vk::Context& context, passes::VisibilityScheme visibilityScheme, std::string shadeHit)
+      : hitShading(std::move(shadeHit)),
+        encodeDisplay(context),
         gbuffer(context, visibilityScheme),
         postProcess(context, passes::PostProcessSettings{}),
         recorder(context),
-        resources{context, recorder, encodeDisplay, gbuffer, postProcess} {}
+        resources{context, recorder, encodeDisplay, gbuffer, postProcess, hitShading} {}
+  passes::HitShading hitShading;
   passes::EncodeDisplayPass encodeDisplay;
   passes::GBufferStage gbuffer;
   passes::PostProcessStage postProcess;
@@ -161,7 +164,8 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
   validateRenderSettings(settings);
   if (!shared_)
     shared_ = std::make_unique<Shared>(
-        context_, options_.visibilityScheme.value_or(passes::defaultVisibilityScheme(context_.info())));
+        context_, options_.visibilityScheme.value_or(passes::defaultVisibilityScheme(context_.info())),
+        options_.shadeHit);
   FrameMethod& method = methodFor(settings.method);
 
   context_.resetMemoryPeak();

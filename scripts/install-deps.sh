@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-tools spirv-tools libspirv-cross-c-shared-dev
+  glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libtinygltf-dev libopenexr-dev libstb-dev
   libfreetype-dev libfontconfig-dev fonts-dejavu-core  # captions on comparison strips
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev

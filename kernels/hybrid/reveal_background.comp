@@ -7,7 +7,8 @@
 //  - luminance stop (the paper's mode): step past hits, up to maxRecursion times, until a hit's
 //    shaded luminance differs from the first hit's by more than the relative threshold; the
 //    last hit is kept when none does.
-// The revealed surface is shaded with the shading function every method shares and written
+// The revealed surface is shaded with the shading function every method shares (or a user's:
+// trace/shade_hit.glsl) and written
 // as a G-buffer entry: colour, normal and camera-space depth, screen velocity (the same
 // surface point at t and t - 1/fps, as the resolve computes it) and object id. Nothing behind
 // reads as the background colour at the far depth.
@@ -65,13 +66,14 @@ void main() {
   } else {
     hit = closestHit(ray, scene);
     if (hit.triangle != HMB_NO_HIT) {
-      const float firstLuminance = luminance(shadeHit(hit, direction, hit.instance));
+      const vec3 eye = ray.originTMin.xyz;
+      const float firstLuminance = luminance(shadeHit(hitRecord(hit, eye, direction, hit.instance)));
       for (uint step = 0u; step < params.maxRecursion; ++step) {
         ray.originTMin.w = pastHit(hit.t);
         hit = closestHit(ray, scene);
         ++traces;
         if (hit.triangle == HMB_NO_HIT) break;
-        const float difference = abs(luminance(shadeHit(hit, direction, hit.instance)) - firstLuminance);
+        const float difference = abs(luminance(shadeHit(hitRecord(hit, eye, direction, hit.instance))) - firstLuminance);
         if (difference > params.luminanceThreshold * max(firstLuminance, 1e-3)) break;
       }
     }
@@ -91,9 +93,8 @@ void main() {
   vec2 motion = vec2(0.0);
   if (previousClip.w > 0.0) motion = centre - (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(params.width, params.height);
 
-  const HitSurface surface = hitSurface(hit, direction, hit.instance);
-  const vec3 shaded = shadeSurface(instanceMaterial(hit.instance), surface.uv, surface.normal);
-  const vec3 color = finite3(shaded) ? shaded : vec3(0.0);
-  const uint objectId = traceInstanceAt(hit.instance).objectId;
-  WRITE_LAYER(revealed, index, color, surface.normal, objectId, hit.t, motion);  // non-finite motion packs as none
+  const HitRecord record = hitRecord(hit, ray.originTMin.xyz, direction, hit.instance);
+  const vec3 shaded = shadeHit(record);
+  const vec3 color = finite3(shaded) ? shaded : vec3(0.0);  // a user's shading too
+  WRITE_LAYER(revealed, index, color, record.normal, record.objectId, hit.t, motion);  // non-finite motion packs as none
 }

@@ -58,7 +58,7 @@ void main() {
   ray.pad1 = 0u;
 
   const BvhHit hit = closestHit(ray, TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES));
-  vec3 color = hit.triangle == HMB_NO_HIT ? camera.background.rgb : shadeHit(hit, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time);
+  vec3 color = hit.triangle == HMB_NO_HIT ? camera.background.rgb : shadeHit(hitRecord(hit, ray.originTMin.xyz, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time));
   if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
   sum[index] += vec4(color, 1.0);
 }

@@ -1,9 +1,12 @@
 // The surface a ray hit and its colour, for every kernel that shades ray hits (the reference
 // and the ray reveal): normal and uv interpolated from the mesh's vertices, the normal carried
 // to world space with the instance's transform at the ray's time and turned to the viewer
-// when a (double-sided) back face is seen, as the G-buffer resolve does, then the shading
-// function every method shares. Needs closest_hit.glsl and shared/shading.glsl included first
-// and the scene's vertices and instances (shared/scene_bindings.glsl).
+// when a (double-sided) back face is seen, as the G-buffer resolve does, gathered in a
+// HitRecord, then shadeHit(HitRecord): the shading function every method shares, or a user's
+// (passes::HitShading compiles these kernels again with HMB_CUSTOM_SHADE_HIT and the user's
+// function as the include "custom_shade_hit.glsl"). Needs closest_hit.glsl and
+// shared/shading.glsl included first and the scene's vertices and instances
+// (shared/scene_bindings.glsl).
 #ifndef HMB_KERNELS_TRACE_SHADE_HIT_GLSL
 #define HMB_KERNELS_TRACE_SHADE_HIT_GLSL
 
@@ -34,9 +37,36 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
   return s;
 }
 
-vec3 shadeHit(BvhHit hit, vec3 direction, uint transformIndex) {
+// What the shading of a ray hit is given; a user's shadeHit takes the same (runtime/renderer.h,
+// RendererOptions::shadeHit).
+struct HitRecord {
+  uint objectId;      // the hit instance's object id (the scene's; 0 is the background)
+  uint instance;      // the hit instance
+  vec2 barycentrics;  // (u, v): the weights of the hit triangle's second and third vertices
+  vec3 position;      // world space
+  vec3 normal;        // world space, unit, facing the ray's origin
+  vec2 uv;            // texture coordinates (0 in scenes without textures)
+  uint material;      // the instance's material
+};
+
+#ifdef HMB_CUSTOM_SHADE_HIT
+#include "custom_shade_hit.glsl"
+#else
+vec3 shadeHit(HitRecord hit) { return shadeSurface(hit.material, hit.uv, hit.normal); }
+#endif
+
+// transformIndex: as hitSurface's.
+HitRecord hitRecord(BvhHit hit, vec3 origin, vec3 direction, uint transformIndex) {
   const HitSurface s = hitSurface(hit, direction, transformIndex);
-  return shadeSurface(instanceMaterial(hit.instance), s.uv, s.normal);
+  HitRecord r;
+  r.objectId = traceInstanceAt(hit.instance).objectId;
+  r.instance = hit.instance;
+  r.barycentrics = vec2(hit.u, hit.v);
+  r.position = origin + hit.t * direction;
+  r.normal = s.normal;
+  r.uv = s.uv;
+  r.material = instanceMaterial(hit.instance);
+  return r;
 }
 
 #endif

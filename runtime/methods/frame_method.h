@@ -24,6 +24,7 @@ namespace passes {
 class EncodeDisplayPass;
 class GBufferStage;
 class PostProcessStage;
+class HitShading;
 }
 
 struct FrameResources {
@@ -32,6 +33,7 @@ struct FrameResources {
   passes::EncodeDisplayPass& encodeDisplay;
   passes::GBufferStage& gbuffer;
   passes::PostProcessStage& postProcess;
+  const passes::HitShading& hitShading;  // how the reveal and the reference shade ray hits
 };
 
 struct FrameRequest {

@@ -21,7 +21,7 @@ namespace {
 class HybridMethod final : public FrameMethod {
  public:
   explicit HybridMethod(FrameResources& resources)
-      : resources_(resources), hybrid_(resources.context, resources.postProcess) {}
+      : resources_(resources), hybrid_(resources.context, resources.postProcess, &resources.hitShading) {}
 
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
     const RenderSettings& settings = request.settings;

@@ -15,7 +15,7 @@ namespace {
 
 class ReferenceMethod final : public FrameMethod {
  public:
-  explicit ReferenceMethod(FrameResources& resources) : resources_(resources), reference_(resources.context) {}
+  explicit ReferenceMethod(FrameResources& resources) : resources_(resources), reference_(resources.context, &resources.hitShading) {}
 
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
     const RenderSettings& settings = request.settings;

@@ -14,11 +14,11 @@
 
 namespace hmb::passes {
 
-HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProcess)
+HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProcess, const HitShading* hits)
     : context_(context),
       postProcess_(postProcess),
       rayMask_(context),
-      reveal_(context),
+      reveal_(context, hits),
       backgroundGather_(context),
       composite_(context) {}
 

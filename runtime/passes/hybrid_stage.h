@@ -43,7 +43,8 @@ class HybridStage {
 
   // postProcess: the stage whose tiles and gather both layers use (configured for the
   // McGuire filter and the adapted range by the caller).
-  HybridStage(const vk::Context& context, PostProcessStage& postProcess);
+  // hits: how the reveal shades what it finds (null: the library's shading).
+  HybridStage(const vk::Context& context, PostProcessStage& postProcess, const HitShading* hits = nullptr);
   ~HybridStage();
 
   // The hybrid's passes for a frame of `scene` at `frameTime`: the trace scene's trees are

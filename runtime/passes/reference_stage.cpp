@@ -183,10 +183,10 @@ std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32
   return times;
 }
 
-ReferenceStage::ReferenceStage(const vk::Context& context)
+ReferenceStage::ReferenceStage(const vk::Context& context, const HitShading* hits)
     : context_(context),
       findMovingPixels_(context, "reference/find_moving_pixels", sizeof(gpu::MovingPixelsParams)),
-      accumulate_(context, "reference/accumulate_sample", sizeof(gpu::ReferenceSampleParams)),
+      accumulate_(context, "reference/accumulate_sample", sizeof(gpu::ReferenceSampleParams), hits),
       average_(context, "reference/average_samples", sizeof(gpu::AverageParams)) {}
 
 ReferenceStage::~ReferenceStage() = default;

@@ -69,7 +69,8 @@ class ReferenceStage {
   static constexpr const char* kAccumulate = "reference-accumulate-sample";
   static constexpr const char* kAverage = "reference-average";
 
-  explicit ReferenceStage(const vk::Context& context);
+  // hits: how samples shade what they hit (null: the library's shading).
+  explicit ReferenceStage(const vk::Context& context, const HitShading* hits = nullptr);
   ~ReferenceStage();
 
   // The mesh trees of the last render are kept, and serve the next one when its meshes are

@@ -15,8 +15,8 @@
 
 namespace hmb::passes {
 
-RevealPass::RevealPass(const vk::Context& context)
-    : kernel_(context, "hybrid/reveal_background", sizeof(gpu::RevealParams)) {}
+RevealPass::RevealPass(const vk::Context& context, const HitShading* hits)
+    : kernel_(context, "hybrid/reveal_background", sizeof(gpu::RevealParams), hits) {}
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
                         const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,

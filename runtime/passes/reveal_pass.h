@@ -23,7 +23,8 @@ namespace hmb::passes {
 class RevealPass {
  public:
   static constexpr const char* kName = "ray-reveal";
-  explicit RevealPass(const vk::Context& context);
+  // hits: how hits are shaded (null: the library's shading).
+  explicit RevealPass(const vk::Context& context, const HitShading* hits = nullptr);
   // traceScene: shutter times set to the frame time alone. cameraRays: one gpu::PinholeCamera
   // at the frame time. rasterSurfaces: the G-buffer's surfaces (for their object ids). list, counters: RayMaskStage's.
   // output: written at the listed pixels.

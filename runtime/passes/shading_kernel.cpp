@@ -5,18 +5,27 @@
 #include "kernels/shared/scene_layout.h"
 #include "runtime/frame_plan.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/passes/hit_shading.h"
 #include "runtime/passes/reference_stage.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/reveal_pass.h"
 
 namespace hmb::passes {
 
+namespace {
+
+const HitShading* customOnly(const HitShading* hits) { return hits && hits->custom() ? hits : nullptr; }
+
+}  // namespace
+
 ShadingKernel::ShadingKernel(const vk::Context& context, std::string_view kernelName,
-                             uint32_t pushConstantBytes)
+                             uint32_t pushConstantBytes, const HitShading* hits)
     : context_(context),
       name_(kernelName),
       pushConstantBytes_(pushConstantBytes),
-      textured_(context, kernelName, pushConstantBytes) {}
+      hits_(customOnly(hits)),
+      textured_(hits_ ? vk::ComputeKernel(context, kernelName, hits_->buildsFor(kernelName), pushConstantBytes)
+                      : vk::ComputeKernel(context, kernelName, pushConstantBytes)) {}
 
 ShadingKernel::~ShadingKernel() = default;
 
@@ -25,8 +34,9 @@ const vk::ComputeKernel& ShadingKernel::forScene(const GpuScene& scene) const {
   if (!untextured_) {
     std::array<uint32_t, HMB_SPEC_TEXTURE_PATH + 1> specialization{};
     specialization[HMB_SPEC_TEXTURE_PATH] = 0u;  // VkBool32 false
-    untextured_ =
-        std::make_unique<vk::ComputeKernel>(context_, name_, pushConstantBytes_, specialization);
+    untextured_ = hits_ ? std::make_unique<vk::ComputeKernel>(context_, name_, hits_->buildsFor(name_),
+                                                              pushConstantBytes_, specialization)
+                        : std::make_unique<vk::ComputeKernel>(context_, name_, pushConstantBytes_, specialization);
   }
   return *untextured_;
 }

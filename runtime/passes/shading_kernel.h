@@ -18,10 +18,14 @@ class GpuScene;
 
 namespace hmb::passes {
 
+class HitShading;
+
 class ShadingKernel {
  public:
   static constexpr const char* kTexturePath = "texture-path";
-  ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t pushConstantBytes);
+  // hits: how ray hits are shaded, for the kernels that shade them (null: the library's way).
+  ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
+                const HitShading* hits = nullptr);
   ~ShadingKernel();
 
   // The build that shades this scene: without the texture path where scene.texturePath() is false.
@@ -31,6 +35,7 @@ class ShadingKernel {
   const vk::Context& context_;
   std::string name_;
   uint32_t pushConstantBytes_;
+  const HitShading* hits_;  // non-null with a user's shading: the kernel's builds come from it
   vk::ComputeKernel textured_;
   mutable std::unique_ptr<vk::ComputeKernel> untextured_;
 };

@@ -14,9 +14,25 @@ namespace hmb::vk {
 ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
                              std::span<const uint32_t> specialization)
     : context_(context), name_(kernelName), pushConstantBytes_(pushConstantBytes) {
+  build(findKernel(kernelName), findKernelIfBuilt(name_ + std::string(kByAddressSuffix)), specialization);
+}
+
+ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, const KernelBuilds& builds,
+                             uint32_t pushConstantBytes, std::span<const uint32_t> specialization)
+    : context_(context), name_(kernelName), pushConstantBytes_(pushConstantBytes) {
+  if (builds.plain.empty()) throw Error("kernel '" + name_ + "' was given no SPIR-V");
+  const EmbeddedKernel plain{name_, builds.plain.data(), builds.plain.size()};
+  const EmbeddedKernel byAddress{name_, builds.byAddress.data(), builds.byAddress.size()};
+  build(plain, builds.byAddress.empty() ? nullptr : &byAddress, specialization);
+}
+
+void ComputeKernel::build(const EmbeddedKernel& plain, const EmbeddedKernel* byAddress,
+                          std::span<const uint32_t> specialization) {
+  const Context& context = context_;
+  const uint32_t pushConstantBytes = pushConstantBytes_;
   // The SPIR-V is the truth about what the kernel binds; the device must have room for it
   // before any Vulkan object is made.
-  const EmbeddedKernel* spirvBuild = &findKernel(kernelName);
+  const EmbeddedKernel* spirvBuild = &plain;
   KernelInterface declared = reflectKernel(*spirvBuild);
   std::string doesNotFit = whyKernelDoesNotFit(name_, declared, context.limits());
   // The address build, where there is one, is for devices whose storage-buffer bindings the
@@ -25,8 +41,7 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
   const uint64_t storageBuffers = declared.storageBufferBindings.size();
   const bool tooManyBuffers = storageBuffers > limits.maxPerStageDescriptorStorageBuffers ||
                               storageBuffers > limits.maxDescriptorSetStorageBuffers;
-  if (const EmbeddedKernel* byAddress = findKernelIfBuilt(name_ + std::string(kByAddressSuffix));
-      byAddress && (context.options().bindByAddress || tooManyBuffers)) {
+  if (byAddress && (context.options().bindByAddress || tooManyBuffers)) {
     if (!context.info().bufferDeviceAddress)
       throw Error(doesNotFit.empty() ? "kernel '" + name_ + "': binding by address needs bufferDeviceAddress"
                                      : doesNotFit + ", and lacks bufferDeviceAddress to bind its buffers by address");

@@ -18,12 +18,22 @@
 namespace hmb::vk {
 
 class Context;
+struct EmbeddedKernel;
+
+// A kernel's SPIR-V made at run time (glsl_compiler.h): its plain build and, where the kernel
+// has one, its address build (empty: none).
+struct KernelBuilds {
+  std::vector<uint32_t> plain, byAddress;
+};
 
 class ComputeKernel {
  public:
   // specialization[i] is the value of constant_id i; constants left out keep the kernel's default.
   ComputeKernel(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
                 std::span<const uint32_t> specialization = {});
+  // The same from SPIR-V compiled at run time, named kernelName in errors.
+  ComputeKernel(const Context& context, std::string_view kernelName, const KernelBuilds& builds,
+                uint32_t pushConstantBytes, std::span<const uint32_t> specialization = {});
   ~ComputeKernel();
   ComputeKernel(const ComputeKernel&) = delete;
   ComputeKernel& operator=(const ComputeKernel&) = delete;
@@ -44,6 +54,7 @@ class ComputeKernel {
   VkDescriptorSetLayout setLayout() const { return setLayout_; }
 
  private:
+  void build(const EmbeddedKernel& plain, const EmbeddedKernel* byAddress, std::span<const uint32_t> specialization);
   void release();
 
   const Context& context_;

@@ -17,4 +17,10 @@ const EmbeddedKernel& findKernel(std::string_view name) {
   throw Error("kernel '" + std::string(name) + "' is not built into this binary");
 }
 
+const KernelSource* findKernelSource(std::string_view path) {
+  for (const KernelSource& source : kernelSources())
+    if (source.path == path) return &source;
+  return nullptr;
+}
+
 }  // namespace hmb::vk

@@ -22,6 +22,18 @@ const EmbeddedKernel& findKernel(std::string_view name);
 // nullptr when not built in.
 const EmbeddedKernel* findKernelIfBuilt(std::string_view name);
 
+// The GLSL text of a kernel or of a file kernels include, by its path in the source tree
+// ("kernels/hybrid/reveal_background.comp", "bvh/bvh_layout.h"), for kernels compiled again at
+// run time (runtime/vulkan/glsl_compiler.h).
+struct KernelSource {
+  std::string_view path;
+  std::string_view text;
+};
+// Defined in the generated source table.
+const std::span<const KernelSource> kernelSources();
+// nullptr when there is no such file.
+const KernelSource* findKernelSource(std::string_view path);
+
 // The suffix of a kernel's second build whose groups of buffers are bound as tables of device
 // addresses (cmake/EmbedKernels.cmake, HMB_BIND_BY_ADDRESS).
 inline constexpr std::string_view kByAddressSuffix = "#by-address";

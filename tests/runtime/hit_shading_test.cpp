@@ -1,0 +1,109 @@
+// A user's shading of ray hits (RendererOptions::shadeHit): compiled into the reveal and the
+// reference kernels at run time with glslang's library. The library's own shading written
+// through the hook renders the frames the built-in kernels do; a different shading changes
+// only what rays reveal; a function that does not compile is a one-line error.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "runtime/renderer.h"
+#include "scenes/load_scene.h"
+#include "tests/support/expect_error.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using HitShadingTest = VulkanTest;
+
+constexpr const char* kLibraryShading =
+    "vec3 shadeHit(HitRecord hit) { return shadeSurface(hit.material, hit.uv, hit.normal); }";
+// Every revealed surface magenta, whatever it is.
+constexpr const char* kMagenta = "vec3 shadeHit(HitRecord hit) { return vec3(1.0, 0.0, 1.0); }";
+
+RenderSettings frameOf(Method method) {
+  RenderSettings settings;
+  settings.method = method;
+  settings.width = 80;
+  settings.height = 45;
+  settings.reference.samplesPerPixel = 4;
+  return settings;
+}
+
+const std::vector<float>& beauty(const RenderResult& r) { return r.image.find("")->values; }
+
+TEST_F(HitShadingTest, TheLibrarysShadingThroughTheHookRendersTheBuiltInFrames) {
+  const scene::Scene scene = scene::loadScene("temple");  // textured: the texture path runs
+  for (const bool byAddress : {false, true}) {
+    SCOPED_TRACE(byAddress ? "kernels bound by address" : "plain kernels");
+    vk::ContextOptions options;
+    options.validation = true;
+    options.bindByAddress = byAddress;
+    vk::Context context(options);
+    Renderer builtIn(context);
+    RendererOptions hooked;
+    hooked.shadeHit = kLibraryShading;
+    Renderer compiled(context, hooked);
+    for (const Method method : {Method::Hybrid, Method::Reference}) {
+      const RenderResult a = builtIn.render(scene, frameOf(method));
+      const RenderResult b = compiled.render(scene, frameOf(method));
+      EXPECT_EQ(beauty(a), beauty(b)) << methodName(method);
+    }
+    EXPECT_EQ(context.validationErrors(), 0u);
+  }
+}
+
+TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  Renderer builtIn(context());
+  RendererOptions magenta;
+  magenta.shadeHit = kMagenta;
+  Renderer custom(context(), magenta);
+  const RenderResult a = builtIn.render(scene, frameOf(Method::Hybrid));
+  const RenderResult b = custom.render(scene, frameOf(Method::Hybrid));
+  // The raster's G-buffer is the same: its shading is the library's.
+  EXPECT_EQ(a.image.find("depth")->values, b.image.find("depth")->values);
+  EXPECT_EQ(a.image.find("objectId")->ids, b.image.find("objectId")->ids);
+  const std::vector<uint32_t>& mask = b.image.find("rayMask")->ids;
+  ASSERT_EQ(mask, a.image.find("rayMask")->ids);
+  // Where rays revealed something, it is magenta; elsewhere the revealed layer is empty.
+  const std::vector<float>& revealed = b.image.find("revealed")->values;
+  size_t magentaPixels = 0;
+  for (size_t i = 0; i < mask.size(); ++i)
+    magentaPixels += revealed[3 * i] == 1.0f && revealed[3 * i + 1] == 0.0f && revealed[3 * i + 2] == 1.0f;
+  EXPECT_GT(magentaPixels, 10u);
+  // The blurred frame changes only within a blur's reach (the tile size) of the ray mask.
+  const uint32_t w = b.width, h = b.height, reach = b.postprocess->effectiveTileSize();
+  size_t changed = 0, outside = 0;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (std::equal(&beauty(a)[4 * i], &beauty(a)[4 * i + 4], &beauty(b)[4 * i])) continue;
+      ++changed;
+      bool nearMask = false;
+      for (uint32_t yy = y > reach ? y - reach : 0; yy <= std::min(h - 1, y + reach) && !nearMask; ++yy)
+        for (uint32_t xx = x > reach ? x - reach : 0; xx <= std::min(w - 1, x + reach) && !nearMask; ++xx)
+          nearMask = mask[size_t(yy) * w + xx] != 0;
+      outside += !nearMask;
+    }
+  EXPECT_GT(changed, 10u);
+  EXPECT_EQ(outside, 0u) << "of " << changed << " changed pixels";
+}
+
+TEST_F(HitShadingTest, AShadeHitThatDoesNotCompileIsAOneLineErrorNamingIt) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  for (const char* broken : {"vec3 shadeHit(HitRecord hit) { return vec3(1.0) }",   // a missing ';'
+                             "vec3 shadeHit(HitRecord hit) { return hit.colour; }",  // no such field
+                             "float shadeHit(HitRecord hit) { return 1.0; }"}) {      // the wrong type
+    SCOPED_TRACE(broken);
+    RendererOptions options;
+    options.shadeHit = broken;
+    Renderer renderer(context(), options);
+    expectError([&] { renderer.render(scene, frameOf(Method::Hybrid)); }, "shadeHit");
+  }
+}
+
+}  // namespace
+}  // namespace hmb::test
