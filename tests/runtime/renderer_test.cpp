@@ -147,11 +147,16 @@ TEST_F(RendererTest, SharpFrameHasBeautyAovsPlanAndRasterStats) {
 
 // A device without 64-bit buffer atomics gets the two-pass visibility, the plan says so, and
 // the picture is the same.
-TEST_F(RendererTest, DeviceWithoutInt64AtomicsRendersTheSameFrameWithTheFallback) {
+// A validating context that pretends the device has no 64-bit buffer atomics.
+vk::ContextOptions withoutInt64Atomics() {
   vk::ContextOptions options;
   options.validation = true;
   options.disableInt64Atomics = true;
-  vk::Context fallbackContext(options);
+  return options;
+}
+
+TEST_F(RendererTest, DeviceWithoutInt64AtomicsRendersTheSameFrameWithTheFallback) {
+  vk::Context fallbackContext(withoutInt64Atomics());
   const scene::Scene scene = scene::loadScene("temple");
   RenderSettings settings;
   settings.width = 80;
@@ -183,10 +188,7 @@ TEST_F(RendererTest, CpuDevicesRasterizeWithTileListsAndRenderTheSameFrame) {
   settings.method = Method::PostProcess;
   settings.width = 96;
   settings.height = 52;  // tiles cut by the right and bottom edges
-  vk::ContextOptions options;
-  options.validation = true;
-  options.disableInt64Atomics = true;
-  vk::Context without64(options);
+  vk::Context without64(withoutInt64Atomics());
   Renderer lists(without64, {passes::VisibilityScheme::TileLists});
   const RenderResult a = lists.render(scene, settings);
   EXPECT_EQ(without64.validationErrors(), 0u);
