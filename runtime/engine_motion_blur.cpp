@@ -7,6 +7,9 @@
 
 #include "kernels/engine/engine_layout.h"
 #include "runtime/error.h"
+#include "runtime/frame_plan.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/vulkan/buffer.h"
@@ -38,6 +41,44 @@ void validateDepth(const EngineDepth& depth) {
     throw Error("engine depth: the far plane must lie beyond the near plane");
 }
 
+gpu::EngineGBufferParams packParams(uint32_t width, uint32_t height, const EngineDepth& depth, bool surfaces) {
+  gpu::EngineGBufferParams params{};
+  params.width = width;
+  params.height = height;
+  params.depthConvention = conventionCode(depth.convention);
+  params.surfaces = surfaces ? 1u : 0u;
+  params.near = depth.near;
+  params.far = depth.far;
+  return params;
+}
+
+// Binds the engine's buffers (not owned: adopted for the frame's descriptors) and records
+// pack-engine-gbuffer into `layer`. Without normals and ids, the kernel's two bindings for them
+// take the colour and depth buffers, which it then does not read.
+void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::ComputeKernel& pack,
+                const EngineGBuffer& g, uint32_t width, uint32_t height, const EngineDepth& depth,
+                const passes::ImageLayer& layer) {
+  const uint64_t pixels = uint64_t(width) * height;
+  const vk::Buffer color = vk::Buffer::adopt(context, g.color, pixels * sizeof(glm::vec4), "engine colour");
+  const vk::Buffer z = vk::Buffer::adopt(context, g.depth, pixels * sizeof(float), "engine depth");
+  const vk::Buffer velocity = vk::Buffer::adopt(context, g.velocity, pixels * sizeof(glm::vec2), "engine velocity");
+  const bool surfaces = g.normal && g.objectId;
+  const vk::Buffer normal =
+      vk::Buffer::adopt(context, surfaces ? g.normal : g.color, pixels * sizeof(glm::vec4), "engine normal");
+  const vk::Buffer objectId =
+      vk::Buffer::adopt(context, surfaces ? g.objectId : g.depth, pixels * sizeof(uint32_t), "engine object id");
+  frame.dispatch(kPackPass, pack,
+                 {{HMB_ENGINE_BINDING_COLOR, &color},
+                  {HMB_ENGINE_BINDING_DEPTH, &z},
+                  {HMB_ENGINE_BINDING_VELOCITY, &velocity},
+                  {HMB_ENGINE_BINDING_SAMPLES, &layer.samples()},
+                  {HMB_ENGINE_BINDING_SURFACES, &layer.surfaces()},
+                  {HMB_ENGINE_BINDING_NORMAL, &normal},
+                  {HMB_ENGINE_BINDING_OBJECT_ID, &objectId}},
+                 packParams(width, height, depth, surfaces),
+                 {vk::groupsFor(width, HMB_ENGINE_GROUP_X), vk::groupsFor(height, HMB_ENGINE_GROUP_Y), 1});
+}
+
 }  // namespace
 
 struct EngineMotionBlur::Passes {
@@ -65,34 +106,81 @@ EngineMotionBlur::EngineMotionBlur(const vk::Context& context, uint32_t width, u
 EngineMotionBlur::~EngineMotionBlur() = default;
 
 void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output) {
-  const uint64_t pixels = uint64_t(width_) * height_;
-  const vk::Buffer color = vk::Buffer::adopt(context_, gbuffer.color, pixels * sizeof(glm::vec4), "engine colour");
-  const vk::Buffer depth = vk::Buffer::adopt(context_, gbuffer.depth, pixels * sizeof(float), "engine depth");
-  const vk::Buffer velocity =
-      vk::Buffer::adopt(context_, gbuffer.velocity, pixels * sizeof(glm::vec2), "engine velocity");
-  const vk::Buffer blurred = vk::Buffer::adopt(context_, output, pixels * sizeof(glm::vec4), "engine output");
-
-  gpu::EngineGBufferParams params{};
-  params.width = width_;
-  params.height = height_;
-  params.depthConvention = conventionCode(depth_.convention);
-  params.near = depth_.near;
-  params.far = depth_.far;
+  const vk::Buffer blurred =
+      vk::Buffer::adopt(context_, output, uint64_t(width_) * height_ * sizeof(glm::vec4), "engine output");
   vk::FrameRecorder& frame = passes_->recorder;
   const passes::ImageLayer& layer = passes_->layer;
   frame.beginInto(commandBuffer);
-  frame.dispatch(kPackPass, passes_->pack,
-                 {{HMB_ENGINE_BINDING_COLOR, &color},
-                  {HMB_ENGINE_BINDING_DEPTH, &depth},
-                  {HMB_ENGINE_BINDING_VELOCITY, &velocity},
-                  {HMB_ENGINE_BINDING_SAMPLES, &layer.samples()},
-                  {HMB_ENGINE_BINDING_SURFACES, &layer.surfaces()}},
-                 params,
-                 {vk::groupsFor(width_, HMB_ENGINE_GROUP_X), vk::groupsFor(height_, HMB_ENGINE_GROUP_Y), 1});
+  recordPack(frame, context_, passes_->pack, gbuffer, width_, height_, depth_, layer);
   passes_->blur.record(frame, {&layer.samples(), &layer.surfaces(), width_, height_}, blurred);
   frame.endInto();
 }
 
 vk::FrameTimings EngineMotionBlur::timings() const { return passes_->recorder.readTimings(); }
+
+struct EngineHybridMotionBlur::Passes {
+  Passes(const vk::Context& context, uint32_t width, uint32_t height, const scene::Scene& scene,
+         const passes::HybridSettings& settings, const passes::HitShading* hits)
+      : pack(context, "engine/pack_engine_gbuffer", sizeof(gpu::EngineGBufferParams)),
+        gpuScene(context, scene),
+        blur(context, settings.blur),
+        hybrid(context, blur, hits),
+        layer(passes::ImageLayer::allocate(context, uint64_t(width) * height, "engine G-buffer")),
+        setup(context),
+        recorder(context) {
+    blur.prepare(width, height);
+  }
+  vk::ComputeKernel pack;
+  GpuScene gpuScene;  // the scene's materials, vertices and textures, for shading what rays find
+  passes::PostProcessStage blur;
+  passes::HybridStage hybrid;
+  passes::ImageLayer layer;
+  vk::FrameRecorder setup;     // prepare()'s own submissions
+  vk::FrameRecorder recorder;  // the engine's command buffer
+};
+
+EngineHybridMotionBlur::EngineHybridMotionBlur(const vk::Context& context, uint32_t width, uint32_t height,
+                                               const scene::Scene& scene, const passes::HybridSettings& settings,
+                                               EngineDepth depth, const passes::HitShading* hits)
+    : context_(context), width_(width), height_(height), scene_(scene), settings_(settings), depth_(depth) {
+  if (width == 0 || height == 0) throw Error("engine hybrid motion blur: an empty image");
+  validateDepth(depth);
+  passes::validate(settings);
+  passes_ = std::make_unique<Passes>(context, width, height, scene, settings, hits);
+}
+
+EngineHybridMotionBlur::~EngineHybridMotionBlur() = default;
+
+vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
+  if (!std::isfinite(frameTime)) throw Error("engine hybrid motion blur: the frame time must be finite");
+  // The instances' transforms and the camera at the frame, for shading what the rays find.
+  passes_->gpuScene.setFrame(scene_, frameTime, width_, height_);
+  FramePlan plan;
+  passes_->hybrid.plan(plan, scene_, frameTime);
+  const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, passes_->gpuScene, frameTime, width_, height_,
+                                               settings_, plan);
+  prepared_ = true;
+  vk::FrameTimings all = timings.setup;
+  vk::appendTimings(all, timings.frame);
+  return all;
+}
+
+void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output) {
+  if (!prepared_) throw Error("engine hybrid motion blur: record() before prepare()");
+  if (!gbuffer.normal || !gbuffer.objectId)
+    throw Error("engine hybrid motion blur: the G-buffer's normal and objectId buffers are required");
+  const vk::Buffer blurred =
+      vk::Buffer::adopt(context_, output, uint64_t(width_) * height_ * sizeof(glm::vec4), "engine output");
+  vk::FrameRecorder& frame = passes_->recorder;
+  frame.beginInto(commandBuffer);
+  recordPack(frame, context_, passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
+  if (passes_->gpuScene.deforms()) passes_->gpuScene.recordFrameDeformation(frame);  // what the reveal shades
+  passes_->hybrid.record(frame, passes_->layer, passes_->gpuScene, blurred);
+  frame.endInto();
+}
+
+vk::FrameTimings EngineHybridMotionBlur::timings() const { return passes_->recorder.readTimings(); }
+
+uint32_t EngineHybridMotionBlur::maskPixels() const { return passes_->hybrid.rayMask().counts().maskPixels; }
 
 }  // namespace hmb

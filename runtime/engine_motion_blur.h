@@ -1,8 +1,8 @@
-// The library as an engine's motion-blur backend: post-process motion blur recorded into a
-// command buffer the engine owns and submits, from the engine's own G-buffer to an output buffer
-// the engine gives, on the engine's device (vk::Context(const AdoptedVulkan&, ...)). Nothing is
-// read back and nothing waits; the device times of the passes are there once the engine's
-// submission completed.
+// The library as an engine's motion-blur backend: post-process (EngineMotionBlur) or hybrid
+// (EngineHybridMotionBlur) motion blur recorded into a command buffer the engine owns and
+// submits, from the engine's own G-buffer to an output buffer the engine gives, on the engine's
+// device (vk::Context(const AdoptedVulkan&, ...)). Recording reads nothing back and waits for
+// nothing; the device times of the passes are there once the engine's submission completed.
 //
 // The engine's buffers (storage-buffer usage; one entry per pixel, index y * width + x, row 0 at
 // the top of the image):
@@ -11,6 +11,9 @@
 //   velocity  vec2 (8 bytes): the pixel's screen motion over the last frame, in pixels, its
 //             position now minus its position one frame (1 / fps) earlier, +x right, +y down
 //             (the background's too: a turning camera moves it)
+//   normal    vec4: world-space normal in xyz (w ignored); the hybrid's edge mask reads it
+//   objectId  uint: the object each pixel sees, 0 for the background; the hybrid's objects are
+//             its scene's (scene::Instance::objectId)
 //   output    vec4: the blurred linear colour, alpha 1
 // The blur spreads each pixel along its velocity over the exposure (PostProcessSettings:
 // exposure and fps give the share of a frame the shutter is open; softZExtent is in the
@@ -23,6 +26,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/vulkan/frame_recorder.h"
 
@@ -30,6 +34,12 @@ namespace hmb {
 
 namespace vk {
 class Context;
+}
+namespace passes {
+class HitShading;
+}
+namespace scene {
+struct Scene;
 }
 
 // How the engine's depth buffer holds depth.
@@ -48,6 +58,8 @@ struct EngineGBuffer {
   VkBuffer color = VK_NULL_HANDLE;
   VkBuffer depth = VK_NULL_HANDLE;
   VkBuffer velocity = VK_NULL_HANDLE;
+  VkBuffer normal = VK_NULL_HANDLE;    // the hybrid's; the post-process reads it when given
+  VkBuffer objectId = VK_NULL_HANDLE;  // likewise
 };
 
 class EngineMotionBlur {
@@ -78,6 +90,45 @@ class EngineMotionBlur {
   uint32_t width_, height_;
   EngineDepth depth_;
   std::unique_ptr<Passes> passes_;
+};
+
+// The hybrid method on an engine's frame: the post-process blur of the engine's G-buffer, with
+// the background hidden behind moving objects ray traced inside the ray mask (the paper's
+// method, passes::HybridStage). The rays need the engine's geometry: the engine describes it as
+// a scene::Scene (meshes, materials, instances with their object ids and motion, and the camera
+// that drew the G-buffer), which must outlive this object.
+class EngineHybridMotionBlur {
+ public:
+  // hits: how revealed surfaces are shaded (null or the library's: the scene's materials).
+  EngineHybridMotionBlur(const vk::Context& context, uint32_t width, uint32_t height, const scene::Scene& scene,
+                         const passes::HybridSettings& settings, EngineDepth depth = {},
+                         const passes::HitShading* hits = nullptr);
+  ~EngineHybridMotionBlur();
+  EngineHybridMotionBlur(const EngineHybridMotionBlur&) = delete;
+  EngineHybridMotionBlur& operator=(const EngineHybridMotionBlur&) = delete;
+
+  // Before recording the frame at frameTime (seconds, the scene's clock): builds the ray
+  // tracing trees (the meshes' once, the instances' when they moved) and the frame's camera
+  // rays. Unlike record(), this submits its own work and waits for it; it returns the device
+  // time of what it built.
+  vk::FrameTimings prepare(float frameTime);
+  // Records the frame prepare() was last given into `commandBuffer`, as EngineMotionBlur
+  // records (the G-buffer's normal and objectId are required here).
+  void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
+  vk::FrameTimings timings() const;
+
+  // After the frame completed: the ray mask's counts (pixels, rays), read back on request.
+  uint32_t maskPixels() const;
+
+ private:
+  struct Passes;
+  const vk::Context& context_;
+  uint32_t width_, height_;
+  const scene::Scene& scene_;
+  passes::HybridSettings settings_;
+  EngineDepth depth_;
+  std::unique_ptr<Passes> passes_;
+  bool prepared_ = false;
 };
 
 }  // namespace hmb

@@ -1,6 +1,7 @@
 #version 450
-// An engine's G-buffer (colour, depth, screen velocity in its own buffers) packed into the
-// library's image layer (shared/layer_layout.h), which the post-process passes read. Depth
+// An engine's G-buffer (colour, depth, screen velocity, and for the hybrid world normal and
+// object id, in its own buffers) packed into the library's image layer (shared/layer_layout.h),
+// which the post-process and hybrid passes read. Depth
 // becomes camera-space depth; a pixel at or past the far plane is background (object 0) at the
 // largest depth the gathers know, as the library's own G-buffer writes the background.
 #extension GL_GOOGLE_include_directive : require
@@ -15,6 +16,8 @@ layout(std430, binding = HMB_ENGINE_BINDING_DEPTH) readonly buffer Depth { float
 layout(std430, binding = HMB_ENGINE_BINDING_VELOCITY) readonly buffer Velocity { vec2 velocity[]; };
 layout(std430, binding = HMB_ENGINE_BINDING_SAMPLES) writeonly buffer Samples { uvec4 samples[]; };
 layout(std430, binding = HMB_ENGINE_BINDING_SURFACES) writeonly buffer Surfaces { uvec4 surfaces[]; };
+layout(std430, binding = HMB_ENGINE_BINDING_NORMAL) readonly buffer Normal { vec4 normal[]; };
+layout(std430, binding = HMB_ENGINE_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
 layout(push_constant) uniform Params { EngineGBufferParams params; };
 
 // Camera-space depth of the engine's value; HMB_MBLUR_MAX_DEPTH where it is the far plane or
@@ -42,6 +45,8 @@ void main() {
   const bool background = z >= HMB_MBLUR_MAX_DEPTH;
   const vec2 v = velocity[i];  // the background's too: a turning camera moves the sky
   samples[i] = packLayerSample(color[i].rgb, z, v);
-  // The engine's normals and object ids are not read: the post-process needs neither.
-  surfaces[i] = packLayerSurface(vec3(0.0, 0.0, 1.0), background ? 0u : 1u, v);
+  // The post-process needs neither normals nor object ids; the hybrid's ray mask, reveal and
+  // composite read the engine's.
+  if (params.surfaces == 1u) surfaces[i] = packLayerSurface(normal[i].xyz, objectId[i], v);
+  else surfaces[i] = packLayerSurface(vec3(0.0, 0.0, 1.0), background ? 0u : 1u, v);
 }

@@ -8,7 +8,6 @@
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
 #include "runtime/gpu_scene.h"
-#include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/trace_scene.h"
 
@@ -82,10 +81,10 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   return timings;
 }
 
-void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
+void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, const GpuScene& gpuScene,
                          const vk::Buffer& output) const {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
-  const MotionBlurInputs raster{&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), size_.width(), size_.height()};
+  const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height()};
   postProcess_.recordTiles(frame, raster);
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
@@ -99,12 +98,12 @@ void HybridStage::record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, 
   // all stay on their object (alpha exactly 1) need no reveal (38% of bistro's mask at 1280x720).
   maskParameters.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
   rayMask_.record(frame, raster, maskParameters);
-  reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, gbuffer.layer().surfaces(), rayMask_.list(), rayMask_.counters(),
+  reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, layer.surfaces(), rayMask_.list(), rayMask_.counters(),
                  revealed_, size_.width(), size_.height(), settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
-  backgroundGather_.record(frame, gbuffer.layer(), revealed_, postProcess_.neighborMax(), rayMask_.mask(),
+  backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(),
                            rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur);
-  composite_.record(frame, gbuffer.layer(), postProcess_.neighborMax(), rayMask_.mask(), backgroundBlurred_, output,
+  composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.mask(), backgroundBlurred_, output,
                     blur, settings_.composite);
 }
 

@@ -31,7 +31,6 @@ class TraceScene;
 
 namespace hmb::passes {
 
-class GBufferStage;
 class PostProcessStage;
 
 class HybridStage {
@@ -62,8 +61,9 @@ class HybridStage {
   // `gpuScene`'s deforming meshes are deformed to the frame time for the refit.
   PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, GpuScene& gpuScene, float frameTime,
                          uint32_t width, uint32_t height, const HybridSettings& settings, const FramePlan& plan);
-  // After the G-buffer in the same frame: writes the blurred, composited colour to `output`.
-  void record(vk::FrameRecorder& frame, const GBufferStage& gbuffer, const GpuScene& gpuScene,
+  // After the G-buffer (`raster`: the renderer's, or an engine's packed) in the same frame:
+  // writes the blurred, composited colour to `output`.
+  void record(vk::FrameRecorder& frame, const ImageLayer& raster, const GpuScene& gpuScene,
               const vk::Buffer& output) const;
 
   // The next frame builds its trees anew, whatever the last frame built.

@@ -1,7 +1,9 @@
 // The engine backend: an engine's G-buffer, in its own buffers on its own device, blurred by
 // commands recorded into its own command buffer, equals what the renderer's post-process method
 // makes of its G-buffer.
+#include <algorithm>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -32,34 +34,45 @@ struct Frames {
   std::vector<glm::vec4> color;
   std::vector<float> depth;
   std::vector<glm::vec2> velocity;
+  std::vector<glm::vec4> normal;
+  std::vector<uint32_t> objectId;
   std::vector<glm::vec4> blurred;
   passes::PostProcessSettings settings;
+  std::optional<passes::HybridSettings> hybrid;
+  float frameTime = 0.0f;
 };
 
-Frames renderedFrames(const char* sceneName) {
-  const scene::Scene scene = scene::loadScene(sceneName);
+// method: PostProcess or Hybrid, the frame `blurred` holds.
+Frames renderedFrames(const scene::Scene& scene, Method method = Method::PostProcess) {
   Renderer renderer(VulkanTest::context());
   RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.method = Method::Sharp;
   const RenderResult sharp = renderer.render(scene, settings);
-  settings.method = Method::PostProcess;
+  settings.method = method;
   const RenderResult blurred = renderer.render(scene, settings);
   Frames f;
   f.settings = *blurred.postprocess;
+  if (blurred.hybrid) f.hybrid = blurred.hybrid->settings;
+  f.frameTime = blurred.frameTime;
   const auto& rgba = sharp.image.find("")->values;
   const auto& z = sharp.image.find("depth")->values;
   const auto& v = sharp.image.find("velocity")->values;
+  const auto& n = sharp.image.find("normal")->values;
   const auto& out = blurred.image.find("")->values;
+  f.objectId = sharp.image.find("objectId")->ids;
   for (uint32_t i = 0; i < kWidth * kHeight; ++i) {
     f.color.emplace_back(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], rgba[4 * i + 3]);
     f.depth.push_back(z[i]);
     f.velocity.emplace_back(v[2 * i], v[2 * i + 1]);
+    f.normal.emplace_back(n[3 * i], n[3 * i + 1], n[3 * i + 2], 0.0f);
     f.blurred.emplace_back(out[4 * i], out[4 * i + 1], out[4 * i + 2], out[4 * i + 3]);
   }
   return f;
 }
+
+Frames renderedFrames(const char* sceneName) { return renderedFrames(scene::loadScene(sceneName)); }
 
 template <class T>
 std::span<const std::byte> bytesOf(const std::vector<T>& values) {
@@ -146,6 +159,49 @@ TEST(EngineMotionBlurTest, ZOverWDepthBuffersBlurAsCameraSpaceDepth) {
       close += glm::all(glm::lessThanEqual(glm::abs(glm::vec3(out[i]) - glm::vec3(f.blurred[i])), glm::vec3(1e-4f)));
     EXPECT_GE(double(close) / double(out.size()), 0.999);
   }
+}
+
+// The hybrid on an engine's frame (its G-buffer with normals and object ids, its geometry as a
+// scene) equals the renderer's hybrid frame, bit for bit; recording it neither waits nor reads
+// anything back.
+TEST(EngineMotionBlurTest, TheHybridOnTheEnginesFrameIsTheRenderersHybrid) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  const Frames f = renderedFrames(scene, Method::Hybrid);
+  ASSERT_TRUE(f.hybrid);
+  Engine engine(/*enableFeatures=*/true);
+  std::vector<glm::vec4> out(f.color.size());
+  {
+    vk::Context context(engine.adopted(), countingOptions());
+    EngineHybridMotionBlur blur(context, kWidth, kHeight, scene, *f.hybrid);
+    Engine::OwnBuffer color = engine.makeBuffer(f.color.size() * sizeof(glm::vec4), bytesOf(f.color));
+    Engine::OwnBuffer z = engine.makeBuffer(f.depth.size() * sizeof(float), bytesOf(f.depth));
+    Engine::OwnBuffer velocity = engine.makeBuffer(f.velocity.size() * sizeof(glm::vec2), bytesOf(f.velocity));
+    Engine::OwnBuffer normal = engine.makeBuffer(f.normal.size() * sizeof(glm::vec4), bytesOf(f.normal));
+    Engine::OwnBuffer ids = engine.makeBuffer(f.objectId.size() * sizeof(uint32_t), bytesOf(f.objectId));
+    Engine::OwnBuffer output = engine.makeBuffer(out.size() * sizeof(glm::vec4));
+    blur.prepare(f.frameTime);
+    const VkCommandBuffer commands = engine.beginCommands();
+    const uint64_t waits = context.hostWaits(), readbacks = context.hostReadbacks();
+    blur.record(commands, {color.buffer, z.buffer, velocity.buffer, normal.buffer, ids.buffer}, output.buffer);
+    EXPECT_EQ(context.hostWaits(), waits);
+    EXPECT_EQ(context.hostReadbacks(), readbacks);
+    engine.submitAndWait(commands);
+    const std::vector<std::byte> bytes = engine.read(output);
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
+    EXPECT_GT(blur.maskPixels(), 20u);
+    std::vector<std::string> names;
+    for (const vk::PassTiming& pass : blur.timings().passes) names.push_back(pass.name);
+    EXPECT_NE(std::find(names.begin(), names.end(), "ray-reveal"), names.end());
+    EXPECT_EQ(context.validationErrors(), 0u);
+    for (Engine::OwnBuffer* b : {&color, &z, &velocity, &normal, &ids, &output}) engine.destroy(*b);
+    // Without normals and ids the hybrid has nothing to find edges and objects in.
+    expectError([&] { blur.record(VK_NULL_HANDLE, {color.buffer, z.buffer, velocity.buffer}, output.buffer); },
+                "normal and objectId");
+  }
+  EXPECT_TRUE(engine.errors.empty());
+  size_t differ = 0;
+  for (size_t i = 0; i < out.size(); ++i) differ += std::memcmp(&out[i], &f.blurred[i], sizeof(glm::vec4)) != 0;
+  EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
 }
 
 TEST(EngineMotionBlurTest, DepthConventionsWithoutTheirPlanesAreOneLineErrors) {
