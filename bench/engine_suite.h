@@ -1,8 +1,8 @@
-// The `engine` suite: the engine backend's per-frame cost (EngineMotionBlur recorded into a
-// command buffer the caller submits, from an engine's colour, depth and velocity buffers) beside
-// the command line's post-process frame on the same scene, interleaved in one loop. The engine's
-// G-buffer is the renderer's own (its sharp frame's layers), so both paths blur the same input
-// with the same settings.
+// The `engine` suite: the engine backend's per-frame cost (EngineMotionBlur and
+// EngineHybridMotionBlur recorded into a command buffer the caller submits, from an engine's
+// G-buffer) beside the command line's post-process and hybrid frames on the same scene,
+// interleaved in one loop. The engine's G-buffer is the renderer's own (its sharp frame's
+// layers), so both paths blur the same input with the same settings.
 #pragma once
 
 #include <string>
@@ -34,6 +34,11 @@ struct EngineCase {
   Summary cliFrame;      // the renderer's post-process frame: G-buffer, blur, display encoding
   Summary cliBlur;       // of it, tile-max + neighbor-max + gather
   bool sameImage = false;  // the two blurred images equal, bit for bit, in every timed frame
+  // The hybrid: the engine's recorded frame (its top-level tree, built by prepare() when
+  // instances move, apart), the command line's hybrid frame (which includes that tree).
+  Summary engineHybridFrame, cliHybridFrame;
+  double engineTopLevelMs = 0;
+  bool sameHybridImage = false;
 };
 
 std::vector<EngineCase> runEngineSuite(vk::Context& context, const EngineSuiteOptions& options,
