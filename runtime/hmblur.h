@@ -5,6 +5,7 @@
 
 #include "runtime/engine_motion_blur.h"
 #include "runtime/error.h"
+#include "runtime/passes/hit_shading.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"
 #include "runtime/vulkan/context.h"
