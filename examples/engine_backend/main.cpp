@@ -1,11 +1,15 @@
 // A small engine that owns its Vulkan instance, device and frame, draws its own G-buffer with a
 // graphics pipeline (a box sliding fast over a floor, one turning, one still, under a still
 // camera), and hands the G-buffer to hybrid-mblur to blur, frame by frame, through the public
-// API alone (<hmblur/hmblur.h>): an adopted context and hmb::EngineMotionBlur recorded into the
-// engine's own command buffer. Each frame is written as OUT_DIR/frame-NN.png, with the sharp
-// G-buffer colour beside it as OUT_DIR/frame-NN-sharp.png.
+// API alone (<hmblur/hmblur.h>): an adopted context, and hmb::EngineHybridMotionBlur (or
+// hmb::EngineMotionBlur with --method postprocess) recorded into the engine's own command
+// buffer. For the hybrid the engine also describes its geometry and motion as a scene, and
+// shades what the rays reveal with its own shadeHit, the same lighting as its fragment shader.
+// Each frame is written as OUT_DIR/frame-NN.png, with the sharp G-buffer colour beside it as
+// OUT_DIR/frame-NN-sharp.png.
 //
-// Usage: engine_backend [--validation] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR
+// Usage: engine_backend [--validation] [--method hybrid|postprocess] [--frames N]
+//                       [--size WIDTHxHEIGHT] OUT_DIR
 //   --validation: the Khronos validation layer with synchronization validation on the engine's
 //   instance; any message it reports makes the exit code 3.
 // Each frame prints the library's device times (EngineMotionBlur::timings). On lavapipe a
@@ -21,6 +25,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,7 +52,10 @@ constexpr float kFps = 60.0f;
 constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthOutFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kVelocityFormat = VK_FORMAT_R32G32_SFLOAT;
+constexpr VkFormat kNormalFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kObjectIdFormat = VK_FORMAT_R32_UINT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr uint32_t kColorTargets = 5;  // colour, depth, velocity, normal, object id
 
 struct Vertex {
   glm::vec3 position, normal;
@@ -56,7 +64,7 @@ struct Vertex {
 // What the shaders read per object (a storage buffer indexed by the draw's first instance).
 struct ObjectData {
   glm::mat4 clipNow, clipPrevious, model;
-  glm::vec4 albedo;
+  glm::vec4 albedo;  // w: the object's id (the scene's Instance::objectId)
 };
 
 struct Mesh {
@@ -289,36 +297,38 @@ struct GBufferPass {
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  Image color, depthOut, velocity, depth;
+  Image color, depthOut, velocity, normal, objectId, depth;
 
   GBufferPass(const Engine& e, uint32_t width, uint32_t height, VkBuffer objects) {
     const VkImageUsageFlags target = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     color = makeImage(e, width, height, kColorFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
     depthOut = makeImage(e, width, height, kDepthOutFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
     velocity = makeImage(e, width, height, kVelocityFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
+    normal = makeImage(e, width, height, kNormalFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
+    objectId = makeImage(e, width, height, kObjectIdFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
     depth = makeImage(e, width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                       VK_IMAGE_ASPECT_DEPTH_BIT);
 
-    std::array<VkAttachmentDescription, 4> attachments{};
-    const VkFormat formats[4] = {kColorFormat, kDepthOutFormat, kVelocityFormat, kDepthFormat};
-    for (int a = 0; a < 4; ++a) {
+    std::array<VkAttachmentDescription, kColorTargets + 1> attachments{};
+    const VkFormat formats[kColorTargets + 1] = {kColorFormat,  kDepthOutFormat, kVelocityFormat,
+                                                 kNormalFormat, kObjectIdFormat, kDepthFormat};
+    for (uint32_t a = 0; a <= kColorTargets; ++a) {
       attachments[a].format = formats[a];
       attachments[a].samples = VK_SAMPLE_COUNT_1_BIT;
       attachments[a].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      attachments[a].storeOp = a < 3 ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+      attachments[a].storeOp = a < kColorTargets ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
       attachments[a].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
       attachments[a].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
       attachments[a].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
       attachments[a].finalLayout =
-          a < 3 ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+          a < kColorTargets ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     }
-    const VkAttachmentReference colorRefs[3] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                                {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                                {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
-    const VkAttachmentReference depthRef{3, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference colorRefs[kColorTargets];
+    for (uint32_t a = 0; a < kColorTargets; ++a) colorRefs[a] = {a, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    const VkAttachmentReference depthRef{kColorTargets, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
     VkSubpassDescription subpass{};
     subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    subpass.colorAttachmentCount = 3;
+    subpass.colorAttachmentCount = kColorTargets;
     subpass.pColorAttachments = colorRefs;
     subpass.pDepthStencilAttachment = &depthRef;
     // Before: the last frame's copies out of the attachments and its depth tests. After: this
@@ -338,17 +348,18 @@ struct GBufferPass {
     dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
     dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
     VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    passInfo.attachmentCount = 4;
+    passInfo.attachmentCount = kColorTargets + 1;
     passInfo.pAttachments = attachments.data();
     passInfo.subpassCount = 1;
     passInfo.pSubpasses = &subpass;
     passInfo.dependencyCount = 2;
     passInfo.pDependencies = dependencies.data();
     check(vkCreateRenderPass(e.device, &passInfo, nullptr, &renderPass), "vkCreateRenderPass");
-    const VkImageView views[4] = {color.view, depthOut.view, velocity.view, depth.view};
+    const VkImageView views[kColorTargets + 1] = {color.view, depthOut.view, velocity.view,
+                                                  normal.view, objectId.view, depth.view};
     VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fb.renderPass = renderPass;
-    fb.attachmentCount = 4;
+    fb.attachmentCount = kColorTargets + 1;
     fb.pAttachments = views;
     fb.width = width;
     fb.height = height;
@@ -426,10 +437,10 @@ struct GBufferPass {
     depthState.depthTestEnable = VK_TRUE;
     depthState.depthWriteEnable = VK_TRUE;
     depthState.depthCompareOp = VK_COMPARE_OP_LESS;
-    std::array<VkPipelineColorBlendAttachmentState, 3> blend{};
+    std::array<VkPipelineColorBlendAttachmentState, kColorTargets> blend{};
     for (auto& b : blend) b.colorWriteMask = 0xf;
     VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blendState.attachmentCount = 3;
+    blendState.attachmentCount = kColorTargets;
     blendState.pAttachments = blend.data();
     VkGraphicsPipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     pipelineInfo.stageCount = 2;
@@ -456,32 +467,111 @@ struct GBufferPass {
     vkDestroyDescriptorSetLayout(e.device, setLayout, nullptr);
     vkDestroyFramebuffer(e.device, framebuffer, nullptr);
     vkDestroyRenderPass(e.device, renderPass, nullptr);
-    for (Image* i : {&color, &depthOut, &velocity, &depth}) destroy(e, *i);
+    for (Image* i : {&color, &depthOut, &velocity, &normal, &objectId, &depth}) destroy(e, *i);
   }
 };
 
-// The scene's objects at time t: the floor, a box sliding fast, a box turning, a box still.
+// The scene, as the engine knows it: the floor, a box sliding fast, a box turning, a box still,
+// each with its colour and object id, placed at time t (seconds).
+struct Placement {
+  glm::vec3 translation, scale;
+  float turn;  // radians about +y
+  glm::vec3 albedo;
+  uint32_t objectId;
+  glm::mat4 model() const {
+    return glm::scale(glm::rotate(glm::translate(glm::mat4(1), translation), turn, {0, 1, 0}), scale);
+  }
+};
+
+std::vector<Placement> placementsAt(float t) {
+  return {{{0, -0.55f, 0}, {12, 0.1f, 12}, 0.0f, {0.55f, 0.55f, 0.5f}, 1},
+          {{-2.5f + 15.0f * (t - 1.0f / 3.0f), 0, 0.8f}, {1, 1, 1}, 0.0f, {0.9f, 0.3f, 0.2f}, 2},  // 15 units a second
+          {{1.2f, 0, -1.5f}, {1, 1, 1}, 20.0f * t, {0.2f, 0.5f, 0.9f}, 3},                         // 20 radians a second
+          {{-1.6f, 0, -1.2f}, {1, 1, 1}, 0.0f, {0.3f, 0.8f, 0.3f}, 4}};
+}
+
+const glm::vec3 kEye{0, 2.2f, 5.5f};
+constexpr float kYFov = glm::radians(50.0f), kNear = 0.1f, kFar = 100.0f;
+
 std::vector<ObjectData> objectsAt(float t, const glm::mat4& viewProjection) {
-  struct Placement {
-    glm::mat4 model;
-    glm::vec4 albedo;
-  };
-  const auto place = [](float time) {
-    std::vector<Placement> p;
-    p.push_back({glm::scale(glm::translate(glm::mat4(1), {0, -0.55f, 0}), {12, 0.1f, 12}), {0.55f, 0.55f, 0.5f, 0}});
-    const float x = -2.5f + 5.0f * std::fmod(time * 3.0f, 1.0f);  // 15 units a second across the view
-    p.push_back({glm::translate(glm::mat4(1), {x, 0, 0.8f}), {0.9f, 0.3f, 0.2f, 0}});
-    p.push_back({glm::rotate(glm::translate(glm::mat4(1), {1.2f, 0, -1.5f}), 20.0f * time, {0, 1, 0}),
-                 {0.2f, 0.5f, 0.9f, 0}});
-    p.push_back({glm::translate(glm::mat4(1), {-1.6f, 0, -1.2f}), {0.3f, 0.8f, 0.3f, 0}});
-    return p;
-  };
-  const std::vector<Placement> now = place(t), before = place(t - 1.0f / kFps);
+  const std::vector<Placement> now = placementsAt(t), before = placementsAt(t - 1.0f / kFps);
   std::vector<ObjectData> objects;
   for (size_t i = 0; i < now.size(); ++i)
-    objects.push_back({viewProjection * now[i].model, viewProjection * before[i].model, now[i].model, now[i].albedo});
+    objects.push_back({viewProjection * now[i].model(), viewProjection * before[i].model(), now[i].model(),
+                       glm::vec4(now[i].albedo, float(now[i].objectId))});
   return objects;
 }
+
+// The same scene for the library's rays (the hybrid's reveal): a mesh and material per object,
+// a node per object animated over [from, to] with keys every 1/240 s (linear translation and
+// rotation about a fixed axis: the keys reproduce the motion exactly), and the camera.
+hmb::scene::Scene librarySceneOf(const Mesh& box, float from, float to) {
+  hmb::scene::Scene scene;
+  scene.name = "engine_backend";
+  const std::vector<Placement> rest = placementsAt(from);
+  for (uint32_t i = 0; i < rest.size(); ++i) {
+    hmb::scene::Mesh mesh;
+    mesh.name = "box " + std::to_string(i);
+    for (const Vertex& v : box.vertices) {
+      mesh.positions.push_back(v.position);
+      mesh.normals.push_back(v.normal);
+    }
+    mesh.indices = box.indices;
+    mesh.material = i;
+    scene.meshes.push_back(std::move(mesh));
+    hmb::scene::Material material;
+    material.baseColorFactor = glm::vec4(rest[i].albedo, 1.0f);
+    material.doubleSided = true;
+    scene.materials.push_back(material);
+    hmb::scene::Node node;
+    node.local.translation = rest[i].translation;
+    node.local.rotation = glm::angleAxis(rest[i].turn, glm::vec3(0, 1, 0));
+    node.local.scale = rest[i].scale;
+    scene.nodes.push_back(node);
+    scene.instances.push_back({i, i, rest[i].objectId});
+    hmb::scene::AnimationChannel translation, rotation;
+    translation.node = rotation.node = i;
+    translation.path = hmb::scene::AnimationPath::Translation;
+    rotation.path = hmb::scene::AnimationPath::Rotation;
+    for (float t = from; t <= to + 1e-6f; t += 1.0f / 240.0f) {
+      const Placement p = placementsAt(t)[i];
+      const glm::quat q = glm::angleAxis(p.turn, glm::vec3(0, 1, 0));
+      translation.times.push_back(t);
+      translation.values.emplace_back(p.translation, 0.0f);
+      rotation.times.push_back(t);
+      rotation.values.emplace_back(q.x, q.y, q.z, q.w);
+    }
+    scene.channels.push_back(std::move(translation));
+    scene.channels.push_back(std::move(rotation));
+  }
+  hmb::scene::Node cameraNode;
+  const glm::mat4 world = glm::inverse(glm::lookAt(kEye, {0, 0, 0}, {0, 1, 0}));
+  cameraNode.local.translation = kEye;
+  cameraNode.local.rotation = glm::quat_cast(glm::mat3(world));
+  scene.nodes.push_back(cameraNode);
+  hmb::scene::Camera camera;
+  camera.node = static_cast<int32_t>(scene.nodes.size() - 1);
+  camera.yfov = kYFov;
+  camera.znear = kNear;
+  camera.zfar = kFar;
+  scene.camera = camera;
+  scene.settings.fps = kFps;
+  scene.settings.exposure = 0.5f / kFps;  // a 180-degree shutter
+  scene.settings.softZExtent = 0.05f;     // scene units
+  scene.settings.frameTime = from + 1.0f / kFps;
+  return scene;
+}
+
+// What the rays reveal, lit as the engine's fragment shader lights its G-buffer: the colour by
+// object id, the same light.
+constexpr const char* kShadeHit = R"glsl(
+vec3 shadeHit(HitRecord hit) {
+  const vec3 albedo[5] = vec3[5](vec3(0.0), vec3(0.55, 0.55, 0.5), vec3(0.9, 0.3, 0.2), vec3(0.2, 0.5, 0.9),
+                                 vec3(0.3, 0.8, 0.3));
+  const vec3 light = normalize(vec3(0.4, 0.8, 0.5));
+  return albedo[min(hit.objectId, 4u)] * (0.25 + 0.75 * max(dot(hit.normal, light), 0.0));
+}
+)glsl";
 
 float srgb(float linear) {
   const float c = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
@@ -500,15 +590,27 @@ void writePng(const std::filesystem::path& path, const float* rgba, uint32_t wid
 
 }  // namespace
 
+constexpr const char* kUsage =
+    "usage: engine_backend [--validation] [--method hybrid|postprocess] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR\n";
+
 int main(int argc, char** argv) {
   bool validation = false;
+  bool hybrid = true;
   int frames = 4;
   uint32_t width = 640, height = 360;
   std::filesystem::path outDir;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--validation") validation = true;
-    else if (arg == "--frames" && a + 1 < argc) frames = std::max(1, std::atoi(argv[++a]));
+    else if (arg == "--frames" && a + 1 < argc) frames = std::clamp(std::atoi(argv[++a]), 1, 60);
+    else if (arg == "--method" && a + 1 < argc) {
+      const std::string method = argv[++a];
+      if (method != "hybrid" && method != "postprocess") {
+        std::fprintf(stderr, "engine_backend: --method takes hybrid or postprocess\n");
+        return 2;
+      }
+      hybrid = method == "hybrid";
+    }
     else if (arg == "--size" && a + 1 < argc) {
       if (std::sscanf(argv[++a], "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 ||
           height > 8192) {
@@ -517,12 +619,12 @@ int main(int argc, char** argv) {
       }
     } else if (outDir.empty() && arg[0] != '-') outDir = arg;
     else {
-      std::fprintf(stderr, "usage: engine_backend [--validation] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR\n");
+      std::fprintf(stderr, "%s", kUsage);
       return 2;
     }
   }
   if (outDir.empty()) {
-    std::fprintf(stderr, "usage: engine_backend [--validation] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR\n");
+    std::fprintf(stderr, "%s", kUsage);
     return 2;
   }
   try {
@@ -534,6 +636,8 @@ int main(int argc, char** argv) {
     Buffer color = makeBuffer(engine, pixels * 16, gbufferUsage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     Buffer depth = makeBuffer(engine, pixels * 4, gbufferUsage, false);
     Buffer velocity = makeBuffer(engine, pixels * 8, gbufferUsage, false);
+    Buffer normal = makeBuffer(engine, pixels * 16, gbufferUsage, false);
+    Buffer objectIds = makeBuffer(engine, pixels * 4, gbufferUsage, false);
     Buffer blurred = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     Buffer sharp = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     const Mesh box = boxMesh();
@@ -546,19 +650,25 @@ int main(int argc, char** argv) {
     GBufferPass gbuffer(engine, width, height, objects.buffer);
 
     // The camera: Vulkan's clip space (y down the framebuffer, depth 0 to 1).
-    glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(50.0f), float(width) / float(height), 0.1f, 100.0f);
+    glm::mat4 projection = glm::perspectiveRH_ZO(kYFov, float(width) / float(height), kNear, kFar);
     projection[1][1] *= -1.0f;
-    const glm::mat4 viewProjection = projection * glm::lookAt(glm::vec3(0, 2.2f, 5.5f), {0, 0, 0}, {0, 1, 0});
+    const glm::mat4 viewProjection = projection * glm::lookAt(kEye, {0, 0, 0}, {0, 1, 0});
+    constexpr float kFirstTime = 0.35f;  // the frames' times: kFirstTime + f / fps
+    const hmb::scene::Scene scene = librarySceneOf(box, kFirstTime - 1.0f / kFps, kFirstTime + float(frames) / kFps);
 
     {
       hmb::vk::ContextOptions options;
       options.validation = validation;  // the library's messages are counted too
       hmb::vk::Context context(engine.adopted(), options);
-      hmb::passes::PostProcessSettings settings;
-      settings.exposure = 0.5f / kFps;  // a 180-degree shutter
-      settings.fps = kFps;
-      settings.softZExtent = 0.05f;  // scene units
-      hmb::EngineMotionBlur motionBlur(context, width, height, settings);
+      // The blur's shutter, frame rate and SOFT_Z_EXTENT are the scene's; the post-process alone
+      // takes them without the scene.
+      const hmb::passes::HybridSettings settings = hmb::passes::HybridSettings::fromScene(scene.settings);
+      const hmb::passes::HitShading shading(kShadeHit);
+      std::unique_ptr<hmb::EngineMotionBlur> postProcess;
+      std::unique_ptr<hmb::EngineHybridMotionBlur> hybridBlur;
+      if (hybrid) hybridBlur = std::make_unique<hmb::EngineHybridMotionBlur>(context, width, height, scene, settings,
+                                                                              hmb::EngineDepth{}, &shading);
+      else postProcess = std::make_unique<hmb::EngineMotionBlur>(context, width, height, settings.blur);
 
       VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
       allocation.commandPool = engine.pool;
@@ -571,25 +681,29 @@ int main(int argc, char** argv) {
       check(vkCreateFence(engine.device, &fenceInfo, nullptr, &fence), "vkCreateFence");
 
       for (int f = 0; f < frames; ++f) {
-        const float t = 0.35f + float(f) / kFps;
+        const float t = kFirstTime + float(f) / kFps;
         const std::vector<ObjectData> data = objectsAt(t, viewProjection);
         std::memcpy(objects.mapped, data.data(), data.size() * sizeof(ObjectData));
+        // The hybrid's trees for this frame's instances (it waits for them), before recording.
+        if (hybridBlur) hybridBlur->prepare(t);
 
         check(vkResetCommandBuffer(commands, 0), "vkResetCommandBuffer");
         VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         check(vkBeginCommandBuffer(commands, &begin), "vkBeginCommandBuffer");
         // The engine's own frame: the G-buffer pass ...
-        VkClearValue clears[4] = {};
+        VkClearValue clears[kColorTargets + 1] = {};
         clears[0].color = {{0.62f, 0.74f, 0.9f, 1.0f}};  // sky
         clears[1].color = {{0.0f, 0, 0, 0}};              // depth 0: nothing there (the background)
         clears[2].color = {{0.0f, 0, 0, 0}};              // the still camera: the sky does not move
-        clears[3].depthStencil = {1.0f, 0};
+        clears[3].color = {{0.0f, 0, 0, 0}};              // no normal
+        clears[4].color.uint32[0] = 0;                    // object 0: the background
+        clears[kColorTargets].depthStencil = {1.0f, 0};
         VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
         passBegin.renderPass = gbuffer.renderPass;
         passBegin.framebuffer = gbuffer.framebuffer;
         passBegin.renderArea = {{0, 0}, {width, height}};
-        passBegin.clearValueCount = 4;
+        passBegin.clearValueCount = kColorTargets + 1;
         passBegin.pClearValues = clears;
         vkCmdBeginRenderPass(commands, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
         vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer.pipeline);
@@ -611,8 +725,15 @@ int main(int argc, char** argv) {
                                &region);
         vkCmdCopyImageToBuffer(commands, gbuffer.velocity.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, velocity.buffer,
                                1, &region);
+        vkCmdCopyImageToBuffer(commands, gbuffer.normal.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, normal.buffer, 1,
+                               &region);
+        vkCmdCopyImageToBuffer(commands, gbuffer.objectId.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               objectIds.buffer, 1, &region);
         // ... blurred by the library, in this command buffer ...
-        motionBlur.record(commands, {color.buffer, depth.buffer, velocity.buffer}, blurred.buffer);
+        const hmb::EngineGBuffer gbufferBuffers{color.buffer, depth.buffer, velocity.buffer, normal.buffer,
+                                                objectIds.buffer};
+        if (hybridBlur) hybridBlur->record(commands, gbufferBuffers, blurred.buffer);
+        else postProcess->record(commands, gbufferBuffers, blurred.buffer);
         // ... and the sharp colour kept to compare; the host reads both after the fence.
         const VkBufferCopy whole{0, 0, pixels * 16};
         vkCmdCopyBuffer(commands, color.buffer, sharp.buffer, 1, &whole);
@@ -633,7 +754,7 @@ int main(int argc, char** argv) {
         std::snprintf(name, sizeof(name), "frame-%02d", f);
         writePng(outDir / (std::string(name) + ".png"), static_cast<const float*>(blurred.mapped), width, height);
         writePng(outDir / (std::string(name) + "-sharp.png"), static_cast<const float*>(sharp.mapped), width, height);
-        const hmb::vk::FrameTimings timings = motionBlur.timings();
+        const hmb::vk::FrameTimings timings = hybridBlur ? hybridBlur->timings() : postProcess->timings();
         std::printf("%s: blurred in %.2f ms (", name, timings.frameMilliseconds.value_or(0.0));
         for (size_t p = 0; p < timings.passes.size(); ++p)
           std::printf("%s%s %.2f", p ? ", " : "", timings.passes[p].name.c_str(), timings.passes[p].milliseconds.value_or(0.0));
@@ -643,7 +764,8 @@ int main(int argc, char** argv) {
       vkFreeCommandBuffers(engine.device, engine.pool, 1, &commands);
     }
     gbuffer.destroyWith(engine);
-    for (Buffer* b : {&color, &depth, &velocity, &blurred, &sharp, &vertices, &indices, &objects}) destroy(engine, *b);
+    for (Buffer* b : {&color, &depth, &velocity, &normal, &objectIds, &blurred, &sharp, &vertices, &indices, &objects})
+      destroy(engine, *b);
     std::printf("wrote %d frames to %s\n", frames, outDir.string().c_str());
     if (validation && engine.messages > 0) {
       std::fprintf(stderr, "engine_backend: %u validation messages\n", engine.messages);

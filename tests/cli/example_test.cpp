@@ -2,6 +2,8 @@
 // code 3): render_frame renders through the library API alone; engine_backend draws its own
 // G-buffer on its own device and has the library blur it in its own command buffer.
 #include <filesystem>
+#include <map>
+#include <vector>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -46,28 +48,48 @@ TEST(LibraryExampleTest, BadInputIsAOneLineErrorAndANonZeroExit) {
 }
 
 // Under the validation layer with synchronization validation, on the engine's own instance:
-// frames written, blurred where the boxes move, untouched where nothing does.
+// frames written, blurred where the boxes move, untouched where nothing does; the hybrid (the
+// engine's geometry as a scene, its own shadeHit) differs from the post-process only there too.
 TEST(EngineExampleTest, BlursItsOwnGBufferWithoutAValidationMessage) {
   const fs::path dir = tempDir("engine-example");
-  const CliRun run = runProgram(HMB_ENGINE_EXAMPLE_PATH, "--validation --frames 2 --size 96x54 " + dir.string());
-  ASSERT_EQ(run.exitCode, 0) << run.output;
-  EXPECT_NE(run.output.find("frame-01: blurred in"), std::string::npos) << run.output;
-  for (const char* frame : {"frame-00", "frame-01"}) {
-    const io::Rgba8Image blurred = io::readPng(dir / (std::string(frame) + ".png"));
-    const io::Rgba8Image sharp = io::readPng(dir / (std::string(frame) + "-sharp.png"));
-    ASSERT_EQ(blurred.width, 96u);
-    ASSERT_EQ(blurred.height, 54u);
-    size_t changed = 0, changedInSky = 0;
-    for (size_t i = 0; i < blurred.pixels.size(); i += 4) {
-      const bool differs = std::abs(int(blurred.pixels[i]) - int(sharp.pixels[i])) > 2;
-      changed += differs;
-      changedInSky += differs && i / 4 < 96u * 12u;  // the top rows: sky only
+  std::map<std::string, std::vector<io::Rgba8Image>> frames;
+  for (const char* method : {"postprocess", "hybrid"}) {
+    const fs::path out = dir / method;
+    const CliRun run = runProgram(HMB_ENGINE_EXAMPLE_PATH,
+                                  std::string("--validation --method ") + method + " --frames 2 --size 96x54 " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("frame-01: blurred in"), std::string::npos) << run.output;
+    for (const char* frame : {"frame-00", "frame-01"}) {
+      const io::Rgba8Image blurred = io::readPng(out / (std::string(frame) + ".png"));
+      const io::Rgba8Image sharp = io::readPng(out / (std::string(frame) + "-sharp.png"));
+      ASSERT_EQ(blurred.width, 96u);
+      ASSERT_EQ(blurred.height, 54u);
+      size_t changed = 0, changedInSky = 0;
+      for (size_t i = 0; i < blurred.pixels.size(); i += 4) {
+        const bool differs = std::abs(int(blurred.pixels[i]) - int(sharp.pixels[i])) > 2;
+        changed += differs;
+        changedInSky += differs && i / 4 < 96u * 12u;  // the top rows: sky only
+      }
+      EXPECT_GT(changed, 20u) << method << " " << frame;
+      EXPECT_EQ(changedInSky, 0u) << method << " " << frame;
+      frames[method].push_back(blurred);
     }
-    EXPECT_GT(changed, 20u) << frame;
-    EXPECT_EQ(changedInSky, 0u) << frame;
   }
+  // The hybrid's reveal changes pixels beside the moving boxes, and nothing in the sky.
+  size_t differ = 0, differInSky = 0;
+  const std::vector<uint8_t>& a = frames["postprocess"][1].pixels;
+  const std::vector<uint8_t>& b = frames["hybrid"][1].pixels;
+  for (size_t i = 0; i < a.size(); i += 4) {
+    const bool d = std::abs(int(a[i]) - int(b[i])) > 2;
+    differ += d;
+    differInSky += d && i / 4 < 96u * 12u;
+  }
+  EXPECT_GT(differ, 0u);
+  EXPECT_EQ(differInSky, 0u);
   const CliRun usage = runProgram(HMB_ENGINE_EXAMPLE_PATH, "--size 0x0 " + dir.string());
   EXPECT_EQ(usage.exitCode, 2) << usage.output;
+  const CliRun method = runProgram(HMB_ENGINE_EXAMPLE_PATH, "--method magic " + dir.string());
+  EXPECT_EQ(method.exitCode, 2) << method.output;
 }
 
 }  // namespace
