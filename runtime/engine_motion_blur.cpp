@@ -1,5 +1,6 @@
 #include "runtime/engine_motion_blur.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -41,20 +42,28 @@ void validateDepth(const EngineDepth& depth) {
     throw Error("engine depth: the far plane must lie beyond the near plane");
 }
 
-gpu::EngineGBufferParams packParams(uint32_t width, uint32_t height, const EngineDepth& depth, bool surfaces) {
+gpu::EngineGBufferParams packParams(uint32_t width, uint32_t height, const EngineDepth& depth) {
   gpu::EngineGBufferParams params{};
   params.width = width;
   params.height = height;
   params.depthConvention = conventionCode(depth.convention);
-  params.surfaces = surfaces ? 1u : 0u;
   params.near = depth.near;
   params.far = depth.far;
   return params;
 }
 
+// pack-engine-gbuffer with or without the engine's normals and object ids.
+std::unique_ptr<vk::ComputeKernel> packKernel(const vk::Context& context, bool surfaces) {
+  std::array<uint32_t, HMB_SPEC_ENGINE_SURFACES + 1> specialization{};
+  specialization[HMB_SPEC_ENGINE_SURFACES] = surfaces ? 1u : 0u;  // VkBool32
+  return std::make_unique<vk::ComputeKernel>(context, "engine/pack_engine_gbuffer", sizeof(gpu::EngineGBufferParams),
+                                             specialization);
+}
+
 // Binds the engine's buffers (not owned: adopted for the frame's descriptors) and records
-// pack-engine-gbuffer into `layer`. Without normals and ids, the kernel's two bindings for them
-// take the colour and depth buffers, which it then does not read.
+// pack-engine-gbuffer into `layer` with `pack`, the build for whether normals and ids are
+// given. Without them, the kernel's two bindings for them take the colour and depth buffers,
+// which that build does not read.
 void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::ComputeKernel& pack,
                 const EngineGBuffer& g, uint32_t width, uint32_t height, const EngineDepth& depth,
                 const passes::ImageLayer& layer) {
@@ -62,7 +71,7 @@ void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::
   const vk::Buffer color = vk::Buffer::adopt(context, g.color, pixels * sizeof(glm::vec4), "engine colour");
   const vk::Buffer z = vk::Buffer::adopt(context, g.depth, pixels * sizeof(float), "engine depth");
   const vk::Buffer velocity = vk::Buffer::adopt(context, g.velocity, pixels * sizeof(glm::vec2), "engine velocity");
-  const bool surfaces = g.normal && g.objectId;
+  const bool surfaces = g.normal && g.objectId;  // as `pack` was built
   const vk::Buffer normal =
       vk::Buffer::adopt(context, surfaces ? g.normal : g.color, pixels * sizeof(glm::vec4), "engine normal");
   const vk::Buffer objectId =
@@ -75,7 +84,7 @@ void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::
                   {HMB_ENGINE_BINDING_SURFACES, &layer.surfaces()},
                   {HMB_ENGINE_BINDING_NORMAL, &normal},
                   {HMB_ENGINE_BINDING_OBJECT_ID, &objectId}},
-                 packParams(width, height, depth, surfaces),
+                 packParams(width, height, depth),
                  {vk::groupsFor(width, HMB_ENGINE_GROUP_X), vk::groupsFor(height, HMB_ENGINE_GROUP_Y), 1});
 }
 
@@ -83,13 +92,14 @@ void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::
 
 struct EngineMotionBlur::Passes {
   Passes(const vk::Context& context, uint32_t width, uint32_t height, const passes::PostProcessSettings& settings)
-      : pack(context, "engine/pack_engine_gbuffer", sizeof(gpu::EngineGBufferParams)),
+      : pack(packKernel(context, false)),
         blur(context, settings),
         layer(passes::ImageLayer::allocate(context, uint64_t(width) * height, "engine G-buffer")),
         recorder(context) {
     blur.prepare(width, height);
   }
-  vk::ComputeKernel pack;
+  std::unique_ptr<vk::ComputeKernel> pack;              // without normals and ids
+  std::unique_ptr<vk::ComputeKernel> packWithSurfaces;  // made when a frame first gives them
   passes::PostProcessStage blur;
   passes::ImageLayer layer;
   vk::FrameRecorder recorder;
@@ -110,8 +120,11 @@ void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer
       vk::Buffer::adopt(context_, output, uint64_t(width_) * height_ * sizeof(glm::vec4), "engine output");
   vk::FrameRecorder& frame = passes_->recorder;
   const passes::ImageLayer& layer = passes_->layer;
+  const bool surfaces = gbuffer.normal && gbuffer.objectId;
+  if (surfaces && !passes_->packWithSurfaces) passes_->packWithSurfaces = packKernel(context_, true);
   frame.beginInto(commandBuffer);
-  recordPack(frame, context_, passes_->pack, gbuffer, width_, height_, depth_, layer);
+  recordPack(frame, context_, surfaces ? *passes_->packWithSurfaces : *passes_->pack, gbuffer, width_, height_, depth_,
+             layer);
   passes_->blur.record(frame, {&layer.samples(), &layer.surfaces(), width_, height_}, blurred);
   frame.endInto();
 }
@@ -121,7 +134,7 @@ vk::FrameTimings EngineMotionBlur::timings() const { return passes_->recorder.re
 struct EngineHybridMotionBlur::Passes {
   Passes(const vk::Context& context, uint32_t width, uint32_t height, const scene::Scene& scene,
          const passes::HybridSettings& settings, const passes::HitShading* hits)
-      : pack(context, "engine/pack_engine_gbuffer", sizeof(gpu::EngineGBufferParams)),
+      : pack(packKernel(context, true)),
         gpuScene(context, scene),
         blur(context, settings.blur),
         hybrid(context, blur, hits),
@@ -130,7 +143,7 @@ struct EngineHybridMotionBlur::Passes {
         recorder(context) {
     blur.prepare(width, height);
   }
-  vk::ComputeKernel pack;
+  std::unique_ptr<vk::ComputeKernel> pack;  // with normals and ids: the hybrid needs them
   GpuScene gpuScene;  // the scene's materials, vertices and textures, for shading what rays find
   passes::PostProcessStage blur;
   passes::HybridStage hybrid;
@@ -173,7 +186,7 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
       vk::Buffer::adopt(context_, output, uint64_t(width_) * height_ * sizeof(glm::vec4), "engine output");
   vk::FrameRecorder& frame = passes_->recorder;
   frame.beginInto(commandBuffer);
-  recordPack(frame, context_, passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
+  recordPack(frame, context_, *passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
   if (passes_->gpuScene.deforms()) passes_->gpuScene.recordFrameDeformation(frame);  // what the reveal shades
   passes_->hybrid.record(frame, passes_->layer, passes_->gpuScene, blurred);
   frame.endInto();

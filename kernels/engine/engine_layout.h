@@ -14,9 +14,13 @@
 #define HMB_ENGINE_BINDING_VELOCITY 2  // vec2 per pixel: pixels per frame, current - previous, y down
 #define HMB_ENGINE_BINDING_SAMPLES 3   // the packed layer's samples (uvec4), written
 #define HMB_ENGINE_BINDING_SURFACES 4  // the packed layer's surfaces (uvec4), written
-#define HMB_ENGINE_BINDING_NORMAL 5     // vec4 per pixel: world normal (xyz); read when params.surfaces is 1
-#define HMB_ENGINE_BINDING_OBJECT_ID 6  // uint per pixel: object id (0: background); read when params.surfaces is 1
+#define HMB_ENGINE_BINDING_NORMAL 5     // vec4 per pixel: world normal (xyz); read with HMB_SPEC_ENGINE_SURFACES
+#define HMB_ENGINE_BINDING_OBJECT_ID 6  // uint per pixel: object id (0: background); likewise
 #define HMB_ENGINE_BINDING_COUNT 7
+// Specialization constant: true when the engine gives normals and object ids (the hybrid
+// needs them), false for +z and 1 (0 where background). A constant, not a parameter: on CPU
+// devices both sides of a branch run under a mask, so the build without them reads nothing.
+#define HMB_SPEC_ENGINE_SURFACES 0
 
 // What the engine's depth values are (EngineDepth on the host).
 #define HMB_ENGINE_DEPTH_VIEW 0         // camera-space depth: distance along the view axis, > 0
@@ -28,7 +32,7 @@ struct EngineGBufferParams {
   uint width;
   uint height;
   uint depthConvention;  // HMB_ENGINE_DEPTH_*
-  uint surfaces;         // 1: normals and object ids are the engine's; 0: +z and 1 (0 where background)
+  uint pad0;
   float near;            // the projection's near plane (z/w conventions only)
   float far;             // its far plane; infinity for an infinite reversed-z projection
   uint pad1;

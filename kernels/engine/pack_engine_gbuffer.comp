@@ -10,6 +10,7 @@
 #include "../mblur/mblur_layout.h"
 
 layout(local_size_x = HMB_ENGINE_GROUP_X, local_size_y = HMB_ENGINE_GROUP_Y) in;
+layout(constant_id = HMB_SPEC_ENGINE_SURFACES) const bool kEngineSurfaces = true;
 
 layout(std430, binding = HMB_ENGINE_BINDING_COLOR) readonly buffer Color { vec4 color[]; };
 layout(std430, binding = HMB_ENGINE_BINDING_DEPTH) readonly buffer Depth { float depth[]; };
@@ -47,6 +48,6 @@ void main() {
   samples[i] = packLayerSample(color[i].rgb, z, v);
   // The post-process needs neither normals nor object ids; the hybrid's ray mask, reveal and
   // composite read the engine's.
-  if (params.surfaces == 1u) surfaces[i] = packLayerSurface(normal[i].xyz, objectId[i], v);
+  if (kEngineSurfaces) surfaces[i] = packLayerSurface(normal[i].xyz, objectId[i], v);
   else surfaces[i] = packLayerSurface(vec3(0.0, 0.0, 1.0), background ? 0u : 1u, v);
 }
