@@ -135,7 +135,6 @@ struct EngineHybridMotionBlur::Passes {
   Passes(const vk::Context& context, uint32_t width, uint32_t height, const scene::Scene& scene,
          const passes::HybridSettings& settings, const passes::HitShading* hits)
       : pack(packKernel(context, true)),
-        gpuScene(context, scene),
         blur(context, settings.blur),
         hybrid(context, blur, hits),
         layer(passes::ImageLayer::allocate(context, uint64_t(width) * height, "engine G-buffer")),
@@ -144,7 +143,11 @@ struct EngineHybridMotionBlur::Passes {
     blur.prepare(width, height);
   }
   std::unique_ptr<vk::ComputeKernel> pack;  // with normals and ids: the hybrid needs them
-  GpuScene gpuScene;  // the scene's materials, vertices and textures, for shading what rays find
+  // The scene's materials, vertices and textures, for shading what rays find: made again when
+  // the scene's meshes or its instances' meshes and ids change (an EngineScene's next frame).
+  std::unique_ptr<GpuScene> gpuScene;
+  std::vector<glm::uvec2> gpuSceneInstances;  // (mesh, object id) of each instance it was made for
+  size_t gpuSceneMeshes = 0;
   passes::PostProcessStage blur;
   passes::HybridStage hybrid;
   passes::ImageLayer layer;
@@ -166,11 +169,19 @@ EngineHybridMotionBlur::~EngineHybridMotionBlur() = default;
 
 vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
   if (!std::isfinite(frameTime)) throw Error("engine hybrid motion blur: the frame time must be finite");
+  std::vector<glm::uvec2> instances;
+  for (const scene::Instance& instance : scene_.instances) instances.emplace_back(instance.mesh, instance.objectId);
+  if (!passes_->gpuScene || instances != passes_->gpuSceneInstances || scene_.meshes.size() != passes_->gpuSceneMeshes) {
+    passes_->gpuScene.reset();  // the old one goes first: the two never take memory at once
+    passes_->gpuScene = std::make_unique<GpuScene>(context_, scene_);
+    passes_->gpuSceneInstances = std::move(instances);
+    passes_->gpuSceneMeshes = scene_.meshes.size();
+  }
   // The instances' transforms and the camera at the frame, for shading what the rays find.
-  passes_->gpuScene.setFrame(scene_, frameTime, width_, height_);
+  passes_->gpuScene->setFrame(scene_, frameTime, width_, height_);
   FramePlan plan;
   passes_->hybrid.plan(plan, scene_, frameTime);
-  const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, passes_->gpuScene, frameTime, width_, height_,
+  const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, *passes_->gpuScene, frameTime, width_, height_,
                                                settings_, plan);
   prepared_ = true;
   vk::FrameTimings all = timings.setup;
@@ -187,8 +198,8 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
   vk::FrameRecorder& frame = passes_->recorder;
   frame.beginInto(commandBuffer);
   recordPack(frame, context_, *passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
-  if (passes_->gpuScene.deforms()) passes_->gpuScene.recordFrameDeformation(frame);  // what the reveal shades
-  passes_->hybrid.record(frame, passes_->layer, passes_->gpuScene, blurred);
+  if (passes_->gpuScene->deforms()) passes_->gpuScene->recordFrameDeformation(frame);  // what the reveal shades
+  passes_->hybrid.record(frame, passes_->layer, *passes_->gpuScene, blurred);
   frame.endInto();
 }
 

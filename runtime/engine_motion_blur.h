@@ -94,9 +94,10 @@ class EngineMotionBlur {
 
 // The hybrid method on an engine's frame: the post-process blur of the engine's G-buffer, with
 // the background hidden behind moving objects ray traced inside the ray mask (the paper's
-// method, passes::HybridStage). The rays need the engine's geometry: the engine describes it as
-// a scene::Scene (meshes, materials, instances with their object ids and motion, and the camera
-// that drew the G-buffer), which must outlive this object.
+// method, passes::HybridStage). The rays need the engine's geometry: a scene::Scene (meshes,
+// materials, instances with their object ids and motion, and the camera that drew the
+// G-buffer), which must outlive this object. An engine that keeps matrices, not animation,
+// gives EngineScene::scene() and sets each frame's transforms there before prepare().
 class EngineHybridMotionBlur {
  public:
   // hits: how revealed surfaces are shaded (null or the library's: the scene's materials).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "runtime/engine_motion_blur.h"
+#include "runtime/engine_scene.h"
 #include "runtime/error.h"
 #include "runtime/passes/hit_shading.h"
 #include "runtime/renderer.h"

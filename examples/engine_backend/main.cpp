@@ -3,8 +3,9 @@
 // camera), and hands the G-buffer to hybrid-mblur to blur, frame by frame, through the public
 // API alone (<hmblur/hmblur.h>): an adopted context, and hmb::EngineHybridMotionBlur (or
 // hmb::EngineMotionBlur with --method postprocess) recorded into the engine's own command
-// buffer. For the hybrid the engine also describes its geometry and motion as a scene, and
-// shades what the rays reveal with its own shadeHit, the same lighting as its fragment shader.
+// buffer. For the hybrid the engine also gives its geometry (hmb::EngineScene: the box mesh
+// once, each frame's world transforms now and one frame earlier), and shades what the rays
+// reveal with its own shadeHit, the same lighting as its fragment shader.
 // Each frame is written as OUT_DIR/frame-NN.png, with the sharp G-buffer colour beside it as
 // OUT_DIR/frame-NN-sharp.png.
 //
@@ -502,64 +503,14 @@ std::vector<ObjectData> objectsAt(float t, const glm::mat4& viewProjection) {
   return objects;
 }
 
-// The same scene for the library's rays (the hybrid's reveal): a mesh and material per object,
-// a node per object animated over [from, to] with keys every 1/240 s (linear translation and
-// rotation about a fixed axis: the keys reproduce the motion exactly), and the camera.
-hmb::scene::Scene librarySceneOf(const Mesh& box, float from, float to) {
-  hmb::scene::Scene scene;
-  scene.name = "engine_backend";
-  const std::vector<Placement> rest = placementsAt(from);
-  for (uint32_t i = 0; i < rest.size(); ++i) {
-    hmb::scene::Mesh mesh;
-    mesh.name = "box " + std::to_string(i);
-    for (const Vertex& v : box.vertices) {
-      mesh.positions.push_back(v.position);
-      mesh.normals.push_back(v.normal);
-    }
-    mesh.indices = box.indices;
-    mesh.material = i;
-    scene.meshes.push_back(std::move(mesh));
-    hmb::scene::Material material;
-    material.baseColorFactor = glm::vec4(rest[i].albedo, 1.0f);
-    material.doubleSided = true;
-    scene.materials.push_back(material);
-    hmb::scene::Node node;
-    node.local.translation = rest[i].translation;
-    node.local.rotation = glm::angleAxis(rest[i].turn, glm::vec3(0, 1, 0));
-    node.local.scale = rest[i].scale;
-    scene.nodes.push_back(node);
-    scene.instances.push_back({i, i, rest[i].objectId});
-    hmb::scene::AnimationChannel translation, rotation;
-    translation.node = rotation.node = i;
-    translation.path = hmb::scene::AnimationPath::Translation;
-    rotation.path = hmb::scene::AnimationPath::Rotation;
-    for (float t = from; t <= to + 1e-6f; t += 1.0f / 240.0f) {
-      const Placement p = placementsAt(t)[i];
-      const glm::quat q = glm::angleAxis(p.turn, glm::vec3(0, 1, 0));
-      translation.times.push_back(t);
-      translation.values.emplace_back(p.translation, 0.0f);
-      rotation.times.push_back(t);
-      rotation.values.emplace_back(q.x, q.y, q.z, q.w);
-    }
-    scene.channels.push_back(std::move(translation));
-    scene.channels.push_back(std::move(rotation));
-  }
-  hmb::scene::Node cameraNode;
-  const glm::mat4 world = glm::inverse(glm::lookAt(kEye, {0, 0, 0}, {0, 1, 0}));
-  cameraNode.local.translation = kEye;
-  cameraNode.local.rotation = glm::quat_cast(glm::mat3(world));
-  scene.nodes.push_back(cameraNode);
-  hmb::scene::Camera camera;
-  camera.node = static_cast<int32_t>(scene.nodes.size() - 1);
-  camera.yfov = kYFov;
-  camera.znear = kNear;
-  camera.zfar = kFar;
-  scene.camera = camera;
-  scene.settings.fps = kFps;
-  scene.settings.exposure = 0.5f / kFps;  // a 180-degree shutter
-  scene.settings.softZExtent = 0.05f;     // scene units
-  scene.settings.frameTime = from + 1.0f / kFps;
-  return scene;
+// The frame at time t as the library's rays see it (the hybrid's reveal): each object's world
+// transform now and one frame earlier, and the camera's (still).
+void setLibraryFrame(hmb::EngineScene& scene, float t) {
+  const std::vector<Placement> now = placementsAt(t), before = placementsAt(t - 1.0f / kFps);
+  std::vector<hmb::EngineScene::Instance> instances;
+  for (size_t i = 0; i < now.size(); ++i) instances.push_back({0, now[i].objectId, now[i].model(), before[i].model()});
+  const glm::mat4 camera = glm::inverse(glm::lookAt(kEye, {0, 0, 0}, {0, 1, 0}));
+  scene.setFrame(t, instances, {camera, camera, kYFov, kNear, kFar});
 }
 
 // What the rays reveal, lit as the engine's fragment shader lights its G-buffer: the colour by
@@ -654,20 +605,27 @@ int main(int argc, char** argv) {
     projection[1][1] *= -1.0f;
     const glm::mat4 viewProjection = projection * glm::lookAt(kEye, {0, 0, 0}, {0, 1, 0});
     constexpr float kFirstTime = 0.35f;  // the frames' times: kFirstTime + f / fps
-    const hmb::scene::Scene scene = librarySceneOf(box, kFirstTime - 1.0f / kFps, kFirstTime + float(frames) / kFps);
+    // The box once, for the library's rays; each frame's transforms go in per frame.
+    hmb::EngineScene scene(kFps, 0.5f / kFps, 0.05f);  // a 180-degree shutter; SOFT_Z_EXTENT in scene units
+    std::vector<glm::vec3> positions, normals;
+    for (const Vertex& v : box.vertices) {
+      positions.push_back(v.position);
+      normals.push_back(v.normal);
+    }
+    scene.addMesh(positions, normals, box.indices);
 
     {
       hmb::vk::ContextOptions options;
       options.validation = validation;  // the library's messages are counted too
       hmb::vk::Context context(engine.adopted(), options);
-      // The blur's shutter, frame rate and SOFT_Z_EXTENT are the scene's; the post-process alone
-      // takes them without the scene.
-      const hmb::passes::HybridSettings settings = hmb::passes::HybridSettings::fromScene(scene.settings);
+      // The blur's shutter, frame rate and SOFT_Z_EXTENT are the scene's.
+      const hmb::passes::HybridSettings settings = hmb::passes::HybridSettings::fromScene(scene.scene().settings);
       const hmb::passes::HitShading shading(kShadeHit);
       std::unique_ptr<hmb::EngineMotionBlur> postProcess;
       std::unique_ptr<hmb::EngineHybridMotionBlur> hybridBlur;
-      if (hybrid) hybridBlur = std::make_unique<hmb::EngineHybridMotionBlur>(context, width, height, scene, settings,
-                                                                              hmb::EngineDepth{}, &shading);
+      if (hybrid)
+        hybridBlur = std::make_unique<hmb::EngineHybridMotionBlur>(context, width, height, scene.scene(), settings,
+                                                                   hmb::EngineDepth{}, &shading);
       else postProcess = std::make_unique<hmb::EngineMotionBlur>(context, width, height, settings.blur);
 
       VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -685,7 +643,10 @@ int main(int argc, char** argv) {
         const std::vector<ObjectData> data = objectsAt(t, viewProjection);
         std::memcpy(objects.mapped, data.data(), data.size() * sizeof(ObjectData));
         // The hybrid's trees for this frame's instances (it waits for them), before recording.
-        if (hybridBlur) hybridBlur->prepare(t);
+        if (hybridBlur) {
+          setLibraryFrame(scene, t);
+          hybridBlur->prepare(t);
+        }
 
         check(vkResetCommandBuffer(commands, 0), "vkResetCommandBuffer");
         VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "runtime/engine_motion_blur.h"
+#include "runtime/engine_scene.h"
+#include "runtime/vulkan/buffer.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 #include "tests/support/engine_device.h"
@@ -202,6 +204,58 @@ TEST(EngineMotionBlurTest, TheHybridOnTheEnginesFrameIsTheRenderersHybrid) {
   size_t differ = 0;
   for (size_t i = 0; i < out.size(); ++i) differ += std::memcmp(&out[i], &f.blurred[i], sizeof(glm::vec4)) != 0;
   EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
+}
+
+// An engine that keeps matrices: the living room given as an EngineScene (its meshes once, the
+// frame's world transforms now and one frame earlier) traces as the scene it came from; the
+// transforms go through translation, rotation and scale, so to rounding.
+TEST(EngineMotionBlurTest, AnEngineSceneOfMatricesTracesAsTheSceneItCameFrom) {
+  const scene::Scene original = scene::loadScene("living-room");
+  const Frames f = renderedFrames(original, Method::Hybrid);
+  const float t = f.frameTime, before = t - 1.0f / original.settings.fps;
+  EngineScene engineScene(original.settings.fps, original.settings.exposure, original.settings.softZExtent);
+  for (const scene::Mesh& mesh : original.meshes) {
+    const scene::Material& m = original.materials[mesh.material];
+    engineScene.addMesh(mesh.positions, mesh.normals, mesh.indices, glm::vec3(m.baseColorFactor), m.doubleSided);
+  }
+  engineScene.setLight(original.light);
+  std::vector<EngineScene::Instance> instances;
+  for (const scene::Instance& in : original.instances)
+    instances.push_back({in.mesh, in.objectId, original.worldMatrixAt(in.node, t), original.worldMatrixAt(in.node, before)});
+  ASSERT_TRUE(original.camera && original.camera->node >= 0);
+  const auto cameraNode = static_cast<uint32_t>(original.camera->node);
+  engineScene.setFrame(t, instances,
+                       {original.worldMatrixAt(cameraNode, t), original.worldMatrixAt(cameraNode, before),
+                        original.camera->yfov, original.camera->znear, original.camera->zfar});
+
+  vk::Context& context = VulkanTest::context();
+  const vk::Buffer color = vk::uploadedBuffer(context, f.color, "colour");
+  const vk::Buffer z = vk::uploadedBuffer(context, f.depth, "depth");
+  const vk::Buffer velocity = vk::uploadedBuffer(context, f.velocity, "velocity");
+  const vk::Buffer normal = vk::uploadedBuffer(context, f.normal, "normal");
+  const vk::Buffer ids = vk::uploadedBuffer(context, f.objectId, "ids");
+  const vk::Buffer output(context, f.color.size() * sizeof(glm::vec4), vk::MemoryUse::Readback, "output");
+  EngineHybridMotionBlur blur(context, kWidth, kHeight, engineScene.scene(), *f.hybrid);
+  blur.prepare(t);
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    blur.record(commands, {color.handle(), z.handle(), velocity.handle(), normal.handle(), ids.handle()},
+                output.handle());
+  });
+  const std::vector<glm::vec4> out = output.download<glm::vec4>();
+  size_t close = 0, exact = 0;
+  for (size_t i = 0; i < out.size(); ++i) {
+    exact += out[i] == f.blurred[i];
+    close += glm::all(glm::lessThanEqual(glm::abs(out[i] - f.blurred[i]), glm::vec4(1e-3f)));
+  }
+  EXPECT_GE(double(close) / double(out.size()), 0.999) << exact << " exact of " << out.size();
+  EXPECT_GT(blur.maskPixels(), 20u);
+
+  // What an engine can get wrong is one line naming it.
+  expectError([&] { engineScene.setFrame(t, std::vector<EngineScene::Instance>{{99, 1}}, {}); }, "instance 0");
+  glm::mat4 shear(1.0f);
+  shear[1][0] = 0.5f;
+  expectError([&] { engineScene.setFrame(t, std::vector<EngineScene::Instance>{{0, 1, shear, shear}}, {}); }, "shear");
+  expectError([&] { engineScene.setFrame(t, std::vector<EngineScene::Instance>{{0, 0}}, {}); }, "object id 0");
 }
 
 TEST(EngineMotionBlurTest, DepthConventionsWithoutTheirPlanesAreOneLineErrors) {
