@@ -17,7 +17,9 @@ target_include_directories(hmblur_library INTERFACE $<BUILD_INTERFACE:${CMAKE_CU
 set(HMB_LAYERS hmb hmb_image hmb_scenes hmb_bvh hmb_kernels)
 install(TARGETS ${HMB_LAYERS} hmblur_library EXPORT hmblurTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS hmblur RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(HMB_BUILD_TOOLS)
+  install(TARGETS hmblur RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
 install(EXPORT hmblurTargets NAMESPACE hmblur:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/hmblur)
 
 # The headers the library's headers include, with their repository paths; the command line's

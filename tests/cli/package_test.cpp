@@ -62,5 +62,25 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
   EXPECT_NE(again.output.find("consumer: rendered 32x18"), std::string::npos) << again.output;
 }
 
+// The library alone (HMB_BUILD_TOOLS=OFF) configures where CLI11, OpenEXR, FreeType and
+// fontconfig cannot be found, and has no command-line target; with the tools it needs them.
+TEST(PackageTest, TheLibraryAloneConfiguresWithoutTheToolsLibraries) {
+  const fs::path dir = tempDir("library-alone");
+  const std::string cmake = HMB_CMAKE_COMMAND;
+  const std::string hidden =
+      " -DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON -DCMAKE_DISABLE_FIND_PACKAGE_OpenEXR=ON"
+      " -DCMAKE_DISABLE_FIND_PACKAGE_Freetype=ON -DCMAKE_DISABLE_FIND_PACKAGE_Fontconfig=ON";
+  const CliRun alone = runProgram(cmake, "-S " + quoted(HMB_SOURCE_DIR) + " -B " + quoted(dir / "alone") +
+                                             " -DHMB_BUILD_TOOLS=OFF" + hidden);
+  ASSERT_EQ(alone.exitCode, 0) << alone.output;
+  const CliRun targets = runProgram(cmake, "--build " + quoted(dir / "alone") + " --target help");
+  EXPECT_NE(targets.output.find("engine_backend"), std::string::npos) << targets.output;
+  EXPECT_NE(targets.output.find("... hmb\n"), std::string::npos) << targets.output;
+  EXPECT_EQ(targets.output.find("... hmblur\n"), std::string::npos) << targets.output;
+  EXPECT_EQ(targets.output.find("hmb_io"), std::string::npos) << targets.output;
+  const CliRun tools = runProgram(cmake, "-S " + quoted(HMB_SOURCE_DIR) + " -B " + quoted(dir / "tools") + hidden);
+  EXPECT_NE(tools.exitCode, 0) << "the tools found the libraries they were denied";
+}
+
 }  // namespace
 }  // namespace hmb::test
