@@ -153,6 +153,7 @@ struct EngineHybridMotionBlur::Passes {
   passes::ImageLayer layer;
   vk::FrameRecorder setup;     // prepare()'s own submissions
   vk::FrameRecorder recorder;  // the engine's command buffer
+  FramePlan plan;              // the last prepare()'s
 };
 
 EngineHybridMotionBlur::EngineHybridMotionBlur(const vk::Context& context, uint32_t width, uint32_t height,
@@ -180,9 +181,11 @@ vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
   // The instances' transforms and the camera at the frame, for shading what the rays find.
   passes_->gpuScene->setFrame(scene_, frameTime, width_, height_);
   FramePlan plan;
+  plan.run("pack-engine-gbuffer");
   passes_->hybrid.plan(plan, scene_, frameTime);
   const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, *passes_->gpuScene, frameTime, width_, height_,
                                                settings_, plan);
+  passes_->plan = plan;
   prepared_ = true;
   vk::FrameTimings all = timings.setup;
   vk::appendTimings(all, timings.frame);
@@ -206,5 +209,7 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
 vk::FrameTimings EngineHybridMotionBlur::timings() const { return passes_->recorder.readTimings(); }
 
 uint32_t EngineHybridMotionBlur::maskPixels() const { return passes_->hybrid.rayMask().counts().maskPixels; }
+
+const FramePlan& EngineHybridMotionBlur::plan() const { return passes_->plan; }
 
 }  // namespace hmb

@@ -32,6 +32,8 @@
 
 namespace hmb {
 
+class FramePlan;
+
 namespace vk {
 class Context;
 }
@@ -118,8 +120,10 @@ class EngineHybridMotionBlur {
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
   vk::FrameTimings timings() const;
 
-  // After the frame completed: the ray mask's counts (pixels, rays), read back on request.
+  // After the frame completed: the ray mask's pixels, read back on request.
   uint32_t maskPixels() const;
+  // The last prepare()'s plan: which trees it built or kept (and why), and the frame's passes.
+  const FramePlan& plan() const;
 
  private:
   struct Passes;

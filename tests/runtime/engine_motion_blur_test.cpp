@@ -237,6 +237,13 @@ TEST(EngineMotionBlurTest, AnEngineSceneOfMatricesTracesAsTheSceneItCameFrom) {
   const vk::Buffer output(context, f.color.size() * sizeof(glm::vec4), vk::MemoryUse::Readback, "output");
   EngineHybridMotionBlur blur(context, kWidth, kHeight, engineScene.scene(), *f.hybrid);
   blur.prepare(t);
+  EXPECT_TRUE(blur.plan().runs("hybrid-bvh-meshes"));
+  EXPECT_TRUE(blur.plan().runs("hybrid-bvh-instances"));
+  // The same frame again: the library keeps both trees and says so in the plan.
+  blur.prepare(t);
+  EXPECT_FALSE(blur.plan().runs("hybrid-bvh-meshes"));
+  EXPECT_FALSE(blur.plan().runs("hybrid-bvh-instances"));
+  EXPECT_TRUE(blur.plan().runs("ray-reveal"));
   context.submitAndWait([&](VkCommandBuffer commands) {
     blur.record(commands, {color.handle(), z.handle(), velocity.handle(), normal.handle(), ids.handle()},
                 output.handle());
