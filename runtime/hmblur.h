@@ -6,6 +6,7 @@
 #include "runtime/engine_motion_blur.h"
 #include "runtime/engine_scene.h"
 #include "runtime/error.h"
+#include "runtime/gpu_scene.h"
 #include "runtime/passes/hit_shading.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"

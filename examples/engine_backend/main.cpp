@@ -1,15 +1,19 @@
 // A small engine that owns its Vulkan instance, device and frame, draws its own G-buffer with a
-// graphics pipeline (a box sliding fast over a floor, one turning, one still, under a still
-// camera), and hands the G-buffer to hybrid-mblur to blur, frame by frame, through the public
-// API alone (<hmblur/hmblur.h>): an adopted context, and hmb::EngineHybridMotionBlur (or
-// hmb::EngineMotionBlur with --method postprocess) recorded into the engine's own command
-// buffer. For the hybrid the engine also gives its geometry (hmb::EngineScene: the box mesh
-// once, each frame's world transforms now and one frame earlier), and shades what the rays
-// reveal with its own shadeHit, the same lighting as its fragment shader.
-// Each frame is written as OUT_DIR/frame-NN.png, with the sharp G-buffer colour beside it as
-// OUT_DIR/frame-NN-sharp.png.
+// graphics pipeline, and hands the G-buffer to hybrid-mblur to blur, frame by frame, through
+// the public API alone (<hmblur/hmblur.h>): an adopted context, and hmb::EngineHybridMotionBlur
+// (or hmb::EngineMotionBlur with --method postprocess) recorded into the engine's own command
+// buffer. Each frame is written as OUT_DIR/frame-NN.png, with the sharp G-buffer colour beside
+// it as OUT_DIR/frame-NN-sharp.png.
+//  - By default it draws boxes (one sliding fast over a floor, one turning, one still under a
+//    still camera), gives their geometry to the library as an hmb::EngineScene (the box mesh
+//    once, each frame's world transforms now and one frame earlier), and shades what the rays
+//    reveal with its own shadeHit.
+//  - With --scene it draws a scene the library loads (a reference scene name or a glTF file)
+//    with its own pipeline and the library's camera, base colours only (no textures), and the
+//    library traces that scene, shading with the library's function: its frames then equal the
+//    command line's wherever the two G-buffers agree.
 //
-// Usage: engine_backend [--validation] [--method hybrid|postprocess] [--frames N]
+// Usage: engine_backend [--validation] [--method hybrid|postprocess] [--scene SCENE] [--frames N]
 //                       [--size WIDTHxHEIGHT] OUT_DIR
 //   --validation: the Khronos validation layer with synchronization validation on the engine's
 //   instance; any message it reports makes the exit code 3.
@@ -64,8 +68,9 @@ struct Vertex {
 
 // What the shaders read per object (a storage buffer indexed by the draw's first instance).
 struct ObjectData {
-  glm::mat4 clipNow, clipPrevious, model;
+  glm::mat4 clipNow, clipPrevious, normalToWorld;
   glm::vec4 albedo;  // w: the object's id (the scene's Instance::objectId)
+  glm::vec4 ambient, lightColor, lightDirection;
 };
 
 struct Mesh {
@@ -295,7 +300,8 @@ struct GBufferPass {
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkPipeline culling = VK_NULL_HANDLE;  // single-sided materials: back faces culled (glTF)
+  VkPipeline twoSided = VK_NULL_HANDLE;  // double-sided ones
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
   Image color, depthOut, velocity, normal, objectId, depth;
@@ -430,14 +436,16 @@ struct GBufferPass {
     viewportState.pScissors = &scissor;
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;  // closed boxes under a depth test: culling would only save time
+    raster.cullMode = VK_CULL_MODE_BACK_BIT;
+    // Counter-clockwise in glTF's y-up view; the projection's y flip keeps Vulkan's rule for it.
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depthState{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depthState.depthTestEnable = VK_TRUE;
     depthState.depthWriteEnable = VK_TRUE;
-    depthState.depthCompareOp = VK_COMPARE_OP_LESS;
+    depthState.depthCompareOp = VK_COMPARE_OP_GREATER;  // the library's projection: reversed depth
     std::array<VkPipelineColorBlendAttachmentState, kColorTargets> blend{};
     for (auto& b : blend) b.colorWriteMask = 0xf;
     VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -455,14 +463,18 @@ struct GBufferPass {
     pipelineInfo.pColorBlendState = &blendState;
     pipelineInfo.layout = layout;
     pipelineInfo.renderPass = renderPass;
-    check(vkCreateGraphicsPipelines(e.device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline),
+    check(vkCreateGraphicsPipelines(e.device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &culling),
+          "vkCreateGraphicsPipelines");
+    raster.cullMode = VK_CULL_MODE_NONE;
+    check(vkCreateGraphicsPipelines(e.device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &twoSided),
           "vkCreateGraphicsPipelines");
     vkDestroyShaderModule(e.device, vert, nullptr);
     vkDestroyShaderModule(e.device, frag, nullptr);
   }
 
   void destroyWith(const Engine& e) {
-    vkDestroyPipeline(e.device, pipeline, nullptr);
+    vkDestroyPipeline(e.device, culling, nullptr);
+    vkDestroyPipeline(e.device, twoSided, nullptr);
     vkDestroyPipelineLayout(e.device, layout, nullptr);
     vkDestroyDescriptorPool(e.device, pool, nullptr);
     vkDestroyDescriptorSetLayout(e.device, setLayout, nullptr);
@@ -472,8 +484,8 @@ struct GBufferPass {
   }
 };
 
-// The scene, as the engine knows it: the floor, a box sliding fast, a box turning, a box still,
-// each with its colour and object id, placed at time t (seconds).
+// The boxes, as the engine knows them: the floor, a box sliding fast, a box turning, a box
+// still, each with its colour and object id, placed at time t (seconds).
 struct Placement {
   glm::vec3 translation, scale;
   float turn;  // radians about +y
@@ -491,31 +503,36 @@ std::vector<Placement> placementsAt(float t) {
           {{-1.6f, 0, -1.2f}, {1, 1, 1}, 0.0f, {0.3f, 0.8f, 0.3f}, 4}};
 }
 
-const glm::vec3 kEye{0, 2.2f, 5.5f};
-constexpr float kYFov = glm::radians(50.0f), kNear = 0.1f, kFar = 100.0f;
+// The boxes' geometry for the library's rays (hmb::EngineScene): a box mesh per colour once,
+// then per frame each box's world transform now and one frame earlier, and the still camera.
+struct Boxes {
+  hmb::EngineScene scene{kFps, 0.5f / kFps, 0.05f};  // a 180-degree shutter; SOFT_Z_EXTENT in scene units
+  explicit Boxes(const Mesh& box) {
+    std::vector<glm::vec3> positions, normals;
+    for (const Vertex& v : box.vertices) {
+      positions.push_back(v.position);
+      normals.push_back(v.normal);
+    }
+    for (const Placement& p : placementsAt(0.0f)) scene.addMesh(positions, normals, box.indices, p.albedo);
+    hmb::scene::DirectionalLight light;
+    light.direction = -glm::normalize(glm::vec3(0.4f, 0.8f, 0.5f));
+    light.color = glm::vec3(0.75f);
+    light.ambient = glm::vec3(0.25f);
+    scene.setLight(light);
+    setFrame(1.0f / 3.0f + 1.0f / kFps);
+  }
+  void setFrame(float t) {
+    const std::vector<Placement> now = placementsAt(t), before = placementsAt(t - 1.0f / kFps);
+    std::vector<hmb::EngineScene::Instance> instances;
+    for (uint32_t i = 0; i < now.size(); ++i) instances.push_back({i, now[i].objectId, now[i].model(), before[i].model()});
+    const glm::mat4 camera = glm::inverse(glm::lookAt(glm::vec3(0, 2.2f, 5.5f), {0, 0, 0}, {0, 1, 0}));
+    scene.setFrame(t, instances, {camera, camera, glm::radians(50.0f), 0.1f, 100.0f});
+  }
+};
 
-std::vector<ObjectData> objectsAt(float t, const glm::mat4& viewProjection) {
-  const std::vector<Placement> now = placementsAt(t), before = placementsAt(t - 1.0f / kFps);
-  std::vector<ObjectData> objects;
-  for (size_t i = 0; i < now.size(); ++i)
-    objects.push_back({viewProjection * now[i].model(), viewProjection * before[i].model(), now[i].model(),
-                       glm::vec4(now[i].albedo, float(now[i].objectId))});
-  return objects;
-}
-
-// The frame at time t as the library's rays see it (the hybrid's reveal): each object's world
-// transform now and one frame earlier, and the camera's (still).
-void setLibraryFrame(hmb::EngineScene& scene, float t) {
-  const std::vector<Placement> now = placementsAt(t), before = placementsAt(t - 1.0f / kFps);
-  std::vector<hmb::EngineScene::Instance> instances;
-  for (size_t i = 0; i < now.size(); ++i) instances.push_back({0, now[i].objectId, now[i].model(), before[i].model()});
-  const glm::mat4 camera = glm::inverse(glm::lookAt(kEye, {0, 0, 0}, {0, 1, 0}));
-  scene.setFrame(t, instances, {camera, camera, kYFov, kNear, kFar});
-}
-
-// What the rays reveal, lit as the engine's fragment shader lights its G-buffer: the colour by
-// object id, the same light.
-constexpr const char* kShadeHit = R"glsl(
+// What the rays reveal of the boxes, lit by the engine's own shading function: the colour by
+// object id (the engine's table, not the library's materials), the same light.
+constexpr const char* kBoxesShadeHit = R"glsl(
 vec3 shadeHit(HitRecord hit) {
   const vec3 albedo[5] = vec3[5](vec3(0.0), vec3(0.55, 0.55, 0.5), vec3(0.9, 0.3, 0.2), vec3(0.2, 0.5, 0.9),
                                  vec3(0.3, 0.8, 0.3));
@@ -523,6 +540,41 @@ vec3 shadeHit(HitRecord hit) {
   return albedo[min(hit.objectId, 4u)] * (0.25 + 0.75 * max(dot(hit.normal, light), 0.0));
 }
 )glsl";
+
+// Every mesh of a scene in one vertex and index buffer, and where each one's triangles start.
+struct SceneGeometry {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;
+  struct Range {
+    uint32_t firstIndex, indexCount;
+    int32_t vertexOffset;
+  };
+  std::vector<Range> meshes;
+  explicit SceneGeometry(const hmb::scene::Scene& scene) {
+    for (const hmb::scene::Mesh& mesh : scene.meshes) {
+      meshes.push_back({uint32_t(indices.size()), uint32_t(mesh.indices.size()), int32_t(vertices.size())});
+      for (size_t i = 0; i < mesh.positions.size(); ++i) vertices.push_back({mesh.positions[i], mesh.normals[i]});
+      indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    }
+  }
+};
+
+// Each instance of the scene at time t, for the shaders: the library's camera (its projection:
+// Vulkan clip space, reversed depth), the scene's materials and light.
+std::vector<ObjectData> objectsAt(const hmb::scene::Scene& scene, float t, uint32_t width, uint32_t height) {
+  const hmb::FrameCamera camera = hmb::frameCamera(scene, t, width, height);
+  const float before = t - 1.0f / scene.settings.fps;
+  std::vector<ObjectData> objects;
+  for (const hmb::scene::Instance& instance : scene.instances) {
+    const glm::mat4 now = scene.worldMatrixAt(instance.node, t), then = scene.worldMatrixAt(instance.node, before);
+    const hmb::scene::Material& material = scene.materials[scene.meshes[instance.mesh].material];
+    objects.push_back({camera.viewProjCurrent * now, camera.viewProjPrevious * then, glm::transpose(glm::inverse(now)),
+                       glm::vec4(glm::vec3(material.baseColorFactor), float(instance.objectId)),
+                       glm::vec4(scene.light.ambient, 0.0f), glm::vec4(scene.light.color, 0.0f),
+                       glm::vec4(scene.light.direction, 0.0f)});
+  }
+  return objects;
+}
 
 float srgb(float linear) {
   const float c = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
@@ -542,18 +594,21 @@ void writePng(const std::filesystem::path& path, const float* rgba, uint32_t wid
 }  // namespace
 
 constexpr const char* kUsage =
-    "usage: engine_backend [--validation] [--method hybrid|postprocess] [--frames N] [--size WIDTHxHEIGHT] OUT_DIR\n";
+    "usage: engine_backend [--validation] [--method hybrid|postprocess] [--scene SCENE] [--frames N]\n"
+    "                      [--size WIDTHxHEIGHT] OUT_DIR\n";
 
 int main(int argc, char** argv) {
   bool validation = false;
   bool hybrid = true;
   int frames = 4;
   uint32_t width = 640, height = 360;
+  std::string sceneName;  // empty: the boxes
   std::filesystem::path outDir;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--validation") validation = true;
     else if (arg == "--frames" && a + 1 < argc) frames = std::clamp(std::atoi(argv[++a]), 1, 60);
+    else if (arg == "--scene" && a + 1 < argc) sceneName = argv[++a];
     else if (arg == "--method" && a + 1 < argc) {
       const std::string method = argv[++a];
       if (method != "hybrid" && method != "postprocess") {
@@ -561,8 +616,7 @@ int main(int argc, char** argv) {
         return 2;
       }
       hybrid = method == "hybrid";
-    }
-    else if (arg == "--size" && a + 1 < argc) {
+    } else if (arg == "--size" && a + 1 < argc) {
       if (std::sscanf(argv[++a], "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 ||
           height > 8192) {
         std::fprintf(stderr, "engine_backend: --size takes WIDTHxHEIGHT, 1 to 8192 each\n");
@@ -580,6 +634,26 @@ int main(int argc, char** argv) {
   }
   try {
     std::filesystem::create_directories(outDir);
+    // What the engine draws: the boxes, or a scene the library loads (the engine draws it with
+    // its own pipeline; the library traces it for the hybrid's reveal).
+    const Mesh box = boxMesh();
+    std::unique_ptr<Boxes> boxes;
+    hmb::scene::Scene loaded;
+    if (sceneName.empty()) {
+      boxes = std::make_unique<Boxes>(box);
+    } else {
+      loaded = hmb::scene::loadScene(sceneName);
+      if (loaded.hasDeformation()) throw std::runtime_error("this example draws rigid meshes only: " + sceneName + " deforms");
+      for (const hmb::scene::Material& m : loaded.materials)
+        if (m.baseColorTexture >= 0) {
+          std::fprintf(stderr, "engine_backend: warning: textures are not drawn by this example (base colours only)\n");
+          break;
+        }
+    }
+    const hmb::scene::Scene& scene = boxes ? boxes->scene.scene() : loaded;
+    const float firstTime = boxes ? 1.0f / 3.0f + 1.0f / kFps : loaded.settings.frameTime;
+    const float fps = scene.settings.fps;
+
     Engine engine(validation);
     const size_t pixels = size_t(width) * height;
     // The engine's buffers: the G-buffer copied out of its attachments, and the blurred output.
@@ -591,42 +665,36 @@ int main(int argc, char** argv) {
     Buffer objectIds = makeBuffer(engine, pixels * 4, gbufferUsage, false);
     Buffer blurred = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     Buffer sharp = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-    const Mesh box = boxMesh();
-    Buffer vertices = makeBuffer(engine, box.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
-    Buffer indices = makeBuffer(engine, box.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, true);
-    std::memcpy(vertices.mapped, box.vertices.data(), box.vertices.size() * sizeof(Vertex));
-    std::memcpy(indices.mapped, box.indices.data(), box.indices.size() * 4);
-    constexpr uint32_t kObjects = 4;
-    Buffer objects = makeBuffer(engine, kObjects * sizeof(ObjectData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    const SceneGeometry geometry(scene);
+    Buffer vertices =
+        makeBuffer(engine, geometry.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
+    Buffer indices = makeBuffer(engine, geometry.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, true);
+    std::memcpy(vertices.mapped, geometry.vertices.data(), geometry.vertices.size() * sizeof(Vertex));
+    std::memcpy(indices.mapped, geometry.indices.data(), geometry.indices.size() * 4);
+    const auto objectCount = static_cast<uint32_t>(scene.instances.size());
+    Buffer objects = makeBuffer(engine, std::max<size_t>(objectCount, 1) * sizeof(ObjectData),
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     GBufferPass gbuffer(engine, width, height, objects.buffer);
-
-    // The camera: Vulkan's clip space (y down the framebuffer, depth 0 to 1).
-    glm::mat4 projection = glm::perspectiveRH_ZO(kYFov, float(width) / float(height), kNear, kFar);
-    projection[1][1] *= -1.0f;
-    const glm::mat4 viewProjection = projection * glm::lookAt(kEye, {0, 0, 0}, {0, 1, 0});
-    constexpr float kFirstTime = 0.35f;  // the frames' times: kFirstTime + f / fps
-    // The box once, for the library's rays; each frame's transforms go in per frame.
-    hmb::EngineScene scene(kFps, 0.5f / kFps, 0.05f);  // a 180-degree shutter; SOFT_Z_EXTENT in scene units
-    std::vector<glm::vec3> positions, normals;
-    for (const Vertex& v : box.vertices) {
-      positions.push_back(v.position);
-      normals.push_back(v.normal);
-    }
-    scene.addMesh(positions, normals, box.indices);
 
     {
       hmb::vk::ContextOptions options;
       options.validation = validation;  // the library's messages are counted too
       hmb::vk::Context context(engine.adopted(), options);
-      // The blur's shutter, frame rate and SOFT_Z_EXTENT are the scene's.
-      const hmb::passes::HybridSettings settings = hmb::passes::HybridSettings::fromScene(scene.scene().settings);
-      const hmb::passes::HitShading shading(kShadeHit);
+      // The blur's settings as the renderer derives them for this scene and image.
+      hmb::RenderSettings derive;
+      derive.width = width;
+      derive.height = height;
+      derive.method = hybrid ? hmb::Method::Hybrid : hmb::Method::PostProcess;
+      const hmb::passes::HybridSettings settings = hmb::hybridSettingsFor(scene, derive);
+      const hmb::passes::HitShading shading(boxes ? kBoxesShadeHit : "");  // a loaded scene: the library's
       std::unique_ptr<hmb::EngineMotionBlur> postProcess;
       std::unique_ptr<hmb::EngineHybridMotionBlur> hybridBlur;
       if (hybrid)
-        hybridBlur = std::make_unique<hmb::EngineHybridMotionBlur>(context, width, height, scene.scene(), settings,
+        hybridBlur = std::make_unique<hmb::EngineHybridMotionBlur>(context, width, height, scene, settings,
                                                                    hmb::EngineDepth{}, &shading);
-      else postProcess = std::make_unique<hmb::EngineMotionBlur>(context, width, height, settings.blur);
+      else
+        postProcess = std::make_unique<hmb::EngineMotionBlur>(context, width, height,
+                                                              hmb::postProcessSettingsFor(scene, derive));
 
       VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
       allocation.commandPool = engine.pool;
@@ -639,14 +707,12 @@ int main(int argc, char** argv) {
       check(vkCreateFence(engine.device, &fenceInfo, nullptr, &fence), "vkCreateFence");
 
       for (int f = 0; f < frames; ++f) {
-        const float t = kFirstTime + float(f) / kFps;
-        const std::vector<ObjectData> data = objectsAt(t, viewProjection);
+        const float t = firstTime + float(f) / fps;
+        if (boxes) boxes->setFrame(t);
+        const std::vector<ObjectData> data = objectsAt(scene, t, width, height);
         std::memcpy(objects.mapped, data.data(), data.size() * sizeof(ObjectData));
         // The hybrid's trees for this frame's instances (it waits for them), before recording.
-        if (hybridBlur) {
-          setLibraryFrame(scene, t);
-          hybridBlur->prepare(t);
-        }
+        if (hybridBlur) hybridBlur->prepare(t);
 
         check(vkResetCommandBuffer(commands, 0), "vkResetCommandBuffer");
         VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -654,12 +720,13 @@ int main(int argc, char** argv) {
         check(vkBeginCommandBuffer(commands, &begin), "vkBeginCommandBuffer");
         // The engine's own frame: the G-buffer pass ...
         VkClearValue clears[kColorTargets + 1] = {};
-        clears[0].color = {{0.62f, 0.74f, 0.9f, 1.0f}};  // sky
-        clears[1].color = {{0.0f, 0, 0, 0}};              // depth 0: nothing there (the background)
-        clears[2].color = {{0.0f, 0, 0, 0}};              // the still camera: the sky does not move
-        clears[3].color = {{0.0f, 0, 0, 0}};              // no normal
-        clears[4].color.uint32[0] = 0;                    // object 0: the background
-        clears[kColorTargets].depthStencil = {1.0f, 0};
+        clears[0].color = boxes ? VkClearColorValue{{0.62f, 0.74f, 0.9f, 1.0f}}  // sky
+                                : VkClearColorValue{{0.0f, 0.0f, 0.0f, 1.0f}};   // the library's background
+        clears[1].color = {{0.0f, 0, 0, 0}};  // depth 0: nothing there (the background)
+        clears[2].color = {{0.0f, 0, 0, 0}};  // the background does not move on screen: the camera is still
+        clears[3].color = {{0.0f, 0, 0, 0}};  // no normal
+        clears[4].color.uint32[0] = 0;        // object 0: the background
+        clears[kColorTargets].depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
         VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
         passBegin.renderPass = gbuffer.renderPass;
         passBegin.framebuffer = gbuffer.framebuffer;
@@ -667,13 +734,17 @@ int main(int argc, char** argv) {
         passBegin.clearValueCount = kColorTargets + 1;
         passBegin.pClearValues = clears;
         vkCmdBeginRenderPass(commands, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
-        vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer.pipeline);
         vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer.layout, 0, 1, &gbuffer.set, 0, nullptr);
         const VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(commands, 0, 1, &vertices.buffer, &offset);
         vkCmdBindIndexBuffer(commands, indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-        for (uint32_t o = 0; o < kObjects; ++o)
-          vkCmdDrawIndexed(commands, static_cast<uint32_t>(box.indices.size()), 1, 0, 0, o);  // instance o: object o
+        for (uint32_t o = 0; o < objectCount; ++o) {  // instance o: object o
+          const hmb::scene::Mesh& mesh = scene.meshes[scene.instances[o].mesh];
+          const bool doubleSided = scene.materials[mesh.material].doubleSided;
+          vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, doubleSided ? gbuffer.twoSided : gbuffer.culling);
+          const SceneGeometry::Range& range = geometry.meshes[scene.instances[o].mesh];
+          vkCmdDrawIndexed(commands, range.indexCount, 1, range.firstIndex, range.vertexOffset, o);
+        }
         vkCmdEndRenderPass(commands);
         // ... copied into the buffers the library reads (after the last frame's reads of them) ...
         VkMemoryBarrier afterLastFrame{VK_STRUCTURE_TYPE_MEMORY_BARRIER};

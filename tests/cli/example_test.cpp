@@ -92,5 +92,39 @@ TEST(EngineExampleTest, BlursItsOwnGBufferWithoutAValidationMessage) {
   EXPECT_EQ(method.exitCode, 2) << method.output;
 }
 
+// The example engine drawing a scene the library loads (its own graphics pipeline, the library's
+// camera, base colours only: it draws no textures) against the command line's frames of the
+// same scene: wherever the two sharp G-buffers agree, so do the two hybrid frames; they differ
+// only on the living room's textured floor and rug.
+TEST(EngineExampleTest, ItsHybridFrameIsTheCommandLinesWhereTheirGBuffersAgree) {
+  const fs::path dir = tempDir("engine-example-scene");
+  const CliRun run = runProgram(HMB_ENGINE_EXAMPLE_PATH, "--validation --scene living-room --frames 1 --size 160x90 " +
+                                                             (dir / "engine").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("textures are not drawn"), std::string::npos) << run.output;
+  for (const char* method : {"sharp", "hybrid"}) {
+    const CliRun cli = hmblur(std::string("render --scene living-room --method ") + method +
+                              " --width 160 --height 90 --quiet --out " + (dir / (std::string(method) + ".png")).string());
+    ASSERT_EQ(cli.exitCode, 0) << cli.output;
+  }
+  const io::Rgba8Image engineSharp = io::readPng(dir / "engine" / "frame-00-sharp.png");
+  const io::Rgba8Image engineHybrid = io::readPng(dir / "engine" / "frame-00.png");
+  const io::Rgba8Image cliSharp = io::readPng(dir / "sharp.png");
+  const io::Rgba8Image cliHybrid = io::readPng(dir / "hybrid.png");
+  const auto differs = [](const io::Rgba8Image& a, const io::Rgba8Image& b, size_t pixel) {
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(int(a.pixels[4 * pixel + c]) - int(b.pixels[4 * pixel + c])) > 2) return true;
+    return false;
+  };
+  size_t sharpAgree = 0, hybridDiffersThere = 0;
+  for (size_t i = 0; i < size_t(160) * 90; ++i) {
+    if (differs(engineSharp, cliSharp, i)) continue;
+    ++sharpAgree;
+    hybridDiffersThere += differs(engineHybrid, cliHybrid, i);
+  }
+  EXPECT_GT(sharpAgree, size_t(160) * 90 * 7 / 10);  // all but the floor and the rug
+  EXPECT_EQ(hybridDiffersThere, 0u) << "of " << sharpAgree << " pixels whose G-buffers agree";
+}
+
 }  // namespace
 }  // namespace hmb::test
