@@ -132,8 +132,8 @@ void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer
 vk::FrameTimings EngineMotionBlur::timings() const { return passes_->recorder.readTimings(); }
 
 struct EngineHybridMotionBlur::Passes {
-  Passes(const vk::Context& context, uint32_t width, uint32_t height, const scene::Scene& scene,
-         const passes::HybridSettings& settings, const passes::HitShading* hits)
+  Passes(const vk::Context& context, uint32_t width, uint32_t height, const passes::HybridSettings& settings,
+         const passes::HitShading* hits)
       : pack(packKernel(context, true)),
         blur(context, settings.blur),
         hybrid(context, blur, hits),
@@ -163,7 +163,7 @@ EngineHybridMotionBlur::EngineHybridMotionBlur(const vk::Context& context, uint3
   if (width == 0 || height == 0) throw Error("engine hybrid motion blur: an empty image");
   validateDepth(depth);
   passes::validate(settings);
-  passes_ = std::make_unique<Passes>(context, width, height, scene, settings, hits);
+  passes_ = std::make_unique<Passes>(context, width, height, settings, hits);
 }
 
 EngineHybridMotionBlur::~EngineHybridMotionBlur() = default;
@@ -181,7 +181,7 @@ vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
   // The instances' transforms and the camera at the frame, for shading what the rays find.
   passes_->gpuScene->setFrame(scene_, frameTime, width_, height_);
   FramePlan plan;
-  plan.run("pack-engine-gbuffer");
+  plan.run(kPackPass);
   passes_->hybrid.plan(plan, scene_, frameTime);
   const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, *passes_->gpuScene, frameTime, width_, height_,
                                                settings_, plan);

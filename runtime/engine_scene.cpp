@@ -1,5 +1,6 @@
 #include "runtime/engine_scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtx/matrix_decompose.hpp>

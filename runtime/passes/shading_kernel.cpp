@@ -24,19 +24,23 @@ ShadingKernel::ShadingKernel(const vk::Context& context, std::string_view kernel
       name_(kernelName),
       pushConstantBytes_(pushConstantBytes),
       hits_(customOnly(hits)),
-      textured_(hits_ ? vk::ComputeKernel(context, kernelName, hits_->buildsFor(kernelName), pushConstantBytes)
-                      : vk::ComputeKernel(context, kernelName, pushConstantBytes)) {}
+      textured_(build({})) {}
 
 ShadingKernel::~ShadingKernel() = default;
 
+std::unique_ptr<vk::ComputeKernel> ShadingKernel::build(std::span<const uint32_t> specialization) const {
+  if (hits_)
+    return std::make_unique<vk::ComputeKernel>(context_, name_, hits_->buildsFor(name_), pushConstantBytes_,
+                                               specialization);
+  return std::make_unique<vk::ComputeKernel>(context_, name_, pushConstantBytes_, specialization);
+}
+
 const vk::ComputeKernel& ShadingKernel::forScene(const GpuScene& scene) const {
-  if (scene.texturePath()) return textured_;
+  if (scene.texturePath()) return *textured_;
   if (!untextured_) {
     std::array<uint32_t, HMB_SPEC_TEXTURE_PATH + 1> specialization{};
     specialization[HMB_SPEC_TEXTURE_PATH] = 0u;  // VkBool32 false
-    untextured_ = hits_ ? std::make_unique<vk::ComputeKernel>(context_, name_, hits_->buildsFor(name_),
-                                                              pushConstantBytes_, specialization)
-                        : std::make_unique<vk::ComputeKernel>(context_, name_, pushConstantBytes_, specialization);
+    untextured_ = build(specialization);
   }
   return *untextured_;
 }

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -32,11 +33,15 @@ class ShadingKernel {
   const vk::ComputeKernel& forScene(const GpuScene& scene) const;
 
  private:
+  // The kernel with these specialization constants: the embedded builds, or with a user's
+  // shading the builds compiled from it.
+  std::unique_ptr<vk::ComputeKernel> build(std::span<const uint32_t> specialization) const;
+
   const vk::Context& context_;
   std::string name_;
   uint32_t pushConstantBytes_;
   const HitShading* hits_;  // non-null with a user's shading: the kernel's builds come from it
-  vk::ComputeKernel textured_;
+  std::unique_ptr<vk::ComputeKernel> textured_;
   mutable std::unique_ptr<vk::ComputeKernel> untextured_;
 };
 

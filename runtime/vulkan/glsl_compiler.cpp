@@ -2,9 +2,9 @@
 
 #include <filesystem>
 #include <memory>
-#include <string_view>
 #include <mutex>
 #include <sstream>
+#include <string_view>
 
 #include <glslang/Include/glslang_c_interface.h>
 #include <glslang/Public/resource_limits_c.h>

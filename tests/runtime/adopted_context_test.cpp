@@ -16,13 +16,6 @@
 namespace hmb::test {
 namespace {
 
-vk::ContextOptions countingOptions() {
-  vk::ContextOptions options;
-  options.validation = true;
-  options.pipelineCacheFolder.clear();
-  return options;
-}
-
 RenderSettings hybridAt(uint32_t width, uint32_t height) {
   RenderSettings settings;
   settings.method = Method::Hybrid;

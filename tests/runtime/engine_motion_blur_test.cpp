@@ -23,13 +23,6 @@ namespace {
 
 constexpr uint32_t kWidth = 96, kHeight = 54;
 
-vk::ContextOptions countingOptions() {
-  vk::ContextOptions options;
-  options.validation = true;
-  options.pipelineCacheFolder.clear();
-  return options;
-}
-
 // The renderer's G-buffer of a moving frame (the sharp method's layers) and its post-process
 // frame with the settings it derived.
 struct Frames {

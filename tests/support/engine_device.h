@@ -145,4 +145,13 @@ class Engine {
   VkCommandPool commandPool = VK_NULL_HANDLE;
 };
 
+// Options of a library context on an engine's objects in the tests: validation messages
+// counted, no pipeline cache on disk.
+inline vk::ContextOptions countingOptions() {
+  vk::ContextOptions options;
+  options.validation = true;
+  options.pipelineCacheFolder.clear();
+  return options;
+}
+
 }  // namespace hmb::test
