@@ -110,13 +110,16 @@ class EngineHybridMotionBlur {
   EngineHybridMotionBlur(const EngineHybridMotionBlur&) = delete;
   EngineHybridMotionBlur& operator=(const EngineHybridMotionBlur&) = delete;
 
-  // Before recording the frame at frameTime (seconds, the scene's clock): builds the ray
-  // tracing trees (the meshes' once, the instances' when they moved) and the frame's camera
-  // rays. Unlike record(), this submits its own work and waits for it; it returns the device
-  // time of what it built.
+  // Before recording the frame at frameTime (seconds, the scene's clock): plans the frame
+  // (which trees to build or keep) and computes its transforms on the host. Where the meshes
+  // are new (the first frame, or an EngineScene given other meshes), it builds their trees
+  // and waits for them, as it does for deforming meshes' refits; it returns the device time of
+  // that work. A frame whose instances moved needs no wait: record() builds their tree.
   vk::FrameTimings prepare(float frameTime);
   // Records the frame prepare() was last given into `commandBuffer`, as EngineMotionBlur
-  // records (the G-buffer's normal and objectId are required here).
+  // records (the G-buffer's normal and objectId are required here): the frame's transforms
+  // and camera (written through the command buffer), the instances' tree where they moved,
+  // then the hybrid's passes.
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
   vk::FrameTimings timings() const;
 
@@ -133,6 +136,7 @@ class EngineHybridMotionBlur {
   passes::HybridSettings settings_;
   EngineDepth depth_;
   std::unique_ptr<Passes> passes_;
+  float frameTime_ = 0.0f;  // the last prepare()'s
   bool prepared_ = false;
 };
 

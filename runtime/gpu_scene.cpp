@@ -12,6 +12,7 @@
 #include "runtime/deformed_vertices.h"
 #include "runtime/error.h"
 #include "runtime/io/image.h"
+#include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 
 namespace hmb {
@@ -180,7 +181,7 @@ void GpuScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddres
   shading_.bind(bindings, firstBinding, byAddress, members);
 }
 
-void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
+void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height, vk::FrameRecorder* into) {
   const float previous = t - 1.0f / scene.settings.fps;
   std::vector<gpu::GpuInstance> instances;
   for (const scene::Instance& instance : scene.instances) {
@@ -195,7 +196,12 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
     g.flags = doubleSided ? HMB_INSTANCE_DOUBLE_SIDED : 0u;
     instances.push_back(g);
   }
-  if (!instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(instances));
+  if (!instances.empty()) {
+    if (into)
+      into->write(kFrameInputs, instances_, std::span<const gpu::GpuInstance>(instances));
+    else
+      instances_.upload(std::span<const gpu::GpuInstance>(instances));
+  }
   if (deformation_) {
     deformation_->setTime(scene, DeformedVertices::kFrameSlot, t);
     deformation_->setTime(scene, DeformedVertices::kPreviousSlot, previous);
@@ -213,7 +219,10 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
   c.lightColor = glm::vec4(scene.light.color, 0.0f);
   c.ambient = glm::vec4(scene.light.ambient, 0.0f);
   c.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&c, 1));
+  if (into)
+    into->write(kFrameInputs, cameraBuffer_, std::span<const gpu::GpuCamera>(&c, 1));
+  else
+    cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&c, 1));
 }
 
 }  // namespace hmb

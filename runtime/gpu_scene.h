@@ -46,9 +46,14 @@ class GpuScene {
   GpuScene(GpuScene&&) noexcept;
   ~GpuScene();
 
+  static constexpr const char* kFrameInputs = "scene-frame-inputs";  // setFrame's writes, recorded
+
   // Writes instance transforms at t and t - 1/fps and the camera for the frame, and the
-  // deformation at both times (recordFrameDeformation applies it).
-  void setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
+  // deformation at both times (recordFrameDeformation applies it). With `into` (a begun frame)
+  // the transforms and the camera are written when that frame runs (kFrameInputs), so nothing
+  // is staged or waited for; passes recorded after it see them.
+  void setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height,
+                vk::FrameRecorder* into = nullptr);
 
   // Whether the scene has skinned or morphing meshes: their vertices are then deformed on the
   // device (runtime/deformed_vertices.h) before anything reads them.

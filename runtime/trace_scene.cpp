@@ -164,7 +164,8 @@ vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
 
 bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const float> times) const {
-  if (builtTransforms_.empty() && builtInstances_.empty()) return false;
+  // Staged and not yet recorded: no tree was built for them.
+  if (staged_ || (builtTransforms_.empty() && builtInstances_.empty())) return false;
   std::vector<gpu::TraceInstance> instances;
   std::vector<gpu::InstanceTransform> transforms;
   instancesAt(scene, times, instances, transforms);
@@ -173,33 +174,58 @@ bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const floa
 }
 
 void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame) {
+  stageShutterTimes(scene, times);
+  frame.begin();
+  recordStagedShutterTimes(frame, kInstanceTree);
+  const vk::FrameTimings timings = frame.submitAndWait();
+  instanceBvh_.readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
+}
+
+void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const float> times) {
   if (times.empty()) throw Error("a trace needs at least one shutter time");
   std::vector<gpu::TraceInstance> instances;
   std::vector<gpu::InstanceTransform> transforms;
   instancesAt(scene, times, instances, transforms);
   instanceCount_ = static_cast<uint32_t>(instances.size());
   timeCount_ = static_cast<uint32_t>(times.size());
-  instances_ = vk::uploadedBuffer(context_, instances, "trace instances");
-  transforms_ = vk::uploadedBuffer(context_, transforms, "instance transforms");
-  if (instanceBoxes_.size() < std::max<size_t>(instances.size(), 1) * sizeof(gpu::BvhBox))
-    instanceBoxes_ = vk::Buffer(context_, std::max<size_t>(instances.size(), 1) * sizeof(gpu::BvhBox),
-                                vk::MemoryUse::Device, "instance boxes");
+  // The buffers grow with the instances and are kept otherwise: a frame's transforms are
+  // written into them when it runs, and the tables that bind them by address stay valid.
+  const auto fit = [&](vk::Buffer& buffer, size_t bytes, const char* name) {
+    if (buffer.size() >= bytes) return;
+    buffer = vk::Buffer(context_, bytes, vk::MemoryUse::Device, name);
+    group_.forgetTable();
+  };
+  const size_t slots = std::max<size_t>(instances.size(), 1);
+  fit(instances_, slots * sizeof(gpu::TraceInstance), "trace instances");
+  fit(transforms_, std::max<size_t>(transforms.size(), 1) * sizeof(gpu::InstanceTransform), "instance transforms");
+  fit(instanceBoxes_, slots * sizeof(gpu::BvhBox), "instance boxes");
+  builtInstances_ = std::move(instances);
+  builtTransforms_ = std::move(transforms);
+  staged_ = true;
+}
+
+void TraceScene::recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_view pass) {
+  if (!staged_) throw Error("the trace scene's instance tree was recorded without staged shutter times");
+  staged_ = false;
+  frame.write(pass, instances_, std::span<const gpu::TraceInstance>(builtInstances_));
+  frame.write(pass, transforms_, std::span<const gpu::InstanceTransform>(builtTransforms_));
   const gpu::TraceParams params{0u, instanceCount_, timeCount_, 0u};
   const glm::uvec2 root(0u, instanceCount_);
-  instanceBvh_.build(frame, instanceBoxes_, instanceCount_, std::span(&root, 1), [&](vk::FrameRecorder& f) {
-    f.dispatch(kMotionBounds, motionBoundsKernel_,
+  const auto nodes = instanceBvh_.nodes().handle(), primitives = instanceBvh_.primitives().handle(),
+             frames = instanceBvh_.frames().handle();
+  instanceBvh_.record(frame, pass, instanceBoxes_, instanceCount_, std::span(&root, 1), [&](vk::FrameRecorder& f) {
+    f.dispatch(pass, motionBoundsKernel_,
                {{HMB_MOTION_BOUNDS_BINDING_MESH_NODES, &meshBvh_.nodes()},
                 {HMB_MOTION_BOUNDS_BINDING_INSTANCES, &instances_},
                 {HMB_MOTION_BOUNDS_BINDING_TRANSFORMS, &transforms_},
                 {HMB_MOTION_BOUNDS_BINDING_BOXES, &instanceBoxes_},
                 {HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES, &meshBvh_.frames()}},
-               params,
-               vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
+               params, vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
   });
-  builtInstances_ = std::move(instances);
-  builtTransforms_ = std::move(transforms);
-
-  group_.forgetTable();  // the instances, their transforms and the top level are new
+  // The tree's buffers grow with the instances too: a new one needs a new address table.
+  if (nodes != instanceBvh_.nodes().handle() || primitives != instanceBvh_.primitives().handle() ||
+      frames != instanceBvh_.frames().handle())
+    group_.forgetTable();
 }
 
 void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {

@@ -37,16 +37,25 @@ gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t wi
 class TraceScene {
  public:
   static constexpr const char* kTriangleBounds = "bvh-triangle-bounds";
-  static constexpr const char* kMotionBounds = "bvh-instance-motion-bounds";
   static constexpr const char* kDeformedLeaves = "bvh-deformed-leaves";
   static constexpr const char* kRefit = "bvh-refit";
+  static constexpr const char* kInstanceTree = "bvh-instance-tree";  // setShutterTimes' passes
 
   // Uploads the meshes and builds their trees (submits on `frame`).
   TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame);
 
   // Transforms of every instance at each shutter time, and the top level over the instances'
-  // boxes merged over those times (submits on `frame`). Rays name a time by its index here.
+  // boxes merged over those times (submits on `frame` and waits). Rays name a time by its
+  // index here.
   void setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame);
+  // The same in two steps, for a frame that must not wait (an engine's): stageShutterTimes
+  // computes the transforms on the host and sizes the buffers; recordStagedShutterTimes
+  // records their upload, the instances' motion bounds and the top level's build into a begun
+  // frame, every pass under the name `pass`, with no submission and no read-back
+  // (passes::BvhBuildPass::record). Tracing kernels recorded after it in the same frame see
+  // the new tree.
+  void stageShutterTimes(const scene::Scene& scene, std::span<const float> times);
+  void recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_view pass);
 
   // A scene with skinned or morphing meshes: deforms `gpuScene`'s vertices to time t, takes the
   // deforming meshes' trace triangles from them and refits those meshes' trees to their new
@@ -99,6 +108,7 @@ class TraceScene {
   // What the top level was last built from, to tell whether a frame can keep it.
   std::vector<gpu::TraceInstance> builtInstances_;
   std::vector<gpu::InstanceTransform> builtTransforms_;
+  bool staged_ = false;  // builtInstances_ and builtTransforms_ wait for recordStagedShutterTimes
   vk::Buffer leafTriangles_;  // per triangle in the leaves' order: 3 vec4 (vertex xyz, index bits)
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)

@@ -124,9 +124,8 @@ uint32_t BvhBuildPass::firstSubmissionLevels(uint32_t largestTree) {
   return std::min(kMaxLevelsPerSubmission, halvingsToOne(largestTree) + kLevelMargin);
 }
 
-const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
-                                         std::span<const glm::uvec2> roots,
-                                         const std::function<void(vk::FrameRecorder&)>& before) {
+BvhBuildPass::Start BvhBuildPass::start(const vk::Buffer& boxes, uint32_t primitiveCount,
+                                        std::span<const glm::uvec2> roots, uint32_t depthBound) {
   if (roots.empty()) throw Error(name_ + ": a build needs at least one tree");
   for (const glm::uvec2& root : roots) {
     if (uint64_t(root.x) + root.y > primitiveCount)
@@ -139,45 +138,52 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   reserve(primitiveCount, treeCount);
   primitiveCount_ = primitiveCount;
   roots_.assign(roots.begin(), roots.end());
-  rootBuffer_.write(std::as_bytes(roots));
 
-  gpu::BvhBuildCounters counters{};
-  counters.nodeCount = treeCount;
-  counters.levels = 1;
-  const glm::uvec3 rootGroups = vk::foldedGroups(treeCount);
-  counters.dispatch[0] = glm::uvec4(rootGroups, 0u);
-  counters.dispatch[1] = glm::uvec4(0u, 0u, 1u, 0u);
-  tasks_.write(std::as_bytes(std::span(&counters, 1)));
-
-  const vk::Bindings buffers = {{HMB_BUILD_BINDING_BOXES, &boxes},
-                                {HMB_BUILD_BINDING_ROOTS, &rootBuffer_},
-                                {HMB_BUILD_BINDING_PRIMITIVES, &primitives_},
-                                {HMB_BUILD_BINDING_NODES, &nodes_},
-                                {HMB_BUILD_BINDING_TASKS, &tasks_},
-                                {HMB_BUILD_BINDING_PACKED_NODES, &packedNodes_},
-                                {HMB_BUILD_BINDING_FRAMES, &frames_}};
-  uint32_t largestTree = 0;
-  for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);
-  const uint32_t halvings = halvingsToOne(largestTree);
-  if (halvings > maxDepth_)
-    throw Error(name_ + ": a tree of " + std::to_string(largestTree) + " primitives needs " + std::to_string(halvings) +
-                " levels, more than the depth bound of " + std::to_string(maxDepth_));
-  gpu::BvhBuildParams params{primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, maxDepth_, 0, 0};
+  Start s;
+  s.counters.nodeCount = treeCount;
+  s.counters.levels = 1;
+  s.rootGroups = vk::foldedGroups(treeCount);
+  s.counters.dispatch[0] = glm::uvec4(s.rootGroups, 0u);
+  s.counters.dispatch[1] = glm::uvec4(0u, 0u, 1u, 0u);
+  s.buffers = {{HMB_BUILD_BINDING_BOXES, &boxes},
+               {HMB_BUILD_BINDING_ROOTS, &rootBuffer_},
+               {HMB_BUILD_BINDING_PRIMITIVES, &primitives_},
+               {HMB_BUILD_BINDING_NODES, &nodes_},
+               {HMB_BUILD_BINDING_TASKS, &tasks_},
+               {HMB_BUILD_BINDING_PACKED_NODES, &packedNodes_},
+               {HMB_BUILD_BINDING_FRAMES, &frames_}};
+  for (const glm::uvec2& root : roots) s.largestTree = std::max(s.largestTree, root.y);
+  const uint32_t halvings = halvingsToOne(s.largestTree);
+  if (halvings > depthBound)
+    throw Error(name_ + ": a tree of " + std::to_string(s.largestTree) + " primitives needs " +
+                std::to_string(halvings) + " levels, more than the depth bound of " + std::to_string(depthBound));
+  s.params = {primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, depthBound, 0, 0};
   stats_ = {};
   refits_ = {};  // the old trees' places and order
+  return s;
+}
+
+const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
+                                         std::span<const glm::uvec2> roots,
+                                         const std::function<void(vk::FrameRecorder&)>& before) {
+  Start s = start(boxes, primitiveCount, roots, maxDepth_);
+  rootBuffer_.write(std::as_bytes(roots));
+  tasks_.write(std::as_bytes(std::span(&s.counters, 1)));
+  gpu::BvhBuildCounters& counters = s.counters;
+  gpu::BvhBuildParams& params = s.params;
   uint32_t level = 0;
   for (;;) {
     frame.begin();
     if (level == 0) {
       if (before) before(frame);
-      frame.dispatch(kBegin, beginKernel_, buffers, params, rootGroups);
+      frame.dispatch(kBegin, beginKernel_, s.buffers, params, s.rootGroups);
     }
-    const uint32_t end = level + (level == 0 ? firstSubmissionLevels(largestTree) : kLevelsPerLaterSubmission);
+    const uint32_t end = level + (level == 0 ? firstSubmissionLevels(s.largestTree) : kLevelsPerLaterSubmission);
     for (; level < end; ++level) {
       params.level = level;
-      frame.dispatchIndirect(kLevel, levelKernel_, buffers, params, tasks_,
+      frame.dispatchIndirect(kLevel, levelKernel_, s.buffers, params, tasks_,
                              offsetof(gpu::BvhBuildCounters, dispatch) + (level & 1u) * sizeof(glm::uvec4));
-      frame.dispatch(kSizeDispatch, sizeDispatchKernel_, buffers, params, glm::uvec3(1));
+      frame.dispatch(kSizeDispatch, sizeDispatchKernel_, s.buffers, params, glm::uvec3(1));
     }
     const vk::FrameTimings timings = frame.submitAndWait();
     for (const vk::PassTiming& pass : timings.passes)
@@ -191,7 +197,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   }
   if (counters.smallTaskCount > 0) {
     frame.begin();
-    frame.dispatchIndirect(kSmallTasks, smallTasksKernel_, buffers, params, tasks_,
+    frame.dispatchIndirect(kSmallTasks, smallTasksKernel_, s.buffers, params, tasks_,
                            offsetof(gpu::BvhBuildCounters, smallDispatch));
     const vk::FrameTimings timings = frame.submitAndWait();
     ++stats_.submissions;
@@ -200,12 +206,51 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
       if (pass.name == kSmallTasks) stats_.smallTaskMilliseconds += pass.milliseconds.value_or(0.0);
     tasks_.read(std::as_writable_bytes(std::span(&counters, 1)));
   }
+  takeCounts(counters);
+  return stats_;
+}
+
+uint32_t BvhBuildPass::recordedDepthBound(uint32_t largestTree) const {
+  return std::min(maxDepth_, firstSubmissionLevels(largestTree));
+}
+
+void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
+                          uint32_t primitiveCount, std::span<const glm::uvec2> roots,
+                          const std::function<void(vk::FrameRecorder&)>& before) {
+  uint32_t largestTree = 0;
+  for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);
+  const uint32_t depthBound = recordedDepthBound(largestTree);
+  Start s = start(boxes, primitiveCount, roots, depthBound);
+  frame.write(pass, rootBuffer_, roots);
+  frame.write(pass, tasks_, std::span<const gpu::BvhBuildCounters>(&s.counters, 1));
+  if (before) before(frame);
+  frame.dispatch(pass, beginKernel_, s.buffers, s.params, s.rootGroups);
+  // No node lies deeper than the bound, so a level past it has no tasks: these levels finish
+  // every tree, and the small subtrees they set aside are finished after them.
+  for (uint32_t level = 0; level < depthBound; ++level) {
+    s.params.level = level;
+    frame.dispatchIndirect(pass, levelKernel_, s.buffers, s.params, tasks_,
+                           offsetof(gpu::BvhBuildCounters, dispatch) + (level & 1u) * sizeof(glm::uvec4));
+    frame.dispatch(pass, sizeDispatchKernel_, s.buffers, s.params, glm::uvec3(1));
+  }
+  frame.dispatchIndirect(pass, smallTasksKernel_, s.buffers, s.params, tasks_,
+                         offsetof(gpu::BvhBuildCounters, smallDispatch));
+}
+
+const BvhBuildStats& BvhBuildPass::readRecordedCounts(double deviceMilliseconds) {
+  stats_.deviceMilliseconds = deviceMilliseconds;
+  gpu::BvhBuildCounters counters{};
+  tasks_.read(std::as_writable_bytes(std::span(&counters, 1)));
+  takeCounts(counters);
+  return stats_;
+}
+
+void BvhBuildPass::takeCounts(const gpu::BvhBuildCounters& counters) {
   stats_.smallTasks = counters.smallTaskCount;
   stats_.nodes = counters.nodeCount;
   stats_.leaves = counters.leafCount;
   stats_.levels = counters.levels;
   stats_.levelMilliseconds.resize(std::min<size_t>(stats_.levelMilliseconds.size(), stats_.levels));
-  return stats_;
 }
 
 void BvhBuildPass::prepareRefits(vk::FrameRecorder& frame) {

@@ -5,19 +5,22 @@
 //
 // How deep the trees go is only known on the device, so build() records a batch of levels,
 // submits, and reads the task count back; a tree deeper than the batch gets another batch.
-// A level without tasks dispatches no groups.
+// A level without tasks dispatches no groups. record() instead records the whole build into a
+// frame, with no submission or read-back: it bounds the trees' depth by the levels it records.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "bvh/bvh.h"
 #include "kernels/bvh/bvh_build_layout.h"
+#include "runtime/vulkan/binding.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
@@ -95,6 +98,22 @@ class BvhBuildPass {
                              std::span<const glm::uvec2> roots,
                              const std::function<void(vk::FrameRecorder&)>& before = {});
 
+  // The build recorded into `frame` (begun, not submitted here), every pass under the name
+  // `pass`: nothing waits and nothing is read back, for a per-frame tree in an engine's
+  // command buffer. It records recordedDepthBound() levels and bounds the trees' depth by them
+  // (a SAH split that would go deeper is halved, as at HMB_BVH_MAX_DEPTH), so a level past
+  // the bound could have no work. Levels without tasks dispatch no groups; on lavapipe each
+  // costs two empty dispatches. stats() stays empty until readRecordedCounts(); refit() needs a
+  // build().
+  void record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes, uint32_t primitiveCount,
+              std::span<const glm::uvec2> roots, const std::function<void(vk::FrameRecorder&)>& before = {});
+  // The depth bound (and levels) record() uses for trees of up to largestTree primitives: what
+  // build()'s first submission records, at most the pass's depth bound.
+  uint32_t recordedDepthBound(uint32_t largestTree) const;
+  // After a recorded build completed on the device: its node, leaf and level counts read back
+  // into stats() (tests, reports), with the device time its frame measured.
+  const BvhBuildStats& readRecordedCounts(double deviceMilliseconds = 0.0);
+
   // Moves the trees of the last build into buffers of their own size and frees the build's
   // scratch (the primitive array's second half, the task lists, the exact nodes): for trees built once and
   // kept, which then hold about half the worst case allocated for a build. The next build
@@ -141,6 +160,17 @@ class BvhBuildPass {
 
  private:
   void reserve(uint32_t primitiveCount, uint32_t treeCount);
+  // What build() and record() share: checks, buffers, the first counters and parameters.
+  struct Start {
+    gpu::BvhBuildCounters counters{};
+    gpu::BvhBuildParams params{};
+    vk::Bindings buffers;
+    glm::uvec3 rootGroups{0u};
+    uint32_t largestTree = 0;
+  };
+  Start start(const vk::Buffer& boxes, uint32_t primitiveCount, std::span<const glm::uvec2> roots,
+              uint32_t depthBound);
+  void takeCounts(const gpu::BvhBuildCounters& counters);
   void prepareRefits(vk::FrameRecorder& frame);
   void sortRefitNodes(std::span<const uint32_t> trees);
 

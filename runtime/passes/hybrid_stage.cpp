@@ -61,13 +61,11 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   const float times[] = {frameTime};
   if (plan.runs(TraceScene::kRefit))
     vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
-  if (plan.runs(kBvhInstances)) {
-    traceScene_->setShutterTimes(scene, times, frame);
-    const double instanceMs = traceScene_->instanceBvh().stats().deviceMilliseconds;
-    vk::appendTimings(timings.frame, {{{kBvhInstances, instanceMs}}, instanceMs});
-  }
-  cameraRays_ = vk::uploadedBuffer(context_, std::vector<gpu::PinholeCamera>{pinholeCamera(scene, frameTime, width, height)},
-                                   "reveal camera rays");
+  buildsInstanceTree_ = plan.runs(kBvhInstances);
+  if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, times);
+  camera_ = pinholeCamera(scene, frameTime, width, height);
+  if (!cameraRays_.handle())
+    cameraRays_ = vk::Buffer(context_, sizeof(gpu::PinholeCamera), vk::MemoryUse::Device, "reveal camera rays");
 
   rayMask_.prepare(width, height);
   if (size_.changesTo(width, height)) {
@@ -82,8 +80,13 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
 }
 
 void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, const GpuScene& gpuScene,
-                         const vk::Buffer& output) const {
+                         const vk::Buffer& output) {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
+  if (buildsInstanceTree_) {
+    traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
+    buildsInstanceTree_ = false;
+  }
+  frame.write(RevealPass::kName, cameraRays_, std::span<const gpu::PinholeCamera>(&camera_, 1));
   const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height()};
   postProcess_.recordTiles(frame, raster);
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers

@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 
+#include "kernels/trace/trace_layout.h"
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"
 #include "runtime/passes/gather_pass.h"
@@ -50,10 +51,10 @@ class HybridStage {
   // skipped when the last frame's serve (same meshes; no instance moved, nothing deforms), as
   // prepare() does. Deforming meshes are refitted every frame.
   void plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const;
-  // Builds the trace scene of `scene` (its mesh trees: returned as setup time) and its
-  // instance tree at the frame time (returned as frame time) where `plan` (this stage's
-  // plan() for the same frame) runs them, keeping the last frame's where it skips them;
-  // sizes the buffers.
+  // Builds the trace scene of `scene` (its mesh trees: returned as setup time, waited for)
+  // where `plan` (this stage's plan() for the same frame) runs it, keeping the last frame's
+  // where it skips it; stages the instances at the frame time for record(), which builds their
+  // tree in the frame where the plan runs kBvhInstances; sizes the buffers.
   struct PrepareTimings {
     vk::FrameTimings setup;
     vk::FrameTimings frame;
@@ -62,9 +63,10 @@ class HybridStage {
   PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, GpuScene& gpuScene, float frameTime,
                          uint32_t width, uint32_t height, const HybridSettings& settings, const FramePlan& plan);
   // After the G-buffer (`raster`: the renderer's, or an engine's packed) in the same frame:
-  // writes the blurred, composited colour to `output`.
+  // writes the blurred, composited colour to `output`. The instance tree and the camera rays
+  // are built and written in the frame: nothing here submits or waits.
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const GpuScene& gpuScene,
-              const vk::Buffer& output) const;
+              const vk::Buffer& output);
 
   // The next frame builds its trees anew, whatever the last frame built.
   void forgetTraceScene();
@@ -90,6 +92,8 @@ class HybridStage {
   HybridSettings settings_;
   std::unique_ptr<TraceScene> traceScene_;
   ImageSize size_;
+  gpu::PinholeCamera camera_{};  // the frame's, written into cameraRays_ by record()
+  bool buildsInstanceTree_ = false;  // prepare() staged the instances: record() builds their tree
   vk::Buffer cameraRays_;
   ImageLayer revealed_;
   vk::Buffer backgroundBlurred_;

@@ -228,6 +228,22 @@ void FrameRecorder::copy(std::string_view pass, const Buffer& from, const Buffer
   endPass(index);
 }
 
+void FrameRecorder::write(std::string_view pass, const Buffer& buffer, std::span<const std::byte> bytes,
+                          VkDeviceSize offset) {
+  if (offset + bytes.size() > buffer.size())
+    throw Error("pass '" + std::string(pass) + "' writes past the end of buffer '" + buffer.name() + "'");
+  if (offset % 4 != 0 || bytes.size() % 4 != 0)
+    throw Error("pass '" + std::string(pass) + "' writes a size or at an offset that is not a multiple of 4 bytes");
+  if (bytes.empty()) return;
+  constexpr VkDeviceSize kMaxUpdate = 65536;  // what one vkCmdUpdateBuffer may carry
+  const uint32_t index = beginPass(pass);
+  for (VkDeviceSize done = 0; done < bytes.size(); done += kMaxUpdate) {
+    const VkDeviceSize part = std::min<VkDeviceSize>(kMaxUpdate, bytes.size() - done);
+    vkCmdUpdateBuffer(commandBuffer_, buffer.handle(), offset + done, part, bytes.data() + done);
+  }
+  endPass(index);
+}
+
 FrameTimings FrameRecorder::submitAndWait() {
   if (!recording_ || external_) throw Error("submitAndWait() without begin()");
   recording_ = false;

@@ -104,6 +104,15 @@ class FrameRecorder {
   void fill(std::string_view pass, const Buffer& buffer, uint32_t value);
   // Copies the first `bytes` of `from` to the start of `to`.
   void copy(std::string_view pass, const Buffer& from, const Buffer& to, VkDeviceSize bytes);
+  // Writes host data into `buffer` at `offset` when the frame runs: the bytes travel in the
+  // command buffer (vkCmdUpdateBuffer, 64 KiB a command), so nothing is staged or waited for.
+  // For the frame's small inputs (transforms, cameras, build roots); sizes and offsets are
+  // multiples of 4 bytes.
+  void write(std::string_view pass, const Buffer& buffer, std::span<const std::byte> bytes, VkDeviceSize offset = 0);
+  template <class T>
+  void write(std::string_view pass, const Buffer& buffer, std::span<const T> values) {
+    write(pass, buffer, std::as_bytes(values));
+  }
 
   // Ends the command buffer, submits it, waits, and reads the timestamps.
   FrameTimings submitAndWait();
