@@ -225,9 +225,13 @@ void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const
   frame.write(pass, tasks_, std::span<const gpu::BvhBuildCounters>(&s.counters, 1));
   if (before) before(frame);
   frame.dispatch(pass, beginKernel_, s.buffers, s.params, s.rootGroups);
-  // No node lies deeper than the bound, so a level past it has no tasks: these levels finish
-  // every tree, and the small subtrees they set aside are finished after them.
-  for (uint32_t level = 0; level < depthBound; ++level) {
+  // A task the levels split holds more than HMB_BVH_SMALL_TASK primitives, so it needs at least
+  // halvingsToOne(HMB_BVH_SMALL_TASK + 1) more levels below it, and the builder keeps every
+  // node within the bound: no such task lies deeper than the bound minus that. The levels
+  // down to there finish every tree but the small subtrees they set aside, and those are
+  // finished after them.
+  const uint32_t levels = depthBound - std::min(depthBound - 1u, halvingsToOne(HMB_BVH_SMALL_TASK + 1u) - 1u);
+  for (uint32_t level = 0; level < levels; ++level) {
     s.params.level = level;
     frame.dispatchIndirect(pass, levelKernel_, s.buffers, s.params, tasks_,
                            offsetof(gpu::BvhBuildCounters, dispatch) + (level & 1u) * sizeof(glm::uvec4));

@@ -100,10 +100,10 @@ class BvhBuildPass {
 
   // The build recorded into `frame` (begun, not submitted here), every pass under the name
   // `pass`: nothing waits and nothing is read back, for a per-frame tree in an engine's
-  // command buffer. It records recordedDepthBound() levels and bounds the trees' depth by them
-  // (a SAH split that would go deeper is halved, as at HMB_BVH_MAX_DEPTH), so a level past
-  // the bound could have no work. Levels without tasks dispatch no groups; on lavapipe each
-  // costs two empty dispatches. stats() stays empty until readRecordedCounts(); refit() needs a
+  // command buffer. It bounds the trees' depth by recordedDepthBound() (a SAH split that
+  // would go deeper is halved, as at HMB_BVH_MAX_DEPTH) and records the levels that bound can
+  // need (it, less the levels below the deepest task too large for build_small_tasks).
+  // Levels without tasks dispatch no groups; on lavapipe each costs two empty dispatches. stats() stays empty until readRecordedCounts(); refit() needs a
   // build().
   void record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes, uint32_t primitiveCount,
               std::span<const glm::uvec2> roots, const std::function<void(vk::FrameRecorder&)>& before = {});

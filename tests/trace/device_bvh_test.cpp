@@ -142,6 +142,66 @@ TEST_F(DeviceBvh, TreesStayWithinTheDepthBound) {
   EXPECT_THROW(builder.limitDepth(HMB_BVH_MAX_DEPTH + 1), hmb::Error);
 }
 
+// A build recorded into a frame (no submission, no read-back: an engine's per-frame top
+// level) makes the trees build() makes under the same depth bound, node for node, and
+// finishes within the levels it records even where the SAH alone would go far deeper: the
+// geometric chain of 120 keeps a task too large for build_small_tasks down to the last level
+// recorded (one level fewer leaves it unbuilt). Its counts are read back on request.
+TEST_F(DeviceBvh, ARecordedBuildIsTheWaitedBuildUnderItsDepthBound) {
+  const TriangleMesh soup = bvh::test::randomSoup(5000, 0.05f, 41), chain = geometricChain(120);
+  for (const TriangleMesh* mesh : {&soup, &chain}) {
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh->view());
+    const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "boxes");
+    const auto count = static_cast<uint32_t>(input.bounds.size());
+    std::vector<glm::uvec2> roots = {{0u, count}};
+    if (mesh == &soup) roots = {{0u, count / 4}, {count / 4, count - count / 4}};
+    uint32_t largest = 0;
+    for (const glm::uvec2& root : roots) largest = std::max(largest, root.y);
+    vk::FrameRecorder frame(context());
+    passes::BvhBuildPass recorded(context(), "recorded", HMB_BVH_MAX_LEAF);
+    const uint32_t bound = recorded.recordedDepthBound(largest);
+    EXPECT_EQ(bound, std::min(HMB_BVH_MAX_DEPTH, passes::BvhBuildPass::firstSubmissionLevels(largest)));
+    const uint64_t waits = context().hostWaits(), readbacks = context().hostReadbacks();
+    frame.begin();
+    recorded.record(frame, "a recorded build", buffer, count, roots);
+    EXPECT_EQ(context().hostWaits(), waits);
+    EXPECT_EQ(context().hostReadbacks(), readbacks);
+    const vk::FrameTimings timings = frame.submitAndWait();
+    for (const vk::PassTiming& pass : timings.passes) EXPECT_EQ(pass.name, "a recorded build");
+    const passes::BvhBuildStats& stats = recorded.readRecordedCounts();
+    EXPECT_LE(stats.levels, bound + 1);  // the root counts as a level
+
+    passes::BvhBuildPass waited(context(), "waited", HMB_BVH_MAX_LEAF);
+    waited.limitDepth(bound);
+    waited.build(frame, buffer, count, roots);
+    // A level left out leaves a task unsplit: fewer nodes (and garbage below it, not walked).
+    ASSERT_EQ(stats.nodes, waited.stats().nodes);
+    ASSERT_EQ(stats.leaves, waited.stats().leaves);
+    for (uint32_t r = 0; r < roots.size(); ++r) {
+      const bvh::Bvh a = recorded.download(r), b = waited.download(r);
+      EXPECT_EQ(bvh::test::structuralProblem(a, std::span(input.bounds).subspan(roots[r].x, roots[r].y),
+                                             HMB_BVH_MAX_LEAF),
+                "")
+          << "tree " << r;
+      EXPECT_LE(levelsBelowRoot(a), bound) << "tree " << r;
+      ASSERT_EQ(a.nodes.size(), b.nodes.size()) << "tree " << r;
+      for (size_t i = 0; i < a.nodes.size(); ++i) {
+        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).min, bvh::boundsOf(b.nodes[i]).min) << "tree " << r << " node " << i;
+        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).max, bvh::boundsOf(b.nodes[i]).max) << "tree " << r << " node " << i;
+        ASSERT_EQ(a.nodes[i].count, b.nodes[i].count) << "tree " << r << " node " << i;
+        if (!bvh::isLeaf(a.nodes[i])) continue;
+        const auto leaf = [&](const bvh::Bvh& t) {
+          std::vector<uint32_t> in(t.primitiveIndices.begin() + t.nodes[i].leftOrFirst,
+                                   t.primitiveIndices.begin() + t.nodes[i].leftOrFirst + t.nodes[i].count);
+          std::sort(in.begin(), in.end());
+          return in;
+        };
+        ASSERT_EQ(leaf(a), leaf(b)) << "tree " << r << " leaf " << i;
+      }
+    }
+  }
+}
+
 TEST_F(DeviceBvh, LeavesHoldNoMorePrimitivesThanTheBuildAllows) {
   // Six coincident boxes: no split is cheaper than a leaf, so only the limit divides them
   // (median splits: 3 + 3 under a limit of 4, down to single boxes under a limit of 1).
