@@ -191,9 +191,9 @@ void writeEngineMarkdown(std::ostream& out, const std::vector<EngineCase>& cases
         << (c.sameHybridImage ? "yes" : "no") << " |\n";
   out << "\nblur: tile-max + neighbor-max + gather. The engine frame is what an engine adds to its own frame "
          "(its G-buffer is its own); the command line's frame also rasterizes and shades the G-buffer and encodes "
-         "the display image. The engine's hybrid frame leaves out the top-level tree, which prepare() builds "
-         "before recording when instances moved (listed apart, from the first frame); the command line's hybrid "
-         "frame includes it.\n";
+         "the display image. The engine's hybrid frames keep the first frame's top-level tree (nothing moved "
+         "since); a frame whose instances moved builds it inside the recorded frame, at the cost listed apart "
+         "(its passes in the first recorded frame). The command line's hybrid frame includes it.\n";
 }
 
 }  // namespace hmb::bench
