@@ -23,6 +23,7 @@
 #include "bench/driver_files.h"
 #include "bench/embree_reference.h"
 #include "bench/engine_suite.h"
+#include "bench/explain_suite.h"
 #include "bench/error_time_suite.h"
 #include "bench/kernels_suite.h"
 #include "bench/passes_suite.h"
@@ -97,6 +98,14 @@ struct EngineOptions {
   std::vector<std::string> sizes = {"1280x720"};
   int warmup = 2;
   int repeats = 9;
+};
+
+struct ExplainOptions {
+  std::string out = "out/bench/error-explanation/explanation.json";
+  std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
+  std::string size = "320x180";
+  uint32_t referenceSpp = 256;
+  std::vector<std::string> methods = {"postprocess", "hybrid"};
 };
 
 struct KernelsOptions {
@@ -416,6 +425,39 @@ int engine(const GlobalOptions& global, const EngineOptions& options, const std:
   return validationVerdict({&context});
 }
 
+int explain(const GlobalOptions& global, const ExplainOptions& options, const std::string& command) {
+  hmb::bench::ExplainSuiteOptions suite;
+  suite.scenes = options.scenes;
+  suite.size = hmb::bench::parseImageSize(options.size);
+  suite.referenceSpp = options.referenceSpp;
+  suite.methods = options.methods;
+  checkOutputDirectory(options.out);
+  if (!options.out.empty()) suite.imageDir = fs::path(options.out).parent_path().string();
+  hmb::vk::Context context = openContext(global);
+  const auto progress = progressPrinter(global);
+  progress("device: " + context.info().name);
+  const std::vector<hmb::bench::ExplainCase> cases = hmb::bench::runExplainSuite(context, suite, progress);
+
+  const hmb::SystemInfo system = hmb::querySystemInfo();
+  std::ostringstream header;
+  header << machineLine(context, system) << ' ' << options.size << ", the reference " << suite.referenceSpp
+         << " spp (two halves, seeds 1 and 2). Command: `" << command << "`";
+  hmb::bench::writeExplainMarkdown(std::cout, cases, header.str());
+  if (options.out.empty()) return validationVerdict({&context});
+  nlohmann::json report =
+      reportHead("explain", "where each method's blur-region error against the reference comes from, by class",
+                 command, context, system);
+  report["settings"] = {{"size", options.size}, {"reference_spp", suite.referenceSpp}, {"methods", options.methods}};
+  report["cases"] = nlohmann::json::array();
+  for (const auto& c : cases) report["cases"].push_back(hmb::bench::explainCaseJson(c));
+  hmb::writeJson(options.out, report);
+  std::ofstream markdown(fs::path(options.out).replace_extension(".md"));
+  hmb::bench::writeExplainMarkdown(markdown, cases, header.str());
+  if (!markdown) throw hmb::Error("could not write the .md beside " + options.out);
+  progress("wrote " + options.out + ", the .md beside it and a strip per scene and method");
+  return validationVerdict({&context});
+}
+
 std::string shellQuoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -648,6 +690,21 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->capture_default_str();
 
+  ExplainOptions explainOptions;
+  CLI::App* explainCmd = app.add_subcommand(
+      "explain", "Where post-process's and hybrid's blur-region error against the reference comes from, by class");
+  explainCmd->add_option("--out", explainOptions.out, "JSON report; the .md and the strips go beside it")
+      ->capture_default_str();
+  addScenesOption(*explainCmd, explainOptions.scenes);
+  explainCmd->add_option("--size", explainOptions.size, "Image size, WIDTHxHEIGHT")->capture_default_str();
+  explainCmd->add_option("--reference-spp", explainOptions.referenceSpp, "The reference's samples per pixel (even)")
+      ->check(CLI::Range(2u, 65536u))
+      ->capture_default_str();
+  explainCmd->add_option("--methods", explainOptions.methods, "Methods (postprocess, hybrid), comma separated")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"postprocess", "hybrid"}))
+      ->capture_default_str();
+
   KernelsOptions kernelsOptions;
   CLI::App* kernelsCmd = app.add_subcommand(
       "kernels", "Single kernels (raster, BVH build, trace, tile-max, gather) on synthetic inputs of chosen sizes");
@@ -714,6 +771,7 @@ int main(int argc, char** argv) {
     if (*passesCmd) return passes(global, passesOptions, commandLine(argc, argv));
     if (*kernelsCmd) return kernels(global, kernelsOptions, commandLine(argc, argv));
     if (*engineCmd) return engine(global, engineOptions, commandLine(argc, argv));
+    if (*explainCmd) return explain(global, explainOptions, commandLine(argc, argv));
   } catch (const std::exception& e) {
     std::cerr << "hmblur-bench: error: " << e.what() << '\n';
     return kError;

@@ -1,0 +1,50 @@
+// The `explain` suite: where each method's blur-region error against the reference comes from
+// (runtime/metrics/error_sources.h). Per scene it renders the sharp frame (its depth and object
+// ids give every pixel's path over the shutter, runtime/screen_paths.h), post-process and
+// hybrid at their defaults, and the reference as two independent halves (seeds 1 and 2),
+// whose mean is the judge and whose difference is the judge's own noise. Per method it writes
+// a labelled strip (reference, method, error, classes) and a table of each class's share of
+// the squared error.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/raster_suite.h"
+#include "runtime/metrics/error_sources.h"
+
+namespace hmb::vk {
+class Context;
+}
+
+namespace hmb::bench {
+
+struct ExplainSuiteOptions {
+  std::vector<std::string> scenes;  // reference scene names or glTF paths
+  ImageSize size{320, 180};
+  uint32_t referenceSpp = 256;  // both halves together
+  std::vector<std::string> methods = {"postprocess", "hybrid"};
+  std::string imageDir;  // where the strips go; empty: none
+};
+
+struct ExplainCase {
+  std::string scene;
+  std::string method;
+  double regionPsnr = 0.0;  // against the judge
+  size_t regionPixels = 0;
+  bool cameraMoves = false;
+  metrics::ErrorSources sources;
+  std::string strip;  // the strip's file name, empty when none was written
+};
+
+std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuiteOptions& options,
+                                         const Progress& progress);
+
+nlohmann::json explainCaseJson(const ExplainCase& c);
+void writeExplainMarkdown(std::ostream& out, const std::vector<ExplainCase>& cases, const std::string& header);
+
+}  // namespace hmb::bench
