@@ -7,6 +7,7 @@
 #include <map>
 
 #include "runtime/error.h"
+#include "runtime/io/image.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
@@ -162,6 +163,56 @@ FrameMethod& Renderer::methodFor(Method method) {
 
 RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& settings) {
   validateRenderSettings(settings);
+  const bool blurs = settings.method == Method::PostProcess || settings.method == Method::Hybrid;
+  const uint32_t slices = blurs ? settings.postprocess.timeSlices.value_or(1) : 1;
+  return slices > 1 ? renderTimeSlices(scene, settings, slices) : renderFrame(scene, settings);
+}
+
+// Slice k of K closes at t - (K - 1 - k) E / K and spans E / K: each is the method's frame of
+// the scene with that exposure at that time, and the frame is their mean. The slices are K
+// frames on the device; their mean is K adds per pixel on the host, where each slice's image
+// already is. The G-buffer layers, plan and settings reported are the last slice's (the one
+// closing at the frame time); the frame time is the slices' sum.
+RenderResult Renderer::renderTimeSlices(const scene::Scene& scene, const RenderSettings& settings, uint32_t slices) {
+  scene::Scene slice = scene;
+  slice.settings.exposure = scene.settings.exposure / float(slices);
+  const float frameTime = settings.frameTime.value_or(scene.settings.frameTime);
+  RenderSettings one = settings;
+  one.postprocess.timeSlices = 1;
+  std::vector<glm::vec4> sum(size_t(settings.width) * settings.height, glm::vec4(0.0f));
+  std::optional<double> milliseconds = 0.0;
+  RenderResult result;
+  for (uint32_t k = 0; k < slices; ++k) {
+    one.frameTime = frameTime - float(slices - 1 - k) * slice.settings.exposure;
+    result = renderFrame(slice, one);
+    const std::vector<float>& beauty = result.image.find("")->values;
+    for (size_t i = 0; i < sum.size(); ++i)
+      sum[i] += glm::vec4(beauty[4 * i], beauty[4 * i + 1], beauty[4 * i + 2], beauty[4 * i + 3]);
+    milliseconds = milliseconds && result.frameMilliseconds ? std::optional(*milliseconds + *result.frameMilliseconds)
+                                                             : std::nullopt;
+  }
+  std::vector<float>& beauty = result.image.layers.front().values;
+  for (size_t i = 0; i < sum.size(); ++i) {
+    sum[i] /= float(slices);
+    for (int c = 0; c < 4; ++c) beauty[4 * i + c] = sum[i][c];
+  }
+  result.display = io::encodeDisplay(settings.width, settings.height, sum);
+  result.settings = settings;
+  result.settings.onProgress = nullptr;
+  result.frameTime = frameTime;
+  result.frameMilliseconds = milliseconds;
+  if (result.postprocess) {
+    result.postprocess->exposure = scene.settings.exposure;
+    result.postprocess->timeSlices = slices;
+  }
+  if (result.hybrid) {
+    result.hybrid->settings.blur.exposure = scene.settings.exposure;
+    result.hybrid->settings.blur.timeSlices = slices;
+  }
+  return result;
+}
+
+RenderResult Renderer::renderFrame(const scene::Scene& scene, const RenderSettings& settings) {
   if (!shared_)
     shared_ = std::make_unique<Shared>(
         context_, options_.visibilityScheme.value_or(passes::defaultVisibilityScheme(context_.info())),

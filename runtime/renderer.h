@@ -143,9 +143,13 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
+  // One frame of `scene` with the settings' method. Post-process and hybrid with time-slices
+  // K > 1 render K frames, each over its slice of the shutter, and return their mean.
   RenderResult render(const scene::Scene& scene, const RenderSettings& settings);
 
  private:
+  RenderResult renderFrame(const scene::Scene& scene, const RenderSettings& settings);
+  RenderResult renderTimeSlices(const scene::Scene& scene, const RenderSettings& settings, uint32_t slices);
   struct Shared;
   FrameMethod& methodFor(Method method);
 

@@ -59,6 +59,10 @@ settings::Table<Choices, Settings> makeTable() {
              &Settings::softZExtent, Range<float>{0.0f, std::numeric_limits<float>::max(), true}, "the scene's"),
       number("seed", kReaders, "seed of the gathers' per-pixel sample jitter", &Choices::seed, &Settings::seed,
              Range<uint32_t>{}),
+      number("time-slices", kReaders,
+             "K: the shutter cut into K slices, each rasterized at its close and blurred over its own span; the "
+             "frame is their mean (K times the work)",
+             &Choices::timeSlices, &Settings::timeSlices, Range<uint32_t>{1, kMaxTimeSlices}),
   };
 }
 

@@ -16,6 +16,8 @@ struct Settings;
 
 namespace hmb::passes {
 
+inline constexpr uint32_t kMaxTimeSlices = 64;
+
 struct PostProcessSettings {
   PostProcessFilter filter = PostProcessFilter::McGuire;
   GatherRange range = GatherRange::Adapted;  // for filters that have no onlyRange
@@ -33,6 +35,10 @@ struct PostProcessSettings {
   float exposure = 1.0f / 60.0f;  // E, seconds: shutter open over [t - E, t]
   float fps = 120.0f;             // velocity q is per frame of 1/fps seconds
   float softZExtent = 0.03f;      // SOFT_Z_EXTENT, camera-space depth units
+  // The shutter cut into this many equal slices, each a frame of its own (rasterized at the
+  // slice's close, blurred over the slice alone) and the frame their mean: K times the work for
+  // blur lengths K times shorter (Renderer::render). 1: the paper's one G-buffer.
+  uint32_t timeSlices = 1;
 
   // exposure, fps and SOFT_Z_EXTENT from a scene's settings (after scene::deriveDefaults), the
   // rest at their defaults.
@@ -60,6 +66,7 @@ struct PostProcessChoices {
   std::optional<float> foregroundBoost;
   std::optional<float> softZExtent;
   std::optional<uint32_t> seed;
+  std::optional<uint32_t> timeSlices;
 };
 
 // Every post-process setting a user can choose, each described once (runtime/setting.h).

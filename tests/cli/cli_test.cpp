@@ -357,6 +357,8 @@ TEST(CliTest, VersionAndUsageErrorsExitTwo) {
            {"--method magic", "unknown method"},
            {"--method sharp --spp 4", "--spp is a setting of --method reference, not of --method sharp"},
            {"--method postprocess --edge-threshold 0.5", "--method hybrid"},
+           {"--method sharp --time-slices 2", "--time-slices is a setting of --method postprocess or hybrid"},
+           {"--method hybrid --time-slices 0", "time-slices"},
            {"--method test-pattern --repeat 0", "--repeat"},
            {"--method test-pattern --fps 0", "fps"},
            {"--method test-pattern --exposure 0.01 --shutter-angle 90", "not both"},

@@ -206,5 +206,67 @@ TEST_F(RendererTest, CpuDevicesRasterizeWithTileListsAndRenderTheSameFrame) {
   EXPECT_EQ(a.image.find("objectId")->ids, b.image.find("objectId")->ids);
 }
 
+// Time slices: the shutter cut into K slices, each the method's frame over its own slice (the
+// scene's exposure over K, closing K - 1 - k slices before the frame time), and the frame their
+// mean; its time is the slices' sum. One slice is the frame without slices.
+TEST_F(RendererTest, TimeSlicesAreTheMeanOfTheirSlicesFrames) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  Renderer renderer(context());
+  for (const Method method : {Method::PostProcess, Method::Hybrid}) {
+    RenderSettings settings;
+    settings.method = method;
+    settings.width = 64;
+    settings.height = 36;
+    const RenderResult whole = renderer.render(scene, settings);
+    settings.postprocess.timeSlices = 1;
+    EXPECT_EQ(renderer.render(scene, settings).display.pixels, whole.display.pixels);
+
+    constexpr uint32_t kSlices = 3;
+    settings.postprocess.timeSlices = kSlices;
+    const RenderResult sliced = renderer.render(scene, settings);
+    scene::Scene slice = scene;
+    slice.settings.exposure = scene.settings.exposure / float(kSlices);
+    RenderSettings one = settings;
+    one.postprocess.timeSlices.reset();
+    std::vector<glm::vec4> sum(size_t(64) * 36, glm::vec4(0.0f));
+    double milliseconds = 0.0;
+    for (uint32_t k = 0; k < kSlices; ++k) {
+      one.frameTime = scene.settings.frameTime - float(kSlices - 1 - k) * slice.settings.exposure;
+      const RenderResult r = renderer.render(slice, one);
+      const std::vector<float>& beauty = r.image.find("")->values;
+      for (size_t i = 0; i < sum.size(); ++i)
+        sum[i] += glm::vec4(beauty[4 * i], beauty[4 * i + 1], beauty[4 * i + 2], beauty[4 * i + 3]);
+      milliseconds += r.frameMilliseconds.value_or(0.0);
+    }
+    for (glm::vec4& v : sum) v /= float(kSlices);
+    const std::vector<float>& beauty = sliced.image.find("")->values;
+    for (size_t i = 0; i < sum.size(); ++i)
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(beauty[4 * i + c], sum[i][c]) << "pixel " << i;
+    EXPECT_EQ(sliced.display.pixels, io::encodeDisplay(64, 36, sum).pixels);
+    EXPECT_NE(sliced.display.pixels, whole.display.pixels);
+    EXPECT_EQ(sliced.frameTime, scene.settings.frameTime);
+    if (sliced.frameMilliseconds) {
+      EXPECT_GT(*sliced.frameMilliseconds, 0.5 * milliseconds);
+    }
+    ASSERT_TRUE(sliced.postprocess);
+    EXPECT_EQ(sliced.postprocess->timeSlices, kSlices);
+    EXPECT_EQ(sliced.postprocess->exposure, scene.settings.exposure);  // the frame's, not a slice's
+  }
+  EXPECT_EQ(context().validationErrors(), 0u);
+}
+
+TEST(RenderSettingsTest, TimeSlicesBelongToTheBlursAndAreBounded) {
+  RenderSettings settings;
+  settings.method = Method::PostProcess;
+  settings.postprocess.timeSlices = 0;
+  EXPECT_NE(errorOf(settings).find("time-slices"), std::string::npos) << errorOf(settings);
+  settings.postprocess.timeSlices = passes::kMaxTimeSlices + 1;
+  EXPECT_NE(errorOf(settings).find("time-slices"), std::string::npos) << errorOf(settings);
+  settings.postprocess.timeSlices = 4;
+  EXPECT_EQ(errorOf(settings), "");
+  settings.method = Method::Hybrid;
+  EXPECT_EQ(errorOf(settings), "");
+}
+
 }  // namespace
 }  // namespace hmb::test
