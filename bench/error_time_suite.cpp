@@ -52,6 +52,11 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
   }
   for (const float e : o.edgeThresholds)
     add("hybrid e" + fixed(e, 2), "hybrid edge threshold", e, "hybrid")->hybrid.edgeThreshold = e;
+  for (const uint32_t k : o.timeSlices) {
+    add("postprocess adapted K" + std::to_string(k), "postprocess adapted time slices", k, "postprocess")
+        ->postprocess.timeSlices = k;
+    add("hybrid K" + std::to_string(k), "hybrid time slices", k, "hybrid")->postprocess.timeSlices = k;
+  }
   for (const uint32_t spp : o.referenceSpp) {
     RenderSettings* settings = add("reference " + std::to_string(spp) + " spp", "reference", spp, "reference");
     settings->reference.samplesPerPixel = spp;

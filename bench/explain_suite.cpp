@@ -80,7 +80,7 @@ io::Rgba8Image errorPanel(const metrics::DisplayImage& judge, const metrics::Dis
   return metrics::errorImage(map);
 }
 
-std::string percent(double share) { return fixed(100.0 * share, 1) + "%"; }
+std::string percent(double share, int digits = 1) { return fixed(100.0 * share, digits) + "%"; }
 
 // The strip's caption: the two largest classes, a line each.
 std::vector<std::string> sourcesCaption(const metrics::ErrorSources& sources) {
@@ -173,22 +173,23 @@ void writeExplainMarkdown(std::ostream& out, const std::vector<ExplainCase>& cas
   out << header << "\n\n";
   out << "Share of each method's squared error over the blur region, by where it comes from "
          "(runtime/metrics/error_sources.h); in brackets, the reference's own noise as a share of the "
-         "same error.\n\n";
-  out << "| scene | method | region PSNR dB | camera moves |";
+         "same error. Near: the window within which a moving or curved path counts, the image's longest "
+         "path.\n\n";
+  out << "| scene | method | region PSNR dB | camera moves | near (px) |";
   for (const metrics::ErrorSource s : metrics::kErrorSources) out << " " << metrics::errorSourceName(s) << " |";
-  out << " noise | strip |\n|---|---|---:|---|";
+  out << " noise | strip |\n|---|---|---:|---|---:|";
   for (size_t k = 0; k < metrics::kErrorSources.size(); ++k) out << "---:|";
   out << "---:|---|\n";
   for (const ExplainCase& c : cases) {
     const metrics::ErrorSources& s = c.sources;
     out << "| " << c.scene << " | " << c.method << " | " << fixed(c.regionPsnr, 2) << " | "
-        << (c.cameraMoves ? "yes" : "no") << " |";
+        << (c.cameraMoves ? "yes" : "no") << " | " << s.reachPixels << " |";
     for (const metrics::ErrorSourceRow& row : s.rows) {
       out << " " << percent(row.share);
-      if (row.noise && s.squaredError > 0.0) out << " (" << percent(*row.noise / s.squaredError) << ")";
+      if (row.noise && s.squaredError > 0.0) out << " (" << percent(*row.noise / s.squaredError, 3) << ")";
       out << " |";
     }
-    out << " " << (s.noise && s.squaredError > 0.0 ? percent(*s.noise / s.squaredError) : "-") << " | "
+    out << " " << (s.noise && s.squaredError > 0.0 ? percent(*s.noise / s.squaredError, 3) : "-") << " | "
         << (c.strip.empty() ? "-" : "[" + c.strip + "](" + c.strip + ")") << " |\n";
   }
   out << "\nPixels per class:\n\n| scene | method |";
