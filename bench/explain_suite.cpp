@@ -10,6 +10,7 @@
 #include "runtime/io/image_files.h"
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/metrics.h"
+#include "runtime/passes/post_process_settings.h"
 #include "runtime/methods/method.h"
 #include "runtime/renderer.h"
 #include "runtime/screen_paths.h"
@@ -98,6 +99,8 @@ std::vector<std::string> sourcesCaption(const metrics::ErrorSources& sources) {
 std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuiteOptions& o,
                                          const Progress& progress) {
   if (o.scenes.empty()) throw Error("explain: no scenes");
+  if (o.timeSlices < 1 || o.timeSlices > passes::kMaxTimeSlices)
+    throw Error("explain: time slices must be 1 to " + std::to_string(passes::kMaxTimeSlices));
   if (o.referenceSpp < 2 || o.referenceSpp % 2 != 0)
     throw Error("explain: the reference's samples per pixel must be even (two halves), at least 2");
   for (const std::string& method : o.methods)
@@ -123,6 +126,7 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
     for (const std::string& method : o.methods) {
       progress(name + ": " + method);
       settings.method = parseMethod(method);
+      settings.postprocess.timeSlices = o.timeSlices;
       const RenderResult result = renderer.render(scene, settings);
       const metrics::DisplayImage image = metrics::displayImageFromRgba8(result.display);
       metrics::ErrorSourceInputs inputs;
@@ -136,6 +140,7 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
       ExplainCase c;
       c.scene = name;
       c.method = method;
+      c.timeSlices = o.timeSlices;
       c.cameraMoves = paths.cameraMoves;
       c.sources = metrics::explainErrorSources(inputs);
       c.regionPixels = region.pixelCount;
@@ -145,11 +150,13 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
         const std::string psnr = std::isfinite(c.regionPsnr) ? fixed(c.regionPsnr, 2) + " dB" : "exact";
         const io::LabelledStrip strip = io::labelledStrip({
             {rgba8Of(judge.image), {"reference", std::to_string(o.referenceSpp) + " spp"}},
-            {rgba8Of(image), {method, "blur region " + psnr}},
+            {rgba8Of(image), {o.timeSlices > 1 ? method + ", " + std::to_string(o.timeSlices) + " time slices" : method,
+                              "blur region " + psnr}},
             {errorPanel(judge.image, image), {"error", "|difference| x4"}},
             {metrics::errorSourceImage(c.sources, judge.image), sourcesCaption(c.sources)},
         });
-        c.strip = stemOf(name) + "-" + method + "-sources.png";
+        c.strip = stemOf(name) + "-" + method +
+                  (o.timeSlices > 1 ? "-k" + std::to_string(o.timeSlices) : std::string()) + "-sources.png";
         io::writePng(fs::path(o.imageDir) / c.strip, strip.image);
       }
       cases.push_back(std::move(c));
@@ -161,6 +168,7 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
 nlohmann::json explainCaseJson(const ExplainCase& c) {
   nlohmann::json json = {{"scene", c.scene},
                          {"method", c.method},
+                         {"time_slices", c.timeSlices},
                          {"region_pixels", c.regionPixels},
                          {"region_psnr_db", std::isfinite(c.regionPsnr) ? nlohmann::json(c.regionPsnr) : nullptr},
                          {"camera_moves", c.cameraMoves},

@@ -28,12 +28,14 @@ struct ExplainSuiteOptions {
   ImageSize size{320, 180};
   uint32_t referenceSpp = 256;  // both halves together
   std::vector<std::string> methods = {"postprocess", "hybrid"};
+  uint32_t timeSlices = 1;  // the methods' time slices (RenderSettings: postprocess.timeSlices)
   std::string imageDir;  // where the strips go; empty: none
 };
 
 struct ExplainCase {
   std::string scene;
   std::string method;
+  uint32_t timeSlices = 1;
   double regionPsnr = 0.0;  // against the judge
   size_t regionPixels = 0;
   bool cameraMoves = false;

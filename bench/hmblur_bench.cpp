@@ -30,6 +30,7 @@
 #include "bench/raster_suite.h"
 #include "bench/side_by_side.h"
 #include "runtime/error.h"
+#include "runtime/passes/post_process_settings.h"
 #include "runtime/report.h"
 #include "runtime/system_info.h"
 #include "runtime/vulkan/context.h"
@@ -106,6 +107,7 @@ struct ExplainOptions {
   std::string size = "320x180";
   uint32_t referenceSpp = 256;
   std::vector<std::string> methods = {"postprocess", "hybrid"};
+  uint32_t timeSlices = 1;
 };
 
 struct KernelsOptions {
@@ -431,6 +433,7 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   suite.size = hmb::bench::parseImageSize(options.size);
   suite.referenceSpp = options.referenceSpp;
   suite.methods = options.methods;
+  suite.timeSlices = options.timeSlices;
   checkOutputDirectory(options.out);
   if (!options.out.empty()) suite.imageDir = fs::path(options.out).parent_path().string();
   hmb::vk::Context context = openContext(global);
@@ -441,13 +444,17 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   const hmb::SystemInfo system = hmb::querySystemInfo();
   std::ostringstream header;
   header << machineLine(context, system) << ' ' << options.size << ", the reference " << suite.referenceSpp
-         << " spp (two halves, seeds 1 and 2). Command: `" << command << "`";
+         << " spp (two halves, seeds 1 and 2); the methods with " << suite.timeSlices
+         << " time slice(s). Command: `" << command << "`";
   hmb::bench::writeExplainMarkdown(std::cout, cases, header.str());
   if (options.out.empty()) return validationVerdict({&context});
   nlohmann::json report =
       reportHead("explain", "where each method's blur-region error against the reference comes from, by class",
                  command, context, system);
-  report["settings"] = {{"size", options.size}, {"reference_spp", suite.referenceSpp}, {"methods", options.methods}};
+  report["settings"] = {{"size", options.size},
+                        {"reference_spp", suite.referenceSpp},
+                        {"methods", options.methods},
+                        {"time_slices", suite.timeSlices}};
   report["cases"] = nlohmann::json::array();
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::explainCaseJson(c));
   hmb::writeJson(options.out, report);
@@ -703,6 +710,9 @@ int main(int argc, char** argv) {
   explainCmd->add_option("--methods", explainOptions.methods, "Methods (postprocess, hybrid), comma separated")
       ->delimiter(',')
       ->check(CLI::IsMember({"postprocess", "hybrid"}))
+      ->capture_default_str();
+  explainCmd->add_option("--time-slices", explainOptions.timeSlices, "The methods' time slices (K)")
+      ->check(CLI::Range(1u, hmb::passes::kMaxTimeSlices))
       ->capture_default_str();
 
   KernelsOptions kernelsOptions;
