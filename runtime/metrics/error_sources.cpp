@@ -12,22 +12,20 @@ namespace {
 // The largest value within `reach` pixels along x, then along y (a square window); infinity
 // (a point behind the camera) is kept.
 std::vector<float> squareMax(std::span<const float> values, uint32_t width, uint32_t height, uint32_t reach) {
-  std::vector<float> rows(values.size()), out(values.size());
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      float m = 0.0f;
-      const uint32_t from = x > reach ? x - reach : 0, to = std::min(width - 1, x + reach);
-      for (uint32_t k = from; k <= to; ++k) m = std::max(m, values[size_t(y) * width + k]);
-      rows[size_t(y) * width + x] = m;
-    }
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      float m = 0.0f;
-      const uint32_t from = y > reach ? y - reach : 0, to = std::min(height - 1, y + reach);
-      for (uint32_t k = from; k <= to; ++k) m = std::max(m, rows[size_t(k) * width + x]);
-      out[size_t(y) * width + x] = m;
-    }
-  return out;
+  // One axis: `count` positions `step` apart in each line.
+  const auto along = [&](std::span<const float> in, uint32_t count, size_t step, size_t lineStep, uint32_t lines) {
+    std::vector<float> out(in.size());
+    for (uint32_t line = 0; line < lines; ++line)
+      for (uint32_t at = 0; at < count; ++at) {
+        float m = 0.0f;
+        for (uint32_t k = at > reach ? at - reach : 0; k <= std::min(count - 1, at + reach); ++k)
+          m = std::max(m, in[line * lineStep + k * step]);
+        out[line * lineStep + at * step] = m;
+      }
+    return out;
+  };
+  const std::vector<float> rows = along(values, width, 1, width, height);
+  return along(rows, height, width, 1, width);
 }
 
 double pixelSquaredError(const DisplayImage& a, const DisplayImage& b, size_t i) {

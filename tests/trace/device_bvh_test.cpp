@@ -142,6 +142,26 @@ TEST_F(DeviceBvh, TreesStayWithinTheDepthBound) {
   EXPECT_THROW(builder.limitDepth(HMB_BVH_MAX_DEPTH + 1), hmb::Error);
 }
 
+// Two builds' trees node for node: the same bounds and counts, and each leaf the same
+// primitives, in any order (a partition may order a leaf's primitives differently).
+void expectSameTree(const bvh::Bvh& a, const bvh::Bvh& b, uint32_t tree) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size()) << "tree " << tree;
+  const auto leaf = [](const bvh::Bvh& t, size_t i) {
+    std::vector<uint32_t> in(t.primitiveIndices.begin() + t.nodes[i].leftOrFirst,
+                             t.primitiveIndices.begin() + t.nodes[i].leftOrFirst + t.nodes[i].count);
+    std::sort(in.begin(), in.end());
+    return in;
+  };
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    ASSERT_EQ(bvh::boundsOf(a.nodes[i]).min, bvh::boundsOf(b.nodes[i]).min) << "tree " << tree << " node " << i;
+    ASSERT_EQ(bvh::boundsOf(a.nodes[i]).max, bvh::boundsOf(b.nodes[i]).max) << "tree " << tree << " node " << i;
+    ASSERT_EQ(a.nodes[i].count, b.nodes[i].count) << "tree " << tree << " node " << i;
+    if (bvh::isLeaf(a.nodes[i])) {
+      ASSERT_EQ(leaf(a, i), leaf(b, i)) << "tree " << tree << " leaf " << i;
+    }
+  }
+}
+
 // A build recorded into a frame (no submission, no read-back: an engine's per-frame top
 // level) makes the trees build() makes under the same depth bound, node for node, and
 // finishes within the levels it records even where the SAH alone would go far deeper: the
@@ -184,20 +204,7 @@ TEST_F(DeviceBvh, ARecordedBuildIsTheWaitedBuildUnderItsDepthBound) {
                 "")
           << "tree " << r;
       EXPECT_LE(levelsBelowRoot(a), bound) << "tree " << r;
-      ASSERT_EQ(a.nodes.size(), b.nodes.size()) << "tree " << r;
-      for (size_t i = 0; i < a.nodes.size(); ++i) {
-        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).min, bvh::boundsOf(b.nodes[i]).min) << "tree " << r << " node " << i;
-        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).max, bvh::boundsOf(b.nodes[i]).max) << "tree " << r << " node " << i;
-        ASSERT_EQ(a.nodes[i].count, b.nodes[i].count) << "tree " << r << " node " << i;
-        if (!bvh::isLeaf(a.nodes[i])) continue;
-        const auto leaf = [&](const bvh::Bvh& t) {
-          std::vector<uint32_t> in(t.primitiveIndices.begin() + t.nodes[i].leftOrFirst,
-                                   t.primitiveIndices.begin() + t.nodes[i].leftOrFirst + t.nodes[i].count);
-          std::sort(in.begin(), in.end());
-          return in;
-        };
-        ASSERT_EQ(leaf(a), leaf(b)) << "tree " << r << " leaf " << i;
-      }
+      expectSameTree(a, b, r);
     }
   }
 }
@@ -272,23 +279,7 @@ TEST_F(DeviceBvh, GpuAndCpuShapedBuildsMakeTheSameTrees) {
       builder.build(frame, buffer, count, roots);
       for (uint32_t r = 0; r < 2; ++r) trees[s].push_back(builder.download(r));
     }
-    for (uint32_t r = 0; r < 2; ++r) {
-      const bvh::Bvh &a = trees[0][r], &b = trees[1][r];
-      ASSERT_EQ(a.nodes.size(), b.nodes.size()) << "tree " << r;
-      for (size_t i = 0; i < a.nodes.size(); ++i) {
-        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).min, bvh::boundsOf(b.nodes[i]).min) << "tree " << r << " node " << i;
-        ASSERT_EQ(bvh::boundsOf(a.nodes[i]).max, bvh::boundsOf(b.nodes[i]).max) << "tree " << r << " node " << i;
-        ASSERT_EQ(a.nodes[i].count, b.nodes[i].count) << "tree " << r << " node " << i;
-        if (!bvh::isLeaf(a.nodes[i])) continue;
-        std::vector<uint32_t> inA(a.primitiveIndices.begin() + a.nodes[i].leftOrFirst,
-                                  a.primitiveIndices.begin() + a.nodes[i].leftOrFirst + a.nodes[i].count);
-        std::vector<uint32_t> inB(b.primitiveIndices.begin() + b.nodes[i].leftOrFirst,
-                                  b.primitiveIndices.begin() + b.nodes[i].leftOrFirst + b.nodes[i].count);
-        std::sort(inA.begin(), inA.end());
-        std::sort(inB.begin(), inB.end());
-        ASSERT_EQ(inA, inB) << "tree " << r << " leaf " << i;
-      }
-    }
+    for (uint32_t r = 0; r < 2; ++r) expectSameTree(trees[0][r], trees[1][r], r);
   }
 }
 
