@@ -78,4 +78,9 @@ scene::Scene loadBenchScene(const std::string& name) {
   return scene::loadScene(name);
 }
 
+std::string sceneStem(const std::string& scene) {
+  const std::filesystem::path path(scene);
+  return path.has_extension() ? path.stem().string() : scene;
+}
+
 }  // namespace hmb::bench

@@ -26,4 +26,7 @@ std::optional<std::filesystem::path> cadEnginePath();
 // These names, else scene::loadScene (a reference scene or a glTF file).
 scene::Scene loadBenchScene(const std::string& name);
 
+// A scene's name in file names: a glTF file's stem, else the name itself.
+std::string sceneStem(const std::string& scene);
+
 }  // namespace hmb::bench

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "bench/bench_scenes.h"
 #include "runtime/error.h"
 #include "runtime/io/image_files.h"
 #include "runtime/metrics/display_image.h"
@@ -76,11 +77,6 @@ double frameMillisecondsWithoutSetup(const RenderResult& r) {
     for (const PlannedPass& pass : r.plan.passes())
       if (pass.name == passes::ReferenceStage::kBvhMeshes && pass.milliseconds) ms -= *pass.milliseconds;
   return ms;
-}
-
-std::string sceneStem(const std::string& scene) {
-  const fs::path path(scene);
-  return path.has_extension() ? path.stem().string() : scene;
 }
 
 ErrorTimeScene runScene(Renderer& renderer, const std::string& name, const ErrorTimeSuiteOptions& o,

@@ -20,11 +20,6 @@ namespace fs = std::filesystem;
 namespace hmb::bench {
 namespace {
 
-std::string stemOf(const std::string& scene) {
-  const fs::path path(scene);
-  return path.has_extension() ? path.stem().string() : scene;
-}
-
 const std::vector<float>& beautyOf(const RenderResult& r) { return r.image.find("")->values; }
 
 // The judge's images: the two halves and their mean, through the display transform.
@@ -145,9 +140,11 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
       c.sources = metrics::explainErrorSources(inputs);
       c.regionPixels = region.pixelCount;
       const std::optional<double> mse = metrics::meanSquaredError(judge.image, image, region);
-      c.regionPsnr = mse ? metrics::psnrFromMse(*mse) : 0.0;
+      if (mse) c.regionPsnr = metrics::psnrFromMse(*mse);
       if (!o.imageDir.empty()) {
-        const std::string psnr = std::isfinite(c.regionPsnr) ? fixed(c.regionPsnr, 2) + " dB" : "exact";
+        const std::string psnr = !c.regionPsnr                   ? "empty"
+                                 : std::isfinite(*c.regionPsnr) ? fixed(*c.regionPsnr, 2) + " dB"
+                                                                : "exact";
         const io::LabelledStrip strip = io::labelledStrip({
             {rgba8Of(judge.image), {"reference", std::to_string(o.referenceSpp) + " spp"}},
             {rgba8Of(image), {o.timeSlices > 1 ? method + ", " + std::to_string(o.timeSlices) + " time slices" : method,
@@ -155,7 +152,7 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
             {errorPanel(judge.image, image), {"error", "|difference| x4"}},
             {metrics::errorSourceImage(c.sources, judge.image), sourcesCaption(c.sources)},
         });
-        c.strip = stemOf(name) + "-" + method +
+        c.strip = sceneStem(name) + "-" + method +
                   (o.timeSlices > 1 ? "-k" + std::to_string(o.timeSlices) : std::string()) + "-sources.png";
         io::writePng(fs::path(o.imageDir) / c.strip, strip.image);
       }
@@ -170,7 +167,8 @@ nlohmann::json explainCaseJson(const ExplainCase& c) {
                          {"method", c.method},
                          {"time_slices", c.timeSlices},
                          {"region_pixels", c.regionPixels},
-                         {"region_psnr_db", std::isfinite(c.regionPsnr) ? nlohmann::json(c.regionPsnr) : nullptr},
+                         {"region_psnr_db", c.regionPsnr && std::isfinite(*c.regionPsnr) ? nlohmann::json(*c.regionPsnr)
+                                                                                         : nlohmann::json(nullptr)},
                          {"camera_moves", c.cameraMoves},
                          {"sources", metrics::errorSourcesJson(c.sources)}};
   if (!c.strip.empty()) json["strip"] = c.strip;
@@ -190,7 +188,7 @@ void writeExplainMarkdown(std::ostream& out, const std::vector<ExplainCase>& cas
   out << "---:|---|\n";
   for (const ExplainCase& c : cases) {
     const metrics::ErrorSources& s = c.sources;
-    out << "| " << c.scene << " | " << c.method << " | " << fixed(c.regionPsnr, 2) << " | "
+    out << "| " << c.scene << " | " << c.method << " | " << (c.regionPsnr ? fixed(*c.regionPsnr, 2) : "-") << " | "
         << (c.cameraMoves ? "yes" : "no") << " | " << s.reachPixels << " |";
     for (const metrics::ErrorSourceRow& row : s.rows) {
       out << " " << percent(row.share);

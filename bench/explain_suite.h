@@ -4,10 +4,12 @@
 // hybrid at their defaults, and the reference as two independent halves (seeds 1 and 2),
 // whose mean is the judge and whose difference is the judge's own noise. Per method it writes
 // a labelled strip (reference, method, error, classes) and a table of each class's share of
-// the squared error.
+// the squared error. With time slices the classes still come from the whole shutter's paths
+// and the ray mask is the last slice's.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -36,7 +38,7 @@ struct ExplainCase {
   std::string scene;
   std::string method;
   uint32_t timeSlices = 1;
-  double regionPsnr = 0.0;  // against the judge
+  std::optional<double> regionPsnr;  // against the judge; none when the region is empty
   size_t regionPixels = 0;
   bool cameraMoves = false;
   metrics::ErrorSources sources;

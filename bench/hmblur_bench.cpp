@@ -435,7 +435,10 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   suite.methods = options.methods;
   suite.timeSlices = options.timeSlices;
   checkOutputDirectory(options.out);
-  if (!options.out.empty()) suite.imageDir = fs::path(options.out).parent_path().string();
+  if (!options.out.empty()) {
+    const fs::path folder = fs::path(options.out).parent_path();
+    suite.imageDir = folder.empty() ? "." : folder.string();
+  }
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
   progress("device: " + context.info().name);

@@ -148,6 +148,7 @@ struct EngineHybridMotionBlur::Passes {
   std::unique_ptr<GpuScene> gpuScene;
   std::vector<glm::uvec2> gpuSceneInstances;  // (mesh, object id) of each instance it was made for
   size_t gpuSceneMeshes = 0;
+  GpuScene::FrameInputs frameInputs;  // the last prepare()'s, written by record()
   passes::PostProcessStage blur;
   passes::HybridStage hybrid;
   passes::ImageLayer layer;
@@ -178,9 +179,11 @@ vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
     passes_->gpuSceneInstances = std::move(instances);
     passes_->gpuSceneMeshes = scene_.meshes.size();
   }
-  // A deforming scene's meshes are deformed to the frame time here, for the refit; the
-  // transforms and the camera, for shading what the rays find, are written by record().
+  // A deforming scene's meshes are deformed to the frame time here, for the refit. The
+  // transforms and the camera, for shading what the rays find, are computed here and written
+  // by record().
   if (passes_->gpuScene->deforms()) passes_->gpuScene->setFrame(scene_, frameTime, width_, height_);
+  passes_->frameInputs = GpuScene::frameInputs(scene_, frameTime, width_, height_);
   FramePlan plan;
   plan.run(GpuScene::kFrameInputs);
   plan.run(kPackPass);
@@ -188,7 +191,6 @@ vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
   const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, *passes_->gpuScene, frameTime, width_, height_,
                                                settings_, plan);
   passes_->plan = plan;
-  frameTime_ = frameTime;
   prepared_ = true;
   vk::FrameTimings all = timings.setup;
   vk::appendTimings(all, timings.frame);
@@ -203,7 +205,7 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
       vk::Buffer::adopt(context_, output, uint64_t(width_) * height_ * sizeof(glm::vec4), "engine output");
   vk::FrameRecorder& frame = passes_->recorder;
   frame.beginInto(commandBuffer);
-  passes_->gpuScene->setFrame(scene_, frameTime_, width_, height_, &frame);
+  passes_->gpuScene->recordFrameInputs(passes_->frameInputs, frame);
   recordPack(frame, context_, *passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
   if (passes_->gpuScene->deforms()) passes_->gpuScene->recordFrameDeformation(frame);  // what the reveal shades
   passes_->hybrid.record(frame, passes_->layer, *passes_->gpuScene, blurred);

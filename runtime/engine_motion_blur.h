@@ -111,7 +111,8 @@ class EngineHybridMotionBlur {
   EngineHybridMotionBlur& operator=(const EngineHybridMotionBlur&) = delete;
 
   // Before recording the frame at frameTime (seconds, the scene's clock): plans the frame
-  // (which trees to build or keep) and computes its transforms on the host. Where the meshes
+  // (which trees to build or keep) and computes all its transforms and its camera on the host,
+  // from the scene as it is now (record() reads the scene no more). Where the meshes
   // are new (the first frame, or an EngineScene given other meshes), it builds their trees
   // and waits for them, as it does for deforming meshes' refits; it returns the device time of
   // that work. A frame whose instances moved needs no wait: record() builds their tree.
@@ -136,7 +137,6 @@ class EngineHybridMotionBlur {
   passes::HybridSettings settings_;
   EngineDepth depth_;
   std::unique_ptr<Passes> passes_;
-  float frameTime_ = 0.0f;  // the last prepare()'s
   bool prepared_ = false;
 };
 

@@ -181,9 +181,9 @@ void GpuScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddres
   shading_.bind(bindings, firstBinding, byAddress, members);
 }
 
-void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height, vk::FrameRecorder* into) {
+GpuScene::FrameInputs GpuScene::frameInputs(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
   const float previous = t - 1.0f / scene.settings.fps;
-  std::vector<gpu::GpuInstance> instances;
+  FrameInputs inputs;
   for (const scene::Instance& instance : scene.instances) {
     gpu::GpuInstance g{};
     g.worldCurrent = scene.worldMatrixAt(instance.node, t);
@@ -194,35 +194,39 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
     g.material = mesh.material;
     const bool doubleSided = mesh.material < scene.materials.size() && scene.materials[mesh.material].doubleSided;
     g.flags = doubleSided ? HMB_INSTANCE_DOUBLE_SIDED : 0u;
-    instances.push_back(g);
+    inputs.instances.push_back(g);
   }
-  if (!instances.empty()) {
-    if (into)
-      into->write(kFrameInputs, instances_, std::span<const gpu::GpuInstance>(instances));
-    else
-      instances_.upload(std::span<const gpu::GpuInstance>(instances));
-  }
-  if (deformation_) {
-    deformation_->setTime(scene, DeformedVertices::kFrameSlot, t);
-    deformation_->setTime(scene, DeformedVertices::kPreviousSlot, previous);
-  }
-  frameTime_ = t;
-  verticesAtFrameTime_ = false;
-
-  camera_ = frameCamera(scene, t, width, height);
-  gpu::GpuCamera c{};
-  c.viewProjCurrent = camera_.viewProjCurrent;
-  c.viewProjPrevious = camera_.viewProjPrevious;
-  c.viewCurrent = camera_.view;
-  c.positionCurrent = glm::vec4(camera_.eye, 1.0f);
+  inputs.camera = frameCamera(scene, t, width, height);
+  gpu::GpuCamera& c = inputs.gpuCamera;
+  c.viewProjCurrent = inputs.camera.viewProjCurrent;
+  c.viewProjPrevious = inputs.camera.viewProjPrevious;
+  c.viewCurrent = inputs.camera.view;
+  c.positionCurrent = glm::vec4(inputs.camera.eye, 1.0f);
   c.lightDirection = glm::vec4(glm::normalize(scene.light.direction), 0.0f);
   c.lightColor = glm::vec4(scene.light.color, 0.0f);
   c.ambient = glm::vec4(scene.light.ambient, 0.0f);
   c.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  if (into)
-    into->write(kFrameInputs, cameraBuffer_, std::span<const gpu::GpuCamera>(&c, 1));
-  else
-    cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&c, 1));
+  return inputs;
+}
+
+void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
+  const FrameInputs inputs = frameInputs(scene, t, width, height);
+  if (!inputs.instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(inputs.instances));
+  cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&inputs.gpuCamera, 1));
+  camera_ = inputs.camera;
+  if (deformation_) {
+    deformation_->setTime(scene, DeformedVertices::kFrameSlot, t);
+    deformation_->setTime(scene, DeformedVertices::kPreviousSlot, t - 1.0f / scene.settings.fps);
+  }
+  frameTime_ = t;
+  verticesAtFrameTime_ = false;
+}
+
+void GpuScene::recordFrameInputs(const FrameInputs& inputs, vk::FrameRecorder& frame) {
+  if (!inputs.instances.empty())
+    frame.write(kFrameInputs, instances_, std::span<const gpu::GpuInstance>(inputs.instances));
+  frame.write(kFrameInputs, cameraBuffer_, std::span<const gpu::GpuCamera>(&inputs.gpuCamera, 1));
+  camera_ = inputs.camera;
 }
 
 }  // namespace hmb

@@ -49,11 +49,18 @@ class GpuScene {
   static constexpr const char* kFrameInputs = "scene-frame-inputs";  // setFrame's writes, recorded
 
   // Writes instance transforms at t and t - 1/fps and the camera for the frame, and the
-  // deformation at both times (recordFrameDeformation applies it). With `into` (a begun frame)
-  // the transforms and the camera are written when that frame runs (kFrameInputs), so nothing
-  // is staged or waited for; passes recorded after it see them.
-  void setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height,
-                vk::FrameRecorder* into = nullptr);
+  // deformation at both times (recordFrameDeformation applies it).
+  void setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
+  // The same transforms and camera, computed on the host, for recordFrameInputs to write when a
+  // frame runs (kFrameInputs): nothing staged or waited for, passes recorded after it see
+  // them. A deforming scene's deformation is still setFrame's.
+  struct FrameInputs {
+    std::vector<gpu::GpuInstance> instances;
+    gpu::GpuCamera gpuCamera{};
+    FrameCamera camera;
+  };
+  static FrameInputs frameInputs(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
+  void recordFrameInputs(const FrameInputs& inputs, vk::FrameRecorder& frame);
 
   // Whether the scene has skinned or morphing meshes: their vertices are then deformed on the
   // device (runtime/deformed_vertices.h) before anything reads them.

@@ -102,12 +102,17 @@ std::vector<RenderSettingDescription> renderSettingDescriptions() {
   return out;
 }
 
+// With time slices each gather blurs over one slice of the shutter (Renderer::render).
 passes::PostProcessSettings postProcessSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
-  return validated(withChoices(passes::PostProcessSettings::fromScene(scene.settings), settings));
+  passes::PostProcessSettings s = withChoices(passes::PostProcessSettings::fromScene(scene.settings), settings);
+  s.exposure /= float(s.timeSlices);
+  return validated(s);
 }
 
 passes::HybridSettings hybridSettingsFor(const scene::Scene& scene, const RenderSettings& settings) {
-  return hybridWithChoices(passes::HybridSettings::fromScene(scene.settings), settings);
+  passes::HybridSettings h = hybridWithChoices(passes::HybridSettings::fromScene(scene.settings), settings);
+  h.blur.exposure /= float(h.blur.timeSlices);
+  return h;
 }
 
 void validatePostProcessChoices(const RenderSettings& settings) {
@@ -168,30 +173,36 @@ RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& s
   return slices > 1 ? renderTimeSlices(scene, settings, slices) : renderFrame(scene, settings);
 }
 
-// Slice k of K closes at t - (K - 1 - k) E / K and spans E / K: each is the method's frame of
-// the scene with that exposure at that time, and the frame is their mean. The slices are K
-// frames on the device; their mean is K adds per pixel on the host, where each slice's image
-// already is. The G-buffer layers, plan and settings reported are the last slice's (the one
-// closing at the frame time); the frame time is the slices' sum.
+// Slice k of K closes at t - (K - 1 - k) E / K: each is the method's frame at that time, its
+// gathers blurring over E / K (postProcessSettingsFor), with its own gather seed (base + k) so
+// that the slices' jitter does not repeat; the frame is their mean. The slices are K frames on
+// the device; their mean is K adds per pixel on the host, where each slice's image already is.
+// The G-buffer layers and plan reported are the last slice's (the one closing at the frame
+// time); the frame time is the slices' sum.
 RenderResult Renderer::renderTimeSlices(const scene::Scene& scene, const RenderSettings& settings, uint32_t slices) {
-  scene::Scene slice = scene;
-  slice.settings.exposure = scene.settings.exposure / float(slices);
   const float frameTime = settings.frameTime.value_or(scene.settings.frameTime);
+  const float sliceSpan = scene.settings.exposure / float(slices);
+  const uint32_t seed = settings.postprocess.seed.value_or(passes::PostProcessSettings{}.seed);
   RenderSettings one = settings;
-  one.postprocess.timeSlices = 1;
   std::vector<glm::vec4> sum(size_t(settings.width) * settings.height, glm::vec4(0.0f));
   std::optional<double> milliseconds = 0.0;
   RenderResult result;
+  const auto beautyOf = [](RenderResult& r) -> io::ImageLayer& {
+    for (io::ImageLayer& layer : r.image.layers)
+      if (layer.name.empty()) return layer;
+    throw Error("a time slice's frame has no beauty layer");
+  };
   for (uint32_t k = 0; k < slices; ++k) {
-    one.frameTime = frameTime - float(slices - 1 - k) * slice.settings.exposure;
-    result = renderFrame(slice, one);
-    const std::vector<float>& beauty = result.image.find("")->values;
+    one.frameTime = frameTime - float(slices - 1 - k) * sliceSpan;
+    one.postprocess.seed = seed + k;
+    result = renderFrame(scene, one);
+    const std::vector<float>& beauty = beautyOf(result).values;
     for (size_t i = 0; i < sum.size(); ++i)
       sum[i] += glm::vec4(beauty[4 * i], beauty[4 * i + 1], beauty[4 * i + 2], beauty[4 * i + 3]);
     milliseconds = milliseconds && result.frameMilliseconds ? std::optional(*milliseconds + *result.frameMilliseconds)
                                                              : std::nullopt;
   }
-  std::vector<float>& beauty = result.image.layers.front().values;
+  std::vector<float>& beauty = beautyOf(result).values;
   for (size_t i = 0; i < sum.size(); ++i) {
     sum[i] /= float(slices);
     for (int c = 0; c < 4; ++c) beauty[4 * i + c] = sum[i][c];
@@ -201,14 +212,6 @@ RenderResult Renderer::renderTimeSlices(const scene::Scene& scene, const RenderS
   result.settings.onProgress = nullptr;
   result.frameTime = frameTime;
   result.frameMilliseconds = milliseconds;
-  if (result.postprocess) {
-    result.postprocess->exposure = scene.settings.exposure;
-    result.postprocess->timeSlices = slices;
-  }
-  if (result.hybrid) {
-    result.hybrid->settings.blur.exposure = scene.settings.exposure;
-    result.hybrid->settings.blur.timeSlices = slices;
-  }
   return result;
 }
 

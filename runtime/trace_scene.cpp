@@ -165,7 +165,7 @@ bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerpri
 
 bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const float> times) const {
   // Staged and not yet recorded: no tree was built for them.
-  if (staged_ || (builtTransforms_.empty() && builtInstances_.empty())) return false;
+  if (!treeRecorded_ || (builtTransforms_.empty() && builtInstances_.empty())) return false;
   std::vector<gpu::TraceInstance> instances;
   std::vector<gpu::InstanceTransform> transforms;
   instancesAt(scene, times, instances, transforms);
@@ -175,8 +175,12 @@ bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const floa
 
 void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame) {
   stageShutterTimes(scene, times);
+  // This path waits anyway: the transforms (a batch of shutter times can be megabytes) go
+  // through the buffers' own writes, not the command buffer.
+  instances_.upload(std::span<const gpu::TraceInstance>(builtInstances_));
+  transforms_.upload(std::span<const gpu::InstanceTransform>(builtTransforms_));
   frame.begin();
-  recordStagedShutterTimes(frame, kInstanceTree);
+  recordInstanceTree(frame, kInstanceTree);
   const vk::FrameTimings timings = frame.submitAndWait();
   instanceBvh_.readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
 }
@@ -201,14 +205,18 @@ void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const fl
   fit(instanceBoxes_, slots * sizeof(gpu::BvhBox), "instance boxes");
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
-  staged_ = true;
+  treeRecorded_ = false;
 }
 
 void TraceScene::recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_view pass) {
-  if (!staged_) throw Error("the trace scene's instance tree was recorded without staged shutter times");
-  staged_ = false;
+  if (timeCount_ == 0)
+    throw Error("the trace scene's instance tree was recorded without staged shutter times");
   frame.write(pass, instances_, std::span<const gpu::TraceInstance>(builtInstances_));
   frame.write(pass, transforms_, std::span<const gpu::InstanceTransform>(builtTransforms_));
+  recordInstanceTree(frame, pass);
+}
+
+void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view pass) {
   const gpu::TraceParams params{0u, instanceCount_, timeCount_, 0u};
   const glm::uvec2 root(0u, instanceCount_);
   const auto nodes = instanceBvh_.nodes().handle(), primitives = instanceBvh_.primitives().handle(),
@@ -226,6 +234,7 @@ void TraceScene::recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_
   if (nodes != instanceBvh_.nodes().handle() || primitives != instanceBvh_.primitives().handle() ||
       frames != instanceBvh_.frames().handle())
     group_.forgetTable();
+  treeRecorded_ = true;  // only once the whole build is recorded
 }
 
 void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {

@@ -50,10 +50,11 @@ class TraceScene {
   void setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame);
   // The same in two steps, for a frame that must not wait (an engine's): stageShutterTimes
   // computes the transforms on the host and sizes the buffers; recordStagedShutterTimes
-  // records their upload, the instances' motion bounds and the top level's build into a begun
-  // frame, every pass under the name `pass`, with no submission and no read-back
-  // (passes::BvhBuildPass::record). Tracing kernels recorded after it in the same frame see
-  // the new tree.
+  // records their upload (through the command buffer), the instances' motion bounds and the
+  // top level's build into a begun frame, every pass under the name `pass`, with no
+  // submission and no read-back (passes::BvhBuildPass::record). Tracing kernels recorded after
+  // it in the same frame see the new tree. The staged transforms stay until the next staging,
+  // so a frame recorded again (or after a failed recording) builds the same tree.
   void stageShutterTimes(const scene::Scene& scene, std::span<const float> times);
   void recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_view pass);
 
@@ -93,6 +94,9 @@ class TraceScene {
   void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
 
  private:
+  // The instances' motion bounds and the top level's build, from the transforms on the device.
+  void recordInstanceTree(vk::FrameRecorder& frame, std::string_view pass);
+
   const vk::Context& context_;
   vk::ComputeKernel triangleBoundsKernel_;
   vk::ComputeKernel motionBoundsKernel_;
@@ -108,7 +112,7 @@ class TraceScene {
   // What the top level was last built from, to tell whether a frame can keep it.
   std::vector<gpu::TraceInstance> builtInstances_;
   std::vector<gpu::InstanceTransform> builtTransforms_;
-  bool staged_ = false;  // builtInstances_ and builtTransforms_ wait for recordStagedShutterTimes
+  bool treeRecorded_ = false;  // a build of the staged instances was recorded (or built)
   vk::Buffer leafTriangles_;  // per triangle in the leaves' order: 3 vec4 (vertex xyz, index bits)
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)

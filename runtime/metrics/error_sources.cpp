@@ -10,7 +10,7 @@ namespace hmb::metrics {
 namespace {
 
 // The largest value within `reach` pixels along x, then along y (a square window); infinity
-// (a point behind the camera) is kept.
+// (a point behind the camera) is kept, and NaN counts as infinity.
 std::vector<float> squareMax(std::span<const float> values, uint32_t width, uint32_t height, uint32_t reach) {
   // One axis: `count` positions `step` apart in each line.
   const auto along = [&](std::span<const float> in, uint32_t count, size_t step, size_t lineStep, uint32_t lines) {
@@ -19,7 +19,7 @@ std::vector<float> squareMax(std::span<const float> values, uint32_t width, uint
       for (uint32_t at = 0; at < count; ++at) {
         float m = 0.0f;
         for (uint32_t k = at > reach ? at - reach : 0; k <= std::min(count - 1, at + reach); ++k)
-          m = std::max(m, in[line * lineStep + k * step]);
+          m = std::max(m, std::isnan(in[line * lineStep + k * step]) ? INFINITY : in[line * lineStep + k * step]);
         out[line * lineStep + at * step] = m;
       }
     return out;
@@ -62,6 +62,9 @@ std::array<uint8_t, 3> errorSourceColor(ErrorSource source) {
   }
   return {0, 0, 0};
 }
+
+// Each class's row is rows[class - 1]: kErrorSources lists the classes in their order.
+static_assert(size_t(kErrorSources.front()) == 1 && size_t(kErrorSources.back()) == kErrorSources.size());
 
 ErrorSources explainErrorSources(const ErrorSourceInputs& in, const ErrorSourceSettings& settings) {
   if (!in.reference || !in.test || !in.region) throw Error("error sources: the reference, test and region are required");

@@ -38,6 +38,12 @@ std::array<uint32_t, 2> levelSpecialization(const BvhBuildShape& shape) {
 // Levels that halving every range takes n primitives down to one in: ceil(log2(n)), as
 // kernels/bvh/bvh_build_common.glsl's halvingsToOne.
 uint32_t halvingsToOne(uint32_t n) { return static_cast<uint32_t>(std::bit_width(std::max(n, 1u) - 1u)); }
+
+uint32_t largestTreeOf(std::span<const glm::uvec2> roots) {
+  uint32_t largest = 0;
+  for (const glm::uvec2& root : roots) largest = std::max(largest, root.y);
+  return largest;
+}
 }  // namespace
 
 BvhBuildShape BvhBuildShape::forDevice(const vk::Context& context) {
@@ -152,7 +158,7 @@ BvhBuildPass::Start BvhBuildPass::start(const vk::Buffer& boxes, uint32_t primit
                {HMB_BUILD_BINDING_TASKS, &tasks_},
                {HMB_BUILD_BINDING_PACKED_NODES, &packedNodes_},
                {HMB_BUILD_BINDING_FRAMES, &frames_}};
-  for (const glm::uvec2& root : roots) s.largestTree = std::max(s.largestTree, root.y);
+  s.largestTree = largestTreeOf(roots);
   const uint32_t halvings = halvingsToOne(s.largestTree);
   if (halvings > depthBound)
     throw Error(name_ + ": a tree of " + std::to_string(s.largestTree) + " primitives needs " +
@@ -217,9 +223,7 @@ uint32_t BvhBuildPass::recordedDepthBound(uint32_t largestTree) const {
 void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
                           uint32_t primitiveCount, std::span<const glm::uvec2> roots,
                           const std::function<void(vk::FrameRecorder&)>& before) {
-  uint32_t largestTree = 0;
-  for (const glm::uvec2& root : roots) largestTree = std::max(largestTree, root.y);
-  const uint32_t depthBound = recordedDepthBound(largestTree);
+  const uint32_t depthBound = recordedDepthBound(largestTreeOf(roots));
   Start s = start(boxes, primitiveCount, roots, depthBound);
   frame.write(pass, rootBuffer_, roots);
   frame.write(pass, tasks_, std::span<const gpu::BvhBuildCounters>(&s.counters, 1));
@@ -229,8 +233,10 @@ void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const
   // halvingsToOne(HMB_BVH_SMALL_TASK + 1) more levels below it, and the builder keeps every
   // node within the bound: no such task lies deeper than the bound minus that. The levels
   // down to there finish every tree but the small subtrees they set aside, and those are
-  // finished after them.
-  const uint32_t levels = depthBound - std::min(depthBound - 1u, halvingsToOne(HMB_BVH_SMALL_TASK + 1u) - 1u);
+  // finished after them. (A root is split at level 0 whatever its size.)
+  const uint32_t belowLargeTask = halvingsToOne(HMB_BVH_SMALL_TASK + 1u);
+  const uint32_t deepestLargeTask = depthBound > belowLargeTask ? depthBound - belowLargeTask : 0u;
+  const uint32_t levels = deepestLargeTask + 1u;
   for (uint32_t level = 0; level < levels; ++level) {
     s.params.level = level;
     frame.dispatchIndirect(pass, levelKernel_, s.buffers, s.params, tasks_,

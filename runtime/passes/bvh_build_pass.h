@@ -103,12 +103,13 @@ class BvhBuildPass {
   // command buffer. It bounds the trees' depth by recordedDepthBound() (a SAH split that
   // would go deeper is halved, as at HMB_BVH_MAX_DEPTH) and records the levels that bound can
   // need (it, less the levels below the deepest task too large for build_small_tasks).
-  // Levels without tasks dispatch no groups; on lavapipe each costs two empty dispatches. stats() stays empty until readRecordedCounts(); refit() needs a
-  // build().
+  // Levels without tasks dispatch no groups; on lavapipe each costs two empty dispatches.
+  // stats() stays empty until readRecordedCounts(), and what needs the node count (refit(),
+  // compact(), download()) waits for it too.
   void record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes, uint32_t primitiveCount,
               std::span<const glm::uvec2> roots, const std::function<void(vk::FrameRecorder&)>& before = {});
-  // The depth bound (and levels) record() uses for trees of up to largestTree primitives: what
-  // build()'s first submission records, at most the pass's depth bound.
+  // The depth bound record() gives trees of up to largestTree primitives: the levels build()'s
+  // first submission records, at most the pass's depth bound.
   uint32_t recordedDepthBound(uint32_t largestTree) const;
   // After a recorded build completed on the device: its node, leaf and level counts read back
   // into stats() (tests, reports), with the device time its frame measured.

@@ -30,7 +30,10 @@ std::optional<HybridStage::TreeBytes> HybridStage::meshTreeBytes() const {
   return TreeBytes{double(trees.allocatedTreeBytes()) / triangles, double(trees.usedTreeBytes()) / triangles};
 }
 
-void HybridStage::forgetTraceScene() { traceScene_.reset(); }
+void HybridStage::forgetTraceScene() {
+  traceScene_.reset();
+  buildsInstanceTree_ = false;
+}
 
 void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const {
   const bool sameMeshes = planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
@@ -82,10 +85,9 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
 void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, const GpuScene& gpuScene,
                          const vk::Buffer& output) {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
-  if (buildsInstanceTree_) {
-    traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
-    buildsInstanceTree_ = false;
-  }
+  // Every frame recorded from this prepare() builds the staged tree (a frame recorded again
+  // must not find it missing).
+  if (buildsInstanceTree_) traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
   frame.write(RevealPass::kName, cameraRays_, std::span<const gpu::PinholeCamera>(&camera_, 1));
   const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height()};
   postProcess_.recordTiles(frame, raster);

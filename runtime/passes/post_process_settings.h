@@ -32,12 +32,15 @@ struct PostProcessSettings {
   // the outer blur fade smoothly from the object's edge) and 1 for the centred range (McGuire's
   // weights are balanced for symmetric ranges; 1 is his filter unchanged).
   std::optional<float> foregroundBoost;
-  float exposure = 1.0f / 60.0f;  // E, seconds: shutter open over [t - E, t]
+  // E, seconds: the span a gather blurs over, the shutter [t - E, t] (with time slices, one
+  // slice of it: the scene's exposure / timeSlices).
+  float exposure = 1.0f / 60.0f;
   float fps = 120.0f;             // velocity q is per frame of 1/fps seconds
   float softZExtent = 0.03f;      // SOFT_Z_EXTENT, camera-space depth units
   // The shutter cut into this many equal slices, each a frame of its own (rasterized at the
   // slice's close, blurred over the slice alone) and the frame their mean: K times the work for
-  // blur lengths K times shorter (Renderer::render). 1: the paper's one G-buffer.
+  // blur lengths K times shorter (Renderer::render). 1: the paper's one G-buffer. The
+  // renderer's settings of a sliced frame hold the slice's exposure.
   uint32_t timeSlices = 1;
 
   // exposure, fps and SOFT_Z_EXTENT from a scene's settings (after scene::deriveDefaults), the

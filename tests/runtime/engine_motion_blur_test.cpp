@@ -3,6 +3,7 @@
 // makes of its G-buffer.
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <vector>
 
@@ -252,6 +253,45 @@ TEST(EngineMotionBlurTest, AFrameWhoseInstancesMovedNeitherWaitsNorReadsBack) {
   std::vector<std::string> names;
   for (const vk::PassTiming& pass : blur.timings().passes) names.push_back(pass.name);
   EXPECT_NE(std::find(names.begin(), names.end(), "hybrid-bvh-instances"), names.end());
+  EXPECT_EQ(context.validationErrors(), 0u);
+  for (Engine::OwnBuffer& b : owned) engine.destroy(b);
+  EXPECT_TRUE(engine.errors.empty());
+}
+
+// A skinned mesh on the engine's frame: prepare() deforms it and refits its tree (and may
+// wait: the header says so), then record() neither waits nor reads back, on a device whose
+// memory the host cannot map, and the frame is the renderer's hybrid frame, bit for bit.
+TEST(EngineMotionBlurTest, RecordingADeformingFrameNeitherWaitsNorReadsBack) {
+  const scene::Scene scene =
+      scene::loadScene((std::filesystem::path(HMB_DEFORMING_SCENES_DIR) / "skinned-arm.gltf").string());
+  const Frames f = renderedFrames(scene, Method::Hybrid);
+  ASSERT_TRUE(f.hybrid);
+  Engine engine(/*enableFeatures=*/true);
+  vk::ContextOptions options = countingOptions();
+  options.hostVisibleDeviceLocalBytes = 256ull << 20;
+  vk::Context context(engine.adopted(), options);
+  EngineHybridMotionBlur blur(context, kWidth, kHeight, scene, *f.hybrid);
+  std::vector<Engine::OwnBuffer> owned = {engine.makeBuffer(f.color.size() * sizeof(glm::vec4), bytesOf(f.color)),
+                                          engine.makeBuffer(f.depth.size() * sizeof(float), bytesOf(f.depth)),
+                                          engine.makeBuffer(f.velocity.size() * sizeof(glm::vec2), bytesOf(f.velocity)),
+                                          engine.makeBuffer(f.normal.size() * sizeof(glm::vec4), bytesOf(f.normal)),
+                                          engine.makeBuffer(f.objectId.size() * sizeof(uint32_t), bytesOf(f.objectId)),
+                                          engine.makeBuffer(f.color.size() * sizeof(glm::vec4))};
+  blur.prepare(f.frameTime);
+  EXPECT_TRUE(blur.plan().runs("bvh-refit"));
+  const VkCommandBuffer commands = engine.beginCommands();
+  const uint64_t waits = context.hostWaits(), readbacks = context.hostReadbacks();
+  blur.record(commands, {owned[0].buffer, owned[1].buffer, owned[2].buffer, owned[3].buffer, owned[4].buffer},
+              owned[5].buffer);
+  EXPECT_EQ(context.hostWaits(), waits);
+  EXPECT_EQ(context.hostReadbacks(), readbacks);
+  engine.submitAndWait(commands);
+  std::vector<glm::vec4> out(f.color.size());
+  const std::vector<std::byte> bytes = engine.read(owned[5]);
+  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
+  size_t differ = 0;
+  for (size_t i = 0; i < out.size(); ++i) differ += std::memcmp(&out[i], &f.blurred[i], sizeof(glm::vec4)) != 0;
+  EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
   EXPECT_EQ(context.validationErrors(), 0u);
   for (Engine::OwnBuffer& b : owned) engine.destroy(b);
   EXPECT_TRUE(engine.errors.empty());

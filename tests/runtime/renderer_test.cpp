@@ -206,9 +206,10 @@ TEST_F(RendererTest, CpuDevicesRasterizeWithTileListsAndRenderTheSameFrame) {
   EXPECT_EQ(a.image.find("objectId")->ids, b.image.find("objectId")->ids);
 }
 
-// Time slices: the shutter cut into K slices, each the method's frame over its own slice (the
-// scene's exposure over K, closing K - 1 - k slices before the frame time), and the frame their
-// mean; its time is the slices' sum. One slice is the frame without slices.
+// Time slices: the shutter cut into K slices, each the method's frame over its own slice (as
+// if the scene's exposure were E / K, closing K - 1 - k slices before the frame time, gather
+// seed k), and the frame their mean; its time is the slices' sum. One slice is the frame
+// without slices.
 TEST_F(RendererTest, TimeSlicesAreTheMeanOfTheirSlicesFrames) {
   const scene::Scene scene = scene::loadScene("living-room");
   Renderer renderer(context());
@@ -232,6 +233,7 @@ TEST_F(RendererTest, TimeSlicesAreTheMeanOfTheirSlicesFrames) {
     double milliseconds = 0.0;
     for (uint32_t k = 0; k < kSlices; ++k) {
       one.frameTime = scene.settings.frameTime - float(kSlices - 1 - k) * slice.settings.exposure;
+      one.postprocess.seed = k;
       const RenderResult r = renderer.render(slice, one);
       const std::vector<float>& beauty = r.image.find("")->values;
       for (size_t i = 0; i < sum.size(); ++i)
@@ -250,7 +252,7 @@ TEST_F(RendererTest, TimeSlicesAreTheMeanOfTheirSlicesFrames) {
     }
     ASSERT_TRUE(sliced.postprocess);
     EXPECT_EQ(sliced.postprocess->timeSlices, kSlices);
-    EXPECT_EQ(sliced.postprocess->exposure, scene.settings.exposure);  // the frame's, not a slice's
+    EXPECT_EQ(sliced.postprocess->exposure, scene.settings.exposure / float(kSlices));  // a slice's
   }
   EXPECT_EQ(context().validationErrors(), 0u);
 }

@@ -99,10 +99,14 @@ TEST(ScreenPathsTest, ADollyBendsPathsOffTheCentreOnly) {
   const ScreenPaths p = screenPaths(s, 1.0f, kW, kH, depth, ids);
   EXPECT_TRUE(p.cameraMoves);
   const size_t corner = 0, nearCentre = size_t(kH / 2) * kW + kW / 2;
-  // A point x units off the axis lands at x / z: at z = 4, 3.5 and 3 the mid point lies off the
-  // chord by x (1/3.5 - (1/4 + 1/3) / 2) in the view's units.
-  EXPECT_GT(p.bend[corner], 0.2f);
-  EXPECT_GT(p.length[corner], 5.0f);
+  // The corner pixel's point lies 3 a tan units off the axis on each image axis (a: its
+  // position in [-1, 1], tan: the half field of view's), at depth 3; seen from 4, 3.5 and 3 it
+  // lands at 3 a (1/4, 1/3.5, 1/3) of the half image, so the mid point lies 3 a (1/3.5 -
+  // (1/4 + 1/3) / 2) half images off the chord, and the path is 3 a (1/3 - 1/4) long.
+  const glm::vec2 at(2.0f * 0.5f / kW - 1.0f, 2.0f * 0.5f / kH - 1.0f), half(kW / 2.0f, kH / 2.0f);
+  const float bendPerS = 3.0f * std::abs(1.0f / 3.5f - (1.0f / 4.0f + 1.0f / 3.0f) / 2.0f);
+  EXPECT_NEAR(p.bend[corner], glm::length(bendPerS * at * half), 2e-3f);
+  EXPECT_NEAR(p.length[corner], glm::length(3.0f * (1.0f / 3.0f - 1.0f / 4.0f) * at * half), 2e-3f);
   EXPECT_LT(p.bend[nearCentre], 0.05f * p.bend[corner]);
   // Background pixels move only with the camera's rotation: a dolly leaves them still.
   const std::vector<uint32_t> none(size_t(kW) * kH, 0u);

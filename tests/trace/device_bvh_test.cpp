@@ -180,7 +180,6 @@ TEST_F(DeviceBvh, ARecordedBuildIsTheWaitedBuildUnderItsDepthBound) {
     vk::FrameRecorder frame(context());
     passes::BvhBuildPass recorded(context(), "recorded", HMB_BVH_MAX_LEAF);
     const uint32_t bound = recorded.recordedDepthBound(largest);
-    EXPECT_EQ(bound, std::min(HMB_BVH_MAX_DEPTH, passes::BvhBuildPass::firstSubmissionLevels(largest)));
     const uint64_t waits = context().hostWaits(), readbacks = context().hostReadbacks();
     frame.begin();
     recorded.record(frame, "a recorded build", buffer, count, roots);
