@@ -203,6 +203,31 @@ TEST(EngineMotionBlurTest, TheHybridOnTheEnginesFrameIsTheRenderersHybrid) {
   EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
 }
 
+// A G-buffer in the engine's own buffers (colour, depth, velocity, normal, object id) and an
+// output buffer, last.
+std::vector<Engine::OwnBuffer> engineBuffers(Engine& engine, const Frames& f) {
+  return {engine.makeBuffer(f.color.size() * sizeof(glm::vec4), bytesOf(f.color)),
+          engine.makeBuffer(f.depth.size() * sizeof(float), bytesOf(f.depth)),
+          engine.makeBuffer(f.velocity.size() * sizeof(glm::vec2), bytesOf(f.velocity)),
+          engine.makeBuffer(f.normal.size() * sizeof(glm::vec4), bytesOf(f.normal)),
+          engine.makeBuffer(f.objectId.size() * sizeof(uint32_t), bytesOf(f.objectId)),
+          engine.makeBuffer(f.color.size() * sizeof(glm::vec4))};
+}
+
+EngineGBuffer gbufferOf(const std::vector<Engine::OwnBuffer>& b) {
+  return {b[0].buffer, b[1].buffer, b[2].buffer, b[3].buffer, b[4].buffer};
+}
+
+// The engine's output equals the renderer's blurred frame, bit for bit.
+void expectTheRenderersFrame(const Engine& engine, const Engine::OwnBuffer& output, const Frames& f) {
+  std::vector<glm::vec4> out(f.color.size());
+  const std::vector<std::byte> bytes = engine.read(output);
+  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
+  size_t differ = 0;
+  for (size_t i = 0; i < out.size(); ++i) differ += std::memcmp(&out[i], &f.blurred[i], sizeof(glm::vec4)) != 0;
+  EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
+}
+
 // The frames after the first, where instances moved, on a device whose memory the host cannot
 // map (a discrete GPU's; staged writes would wait there): prepare() and record() neither wait
 // nor read back, the instances' tree is built inside the engine's command buffer, and the
@@ -221,15 +246,9 @@ TEST(EngineMotionBlurTest, AFrameWhoseInstancesMovedNeitherWaitsNorReadsBack) {
   std::vector<Engine::OwnBuffer> owned;
   const auto frameOnTheEngine = [&](const Frames& f) {
     for (Engine::OwnBuffer& b : owned) engine.destroy(b);
-    owned = {engine.makeBuffer(f.color.size() * sizeof(glm::vec4), bytesOf(f.color)),
-             engine.makeBuffer(f.depth.size() * sizeof(float), bytesOf(f.depth)),
-             engine.makeBuffer(f.velocity.size() * sizeof(glm::vec2), bytesOf(f.velocity)),
-             engine.makeBuffer(f.normal.size() * sizeof(glm::vec4), bytesOf(f.normal)),
-             engine.makeBuffer(f.objectId.size() * sizeof(uint32_t), bytesOf(f.objectId)),
-             engine.makeBuffer(f.color.size() * sizeof(glm::vec4))};
+    owned = engineBuffers(engine, f);
     const VkCommandBuffer commands = engine.beginCommands();
-    blur.record(commands, {owned[0].buffer, owned[1].buffer, owned[2].buffer, owned[3].buffer, owned[4].buffer},
-                owned[5].buffer);
+    blur.record(commands, gbufferOf(owned), owned.back().buffer);
     return commands;
   };
   blur.prepare(first.frameTime);  // the meshes' trees: built once, and waited for
@@ -243,12 +262,7 @@ TEST(EngineMotionBlurTest, AFrameWhoseInstancesMovedNeitherWaitsNorReadsBack) {
   EXPECT_EQ(context.hostWaits(), waits);
   EXPECT_EQ(context.hostReadbacks(), readbacks);
   engine.submitAndWait(commands);
-  std::vector<glm::vec4> out(later.color.size());
-  const std::vector<std::byte> bytes = engine.read(owned[5]);
-  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
-  size_t differ = 0;
-  for (size_t i = 0; i < out.size(); ++i) differ += std::memcmp(&out[i], &later.blurred[i], sizeof(glm::vec4)) != 0;
-  EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
+  expectTheRenderersFrame(engine, owned.back(), later);
   EXPECT_GT(blur.maskPixels(), 20u);
   std::vector<std::string> names;
   for (const vk::PassTiming& pass : blur.timings().passes) names.push_back(pass.name);
@@ -271,27 +285,16 @@ TEST(EngineMotionBlurTest, RecordingADeformingFrameNeitherWaitsNorReadsBack) {
   options.hostVisibleDeviceLocalBytes = 256ull << 20;
   vk::Context context(engine.adopted(), options);
   EngineHybridMotionBlur blur(context, kWidth, kHeight, scene, *f.hybrid);
-  std::vector<Engine::OwnBuffer> owned = {engine.makeBuffer(f.color.size() * sizeof(glm::vec4), bytesOf(f.color)),
-                                          engine.makeBuffer(f.depth.size() * sizeof(float), bytesOf(f.depth)),
-                                          engine.makeBuffer(f.velocity.size() * sizeof(glm::vec2), bytesOf(f.velocity)),
-                                          engine.makeBuffer(f.normal.size() * sizeof(glm::vec4), bytesOf(f.normal)),
-                                          engine.makeBuffer(f.objectId.size() * sizeof(uint32_t), bytesOf(f.objectId)),
-                                          engine.makeBuffer(f.color.size() * sizeof(glm::vec4))};
+  std::vector<Engine::OwnBuffer> owned = engineBuffers(engine, f);
   blur.prepare(f.frameTime);
   EXPECT_TRUE(blur.plan().runs("bvh-refit"));
   const VkCommandBuffer commands = engine.beginCommands();
   const uint64_t waits = context.hostWaits(), readbacks = context.hostReadbacks();
-  blur.record(commands, {owned[0].buffer, owned[1].buffer, owned[2].buffer, owned[3].buffer, owned[4].buffer},
-              owned[5].buffer);
+  blur.record(commands, gbufferOf(owned), owned.back().buffer);
   EXPECT_EQ(context.hostWaits(), waits);
   EXPECT_EQ(context.hostReadbacks(), readbacks);
   engine.submitAndWait(commands);
-  std::vector<glm::vec4> out(f.color.size());
-  const std::vector<std::byte> bytes = engine.read(owned[5]);
-  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
-  size_t differ = 0;
-  for (size_t i = 0; i < out.size(); ++i) differ += std::memcmp(&out[i], &f.blurred[i], sizeof(glm::vec4)) != 0;
-  EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
+  expectTheRenderersFrame(engine, owned.back(), f);
   EXPECT_EQ(context.validationErrors(), 0u);
   for (Engine::OwnBuffer& b : owned) engine.destroy(b);
   EXPECT_TRUE(engine.errors.empty());
