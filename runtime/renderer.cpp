@@ -208,6 +208,10 @@ RenderResult Renderer::renderTimeSlices(const scene::Scene& scene, const RenderS
     for (int c = 0; c < 4; ++c) beauty[4 * i + c] = sum[i][c];
   }
   result.display = io::encodeDisplay(settings.width, settings.height, sum);
+  // The blur settings reported are the slices': each gather's exposure (E / K), the first
+  // slice's seed (slice k uses seed + k).
+  if (result.postprocess) result.postprocess->seed = seed;
+  if (result.hybrid) result.hybrid->settings.blur.seed = seed;
   result.settings = settings;
   result.settings.onProgress = nullptr;
   result.frameTime = frameTime;

@@ -119,7 +119,8 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
             {"soft_z_extent", p.softZExtent},
             {"exposure_s", p.exposure},
             {"fps", p.fps},
-            {"seed", p.seed}};
+            {"seed", p.seed},
+            {"time_slices", p.timeSlices}};
     if (result.hybrid) {
       const passes::HybridSettings& h = result.hybrid->settings;
       json["edge_threshold"] = h.edgeThreshold;

@@ -280,6 +280,17 @@ TEST(CliTest, PostProcessSettingsReachTheReportAndBadOnesFailInOneLine) {
   EXPECT_EQ(report["settings"]["tile_size"], 16);
   EXPECT_EQ(report["settings"]["foreground_boost"], 1.0);
   EXPECT_FLOAT_EQ(report["settings"]["soft_z_extent"].get<float>(), 0.03f);  // the temple's own
+  EXPECT_EQ(report["settings"]["time_slices"], 1);
+  // Time slices: the report names them, each gather's exposure is a slice's, the seed the first slice's.
+  const CliRun sliced = hmblur("--quiet render --scene temple --method hybrid --time-slices 3 --seed 5 --width 50 "
+                               "--height 30 --report " + (dir / "sliced.json").string());
+  ASSERT_EQ(sliced.exitCode, 0) << sliced.output;
+  nlohmann::json slicedReport;
+  std::ifstream(dir / "sliced.json") >> slicedReport;
+  EXPECT_EQ(slicedReport["settings"]["time_slices"], 3);
+  EXPECT_EQ(slicedReport["settings"]["seed"], 5);
+  EXPECT_FLOAT_EQ(slicedReport["settings"]["exposure_s"].get<float>(),
+                  slicedReport["scene"]["settings"]["exposure_s"].get<float>() / 3.0f);
   expectOneLineError(hmblur("--quiet render --method postprocess --filter magic --width 8 --height 8"), "magic");
   expectOneLineError(hmblur("--quiet render --method postprocess --samples 0 --width 8 --height 8"), "samples");
   expectOneLineError(hmblur("--quiet render --method postprocess --neighborhood 2 --width 8 --height 8"),
