@@ -29,12 +29,14 @@ test: build
 BENCH_OUT ?= out/bench
 PYTHON ?= /usr/bin/python3
 bench: build
-	@mkdir -p $(BENCH_OUT)/passes $(BENCH_OUT)/error-vs-time
+	@mkdir -p $(BENCH_OUT)/passes $(BENCH_OUT)/error-vs-time $(BENCH_OUT)/error-explanation
 	@$(BUILD_DIR)/hmblur-bench passes --sizes 160x90,320x180 --out $(BENCH_OUT)/passes/passes.json > /dev/null
 	@$(BUILD_DIR)/hmblur-bench error-vs-time --size 160x90 --judge-spp 256 --reference-spp 1,2,4,8,16,32 \
 	    --out $(BENCH_OUT)/error-vs-time/error-vs-time.json > /dev/null
 	@$(PYTHON) bench/scripts/plot_error_vs_time.py $(BENCH_OUT)/error-vs-time/error-vs-time.json
-	@echo "bench: results in $(BENCH_OUT)/passes and $(BENCH_OUT)/error-vs-time"
+	@$(BUILD_DIR)/hmblur-bench explain --size 160x90 --reference-spp 64 \
+	    --out $(BENCH_OUT)/error-explanation/explanation.json > /dev/null
+	@echo "bench: results in $(BENCH_OUT)/passes, $(BENCH_OUT)/error-vs-time and $(BENCH_OUT)/error-explanation"
 
 clean:
 	rm -rf $(BUILD_DIR) out
