@@ -157,7 +157,6 @@ vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float 
   const double refitMs = meshBvh_.refit(frame, deformedBoxes_, trees);
   vk::appendTimings(timings, {{{kRefit, refitMs}}, refitMs});
   builtTransforms_.clear();  // the instances' boxes moved: the top level must be built again
-  group_.forgetTable();
   return timings;
 }
 
@@ -193,11 +192,9 @@ void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const fl
   instanceCount_ = static_cast<uint32_t>(instances.size());
   timeCount_ = static_cast<uint32_t>(times.size());
   // The buffers grow with the instances and are kept otherwise: a frame's transforms are
-  // written into them when it runs, and the tables that bind them by address stay valid.
+  // written into them when it runs, and the table that binds them by address stays valid.
   const auto fit = [&](vk::Buffer& buffer, size_t bytes, const char* name) {
-    if (buffer.size() >= bytes) return;
-    buffer = vk::Buffer(context_, bytes, vk::MemoryUse::Device, name);
-    group_.forgetTable();
+    if (buffer.size() < bytes) buffer = vk::Buffer(context_, bytes, vk::MemoryUse::Device, name);
   };
   const size_t slots = std::max<size_t>(instances.size(), 1);
   fit(instances_, slots * sizeof(gpu::TraceInstance), "trace instances");
@@ -219,8 +216,6 @@ void TraceScene::recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_
 void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view pass) {
   const gpu::TraceParams params{0u, instanceCount_, timeCount_, 0u};
   const glm::uvec2 root(0u, instanceCount_);
-  const auto nodes = instanceBvh_.nodes().handle(), primitives = instanceBvh_.primitives().handle(),
-             frames = instanceBvh_.frames().handle();
   instanceBvh_.record(frame, pass, instanceBoxes_, instanceCount_, std::span(&root, 1), [&](vk::FrameRecorder& f) {
     f.dispatch(pass, motionBoundsKernel_,
                {{HMB_MOTION_BOUNDS_BINDING_MESH_NODES, &meshBvh_.nodes()},
@@ -230,10 +225,6 @@ void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view p
                 {HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES, &meshBvh_.frames()}},
                params, vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
   });
-  // The tree's buffers grow with the instances too: a new one needs a new address table.
-  if (nodes != instanceBvh_.nodes().handle() || primitives != instanceBvh_.primitives().handle() ||
-      frames != instanceBvh_.frames().handle())
-    group_.forgetTable();
   treeRecorded_ = true;  // only once the whole build is recorded
 }
 

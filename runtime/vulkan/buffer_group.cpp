@@ -13,18 +13,19 @@ void BufferGroup::bind(Bindings& bindings, uint32_t firstBinding, bool byAddress
     for (const Buffer* member : members) bindings.push_back({firstBinding++, member});
     return;
   }
-  if (!table_.handle()) {
-    const Context& context = members.front()->context();
-    if (!context.info().bufferDeviceAddress)
-      throw Error("binding '" + members.front()->name() + "' and its group by address needs buffer device addresses, which the device lacks");
-    std::vector<uint64_t> addresses;
-    for (const Buffer* member : members) addresses.push_back(member->address());
+  const Context& context = members.front()->context();
+  if (!context.info().bufferDeviceAddress)
+    throw Error("binding '" + members.front()->name() + "' and its group by address needs buffer device addresses, which the device lacks");
+  std::vector<VkDeviceAddress> addresses;
+  for (const Buffer* member : members) addresses.push_back(member->address());
+  if (!table_.handle() || addresses != addresses_) {
     // In host-visible memory: written here without a staging copy or a wait, so binding a
     // group by address while recording an engine's frame submits nothing. A few words,
     // which a GPU's caches keep after the first read.
-    table_ = Buffer(context, addresses.size() * sizeof(uint64_t), MemoryUse::Upload,
+    table_ = Buffer(context, addresses.size() * sizeof(VkDeviceAddress), MemoryUse::Upload,
                     members.front()->name() + " (address table)");
-    table_.upload(std::span<const uint64_t>(addresses));
+    table_.upload(std::span<const VkDeviceAddress>(addresses));
+    addresses_ = std::move(addresses);
   }
   bindings.push_back({firstBinding, &table_});
 }

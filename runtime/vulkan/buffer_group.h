@@ -4,7 +4,8 @@
 // one table of their device addresses in that same order (the group's gpu::*Table in kernels/:
 // one 64-bit address per buffer) at the first number. The
 // table is written the first time a kernel binds the group by address, so devices whose
-// kernels all bind plainly never pay for it.
+// kernels all bind plainly never pay for it, and made again when a member was made anew
+// (its address changed).
 #pragma once
 
 #include <span>
@@ -20,11 +21,9 @@ class BufferGroup {
   // Adds `members` (the group, in its order) at firstBinding on, or the table of their
   // addresses at firstBinding. Throws hmb::Error when the device has no buffer device addresses.
   void bind(Bindings& bindings, uint32_t firstBinding, bool byAddress, std::span<const Buffer* const> members) const;
-  // A member was made anew: the next binding by address writes the table again.
-  void forgetTable() { table_ = {}; }
-
  private:
   mutable Buffer table_;
+  mutable std::vector<VkDeviceAddress> addresses_;  // what table_ holds
 };
 
 }  // namespace hmb::vk

@@ -1,12 +1,14 @@
 #include <cstdint>
 #include <numeric>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "runtime/error.h"
 #include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/buffer_group.h"
 #include "runtime/vulkan/context.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"
@@ -118,6 +120,38 @@ TEST_F(BufferTest, TexelViewsAreMadeOnceAndRefusedPastTheDevicesLimit) {
               "buffer 'four records' holds 4 16-byte records; a texel view of it needs 1 to 3 "
               "(maxTexelBufferElements); --bind-by-address reads it as a storage buffer");
   EXPECT_EQ(small.validationErrors(), 0u);
+}
+
+// A group bound by address binds one table of its members' addresses, kept while they stay and
+// made again when a member is made anew, so a kernel never reads a freed buffer's address.
+TEST_F(BufferTest, AGroupsAddressTableFollowsItsMembers) {
+  if (!context().info().bufferDeviceAddress) GTEST_SKIP() << "no buffer device addresses";
+  vk::Buffer a(context(), 64, vk::MemoryUse::Device, "a"), b(context(), 64, vk::MemoryUse::Device, "b");
+  vk::BufferGroup group;
+  const auto tableOf = [&] {
+    const vk::Buffer* members[] = {&a, &b};
+    vk::Bindings bindings;
+    group.bind(bindings, 3, true, members);
+    EXPECT_EQ(bindings.size(), 1u);
+    EXPECT_EQ(bindings.front().index, 3u);
+    return bindings.front().buffer;
+  };
+  const vk::Buffer* table = tableOf();
+  EXPECT_EQ(table->download<uint64_t>(), (std::vector<uint64_t>{a.address(), b.address()}));
+  const VkBuffer first = table->handle();
+  EXPECT_EQ(tableOf()->handle(), first);  // the same members: the same table
+  // b made anew; the old one stays alive, so the new one cannot take its address.
+  vk::Buffer replaced(context(), 64, vk::MemoryUse::Device, "new b");
+  std::swap(b, replaced);
+  table = tableOf();
+  EXPECT_EQ(table->download<uint64_t>(), (std::vector<uint64_t>{a.address(), b.address()}));
+  // Plain bindings name the members themselves.
+  const vk::Buffer* members[] = {&a, &b};
+  vk::Bindings plain;
+  group.bind(plain, 3, false, members);
+  ASSERT_EQ(plain.size(), 2u);
+  EXPECT_EQ(plain[1].index, 4u);
+  EXPECT_EQ(plain[1].buffer, &b);
 }
 
 TEST_F(BufferTest, MoveLeavesTheSourceEmpty) {
