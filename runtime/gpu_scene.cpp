@@ -153,6 +153,8 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
                           vk::MemoryUse::Device, "instances");
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
+  shutterClips_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuShutterClip),
+                             vk::MemoryUse::Device, "shutter clip transforms");
   if (scene.hasDeformation()) {
     deformation_ = std::make_unique<DeformedVertices>(context, scene, meshVertexBase);
     previousVertices_ = vk::uploadedBuffer(context, vertices, "scene vertices (previous frame)");
@@ -197,6 +199,12 @@ GpuScene::FrameInputs GpuScene::frameInputs(const scene::Scene& scene, float t, 
     inputs.instances.push_back(g);
   }
   inputs.camera = frameCamera(scene, t, width, height);
+  const float mid = t - 0.5f * scene.settings.exposure, open = t - scene.settings.exposure;
+  const glm::mat4 viewProjMid = inputs.camera.projection * glm::inverse(cameraWorld(scene, mid));
+  const glm::mat4 viewProjOpen = inputs.camera.projection * glm::inverse(cameraWorld(scene, open));
+  for (const scene::Instance& instance : scene.instances)
+    inputs.shutterClips.push_back({viewProjMid * scene.worldMatrixAt(instance.node, mid),
+                                   viewProjOpen * scene.worldMatrixAt(instance.node, open)});
   gpu::GpuCamera& c = inputs.gpuCamera;
   c.viewProjCurrent = inputs.camera.viewProjCurrent;
   c.viewProjPrevious = inputs.camera.viewProjPrevious;
@@ -211,7 +219,10 @@ GpuScene::FrameInputs GpuScene::frameInputs(const scene::Scene& scene, float t, 
 
 void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
   const FrameInputs inputs = frameInputs(scene, t, width, height);
-  if (!inputs.instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(inputs.instances));
+  if (!inputs.instances.empty()) {
+    instances_.upload(std::span<const gpu::GpuInstance>(inputs.instances));
+    shutterClips_.upload(std::span<const gpu::GpuShutterClip>(inputs.shutterClips));
+  }
   cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&inputs.gpuCamera, 1));
   camera_ = inputs.camera;
   if (deformation_) {
@@ -223,8 +234,10 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
 }
 
 void GpuScene::recordFrameInputs(const FrameInputs& inputs, vk::FrameRecorder& frame) {
-  if (!inputs.instances.empty())
+  if (!inputs.instances.empty()) {
     frame.write(kFrameInputs, instances_, std::span<const gpu::GpuInstance>(inputs.instances));
+    frame.write(kFrameInputs, shutterClips_, std::span<const gpu::GpuShutterClip>(inputs.shutterClips));
+  }
   frame.write(kFrameInputs, cameraBuffer_, std::span<const gpu::GpuCamera>(&inputs.gpuCamera, 1));
   camera_ = inputs.camera;
 }

@@ -56,6 +56,8 @@ class GpuScene {
   // them. A deforming scene's deformation is still setFrame's.
   struct FrameInputs {
     std::vector<gpu::GpuInstance> instances;
+    // Per instance: object to clip space at mid-shutter and shutter open (the curved path).
+    std::vector<gpu::GpuShutterClip> shutterClips;
     gpu::GpuCamera gpuCamera{};
     FrameCamera camera;
   };
@@ -90,6 +92,8 @@ class GpuScene {
   const vk::Buffer& materials() const { return materials_; }
   const vk::Buffer& texels() const { return texels_; }
   const vk::Buffer& cameraBuffer() const { return cameraBuffer_; }
+  // gpu::GpuShutterClip per instance, written with the frame's transforms.
+  const vk::Buffer& shutterClips() const { return shutterClips_; }
   // Binds the scene as a shading kernel declares it (kernels/shared/scene_bindings.glsl) from
   // firstBinding on: vertices, instances, materials, texels and camera, or the table of their
   // addresses for a kernel that binds by address.
@@ -107,6 +111,7 @@ class GpuScene {
   vk::Buffer materials_;
   vk::Buffer texels_;
   vk::Buffer cameraBuffer_;
+  vk::Buffer shutterClips_;
   vk::BufferGroup shading_;  // the buffers above that shading kernels bind together
   std::unique_ptr<DeformedVertices> deformation_;
   vk::Buffer previousVertices_;

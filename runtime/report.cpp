@@ -120,7 +120,8 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
             {"exposure_s", p.exposure},
             {"fps", p.fps},
             {"seed", p.seed},
-            {"time_slices", p.timeSlices}};
+            {"time_slices", p.timeSlices},
+            {"motion_path", std::string(passes::motionPathName(p.motionPath))}};
     if (result.hybrid) {
       const passes::HybridSettings& h = result.hybrid->settings;
       json["edge_threshold"] = h.edgeThreshold;

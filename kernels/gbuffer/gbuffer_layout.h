@@ -34,4 +34,19 @@ struct ResolveParams {
 HMB_GPU_END
 HMB_CHECK_SIZE(ResolveParams, 16)
 
+// resolve_shutter_path: each pixel's screen path over the shutter, for the curved motion path.
+// One uvec2 per pixel (the "paths" buffer): x, y = where the pixel's point is at t, minus where
+// it is at mid-shutter (t - E/2) and at shutter open (t - E), in pixels (y down), as half
+// floats (x low, y high), each kept within the largest half as velocities are. A pixel without
+// a path (the background, a point behind the camera at either time) holds HMB_NO_SHUTTER_PATH
+// in both words: half-float NaNs, which readers take as "follow the straight velocity".
+#define HMB_SHUTTER_PATH_RESOLVE_BINDING_VISIBILITY 0
+#define HMB_SHUTTER_PATH_RESOLVE_BINDING_TRIANGLES 1
+#define HMB_SHUTTER_PATH_RESOLVE_BINDING_CLIP_CURRENT 2
+#define HMB_SHUTTER_PATH_RESOLVE_BINDING_CLIP_MID 3
+#define HMB_SHUTTER_PATH_RESOLVE_BINDING_CLIP_OPEN 4
+#define HMB_SHUTTER_PATH_RESOLVE_BINDING_PATHS 5
+#define HMB_SHUTTER_PATH_RESOLVE_BINDING_COUNT 6
+#define HMB_NO_SHUTTER_PATH 0xffffffffu
+
 #endif

@@ -54,6 +54,9 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
                           : sampleColor;
 }
 
+// The hybrid gathers along straight lines: its layers carry no shutter paths (NaN halves).
+uvec2 shutterPathAt(uint i) { return uvec2(0xffffffffu); }
+
 #include "../mblur/gather_samples.glsl"
 
 // The coverage form at a mask pixel (see above).

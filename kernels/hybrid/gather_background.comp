@@ -25,6 +25,9 @@ bool overlaid(uint i) { return mask[i] == HMB_MASK_REVEALED; }
 uvec4 blurSampleAt(uint i) { return overlaid(i) ? READ_LAYER_SAMPLE(revealed, i) : READ_LAYER_SAMPLE(raster, i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 
+// The hybrid gathers along straight lines: its layers carry no shutter paths (NaN halves).
+uvec2 shutterPathAt(uint i) { return uvec2(0xffffffffu); }
+
 #include "../mblur/gather_samples.glsl"
 
 void main() {

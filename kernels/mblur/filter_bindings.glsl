@@ -14,8 +14,12 @@
 layout(binding = HMB_FILTER_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
 layout(binding = HMB_FILTER_BINDING_NEIGHBOR_MAX) uniform utextureBuffer neighborMaxTexels;
 layout(std430, binding = HMB_FILTER_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
+// Each pixel's path over the shutter (gbuffer_layout.h: uvec2 per pixel), read where the
+// gather takes the curved path; any buffer when it does not.
+layout(binding = HMB_FILTER_BINDING_SHUTTER_PATHS) uniform utextureBuffer shutterPathTexels;
 
 uvec4 layerSampleAt(uint i) { return recordAt(sampleTexels, i); }
 vec4 neighborMaxAt(uint tile) { return floatRecordAt(neighborMaxTexels, tile); }
+uvec2 shutterPathAt(uint i) { return halfRecordAt(shutterPathTexels, i); }
 
 #endif

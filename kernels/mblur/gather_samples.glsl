@@ -19,13 +19,26 @@
 // by foregroundBoost when the pixel is deeper than the sample by at least SOFT_Z_EXTENT (the
 // paper's section 4: x30 for the adapted range).
 //
+// The curved path (HMB_GATHER_FLAG_CURVED_PATH, adapted range only): a pixel moving at least
+// kOwnPathShare of its tile's neighbour-max speed samples along the path its own surface
+// sweeps over it instead of the straight line along v_N. Its point's screen positions at t,
+// t - E/2 and t - E (gbuffer/resolve_shutter_path.comp: m = X - p(t - E/2), o = X - p(t - E))
+// give the quadratic p(t - uE) = X - u a - u^2 c with a = 4m - o, c = 2o - 4m. The point seen
+// at X at shutter time u is the one whose path passes X then: p = X + u a(p) + u^2 c(p), to
+// second order X + u a + u^2 (c + J_a a), where J_a a, the change of the path across it (what
+// a rotation adds: the points a pixel sees come from around the circle, not from its tangent),
+// is the exposure velocity at X + a minus X's, when X + a lies on the same surface (depths
+// within SOFT_Z_EXTENT). The path's length is kept within the tile size, as velocities are.
+//
 // Shared by the post-process gather (mblur/gather.comp) and the hybrid's gathers
 // (hybrid/gather_background.comp, hybrid/composite.comp). The including kernel declares
 // `params` (GatherParams) and defines, before including this file, what a sample reads:
 //   uvec4 blurSampleAt(uint i)  (pixel i's packed sample: colour, depth, velocity, one load;
 //                                shared/layer_layout.h),
 //   vec4 contributionOf(uint sampleIndex, vec4 sampleColor)  (the colour a sample adds),
-//   vec4 neighborMaxAt(uint tile)  (the tile's neighbour-max velocity).
+//   vec4 neighborMaxAt(uint tile)  (the tile's neighbour-max velocity),
+//   uvec2 shutterPathAt(uint i)  (pixel i's path, gbuffer/gbuffer_layout.h; read only with
+//                                 the curved path).
 #ifndef HMB_KERNELS_MBLUR_GATHER_SAMPLES_GLSL
 #define HMB_KERNELS_MBLUR_GATHER_SAMPLES_GLSL
 
@@ -39,7 +52,62 @@ struct GatherCentre {
   float speed;    // its own, clamped to the tile size
   float depth;    // sanitized
   float jitter;   // of its samples
+  bool ownPath;   // the curved path: samples at X + u pathLinear + u^2 pathQuadratic
+  vec2 pathLinear;
+  vec2 pathQuadratic;
 };
+
+// The curved path's a and c (see the top) from a pixel's path record; false without one.
+bool shutterPathTerms(uvec2 record, out vec2 a, out vec2 c) {
+  const vec2 m = unpackHalf2x16(record.x), o = unpackHalf2x16(record.y);
+  a = 4.0 * m - o;
+  c = 2.0 * o - 4.0 * m;
+  return !(any(isnan(m)) || any(isnan(o)) || any(isinf(m)) || any(isinf(o)));
+}
+
+// How nearly a sample's own path over the shutter passes the pixel centre x: 1 within one
+// pixel, 0 past two, linear between. Its quadratic path where it has one, else the straight
+// line back along its velocity v (pixels per exposure), followed as 8 segments.
+float pathReach(ivec2 samplePixel, uint sampleIndex, vec2 v, vec2 x) {
+  vec2 a, c;
+  if (!shutterPathTerms(shutterPathAt(sampleIndex), a, c)) {
+    a = v;
+    c = vec2(0.0);
+  }
+  const vec2 start = vec2(samplePixel) + 0.5;
+  float nearest = length(x - start);
+  vec2 previous = start;
+  for (uint j = 1u; j <= 8u; ++j) {
+    const float u = float(j) / 8.0;
+    const vec2 next = start - u * a - (u * u) * c;
+    const vec2 segment = next - previous;
+    const float along = clamp(dot(x - previous, segment) / max(dot(segment, segment), 1e-12), 0.0, 1.0);
+    nearest = min(nearest, length(x - (previous + along * segment)));
+    previous = next;
+  }
+  return clamp(2.0 - nearest, 0.0, 1.0);
+}
+
+// Sets centre.ownPath and its terms (see the top).
+void readOwnPath(uvec2 pixel, uint index, inout GatherCentre centre) {
+  centre.ownPath = false;
+  vec2 a, c;
+  if (!shutterPathTerms(shutterPathAt(index), a, c)) return;
+  if (length(a) + length(c) < kOwnPathShare * max(length(centre.dominant), kMinBlurPixels)) return;
+  const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.width, params.height);
+  const uvec4 there = blurSampleAt(uint(ahead.y) * params.width + uint(ahead.x));
+  vec2 k = c;
+  if (abs(sanitizeDepth(sampleDepth(there)) - centre.depth) < params.softZExtent) {
+    const vec2 change = (sampleVelocity(there) - sampleVelocity(blurSampleAt(index))) * params.velocityScale;
+    if (!(any(isnan(change)) || any(isinf(change)))) k += change;
+  }
+  const float reach = length(a) + length(k);  // bounds |u a + u^2 k| for u in [0, 1]
+  const float maxSpeed = float(params.tileSize);
+  const float scale = reach > maxSpeed ? maxSpeed / reach : 1.0;
+  centre.ownPath = true;
+  centre.pathLinear = a * scale;
+  centre.pathQuadratic = k * scale;
+}
 
 // Reads the pixel; false (centre.color alone set) when under kMinBlurPixels of blur reach its
 // whole neighbourhood, so that the gather leaves it its own colour.
@@ -52,6 +120,9 @@ bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
   gatherVelocity(sampleVelocity(own), params.velocityScale, float(params.tileSize), centre.speed);
   centre.depth = sanitizeDepth(sampleDepth(own));
   centre.jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
+  centre.ownPath = false;
+  const uint curved = HMB_GATHER_FLAG_ADAPTED_RANGE | HMB_GATHER_FLAG_CURVED_PATH;
+  if ((params.flags & curved) == curved) readOwnPath(pixel, index, centre);
   return true;
 }
 
@@ -63,6 +134,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
   const vec2 dominant = c.dominant;
   const float maxSpeed = float(params.tileSize);
   const bool adapted = (params.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u;
+  const bool curved = adapted && (params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
   float weightSum = 1.0 / max(centreSpeed, 0.5);
   vec4 sum = centreColor * weightSum;
 
@@ -76,12 +148,13 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
       if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
       t = mix(-1.0, 1.0, (float(i) + jitter + 0.5) / float(samples + 1u));
     }
-    const ivec2 samplePixel = nearestPixel(centre + t * dominant, params.width, params.height);
+    const vec2 along = c.ownPath ? t * c.pathLinear + (t * t) * c.pathQuadratic : t * dominant;
+    const ivec2 samplePixel = nearestPixel(centre + along, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
-    const float ds = length(vec2(samplePixel - ivec2(pixel)));
     const uvec4 packed = blurSampleAt(sampleIndex);
+    const float ds = length(vec2(samplePixel - ivec2(pixel)));
     float sampleSpeed;
-    gatherVelocity(sampleVelocity(packed), params.velocityScale, maxSpeed, sampleSpeed);
+    const vec2 sampleV = gatherVelocity(sampleVelocity(packed), params.velocityScale, maxSpeed, sampleSpeed);
     const float sampleDepth = sanitizeDepth(sampleDepth(packed));
 
     const float z = (centreDepth - sampleDepth) / params.softZExtent;
@@ -89,6 +162,10 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     float wb = clamp(1.0 - z, 0.0, 1.0) * cone(ds, centreSpeed);
     const float ws = cylinder(sampleSpeed, ds) * cylinder(centreSpeed, ds) * 2.0;
     if (centreDepth - sampleDepth >= params.softZExtent) wf *= params.foregroundBoost;
+    // Along curved paths a sample in front blurs over the pixel only if its own path crosses
+    // it: near it is not enough where motion turns (a spinning plate's corner sweeps an arc,
+    // not the tile's straight line).
+    if (curved && z > 0.0) wf *= mix(1.0, pathReach(samplePixel, sampleIndex, sampleV, centre), min(z, 1.0));
     wf *= foregroundScale;
     wb *= backgroundScale;
     const float w = wf + wb + ws;

@@ -35,11 +35,15 @@
 #define HMB_FILTER_BINDING_SAMPLES 0       // uvec4 per pixel: the layer's samples (shared/layer_layout.h)
 #define HMB_FILTER_BINDING_NEIGHBOR_MAX 1  // vec4 per tile
 #define HMB_FILTER_BINDING_OUTPUT 2        // vec4 per pixel
-#define HMB_FILTER_BINDING_COUNT 3
-#define HMB_FILTER_TEXEL_BUFFERS 2  // samples and neighbour-max, read as uniform texel buffers
+#define HMB_FILTER_BINDING_SHUTTER_PATHS 3 // uvec2 per pixel (gbuffer/gbuffer_layout.h)
+#define HMB_FILTER_BINDING_COUNT 4
+#define HMB_FILTER_TEXEL_BUFFERS 3  // samples, neighbour-max and paths, read as uniform texel buffers
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]
+// With the adapted range: a moving pixel samples along its own curved path over the shutter
+// (gather_samples.glsl) where the G-buffer has one (gbuffer/resolve_shutter_path.comp).
+#define HMB_GATHER_FLAG_CURVED_PATH 2u
 
 // Velocities are clamped to the tile size (so the 3x3 neighbourhood sees every pixel that can
 // reach a tile) and the largest tile size is bounded so per-lane loops stay short.
@@ -57,6 +61,10 @@ HMB_GPU_BEGIN
 // Blur under half a pixel moves no pixel centre: a gather whose neighbourhood moves less
 // returns the pixel's own colour, and the ray mask leaves tiles that move less alone.
 const float kMinBlurPixels = 0.5f;
+// The curved path: a pixel samples along its own path when that path is at least this share of
+// its tile's neighbour-max speed; slower pixels, which faster neighbours may cover, keep
+// McGuire's straight line along the neighbour-max velocity.
+const float kOwnPathShare = 0.5f;
 
 struct TileMaxParams {
   uint width;

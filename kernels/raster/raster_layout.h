@@ -33,6 +33,29 @@
 // are their own (GpuScene::previousVertices); false reads only the one vertex buffer.
 #define HMB_SPEC_TRANSFORM_DEFORMED 0
 
+// transform_shutter_path: clip positions at mid-shutter and shutter open (the curved path).
+#define HMB_SHUTTER_PATH_BINDING_VERTICES 0
+#define HMB_SHUTTER_PATH_BINDING_INSTANCE_VERTICES 1
+#define HMB_SHUTTER_PATH_BINDING_SHUTTER_CLIP 2        // GpuShutterClip per instance
+#define HMB_SHUTTER_PATH_BINDING_PREVIOUS_VERTICES 3   // as HMB_TRANSFORM_BINDING_PREVIOUS_VERTICES
+#define HMB_SHUTTER_PATH_BINDING_CLIP_MID 4            // vec4 per instance vertex
+#define HMB_SHUTTER_PATH_BINDING_CLIP_OPEN 5
+#define HMB_SHUTTER_PATH_BINDING_COUNT 6
+// Specialization constant: as HMB_SPEC_TRANSFORM_DEFORMED.
+#define HMB_SPEC_SHUTTER_PATH_DEFORMED 0
+
+HMB_GPU_BEGIN
+struct ShutterPathParams {
+  uint vertexCount;
+  // A deformed vertex at mid-shutter and shutter open, in frames before t: its position moves
+  // along the line from the frame's to the previous frame's (extrapolated past one frame).
+  float midFrames;
+  float openFrames;
+  uint pad0;
+};
+HMB_GPU_END
+HMB_CHECK_SIZE(ShutterPathParams, 16)
+
 // setup_triangles
 #define HMB_SETUP_BINDING_TRIANGLES 0
 #define HMB_SETUP_BINDING_INSTANCES 1

@@ -53,6 +53,14 @@ struct GpuInstance {
   uint pad0;
 };
 
+// Object to clip space at mid-shutter (t - E/2) and shutter open (t - E): with the frame time's
+// clip position, three points of each vertex's screen path, for the curved motion path
+// (raster/transform_shutter_path.comp). Only frames that use that path upload them.
+struct GpuShutterClip {
+  mat4 clipMid;
+  mat4 clipOpen;
+};
+
 #define HMB_NO_TEXTURE 0xffffffffu
 
 // Specialization constant of every shading kernel (shared/shading.glsl): false builds it
@@ -117,6 +125,7 @@ HMB_CHECK_SIZE(GpuTriangle, 16)
 HMB_CHECK_SIZE(GpuInstanceVertex, 8)
 HMB_CHECK_SIZE(GpuVertexShading, 32)
 HMB_CHECK_SIZE(GpuInstance, 208)
+HMB_CHECK_SIZE(GpuShutterClip, 128)
 HMB_CHECK_SIZE(GpuMaterial, 32)
 HMB_CHECK_SIZE(GpuCamera, 272)
 

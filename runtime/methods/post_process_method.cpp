@@ -18,10 +18,11 @@ class PostProcessMethod final : public FrameMethod {
   explicit PostProcessMethod(FrameResources& resources) : resources_(resources) {}
 
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
-    const GpuScene scene = prepareRasterFrame(resources_, request, result);
     const bool still = nothingMovesOnScreen(request);
-    passes::PostProcessStage& blur = resources_.postProcess;
     result.postprocess = postProcessSettingsFor(request.scene, request.settings);
+    const bool curved = !still && result.postprocess->motionPath == passes::MotionPath::Curved;
+    const GpuScene scene = prepareRasterFrame(resources_, request, result, curved);
+    passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);
     FramePlan blurPlan;
     blur.plan(blurPlan);
@@ -37,7 +38,9 @@ class PostProcessMethod final : public FrameMethod {
     const Beauty beauty = still ? gbufferBeauty(gbuffer) : linearBeauty(blurred);
     const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
       if (!still)
-        blur.record(frame, {&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), request.width, request.height},
+        blur.record(frame,
+                    {&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), request.width, request.height,
+                     gbuffer.shutterPaths()},
                     blurred);
     });
     collectRasterFrame(resources_, request, beauty, result);

@@ -37,11 +37,14 @@ io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& line
   return {request.width, request.height, {vec4Layer("", {"R", "G", "B", "A"}, linear.download<glm::vec4>())}};
 }
 
-GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result) {
+GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result,
+                            bool shutterPaths) {
   GpuScene gpuScene(resources.context, request.scene);
   gpuScene.setFrame(request.scene, request.frameTime, request.width, request.height);
   if (!request.settings.skipUnneededPasses) gpuScene.keepTexturePath();
-  resources.gbuffer.prepare(gpuScene, request.width, request.height);
+  std::optional<passes::GBufferStage::ShutterPaths> paths;
+  if (shutterPaths) paths = passes::GBufferStage::ShutterPaths{request.scene.settings.exposure, request.scene.settings.fps};
+  resources.gbuffer.prepare(gpuScene, request.width, request.height, paths);
   resources.gbuffer.plan(result.plan, gpuScene);
   return gpuScene;
 }

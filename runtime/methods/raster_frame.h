@@ -44,7 +44,9 @@ io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& line
 
 // The scene at the request's frame time, the texture path kept when every pass must run, the
 // G-buffer prepared and its passes entered in the plan.
-GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result);
+// shutterPaths: the G-buffer also holds each pixel's path over the shutter (curved motion path).
+GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result,
+                            bool shutterPaths = false);
 
 // With nothing moving on screen every velocity is 0: the gather returns each pixel's own colour
 // and the hybrid's mask is empty, so the blur's passes are left out.

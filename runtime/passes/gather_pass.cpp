@@ -38,7 +38,8 @@ std::unique_ptr<GatherFilter> makeMcGuireGather(const vk::Context& context) {
 
 void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
                         const vk::Buffer& output, const PostProcessSettings& settings) const {
-  const gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
+  gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
+  if (settings.motionPath == MotionPath::Curved && inputs.shutterPaths) params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
   frame.dispatch(kName, kernel_, filterBindings(inputs, neighborMax, output), params,
                  {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});
 }

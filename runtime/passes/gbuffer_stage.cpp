@@ -22,10 +22,32 @@ void GBufferStage::plan(FramePlan& plan, const GpuScene& scene) const {
   plan.run(TransformVerticesPass::kName);
   rasterize_.plan(plan);
   plan.run(ResolveGBufferPass::kName);
+  for (const char* name : {ShutterPathPass::kTransformName, ShutterPathPass::kResolveName}) {
+    if (shutterPaths_)
+      plan.run(name);
+    else
+      plan.skip(name, std::string(kStraightPathsReason));
+  }
 }
 
-void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t height) {
+void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t height,
+                           std::optional<ShutterPaths> shutterPaths) {
+  shutterPaths_ = shutterPaths;
   const uint32_t vertices = std::max(1u, scene.instanceVertexCount());
+  if (shutterPaths_) {
+    if (!shutterPath_) shutterPath_ = std::make_unique<ShutterPathPass>(context_);
+    if (vertices > pathVertexCapacity_) {
+      clipMid_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip mid-shutter");
+      clipOpen_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip shutter open");
+      pathVertexCapacity_ = vertices;
+    }
+    // Two pixels a 16-byte record: rounded up to whole records for the texel view.
+    const uint64_t pixels = (uint64_t(width) * height + 1) / 2 * 2;
+    if (pixels > pathPixelCapacity_) {
+      paths_ = vk::Buffer(context_, pixels * sizeof(glm::uvec2), vk::MemoryUse::Device, "shutter paths");
+      pathPixelCapacity_ = pixels;
+    }
+  }
   if (vertices > vertexCapacity_) {
     clipCurrent_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip current");
     clipPrevious_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip previous");
@@ -50,6 +72,11 @@ void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const
   const RasterInputs inputs{&scene.triangles(), &scene.instances(), &clipCurrent_, scene.triangleCount()};
   rasterize_.record(frame, inputs, visibility_, size_.width(), size_.height());
   resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_, layer_, size_.width(), size_.height());
+  if (shutterPaths_) {
+    shutterPath_->recordTransform(frame, scene, shutterPaths_->exposure, shutterPaths_->fps, clipMid_, clipOpen_);
+    shutterPath_->recordResolve(frame, scene, visibility_, clipCurrent_, clipMid_, clipOpen_, paths_, size_.width(),
+                                size_.height());
+  }
 }
 
 }  // namespace hmb::passes

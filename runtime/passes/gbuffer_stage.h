@@ -1,12 +1,16 @@
 // The G-buffer stage every method starts from: transform_vertices -> the compute rasterizer
-// (RasterizePass) -> resolve_gbuffer. Owns the per-frame buffers between those passes.
+// (RasterizePass) -> resolve_gbuffer, and for frames whose blur follows curved paths the
+// shutter-path passes (ShutterPathPass). Owns the per-frame buffers between those passes.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
+#include "runtime/passes/shutter_path_pass.h"
 #include "runtime/passes/transform_vertices_pass.h"
 #include "runtime/vulkan/buffer.h"
 
@@ -24,8 +28,15 @@ class GBufferStage {
   // Deforms the scene's skinned and morphing meshes first when it has any.
   void plan(FramePlan& plan, const GpuScene& scene) const;
 
+  // Whether the frame's blur follows curved paths: the stage then also writes each pixel's
+  // path over the shutter [t - E, t] (shutterPaths()). E: the scene's exposure, fps its rate.
+  struct ShutterPaths {
+    float exposure = 0.0f;
+    float fps = 0.0f;
+  };
   // Sizes the buffers for this scene and resolution (reuses them when they fit).
-  void prepare(const GpuScene& scene, uint32_t width, uint32_t height);
+  void prepare(const GpuScene& scene, uint32_t width, uint32_t height,
+               std::optional<ShutterPaths> shutterPaths = std::nullopt);
   void record(vk::FrameRecorder& frame, const GpuScene& scene) const;
 
   const RasterizePass& rasterizer() const { return rasterize_; }
@@ -35,6 +46,11 @@ class GBufferStage {
   const vk::Buffer& vertexShading() const { return vertexShading_; }  // gpu::GpuVertexShading per instance vertex
   const vk::Buffer& visibility() const { return visibility_; }
   const ImageLayer& layer() const { return layer_; }
+  // vec4 per instance vertex at mid-shutter and shutter open (frames with paths only).
+  const vk::Buffer& clipMid() const { return clipMid_; }
+  const vk::Buffer& clipOpen() const { return clipOpen_; }
+  // uvec2 per pixel (kernels/gbuffer/gbuffer_layout.h), or null when the frame has no paths.
+  const vk::Buffer* shutterPaths() const { return shutterPaths_ ? &paths_ : nullptr; }
   // Bytes per pixel of the per-pixel buffers: visibility, the layer's samples and surfaces.
   double bytesPerPixel(uint32_t width, uint32_t height) const {
     return double(visibility_.size() + layer_.bytes()) / (double(width) * height);
@@ -45,9 +61,13 @@ class GBufferStage {
   TransformVerticesPass transform_;
   RasterizePass rasterize_;
   ResolveGBufferPass resolve_;
+  std::unique_ptr<ShutterPathPass> shutterPath_;  // made for the first frame that needs it
+  std::optional<ShutterPaths> shutterPaths_;
   ImageSize size_;
-  uint32_t vertexCapacity_ = 0;
+  uint32_t vertexCapacity_ = 0, pathVertexCapacity_ = 0;
+  uint64_t pathPixelCapacity_ = 0;
   vk::Buffer clipCurrent_, clipPrevious_, vertexShading_;
+  vk::Buffer clipMid_, clipOpen_, paths_;
   vk::Buffer visibility_;
   ImageLayer layer_;
 };

@@ -38,6 +38,9 @@ struct MotionBlurInputs {
   const vk::Buffer* surfaces = nullptr;
   uint32_t width = 0;
   uint32_t height = 0;
+  // Each pixel's path over the shutter (kernels/gbuffer/gbuffer_layout.h), for the curved
+  // motion path; null: the gathers follow straight lines.
+  const vk::Buffer* shutterPaths = nullptr;
 };
 
 // What every filter's kernel binds (kernels/mblur/filter_bindings.glsl).

@@ -17,6 +17,7 @@ settings::Names<PostProcessFilter> filterNames() {
 
 const settings::Names<GatherRange> kRangeNames = {{GatherRange::Centered, "centered"},
                                                  {GatherRange::Adapted, "adapted"}};
+const settings::Names<MotionPath> kMotionPathNames = {{MotionPath::Linear, "linear"}, {MotionPath::Curved, "curved"}};
 
 // Tile sizes: a filter's default in pixels of 720 lines, as the command line says it.
 std::string filterTileSizes() {
@@ -63,6 +64,10 @@ settings::Table<Choices, Settings> makeTable() {
              "K: the shutter cut into K slices, each rasterized at its close and blurred over its own span; the "
              "frame is their mean (K times the work)",
              &Choices::timeSlices, &Settings::timeSlices, Range<uint32_t>{1, kMaxTimeSlices}),
+      named("motion-path", "postprocess",
+            "linear: straight along the tiles' velocity (the paper); curved: moving pixels follow their own path "
+            "through t, t - E/2 and t - E (adapted range)",
+            &Choices::motionPath, &Settings::motionPath, kMotionPathNames),
   };
 }
 
@@ -106,6 +111,9 @@ void validate(const PostProcessSettings& s) {
           "exposure must be finite and >= 0 s (got " + std::to_string(s.exposure) + ")");
   require(std::isfinite(s.fps) && s.fps > 0.0f, "fps must be finite and > 0 (got " + std::to_string(s.fps) + ")");
   require(std::isfinite(s.exposure * s.fps), "exposure * fps overflows");
+  require(s.motionPath == MotionPath::Linear ||
+              (s.filter == PostProcessFilter::McGuire && s.effectiveRange() == GatherRange::Adapted),
+          "the curved motion path needs the mcguire filter over the adapted range");
   require(std::isfinite(s.jimenezTileJitter) && s.jimenezTileJitter >= 0.0f && s.jimenezTileJitter <= 1.0f,
           "Jimenez tile jitter must be in [0, 1] tiles (got " + std::to_string(s.jimenezTileJitter) + ")");
 }
@@ -113,6 +121,8 @@ void validate(const PostProcessSettings& s) {
 std::string_view filterName(PostProcessFilter filter) { return describe(filter).name; }
 
 std::string_view rangeName(GatherRange range) { return settings::nameOf(kRangeNames, range); }
+
+std::string_view motionPathName(MotionPath path) { return settings::nameOf(kMotionPathNames, path); }
 
 TileGrid tileGridFor(uint32_t width, uint32_t height, uint32_t tileSize) {
   return {(width + tileSize - 1) / tileSize, (height + tileSize - 1) / tileSize};

@@ -18,6 +18,14 @@ namespace hmb::passes {
 
 inline constexpr uint32_t kMaxTimeSlices = 64;
 
+// The screen path a moving pixel's gather follows.
+enum class MotionPath {
+  Linear,  // McGuire's: straight, along the tile's neighbour-max velocity (the paper)
+  Curved,  // a pixel moving about as fast as its neighbourhood samples along its own quadratic
+           // path through its points at t, t - E/2 and t - E (mblur/gather_samples.glsl);
+           // adapted range only; the G-buffer stage then computes those points
+};
+
 struct PostProcessSettings {
   PostProcessFilter filter = PostProcessFilter::McGuire;
   GatherRange range = GatherRange::Adapted;  // for filters that have no onlyRange
@@ -42,6 +50,7 @@ struct PostProcessSettings {
   // blur lengths K times shorter (Renderer::render). 1: the paper's one G-buffer. The
   // renderer's settings of a sliced frame hold the slice's exposure.
   uint32_t timeSlices = 1;
+  MotionPath motionPath = MotionPath::Linear;
 
   // exposure, fps and SOFT_Z_EXTENT from a scene's settings (after scene::deriveDefaults), the
   // rest at their defaults.
@@ -70,6 +79,7 @@ struct PostProcessChoices {
   std::optional<float> softZExtent;
   std::optional<uint32_t> seed;
   std::optional<uint32_t> timeSlices;
+  std::optional<MotionPath> motionPath;
 };
 
 // Every post-process setting a user can choose, each described once (runtime/setting.h).
@@ -81,6 +91,7 @@ void validate(const PostProcessSettings& settings);
 
 std::string_view filterName(PostProcessFilter filter);  // "mcguire" | "jimenez"
 std::string_view rangeName(GatherRange range);          // "centered" | "adapted"
+std::string_view motionPathName(MotionPath path);       // "linear" | "curved"
 
 // G-buffer velocity (pixels per frame) -> a gather's velocity for a range: E * fps, halved
 // when centred (McGuire's half velocities).

@@ -14,7 +14,9 @@ vk::Bindings filterBindings(const MotionBlurInputs& inputs, const vk::Buffer& ne
                             const vk::Buffer& output) {
   return {{HMB_FILTER_BINDING_SAMPLES, inputs.samples},
           {HMB_FILTER_BINDING_NEIGHBOR_MAX, &neighborMax},
-          {HMB_FILTER_BINDING_OUTPUT, &output}};
+          {HMB_FILTER_BINDING_OUTPUT, &output},
+          // Read only along curved paths; any texel buffer stands in otherwise.
+          {HMB_FILTER_BINDING_SHUTTER_PATHS, inputs.shutterPaths ? inputs.shutterPaths : inputs.samples}};
 }
 
 PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcessSettings& settings)

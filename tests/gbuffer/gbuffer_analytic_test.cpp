@@ -7,9 +7,11 @@
 #include <numbers>
 
 #include <glm/glm.hpp>
+#include <glm/packing.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "kernels/gbuffer/gbuffer_layout.h"
 #include "runtime/gpu_scene.h"
 #include "scenes/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
@@ -176,6 +178,50 @@ TEST_F(GBufferAnalyticTest, VelocityOfARotatingTiltedPlaneUnderAMovingCameraIsPe
     }
   EXPECT_GT(checked, size_t(kWidth) * kHeight / 4);
   EXPECT_GT(largest, 1.0) << "the motion should be large enough to tell interpolation schemes apart";
+}
+
+// The curved path's records (resolve_shutter_path): each pixel's surface point re-projected at
+// mid-shutter and shutter open, object and camera both moving, in double precision; the
+// background has none.
+TEST_F(GBufferAnalyticTest, ShutterPathsOfARotatingTiltedPlaneUnderAMovingCameraAreExact) {
+  PlaneScene plane = planeScene(1.0f, glm::vec3(0.3f, 0.2f, 1.0f), 6.0f, 0.9f);
+  plane.scene.settings.exposure = 1.5f / kFps;  // past the previous frame: the path is not the velocity's
+  const scene::Scene& s = plane.scene;
+  const FrameCamera camera = frameCamera(s, kTime, kWidth, kHeight);
+  const GBufferReadback g = renderGBuffer(context(), s, kTime, kWidth, kHeight, VisibilityScheme::Int64Atomics, true);
+  ASSERT_EQ(g.shutterPaths.size(), size_t(kWidth) * kHeight);
+  const float tMid = kTime - 0.5f * s.settings.exposure, tOpen = kTime - s.settings.exposure;
+  const glm::dmat4 worldMid = glm::dmat4(s.worldMatrixAt(s.instances[0].node, tMid));
+  const glm::dmat4 worldOpen = glm::dmat4(s.worldMatrixAt(s.instances[0].node, tOpen));
+  const glm::mat4 viewProjMid = frameCamera(s, tMid, kWidth, kHeight).viewProjCurrent;
+  const glm::mat4 viewProjOpen = frameCamera(s, tOpen, kWidth, kHeight).viewProjCurrent;
+  size_t checked = 0, background = 0;
+  double bend = 0.0;
+  for (uint32_t y = 0; y < kHeight; ++y)
+    for (uint32_t x = 0; x < kWidth; ++x) {
+      const glm::uvec2 record = g.shutterPaths[size_t(y) * kWidth + x];
+      if (g.visibility.entries[size_t(y) * kWidth + x].x == HMB_VIS_EMPTY) {
+        EXPECT_EQ(record, glm::uvec2(HMB_NO_SHUTTER_PATH)) << x << "," << y;
+        ++background;
+        continue;
+      }
+      if (!interior(s, camera, x, y)) continue;
+      glm::dvec3 objectPoint, worldPoint, worldNormal;
+      ASSERT_TRUE(hitPlane(s, camera, x, y, objectPoint, worldPoint, worldNormal));
+      const glm::dvec2 centre(x + 0.5, y + 0.5);
+      const glm::dvec2 fromMid = centre - project(viewProjMid, glm::dvec3(worldMid * glm::dvec4(objectPoint, 1.0)));
+      const glm::dvec2 fromOpen = centre - project(viewProjOpen, glm::dvec3(worldOpen * glm::dvec4(objectPoint, 1.0)));
+      const glm::vec2 mid = glm::unpackHalf2x16(record.x), open = glm::unpackHalf2x16(record.y);
+      for (int c = 0; c < 2; ++c) {
+        EXPECT_NEAR(mid[c], fromMid[c], 1e-2 + 2e-3 * std::abs(fromMid[c])) << x << "," << y;
+        EXPECT_NEAR(open[c], fromOpen[c], 1e-2 + 2e-3 * std::abs(fromOpen[c])) << x << "," << y;
+      }
+      bend = std::max(bend, glm::length(fromMid - 0.5 * fromOpen));
+      ++checked;
+    }
+  EXPECT_GT(checked, size_t(kWidth) * kHeight / 4);
+  EXPECT_GT(background, 0u);
+  EXPECT_GT(bend, 1.0) << "the path should bend enough to tell it from a straight line";
 }
 
 TEST_F(GBufferAnalyticTest, BackgroundIsEmptyFarAndStill) {

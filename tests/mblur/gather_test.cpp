@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "kernels/gbuffer/gbuffer_layout.h"
 #include "tests/mblur/mblur_harness.h"
 #include "tests/mblur/mblur_reference.h"
 #include "tests/support/vulkan_test.h"
@@ -116,6 +117,81 @@ TEST_F(MblurGatherTest, AdversarialInputsStayFiniteAndMatchTheReference) {
     s.softZExtent = 1e-30f;  // every depth difference saturates
     expectGatherMatches(layer, s);
   }
+}
+
+// Paths over the shutter for a layer: each pixel's straight motion bent by a random offset at
+// mid-shutter, and among them the adversarial records: none (NaN halves), infinite and the
+// largest halves, zero, a path that turns back on itself.
+void addShutterPaths(Layer& layer, std::mt19937& rng, float exposureFrames) {
+  std::uniform_real_distribution<float> bend(-6.0f, 6.0f);
+  std::uniform_int_distribution<int> pick(0, 19);
+  layer.shutterPaths.resize(layer.velocity.size());
+  for (size_t i = 0; i < layer.velocity.size(); ++i) {
+    const glm::vec2 open = layer.velocity[i] * exposureFrames;
+    glm::uvec2 record = packShutterPath(0.5f * open + glm::vec2(bend(rng), bend(rng)), open);
+    switch (pick(rng)) {
+      case 0: record = glm::uvec2(HMB_NO_SHUTTER_PATH); break;
+      case 1: record = glm::uvec2(0x7c007c00u, 0x00007c00u); break;  // +inf halves
+      case 2: record = packShutterPath({65504.0f, -65504.0f}, {65504.0f, 65504.0f}); break;
+      case 3: record = glm::uvec2(0u); break;
+      case 4: record = packShutterPath(open, glm::vec2(0.0f)); break;  // out and back
+      default: break;
+    }
+    layer.shutterPaths[i] = record;
+  }
+}
+
+PostProcessSettings curvedSettings(uint32_t tileSize, uint32_t samples = 15) {
+  PostProcessSettings s = settingsFor(GatherRange::Adapted, tileSize, samples);
+  s.motionPath = passes::MotionPath::Curved;
+  return s;
+}
+
+TEST_F(MblurGatherTest, CurvedPathsMatchTheReference) {
+  std::mt19937 rng(33);
+  const std::pair<uint32_t, uint32_t> sizes[] = {{1, 1}, {3, 5}, {97, 61}};
+  for (auto [width, height] : sizes)
+    for (uint32_t tileSize : {8u, 40u}) {
+      SCOPED_TRACE(testing::Message() << width << "x" << height << " m " << tileSize);
+      Layer layer = randomLayer(width, height, rng);
+      const PostProcessSettings s = curvedSettings(tileSize);
+      addShutterPaths(layer, rng, s.exposure * s.fps);
+      expectGatherMatches(layer, s);
+      if (width * height < 100) continue;
+      // The paths change the image: the curved gather is not the straight one.
+      PostProcessSettings linear = s;
+      linear.motionPath = passes::MotionPath::Linear;
+      const auto tiles = referenceTiles(layer, s);
+      const auto curved = runGather(context(), layer, tiles, s), straight = runGather(context(), layer, tiles, linear);
+      size_t differ = 0;
+      for (size_t i = 0; i < curved.size(); ++i) differ += maxAbsDifference(curved[i], straight[i]) > 1e-3f;
+      EXPECT_GT(differ, curved.size() / 10);
+    }
+}
+
+// The adversarial layer of the straight gather, with adversarial paths: still finite and equal
+// to the reference; and without paths the curved setting gathers exactly as the straight one.
+TEST_F(MblurGatherTest, CurvedPathsOnAdversarialInputsStayFiniteAndMatchTheReference) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  std::mt19937 rng(17);
+  Layer layer = randomLayer(37, 29, rng);
+  const float depths[] = {1e-6f, 1e30f, 1.0f, nan, inf, -1.0f, 0.0f};
+  const glm::vec2 velocities[] = {{1e30f, -1e30f}, {nan, 0.0f}, {0.0f, inf}, {0.2f, 0.1f}, {40.0f, 0.0f}};
+  std::uniform_int_distribution<size_t> pick(0, 1000);
+  for (size_t i = 0; i < layer.color.size(); ++i) {
+    if (pick(rng) % 3 == 0) layer.normalDepth[i].w = depths[pick(rng) % std::size(depths)];
+    if (pick(rng) % 3 == 0) layer.velocity[i] = velocities[pick(rng) % std::size(velocities)];
+  }
+  PostProcessSettings s = curvedSettings(6);
+  const Layer straight = layer;
+  addShutterPaths(layer, rng, s.exposure * s.fps);
+  expectGatherMatches(layer, s);
+  s.softZExtent = 1e-30f;
+  expectGatherMatches(layer, s);
+  const auto tiles = referenceTiles(straight, s);
+  PostProcessSettings linear = s;
+  linear.motionPath = passes::MotionPath::Linear;
+  EXPECT_EQ(runGather(context(), straight, tiles, s), runGather(context(), straight, tiles, linear));
 }
 
 TEST_F(MblurGatherTest, StillAndSubPixelMotionLeaveTheImageUnchanged) {

@@ -38,14 +38,22 @@ std::vector<T> downloadFirst(const vk::Buffer& buffer, size_t count) {
 
 // The layer packed as the resolve packs it (kernels/shared/layer_layout.h).
 struct LayerBuffers {
-  vk::Buffer samples, surfaces;
-  passes::MotionBlurInputs inputs() const { return {&samples, &surfaces, width, height}; }
+  vk::Buffer samples, surfaces, shutterPaths;
+  passes::MotionBlurInputs inputs() const {
+    return {&samples, &surfaces, width, height, shutterPaths.handle() ? &shutterPaths : nullptr};
+  }
   uint32_t width = 0, height = 0;
 };
 
 LayerBuffers upload(vk::Context& context, const Layer& layer) {
-  return {deviceBuffer(context, packedSamples(layer), "test samples"),
-          deviceBuffer(context, packedSurfaces(layer), "test surfaces"), layer.width, layer.height};
+  LayerBuffers buffers{deviceBuffer(context, packedSamples(layer), "test samples"),
+                       deviceBuffer(context, packedSurfaces(layer), "test surfaces"), {}, layer.width, layer.height};
+  if (!layer.shutterPaths.empty()) {
+    std::vector<glm::uvec2> paths = layer.shutterPaths;
+    paths.resize((paths.size() + 1) / 2 * 2);  // whole 16-byte records for the texel view
+    buffers.shutterPaths = deviceBuffer(context, paths, "test shutter paths");
+  }
+  return buffers;
 }
 
 }  // namespace

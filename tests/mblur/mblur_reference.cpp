@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/packing.hpp>
+
 #include "kernels/mblur/mblur_layout.h"
 #include "kernels/shared/layer_layout.h"
 
@@ -22,6 +24,38 @@ std::vector<glm::uvec4> packedSamples(const Layer& layer) {
   for (size_t i = 0; i < samples.size(); ++i)
     samples[i] = gpu::packLayerSample(glm::vec3(layer.color[i]), layer.normalDepth[i].w, layer.velocity[i]);
   return samples;
+}
+
+glm::uvec2 packShutterPath(glm::vec2 fromMid, glm::vec2 fromOpen) {
+  return {glm::packHalf2x16(fromMid), glm::packHalf2x16(fromOpen)};
+}
+
+bool shutterPathTerms(glm::uvec2 record, glm::vec2& a, glm::vec2& c) {
+  const glm::vec2 m = glm::unpackHalf2x16(record.x), o = glm::unpackHalf2x16(record.y);
+  a = 4.0f * m - o;
+  c = 2.0f * o - 4.0f * m;
+  const auto finite = [](glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); };
+  return finite(m) && finite(o);
+}
+
+float pathReach(glm::ivec2 samplePixel, glm::uvec2 sampleRecord, glm::vec2 v, glm::vec2 x) {
+  glm::vec2 a, c;
+  if (!shutterPathTerms(sampleRecord, a, c)) {
+    a = v;
+    c = glm::vec2(0.0f);
+  }
+  const glm::vec2 start = glm::vec2(samplePixel) + 0.5f;
+  float nearest = length2(x - start);
+  glm::vec2 previous = start;
+  for (uint32_t j = 1; j <= 8; ++j) {
+    const float u = float(j) / 8.0f;
+    const glm::vec2 next = start - u * a - (u * u) * c;
+    const glm::vec2 segment = next - previous;
+    const float along = std::clamp(glm::dot(x - previous, segment) / std::max(glm::dot(segment, segment), 1e-12f), 0.0f, 1.0f);
+    nearest = std::min(nearest, length2(x - (previous + along * segment)));
+    previous = next;
+  }
+  return std::clamp(2.0f - nearest, 0.0f, 1.0f);
 }
 
 Layer stored(const Layer& layer) {
@@ -152,6 +186,8 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
   const bool adapted = settings.range == passes::GatherRange::Adapted;
   const float foregroundBoost = settings.effectiveForegroundBoost();
   const float maxSpeed = float(m);
+  const bool curved =
+      adapted && settings.motionPath == passes::MotionPath::Curved && !layer.shutterPaths.empty();
   std::vector<glm::vec4> out(size_t(width) * height);
   for (uint32_t py = 0; py < height; ++py)
     for (uint32_t px = 0; px < width; ++px) {
@@ -173,21 +209,43 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
       glm::vec4 sum = centreColor * weightSum;
       const float jitter = unitFromHash(mblurHash(px, py, settings.seed));
       const glm::vec2 centre(float(px) + 0.5f, float(py) + 0.5f);
+      // The pixel's own path (readOwnPath).
+      bool ownPath = false;
+      glm::vec2 pathLinear(0.0f), pathQuadratic(0.0f);
+      glm::vec2 a, c;
+      if (curved && shutterPathTerms(layer.shutterPaths[index], a, c) &&
+          !(length2(a) + length2(c) < gpu::kOwnPathShare * std::max(length2(glm::vec2(dominant)), gpu::kMinBlurPixels))) {
+        const glm::ivec2 ahead = nearestPixel(centre + a, width, height);
+        const uint32_t aheadIndex = uint32_t(ahead.y) * width + uint32_t(ahead.x);
+        glm::vec2 k = c;
+        if (std::abs(sanitizeDepth(layer.normalDepth[aheadIndex].w) - centreDepth) < settings.softZExtent) {
+          const glm::vec2 change = (layer.velocity[aheadIndex] - layer.velocity[index]) * velocityScale;
+          if (std::isfinite(change.x) && std::isfinite(change.y)) k += change;
+        }
+        const float reach = length2(a) + length2(k);
+        const float scale = reach > maxSpeed ? maxSpeed / reach : 1.0f;
+        ownPath = true;
+        pathLinear = a * scale;
+        pathQuadratic = k * scale;
+      }
       const uint32_t samples = settings.samples;
       for (uint32_t i = 0; i < samples; ++i) {
         const std::optional<float> parameter = gatherSampleParameter(i, samples, jitter, adapted);
         if (!parameter) continue;
         const float t = *parameter;
-        const glm::ivec2 s =
-            nearestPixel({centre.x + t * dominant.x, centre.y + t * dominant.y}, width, height);
+        const glm::vec2 along = ownPath ? t * pathLinear + (t * t) * pathQuadratic : t * glm::vec2(dominant);
+        const glm::ivec2 s = nearestPixel(centre + along, width, height);
         const uint32_t sampleIndex = uint32_t(s.y) * width + uint32_t(s.x);
         const float ds = length2(glm::vec2(float(s.x - int(px)), float(s.y - int(py))));
         float sampleSpeed;
-        gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, sampleSpeed);
+        const glm::vec2 sampleV = gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, sampleSpeed);
         const float sampleDepth = sanitizeDepth(layer.normalDepth[sampleIndex].w);
         AppendixWeights w =
             appendixWeights(centreDepth, sampleDepth, centreSpeed, sampleSpeed, ds, settings.softZExtent);
         if (centreDepth - sampleDepth >= settings.softZExtent) w.foreground *= foregroundBoost;
+        const float z = (centreDepth - sampleDepth) / settings.softZExtent;
+        if (curved && z > 0.0f)
+          w.foreground *= glm::mix(1.0f, pathReach(s, layer.shutterPaths[sampleIndex], sampleV, centre), std::min(z, 1.0f));
         w.foreground *= foregroundScale;
         w.background *= backgroundScale;
         const float weight = w.foreground + w.background + w.simultaneous;

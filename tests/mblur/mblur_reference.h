@@ -21,7 +21,13 @@ struct Layer {
   std::vector<glm::vec4> color;
   std::vector<glm::vec4> normalDepth;  // w: camera-space depth
   std::vector<glm::vec2> velocity;     // pixels per frame
+  // Each pixel's path over the shutter as the G-buffer holds it (kernels/gbuffer/gbuffer_layout.h:
+  // half floats of X - p(t - E/2) and X - p(t - E)); empty: none, the gathers go straight.
+  std::vector<glm::uvec2> shutterPaths;
 };
+
+// A path record: X - p(t - E/2) and X - p(t - E) as half floats (non-finite ones as given).
+glm::uvec2 packShutterPath(glm::vec2 fromMid, glm::vec2 fromOpen);
 
 // The layer as the gathers read it: every pixel through the packed sample the device holds
 // (kernels/shared/layer_layout.h): colour at 13 mantissa bits, alpha 1, velocity in half floats.
@@ -63,7 +69,13 @@ std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& velocity, uint32_t 
 // neighbor_max.comp
 std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes::TileGrid grid,
                                    uint32_t neighborhood);
-// The McGuire gather (kernels/mblur/gather_samples.glsl, the McGuire fields of settings); mask:
+// gather_samples.glsl's curved path: a record's quadratic terms (false without a path), how
+// nearly a sample's path passes x, and a pixel's own path (false where it keeps the straight
+// line).
+bool shutterPathTerms(glm::uvec2 record, glm::vec2& a, glm::vec2& c);
+float pathReach(glm::ivec2 samplePixel, glm::uvec2 sampleRecord, glm::vec2 v, glm::vec2 x);
+// The McGuire gather (kernels/mblur/gather_samples.glsl, the McGuire fields of settings, its
+// curved path where settings ask for it and the layer has paths); mask:
 // width * height or nullptr (the weights composite's boosts inside it, composite.comp).
 std::vector<glm::vec4> gather(const Layer& layer, const std::vector<glm::vec4>& neighborMax,
                               const std::vector<uint32_t>* mask, const passes::PostProcessSettings& settings,

@@ -50,6 +50,8 @@ TEST(MblurSettingsTest, AbsurdValuesThrowOneLineErrors) {
       [=](auto& s) { s.foregroundBoost = nan; },
       [=](auto& s) { s.foregroundBoost = inf; },
       [](auto& s) { s.jimenezTileJitter = 2.0f; },
+      [](auto& s) { s.motionPath = passes::MotionPath::Curved, s.range = passes::GatherRange::Centered; },
+      [](auto& s) { s.motionPath = passes::MotionPath::Curved, s.filter = passes::PostProcessFilter::Jimenez; },
   };
   for (size_t i = 0; i < absurd.size(); ++i) {
     PostProcessSettings s;

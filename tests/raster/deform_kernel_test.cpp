@@ -14,6 +14,7 @@
 
 #include "kernels/shared/scene_layout.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/passes/gbuffer_stage.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
@@ -180,6 +181,41 @@ TEST_F(DeformKernelTest, EqualsTheHostOnRandomAndAdversarialVertices) {
   EXPECT_EQ(checked, 2u * (700 + 500 + 400 + 300));
   // The two times differ: the kernel did not write one slot twice.
   EXPECT_NE(current[0].position, previous[0].position);
+}
+
+// The curved path's vertex kernel (raster/transform_shutter_path.comp) on the same scene: a
+// deformed vertex at mid-shutter and shutter open lies on the line from its frame position to
+// its previous-frame one (past it when the shutter is longer than a frame), a rigid one at its
+// mesh position, each through its instance's clip transforms at those times.
+TEST_F(DeformKernelTest, ShutterPathPositionsFollowTheDeformationBetweenItsTwoTimes) {
+  scene::Scene scene = randomDeformingScene();
+  scene.settings.exposure = 1.5f / scene.settings.fps;
+  GpuScene gpu(context(), scene);
+  gpu.setFrame(scene, kTime, 64, 64);
+  passes::GBufferStage stage(context(), passes::defaultVisibilityScheme(context().info()));
+  stage.prepare(gpu, 64, 64, passes::GBufferStage::ShutterPaths{scene.settings.exposure, scene.settings.fps});
+  vk::FrameRecorder frame(context());
+  passes::submitUntilRasterFits(frame, stage.rasterizer(), [&](vk::FrameRecorder& f) { stage.record(f, gpu); });
+  const std::vector<gpu::GpuVertex> current = gpu.vertices().download<gpu::GpuVertex>();
+  const std::vector<gpu::GpuVertex> previous = gpu.previousVertices().download<gpu::GpuVertex>();
+  const std::vector<gpu::GpuInstanceVertex> instanceVertices = gpu.instanceVertices().download<gpu::GpuInstanceVertex>();
+  const std::vector<gpu::GpuShutterClip> clips = gpu.shutterClips().download<gpu::GpuShutterClip>();
+  const std::vector<glm::vec4> mid = stage.clipMid().download<glm::vec4>(), open = stage.clipOpen().download<glm::vec4>();
+  const float openFrames = scene.settings.exposure * scene.settings.fps;
+  uint32_t deformed = 0;
+  for (uint32_t i = 0; i < gpu.instanceVertexCount(); ++i) {
+    const gpu::GpuInstanceVertex iv = instanceVertices[i];
+    const bool deforms = scene.instances[iv.instance].deforms();
+    const glm::vec4 p = current[iv.meshVertex].position, q = previous[iv.meshVertex].position;
+    const glm::vec4 atMid = deforms ? glm::mix(p, q, 0.5f * openFrames) : p;
+    const glm::vec4 atOpen = deforms ? glm::mix(p, q, openFrames) : p;
+    const glm::vec4 expectedMid = clips[iv.instance].clipMid * atMid, expectedOpen = clips[iv.instance].clipOpen * atOpen;
+    const float scale = 1.0f + glm::length(expectedMid) + glm::length(expectedOpen);
+    ASSERT_LE(glm::length(mid[i] - expectedMid), 1e-5f * scale) << "vertex " << i;
+    ASSERT_LE(glm::length(open[i] - expectedOpen), 1e-5f * scale) << "vertex " << i;
+    deformed += deforms && p != q;
+  }
+  EXPECT_GT(deformed, 1000u);
 }
 
 // The host twin's own promises: identity joints and zero weights give the rest vertex back;

@@ -1,5 +1,7 @@
 #include "tests/raster/raster_harness.h"
 
+#include <optional>
+
 #include <algorithm>
 #include <cstring>
 
@@ -81,11 +83,13 @@ std::vector<oracle::OracleTriangle> oracleTriangles(const ClipTriangles& input) 
 }
 
 GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
-                              uint32_t height, passes::VisibilityScheme scheme) {
+                              uint32_t height, passes::VisibilityScheme scheme, bool shutterPaths) {
   GpuScene gpuScene(context, scene);
   gpuScene.setFrame(scene, frameTime, width, height);
   passes::GBufferStage stage(context, scheme);
-  stage.prepare(gpuScene, width, height);
+  std::optional<passes::GBufferStage::ShutterPaths> paths;
+  if (shutterPaths) paths = passes::GBufferStage::ShutterPaths{scene.settings.exposure, scene.settings.fps};
+  stage.prepare(gpuScene, width, height, paths);
   vk::FrameRecorder frame(context);
   passes::submitUntilRasterFits(frame, stage.rasterizer(), [&](vk::FrameRecorder& f) { stage.record(f, gpuScene); });
 
@@ -100,6 +104,10 @@ GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& sc
   }
   out.visibility = {width, height, stage.visibility().download<glm::uvec2>(), stage.rasterizer().stats(), {}, {}};
   static_cast<LayerReadback&>(out) = readLayer(stage.layer(), uint64_t(width) * height);
+  if (stage.shutterPaths()) {
+    out.shutterPaths = stage.shutterPaths()->download<glm::uvec2>();
+    out.shutterPaths.resize(size_t(width) * height);
+  }
   return out;
 }
 

@@ -53,10 +53,11 @@ std::vector<oracle::OracleTriangle> oracleTriangles(const ClipTriangles& input);
 struct GBufferReadback : LayerReadback {  // the G-buffer's layer
   ClipTriangles clipTriangles;  // the transform kernel's output with the scene's triangles
   Visibility visibility;
+  std::vector<glm::uvec2> shutterPaths;  // per pixel, when asked for (kernels/gbuffer/gbuffer_layout.h)
 };
 
 GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
-                              uint32_t height, passes::VisibilityScheme scheme);
+                              uint32_t height, passes::VisibilityScheme scheme, bool shutterPaths = false);
 
 // Fraction of pixels where the compute visibility and the oracle see the same triangle (or both none).
 double idAgreement(const Visibility& visibility, const oracle::OracleImage& oracle);

@@ -12,6 +12,7 @@
 
 #include "runtime/deformed_vertices.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/passes/shutter_path_pass.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
@@ -40,11 +41,13 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
 }
 
 // The passes a frame skipped, beside those of what the scene does not have (skinned or
-// morphing meshes): those are skipped even when every pass is asked to run.
+// morphing meshes) or the settings do not ask for (curved paths): those are skipped even when
+// every pass is asked to run.
 std::vector<std::string> skippedPasses(const RenderResult& result) {
   std::vector<std::string> names;
   for (const PlannedPass& pass : result.plan.passes())
-    if (!pass.run && pass.reason != kNoDeformationReason && !pass.reason.starts_with(passes::kVisibilitySchemeReason))
+    if (!pass.run && pass.reason != kNoDeformationReason && pass.reason != passes::kStraightPathsReason &&
+        !pass.reason.starts_with(passes::kVisibilitySchemeReason))
       names.push_back(pass.name);
   return names;
 }

@@ -1,0 +1,47 @@
+// Host side of the curved motion path's two kernels: raster/transform_shutter_path.comp (each
+// instance vertex's clip position at mid-shutter and shutter open) and
+// gbuffer/resolve_shutter_path.comp (each pixel's path over the shutter, the "paths" buffer:
+// gbuffer_layout.h). The G-buffer stage runs them only for frames that gather along that path.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb::vk {
+class Buffer;
+class FrameRecorder;
+}
+
+namespace hmb {
+class GpuScene;
+}
+
+namespace hmb::passes {
+
+// Why a frame leaves both passes out: its blur follows straight lines (a setting, not the scene).
+inline constexpr std::string_view kStraightPathsReason =
+    "the blur follows straight lines (motion-path linear, or a method without curved paths)";
+
+class ShutterPathPass {
+ public:
+  static constexpr const char* kTransformName = "transform-shutter-path";
+  static constexpr const char* kResolveName = "resolve-shutter-path";
+  explicit ShutterPathPass(const vk::Context& context);
+
+  // clipMid, clipOpen: vec4 per instance vertex; E: the scene's exposure, fps its frame rate.
+  void recordTransform(vk::FrameRecorder& frame, const GpuScene& scene, float exposure, float fps,
+                       const vk::Buffer& clipMid, const vk::Buffer& clipOpen) const;
+  // paths: uvec2 per pixel.
+  void recordResolve(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& visibility,
+                     const vk::Buffer& clipCurrent, const vk::Buffer& clipMid, const vk::Buffer& clipOpen,
+                     const vk::Buffer& paths, uint32_t width, uint32_t height) const;
+
+ private:
+  vk::ComputeKernel rigid_;
+  vk::ComputeKernel deformed_;
+  vk::ComputeKernel resolve_;
+};
+
+}  // namespace hmb::passes
