@@ -110,6 +110,9 @@ EngineMotionBlur::EngineMotionBlur(const vk::Context& context, uint32_t width, u
     : context_(context), width_(width), height_(height), depth_(depth) {
   if (width == 0 || height == 0) throw Error("engine motion blur: an empty image");
   validateDepth(depth);
+  // An engine's G-buffer has no points at mid-shutter and shutter open to curve a path through.
+  if (settings.motionPath != passes::MotionPath::Linear)
+    throw Error("engine motion blur: the engine's G-buffer gives straight velocities only (motion-path linear)");
   passes_ = std::make_unique<Passes>(context, width, height, settings);
 }
 

@@ -300,6 +300,8 @@ TEST(CliTest, PostProcessSettingsReachTheReportAndBadOnesFailInOneLine) {
                             "--height 8"),
                      "curved motion path");
   expectOneLineError(hmblur("--quiet render --method postprocess --motion-path bent --width 8 --height 8"), "bent");
+  expectOneLineError(hmblur("--quiet render --method hybrid --motion-path curved --width 8 --height 8"),
+                     "straight paths");
   // Time slices: the report names them, each gather's exposure is a slice's, the seed the first slice's.
   const CliRun sliced = hmblur("--quiet render --scene temple --method hybrid --time-slices 3 --seed 5 --width 50 "
                                "--height 30 --report " + (dir / "sliced.json").string());

@@ -382,6 +382,9 @@ TEST(EngineMotionBlurTest, DepthConventionsWithoutTheirPlanesAreOneLineErrors) {
   expectError([&] { EngineMotionBlur(context, 8, 8, settings, {C::StandardZ, 1.0f, 0.5f}); },
                         "beyond the near plane");
   expectError([&] { EngineMotionBlur(context, 0, 8, settings); }, "empty image");
+  passes::PostProcessSettings curved;
+  curved.motionPath = passes::MotionPath::Curved;
+  expectError([&] { EngineMotionBlur(context, 8, 8, curved); }, "straight velocities only");
 }
 
 }  // namespace
