@@ -23,8 +23,8 @@ struct Config {
   RenderSettings settings;
 };
 
-// Every configuration of one scene, in plot order: sharp, the post-process and hybrid series,
-// then the reference's spp series.
+// Every configuration of one scene, in plot order: sharp, the post-process series (centred,
+// adapted, adapted along curved paths) and hybrid series, then the reference's spp series.
 std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
   std::vector<Config> configs;
   const auto add = [&](std::string label, std::string series, double parameter, const std::string& method) {
@@ -45,6 +45,11 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
       settings->postprocess.range = range;
       settings->postprocess.samples = s;
     }
+  for (const uint32_t s : o.samples) {
+    RenderSettings* settings = add("postprocess curved S" + std::to_string(s), "postprocess curved path", s, "postprocess");
+    settings->postprocess.motionPath = passes::MotionPath::Curved;
+    settings->postprocess.samples = s;
+  }
   for (const uint32_t s : o.samples) add("hybrid S" + std::to_string(s), "hybrid", s, "hybrid")->postprocess.samples = s;
   for (const uint32_t r : o.recursionLimits) {
     RenderSettings* settings = add("hybrid luminance stop R" + std::to_string(r), "hybrid luminance stop", r, "hybrid");

@@ -72,7 +72,8 @@ void applyShutterChoice(const ShutterChoice& shutter, Settings& settings) {
 Scene loadScene(std::string_view nameOrPath, const ShutterChoice& shutter) {
   const std::filesystem::path path{std::string(nameOrPath)};
   std::error_code ec;
-  const std::vector<std::string> names = referenceSceneNames();
+  std::vector<std::string> names = referenceSceneNames();
+  for (std::string& study : motionStudyNames()) names.push_back(std::move(study));
   const bool named = std::find(names.begin(), names.end(), nameOrPath) != names.end();
   const bool gltf = endsWithNoCase(nameOrPath, ".gltf") || endsWithNoCase(nameOrPath, ".glb") ||
                     (!named && std::filesystem::exists(path, ec) && loadableAsGltf(path));

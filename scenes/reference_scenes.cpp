@@ -1,5 +1,7 @@
 #include "scenes/reference_scenes.h"
 
+#include <span>
+
 #include "runtime/error.h"
 #include "scenes/procedural/procedural_scenes.h"
 
@@ -17,6 +19,12 @@ constexpr Entry kScenes[] = {
     {"bistro", &procedural::makeBistro},
 };
 
+constexpr Entry kMotionStudies[] = {
+    {"spinning-plate", &procedural::makeSpinningPlate},
+    {"turntable", &procedural::makeTurntable},
+    {"spinning-box", &procedural::makeSpinningBox},
+};
+
 }  // namespace
 
 std::vector<std::string> referenceSceneNames() {
@@ -25,13 +33,23 @@ std::vector<std::string> referenceSceneNames() {
   return names;
 }
 
+std::vector<std::string> motionStudyNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : kMotionStudies) names.emplace_back(e.name);
+  return names;
+}
+
 Scene makeReferenceScene(std::string_view name) {
-  for (const Entry& e : kScenes)
-    if (name == e.name) return e.make();
-  std::string valid;
-  for (const Entry& e : kScenes) valid += std::string(valid.empty() ? "" : ", ") + e.name;
-  throw Error("unknown scene '" + std::string(name) + "' (reference scenes: " + valid +
-              "; or a path to a .gltf/.glb file)");
+  for (const auto& table : {std::span<const Entry>(kScenes), std::span<const Entry>(kMotionStudies)})
+    for (const Entry& e : table)
+      if (name == e.name) return e.make();
+  const auto list = [](std::span<const Entry> table) {
+    std::string names;
+    for (const Entry& e : table) names += std::string(names.empty() ? "" : ", ") + e.name;
+    return names;
+  };
+  throw Error("unknown scene '" + std::string(name) + "' (reference scenes: " + list(kScenes) +
+              "; motion studies: " + list(kMotionStudies) + "; or a path to a .gltf/.glb file)");
 }
 
 }  // namespace hmb::scene

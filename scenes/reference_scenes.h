@@ -1,4 +1,4 @@
-// The reference scenes by name.
+// The reference scenes and the motion studies by name.
 #pragma once
 
 #include <string>
@@ -12,8 +12,12 @@ namespace hmb::scene {
 // "living-room", "temple", "bistro".
 std::vector<std::string> referenceSceneNames();
 
-// Builds a reference scene (deterministic: the same scene on every call and platform).
-// Throws hmb::Error listing the valid names when `name` is not one of them.
+// "spinning-plate", "turntable", "spinning-box": motion studies, made to isolate one kind of
+// screen motion (scenes/procedural/procedural_scenes.h); not reference scenes.
+std::vector<std::string> motionStudyNames();
+
+// Builds a reference scene or a motion study (deterministic: the same scene on every call and
+// platform). Throws hmb::Error listing the valid names when `name` is not one of them.
 Scene makeReferenceScene(std::string_view name);
 
 }  // namespace hmb::scene

@@ -2,7 +2,7 @@
 """Error against run time, one PNG per scene, from hmblur-bench error-vs-time's JSON.
 
 Blur-region PSNR (higher is better) against median frame time (log axis); one curve per
-series (post-process centred and adapted over sample counts, hybrid over sample counts,
+series (post-process centred, adapted and adapted along curved paths over sample counts, hybrid over sample counts,
 recursion limits and edge thresholds, adapted post-process and hybrid over time slices, the
 reference over spp), the sharp frame as a point, and
 the Pareto front (no other case both faster and closer) drawn through the cases on it.
@@ -26,6 +26,7 @@ styles = {
     "sharp": dict(marker="s", color="black"),
     "postprocess centered": dict(marker="v", color="tab:orange"),
     "postprocess adapted": dict(marker="^", color="tab:red"),
+    "postprocess curved path": dict(marker=">", color="tab:olive"),
     "hybrid": dict(marker="o", color="tab:blue"),
     "hybrid luminance stop": dict(marker="D", color="tab:cyan"),
     "hybrid edge threshold": dict(marker="P", color="tab:purple"),

@@ -188,12 +188,19 @@ int listDevices() {
 }
 
 int listScenes() {
-  for (const std::string& name : hmb::scene::referenceSceneNames()) {
-    const hmb::scene::Scene scene = hmb::scene::loadScene(name);
-    std::cout << name << ": " << scene.triangleCount() << " triangles, " << scene.instances.size()
-              << " instances, SOFT_Z_EXTENT " << scene.settings.softZExtent << ", e " << scene.settings.edgeThreshold
-              << ", " << scene.settings.fps << " fps, exposure " << scene.settings.exposure << " s\n";
-  }
+  const auto list = [](const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+      const hmb::scene::Scene scene = hmb::scene::loadScene(name);
+      std::cout << "  " << name << ": " << scene.triangleCount() << " triangles, " << scene.instances.size()
+                << " instances, SOFT_Z_EXTENT " << scene.settings.softZExtent << ", e "
+                << scene.settings.edgeThreshold << ", " << scene.settings.fps << " fps, exposure "
+                << scene.settings.exposure << " s\n";
+    }
+  };
+  std::cout << "reference scenes:\n";
+  list(hmb::scene::referenceSceneNames());
+  std::cout << "motion studies (one kind of screen motion each):\n";
+  list(hmb::scene::motionStudyNames());
   std::cout << "(or any .gltf / .glb file)\n";
   return kOk;
 }

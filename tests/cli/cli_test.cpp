@@ -33,7 +33,8 @@ TEST(CliTest, ListDevicesNamesAComputeDevice) {
 TEST(CliTest, ListScenesNamesTheReferenceScenes) {
   const CliRun run = hmblur("list-scenes");
   EXPECT_EQ(run.exitCode, 0) << run.output;
-  for (const char* name : {"living-room", "temple", "bistro"}) EXPECT_NE(run.output.find(name), std::string::npos);
+  for (const char* name : {"living-room", "temple", "bistro", "spinning-plate", "turntable", "spinning-box"})
+    EXPECT_NE(run.output.find(name), std::string::npos) << name;
 }
 
 TEST(CliTest, RenderWritesPngExrAndAReportThatNamesEveryPass) {

@@ -37,12 +37,15 @@ glm::vec2 projectToPixels(const Scene& scene, const glm::vec3& world, float t) {
 
 TEST(ReferenceScenesTest, NamesAndUnknownName) {
   EXPECT_EQ(referenceSceneNames(), (std::vector<std::string>{"living-room", "temple", "bistro"}));
+  EXPECT_EQ(motionStudyNames(), (std::vector<std::string>{"spinning-plate", "turntable", "spinning-box"}));
+  for (const std::string& name : motionStudyNames()) EXPECT_EQ(makeReferenceScene(name).name, name);
   try {
     (void)makeReferenceScene("pink-room");
     ADD_FAILURE() << "unknown name accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
     for (const std::string& name : referenceSceneNames()) EXPECT_NE(message.find(name), std::string::npos) << message;
+    for (const std::string& name : motionStudyNames()) EXPECT_NE(message.find(name), std::string::npos) << message;
   }
 }
 
