@@ -99,8 +99,8 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
   if (o.referenceSpp < 2 || o.referenceSpp % 2 != 0)
     throw Error("explain: the reference's samples per pixel must be even (two halves), at least 2");
   for (const std::string& method : o.methods)
-    if (method != "postprocess" && method != "hybrid")
-      throw Error("explain: method '" + method + "' is not one it explains (postprocess, hybrid)");
+    if (method != "postprocess" && method != "postprocess-curved" && method != "hybrid")
+      throw Error("explain: method '" + method + "' is not one it explains (postprocess, postprocess-curved, hybrid)");
   if (!o.imageDir.empty()) fs::create_directories(o.imageDir);
   Renderer renderer(context);
   std::vector<ExplainCase> cases;
@@ -120,8 +120,11 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
         metrics::blurRegion(judge.image, metrics::displayImageFromRgba8(sharp.display));
     for (const std::string& method : o.methods) {
       progress(name + ": " + method);
-      settings.method = parseMethod(method);
+      const bool curved = method == "postprocess-curved";
+      settings.method = parseMethod(curved ? "postprocess" : method);
+      settings.postprocess.motionPath = curved ? passes::MotionPath::Curved : passes::MotionPath::Linear;
       settings.postprocess.timeSlices = o.timeSlices;
+      settings.postprocess.tileSize = o.tileSize;
       const RenderResult result = renderer.render(scene, settings);
       const metrics::DisplayImage image = metrics::displayImageFromRgba8(result.display);
       metrics::ErrorSourceInputs inputs;

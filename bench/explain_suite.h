@@ -29,8 +29,10 @@ struct ExplainSuiteOptions {
   std::vector<std::string> scenes;  // reference scene names or glTF paths
   ImageSize size{320, 180};
   uint32_t referenceSpp = 256;  // both halves together
+  // postprocess, postprocess-curved (along curved paths: --motion-path curved), hybrid.
   std::vector<std::string> methods = {"postprocess", "hybrid"};
   uint32_t timeSlices = 1;  // the methods' time slices (RenderSettings: postprocess.timeSlices)
+  std::optional<uint32_t> tileSize;  // every method's; unset: their defaults
   std::string imageDir;  // where the strips go; empty: none
 };
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@
 #include "bench/passes_suite.h"
 #include "bench/raster_suite.h"
 #include "bench/side_by_side.h"
+#include "kernels/mblur/mblur_layout.h"
 #include "runtime/error.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/report.h"
@@ -108,6 +110,7 @@ struct ExplainOptions {
   uint32_t referenceSpp = 256;
   std::vector<std::string> methods = {"postprocess", "hybrid"};
   uint32_t timeSlices = 1;
+  std::optional<uint32_t> tileSize;
 };
 
 struct KernelsOptions {
@@ -434,6 +437,7 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   suite.referenceSpp = options.referenceSpp;
   suite.methods = options.methods;
   suite.timeSlices = options.timeSlices;
+  suite.tileSize = options.tileSize;
   checkOutputDirectory(options.out);
   if (!options.out.empty()) {
     const fs::path folder = fs::path(options.out).parent_path();
@@ -448,7 +452,9 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   std::ostringstream header;
   header << machineLine(context, system) << ' ' << options.size << ", the reference " << suite.referenceSpp
          << " spp (two halves, seeds 1 and 2); the methods with " << suite.timeSlices
-         << " time slice(s). Command: `" << command << "`";
+         << " time slice(s), tiles of "
+         << (suite.tileSize ? std::to_string(*suite.tileSize) + " px" : std::string("their default size"))
+         << ". Command: `" << command << "`";
   hmb::bench::writeExplainMarkdown(std::cout, cases, header.str());
   if (options.out.empty()) return validationVerdict({&context});
   nlohmann::json report =
@@ -457,7 +463,8 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   report["settings"] = {{"size", options.size},
                         {"reference_spp", suite.referenceSpp},
                         {"methods", options.methods},
-                        {"time_slices", suite.timeSlices}};
+                        {"time_slices", suite.timeSlices},
+                        {"tile_size", suite.tileSize ? nlohmann::json(*suite.tileSize) : nlohmann::json(nullptr)}};
   report["cases"] = nlohmann::json::array();
   for (const auto& c : cases) report["cases"].push_back(hmb::bench::explainCaseJson(c));
   hmb::writeJson(options.out, report);
@@ -710,10 +717,13 @@ int main(int argc, char** argv) {
   explainCmd->add_option("--reference-spp", explainOptions.referenceSpp, "The reference's samples per pixel (even)")
       ->check(CLI::Range(2u, 65536u))
       ->capture_default_str();
-  explainCmd->add_option("--methods", explainOptions.methods, "Methods (postprocess, hybrid), comma separated")
+  explainCmd->add_option("--methods", explainOptions.methods,
+                         "Methods (postprocess, postprocess-curved: along curved paths, hybrid), comma separated")
       ->delimiter(',')
-      ->check(CLI::IsMember({"postprocess", "hybrid"}))
+      ->check(CLI::IsMember({"postprocess", "postprocess-curved", "hybrid"}))
       ->capture_default_str();
+  explainCmd->add_option("--tile-size", explainOptions.tileSize, "Every method's tile size in pixels (default: theirs)")
+      ->check(CLI::Range(1u, HMB_MBLUR_MAX_TILE_SIZE));
   explainCmd->add_option("--time-slices", explainOptions.timeSlices, "The methods' time slices (K)")
       ->check(CLI::Range(1u, hmb::passes::kMaxTimeSlices))
       ->capture_default_str();

@@ -29,6 +29,7 @@
 // a rotation adds: the points a pixel sees come from around the circle, not from its tangent),
 // is the exposure velocity at X + a minus X's, when X + a lies on the same surface (depths
 // within SOFT_Z_EXTENT). The path's length is kept within the tile size, as velocities are.
+// Each sample then takes one more fixed-point step with its own terms (see gatherSamples).
 //
 // Shared by the post-process gather (mblur/gather.comp) and the hybrid's gathers
 // (hybrid/gather_background.comp, hybrid/composite.comp). The including kernel declares
@@ -148,10 +149,31 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
       if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
       t = mix(-1.0, 1.0, (float(i) + jitter + 0.5) / float(samples + 1u));
     }
-    const vec2 along = c.ownPath ? t * c.pathLinear + (t * t) * c.pathQuadratic : t * dominant;
-    const ivec2 samplePixel = nearestPixel(centre + along, params.width, params.height);
-    const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
-    const uvec4 packed = blurSampleAt(sampleIndex);
+    vec2 along = c.ownPath ? t * c.pathLinear + (t * t) * c.pathQuadratic : t * dominant;
+    ivec2 samplePixel = nearestPixel(centre + along, params.width, params.height);
+    uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
+    uvec4 packed = blurSampleAt(sampleIndex);
+    // One more step of p = X + u a(p) + u^2 c(p) from there: the sample's own terms, where it
+    // lies on the pixel's surface, correct the second-order guess where rotation is fast (a
+    // sixth of a turn per exposure bends a path by a radian). Kept only if it lands on that
+    // surface too, within the tile's reach.
+    if (c.ownPath) {
+      vec2 a1, c1;
+      if (abs(sanitizeDepth(sampleDepth(packed)) - centreDepth) < params.softZExtent &&
+          shutterPathTerms(shutterPathAt(sampleIndex), a1, c1)) {
+        const vec2 refinedAlong = t * a1 + (t * t) * c1;
+        if (length(refinedAlong) <= maxSpeed) {
+          const ivec2 refined = nearestPixel(centre + refinedAlong, params.width, params.height);
+          const uint refinedIndex = uint(refined.y) * params.width + uint(refined.x);
+          const uvec4 refinedPacked = blurSampleAt(refinedIndex);
+          if (abs(sanitizeDepth(sampleDepth(refinedPacked)) - centreDepth) < params.softZExtent) {
+            samplePixel = refined;
+            sampleIndex = refinedIndex;
+            packed = refinedPacked;
+          }
+        }
+      }
+    }
     const float ds = length(vec2(samplePixel - ivec2(pixel)));
     float sampleSpeed;
     const vec2 sampleV = gatherVelocity(sampleVelocity(packed), params.velocityScale, maxSpeed, sampleSpeed);

@@ -234,8 +234,22 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
         if (!parameter) continue;
         const float t = *parameter;
         const glm::vec2 along = ownPath ? t * pathLinear + (t * t) * pathQuadratic : t * glm::vec2(dominant);
-        const glm::ivec2 s = nearestPixel(centre + along, width, height);
-        const uint32_t sampleIndex = uint32_t(s.y) * width + uint32_t(s.x);
+        glm::ivec2 s = nearestPixel(centre + along, width, height);
+        uint32_t sampleIndex = uint32_t(s.y) * width + uint32_t(s.x);
+        // The fixed-point step along the sample's own path.
+        glm::vec2 a1, c1;
+        if (ownPath && std::abs(sanitizeDepth(layer.normalDepth[sampleIndex].w) - centreDepth) < settings.softZExtent &&
+            shutterPathTerms(layer.shutterPaths[sampleIndex], a1, c1)) {
+          const glm::vec2 refinedAlong = t * a1 + (t * t) * c1;
+          if (length2(refinedAlong) <= maxSpeed) {
+            const glm::ivec2 refined = nearestPixel(centre + refinedAlong, width, height);
+            const uint32_t refinedIndex = uint32_t(refined.y) * width + uint32_t(refined.x);
+            if (std::abs(sanitizeDepth(layer.normalDepth[refinedIndex].w) - centreDepth) < settings.softZExtent) {
+              s = refined;
+              sampleIndex = refinedIndex;
+            }
+          }
+        }
         const float ds = length2(glm::vec2(float(s.x - int(px)), float(s.y - int(py))));
         float sampleSpeed;
         const glm::vec2 sampleV = gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, sampleSpeed);
