@@ -167,6 +167,8 @@ EngineHybridMotionBlur::EngineHybridMotionBlur(const vk::Context& context, uint3
   if (width == 0 || height == 0) throw Error("engine hybrid motion blur: an empty image");
   validateDepth(depth);
   passes::validate(settings);
+  if (settings.blur.motionPath != passes::MotionPath::Linear)
+    throw Error("engine hybrid motion blur: the engine's G-buffer gives straight velocities only (motion-path linear)");
   passes_ = std::make_unique<Passes>(context, width, height, settings, hits);
 }
 

@@ -15,7 +15,9 @@
 //    alpha, and the object's blurred colour F is the plain mean of those samples (and X):
 //    C = alpha F + (1 - alpha) B. v_X is the pixel's own velocity, clamped only to the image
 //    (maxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
-//    even where the gather's tiles clamp its outer blur. The README gives the measured errors.
+//    even where the gather's tiles clamp its outer blur. Along curved paths
+//    (HMB_GATHER_FLAG_CURVED_PATH) the samples follow the pixel's own curved path instead,
+//    X + u a + u^2 q (mblur_common.glsl's inversePath). The README gives the measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
@@ -54,8 +56,9 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
                           : sampleColor;
 }
 
-// The hybrid gathers along straight lines: its layers carry no shutter paths (NaN halves).
-uvec2 shutterPathAt(uint i) { return uvec2(0xffffffffu); }
+#include "../shared/texel_records.glsl"
+layout(binding = HMB_COMPOSITE_BINDING_SHUTTER_PATHS) uniform utextureBuffer shutterPathTexels;
+uvec2 shutterPathAt(uint i) { return halfRecordAt(shutterPathTexels, i); }
 
 #include "../mblur/gather_samples.glsl"
 
@@ -63,12 +66,25 @@ uvec2 shutterPathAt(uint i) { return uvec2(0xffffffffu); }
 vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
   const uvec4 own = READ_LAYER_SURFACE(raster, index);
   float speed;
-  const vec2 v = gatherVelocity(surfaceVelocity(own), params.velocityScale, params.maxSpeed, speed);
+  vec2 v = gatherVelocity(surfaceVelocity(own), params.velocityScale, params.maxSpeed, speed);
+  vec2 q = vec2(0.0);
+  vec2 a, c;
+  if ((params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && shutterPathTerms(shutterPathAt(index), a, c)) {
+    // Along its own curved path (mblur_common.glsl's inversePath), as range_check walks it.
+    const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.width, params.height);
+    const uint aheadIndex = uint(ahead.y) * params.width + uint(ahead.x);
+    const bool sameSurface =
+        abs(sanitizeDepth(sampleDepth(READ_LAYER_SAMPLE(raster, aheadIndex))) - centreDepth) < params.softZExtent;
+    const vec2 change =
+        sameSurface ? (surfaceVelocity(READ_LAYER_SURFACE(raster, aheadIndex)) - surfaceVelocity(own)) * params.velocityScale
+                    : vec2(0.0);
+    inversePath(a, c, change, params.maxSpeed, v, q);
+  }
   const uint object = surfaceObjectId(own);
   vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0;
   for (uint i = 0u; i < params.samples; ++i) {
-    const ivec2 samplePixel = coverageSamplePixel(pixel, v, i, params.samples, jitter, params.width, params.height);
+    const ivec2 samplePixel = coverageSamplePixel(pixel, v, q, i, params.samples, jitter, params.width, params.height);
     const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     const float onObject = 1.0 - behindShare(sampleIndex, object, centreDepth);
     foregroundSum += onObject * sanitizeColor(vec4(sampleColor(READ_LAYER_SAMPLE(raster, sampleIndex)), 1.0));

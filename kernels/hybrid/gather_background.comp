@@ -8,6 +8,7 @@
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 #include "../shared/layer_bindings.glsl"
+#include "../gbuffer/gbuffer_layout.h"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 
@@ -25,8 +26,10 @@ bool overlaid(uint i) { return mask[i] == HMB_MASK_REVEALED; }
 uvec4 blurSampleAt(uint i) { return overlaid(i) ? READ_LAYER_SAMPLE(revealed, i) : READ_LAYER_SAMPLE(raster, i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 
-// The hybrid gathers along straight lines: its layers carry no shutter paths (NaN halves).
-uvec2 shutterPathAt(uint i) { return uvec2(0xffffffffu); }
+// The raster's paths; a revealed surface has none (its samples go straight).
+#include "../shared/texel_records.glsl"
+layout(binding = HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS) uniform utextureBuffer shutterPathTexels;
+uvec2 shutterPathAt(uint i) { return overlaid(i) ? uvec2(HMB_NO_SHUTTER_PATH) : halfRecordAt(shutterPathTexels, i); }
 
 #include "../mblur/gather_samples.glsl"
 

@@ -78,7 +78,8 @@
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
 #define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel to reveal, in no order
 #define HMB_RANGE_CHECK_BINDING_SAMPLES 6   // uvec4 per pixel: the G-buffer's samples (the coverage test's depths)
-#define HMB_RANGE_CHECK_BINDING_COUNT 7
+#define HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS 7  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
+#define HMB_RANGE_CHECK_BINDING_COUNT 8
 
 // Ray mask values: a mask pixel is revealed (listed for the reveal, its revealed surface then
 // written) or not (the coverage composite gives its background no weight).
@@ -123,8 +124,10 @@
 #define HMB_BACKGROUND_GATHER_BINDING_OUTPUT 4        // vec4 per pixel, written at listed pixels
 #define HMB_BACKGROUND_GATHER_BINDING_RASTER 5        // the G-buffer (shared/layer_bindings.glsl)
 #define HMB_BACKGROUND_GATHER_BINDING_REVEALED (HMB_BACKGROUND_GATHER_BINDING_RASTER + HMB_LAYER_BINDINGS)
-#define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_REVEALED + HMB_LAYER_BINDINGS)
-#define HMB_BACKGROUND_GATHER_TEXEL_BUFFERS 4  // both layers, read as uniform texel buffers
+// The raster layer's shutter paths (gbuffer/gbuffer_layout.h), read along curved paths.
+#define HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS (HMB_BACKGROUND_GATHER_BINDING_REVEALED + HMB_LAYER_BINDINGS)
+#define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS + 1)
+#define HMB_BACKGROUND_GATHER_TEXEL_BUFFERS 5  // both layers and the paths, read as uniform texel buffers
 
 // composite: every pixel; the form is a specialization constant.
 #define HMB_COMPOSITE_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
@@ -132,8 +135,10 @@
 #define HMB_COMPOSITE_BINDING_BACKGROUND 2    // vec4 per pixel: the blurred background, read at mask pixels
 #define HMB_COMPOSITE_BINDING_OUTPUT 3        // vec4 per pixel
 #define HMB_COMPOSITE_BINDING_RASTER 4        // the G-buffer (shared/layer_bindings.glsl)
-#define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
-#define HMB_COMPOSITE_TEXEL_BUFFERS 2  // the G-buffer layer, read as uniform texel buffers
+// The G-buffer's shutter paths (gbuffer/gbuffer_layout.h), read along curved paths.
+#define HMB_COMPOSITE_BINDING_SHUTTER_PATHS (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
+#define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_SHUTTER_PATHS + 1)
+#define HMB_COMPOSITE_TEXEL_BUFFERS 3  // the G-buffer layer and its paths, read as uniform texel buffers
 // edge_mask reads the G-buffer's samples and surfaces as uniform texel buffers: its 5x5 window
 // uses most of each record. edge_candidates and range_check read one or two words of a record,
 // which a storage-buffer load fetches for less than a texel fetch's four gathers.

@@ -1,6 +1,7 @@
 #version 450
 // Ray mask, second pass (paper, section 3.2.1, range check): a moving pixel enters the ray
-// mask when its range X + u v, u in [0, 1], meets the edge mask: it is then in the inner blur
+// mask when its range X + u v, u in [0, 1] (along curved paths its own curve, X + u v + u^2 q),
+// meets the edge mask: it is then in the inner blur
 // of a silhouette, where the raster holds no background. The range is walked one pixel at a
 // time (ceil |v| + 1 positions), so an edge band of any width is found. Masked pixels are
 // appended to a list (compaction) whose length sizes the ray reveal's indirect dispatch; with
@@ -23,6 +24,8 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_TILES) readonly buffer Tiles { 
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) writeonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
+// Each pixel's path over the shutter, read only along curved paths (gbuffer/gbuffer_layout.h).
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS) readonly buffer Paths { uvec2 shutterPaths[]; };
 layout(push_constant) uniform Params { RayMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -65,6 +68,19 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   return edges[entry] != 0u;
 }
 
+// The range check along a curved path X + s v + s^2 q, s in [0, 1]: a pixel at a time, its
+// reach |v| + |q| bounding the steps.
+bool curvedPathMeetsEdge(uvec2 pixel, vec2 v, vec2 q) {
+  const uint steps = uint(ceil(length(v) + length(q)));  // <= maxSpeed (inversePath)
+  const vec2 centre = vec2(pixel) + 0.5;
+  for (uint i = 0u; i <= steps; ++i) {
+    const float s = steps == 0u ? 0.0 : float(i) / float(steps);
+    const ivec2 p = nearestPixel(centre + s * v + (s * s) * q, params.blur.width, params.blur.height);
+    if (edges[uint(p.y) * params.blur.width + uint(p.x)] != 0u) return true;
+  }
+  return false;
+}
+
 // The range check at one pixel moving by v (speed > 0).
 bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   const uint steps = uint(ceil(speed));  // <= maxSpeed, the image's larger side
@@ -83,12 +99,13 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
 
 // Whether any of the coverage composite's samples of this pixel lies behind it, i.e. whether
 // the composite gives the revealed background a weight above 0.
-bool meetsBackground(uvec2 pixel, uint index, vec2 v) {
+bool meetsBackground(uvec2 pixel, uint index, vec2 v, vec2 q) {
   const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.blur.seed));
   const uint centreObject = surfaceObjectId(surfaces[index]);
   const float centreDepth = sanitizeDepth(sampleDepth(samples[index]));
   for (uint i = 0u; i < params.blur.samples; ++i) {
-    const ivec2 p = coverageSamplePixel(pixel, v, i, params.blur.samples, jitter, params.blur.width, params.blur.height);
+    const ivec2 p =
+        coverageSamplePixel(pixel, v, q, i, params.blur.samples, jitter, params.blur.width, params.blur.height);
     const uint sampleIndex = uint(p.y) * params.blur.width + uint(p.x);
     if (behindShareOf(surfaceObjectId(surfaces[sampleIndex]), sanitizeDepth(sampleDepth(samples[sampleIndex])),
                       centreObject, centreDepth,
@@ -103,13 +120,28 @@ void main() {
   if (pixel.x >= params.blur.width || pixel.y >= params.blur.height) return;
   const uint index = pixel.y * params.blur.width + pixel.x;
   float speed;
-  const vec2 v = gatherVelocity(surfaceVelocity(surfaces[index]), params.blur.velocityScale, params.blur.maxSpeed, speed);
-  if (!(speed > 0.0) || !meetsEdge(pixel, v, speed)) {
+  vec2 v = gatherVelocity(surfaceVelocity(surfaces[index]), params.blur.velocityScale, params.blur.maxSpeed, speed);
+  // Along curved paths: the pixel's own (mblur_common.glsl's inversePath), as the coverage
+  // composite samples it.
+  vec2 q = vec2(0.0), a, c;
+  const bool curved = (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && speed > 0.0 &&
+                      shutterPathTerms(shutterPaths[index], a, c);
+  if (curved) {
+    const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.blur.width, params.blur.height);
+    const uint aheadIndex = uint(ahead.y) * params.blur.width + uint(ahead.x);
+    const bool sameSurface = abs(sanitizeDepth(sampleDepth(samples[aheadIndex])) - sanitizeDepth(sampleDepth(samples[index]))) <
+                             params.blur.softZExtent;
+    const vec2 change = sameSurface ? (surfaceVelocity(surfaces[aheadIndex]) - surfaceVelocity(surfaces[index])) *
+                                          params.blur.velocityScale
+                                    : vec2(0.0);
+    inversePath(a, c, change, params.blur.maxSpeed, v, q);
+  }
+  if (!(speed > 0.0) || !(curved ? curvedPathMeetsEdge(pixel, v, q) : meetsEdge(pixel, v, speed))) {
     mask[index] = HMB_MASK_NONE;
     return;
   }
   atomicAdd(counters.maskPixels, 1u);
-  if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index, v)) {
+  if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index, v, q)) {
     mask[index] = HMB_MASK_UNREVEALED;
     return;
   }

@@ -58,14 +58,6 @@ struct GatherCentre {
   vec2 pathQuadratic;
 };
 
-// The curved path's a and c (see the top) from a pixel's path record; false without one.
-bool shutterPathTerms(uvec2 record, out vec2 a, out vec2 c) {
-  const vec2 m = unpackHalf2x16(record.x), o = unpackHalf2x16(record.y);
-  a = 4.0 * m - o;
-  c = 2.0 * o - 4.0 * m;
-  return !(any(isnan(m)) || any(isnan(o)) || any(isinf(m)) || any(isinf(o)));
-}
-
 // How nearly a sample's own path over the shutter passes the pixel centre x: 1 within one
 // pixel, 0 past two, linear between. Its quadratic path where it has one, else the straight
 // line back along its velocity v (pixels per exposure), followed as 8 segments.
@@ -97,17 +89,11 @@ void readOwnPath(uvec2 pixel, uint index, inout GatherCentre centre) {
   if (length(a) + length(c) < kOwnPathShare * max(length(centre.dominant), kMinBlurPixels)) return;
   const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.width, params.height);
   const uvec4 there = blurSampleAt(uint(ahead.y) * params.width + uint(ahead.x));
-  vec2 k = c;
-  if (abs(sanitizeDepth(sampleDepth(there)) - centre.depth) < params.softZExtent) {
-    const vec2 change = (sampleVelocity(there) - sampleVelocity(blurSampleAt(index))) * params.velocityScale;
-    if (!(any(isnan(change)) || any(isinf(change)))) k += change;
-  }
-  const float reach = length(a) + length(k);  // bounds |u a + u^2 k| for u in [0, 1]
-  const float maxSpeed = float(params.tileSize);
-  const float scale = reach > maxSpeed ? maxSpeed / reach : 1.0;
+  const bool sameSurface = abs(sanitizeDepth(sampleDepth(there)) - centre.depth) < params.softZExtent;
+  const vec2 change =
+      sameSurface ? (sampleVelocity(there) - sampleVelocity(blurSampleAt(index))) * params.velocityScale : vec2(0.0);
   centre.ownPath = true;
-  centre.pathLinear = a * scale;
-  centre.pathQuadratic = k * scale;
+  inversePath(a, c, change, float(params.tileSize), centre.pathLinear, centre.pathQuadratic);
 }
 
 // Reads the pixel; false (centre.color alone set) when under kMinBlurPixels of blur reach its

@@ -49,12 +49,36 @@ float behindShareOf(uint sampleObject, float sampleDepth, uint centreObject, flo
   return clamp((sampleDepth - centreDepth) / softZExtent, 0.0, 1.0);
 }
 
-// The coverage composite's sample i of `samples` along the pixel's own displacement v:
-// the same positions in hybrid/composite.comp (which blends) and range_check.comp (which decides
-// whether the pixel needs the revealed background at all).
-ivec2 coverageSamplePixel(uvec2 pixel, vec2 v, uint i, uint samples, float jitter, uint width, uint height) {
+// The coverage composite's sample i of `samples` along the pixel's own path X + u v + u^2 q
+// (q = 0: the straight displacement v; else the curved path's terms, inversePath): the same
+// positions in hybrid/composite.comp (which blends) and range_check.comp (which decides whether
+// the pixel needs the revealed background at all).
+ivec2 coverageSamplePixel(uvec2 pixel, vec2 v, vec2 q, uint i, uint samples, float jitter, uint width, uint height) {
   const float u = (float(i) + 1.0 - jitter) / float(samples);
-  return nearestPixel(vec2(pixel) + 0.5 + u * v, width, height);
+  return nearestPixel(vec2(pixel) + 0.5 + u * v + (u * u) * q, width, height);
+}
+
+// The curved path (mblur/gather_samples.glsl): a path record's terms, its point's path
+// p(t - uE) = X - u a - u^2 c through its points at mid-shutter and shutter open
+// (gbuffer/gbuffer_layout.h: m = X - p(t - E/2), o = X - p(t - E)), so a = 4m - o, c = 2o - 4m.
+// False for a record without a path.
+bool shutterPathTerms(uvec2 record, out vec2 a, out vec2 c) {
+  const vec2 m = unpackHalf2x16(record.x), o = unpackHalf2x16(record.y);
+  a = 4.0 * m - o;
+  c = 2.0 * o - 4.0 * m;
+  return !(any(isnan(m)) || any(isnan(o)) || any(isinf(m)) || any(isinf(o)));
+}
+
+// The path along which pixel X sees the points of its own surface over the shutter,
+// X + u linear + u^2 quadratic: to second order X + u a + u^2 (c + J_a a), where J_a a, `change`,
+// is the exposure velocity at X + a minus X's when X + a lies on X's surface (else 0). Scaled
+// so that |linear| + |quadratic|, which bounds the path's reach, stays within maxLength.
+void inversePath(vec2 a, vec2 c, vec2 change, float maxLength, out vec2 linear, out vec2 quadratic) {
+  const vec2 k = any(isnan(change)) || any(isinf(change)) ? c : c + change;
+  const float reach = length(a) + length(k);
+  const float scale = reach > maxLength ? maxLength / reach : 1.0;
+  linear = a * scale;
+  quadratic = k * scale;
 }
 
 // Paper eq. 6/7's speed falloff saturate(1 - ds / v); a zero speed reaches only ds = 0.

@@ -25,10 +25,11 @@ class HybridMethod final : public FrameMethod {
 
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
     const RenderSettings& settings = request.settings;
-    GpuScene scene = prepareRasterFrame(resources_, request, result);
     const bool still = nothingMovesOnScreen(request);
     result.hybrid.emplace();
     result.hybrid->settings = hybridSettingsFor(request.scene, settings);
+    const bool curved = !still && result.hybrid->settings.blur.motionPath == passes::MotionPath::Curved;
+    GpuScene scene = prepareRasterFrame(resources_, request, result, curved);
     result.postprocess = result.hybrid->settings.blur;
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);
@@ -56,7 +57,7 @@ class HybridMethod final : public FrameMethod {
     const passes::GBufferStage& gbuffer = resources_.gbuffer;
     const Beauty beauty = still ? gbufferBeauty(gbuffer) : linearBeauty(blurred);
     vk::appendTimings(timings, recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
-                        if (!still) hybrid_.record(frame, gbuffer.layer(), scene, blurred);
+                        if (!still) hybrid_.record(frame, gbuffer.layer(), scene, blurred, gbuffer.shutterPaths());
                       }));
     if (const auto trees = still ? std::nullopt : hybrid_.meshTreeBytes()) {
       result.memory.bvhAllocatedBytesPerTriangle = trees->allocatedPerTriangle;

@@ -16,13 +16,15 @@ BackgroundGatherPass::BackgroundGatherPass(const vk::Context& context)
 void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
                                   const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
                                   const vk::Buffer& counters, const vk::Buffer& output,
-                                  const gpu::GatherParams& blur) const {
+                                  const gpu::GatherParams& blur, const vk::Buffer* shutterPaths) const {
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
   vk::Bindings bindings = {{HMB_BACKGROUND_GATHER_BINDING_NEIGHBOR_MAX, &neighborMax},
                            {HMB_BACKGROUND_GATHER_BINDING_MASK, &mask},
                            {HMB_BACKGROUND_GATHER_BINDING_LIST, &list},
                            {HMB_BACKGROUND_GATHER_BINDING_COUNTERS, &counters},
-                           {HMB_BACKGROUND_GATHER_BINDING_OUTPUT, &output}};
+                           {HMB_BACKGROUND_GATHER_BINDING_OUTPUT, &output},
+                           // Read only along curved paths; any texel buffer stands in otherwise.
+                           {HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS, shutterPaths ? shutterPaths : &raster.samples()}};
   raster.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_RASTER, kernel_.bindsByAddress());
   revealed.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_REVEALED, kernel_.bindsByAddress());
   frame.dispatchIndirect(kName, kernel_, bindings, blur, counters,

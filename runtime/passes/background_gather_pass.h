@@ -21,7 +21,8 @@ class BackgroundGatherPass {
   // output: width * height vec4, written at the listed pixels. blur: the frame's (gatherParams()).
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
               const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
-              const vk::Buffer& counters, const vk::Buffer& output, const gpu::GatherParams& blur) const;
+              const vk::Buffer& counters, const vk::Buffer& output, const gpu::GatherParams& blur,
+              const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
 
  private:
   vk::ComputeKernel kernel_;

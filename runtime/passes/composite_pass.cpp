@@ -21,7 +21,8 @@ CompositePass::CompositePass(const vk::Context& context)
 
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
                            const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
-                           const gpu::GatherParams& blur, HybridComposite composite) const {
+                           const gpu::GatherParams& blur, HybridComposite composite,
+                           const vk::Buffer* shutterPaths) const {
   if (composite == HybridComposite::Coverage && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
     throw Error("composite: the coverage form needs the adapted range");
   if (composite == HybridComposite::Weights && !weights_)
@@ -30,7 +31,9 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
   vk::Bindings bindings = {{HMB_COMPOSITE_BINDING_NEIGHBOR_MAX, &neighborMax},
                            {HMB_COMPOSITE_BINDING_MASK, &mask},
                            {HMB_COMPOSITE_BINDING_BACKGROUND, &background},
-                           {HMB_COMPOSITE_BINDING_OUTPUT, &output}};
+                           {HMB_COMPOSITE_BINDING_OUTPUT, &output},
+                           // Read only along curved paths; any texel buffer stands in otherwise.
+                           {HMB_COMPOSITE_BINDING_SHUTTER_PATHS, shutterPaths ? shutterPaths : &raster.samples()}};
   raster.bind(bindings, HMB_COMPOSITE_BINDING_RASTER, kernel.bindsByAddress());
   frame.dispatch(kName, kernel, bindings, blur,
                  {vk::groupsFor(blur.width, HMB_GATHER_GROUP_X), vk::groupsFor(blur.height, HMB_GATHER_GROUP_Y), 1});

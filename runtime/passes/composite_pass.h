@@ -25,7 +25,8 @@ class CompositePass {
   // hybrid's mask weights). The coverage form needs the adapted range.
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
               const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
-              const gpu::GatherParams& blur, HybridComposite composite) const;
+              const gpu::GatherParams& blur, HybridComposite composite,
+              const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
 
  private:
   const vk::Context& context_;

@@ -59,10 +59,6 @@ void validate(const HybridSettings& s) {
   settings::checkAll(hybridSettingTable(), s, "hybrid settings");
   if (s.blur.filter != PostProcessFilter::McGuire)
     throw Error("hybrid settings: the hybrid method blurs with the McGuire filter (filter mcguire)");
-  // Its range check, background gather and composite walk straight lines (the curved path's
-  // sample positions are the post-process gather's alone).
-  if (s.blur.motionPath != MotionPath::Linear)
-    throw Error("hybrid settings: the hybrid method blurs along straight paths (motion-path linear)");
   if (s.composite == HybridComposite::Coverage && s.blur.effectiveRange() != GatherRange::Adapted)
     throw Error("hybrid settings: the coverage composite needs the adapted range (range adapted)");
 }

@@ -83,18 +83,22 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
 }
 
 void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, const GpuScene& gpuScene,
-                         const vk::Buffer& output) {
+                         const vk::Buffer& output, const vk::Buffer* shutterPaths) {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
+  const bool curved = settings_.blur.motionPath == MotionPath::Curved;
+  if (curved && !shutterPaths) throw Error("hybrid: the curved motion path needs the G-buffer's shutter paths");
   // Every frame recorded from this prepare() builds the staged tree (a frame recorded again
   // must not find it missing).
   if (buildsInstanceTree_) traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
   frame.write(RevealPass::kName, cameraRays_, std::span<const gpu::PinholeCamera>(&camera_, 1));
-  const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height()};
+  const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height(),
+                                curved ? shutterPaths : nullptr};
   postProcess_.recordTiles(frame, raster);
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
-  const gpu::GatherParams blur = gatherParams(settings_.blur, size_.width(), size_.height(),
-                                              {settings_.maskBackgroundBoost, settings_.maskForegroundDivide});
+  gpu::GatherParams blur = gatherParams(settings_.blur, size_.width(), size_.height(),
+                                        {settings_.maskBackgroundBoost, settings_.maskForegroundDivide});
+  if (curved) blur.flags |= HMB_GATHER_FLAG_CURVED_PATH;
   RayMaskParameters maskParameters;
   maskParameters.tileMax = &postProcess_.tileMax();
   maskParameters.blur = blur;
@@ -107,9 +111,9 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
                  revealed_, size_.width(), size_.height(), settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
   backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(),
-                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur);
+                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, raster.shutterPaths);
   composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.mask(), backgroundBlurred_, output,
-                    blur, settings_.composite);
+                    blur, settings_.composite, raster.shutterPaths);
 }
 
 }  // namespace hmb::passes

@@ -65,8 +65,10 @@ class HybridStage {
   // After the G-buffer (`raster`: the renderer's, or an engine's packed) in the same frame:
   // writes the blurred, composited colour to `output`. The instance tree and the camera rays
   // are built and written in the frame: nothing here submits or waits.
+  // shutterPaths: the raster's paths over the shutter (GBufferStage::shutterPaths), which the
+  // curved path (settings' blur.motionPath) needs; null otherwise.
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const GpuScene& gpuScene,
-              const vk::Buffer& output);
+              const vk::Buffer& output, const vk::Buffer* shutterPaths = nullptr);
 
   // The next frame builds its trees anew, whatever the last frame built.
   void forgetTraceScene();

@@ -64,7 +64,7 @@ settings::Table<Choices, Settings> makeTable() {
              "K: the shutter cut into K slices, each rasterized at its close and blurred over its own span; the "
              "frame is their mean (K times the work)",
              &Choices::timeSlices, &Settings::timeSlices, Range<uint32_t>{1, kMaxTimeSlices}),
-      named("motion-path", "postprocess",
+      named("motion-path", kReaders,
             "linear: straight along the tiles' velocity (the paper); curved: moving pixels follow their own path "
             "through t, t - E/2 and t - E (adapted range)",
             &Choices::motionPath, &Settings::motionPath, kMotionPathNames),

@@ -95,7 +95,9 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_RANGE_CHECK_BINDING_TILES, &tiles_},
                           {HMB_RANGE_CHECK_BINDING_MASK, &mask_},
                           {HMB_RANGE_CHECK_BINDING_COUNTERS, &counters_},
-                          {HMB_RANGE_CHECK_BINDING_LIST, &list_}},
+                          {HMB_RANGE_CHECK_BINDING_LIST, &list_},
+                          // Read only along curved paths; any buffer stands in otherwise.
+                          {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
                          params, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
   sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }

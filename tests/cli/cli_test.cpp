@@ -284,25 +284,25 @@ TEST(CliTest, PostProcessSettingsReachTheReportAndBadOnesFailInOneLine) {
   EXPECT_EQ(report["settings"]["time_slices"], 1);
   EXPECT_EQ(report["settings"]["motion_path"], "linear");
   // The curved path: named in the report, its two passes run.
-  const CliRun curved = hmblur("--quiet render --scene temple --method postprocess --motion-path curved --width 50 "
-                               "--height 30 --report " + (dir / "curved.json").string());
-  ASSERT_EQ(curved.exitCode, 0) << curved.output;
-  nlohmann::json curvedReport;
-  std::ifstream(dir / "curved.json") >> curvedReport;
-  EXPECT_EQ(curvedReport["settings"]["motion_path"], "curved");
-  size_t pathPasses = 0;
-  for (const nlohmann::json& pass : curvedReport["passes"])
-    if (pass["name"] == "transform-shutter-path" || pass["name"] == "resolve-shutter-path") {
-      EXPECT_EQ(pass["status"], "run") << pass.dump();
-      ++pathPasses;
-    }
-  EXPECT_EQ(pathPasses, 2u);
+  for (const char* method : {"postprocess", "hybrid"}) {
+    const CliRun curved = hmblur("--quiet render --scene temple --method " + std::string(method) +
+                                 " --motion-path curved --width 50 --height 30 --report " + (dir / "curved.json").string());
+    ASSERT_EQ(curved.exitCode, 0) << curved.output;
+    nlohmann::json curvedReport;
+    std::ifstream(dir / "curved.json") >> curvedReport;
+    EXPECT_EQ(curvedReport["settings"]["motion_path"], "curved") << method;
+    size_t pathPasses = 0;
+    for (const nlohmann::json& pass : curvedReport["passes"])
+      if (pass["name"] == "transform-shutter-path" || pass["name"] == "resolve-shutter-path") {
+        EXPECT_EQ(pass["status"], "run") << method << " " << pass.dump();
+        ++pathPasses;
+      }
+    EXPECT_EQ(pathPasses, 2u) << method;
+  }
   expectOneLineError(hmblur("--quiet render --method postprocess --motion-path curved --range centered --width 8 "
                             "--height 8"),
                      "curved motion path");
   expectOneLineError(hmblur("--quiet render --method postprocess --motion-path bent --width 8 --height 8"), "bent");
-  expectOneLineError(hmblur("--quiet render --method hybrid --motion-path curved --width 8 --height 8"),
-                     "straight paths");
   // Time slices: the report names them, each gather's exposure is a slice's, the seed the first slice's.
   const CliRun sliced = hmblur("--quiet render --scene temple --method hybrid --time-slices 3 --seed 5 --width 50 "
                                "--height 30 --report " + (dir / "sliced.json").string());

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "kernels/gbuffer/gbuffer_layout.h"
 #include "tests/hybrid/hybrid_harness.h"
 #include "tests/hybrid/hybrid_reference.h"
 #include "tests/mblur/mblur_harness.h"
@@ -158,6 +159,29 @@ TEST_F(HybridCompositeTest, WeightsMatchReferenceWithTheCentredRange) {
   EXPECT_GT(expectCompositeMatches(c, s, HybridComposite::Weights, "centred"), 100u);
 }
 
+// Along curved paths (random paths, adversarial records among them): the coverage composite
+// samples each mask pixel's own path and the gather outside the mask follows the curved path,
+// both as the reference does; and the paths change the image.
+TEST_F(HybridCompositeTest, CurvedPathsMatchTheReference) {
+  std::mt19937 rng(37);
+  size_t differ = 0;
+  for (int round = 0; round < 3; ++round) {
+    CompositeCase c = randomCase(61, 41, rng);
+    if (round == 2) makeAdversarial(c, rng);
+    PostProcessSettings s = compositeSettings(12u, 9u, uint32_t(round));
+    c.layer.shutterPaths = mblur::randomShutterPaths(c.layer.velocity, rng, s.exposure * s.fps);
+    s.motionPath = passes::MotionPath::Curved;
+    expectCompositeMatches(c, s, HybridComposite::Coverage, "curved round " + std::to_string(round));
+    const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
+    const std::vector<glm::vec4> curved = runComposite(c, tiles, s, HybridComposite::Coverage);
+    PostProcessSettings straight = s;
+    straight.motionPath = passes::MotionPath::Linear;
+    const std::vector<glm::vec4> linear = runComposite(c, tiles, straight, HybridComposite::Coverage);
+    for (size_t i = 0; i < curved.size(); ++i) differ += mblur::maxAbsDifference(curved[i], linear[i]) > 1e-3f;
+  }
+  EXPECT_GT(differ, 1000u);
+}
+
 TEST_F(HybridCompositeTest, CompositesMatchReferenceOnAdversarialLayers) {
   std::mt19937 rng(31);
   for (int round = 0; round < 3; ++round) {
@@ -251,6 +275,46 @@ TEST_F(HybridCompositeTest, PixelListGathersExactlyTheListedPixels) {
     expectListGather(runGather(context(), c.layer, tiles, run, s), full, list, sentinel,
                      "share " + std::to_string(share));
   }
+}
+
+// Along curved paths the background gather follows the raster's paths, and a revealed pixel has
+// none: at the listed pixels it equals the post-process gather of the overlaid layer whose
+// revealed pixels go straight.
+TEST_F(HybridCompositeTest, TheBackgroundGatherFollowsTheRastersCurvedPaths) {
+  std::mt19937 rng(41);
+  CompositeCase c = randomCase(59, 37, rng);
+  const CompositeCase other = randomCase(59, 37, rng);
+  PostProcessSettings s = compositeSettings(10u, 11u, 2u);
+  s.motionPath = passes::MotionPath::Curved;
+  c.layer.shutterPaths = mblur::randomShutterPaths(c.layer.velocity, rng, s.exposure * s.fps);
+  const size_t pixels = c.layer.color.size();
+  std::vector<uint32_t> mask(pixels, HMB_MASK_NONE), list;
+  Layer overlaid = c.layer;
+  std::uniform_int_distribution<int> third(0, 2);
+  for (uint32_t i = 0; i < pixels; ++i) {
+    if (third(rng) == 0) {
+      mask[i] = HMB_MASK_REVEALED;
+      overlaid.color[i] = other.layer.color[i];
+      overlaid.normalDepth[i] = other.layer.normalDepth[i];
+      overlaid.velocity[i] = other.layer.velocity[i];
+      overlaid.shutterPaths[i] = glm::uvec2(HMB_NO_SHUTTER_PATH);
+    }
+    if (i % 4 != 0) list.push_back(i);
+  }
+  const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
+  GatherRun run;
+  run.sentinel = glm::vec4(-2.0f);
+  const std::vector<glm::vec4> full = runGather(context(), overlaid, tiles, run, s);
+  run.mask = &mask;
+  run.list = &list;
+  run.revealed = &other.layer;
+  expectListGather(runGather(context(), c.layer, tiles, run, s), full, list, run.sentinel, "curved overlay");
+  PostProcessSettings straight = s;
+  straight.motionPath = passes::MotionPath::Linear;
+  run.mask = nullptr;
+  run.list = nullptr;
+  run.revealed = nullptr;
+  EXPECT_NE(runGather(context(), overlaid, tiles, run, straight), full) << "the paths should change the gather";
 }
 
 // The background gather reads the revealed layer where the mask says HMB_MASK_REVEALED and the

@@ -58,6 +58,12 @@ passes::LayerContents contentsOf(const mblur::Layer& layer, const std::vector<ui
                     &layer.color);
 }
 
+// A layer's shutter paths, padded to whole 16-byte records for the texel views.
+vk::Buffer pathsBuffer(vk::Context& context, std::vector<glm::uvec2> paths) {
+  paths.resize((paths.size() + 1) / 2 * 2);
+  return vk::uploadedBuffer(context, paths, "test shutter paths");
+}
+
 passes::LayerContents contentsOf(const MaskLayer& layer) {
   return contentsOf(layer.normalDepth, layer.velocity, layer.objectId, nullptr);
 }
@@ -71,7 +77,9 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   const vk::Buffer surfaces = vk::uploadedBuffer(context, packed.surfaces, "test surfaces");
   passes::RayMaskStage stage(context);
   stage.prepare(layer.width, layer.height);
-  const passes::MotionBlurInputs inputs{&samples, &surfaces, layer.width, layer.height};
+  std::optional<vk::Buffer> paths;
+  if (!layer.shutterPaths.empty()) paths = pathsBuffer(context, layer.shutterPaths);
+  const passes::MotionBlurInputs inputs{&samples, &surfaces, layer.width, layer.height, paths ? &*paths : nullptr};
   // The mask passes start from the gather's tile-max, run here at the parameters' tile size.
   const passes::TileMaxPass tileMax(context);
   passes::RayMaskParameters withTiles = parameters;
@@ -114,14 +122,19 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   const vk::Buffer output = filledBuffer(context, pixels, run.sentinel, "test output");
   const vk::Buffer mask = run.mask ? vk::uploadedBuffer(context, *run.mask, "test mask")
                                    : filledBuffer(context, pixels, HMB_MASK_NONE, "test mask");
-  const gpu::GatherParams params = passes::gatherParams(settings, layer.width, layer.height, run.maskWeights);
+  gpu::GatherParams params = passes::gatherParams(settings, layer.width, layer.height, run.maskWeights);
+  // Along curved paths the raster's paths go with it, as HybridStage binds them.
+  std::optional<vk::Buffer> paths;
+  if (!layer.shutterPaths.empty()) paths = pathsBuffer(context, layer.shutterPaths);
+  if (paths && settings.motionPath == passes::MotionPath::Curved) params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
+  const vk::Buffer* pathsOrNull = paths ? &*paths : nullptr;
   vk::FrameRecorder frame(context);
   frame.begin();
   if (run.background) {
     if (!run.mask || !run.objectId || run.list) throw std::runtime_error("the composite needs mask and ids, no list");
     const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
     const passes::CompositePass pass(context);
-    pass.record(frame, raster, tiles, mask, background, output, params, run.composite);
+    pass.record(frame, raster, tiles, mask, background, output, params, run.composite, pathsOrNull);
     frame.submitAndWait();
   } else if (run.list) {
     const passes::ImageLayer revealed = imageLayer(run.revealed ? *run.revealed : layer, nullptr, "test revealed");
@@ -129,12 +142,13 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     const vk::Buffer counters = vk::uploadedBuffer(
         context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(run.list->size()))}, "test list counters");
     const passes::BackgroundGatherPass pass(context);
-    pass.record(frame, raster, revealed, tiles, mask, list, counters, output, params);
+    pass.record(frame, raster, revealed, tiles, mask, list, counters, output, params, pathsOrNull);
     frame.submitAndWait();
   } else {
     if (run.mask) throw std::runtime_error("the post-process gather takes no mask");
     const passes::GatherPass pass(context);
-    pass.record(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height}, tiles, output, settings);
+    pass.record(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull}, tiles, output,
+                settings);
     frame.submitAndWait();
   }
   return downloadFirst<glm::vec4>(output, pixels);

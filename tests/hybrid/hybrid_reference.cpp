@@ -26,10 +26,28 @@ float behindShareOf(uint32_t sampleObject, float sampleDepth, uint32_t centreObj
 }
 
 // mblur_common.glsl's coverageSamplePixel.
-glm::ivec2 coverageSamplePixel(uint32_t px, uint32_t py, glm::vec2 v, uint32_t i, uint32_t samples, float jitter,
-                               uint32_t width, uint32_t height) {
+glm::ivec2 coverageSamplePixel(uint32_t px, uint32_t py, glm::vec2 v, glm::vec2 q, uint32_t i, uint32_t samples,
+                               float jitter, uint32_t width, uint32_t height) {
   const float u = (float(i) + 1.0f - jitter) / float(samples);
-  return nearestPixel({float(px) + 0.5f + u * v.x, float(py) + 0.5f + u * v.y}, width, height);
+  return nearestPixel(glm::vec2(float(px) + 0.5f, float(py) + 0.5f) + u * v + (u * u) * q, width, height);
+}
+
+// range_check.comp's and composite.comp's own curved path of pixel (x, y): its record's terms
+// with the change of velocity to X + a where that lies on the same surface (depth within
+// softZExtent), through inversePath. False (v, q untouched) without a path.
+template <class DepthAt, class VelocityAt>
+bool ownCurvedPath(glm::uvec2 record, uint32_t x, uint32_t y, uint32_t width, uint32_t height, DepthAt depthAt,
+                   VelocityAt velocityAt, float velocityScale, float maxSpeed, float softZExtent, glm::vec2& v,
+                   glm::vec2& q) {
+  glm::vec2 a, c;
+  if (!mblur::shutterPathTerms(record, a, c)) return false;
+  const glm::ivec2 ahead = nearestPixel(glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + a, width, height);
+  const size_t aheadIndex = size_t(uint32_t(ahead.y)) * width + uint32_t(ahead.x);
+  const size_t index = size_t(y) * width + x;
+  const bool sameSurface = std::abs(depthAt(aheadIndex) - depthAt(index)) < softZExtent;
+  const glm::vec2 change = sameSurface ? (velocityAt(aheadIndex) - velocityAt(index)) * velocityScale : glm::vec2(0.0f);
+  mblur::inversePath(a, c, change, maxSpeed, v, q);
+  return true;
 }
 float length2(glm::vec2 v) { return std::sqrt(v.x * v.x + v.y * v.y); }
 float dot3(glm::vec3 a, glm::vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
@@ -165,6 +183,47 @@ std::vector<uint32_t> edgeMask(const MaskLayer& input, const passes::RayMaskPara
   return out;
 }
 
+namespace {
+
+bool curvedFlag(const passes::RayMaskParameters& p) { return (p.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u; }
+auto depthOf(const MaskLayer& layer) {
+  return [&layer](size_t i) { return sanitizeDepth(layer.normalDepth[i].w); };
+}
+auto velocityOf(const MaskLayer& layer) {
+  return [&layer](size_t i) { return layer.velocity[i]; };
+}
+
+}  // namespace
+
+std::vector<uint32_t> rangeCheck(const MaskLayer& input, const std::vector<uint32_t>& edges,
+                                 const passes::RayMaskParameters& p) {
+  const MaskLayer layer = stored(input);
+  const uint32_t width = layer.width, height = layer.height;
+  std::vector<uint32_t> out(size_t(width) * height, 0u);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const size_t index = size_t(y) * width + x;
+      float speed;
+      glm::vec2 v = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
+      if (!(speed > 0.0f)) continue;
+      glm::vec2 q(0.0f);
+      const bool curved = curvedFlag(p) && ownCurvedPath(layer.shutterPaths[index], x, y, width, height, depthOf(layer),
+                                                         velocityOf(layer), p.blur.velocityScale, p.blur.maxSpeed,
+                                                         p.blur.softZExtent, v, q);
+      const auto steps = uint32_t(std::ceil(curved ? length2(v) + length2(q) : speed));
+      const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+      for (uint32_t i = 0; i <= steps; ++i) {
+        const float s = curved ? (steps == 0 ? 0.0f : float(i) / float(steps)) : float(i) / float(steps);
+        const glm::ivec2 r = nearestPixel(curved ? centre + s * v + (s * s) * q : centre + v * s, width, height);
+        if (edges[indexOf(width, r)] != 0u) {
+          out[index] = 1u;
+          break;
+        }
+      }
+    }
+  return out;
+}
+
 std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& input, const std::vector<uint32_t>& edges,
                                  uint32_t width, uint32_t height, const passes::RayMaskParameters& p) {
   const std::vector<glm::vec2> velocity = mblur::storedVelocity(input);
@@ -198,12 +257,16 @@ std::vector<bool> revealedPixels(const MaskLayer& input, const std::vector<uint3
       const size_t index = size_t(y) * layer.width + x;
       if (mask[index] == 0u) continue;
       float speed;
-      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
+      glm::vec2 v = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
+      glm::vec2 q(0.0f);
+      if (curvedFlag(p) && speed > 0.0f)
+        ownCurvedPath(layer.shutterPaths[index], x, y, layer.width, layer.height, depthOf(layer), velocityOf(layer),
+                      p.blur.velocityScale, p.blur.maxSpeed, p.blur.softZExtent, v, q);
       const float jitter = mblur::unitFromHash(mblur::mblurHash(x, y, p.blur.seed));
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
       for (uint32_t i = 0; i < p.blur.samples && !out[index]; ++i) {
         const size_t sample =
-            indexOf(layer.width, coverageSamplePixel(x, y, v, i, p.blur.samples, jitter, layer.width, layer.height));
+            indexOf(layer.width, coverageSamplePixel(x, y, v, q, i, p.blur.samples, jitter, layer.width, layer.height));
         out[index] = behindShareOf(layer.objectId[sample], sanitizeDepth(layer.normalDepth[sample].w),
                                    layer.objectId[index], centreDepth, p.blur.softZExtent) > 0.0f;
       }
@@ -239,17 +302,23 @@ float behindShare(const CompositeInputs& in, size_t sampleIndex, uint32_t centre
 
 glm::vec4 coverageComposite(const CompositeInputs& in, uint32_t px, uint32_t py, glm::vec4 centreColor,
                             float centreDepth, float jitter, float velocityScale, float coverageMaxSpeed,
-                            uint32_t samples) {
+                            uint32_t samples, bool curved) {
   const mblur::Layer& layer = in.layer;
   const size_t index = size_t(py) * layer.width + px;
   float speed;
-  const glm::vec2 v = gatherVelocity(in.surfaceVelocity[index], velocityScale, coverageMaxSpeed, speed);
+  glm::vec2 v = gatherVelocity(in.surfaceVelocity[index], velocityScale, coverageMaxSpeed, speed);
+  glm::vec2 q(0.0f);
+  if (curved)
+    ownCurvedPath(
+        layer.shutterPaths[index], px, py, layer.width, layer.height,
+        [&](size_t i) { return sanitizeDepth(layer.normalDepth[i].w); }, [&](size_t i) { return in.surfaceVelocity[i]; },
+        velocityScale, coverageMaxSpeed, in.softZExtent, v, q);
   const uint32_t centreObject = in.objectId[index];
   glm::vec4 foregroundSum = centreColor;
   float foregroundCount = 0.0f;
   for (uint32_t i = 0; i < samples; ++i) {
     const size_t sampleIndex =
-        indexOf(layer.width, coverageSamplePixel(px, py, v, i, samples, jitter, layer.width, layer.height));
+        indexOf(layer.width, coverageSamplePixel(px, py, v, q, i, samples, jitter, layer.width, layer.height));
     const float onObject = 1.0f - behindShare(in, sampleIndex, centreObject, centreDepth);
     foregroundSum += onObject * sanitizeColor(layer.color[sampleIndex]);
     foregroundCount += onObject;
@@ -322,6 +391,7 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& input, const std::vec
   const passes::TileGrid grid = passes::tileGridFor(layer.width, layer.height, m);
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
   const float coverageMaxSpeed = float(std::max(layer.width, layer.height));
+  const bool curved = settings.motionPath == passes::MotionPath::Curved && !layer.shutterPaths.empty();
   for (uint32_t py = 0; py < layer.height; ++py)
     for (uint32_t px = 0; px < layer.width; ++px) {
       const size_t index = size_t(py) * layer.width + px;
@@ -333,7 +403,7 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& input, const std::vec
       const float jitter = mblur::unitFromHash(mblur::mblurHash(px, py, settings.seed));
       out[index] = composite == passes::HybridComposite::Coverage
                        ? coverageComposite(in, px, py, centreColor, centreDepth, jitter, velocityScale,
-                                           coverageMaxSpeed, settings.samples)
+                                           coverageMaxSpeed, settings.samples, curved)
                        : weightsComposite(in, px, py, dominant, centreColor, centreDepth, jitter, settings,
                                           maskWeights);
     }

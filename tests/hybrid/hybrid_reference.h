@@ -24,6 +24,9 @@ struct MaskLayer {
   std::vector<glm::vec4> normalDepth;  // world normal, w camera-space depth
   std::vector<glm::vec2> velocity;     // pixels per frame
   std::vector<uint32_t> objectId;
+  // Each pixel's path over the shutter (mblur::Layer::shutterPaths); empty: none. Read where
+  // parameters.blur.flags has HMB_GATHER_FLAG_CURVED_PATH.
+  std::vector<glm::uvec2> shutterPaths;
 };
 
 // The layer as the kernels read it: every pixel through the packed surface the device holds
@@ -52,6 +55,10 @@ std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskPa
 // range_check.comp: the ray mask (0/1 per pixel) from the velocities and an edge mask.
 std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const std::vector<uint32_t>& edges,
                                  uint32_t width, uint32_t height, const passes::RayMaskParameters& parameters);
+// The same along curved paths (HMB_GATHER_FLAG_CURVED_PATH in parameters.blur.flags): each
+// pixel with a path walks its own (mblur_common.glsl's inversePath), the others go straight.
+std::vector<uint32_t> rangeCheck(const MaskLayer& layer, const std::vector<uint32_t>& edges,
+                                 const passes::RayMaskParameters& parameters);
 
 // range_check.comp with HMB_RANGE_CHECK_LIST_UNCOVERED: true for the mask pixels whose coverage
 // composite samples (parameters.blur.samples, jitter from parameters.blur.seed, along the

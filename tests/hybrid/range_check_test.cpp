@@ -13,6 +13,7 @@
 #include "kernels/hybrid/hybrid_layout.h"
 #include "tests/hybrid/hybrid_harness.h"
 #include "tests/hybrid/hybrid_reference.h"
+#include "tests/mblur/mblur_harness.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -128,6 +129,35 @@ TEST_F(HybridRangeCheckTest, LongRangesFindAnEdgeOnePixelWide) {
       // Mask: every pixel whose range [x, x + 9] meets column 18 or 19, that is 9..19.
       EXPECT_EQ(device.mask[y * width + x], x >= 9 && x <= 19 ? 1u : 0u) << x << "," << y;
     }
+}
+
+// Along curved paths (random paths, adversarial records among them) each pixel walks its own
+// path, for the mask and for the coverage selection, as the reference does; the paths change
+// the mask.
+TEST_F(HybridRangeCheckTest, CurvedPathsMatchTheReference) {
+  size_t differ = 0;
+  for (uint32_t round = 0; round < 3; ++round) {
+    std::mt19937 rng(300 + round);
+    const uint32_t width = 41 + 13 * round, height = 29 + 7 * round;
+    MaskLayer layer = randomMaskLayer(width, height, rng);
+    layer.shutterPaths = mblur::randomShutterPaths(layer.velocity, rng, 1.0f);
+    RayMaskParameters p = parametersWith(0.5f);
+    p.listOnlyUncovered = true;
+    p.blur.samples = 5 + 4 * round;
+    p.blur.seed = round;
+    p.blur.flags = HMB_GATHER_FLAG_ADAPTED_RANGE | HMB_GATHER_FLAG_CURVED_PATH;
+    const RayMaskReadback device = runRayMask(context(), layer, p);
+    const std::vector<uint32_t> reference = rangeCheck(layer, device.edges, p);
+    EXPECT_EQ(device.mask, reference) << round;
+    const std::vector<bool> reveal = revealedPixels(layer, device.mask, p);
+    for (uint32_t i = 0; i < device.mask.size(); ++i) {
+      const uint32_t value = device.mask[i] == 0u ? HMB_MASK_NONE : (reveal[i] ? HMB_MASK_REVEALED : HMB_MASK_UNREVEALED);
+      EXPECT_EQ(device.maskValues[i], value) << round << " pixel " << i;
+    }
+    const std::vector<uint32_t> straight = rangeCheck(layer.velocity, device.edges, width, height, p);
+    for (size_t i = 0; i < straight.size(); ++i) differ += straight[i] != reference[i];
+  }
+  EXPECT_GT(differ, 0u) << "the paths should change the mask";
 }
 
 // With the coverage composite, only the mask pixels whose composite samples meet the background

@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/gbuffer/gbuffer_layout.h"
 #include "tests/mblur/mblur_harness.h"
 #include "tests/mblur/mblur_reference.h"
 #include "tests/support/vulkan_test.h"
@@ -119,28 +118,6 @@ TEST_F(MblurGatherTest, AdversarialInputsStayFiniteAndMatchTheReference) {
   }
 }
 
-// Paths over the shutter for a layer: each pixel's straight motion bent by a random offset at
-// mid-shutter, and among them the adversarial records: none (NaN halves), infinite and the
-// largest halves, zero, a path that turns back on itself.
-void addShutterPaths(Layer& layer, std::mt19937& rng, float exposureFrames) {
-  std::uniform_real_distribution<float> bend(-6.0f, 6.0f);
-  std::uniform_int_distribution<int> pick(0, 19);
-  layer.shutterPaths.resize(layer.velocity.size());
-  for (size_t i = 0; i < layer.velocity.size(); ++i) {
-    const glm::vec2 open = layer.velocity[i] * exposureFrames;
-    glm::uvec2 record = packShutterPath(0.5f * open + glm::vec2(bend(rng), bend(rng)), open);
-    switch (pick(rng)) {
-      case 0: record = glm::uvec2(HMB_NO_SHUTTER_PATH); break;
-      case 1: record = glm::uvec2(0x7c007c00u, 0x00007c00u); break;  // +inf halves
-      case 2: record = packShutterPath({65504.0f, -65504.0f}, {65504.0f, 65504.0f}); break;
-      case 3: record = glm::uvec2(0u); break;
-      case 4: record = packShutterPath(open, glm::vec2(0.0f)); break;  // out and back
-      default: break;
-    }
-    layer.shutterPaths[i] = record;
-  }
-}
-
 PostProcessSettings curvedSettings(uint32_t tileSize, uint32_t samples = 15) {
   PostProcessSettings s = settingsFor(GatherRange::Adapted, tileSize, samples);
   s.motionPath = passes::MotionPath::Curved;
@@ -155,7 +132,7 @@ TEST_F(MblurGatherTest, CurvedPathsMatchTheReference) {
       SCOPED_TRACE(testing::Message() << width << "x" << height << " m " << tileSize);
       Layer layer = randomLayer(width, height, rng);
       const PostProcessSettings s = curvedSettings(tileSize);
-      addShutterPaths(layer, rng, s.exposure * s.fps);
+      layer.shutterPaths = randomShutterPaths(layer.velocity, rng, s.exposure * s.fps);
       expectGatherMatches(layer, s);
       if (width * height < 100) continue;
       // The paths change the image: the curved gather is not the straight one.
@@ -184,7 +161,7 @@ TEST_F(MblurGatherTest, CurvedPathsOnAdversarialInputsStayFiniteAndMatchTheRefer
   }
   PostProcessSettings s = curvedSettings(6);
   const Layer straight = layer;
-  addShutterPaths(layer, rng, s.exposure * s.fps);
+  layer.shutterPaths = randomShutterPaths(layer.velocity, rng, s.exposure * s.fps);
   expectGatherMatches(layer, s);
   s.softZExtent = 1e-30f;
   expectGatherMatches(layer, s);

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "kernels/gbuffer/gbuffer_layout.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/jimenez_gather_pass.h"
 #include "runtime/passes/neighbor_max_pass.h"
@@ -57,6 +58,27 @@ LayerBuffers upload(vk::Context& context, const Layer& layer) {
 }
 
 }  // namespace
+
+std::vector<glm::uvec2> randomShutterPaths(const std::vector<glm::vec2>& velocity, std::mt19937& rng,
+                                           float exposureFrames) {
+  std::uniform_real_distribution<float> bend(-6.0f, 6.0f);
+  std::uniform_int_distribution<int> pick(0, 19);
+  std::vector<glm::uvec2> paths(velocity.size());
+  for (size_t i = 0; i < velocity.size(); ++i) {
+    const glm::vec2 open = velocity[i] * exposureFrames;
+    glm::uvec2 record = packShutterPath(0.5f * open + glm::vec2(bend(rng), bend(rng)), open);
+    switch (pick(rng)) {
+      case 0: record = glm::uvec2(HMB_NO_SHUTTER_PATH); break;
+      case 1: record = glm::uvec2(0x7c007c00u, 0x00007c00u); break;  // +inf halves
+      case 2: record = packShutterPath({65504.0f, -65504.0f}, {65504.0f, 65504.0f}); break;
+      case 3: record = glm::uvec2(0u); break;
+      case 4: record = packShutterPath(open, glm::vec2(0.0f)); break;  // out and back
+      default: break;
+    }
+    paths[i] = record;
+  }
+  return paths;
+}
 
 std::vector<glm::vec4> runTileMax(vk::Context& context, const std::vector<glm::vec2>& velocity, uint32_t width,
                                   uint32_t height, uint32_t tileSize, float velocityScale) {

@@ -37,6 +37,13 @@ Layer stillLayer(uint32_t width, uint32_t height);
 // depths and velocities.
 Layer randomLayer(uint32_t width, uint32_t height, std::mt19937& rng);
 
+// Paths over the shutter (Layer::shutterPaths) for these velocities (pixels per frame): each
+// pixel's straight motion over exposureFrames frames bent by a random offset at mid-shutter,
+// and among them the adversarial records: none (NaN halves), infinite and the largest halves,
+// zero, a path that turns back on itself.
+std::vector<glm::uvec2> randomShutterPaths(const std::vector<glm::vec2>& velocity, std::mt19937& rng,
+                                           float exposureFrames);
+
 // The C++ reference's neighbour-max tiles of a layer, at the selected filter's tile size.
 std::vector<glm::vec4> referenceTiles(const Layer& layer, const passes::PostProcessSettings& settings);
 

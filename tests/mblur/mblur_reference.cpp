@@ -38,6 +38,15 @@ bool shutterPathTerms(glm::uvec2 record, glm::vec2& a, glm::vec2& c) {
   return finite(m) && finite(o);
 }
 
+void inversePath(glm::vec2 a, glm::vec2 c, glm::vec2 change, float maxLength, glm::vec2& linear,
+                 glm::vec2& quadratic) {
+  const glm::vec2 k = std::isfinite(change.x) && std::isfinite(change.y) ? c + change : c;
+  const float reach = length2(a) + length2(k);
+  const float scale = reach > maxLength ? maxLength / reach : 1.0f;
+  linear = a * scale;
+  quadratic = k * scale;
+}
+
 float pathReach(glm::ivec2 samplePixel, glm::uvec2 sampleRecord, glm::vec2 v, glm::vec2 x) {
   glm::vec2 a, c;
   if (!shutterPathTerms(sampleRecord, a, c)) {
@@ -217,16 +226,11 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
           !(length2(a) + length2(c) < gpu::kOwnPathShare * std::max(length2(glm::vec2(dominant)), gpu::kMinBlurPixels))) {
         const glm::ivec2 ahead = nearestPixel(centre + a, width, height);
         const uint32_t aheadIndex = uint32_t(ahead.y) * width + uint32_t(ahead.x);
-        glm::vec2 k = c;
-        if (std::abs(sanitizeDepth(layer.normalDepth[aheadIndex].w) - centreDepth) < settings.softZExtent) {
-          const glm::vec2 change = (layer.velocity[aheadIndex] - layer.velocity[index]) * velocityScale;
-          if (std::isfinite(change.x) && std::isfinite(change.y)) k += change;
-        }
-        const float reach = length2(a) + length2(k);
-        const float scale = reach > maxSpeed ? maxSpeed / reach : 1.0f;
+        const bool sameSurface = std::abs(sanitizeDepth(layer.normalDepth[aheadIndex].w) - centreDepth) < settings.softZExtent;
+        const glm::vec2 change =
+            sameSurface ? (layer.velocity[aheadIndex] - layer.velocity[index]) * velocityScale : glm::vec2(0.0f);
         ownPath = true;
-        pathLinear = a * scale;
-        pathQuadratic = k * scale;
+        inversePath(a, c, change, maxSpeed, pathLinear, pathQuadratic);
       }
       const uint32_t samples = settings.samples;
       for (uint32_t i = 0; i < samples; ++i) {

@@ -73,6 +73,7 @@ std::vector<glm::vec4> neighborMax(const std::vector<glm::vec4>& tileMax, passes
 // nearly a sample's path passes x, and a pixel's own path (false where it keeps the straight
 // line).
 bool shutterPathTerms(glm::uvec2 record, glm::vec2& a, glm::vec2& c);
+void inversePath(glm::vec2 a, glm::vec2 c, glm::vec2 change, float maxLength, glm::vec2& linear, glm::vec2& quadratic);
 float pathReach(glm::ivec2 samplePixel, glm::uvec2 sampleRecord, glm::vec2 v, glm::vec2 x);
 // The McGuire gather (kernels/mblur/gather_samples.glsl, the McGuire fields of settings, its
 // curved path where settings ask for it and the layer has paths); mask:
