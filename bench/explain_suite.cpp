@@ -1,3 +1,4 @@
+#include "bench/method_variants.h"
 #include "bench/explain_suite.h"
 
 #include <algorithm>
@@ -98,9 +99,10 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
     throw Error("explain: time slices must be 1 to " + std::to_string(passes::kMaxTimeSlices));
   if (o.referenceSpp < 2 || o.referenceSpp % 2 != 0)
     throw Error("explain: the reference's samples per pixel must be even (two halves), at least 2");
-  for (const std::string& method : o.methods)
-    if (method != "postprocess" && method != "postprocess-curved" && method != "hybrid")
-      throw Error("explain: method '" + method + "' is not one it explains (postprocess, postprocess-curved, hybrid)");
+  for (const std::string& method : o.methods) {
+    RenderSettings check;
+    applyMethodVariant(method, kExplainMethods, check);  // throws, naming them, for any other
+  }
   if (!o.imageDir.empty()) fs::create_directories(o.imageDir);
   Renderer renderer(context);
   std::vector<ExplainCase> cases;
@@ -120,9 +122,7 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
         metrics::blurRegion(judge.image, metrics::displayImageFromRgba8(sharp.display));
     for (const std::string& method : o.methods) {
       progress(name + ": " + method);
-      const bool curved = method == "postprocess-curved";
-      settings.method = parseMethod(curved ? "postprocess" : method);
-      settings.postprocess.motionPath = curved ? passes::MotionPath::Curved : passes::MotionPath::Linear;
+      applyMethodVariant(method, kExplainMethods, settings);
       settings.postprocess.timeSlices = o.timeSlices;
       settings.postprocess.tileSize = o.tileSize;
       const RenderResult result = renderer.render(scene, settings);

@@ -25,11 +25,13 @@ class Context;
 
 namespace hmb::bench {
 
+// The methods it explains (bench/method_variants.h: the -curved ones along curved paths).
+inline const std::vector<std::string> kExplainMethods = {"postprocess", "postprocess-curved", "hybrid", "hybrid-curved"};
+
 struct ExplainSuiteOptions {
   std::vector<std::string> scenes;  // reference scene names or glTF paths
   ImageSize size{320, 180};
   uint32_t referenceSpp = 256;  // both halves together
-  // postprocess, postprocess-curved (along curved paths: --motion-path curved), hybrid.
   std::vector<std::string> methods = {"postprocess", "hybrid"};
   uint32_t timeSlices = 1;  // the methods' time slices (RenderSettings: postprocess.timeSlices)
   std::optional<uint32_t> tileSize;  // every method's; unset: their defaults

@@ -693,9 +693,10 @@ int main(int argc, char** argv) {
   passesCmd->add_option("--sizes", passesOptions.sizes, "Image sizes, WIDTHxHEIGHT, comma separated")
       ->delimiter(',')
       ->capture_default_str();
-  passesCmd->add_option("--methods", passesOptions.methods, "Methods (sharp, postprocess, hybrid), comma separated")
+  passesCmd->add_option("--methods", passesOptions.methods,
+                        "Methods (sharp, postprocess, hybrid; -curved: along curved paths), comma separated")
       ->delimiter(',')
-      ->check(CLI::IsMember({"sharp", "postprocess", "hybrid"}))
+      ->check(CLI::IsMember(hmb::bench::kPassesMethods))
       ->capture_default_str();
 
   EngineOptions engineOptions;
@@ -718,9 +719,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2u, 65536u))
       ->capture_default_str();
   explainCmd->add_option("--methods", explainOptions.methods,
-                         "Methods (postprocess, postprocess-curved: along curved paths, hybrid), comma separated")
+                         "Methods (postprocess, hybrid; -curved: along curved paths), comma separated")
       ->delimiter(',')
-      ->check(CLI::IsMember({"postprocess", "postprocess-curved", "hybrid"}))
+      ->check(CLI::IsMember(hmb::bench::kExplainMethods))
       ->capture_default_str();
   explainCmd->add_option("--tile-size", explainOptions.tileSize, "Every method's tile size in pixels (default: theirs)")
       ->check(CLI::Range(1u, HMB_MBLUR_MAX_TILE_SIZE));

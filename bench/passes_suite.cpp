@@ -1,3 +1,4 @@
+#include "bench/method_variants.h"
 #include "bench/passes_suite.h"
 
 #include <algorithm>
@@ -25,7 +26,7 @@ Summary timeFloor(const vk::Context& context, const ImageSize& size, const Passe
 PassesCase runCase(Renderer& renderer, const scene::Scene& scene, const std::string& name, const std::string& method,
                    const ImageSize& size, const PassesSuiteOptions& o) {
   RenderSettings settings;
-  settings.method = parseMethod(method);
+  applyMethodVariant(method, kPassesMethods, settings);
   settings.width = size.width;
   settings.height = size.height;
   settings.reuseAcrossFrames = false;  // each repeat is timed as a new frame: nothing kept from the last one
@@ -72,9 +73,10 @@ std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOp
   if (options.repeats < 1) throw Error("passes: repeats must be at least 1");
   if (options.scenes.empty() || options.sizes.empty() || options.methods.empty())
     throw Error("passes: no scenes, sizes or methods");
-  for (const std::string& method : options.methods)
-    if (method != "sharp" && method != "postprocess" && method != "hybrid")
-      throw Error("passes: method '" + method + "' is not one of sharp, postprocess, hybrid");
+  for (const std::string& method : options.methods) {
+    RenderSettings check;
+    applyMethodVariant(method, kPassesMethods, check);  // throws, naming them, for any other
+  }
   std::vector<PassesCase> cases;
   for (const std::string& name : options.scenes) {
     const scene::Scene scene = loadBenchScene(name);

@@ -21,6 +21,10 @@ class Context;
 
 namespace hmb::bench {
 
+// The methods it times (bench/method_variants.h: the -curved ones along curved paths).
+inline const std::vector<std::string> kPassesMethods = {"sharp", "postprocess", "postprocess-curved", "hybrid",
+                                                        "hybrid-curved"};
+
 struct PassesSuiteOptions {
   std::vector<std::string> scenes;  // reference scene names or glTF paths
   std::vector<ImageSize> sizes = {{640, 360}, {1280, 720}, {1920, 1080}};
