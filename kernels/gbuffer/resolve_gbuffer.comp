@@ -31,22 +31,7 @@ vec2 shadingUv(uint v) { return floatRecordAt(shadingTexels, 2u * v + 1u).xy; }
 
 #include "../shared/shading.glsl"
 
-// Barycentrics b (sum 1) of the point of triangle (c0, c1, c2) that projects to ndc:
-// sum b_i (c_i.xy - ndc * c_i.w) = 0. They weight clip-space (hence world-space) attributes
-// directly, i.e. they are already perspective-correct.
-// Clip positions are passed as (x, y, w).
-vec3 clipBarycentrics(vec3 c0, vec3 c1, vec3 c2, vec2 ndc) {
-  const vec3 rowX = vec3(c0.x - ndc.x * c0.z, c1.x - ndc.x * c1.z, c2.x - ndc.x * c2.z);
-  const vec3 rowY = vec3(c0.y - ndc.y * c0.z, c1.y - ndc.y * c1.z, c2.y - ndc.y * c2.z);
-  const vec3 k = cross(rowX, rowY);
-  const float sum = k.x + k.y + k.z;
-  return sum != 0.0 ? k / sum : vec3(1.0 / 3.0);
-}
-
-// Clip position (x, y, w) to pixel coordinates.
-vec2 clipToPixel(vec3 c) {
-  return (c.xy / c.z * 0.5 + 0.5) * vec2(params.width, params.height);
-}
+#include "clip_barycentrics.glsl"
 
 void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -81,7 +66,7 @@ void main() {
   const vec3 previousClip =
       b.x * clipPreviousXYW(tri.v0) + b.y * clipPreviousXYW(tri.v1) + b.z * clipPreviousXYW(tri.v2);
   // A point behind the camera at the previous frame has no screen position: no velocity.
-  const vec2 motion = previousClip.z > 0.0 ? centre - clipToPixel(previousClip) : vec2(0.0);
+  const vec2 motion = previousClip.z > 0.0 ? centre - clipToPixel(previousClip, params.width, params.height) : vec2(0.0);
 
   // Clip w of a perspective projection is the camera-space depth, and linear in barycentrics.
   const float depth = dot(b, vec3(c0.z, c1.z, c2.z));

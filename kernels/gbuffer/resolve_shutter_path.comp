@@ -21,16 +21,7 @@ layout(push_constant) uniform Params { ResolveParams params; };
 
 vec3 xyw(vec4 clip) { return clip.xyw; }
 
-// As resolve_gbuffer.comp's.
-vec3 clipBarycentrics(vec3 c0, vec3 c1, vec3 c2, vec2 ndc) {
-  const vec3 rowX = vec3(c0.x - ndc.x * c0.z, c1.x - ndc.x * c1.z, c2.x - ndc.x * c2.z);
-  const vec3 rowY = vec3(c0.y - ndc.y * c0.z, c1.y - ndc.y * c1.z, c2.y - ndc.y * c2.z);
-  const vec3 k = cross(rowX, rowY);
-  const float sum = k.x + k.y + k.z;
-  return sum != 0.0 ? k / sum : vec3(1.0 / 3.0);
-}
-
-vec2 clipToPixel(vec3 c) { return (c.xy / c.z * 0.5 + 0.5) * vec2(params.width, params.height); }
+#include "clip_barycentrics.glsl"
 
 // Offsets past the largest half keep their direction; non-finite ones never get here.
 uint packOffset(vec2 d) {
@@ -56,7 +47,8 @@ void main() {
                    b.z * xyw(floatRecordAt(clipMidTexels, tri.z));
   const vec3 open = b.x * xyw(floatRecordAt(clipOpenTexels, tri.x)) + b.y * xyw(floatRecordAt(clipOpenTexels, tri.y)) +
                     b.z * xyw(floatRecordAt(clipOpenTexels, tri.z));
-  const vec2 fromMid = centre - clipToPixel(mid), fromOpen = centre - clipToPixel(open);
+  const vec2 fromMid = centre - clipToPixel(mid, params.width, params.height);
+  const vec2 fromOpen = centre - clipToPixel(open, params.width, params.height);
   const bool known = mid.z > 0.0 && open.z > 0.0 && !any(isnan(fromMid)) && !any(isinf(fromMid)) &&
                      !any(isnan(fromOpen)) && !any(isinf(fromOpen));
   paths[index] = known ? uvec2(packOffset(fromMid), packOffset(fromOpen)) : uvec2(HMB_NO_SHUTTER_PATH);
