@@ -68,6 +68,19 @@ FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint
   return camera;
 }
 
+std::vector<gpu::GpuShutterClip> shutterClips(const scene::Scene& scene, float t, float exposure, uint32_t width,
+                                              uint32_t height) {
+  const glm::mat4 projection = frameCamera(scene, t, width, height).projection;
+  const float mid = t - 0.5f * exposure, open = t - exposure;
+  const glm::mat4 viewProjMid = projection * glm::inverse(cameraWorld(scene, mid));
+  const glm::mat4 viewProjOpen = projection * glm::inverse(cameraWorld(scene, open));
+  std::vector<gpu::GpuShutterClip> clips;
+  for (const scene::Instance& instance : scene.instances)
+    clips.push_back({viewProjMid * scene.worldMatrixAt(instance.node, mid),
+                     viewProjOpen * scene.worldMatrixAt(instance.node, open)});
+  return clips;
+}
+
 bool anythingMovesOnScreen(const scene::Scene& scene, float t) {
   const float previous = t - 1.0f / scene.settings.fps;
   if (cameraWorld(scene, t) != cameraWorld(scene, previous)) return true;
@@ -153,8 +166,6 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
   instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
                           vk::MemoryUse::Device, "instances");
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
-  shutterClips_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuShutterClip),
-                             vk::MemoryUse::Device, "shutter clip transforms");
   if (scene.hasDeformation()) {
     deformation_ = std::make_unique<DeformedVertices>(context, scene, meshVertexBase);
     previousVertices_ = vk::uploadedBuffer(context, vertices, "scene vertices (previous frame)");
@@ -199,12 +210,6 @@ GpuScene::FrameInputs GpuScene::frameInputs(const scene::Scene& scene, float t, 
     inputs.instances.push_back(g);
   }
   inputs.camera = frameCamera(scene, t, width, height);
-  const float mid = t - 0.5f * scene.settings.exposure, open = t - scene.settings.exposure;
-  const glm::mat4 viewProjMid = inputs.camera.projection * glm::inverse(cameraWorld(scene, mid));
-  const glm::mat4 viewProjOpen = inputs.camera.projection * glm::inverse(cameraWorld(scene, open));
-  for (const scene::Instance& instance : scene.instances)
-    inputs.shutterClips.push_back({viewProjMid * scene.worldMatrixAt(instance.node, mid),
-                                   viewProjOpen * scene.worldMatrixAt(instance.node, open)});
   gpu::GpuCamera& c = inputs.gpuCamera;
   c.viewProjCurrent = inputs.camera.viewProjCurrent;
   c.viewProjPrevious = inputs.camera.viewProjPrevious;
@@ -219,10 +224,7 @@ GpuScene::FrameInputs GpuScene::frameInputs(const scene::Scene& scene, float t, 
 
 void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height) {
   const FrameInputs inputs = frameInputs(scene, t, width, height);
-  if (!inputs.instances.empty()) {
-    instances_.upload(std::span<const gpu::GpuInstance>(inputs.instances));
-    shutterClips_.upload(std::span<const gpu::GpuShutterClip>(inputs.shutterClips));
-  }
+  if (!inputs.instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(inputs.instances));
   cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&inputs.gpuCamera, 1));
   camera_ = inputs.camera;
   if (deformation_) {
@@ -234,10 +236,8 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
 }
 
 void GpuScene::recordFrameInputs(const FrameInputs& inputs, vk::FrameRecorder& frame) {
-  if (!inputs.instances.empty()) {
+  if (!inputs.instances.empty())
     frame.write(kFrameInputs, instances_, std::span<const gpu::GpuInstance>(inputs.instances));
-    frame.write(kFrameInputs, shutterClips_, std::span<const gpu::GpuShutterClip>(inputs.shutterClips));
-  }
   frame.write(kFrameInputs, cameraBuffer_, std::span<const gpu::GpuCamera>(&inputs.gpuCamera, 1));
   camera_ = inputs.camera;
 }

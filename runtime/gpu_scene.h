@@ -35,6 +35,11 @@ struct FrameCamera {
 // The camera at frame time t for an image of the given size; the previous frame is t - 1/fps.
 FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
 
+// Every instance's object-to-clip transforms at mid-shutter (t - exposure / 2) and shutter open
+// (t - exposure), camera motion included, for the curved path (passes::ShutterPathPass).
+std::vector<gpu::GpuShutterClip> shutterClips(const scene::Scene& scene, float t, float exposure, uint32_t width,
+                                              uint32_t height);
+
 // Whether anything can move on screen between the previous frame (t - 1/fps) and t: the
 // camera, any instance's world transform or any mesh's deformation differs. When nothing does, every screen velocity
 // is 0 and the blur passes return the sharp colour.
@@ -56,8 +61,6 @@ class GpuScene {
   // them. A deforming scene's deformation is still setFrame's.
   struct FrameInputs {
     std::vector<gpu::GpuInstance> instances;
-    // Per instance: object to clip space at mid-shutter and shutter open (the curved path).
-    std::vector<gpu::GpuShutterClip> shutterClips;
     gpu::GpuCamera gpuCamera{};
     FrameCamera camera;
   };
@@ -92,8 +95,6 @@ class GpuScene {
   const vk::Buffer& materials() const { return materials_; }
   const vk::Buffer& texels() const { return texels_; }
   const vk::Buffer& cameraBuffer() const { return cameraBuffer_; }
-  // gpu::GpuShutterClip per instance, written with the frame's transforms.
-  const vk::Buffer& shutterClips() const { return shutterClips_; }
   // Binds the scene as a shading kernel declares it (kernels/shared/scene_bindings.glsl) from
   // firstBinding on: vertices, instances, materials, texels and camera, or the table of their
   // addresses for a kernel that binds by address.
@@ -111,7 +112,6 @@ class GpuScene {
   vk::Buffer materials_;
   vk::Buffer texels_;
   vk::Buffer cameraBuffer_;
-  vk::Buffer shutterClips_;
   vk::BufferGroup shading_;  // the buffers above that shading kernels bind together
   std::unique_ptr<DeformedVertices> deformation_;
   vk::Buffer previousVertices_;

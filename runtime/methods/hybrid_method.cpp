@@ -29,7 +29,7 @@ class HybridMethod final : public FrameMethod {
     result.hybrid.emplace();
     result.hybrid->settings = hybridSettingsFor(request.scene, settings);
     const bool curved = !still && result.hybrid->settings.blur.motionPath == passes::MotionPath::Curved;
-    GpuScene scene = prepareRasterFrame(resources_, request, result, curved);
+    GpuScene scene = prepareRasterFrame(resources_, request, result, curved ? &result.hybrid->settings.blur : nullptr);
     result.postprocess = result.hybrid->settings.blur;
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);

@@ -21,7 +21,7 @@ class PostProcessMethod final : public FrameMethod {
     const bool still = nothingMovesOnScreen(request);
     result.postprocess = postProcessSettingsFor(request.scene, request.settings);
     const bool curved = !still && result.postprocess->motionPath == passes::MotionPath::Curved;
-    const GpuScene scene = prepareRasterFrame(resources_, request, result, curved);
+    const GpuScene scene = prepareRasterFrame(resources_, request, result, curved ? &*result.postprocess : nullptr);
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);
     FramePlan blurPlan;

@@ -2,10 +2,13 @@
 
 #include <utility>
 
+#include <glm/packing.hpp>
+
 #include "runtime/frame_plan.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/image_layer.h"
+#include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/renderer.h"
 #include "runtime/vulkan/buffer.h"
@@ -38,12 +41,15 @@ io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& line
 }
 
 GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result,
-                            bool shutterPaths) {
+                            const passes::PostProcessSettings* curvedBlur) {
   GpuScene gpuScene(resources.context, request.scene);
   gpuScene.setFrame(request.scene, request.frameTime, request.width, request.height);
   if (!request.settings.skipUnneededPasses) gpuScene.keepTexturePath();
   std::optional<passes::GBufferStage::ShutterPaths> paths;
-  if (shutterPaths) paths = passes::GBufferStage::ShutterPaths{request.scene.settings.exposure, request.scene.settings.fps};
+  if (curvedBlur)
+    paths = passes::GBufferStage::ShutterPaths{
+        curvedBlur->exposure, curvedBlur->fps,
+        shutterClips(request.scene, request.frameTime, curvedBlur->exposure, request.width, request.height)};
   resources.gbuffer.prepare(gpuScene, request.width, request.height, paths);
   resources.gbuffer.plan(result.plan, gpuScene);
   return gpuScene;
@@ -104,6 +110,16 @@ void collectRasterFrame(FrameResources& resources, const FrameRequest& request, 
                   {vec4Layer("", {"R", "G", "B", "A"}, color), vec4Layer("depth", {"Z"}, depth),
                    vec4Layer("normal", {"X", "Y", "Z"}, normal), vec4Layer("velocity", {"X", "Y"}, velocity),
                    std::move(objectId)}};
+  // Along curved paths: each pixel's offsets from its point at mid-shutter (MX, MY) and shutter
+  // open (OX, OY), pixels, y down; NaN where it has no path (kernels/gbuffer/gbuffer_layout.h).
+  if (const vk::Buffer* paths = gbuffer.shutterPaths()) {
+    const std::vector<glm::uvec2> records = paths->download<glm::uvec2>();
+    std::vector<glm::vec4> offsets;
+    offsets.reserve(pixels);
+    for (uint64_t i = 0; i < pixels; ++i)
+      offsets.emplace_back(glm::unpackHalf2x16(records[i].x), glm::unpackHalf2x16(records[i].y));
+    result.image.layers.push_back(vec4Layer("shutterPath", {"MX", "MY", "OX", "OY"}, offsets));
+  }
 }
 
 }  // namespace hmb

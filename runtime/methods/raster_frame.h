@@ -21,6 +21,7 @@ class FramePlan;
 
 namespace passes {
 class GBufferStage;
+struct PostProcessSettings;
 }
 
 // The image a raster method shows: its own linear RGBA image, or the G-buffer's colour (packed
@@ -44,9 +45,10 @@ io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& line
 
 // The scene at the request's frame time, the texture path kept when every pass must run, the
 // G-buffer prepared and its passes entered in the plan.
-// shutterPaths: the G-buffer also holds each pixel's path over the shutter (curved motion path).
+// blur: the blur's settings when it follows curved paths: the G-buffer then also holds each
+// pixel's path over the blur's shutter (a time slice's, with time slices).
 GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result,
-                            bool shutterPaths = false);
+                            const passes::PostProcessSettings* curvedBlur = nullptr);
 
 // With nothing moving on screen every velocity is 0: the gather returns each pixel's own colour
 // and the hybrid's mask is empty, so the blur's passes are left out.

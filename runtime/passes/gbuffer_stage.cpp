@@ -47,6 +47,11 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
       paths_ = vk::Buffer(context_, pixels * sizeof(glm::uvec2), vk::MemoryUse::Device, "shutter paths");
       pathPixelCapacity_ = pixels;
     }
+    if (shutterPaths_->clips.empty()) shutterPaths_->clips.push_back({});  // a scene without instances draws nothing
+    if (shutterClips_.size() < shutterPaths_->clips.size() * sizeof(gpu::GpuShutterClip))
+      shutterClips_ = vk::Buffer(context_, shutterPaths_->clips.size() * sizeof(gpu::GpuShutterClip),
+                                 vk::MemoryUse::Device, "shutter clip transforms");
+    shutterClips_.upload(std::span<const gpu::GpuShutterClip>(shutterPaths_->clips));
   }
   if (vertices > vertexCapacity_) {
     clipCurrent_ = vk::Buffer(context_, uint64_t(vertices) * sizeof(glm::vec4), vk::MemoryUse::Device, "clip current");
@@ -73,7 +78,8 @@ void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const
   rasterize_.record(frame, inputs, visibility_, size_.width(), size_.height());
   resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_, layer_, size_.width(), size_.height());
   if (shutterPaths_) {
-    shutterPath_->recordTransform(frame, scene, shutterPaths_->exposure, shutterPaths_->fps, clipMid_, clipOpen_);
+    shutterPath_->recordTransform(frame, scene, shutterClips_, shutterPaths_->exposure, shutterPaths_->fps, clipMid_,
+                                  clipOpen_);
     shutterPath_->recordResolve(frame, scene, visibility_, clipCurrent_, clipMid_, clipOpen_, paths_, size_.width(),
                                 size_.height());
   }

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
+#include "kernels/shared/scene_layout.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
@@ -29,10 +31,13 @@ class GBufferStage {
   void plan(FramePlan& plan, const GpuScene& scene) const;
 
   // Whether the frame's blur follows curved paths: the stage then also writes each pixel's
-  // path over the shutter [t - E, t] (shutterPaths()). E: the scene's exposure, fps its rate.
+  // path over the blur's shutter [t - E, t] (shutterPaths()). E: the blur's exposure (a time
+  // slice's with time slices), fps the scene's rate, clips every instance's transforms at
+  // t - E/2 and t - E (hmb::shutterClips).
   struct ShutterPaths {
     float exposure = 0.0f;
     float fps = 0.0f;
+    std::vector<gpu::GpuShutterClip> clips;
   };
   // Sizes the buffers for this scene and resolution (reuses them when they fit).
   void prepare(const GpuScene& scene, uint32_t width, uint32_t height,
@@ -67,7 +72,7 @@ class GBufferStage {
   uint32_t vertexCapacity_ = 0, pathVertexCapacity_ = 0;
   uint64_t pathPixelCapacity_ = 0;
   vk::Buffer clipCurrent_, clipPrevious_, vertexShading_;
-  vk::Buffer clipMid_, clipOpen_, paths_;
+  vk::Buffer clipMid_, clipOpen_, paths_, shutterClips_;
   vk::Buffer visibility_;
   ImageLayer layer_;
 };

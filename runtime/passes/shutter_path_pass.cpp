@@ -17,15 +17,16 @@ ShutterPathPass::ShutterPathPass(const vk::Context& context)
       deformed_(context, "raster/transform_shutter_path", sizeof(gpu::ShutterPathParams), kDeformed),
       resolve_(context, "gbuffer/resolve_shutter_path", sizeof(gpu::ResolveParams)) {}
 
-void ShutterPathPass::recordTransform(vk::FrameRecorder& frame, const GpuScene& scene, float exposure, float fps,
-                                      const vk::Buffer& clipMid, const vk::Buffer& clipOpen) const {
+void ShutterPathPass::recordTransform(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clips,
+                                      float exposure, float fps, const vk::Buffer& clipMid,
+                                      const vk::Buffer& clipOpen) const {
   const uint32_t vertexCount = scene.instanceVertexCount();
   const float openFrames = exposure * fps;
   const gpu::ShutterPathParams params{vertexCount, 0.5f * openFrames, openFrames, 0};
   frame.dispatch(kTransformName, scene.deforms() ? deformed_ : rigid_,
                  {{HMB_SHUTTER_PATH_BINDING_VERTICES, &scene.vertices()},
                   {HMB_SHUTTER_PATH_BINDING_INSTANCE_VERTICES, &scene.instanceVertices()},
-                  {HMB_SHUTTER_PATH_BINDING_SHUTTER_CLIP, &scene.shutterClips()},
+                  {HMB_SHUTTER_PATH_BINDING_SHUTTER_CLIP, &clips},
                   {HMB_SHUTTER_PATH_BINDING_PREVIOUS_VERTICES, &scene.previousVertices()},
                   {HMB_SHUTTER_PATH_BINDING_CLIP_MID, &clipMid},
                   {HMB_SHUTTER_PATH_BINDING_CLIP_OPEN, &clipOpen}},

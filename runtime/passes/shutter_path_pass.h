@@ -30,9 +30,10 @@ class ShutterPathPass {
   static constexpr const char* kResolveName = "resolve-shutter-path";
   explicit ShutterPathPass(const vk::Context& context);
 
-  // clipMid, clipOpen: vec4 per instance vertex; E: the scene's exposure, fps its frame rate.
-  void recordTransform(vk::FrameRecorder& frame, const GpuScene& scene, float exposure, float fps,
-                       const vk::Buffer& clipMid, const vk::Buffer& clipOpen) const;
+  // clips: gpu::GpuShutterClip per instance (hmb::shutterClips); clipMid, clipOpen: vec4 per
+  // instance vertex; exposure: the blur's, fps the scene's frame rate.
+  void recordTransform(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clips, float exposure,
+                       float fps, const vk::Buffer& clipMid, const vk::Buffer& clipOpen) const;
   // paths: uvec2 per pixel.
   void recordResolve(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& visibility,
                      const vk::Buffer& clipCurrent, const vk::Buffer& clipMid, const vk::Buffer& clipOpen,

@@ -193,13 +193,13 @@ TEST_F(DeformKernelTest, ShutterPathPositionsFollowTheDeformationBetweenItsTwoTi
   GpuScene gpu(context(), scene);
   gpu.setFrame(scene, kTime, 64, 64);
   passes::GBufferStage stage(context(), passes::defaultVisibilityScheme(context().info()));
-  stage.prepare(gpu, 64, 64, passes::GBufferStage::ShutterPaths{scene.settings.exposure, scene.settings.fps});
+  const std::vector<gpu::GpuShutterClip> clips = shutterClips(scene, kTime, scene.settings.exposure, 64, 64);
+  stage.prepare(gpu, 64, 64, passes::GBufferStage::ShutterPaths{scene.settings.exposure, scene.settings.fps, clips});
   vk::FrameRecorder frame(context());
   passes::submitUntilRasterFits(frame, stage.rasterizer(), [&](vk::FrameRecorder& f) { stage.record(f, gpu); });
   const std::vector<gpu::GpuVertex> current = gpu.vertices().download<gpu::GpuVertex>();
   const std::vector<gpu::GpuVertex> previous = gpu.previousVertices().download<gpu::GpuVertex>();
   const std::vector<gpu::GpuInstanceVertex> instanceVertices = gpu.instanceVertices().download<gpu::GpuInstanceVertex>();
-  const std::vector<gpu::GpuShutterClip> clips = gpu.shutterClips().download<gpu::GpuShutterClip>();
   const std::vector<glm::vec4> mid = stage.clipMid().download<glm::vec4>(), open = stage.clipOpen().download<glm::vec4>();
   const float openFrames = scene.settings.exposure * scene.settings.fps;
   uint32_t deformed = 0;

@@ -88,7 +88,9 @@ GBufferReadback renderGBuffer(const vk::Context& context, const scene::Scene& sc
   gpuScene.setFrame(scene, frameTime, width, height);
   passes::GBufferStage stage(context, scheme);
   std::optional<passes::GBufferStage::ShutterPaths> paths;
-  if (shutterPaths) paths = passes::GBufferStage::ShutterPaths{scene.settings.exposure, scene.settings.fps};
+  if (shutterPaths)
+    paths = passes::GBufferStage::ShutterPaths{scene.settings.exposure, scene.settings.fps,
+                                               shutterClips(scene, frameTime, scene.settings.exposure, width, height)};
   stage.prepare(gpuScene, width, height, paths);
   vk::FrameRecorder frame(context);
   passes::submitUntilRasterFits(frame, stage.rasterizer(), [&](vk::FrameRecorder& f) { stage.record(f, gpuScene); });
