@@ -2,8 +2,8 @@
 // Ray mask, second pass (paper, section 3.2.1, range check): a moving pixel enters the ray
 // mask when its range X + u v, u in [0, 1] (along curved paths its own curve, X + u v + u^2 q),
 // meets the edge mask: it is then in the inner blur
-// of a silhouette, where the raster holds no background. The range is walked one pixel at a
-// time (ceil |v| + 1 positions), so an edge band of any width is found. Masked pixels are
+// of a silhouette, where the raster holds no background. The range is walked at most a pixel
+// a step (ceil |v| + 1 positions on a straight one), so an edge band of any width is found. Masked pixels are
 // appended to a list (compaction) whose length sizes the ray reveal's indirect dispatch; with
 // the coverage composite, only those whose composite samples meet the background (the others
 // give the revealed background a weight of exactly 0). Runs
@@ -68,10 +68,11 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   return edges[entry] != 0u;
 }
 
-// The range check along a curved path X + s v + s^2 q, s in [0, 1]: a pixel at a time, its
-// reach |v| + |q| bounding the steps.
+// The range check along a curved path X + s v + s^2 q, s in [0, 1], at most a pixel a step:
+// the path's speed |v + 2 s q| is convex in s, so it peaks at an end, |v| or |v + 2q|.
 bool curvedPathMeetsEdge(uvec2 pixel, vec2 v, vec2 q) {
-  const uint steps = uint(ceil(length(v) + length(q)));  // <= maxSpeed (inversePath)
+  // <= 2 maxSpeed: inversePath keeps |v| + |q| within maxSpeed.
+  const uint steps = uint(ceil(max(length(v), length(v + 2.0 * q))));
   const vec2 centre = vec2(pixel) + 0.5;
   for (uint i = 0u; i <= steps; ++i) {
     const float s = steps == 0u ? 0.0 : float(i) / float(steps);

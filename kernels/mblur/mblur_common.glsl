@@ -52,10 +52,13 @@ float behindShareOf(uint sampleObject, float sampleDepth, uint centreObject, flo
 // The coverage composite's sample i of `samples` along the pixel's own path X + u v + u^2 q
 // (q = 0: the straight displacement v; else the curved path's terms, inversePath): the same
 // positions in hybrid/composite.comp (which blends) and range_check.comp (which decides whether
-// the pixel needs the revealed background at all).
+// the pixel needs the revealed background at all). `precise`: the two kernels are compiled
+// apart, and a fused multiply-add in one but not the other could move a sample across a pixel
+// border, listing a pixel for the reveal whose composite then reads no background or the reverse.
 ivec2 coverageSamplePixel(uvec2 pixel, vec2 v, vec2 q, uint i, uint samples, float jitter, uint width, uint height) {
-  const float u = (float(i) + 1.0 - jitter) / float(samples);
-  return nearestPixel(vec2(pixel) + 0.5 + u * v + (u * u) * q, width, height);
+  precise const float u = (float(i) + 1.0 - jitter) / float(samples);
+  precise const vec2 position = vec2(pixel) + 0.5 + u * v + (u * u) * q;
+  return nearestPixel(position, width, height);
 }
 
 // The curved path (mblur/gather_samples.glsl): a path record's terms, its point's path
@@ -64,19 +67,28 @@ ivec2 coverageSamplePixel(uvec2 pixel, vec2 v, vec2 q, uint i, uint samples, flo
 // False for a record without a path.
 bool shutterPathTerms(uvec2 record, out vec2 a, out vec2 c) {
   const vec2 m = unpackHalf2x16(record.x), o = unpackHalf2x16(record.y);
-  a = 4.0 * m - o;
-  c = 2.0 * o - 4.0 * m;
+  precise const vec2 linear = 4.0 * m - o, quadratic = 2.0 * o - 4.0 * m;  // precise: see inversePath
+  a = linear;
+  c = quadratic;
   return !(any(isnan(m)) || any(isnan(o)) || any(isinf(m)) || any(isinf(o)));
 }
 
 // The path along which pixel X sees the points of its own surface over the shutter,
-// X + u linear + u^2 quadratic: to second order X + u a + u^2 (c + J_a a), where J_a a, `change`,
-// is the exposure velocity at X + a minus X's when X + a lies on X's surface (else 0). Scaled
-// so that |linear| + |quadratic|, which bounds the path's reach, stays within maxLength.
+// X + u linear + u^2 quadratic: to second order X + u a + u^2 (c + J_a a), where J_a a (`change`) is
+// approximated by the frame velocity at X + a minus X's, scaled to the exposure, when X + a
+// lies on X's surface (else 0). Scaled so that |linear| + |quadratic|, which bounds the path's
+// reach, stays within maxLength; the lengths are taken over the largest component, so a
+// change of 1e30 px clamps instead of overflowing to an infinite reach (and a zero path).
+float overflowFreeLength(vec2 x) {
+  const float largest = max(abs(x.x), abs(x.y));
+  return largest > 0.0 ? largest * length(x / largest) : 0.0;
+}
+
+// `precise` for the same reason as coverageSamplePixel's: both kernels must find the same path.
 void inversePath(vec2 a, vec2 c, vec2 change, float maxLength, out vec2 linear, out vec2 quadratic) {
-  const vec2 k = any(isnan(change)) || any(isinf(change)) ? c : c + change;
-  const float reach = length(a) + length(k);
-  const float scale = reach > maxLength ? maxLength / reach : 1.0;
+  precise const vec2 k = any(isnan(change)) || any(isinf(change)) ? c : c + change;
+  precise const float reach = overflowFreeLength(a) + overflowFreeLength(k);
+  precise const float scale = reach > maxLength ? maxLength / reach : 1.0;
   linear = a * scale;
   quadratic = k * scale;
 }

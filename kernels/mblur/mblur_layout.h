@@ -41,8 +41,10 @@
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]
-// With the adapted range: a moving pixel samples along its own curved path over the shutter
-// (gather_samples.glsl) where the G-buffer has one (gbuffer/resolve_shutter_path.comp).
+// With the adapted range: a pixel moving at least half its tile's neighbour-max speed samples
+// along its own curved path over the shutter where the G-buffer has one
+// (gbuffer/resolve_shutter_path.comp); the others keep the straight line along v_N
+// (gather_samples.glsl). The hybrid's range check and coverage composite follow every path.
 #define HMB_GATHER_FLAG_CURVED_PATH 2u
 
 // Velocities are clamped to the tile size (so the 3x3 neighbourhood sees every pixel that can

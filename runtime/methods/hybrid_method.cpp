@@ -28,8 +28,7 @@ class HybridMethod final : public FrameMethod {
     const bool still = nothingMovesOnScreen(request);
     result.hybrid.emplace();
     result.hybrid->settings = hybridSettingsFor(request.scene, settings);
-    const bool curved = !still && result.hybrid->settings.blur.motionPath == passes::MotionPath::Curved;
-    GpuScene scene = prepareRasterFrame(resources_, request, result, curved ? &result.hybrid->settings.blur : nullptr);
+    GpuScene scene = prepareRasterFrame(resources_, request, result, &result.hybrid->settings.blur);
     result.postprocess = result.hybrid->settings.blur;
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);

@@ -20,8 +20,7 @@ class PostProcessMethod final : public FrameMethod {
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
     const bool still = nothingMovesOnScreen(request);
     result.postprocess = postProcessSettingsFor(request.scene, request.settings);
-    const bool curved = !still && result.postprocess->motionPath == passes::MotionPath::Curved;
-    const GpuScene scene = prepareRasterFrame(resources_, request, result, curved ? &*result.postprocess : nullptr);
+    const GpuScene scene = prepareRasterFrame(resources_, request, result, &*result.postprocess);
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);
     FramePlan blurPlan;

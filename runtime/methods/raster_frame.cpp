@@ -41,16 +41,19 @@ io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& line
 }
 
 GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result,
-                            const passes::PostProcessSettings* curvedBlur) {
+                            const passes::PostProcessSettings* blur) {
   GpuScene gpuScene(resources.context, request.scene);
   gpuScene.setFrame(request.scene, request.frameTime, request.width, request.height);
   if (!request.settings.skipUnneededPasses) gpuScene.keepTexturePath();
+  const bool curved = blur && blur->motionPath == passes::MotionPath::Curved;
+  const bool still = nothingMovesOnScreen(request);
   std::optional<passes::GBufferStage::ShutterPaths> paths;
-  if (curvedBlur)
+  if (curved && !still)
     paths = passes::GBufferStage::ShutterPaths{
-        curvedBlur->exposure, curvedBlur->fps,
-        shutterClips(request.scene, request.frameTime, curvedBlur->exposure, request.width, request.height)};
-  resources.gbuffer.prepare(gpuScene, request.width, request.height, paths);
+        blur->exposure, blur->fps,
+        shutterClips(request.scene, request.frameTime, blur->exposure, request.width, request.height)};
+  resources.gbuffer.prepare(gpuScene, request.width, request.height, paths,
+                            curved ? passes::kStillPathsReason : passes::kStraightPathsReason);
   resources.gbuffer.plan(result.plan, gpuScene);
   return gpuScene;
 }

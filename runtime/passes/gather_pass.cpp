@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <span>
 
+#include "runtime/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
@@ -39,7 +40,10 @@ std::unique_ptr<GatherFilter> makeMcGuireGather(const vk::Context& context) {
 void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
                         const vk::Buffer& output, const PostProcessSettings& settings) const {
   gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
-  if (settings.motionPath == MotionPath::Curved && inputs.shutterPaths) params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
+  if (settings.motionPath == MotionPath::Curved) {
+    if (!inputs.shutterPaths) throw Error("post-process: the curved motion path needs the G-buffer's shutter paths");
+    params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
+  }
   frame.dispatch(kName, kernel_, filterBindings(inputs, neighborMax, output), params,
                  {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});
 }

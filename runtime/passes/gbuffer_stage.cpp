@@ -26,13 +26,14 @@ void GBufferStage::plan(FramePlan& plan, const GpuScene& scene) const {
     if (shutterPaths_)
       plan.run(name);
     else
-      plan.skip(name, std::string(kStraightPathsReason));
+      plan.skip(name, noPathsReason_);
   }
 }
 
 void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t height,
-                           std::optional<ShutterPaths> shutterPaths) {
+                           std::optional<ShutterPaths> shutterPaths, std::string_view noPathsReason) {
   shutterPaths_ = shutterPaths;
+  noPathsReason_ = noPathsReason;
   const uint32_t vertices = std::max(1u, scene.instanceVertexCount());
   if (shutterPaths_) {
     if (!shutterPath_) shutterPath_ = std::make_unique<ShutterPathPass>(context_);

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "kernels/shared/scene_layout.h"
@@ -40,8 +42,10 @@ class GBufferStage {
     std::vector<gpu::GpuShutterClip> clips;
   };
   // Sizes the buffers for this scene and resolution (reuses them when they fit).
+  // noPathsReason: why the plan leaves the path passes out when shutterPaths is empty.
   void prepare(const GpuScene& scene, uint32_t width, uint32_t height,
-               std::optional<ShutterPaths> shutterPaths = std::nullopt);
+               std::optional<ShutterPaths> shutterPaths = std::nullopt,
+               std::string_view noPathsReason = kStraightPathsReason);
   void record(vk::FrameRecorder& frame, const GpuScene& scene) const;
 
   const RasterizePass& rasterizer() const { return rasterize_; }
@@ -56,9 +60,11 @@ class GBufferStage {
   const vk::Buffer& clipOpen() const { return clipOpen_; }
   // uvec2 per pixel (kernels/gbuffer/gbuffer_layout.h), or null when the frame has no paths.
   const vk::Buffer* shutterPaths() const { return shutterPaths_ ? &paths_ : nullptr; }
-  // Bytes per pixel of the per-pixel buffers: visibility, the layer's samples and surfaces.
+  // Bytes per pixel of the per-pixel buffers: visibility, the layer's samples and surfaces,
+  // and the paths when the frame has them.
   double bytesPerPixel(uint32_t width, uint32_t height) const {
-    return double(visibility_.size() + layer_.bytes()) / (double(width) * height);
+    const uint64_t paths = shutterPaths_ ? paths_.size() : 0;
+    return double(visibility_.size() + layer_.bytes() + paths) / (double(width) * height);
   }
 
  private:
@@ -68,6 +74,7 @@ class GBufferStage {
   ResolveGBufferPass resolve_;
   std::unique_ptr<ShutterPathPass> shutterPath_;  // made for the first frame that needs it
   std::optional<ShutterPaths> shutterPaths_;
+  std::string noPathsReason_;
   ImageSize size_;
   uint32_t vertexCapacity_ = 0, pathVertexCapacity_ = 0;
   uint64_t pathPixelCapacity_ = 0;

@@ -61,6 +61,9 @@ void validate(const HybridSettings& s) {
     throw Error("hybrid settings: the hybrid method blurs with the McGuire filter (filter mcguire)");
   if (s.composite == HybridComposite::Coverage && s.blur.effectiveRange() != GatherRange::Adapted)
     throw Error("hybrid settings: the coverage composite needs the adapted range (range adapted)");
+  // The weights form's gather would follow the paths but its mask weights assume straight ones.
+  if (s.composite == HybridComposite::Weights && s.blur.motionPath == MotionPath::Curved)
+    throw Error("hybrid settings: the weights composite follows straight paths only (motion-path linear)");
 }
 
 std::string_view revealStopName(RevealStop stop) { return settings::nameOf(kStopNames, stop); }

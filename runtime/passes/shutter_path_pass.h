@@ -20,9 +20,12 @@ class GpuScene;
 
 namespace hmb::passes {
 
-// Why a frame leaves both passes out: its blur follows straight lines (a setting, not the scene).
+// Why a frame leaves both passes out: its blur follows straight lines (a setting, not the
+// scene), or nothing moves on screen (the scene at this frame).
 inline constexpr std::string_view kStraightPathsReason =
     "the blur follows straight lines (motion-path linear, or a method without curved paths)";
+inline constexpr std::string_view kStillPathsReason =
+    "nothing moves on screen at this frame: every path is a point, and the blur is left out";
 
 class ShutterPathPass {
  public:

@@ -346,6 +346,9 @@ TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
   expectOneLineError(hmblur("--quiet render --method hybrid --max-recursion 0 --width 8 --height 8"), "recursion");
   expectOneLineError(hmblur("--quiet render --method hybrid --filter jimenez --width 8 --height 8"), "McGuire");
   expectOneLineError(hmblur("--quiet render --method hybrid --range centered --width 8 --height 8"), "adapted");
+  expectOneLineError(hmblur("--quiet render --method hybrid --composite weights --motion-path curved --width 8 "
+                            "--height 8"),
+                     "weights composite follows straight paths");
 }
 
 // What the loader leaves out reaches the terminal once per warning; --quiet silences it and

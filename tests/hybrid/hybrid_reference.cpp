@@ -210,7 +210,8 @@ std::vector<uint32_t> rangeCheck(const MaskLayer& input, const std::vector<uint3
       const bool curved = curvedFlag(p) && ownCurvedPath(layer.shutterPaths[index], x, y, width, height, depthOf(layer),
                                                          velocityOf(layer), p.blur.velocityScale, p.blur.maxSpeed,
                                                          p.blur.softZExtent, v, q);
-      const auto steps = uint32_t(std::ceil(curved ? length2(v) + length2(q) : speed));
+      const auto steps =
+          uint32_t(std::ceil(curved ? std::max(length2(v), length2(v + 2.0f * q)) : speed));
       const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
       for (uint32_t i = 0; i <= steps; ++i) {
         const float s = curved ? (steps == 0 ? 0.0f : float(i) / float(steps)) : float(i) / float(steps);

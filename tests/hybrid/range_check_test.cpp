@@ -4,6 +4,7 @@
 // dispatch it sizes, down to an empty mask dispatching nothing and a list too long for one row
 // of groups.
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -158,6 +159,36 @@ TEST_F(HybridRangeCheckTest, CurvedPathsMatchTheReference) {
     for (size_t i = 0; i < straight.size(); ++i) differ += straight[i] != reference[i];
   }
   EXPECT_GT(differ, 0u) << "the paths should change the mask";
+}
+
+// A strongly curved path speeds up towards its end (|v + 2 s q| = 25 px per unit s where its
+// reach |v| + |q| is 13): walked in steps of at most a pixel it meets an edge one pixel wide
+// that 13 even steps would jump. Object 2 (depth 1) moves 1 px right onto object 3 (depth 5),
+// so only its last column, 19, is an edge; pixel 7's path X + s (1, 0) + s^2 (12, 0) passes
+// it, a straight walk over 13 even steps lands on 18.3 and 20.
+TEST_F(HybridRangeCheckTest, CurvedPathsAreWalkedAPixelAStepWhereTheySpeedUp) {
+  const uint32_t width = 40, height = 5, pathX = 7;
+  MaskLayer layer{width, height, {}, {}, {}};
+  const float none = std::numeric_limits<float>::quiet_NaN();
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const bool front = x < 20;
+      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
+      layer.velocity.emplace_back(front ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f));
+      layer.objectId.push_back(front ? 2u : 3u);
+      // p(t - uE) = X - u a - u^2 c with a = (1, 0), c = (12, 0): m = a / 2 + c / 4, o = a + c.
+      layer.shutterPaths.push_back(x == pathX ? mblur::packShutterPath({3.5f, 0.0f}, {13.0f, 0.0f})
+                                              : mblur::packShutterPath(glm::vec2(none), glm::vec2(none)));
+    }
+  RayMaskParameters p = parametersWith(0.9f);
+  p.blur.flags = HMB_GATHER_FLAG_ADAPTED_RANGE | HMB_GATHER_FLAG_CURVED_PATH;
+  const RayMaskReadback device = runRayMask(context(), layer, p);
+  EXPECT_EQ(device.mask, rangeCheck(layer, device.edges, p));
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      EXPECT_EQ(device.edges[y * width + x], x == 19 ? 1u : 0u) << x << "," << y;
+      EXPECT_EQ(device.mask[y * width + x], x == pathX || (x >= 18 && x <= 19) ? 1u : 0u) << x << "," << y;
+    }
 }
 
 // With the coverage composite, only the mask pixels whose composite samples meet the background

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "runtime/error.h"
 #include "tests/mblur/mblur_harness.h"
 #include "tests/mblur/mblur_reference.h"
 #include "tests/support/vulkan_test.h"
@@ -147,7 +148,8 @@ TEST_F(MblurGatherTest, CurvedPathsMatchTheReference) {
 }
 
 // The adversarial layer of the straight gather, with adversarial paths: still finite and equal
-// to the reference; and without paths the curved setting gathers exactly as the straight one.
+// to the reference, also with every record "no path"; with no paths buffer at all the curved
+// setting is refused.
 TEST_F(MblurGatherTest, CurvedPathsOnAdversarialInputsStayFiniteAndMatchTheReference) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   std::mt19937 rng(17);
@@ -165,10 +167,11 @@ TEST_F(MblurGatherTest, CurvedPathsOnAdversarialInputsStayFiniteAndMatchTheRefer
   expectGatherMatches(layer, s);
   s.softZExtent = 1e-30f;
   expectGatherMatches(layer, s);
-  const auto tiles = referenceTiles(straight, s);
-  PostProcessSettings linear = s;
-  linear.motionPath = passes::MotionPath::Linear;
-  EXPECT_EQ(runGather(context(), straight, tiles, s), runGather(context(), straight, tiles, linear));
+  Layer pathless = straight;
+  const glm::vec2 none(nan);
+  pathless.shutterPaths.assign(pathless.color.size(), packShutterPath(none, none));
+  expectGatherMatches(pathless, s);
+  EXPECT_THROW(runGather(context(), straight, referenceTiles(straight, s), s), Error);
 }
 
 TEST_F(MblurGatherTest, StillAndSubPixelMotionLeaveTheImageUnchanged) {

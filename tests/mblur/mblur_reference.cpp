@@ -41,7 +41,11 @@ bool shutterPathTerms(glm::uvec2 record, glm::vec2& a, glm::vec2& c) {
 void inversePath(glm::vec2 a, glm::vec2 c, glm::vec2 change, float maxLength, glm::vec2& linear,
                  glm::vec2& quadratic) {
   const glm::vec2 k = std::isfinite(change.x) && std::isfinite(change.y) ? c + change : c;
-  const float reach = length2(a) + length2(k);
+  const auto overflowFreeLength = [](glm::vec2 x) {
+    const float largest = std::max(std::abs(x.x), std::abs(x.y));
+    return largest > 0.0f ? largest * length2(x / largest) : 0.0f;
+  };
+  const float reach = overflowFreeLength(a) + overflowFreeLength(k);
   const float scale = reach > maxLength ? maxLength / reach : 1.0f;
   linear = a * scale;
   quadratic = k * scale;

@@ -103,6 +103,31 @@ TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
   }
 }
 
+// A still frame asked for curved paths leaves the path passes out because nothing moves, not
+// because the blur is straight; with every pass run, they run.
+TEST_F(FramePlanSkipsTest, AStillFrameLeavesTheCurvedPathsOutAndSaysWhy) {
+  Renderer renderer(context());
+  const scene::Scene room = scene::loadScene("living-room");
+  for (const char* method : {"postprocess", "hybrid"})
+    for (const bool skip : {true, false}) {
+      RenderSettings settings;
+      settings.method = parseMethod(method);
+      settings.width = 32;
+      settings.height = 18;
+      settings.frameTime = kStillTime;
+      settings.skipUnneededPasses = skip;
+      settings.postprocess.motionPath = passes::MotionPath::Curved;
+      const RenderResult result = renderer.render(room, settings);
+      for (const char* name : {passes::ShutterPathPass::kTransformName, passes::ShutterPathPass::kResolveName}) {
+        const auto pass = std::find_if(result.plan.passes().begin(), result.plan.passes().end(),
+                                       [&](const PlannedPass& p) { return p.name == name; });
+        ASSERT_NE(pass, result.plan.passes().end()) << method << " " << name;
+        EXPECT_EQ(pass->run, !skip) << method << " " << name;
+        EXPECT_EQ(pass->reason, skip ? std::string(passes::kStillPathsReason) : std::string()) << method << " " << name;
+      }
+    }
+}
+
 TEST_F(FramePlanSkipsTest, AMovingFrameRunsTheBlur) {
   Renderer renderer(context());
   const scene::Scene room = scene::loadScene("living-room");
