@@ -1,11 +1,13 @@
 #version 450
 // The hybrid composite (paper, section 3: both layers blurred, then composited; the paper
-// leaves the form open), every pixel of the image. Outside the ray mask it is the post-process
-// gather of the raster layer. At a mask pixel X the raster holds the moving object, and the
-// samples the gather takes behind X (other objects deeper than X) are the wrong background:
-// what lies beyond the silhouette, not behind X. The background layer blurred at mask pixels
-// (gather_background.comp) gives B, the right background at X. Two forms, a specialization
-// constant:
+// leaves the form open) at the pixels of the ray mask, one invocation per entry of the mask's
+// pixel list (an indirect dispatch). Outside the mask the hybrid's image is the post-process
+// gather of the raster layer, which has written every pixel before this pass: run apart, the
+// gather keeps its own cost and a GPU's warps do not diverge between the two forms. At a mask
+// pixel X the raster holds the moving object, and the samples the gather takes behind X
+// (other objects deeper than X) are the wrong background: what lies beyond the silhouette,
+// not behind X. The background layer blurred at mask pixels (gather_background.comp) gives B,
+// the right background at X. Two forms, a specialization constant:
 //  - weights: the gather with the paper's mask boosts (w_b x maskBackgroundBoost, w_f /
 //    maskForegroundDivide: x3 and /3), each sample's colour becoming mix(c_s, B, b), b its
 //    share behind X.
@@ -21,13 +23,15 @@
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
+#include "../shared/indexing.glsl"
 #include "../shared/layer_bindings.glsl"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 
 layout(std430, binding = HMB_COMPOSITE_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
 vec4 neighborMaxAt(uint tile) { return neighborMax[tile]; }
-layout(std430, binding = HMB_COMPOSITE_BINDING_MASK) readonly buffer Mask { uint mask[]; };
+layout(std430, binding = HMB_COMPOSITE_BINDING_LIST) readonly buffer List { uint pixelList[]; };
+layout(std430, binding = HMB_COMPOSITE_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
 HMB_LAYER_TEXELS(raster, HMB_COMPOSITE_BINDING_RASTER)
@@ -37,8 +41,8 @@ layout(constant_id = HMB_SPEC_COMPOSITE_COVERAGE) const bool kCoverage = true;
 
 #include "../mblur/mblur_common.glsl"
 
-// The weights form at the current pixel: the blurred background B, the pixel's object and depth.
-bool weightsComposite = false;
+// The weights form at the current pixel (the only one that gathers): the blurred background B,
+// the pixel's object and depth.
 vec4 blurredBackground = vec4(0.0);
 uint centreObject = 0u;
 float compositeCentreDepth = 0.0;
@@ -52,8 +56,7 @@ float behindShare(uint sampleIndex, uint object, float depth) {
 }
 
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
-  return weightsComposite ? mix(sampleColor, blurredBackground, behindShare(sampleIndex, centreObject, compositeCentreDepth))
-                          : sampleColor;
+  return mix(sampleColor, blurredBackground, behindShare(sampleIndex, centreObject, compositeCentreDepth));
 }
 
 #include "../shared/texel_records.glsl"
@@ -97,24 +100,24 @@ vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDe
 }
 
 void main() {
-  const uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= params.width || pixel.y >= params.height) return;
-  const uint index = pixel.y * params.width + pixel.x;
+  const uint entry = linearInvocationIndex(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y);
+  if (entry >= counters.maskPixels) return;
+  // The pixels listed for the reveal fill the list from its front, the others from its back.
+  const uint lastEntry = params.width * params.height - 1u;
+  const uint index = pixelList[entry < counters.maskCount ? entry : lastEntry - (entry - counters.maskCount)];
+  const uvec2 pixel = uvec2(index % params.width, index / params.width);
+  if (pixel.y >= params.height) return;
   GatherCentre centre;
   if (!readGatherCentre(pixel, index, centre)) {
     outColor[index] = centre.color;
     return;
   }
-  const bool inMask = mask[index] != 0u;
-  const float backgroundScale = inMask ? params.maskBackgroundBoost : 1.0;
-  const float foregroundScale = inMask ? 1.0 / params.maskForegroundDivide : 1.0;
-  if (inMask && kCoverage) {
+  if (kCoverage) {
     outColor[index] = coverageComposite(pixel, index, centre.color, centre.depth, centre.jitter);
     return;
   }
-  weightsComposite = inMask && !kCoverage;
-  blurredBackground = weightsComposite ? sanitizeColor(background[index]) : vec4(0.0);
-  centreObject = weightsComposite ? surfaceObjectId(READ_LAYER_SURFACE(raster, index)) : 0u;
+  blurredBackground = sanitizeColor(background[index]);
+  centreObject = surfaceObjectId(READ_LAYER_SURFACE(raster, index));
   compositeCentreDepth = centre.depth;
-  outColor[index] = gatherSamples(pixel, centre, foregroundScale, backgroundScale);
+  outColor[index] = gatherSamples(pixel, centre, 1.0 / params.maskForegroundDivide, params.maskBackgroundBoost);
 }

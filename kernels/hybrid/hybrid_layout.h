@@ -76,7 +76,9 @@
 #define HMB_RANGE_CHECK_BINDING_TILES 2     // uint tile index per moving tile
 #define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
-#define HMB_RANGE_CHECK_BINDING_LIST 5      // uint pixel index per masked pixel to reveal, in no order
+// uint pixel index per mask pixel, in no order: those to reveal from the front (maskCount),
+// the others from the back (unrevealedCount), so that the composite finds every mask pixel.
+#define HMB_RANGE_CHECK_BINDING_LIST 5
 #define HMB_RANGE_CHECK_BINDING_SAMPLES 6   // uvec4 per pixel: the G-buffer's samples (the coverage test's depths)
 #define HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS 7  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
 #define HMB_RANGE_CHECK_BINDING_COUNT 8
@@ -129,15 +131,18 @@
 #define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS + 1)
 #define HMB_BACKGROUND_GATHER_TEXEL_BUFFERS 5  // both layers and the paths, read as uniform texel buffers
 
-// composite: every pixel; the form is a specialization constant.
+// composite: every pixel of the ray mask, one invocation per entry of the mask's pixel list
+// (the pixels listed for the reveal from its front, the others from its back); the form is a
+// specialization constant. The post-process gather has written every pixel before.
 #define HMB_COMPOSITE_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
-#define HMB_COMPOSITE_BINDING_MASK 1          // uint per pixel: HMB_MASK_* (0: outside)
+#define HMB_COMPOSITE_BINDING_LIST 1          // the ray mask's pixel list
 #define HMB_COMPOSITE_BINDING_BACKGROUND 2    // vec4 per pixel: the blurred background, read at mask pixels
-#define HMB_COMPOSITE_BINDING_OUTPUT 3        // vec4 per pixel
+#define HMB_COMPOSITE_BINDING_OUTPUT 3        // vec4 per pixel, written at mask pixels
 #define HMB_COMPOSITE_BINDING_RASTER 4        // the G-buffer (shared/layer_bindings.glsl)
 // The G-buffer's shutter paths (gbuffer/gbuffer_layout.h), read along curved paths.
 #define HMB_COMPOSITE_BINDING_SHUTTER_PATHS (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
-#define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_SHUTTER_PATHS + 1)
+#define HMB_COMPOSITE_BINDING_COUNTERS (HMB_COMPOSITE_BINDING_SHUTTER_PATHS + 1)  // RayMaskCounters
+#define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COUNTERS + 1)
 #define HMB_COMPOSITE_TEXEL_BUFFERS 3  // the G-buffer layer and its paths, read as uniform texel buffers
 // edge_mask reads the G-buffer's samples and surfaces as uniform texel buffers: its 5x5 window
 // uses most of each record. edge_candidates and range_check read one or two words of a record,
@@ -151,8 +156,9 @@
 
 HMB_GPU_BEGIN
 
-// Cleared each frame. maskCount (the list's length) and maskPixels: range_check; the
-// *Dispatch triples (VkDispatchIndirectCommands): size_list_dispatch; rayCount:
+// Cleared each frame. maskCount (the list's front: the pixels listed for the reveal) and
+// unrevealedCount (its back: the other mask pixels): range_check; maskPixels (their sum) and
+// the *Dispatch triples (VkDispatchIndirectCommands): size_list_dispatch; rayCount:
 // reveal_background; tileCount: list_moving_tiles; candidateCount: edge_candidates.
 struct RayMaskCounters {
   uint maskCount;
@@ -164,7 +170,7 @@ struct RayMaskCounters {
   uint tileDispatchX;  // a group per 8 x 8 block of each moving tile (range_check)
   uint tileDispatchY;
   uint tileDispatchZ;
-  uint maskPixels;  // every pixel of the ray mask (maskCount: those listed for the reveal)
+  uint maskPixels;  // every pixel of the ray mask: maskCount + unrevealedCount
   uint candidateCount;
   uint candidateDispatchX;  // edge_mask over the candidates
   uint candidateDispatchY;
@@ -172,7 +178,10 @@ struct RayMaskCounters {
   uint tileGroupDispatchX;  // a group per moving tile (edge_candidates)
   uint tileGroupDispatchY;
   uint tileGroupDispatchZ;
-  uint pad0;
+  uint unrevealedCount;     // mask pixels whose composite needs no reveal, listed from the list's back
+  uint compositeDispatchX;  // the composite, over all maskPixels of the list
+  uint compositeDispatchY;
+  uint compositeDispatchZ;
 };
 
 struct MovingTilesParams {
@@ -217,7 +226,7 @@ struct RevealParams {
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(RayMaskCounters, 72)
+HMB_CHECK_SIZE(RayMaskCounters, 84)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
 HMB_CHECK_SIZE(SizeListParams, 16)
 HMB_CHECK_SIZE(RayMaskParams, 80)

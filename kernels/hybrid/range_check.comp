@@ -4,9 +4,10 @@
 // meets the edge mask: it is then in the inner blur
 // of a silhouette, where the raster holds no background. The range is walked at most a pixel
 // a step (ceil |v| + 1 positions on a straight one), so an edge band of any width is found. Masked pixels are
-// appended to a list (compaction) whose length sizes the ray reveal's indirect dispatch; with
-// the coverage composite, only those whose composite samples meet the background (the others
-// give the revealed background a weight of exactly 0). Runs
+// appended to a list (compaction) whose front sizes the ray reveal's indirect dispatch; with
+// the coverage composite, only those whose composite samples meet the background go there
+// (the others give the revealed background a weight of exactly 0) and the others fill the
+// list from its back, for the composite alone. Runs
 // over the moving tiles only (list_moving_tiles); the mask is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
@@ -141,9 +142,10 @@ void main() {
     mask[index] = HMB_MASK_NONE;
     return;
   }
-  atomicAdd(counters.maskPixels, 1u);
   if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index, v, q)) {
     mask[index] = HMB_MASK_UNREVEALED;
+    const uint lastEntry = params.blur.width * params.blur.height - 1u;
+    list[lastEntry - atomicAdd(counters.unrevealedCount, 1u)] = index;
     return;
   }
   mask[index] = HMB_MASK_REVEALED;

@@ -2,7 +2,8 @@
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
 // 65535 groups: the moving tiles (a group per tile: edge_candidates; a group per 8 x 8 block
 // of each: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask) or the ray
-// mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background, the background layer's gather).
+// mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather
+// over the list's front, the composite over the whole mask).
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
@@ -37,4 +38,9 @@ void main() {
   counters.maskDispatchX = g.x;
   counters.maskDispatchY = g.y;
   counters.maskDispatchZ = g.z;
+  counters.maskPixels = counters.maskCount + counters.unrevealedCount;
+  const uvec3 all = listGroups(counters.maskPixels);
+  counters.compositeDispatchX = all.x;
+  counters.compositeDispatchY = all.y;
+  counters.compositeDispatchZ = all.z;
 }

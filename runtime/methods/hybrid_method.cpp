@@ -103,6 +103,8 @@ class HybridMethod final : public FrameMethod {
         result.plan.noteNoWork(passes::RevealPass::kName, reason);
         result.plan.noteNoWork(passes::HybridStage::kGatherBackground, reason);
       }
+      if (result.hybrid->maskPixels == 0)
+        result.plan.noteNoWork(passes::HybridStage::kComposite, "the ray mask is empty: the post-process gather's image stands");
     }
     result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::move(mask)});
     result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));

@@ -1,5 +1,6 @@
 #include "runtime/passes/composite_pass.h"
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -20,23 +21,24 @@ CompositePass::CompositePass(const vk::Context& context)
     : context_(context), coverage_(context, "hybrid/composite", sizeof(gpu::GatherParams), kCoverageForm) {}
 
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
-                           const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
-                           const gpu::GatherParams& blur, HybridComposite composite,
+                           const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
+                           const vk::Buffer& output, const gpu::GatherParams& blur, HybridComposite composite,
                            const vk::Buffer* shutterPaths) const {
+  static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
   if (composite == HybridComposite::Coverage && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
     throw Error("composite: the coverage form needs the adapted range");
   if (composite == HybridComposite::Weights && !weights_)
     weights_ = std::make_unique<vk::ComputeKernel>(context_, "hybrid/composite", sizeof(gpu::GatherParams), kWeightsForm);
   const vk::ComputeKernel& kernel = composite == HybridComposite::Coverage ? coverage_ : *weights_;
   vk::Bindings bindings = {{HMB_COMPOSITE_BINDING_NEIGHBOR_MAX, &neighborMax},
-                           {HMB_COMPOSITE_BINDING_MASK, &mask},
+                           {HMB_COMPOSITE_BINDING_LIST, &list},
+                           {HMB_COMPOSITE_BINDING_COUNTERS, &counters},
                            {HMB_COMPOSITE_BINDING_BACKGROUND, &background},
                            {HMB_COMPOSITE_BINDING_OUTPUT, &output},
                            // Read only along curved paths; any texel buffer stands in otherwise.
                            {HMB_COMPOSITE_BINDING_SHUTTER_PATHS, shutterPaths ? shutterPaths : &raster.samples()}};
   raster.bind(bindings, HMB_COMPOSITE_BINDING_RASTER, kernel.bindsByAddress());
-  frame.dispatch(kName, kernel, bindings, blur,
-                 {vk::groupsFor(blur.width, HMB_GATHER_GROUP_X), vk::groupsFor(blur.height, HMB_GATHER_GROUP_Y), 1});
+  frame.dispatchIndirect(kName, kernel, bindings, blur, counters, offsetof(gpu::RayMaskCounters, compositeDispatchX));
 }
 
 }  // namespace hmb::passes

@@ -1,5 +1,6 @@
-// Host side of kernels/hybrid/composite.comp: the hybrid's final image, the raster layer's
-// gather with the blurred background composited in at mask pixels (coverage or weights).
+// Host side of kernels/hybrid/composite.comp: the hybrid's final image at the ray mask's pixels,
+// the blurred background composited in (coverage or weights), over the post-process gather's
+// image of the raster layer (every other pixel).
 #pragma once
 
 #include <cstdint>
@@ -18,14 +19,15 @@ namespace hmb::passes {
 
 class CompositePass {
  public:
-  static constexpr const char* kName = "gather-composite";
+  static constexpr const char* kName = "composite";
   explicit CompositePass(const vk::Context& context);
-  // neighborMax: the raster's. mask: RayMaskStage's. background: BackgroundGatherPass's output,
-  // read at mask pixels. output: width * height vec4. blur: the frame's (gatherParams(), with the
-  // hybrid's mask weights). The coverage form needs the adapted range.
+  // neighborMax: the raster's. list, counters: RayMaskStage's (the mask's pixels, its front and
+  // back; the indirect dispatch). background: BackgroundGatherPass's output, read at mask
+  // pixels. output: width * height vec4, written at mask pixels. blur: the frame's
+  // (gatherParams(), with the hybrid's mask weights). The coverage form needs the adapted range.
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
-              const vk::Buffer& mask, const vk::Buffer& background, const vk::Buffer& output,
-              const gpu::GatherParams& blur, HybridComposite composite,
+              const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
+              const vk::Buffer& output, const gpu::GatherParams& blur, HybridComposite composite,
               const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
 
  private:

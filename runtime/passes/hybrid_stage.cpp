@@ -44,10 +44,11 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
   else
     plan.run(kBvhInstances);
   postProcess_.planTiles(plan);
+  postProcess_.planGather(plan);
   rayMask_.plan(plan);
   plan.run(RevealPass::kName);
   plan.run(kGatherBackground);
-  plan.run(kGatherComposite);
+  plan.run(kComposite);
 }
 
 HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene,
@@ -94,6 +95,8 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height(),
                                 curved ? shutterPaths : nullptr};
   postProcess_.recordTiles(frame, raster);
+  // The post-process image everywhere; the composite below rewrites the mask's pixels.
+  postProcess_.recordGather(frame, raster, output);
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
   gpu::GatherParams blur = gatherParams(settings_.blur, size_.width(), size_.height(),
@@ -112,8 +115,8 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
   backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(),
                            rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, raster.shutterPaths);
-  composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.mask(), backgroundBlurred_, output,
-                    blur, settings_.composite, raster.shutterPaths);
+  composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(),
+                    backgroundBlurred_, output, blur, settings_.composite, raster.shutterPaths);
 }
 
 }  // namespace hmb::passes

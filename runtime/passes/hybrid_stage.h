@@ -1,9 +1,10 @@
 // The hybrid method (paper, section 3): on top of the G-buffer,
-//   tile-max, neighbour-max of the raster's velocities -> ray mask (RayMaskStage, over the
-//   moving tiles) -> ray reveal (RevealPass) at mask pixels -> gather of the background layer
-//   (the revealed surfaces over the raster) at mask pixels only (BackgroundGatherPass,
-//   indirect) -> the raster layer's gather with the background composited in at mask pixels
-//   (CompositePass; kernels/hybrid/composite.comp says how).
+//   tile-max, neighbour-max of the raster's velocities -> the post-process gather of the
+//   raster layer, every pixel -> ray mask (RayMaskStage, over the moving tiles) -> ray reveal
+//   (RevealPass) at mask pixels -> gather of the background layer (the revealed surfaces over
+//   the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the background
+//   composited in at mask pixels (CompositePass, indirect; kernels/hybrid/composite.comp says
+//   how).
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
 // mask and the revealed surfaces.
 #pragma once
@@ -39,7 +40,7 @@ class HybridStage {
   static constexpr const char* kBvhMeshes = "hybrid-bvh-meshes";        // scene setup: not in the frame time
   static constexpr const char* kBvhInstances = "hybrid-bvh-instances";  // per frame
   static constexpr const char* kGatherBackground = BackgroundGatherPass::kName;
-  static constexpr const char* kGatherComposite = CompositePass::kName;
+  static constexpr const char* kComposite = CompositePass::kName;
 
   // postProcess: the stage whose tiles and gather both layers use (configured for the
   // McGuire filter and the adapted range by the caller).

@@ -104,6 +104,8 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   for (size_t i = 0; i < pixels; ++i) out.mask[i] = out.maskValues[i] != HMB_MASK_NONE ? 1u : 0u;
   out.counters = stage.counters().download<gpu::RayMaskCounters>().at(0);
   out.list = downloadFirst<uint32_t>(stage.list(), std::min<size_t>(out.counters.maskCount, pixels));
+  const std::vector<uint32_t> all = downloadFirst<uint32_t>(stage.list(), pixels);
+  out.unrevealedList.assign(all.end() - std::min<size_t>(out.counters.unrevealedCount, pixels), all.end());
   out.candidates = downloadFirst<uint32_t>(stage.candidates(), std::min<size_t>(out.counters.candidateCount, pixels));
   return out;
 }
@@ -133,8 +135,26 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   if (run.background) {
     if (!run.mask || !run.objectId || run.list) throw std::runtime_error("the composite needs mask and ids, no list");
     const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
+    // As HybridStage records it: the post-process gather everywhere, then the composite over
+    // the mask's pixels, listed as range_check lists them: every other one from the front (as
+    // if revealed), the rest from the back, so that both halves of the list are read.
+    std::vector<uint32_t> list(std::max<size_t>(pixels, 1), 0u);
+    uint32_t front = 0, back = 0;
+    for (uint32_t i = 0; i < pixels; ++i)
+      if ((*run.mask)[i] != HMB_MASK_NONE) {
+        if ((front + back) % 2 == 0)
+          list[front++] = i;
+        else
+          list[pixels - 1 - back++] = i;
+      }
+    const vk::Buffer listBuffer = vk::uploadedBuffer(context, list, "test mask list");
+    const vk::Buffer counters =
+        vk::uploadedBuffer(context, std::vector<gpu::RayMaskCounters>{dispatchFor(front, back)}, "test mask counters");
+    const passes::GatherPass gather(context);
+    gather.record(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull}, tiles,
+                  output, settings);
     const passes::CompositePass pass(context);
-    pass.record(frame, raster, tiles, mask, background, output, params, run.composite, pathsOrNull);
+    pass.record(frame, raster, tiles, listBuffer, counters, background, output, params, run.composite, pathsOrNull);
     frame.submitAndWait();
   } else if (run.list) {
     const passes::ImageLayer revealed = imageLayer(run.revealed ? *run.revealed : layer, nullptr, "test revealed");

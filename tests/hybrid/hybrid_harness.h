@@ -31,6 +31,7 @@ struct RayMaskReadback {
   std::vector<uint32_t> mask;        // per pixel: 1 in the ray mask, else 0
   std::vector<uint32_t> maskValues;  // per pixel as the device wrote it (HMB_MASK_*)
   std::vector<uint32_t> list;   // the list's first counters.maskCount entries
+  std::vector<uint32_t> unrevealedList;  // its last counters.unrevealedCount entries
   std::vector<uint32_t> candidates;  // the edge candidates' first counters.candidateCount entries
   gpu::RayMaskCounters counters{};
 };

@@ -275,13 +275,24 @@ std::vector<bool> revealedPixels(const MaskLayer& input, const std::vector<uint3
   return out;
 }
 
-gpu::RayMaskCounters dispatchFor(uint32_t maskCount) {
-  const uint32_t groups = (maskCount + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP;
+gpu::RayMaskCounters dispatchFor(uint32_t maskCount) { return dispatchFor(maskCount, 0u); }
+
+gpu::RayMaskCounters dispatchFor(uint32_t maskCount, uint32_t unrevealed) {
+  const auto rows = [](uint32_t count) {
+    const uint32_t groups = (count + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP;
+    return glm::uvec3(groups == 0u ? 0u : std::min(groups, 65535u), groups == 0u ? 0u : (groups + 65534u) / 65535u, 1u);
+  };
   gpu::RayMaskCounters c{};
   c.maskCount = maskCount;
-  c.maskDispatchX = groups == 0u ? 0u : std::min(groups, 65535u);
-  c.maskDispatchY = groups == 0u ? 0u : (groups + 65534u) / 65535u;
-  c.maskDispatchZ = 1u;
+  c.unrevealedCount = unrevealed;
+  c.maskPixels = maskCount + unrevealed;
+  const glm::uvec3 front = rows(maskCount), all = rows(c.maskPixels);
+  c.maskDispatchX = front.x;
+  c.maskDispatchY = front.y;
+  c.maskDispatchZ = front.z;
+  c.compositeDispatchX = all.x;
+  c.compositeDispatchY = all.y;
+  c.compositeDispatchZ = all.z;
   return c;
 }
 

@@ -68,10 +68,12 @@ std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint3
 
 // size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
+// The same with `unrevealed` more mask pixels at the list's back: maskPixels and the
+// composite's dispatch over both.
+gpu::RayMaskCounters dispatchFor(uint32_t maskCount, uint32_t unrevealed);
 
-// hybrid/composite.comp: every pixel as the kernel writes it with
-// the mask, the background, the object ids and the form (non-mask pixels are the plain gather
-// with the mask boosts off there).
+// The hybrid's image: hybrid/composite.comp at mask pixels with the background, the object ids
+// and the form, over the post-process gather (mblur/gather.comp) everywhere else.
 std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
                                        const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,
                                        const std::vector<uint32_t>& objectId,

@@ -42,9 +42,14 @@ void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std:
   EXPECT_EQ(c.maskDispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
   EXPECT_EQ(c.maskDispatchZ, 1u) << what;
   EXPECT_EQ(c.rayCount, 0u) << what << ": no reveal ran";
-  const gpu::RayMaskCounters mirror = dispatchFor(uint32_t(count));
+  const gpu::RayMaskCounters mirror = dispatchFor(uint32_t(count), c.unrevealedCount);
   EXPECT_EQ(c.maskDispatchX, mirror.maskDispatchX) << what;
   EXPECT_EQ(c.maskDispatchY, mirror.maskDispatchY) << what;
+  // The composite runs over every mask pixel, the unrevealed ones at the list's back too.
+  EXPECT_EQ(c.maskPixels, count + c.unrevealedCount) << what;
+  EXPECT_EQ(c.compositeDispatchX, mirror.compositeDispatchX) << what;
+  EXPECT_EQ(c.compositeDispatchY, mirror.compositeDispatchY) << what;
+  EXPECT_EQ(c.compositeDispatchZ, 1u) << what;
 }
 
 // Mask equal to the reference's range check over the device's edges, every edge pixel in the
@@ -219,6 +224,14 @@ TEST_F(HybridRangeCheckTest, OnlyPixelsWhoseCoverageMeetsTheBackgroundAreListed)
     std::sort(list.begin(), list.end());
     EXPECT_EQ(list, expected) << round;
     EXPECT_EQ(device.counters.maskPixels, maskPixels) << round;
+    // The others fill the list from its back, each once, for the composite.
+    std::vector<uint32_t> unrevealed;
+    for (uint32_t i = 0; i < device.mask.size(); ++i)
+      if (device.mask[i] != 0u && !reveal[i]) unrevealed.push_back(i);
+    std::vector<uint32_t> back = device.unrevealedList;
+    std::sort(back.begin(), back.end());
+    EXPECT_EQ(back, unrevealed) << round;
+    expectDispatchFor(device.counters, expected.size(), "round " + std::to_string(round));
     listed += expected.size();
     unlisted += maskPixels - expected.size();
   }

@@ -72,7 +72,7 @@ TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
     for (const char* pass : {"tile-max", "neighbor-max"})
       EXPECT_NE(std::find(names.begin(), names.end(), pass), names.end()) << method << " " << pass;
     const std::vector<std::string> blur = std::string(method) == "hybrid"
-                                              ? std::vector<std::string>{"hybrid-bvh-meshes", "ray-reveal", "gather-composite"}
+                                              ? std::vector<std::string>{"hybrid-bvh-meshes", "ray-reveal", "gather", "composite"}
                                               : std::vector<std::string>{"gather"};
     for (const std::string& pass : blur)
       EXPECT_NE(std::find(names.begin(), names.end(), pass), names.end()) << method << " " << pass;
@@ -209,9 +209,9 @@ TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
   EXPECT_EQ(result.hybrid->edgeCandidates, 0u);
   EXPECT_EQ(result.hybrid->maskPixels, 0u);
   EXPECT_EQ(result.hybrid->revealRays, 0u);
-  for (const char* pass : {"ray-mask-edges", "ray-reveal", "gather-background"})
+  for (const char* pass : {"ray-mask-edges", "ray-reveal", "gather-background", "composite"})
     EXPECT_FALSE(noWorkOf(result, pass).empty()) << pass;
-  EXPECT_TRUE(noWorkOf(result, "gather-composite").empty());
+  EXPECT_TRUE(noWorkOf(result, "gather").empty());
 
   // A frame with silhouettes has work in every pass.
   const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid", kMovingTime, true);
