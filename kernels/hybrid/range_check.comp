@@ -69,12 +69,37 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   return edges[entry] != 0u;
 }
 
+bool insideImage(vec2 p) {
+  return all(greaterThanEqual(p, vec2(0.0))) && p.x < float(params.blur.width) && p.y < float(params.blur.height);
+}
+
+// Whether the curved path X + s v + s^2 q, s in [0, 1], passes through a flagged block: its
+// chords over k equal steps of s, each walked by segmentMeetsEdgeBlock. A quadratic strays
+// from its chord over a step h by at most |q| h^2 / 4, so k >= sqrt(|q| / 2) keeps every
+// fine-walk position within half a pixel of a chord, inside the pixel of margin a block's
+// flag has: "no" here still means the fine walk meets no edge.
+bool curvedPathMeetsEdgeBlock(vec2 centre, vec2 v, vec2 q) {
+  const uint chords = max(1u, uint(ceil(sqrt(0.5 * length(q)))));
+  vec2 from = centre;
+  for (uint j = 1u; j <= chords; ++j) {
+    const float s = float(j) / float(chords);
+    const vec2 to = centre + s * v + (s * s) * q;
+    if (segmentMeetsEdgeBlock(from, to)) return true;
+    from = to;
+  }
+  return false;
+}
+
 // The range check along a curved path X + s v + s^2 q, s in [0, 1], at most a pixel a step:
 // the path's speed |v + 2 s q| is convex in s, so it peaks at an end, |v| or |v + 2q|.
 bool curvedPathMeetsEdge(uvec2 pixel, vec2 v, vec2 q) {
+  const vec2 centre = vec2(pixel) + 0.5;
+  // The path lies in the triangle of its control points X, X + v / 2, X + v + q: when they are
+  // inside the image no position is clamped, and the coarse blocks can answer "no" first.
+  if (insideImage(centre + 0.5 * v) && insideImage(centre + v + q) && !curvedPathMeetsEdgeBlock(centre, v, q))
+    return false;
   // <= 2 maxSpeed: inversePath keeps |v| + |q| within maxSpeed.
   const uint steps = uint(ceil(max(length(v), length(v + 2.0 * q))));
-  const vec2 centre = vec2(pixel) + 0.5;
   for (uint i = 0u; i <= steps; ++i) {
     const float s = steps == 0u ? 0.0 : float(i) / float(steps);
     const ivec2 p = nearestPixel(centre + s * v + (s * s) * q, params.blur.width, params.blur.height);
@@ -88,10 +113,7 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   const uint steps = uint(ceil(speed));  // <= maxSpeed, the image's larger side
   const vec2 centre = vec2(pixel) + 0.5;
   // Ranges that leave the image are clamped pixel by pixel; those take the fine walk alone.
-  const vec2 end = centre + v;
-  if (all(greaterThanEqual(end, vec2(0.0))) && end.x < float(params.blur.width) && end.y < float(params.blur.height) &&
-      !segmentMeetsEdgeBlock(centre, end))
-    return false;
+  if (insideImage(centre + v) && !segmentMeetsEdgeBlock(centre, centre + v)) return false;
   for (uint i = 0u; i <= steps; ++i) {
     const ivec2 p = nearestPixel(centre + v * (float(i) / float(steps)), params.blur.width, params.blur.height);
     if (edges[uint(p.y) * params.blur.width + uint(p.x)] != 0u) return true;
