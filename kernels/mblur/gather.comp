@@ -1,11 +1,15 @@
 #version 450
 // The post-process gather: McGuire et al. 2012's reconstruction with the paper's weights and
-// its centred or adapted range (mblur/gather_samples.glsl), every pixel of the image.
+// its centred or adapted range (mblur/gather_samples.glsl), every pixel of the image; for the
+// hybrid (HMB_SPEC_GATHER_OUTSIDE_MASK) every pixel outside its ray mask, whose pixels its
+// composite writes: a lane group wholly inside the mask then costs a load.
 #extension GL_GOOGLE_include_directive : require
 #include "filter_bindings.glsl"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 layout(push_constant) uniform Params { GatherParams params; };
+layout(constant_id = HMB_SPEC_GATHER_OUTSIDE_MASK) const bool kOutsideMask = false;
+layout(std430, binding = HMB_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 
 uvec4 blurSampleAt(uint i) { return layerSampleAt(i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
@@ -16,6 +20,7 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
+  if (kOutsideMask && mask[index] != 0u) return;
   GatherCentre centre;
   outColor[index] = readGatherCentre(pixel, index, centre) ? gatherSamples(pixel, centre, 1.0, 1.0) : centre.color;
 }

@@ -38,6 +38,12 @@
 #define HMB_FILTER_BINDING_SHUTTER_PATHS 3 // uvec2 per pixel (gbuffer/gbuffer_layout.h)
 #define HMB_FILTER_BINDING_COUNT 4
 #define HMB_FILTER_TEXEL_BUFFERS 3  // samples, neighbour-max and paths, read as uniform texel buffers
+// gather.comp beside those: the hybrid's ray mask (uint per pixel, 0 outside), read only with
+// HMB_SPEC_GATHER_OUTSIDE_MASK: the gather then leaves the mask's pixels to the hybrid's
+// composite.
+#define HMB_GATHER_BINDING_MASK HMB_FILTER_BINDING_COUNT
+#define HMB_GATHER_BINDING_COUNT (HMB_GATHER_BINDING_MASK + 1)
+#define HMB_SPEC_GATHER_OUTSIDE_MASK 0
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]

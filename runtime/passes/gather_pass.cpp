@@ -31,7 +31,7 @@ gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t wid
                            0};
 }
 
-GatherPass::GatherPass(const vk::Context& context) : kernel_(context, "mblur/gather", sizeof(gpu::GatherParams)) {}
+GatherPass::GatherPass(const vk::Context& context) : context_(context) {}
 
 std::unique_ptr<GatherFilter> makeMcGuireGather(const vk::Context& context) {
   return std::make_unique<GatherPass>(context);
@@ -39,12 +39,32 @@ std::unique_ptr<GatherFilter> makeMcGuireGather(const vk::Context& context) {
 
 void GatherPass::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
                         const vk::Buffer& output, const PostProcessSettings& settings) const {
+  // The mask is read only by the hybrid's variant; the output stands in.
+  recordWith(false, frame, inputs, neighborMax, output, settings, output);
+}
+
+void GatherPass::recordOutsideMask(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
+                                   const vk::Buffer& neighborMax, const vk::Buffer& output,
+                                   const PostProcessSettings& settings, const vk::Buffer& mask) const {
+  recordWith(true, frame, inputs, neighborMax, output, settings, mask);
+}
+
+void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
+                            const vk::Buffer& neighborMax, const vk::Buffer& output,
+                            const PostProcessSettings& settings, const vk::Buffer& mask) const {
+  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[outsideMask ? 1 : 0];
+  if (!kernel) {
+    const uint32_t specialization[HMB_SPEC_GATHER_OUTSIDE_MASK + 1] = {outsideMask ? 1u : 0u};
+    kernel = std::make_unique<vk::ComputeKernel>(context_, "mblur/gather", sizeof(gpu::GatherParams), specialization);
+  }
   gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
   if (settings.motionPath == MotionPath::Curved) {
     if (!inputs.shutterPaths) throw Error("post-process: the curved motion path needs the G-buffer's shutter paths");
     params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
   }
-  frame.dispatch(kName, kernel_, filterBindings(inputs, neighborMax, output), params,
+  vk::Bindings bindings = filterBindings(inputs, neighborMax, output);
+  bindings.push_back({HMB_GATHER_BINDING_MASK, &mask});
+  frame.dispatch(kName, *kernel, bindings, params,
                  {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string_view>
 
 #include "kernels/mblur/mblur_layout.h"
@@ -33,9 +34,19 @@ class GatherPass final : public GatherFilter {
   // Uses the McGuire fields of settings whatever settings.filter.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
               const vk::Buffer& output, const PostProcessSettings& settings) const override;
+  // The same outside the hybrid's ray mask (uint per pixel, 0 outside): the mask's pixels are
+  // left as they are, for its composite.
+  void recordOutsideMask(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
+                         const vk::Buffer& output, const PostProcessSettings& settings,
+                         const vk::Buffer& mask) const;
 
  private:
-  vk::ComputeKernel kernel_;
+  void recordWith(bool outsideMask, vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
+                  const vk::Buffer& neighborMax, const vk::Buffer& output, const PostProcessSettings& settings,
+                  const vk::Buffer& mask) const;
+
+  const vk::Context& context_;
+  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2];  // [outside the mask], each made on first use
 };
 
 }  // namespace hmb::passes

@@ -18,6 +18,7 @@ HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProce
       postProcess_(postProcess),
       rayMask_(context),
       reveal_(context, hits),
+      gather_(context),
       backgroundGather_(context),
       composite_(context) {}
 
@@ -44,8 +45,8 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
   else
     plan.run(kBvhInstances);
   postProcess_.planTiles(plan);
-  postProcess_.planGather(plan);
   rayMask_.plan(plan);
+  plan.run(GatherPass::kName);
   plan.run(RevealPass::kName);
   plan.run(kGatherBackground);
   plan.run(kComposite);
@@ -95,8 +96,6 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height(),
                                 curved ? shutterPaths : nullptr};
   postProcess_.recordTiles(frame, raster);
-  // The post-process image everywhere; the composite below rewrites the mask's pixels.
-  postProcess_.recordGather(frame, raster, output);
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
   gpu::GatherParams blur = gatherParams(settings_.blur, size_.width(), size_.height(),
@@ -110,6 +109,8 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // all stay on their object (alpha exactly 1) need no reveal (38% of bistro's mask at 1280x720).
   maskParameters.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
   rayMask_.record(frame, raster, maskParameters);
+  // Post-process's image outside the mask; the composite below writes the mask's pixels.
+  gather_.recordOutsideMask(frame, raster, postProcess_.neighborMax(), output, settings_.blur, rayMask_.mask());
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, layer.surfaces(), rayMask_.list(), rayMask_.counters(),
                  revealed_, size_.width(), size_.height(), settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.

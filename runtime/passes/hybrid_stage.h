@@ -1,10 +1,10 @@
 // The hybrid method (paper, section 3): on top of the G-buffer,
-//   tile-max, neighbour-max of the raster's velocities -> the post-process gather of the
-//   raster layer, every pixel -> ray mask (RayMaskStage, over the moving tiles) -> ray reveal
-//   (RevealPass) at mask pixels -> gather of the background layer (the revealed surfaces over
-//   the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the background
-//   composited in at mask pixels (CompositePass, indirect; kernels/hybrid/composite.comp says
-//   how).
+//   tile-max, neighbour-max of the raster's velocities -> ray mask (RayMaskStage, over the
+//   moving tiles) -> the post-process gather of the raster layer outside the mask (GatherPass)
+//   -> ray reveal (RevealPass) at mask pixels -> gather of the background layer (the revealed
+//   surfaces over the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the
+//   background composited in at mask pixels (CompositePass, indirect;
+//   kernels/hybrid/composite.comp says how).
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
 // mask and the revealed surfaces.
 #pragma once
@@ -90,6 +90,7 @@ class HybridStage {
   PostProcessStage& postProcess_;
   RayMaskStage rayMask_;
   RevealPass reveal_;
+  GatherPass gather_;  // post-process's, outside the mask
   BackgroundGatherPass backgroundGather_;
   CompositePass composite_;
   HybridSettings settings_;

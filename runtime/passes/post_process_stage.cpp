@@ -38,13 +38,9 @@ void PostProcessStage::planTiles(FramePlan& plan) const {
   plan.run(NeighborMaxPass::kName);
 }
 
-void PostProcessStage::planGather(FramePlan& plan) const {
-  plan.run(std::string(filters_.at(settings_.filter)->passName()));
-}
-
 void PostProcessStage::plan(FramePlan& plan) const {
   planTiles(plan);
-  planGather(plan);
+  plan.run(std::string(filters_.at(settings_.filter)->passName()));
 }
 
 void PostProcessStage::prepare(uint32_t width, uint32_t height) {
@@ -72,16 +68,10 @@ void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInp
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
 }
 
-void PostProcessStage::recordGather(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
-                                    const vk::Buffer& output) const {
-  requirePreparedSize(inputs);
-  filters_.at(settings_.filter)->record(frame, inputs, neighborMax_, output, settings_);
-}
-
 void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
                               const vk::Buffer& output) const {
   recordTiles(frame, inputs);
-  recordGather(frame, inputs, output);
+  filters_.at(settings_.filter)->record(frame, inputs, neighborMax_, output, settings_);
 }
 
 }  // namespace hmb::passes

@@ -28,9 +28,8 @@ class PostProcessStage {
   void configure(const PostProcessSettings& settings);
 
   void plan(FramePlan& plan) const;
-  // The tile passes alone (for stages that run their own gathers), and the gather alone.
+  // The tile passes alone (for stages that run their own gathers).
   void planTiles(FramePlan& plan) const;
-  void planGather(FramePlan& plan) const;
 
   // Sizes the tile buffers for this resolution (reuses them when it is unchanged).
   void prepare(uint32_t width, uint32_t height);
@@ -39,8 +38,6 @@ class PostProcessStage {
   // The tile passes alone over `inputs`' velocities, for stages that run their own gathers
   // on neighborMax() (the hybrid method).
   void recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const;
-  // The filter's gather alone, after recordTiles (the hybrid's image outside its ray mask).
-  void recordGather(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output) const;
 
   const PostProcessSettings& settings() const { return settings_; }
   TileGrid tileGrid() const { return grid_; }

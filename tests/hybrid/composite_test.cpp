@@ -159,6 +159,30 @@ TEST_F(HybridCompositeTest, WeightsMatchReferenceWithTheCentredRange) {
   EXPECT_GT(expectCompositeMatches(c, s, HybridComposite::Weights, "centred"), 100u);
 }
 
+// The hybrid's post-process gather leaves the mask's pixels to the composite (they keep what
+// the buffer held) and writes every other pixel exactly as the post-process gather does.
+TEST_F(HybridCompositeTest, TheGatherOutsideTheMaskLeavesTheMaskAlone) {
+  std::mt19937 rng(71);
+  const CompositeCase c = randomCase(61, 37, rng);
+  const PostProcessSettings s = compositeSettings(8, 9, 3);
+  const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
+  GatherRun outside;
+  outside.mask = &c.mask;
+  outside.sentinel = glm::vec4(-7.0f);
+  const std::vector<glm::vec4> device = runGather(context(), c.layer, tiles, outside, s);
+  const std::vector<glm::vec4> whole = runGather(context(), c.layer, tiles, GatherRun{}, s);
+  size_t inMask = 0;
+  for (size_t i = 0; i < device.size(); ++i) {
+    if (c.mask[i] != 0u) {
+      ++inMask;
+      EXPECT_EQ(device[i], outside.sentinel) << "mask pixel " << i;
+    } else {
+      EXPECT_EQ(device[i], whole[i]) << "pixel " << i;
+    }
+  }
+  EXPECT_GT(inMask, device.size() / 5);
+}
+
 // Along curved paths (random paths, adversarial records among them): the coverage composite
 // samples each mask pixel's own path and the gather outside the mask follows the curved path,
 // both as the reference does; and the paths change the image.

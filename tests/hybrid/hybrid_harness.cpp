@@ -135,9 +135,9 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   if (run.background) {
     if (!run.mask || !run.objectId || run.list) throw std::runtime_error("the composite needs mask and ids, no list");
     const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
-    // As HybridStage records it: the post-process gather everywhere, then the composite over
-    // the mask's pixels, listed as range_check lists them: every other one from the front (as
-    // if revealed), the rest from the back, so that both halves of the list are read.
+    // As HybridStage records it: the post-process gather outside the mask, then the composite
+    // over the mask's pixels, listed as range_check lists them: every other one from the front
+    // (as if revealed), the rest from the back, so that both halves of the list are read.
     std::vector<uint32_t> list(std::max<size_t>(pixels, 1), 0u);
     uint32_t front = 0, back = 0;
     for (uint32_t i = 0; i < pixels; ++i)
@@ -151,8 +151,8 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     const vk::Buffer counters =
         vk::uploadedBuffer(context, std::vector<gpu::RayMaskCounters>{dispatchFor(front, back)}, "test mask counters");
     const passes::GatherPass gather(context);
-    gather.record(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull}, tiles,
-                  output, settings);
+    gather.recordOutsideMask(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull},
+                             tiles, output, settings, mask);
     const passes::CompositePass pass(context);
     pass.record(frame, raster, tiles, listBuffer, counters, background, output, params, run.composite, pathsOrNull);
     frame.submitAndWait();
@@ -165,10 +165,12 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     pass.record(frame, raster, revealed, tiles, mask, list, counters, output, params, pathsOrNull);
     frame.submitAndWait();
   } else {
-    if (run.mask) throw std::runtime_error("the post-process gather takes no mask");
     const passes::GatherPass pass(context);
-    pass.record(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull}, tiles, output,
-                settings);
+    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull};
+    if (run.mask)
+      pass.recordOutsideMask(frame, inputs, tiles, output, settings, mask);
+    else
+      pass.record(frame, inputs, tiles, output, settings);
     frame.submitAndWait();
   }
   return downloadFirst<glm::vec4>(output, pixels);

@@ -43,7 +43,8 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
 // and the object ids; else with `list`, the background gather (BackgroundGatherPass) of the
 // listed pixels, its dispatch sized on the host as size_list_dispatch sizes it, reading
 // `revealed` (default: `layer` itself) where the mask is HMB_MASK_REVEALED; else the
-// post-process gather (GatherPass). The output buffer starts as `sentinel` everywhere.
+// post-process gather (GatherPass), outside the mask alone when there is one. The output
+// buffer starts as `sentinel` everywhere.
 struct GatherRun {
   const std::vector<uint32_t>* mask = nullptr;
   const std::vector<glm::vec4>* background = nullptr;

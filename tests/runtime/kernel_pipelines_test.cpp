@@ -82,7 +82,7 @@ const KernelLayout kLayouts[] = {
     {"reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), false},
     {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
     {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
-    {"mblur/gather", HMB_FILTER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false, HMB_FILTER_TEXEL_BUFFERS},
+    {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false, HMB_FILTER_TEXEL_BUFFERS},
     {"mblur/gather_jimenez", HMB_FILTER_BINDING_COUNT, sizeof(gpu::JimenezParams), false, false,
      HMB_FILTER_TEXEL_BUFFERS},
     {"hybrid/composite", HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
