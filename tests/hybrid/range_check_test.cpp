@@ -73,6 +73,20 @@ size_t expectRayMaskMatches(const MaskLayer& layer, const RayMaskParameters& p, 
   return masked.size();
 }
 
+// Object 2 (depth 1) over columns 0-19, moving by `velocity`, beside a still, deeper object 3
+// (depth 5) over the rest.
+MaskLayer slidingStep(uint32_t width, uint32_t height, glm::vec2 velocity) {
+  MaskLayer layer{width, height, {}, {}, {}};
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const bool front = x < 20;
+      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
+      layer.velocity.emplace_back(front ? velocity : glm::vec2(0.0f));
+      layer.objectId.push_back(front ? 2u : 3u);
+    }
+  return layer;
+}
+
 using HybridRangeCheckTest = VulkanTest;
 
 TEST_F(HybridRangeCheckTest, MaskListAndCountersMatchReferenceOnRandomLayers) {
@@ -117,14 +131,7 @@ TEST_F(HybridRangeCheckTest, MaskListAndCountersMatchReferenceOnAdversarialLayer
 // whose left column alone is an edge; pixels up to 9 px left of it reach it.
 TEST_F(HybridRangeCheckTest, LongRangesFindAnEdgeOnePixelWide) {
   const uint32_t width = 40, height = 5;
-  MaskLayer layer{width, height, {}, {}, {}};
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const bool front = x < 20;
-      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
-      layer.velocity.emplace_back(front ? glm::vec2(9.0f, 0.0f) : glm::vec2(0.0f));
-      layer.objectId.push_back(front ? 2u : 3u);
-    }
+  const MaskLayer layer = slidingStep(width, height, {9.0f, 0.0f});
   const RayMaskParameters p = parametersWith(0.9f);
   const RayMaskReadback device = runRayMask(context(), layer, p);
   expectRayMaskMatches(layer, p, "long ranges");
@@ -173,18 +180,13 @@ TEST_F(HybridRangeCheckTest, CurvedPathsMatchTheReference) {
 // it, a straight walk over 13 even steps lands on 18.3 and 20.
 TEST_F(HybridRangeCheckTest, CurvedPathsAreWalkedAPixelAStepWhereTheySpeedUp) {
   const uint32_t width = 40, height = 5, pathX = 7;
-  MaskLayer layer{width, height, {}, {}, {}};
+  MaskLayer layer = slidingStep(width, height, {1.0f, 0.0f});
   const float none = std::numeric_limits<float>::quiet_NaN();
   for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const bool front = x < 20;
-      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
-      layer.velocity.emplace_back(front ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f));
-      layer.objectId.push_back(front ? 2u : 3u);
+    for (uint32_t x = 0; x < width; ++x)
       // p(t - uE) = X - u a - u^2 c with a = (1, 0), c = (12, 0): m = a / 2 + c / 4, o = a + c.
       layer.shutterPaths.push_back(x == pathX ? mblur::packShutterPath({3.5f, 0.0f}, {13.0f, 0.0f})
                                               : mblur::packShutterPath(glm::vec2(none), glm::vec2(none)));
-    }
   RayMaskParameters p = parametersWith(0.9f);
   p.blur.flags = HMB_GATHER_FLAG_ADAPTED_RANGE | HMB_GATHER_FLAG_CURVED_PATH;
   const RayMaskReadback device = runRayMask(context(), layer, p);

@@ -29,8 +29,9 @@ constexpr float kMovingTime = 0.2f;
 constexpr float kStillTime = 0.45f;
 
 RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::string& method, float time,
-                      bool skip) {
+                      bool skip, passes::MotionPath path = passes::MotionPath::Linear) {
   RenderSettings settings;
+  settings.postprocess.motionPath = path;
   settings.method = parseMethod(method);
   settings.width = 64;
   settings.height = 36;
@@ -103,31 +104,6 @@ TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
   }
 }
 
-// A still frame asked for curved paths leaves the path passes out because nothing moves, not
-// because the blur is straight; with every pass run, they run.
-TEST_F(FramePlanSkipsTest, AStillFrameLeavesTheCurvedPathsOutAndSaysWhy) {
-  Renderer renderer(context());
-  const scene::Scene room = scene::loadScene("living-room");
-  for (const char* method : {"postprocess", "hybrid"})
-    for (const bool skip : {true, false}) {
-      RenderSettings settings;
-      settings.method = parseMethod(method);
-      settings.width = 32;
-      settings.height = 18;
-      settings.frameTime = kStillTime;
-      settings.skipUnneededPasses = skip;
-      settings.postprocess.motionPath = passes::MotionPath::Curved;
-      const RenderResult result = renderer.render(room, settings);
-      for (const char* name : {passes::ShutterPathPass::kTransformName, passes::ShutterPathPass::kResolveName}) {
-        const auto pass = std::find_if(result.plan.passes().begin(), result.plan.passes().end(),
-                                       [&](const PlannedPass& p) { return p.name == name; });
-        ASSERT_NE(pass, result.plan.passes().end()) << method << " " << name;
-        EXPECT_EQ(pass->run, !skip) << method << " " << name;
-        EXPECT_EQ(pass->reason, skip ? std::string(passes::kStillPathsReason) : std::string()) << method << " " << name;
-      }
-    }
-}
-
 TEST_F(FramePlanSkipsTest, AMovingFrameRunsTheBlur) {
   Renderer renderer(context());
   const scene::Scene room = scene::loadScene("living-room");
@@ -192,6 +168,23 @@ scene::Scene slidingWall() {
   scene.settings.frameTime = 1.0f;
   scene::deriveDefaults(scene);
   return scene;
+}
+
+// A still frame asked for curved paths leaves the path passes out because nothing moves, not
+// because the blur is straight; with every pass run, they run.
+TEST_F(FramePlanSkipsTest, AStillFrameLeavesTheCurvedPathsOutAndSaysWhy) {
+  Renderer renderer(context());
+  const scene::Scene room = scene::loadScene("living-room");
+  for (const char* method : {"postprocess", "hybrid"})
+    for (const bool skip : {true, false}) {
+      const RenderResult result = renderAt(renderer, room, method, kStillTime, skip, passes::MotionPath::Curved);
+      for (const char* name : {passes::ShutterPathPass::kTransformName, passes::ShutterPathPass::kResolveName}) {
+        const PlannedPass* pass = passNamed(result, name);
+        ASSERT_NE(pass, nullptr) << method << " " << name;
+        EXPECT_EQ(pass->run, !skip) << method << " " << name;
+        EXPECT_EQ(pass->reason, skip ? std::string(passes::kStillPathsReason) : std::string()) << method << " " << name;
+      }
+    }
 }
 
 std::string noWorkOf(const RenderResult& result, const std::string& name) {
