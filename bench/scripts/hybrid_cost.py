@@ -69,14 +69,16 @@ with tempfile.TemporaryDirectory() as tmp:
 
 summary = {"width": args.width, "height": args.height, "runs": args.runs, "device": device["name"],
            "driver": device.get("driver_info"), "cpu": system["cpu"], "hardware_threads": system["hardware_threads"],
-           "LP_NUM_THREADS": system["LP_NUM_THREADS"], "scenes": results}
+           "LP_NUM_THREADS": system["LP_NUM_THREADS"], "revision": system.get("git_revision"),
+           "command": "bench/scripts/hybrid_cost.py " + " ".join(sys.argv[1:]), "scenes": results}
 with open(os.path.join(args.out, "hybrid-cost.json"), "w") as f:
     json.dump(summary, f, indent=2)
 
 with open(os.path.join(args.out, "hybrid-cost.md"), "w") as md:
     md.write(f"Device {summary['device']} ({summary['driver']}), CPU {summary['cpu']}, "
-             f"{summary['hardware_threads']} hardware threads, LP_NUM_THREADS {summary['LP_NUM_THREADS']}; "
-             f"{args.width}x{args.height}, median of {args.runs} runs after one warm-up run per method.\n\n")
+             f"{summary['hardware_threads']} hardware threads, LP_NUM_THREADS {summary['LP_NUM_THREADS']}, "
+             f"revision {summary['revision']}; {args.width}x{args.height}, median of {args.runs} runs after one "
+             f"warm-up run per method. Command: `{summary['command']}`\n\n")
     md.write("| scene | post-process ms | hybrid ms | hybrid / post-process | mask pixels | reveal rays | hybrid scene setup ms |\n")
     md.write("|---|---:|---:|---:|---:|---:|---:|\n")
     for scene, e in results.items():
