@@ -19,7 +19,8 @@
 //    (maxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
 //    even where the gather's tiles clamp its outer blur. Along curved paths
 //    (HMB_GATHER_FLAG_CURVED_PATH) the samples follow the pixel's own curved path instead,
-//    X + u v + u^2 q (v and q from mblur_common.glsl's inversePath). The README gives the measured errors.
+//    X + u v + u^2 q (v and q from mblur_common.glsl's inversePath). The README gives the
+//    measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"

@@ -3,8 +3,9 @@
 // mask when its range X + u v, u in [0, 1] (along curved paths its own curve, X + u v + u^2 q),
 // meets the edge mask: it is then in the inner blur
 // of a silhouette, where the raster holds no background. The range is walked at most a pixel
-// a step (ceil |v| + 1 positions on a straight one), so an edge band of any width is found. Masked pixels are
-// appended to a list (compaction) whose front sizes the ray reveal's indirect dispatch; with
+// a step (ceil |v| + 1 positions on a straight one), so an edge band of any width is found.
+// Masked pixels are appended to a list (compaction) whose front sizes the ray reveal's
+// indirect dispatch; with
 // the coverage composite, only those whose composite samples meet the background go there
 // (the others give the revealed background a weight of exactly 0) and the others fill the
 // list from its back, for the composite alone. Runs

@@ -28,7 +28,8 @@
 // second order X + u a + u^2 (c + J_a a), where J_a a, the change of the path across it (what
 // a rotation adds: the points a pixel sees come from around the circle, not from its tangent),
 // is approximated by the velocity at X + a minus X's (frame velocities scaled to the
-// exposure), when X + a lies on the same surface (depths within SOFT_Z_EXTENT). The path's length is kept within the tile size, as velocities are.
+// exposure), when X + a lies on the same surface (depths within SOFT_Z_EXTENT). The path's
+// length is kept within the tile size, as velocities are.
 // Each sample then takes one more fixed-point step with its own terms (see gatherSamples).
 //
 // Shared by the post-process gather (mblur/gather.comp) and the hybrid's gathers

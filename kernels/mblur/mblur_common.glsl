@@ -74,8 +74,8 @@ bool shutterPathTerms(uvec2 record, out vec2 a, out vec2 c) {
 }
 
 // The path along which pixel X sees the points of its own surface over the shutter,
-// X + u linear + u^2 quadratic: to second order X + u a + u^2 (c + J_a a), where J_a a (`change`) is
-// approximated by the frame velocity at X + a minus X's, scaled to the exposure, when X + a
+// X + u linear + u^2 quadratic: to second order X + u a + u^2 (c + J_a a), where J_a a
+// (`change`) is approximated by the frame velocity at X + a minus X's, scaled to the exposure, when X + a
 // lies on X's surface (else 0). Scaled so that |linear| + |quadratic|, which bounds the path's
 // reach, stays within maxLength; the lengths are taken over the largest component, so a
 // change of 1e30 px clamps instead of overflowing to an infinite reach (and a zero path).

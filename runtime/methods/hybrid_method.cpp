@@ -28,7 +28,7 @@ class HybridMethod final : public FrameMethod {
     const bool still = nothingMovesOnScreen(request);
     result.hybrid.emplace();
     result.hybrid->settings = hybridSettingsFor(request.scene, settings);
-    GpuScene scene = prepareRasterFrame(resources_, request, result, &result.hybrid->settings.blur);
+    GpuScene scene = prepareRasterFrame(resources_, request, result, &result.hybrid->settings.blur, still);
     result.postprocess = result.hybrid->settings.blur;
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);
@@ -104,7 +104,8 @@ class HybridMethod final : public FrameMethod {
         result.plan.noteNoWork(passes::HybridStage::kGatherBackground, reason);
       }
       if (result.hybrid->maskPixels == 0)
-        result.plan.noteNoWork(passes::HybridStage::kComposite, "the ray mask is empty: the post-process gather's image stands");
+        result.plan.noteNoWork(passes::HybridStage::kComposite,
+                               "the ray mask is empty: the post-process gather's image stands");
     }
     result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::move(mask)});
     result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));

@@ -20,7 +20,7 @@ class PostProcessMethod final : public FrameMethod {
   vk::FrameTimings render(const FrameRequest& request, RenderResult& result) override {
     const bool still = nothingMovesOnScreen(request);
     result.postprocess = postProcessSettingsFor(request.scene, request.settings);
-    const GpuScene scene = prepareRasterFrame(resources_, request, result, &*result.postprocess);
+    const GpuScene scene = prepareRasterFrame(resources_, request, result, &*result.postprocess, still);
     passes::PostProcessStage& blur = resources_.postProcess;
     blur.configure(*result.postprocess);
     FramePlan blurPlan;

@@ -41,12 +41,11 @@ io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& line
 }
 
 GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result,
-                            const passes::PostProcessSettings* blur) {
+                            const passes::PostProcessSettings* blur, bool still) {
   GpuScene gpuScene(resources.context, request.scene);
   gpuScene.setFrame(request.scene, request.frameTime, request.width, request.height);
   if (!request.settings.skipUnneededPasses) gpuScene.keepTexturePath();
   const bool curved = blur && blur->motionPath == passes::MotionPath::Curved;
-  const bool still = nothingMovesOnScreen(request);
   std::optional<passes::GBufferStage::ShutterPaths> paths;
   if (curved && !still)
     paths = passes::GBufferStage::ShutterPaths{

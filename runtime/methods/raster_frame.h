@@ -45,11 +45,11 @@ io::LayeredImage beautyImage(const FrameRequest& request, const vk::Buffer& line
 
 // The scene at the request's frame time, the texture path kept when every pass must run, the
 // G-buffer prepared and its passes entered in the plan.
-// blur: the frame's blur settings (null for a sharp frame). When the blur follows curved paths
-// and something moves on screen, the G-buffer also holds each pixel's path over the blur's
-// shutter (a time slice's, with time slices).
+// blur: the frame's blur settings (null for a sharp frame); still: nothingMovesOnScreen(request).
+// When the blur follows curved paths and the frame is not still, the G-buffer also holds each
+// pixel's path over the blur's shutter (a time slice's, with time slices).
 GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& request, RenderResult& result,
-                            const passes::PostProcessSettings* blur = nullptr);
+                            const passes::PostProcessSettings* blur = nullptr, bool still = false);
 
 // With nothing moving on screen every velocity is 0: the gather returns each pixel's own colour
 // and the hybrid's mask is empty, so the blur's passes are left out.
