@@ -90,7 +90,8 @@ bool anythingMovesOnScreen(const scene::Scene& scene, float t) {
   });
 }
 
-GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene) {
+GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
+    : topLevelWalk_(scene.instances.size() != 1) {
   std::vector<gpu::GpuVertex> vertices;
   std::vector<uint32_t> meshVertexBase;
   for (const scene::Mesh& mesh : scene.meshes) {

@@ -84,6 +84,10 @@ class GpuScene {
   // or after keepTexturePath(); else they run a build without it (passes::ShadingKernel).
   bool texturePath() const { return texturePath_; }
   void keepTexturePath() { texturePath_ = true; }
+  // Whether the tracing kernels walk a top-level tree over the instances: unless the scene has
+  // exactly one instance, whose tree rays then enter directly, or after keepTopLevelWalk().
+  bool topLevelWalk() const { return topLevelWalk_; }
+  void keepTopLevelWalk() { topLevelWalk_ = true; }
 
   // Per mesh vertex (GpuVertex): deformed ones hold their deformation at the frame time.
   const vk::Buffer& vertices() const { return vertices_; }
@@ -104,6 +108,7 @@ class GpuScene {
   uint32_t triangleCount_ = 0;
   uint32_t instanceVertexCount_ = 0;
   bool texturePath_ = false;
+  bool topLevelWalk_ = true;
   FrameCamera camera_;
   vk::Buffer vertices_;
   vk::Buffer instanceVertices_;

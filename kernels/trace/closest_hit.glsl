@@ -15,6 +15,13 @@
 #include "../bvh/packed_node.glsl"
 #include "trace_scene_bindings.glsl"
 
+// False builds the kernel for a scene of exactly one instance (the host chooses:
+// GpuScene::topLevelWalk, passes::TraceRaysPass): rays enter that instance's tree directly.
+// On lavapipe (Mesa 22.3), which runs the code of every branch and at least one round of every
+// loop under the lanes' mask, walking a top level whose root is that one instance's leaf cost a
+// tenth of a coherent trace: node reads, a push and a pop for no lane.
+layout(constant_id = HMB_SPEC_TRACE_TOP_LEVEL) const bool kTopLevelWalk = true;
+
 // What a trace needs to know of the scene beside its buffers.
 struct TraceSceneInfo {
   uint instanceCount;
@@ -88,7 +95,8 @@ struct MeshRay {
 // depend on the visiting order). True when one of them became the closest hit.
 bool testLeaf(MeshRay m, uint first, uint count, inout BvhHit best) {
   bool nearest = false;
-  for (uint k = 0; k < count; ++k) {
+  uint k = 0u;
+  do {  // a leaf holds at least one triangle (the loops' tests come last: see walkMesh)
     // The triangles' vertices are stored in the leaves' order: no indirection through the
     // leaf's primitive indices, which name the triangle once, for the closest hit.
     const uint entry = first + k;
@@ -108,7 +116,7 @@ bool testLeaf(MeshRay m, uint first, uint count, inout BvhHit best) {
     best.objectId = m.objectId;
     best.instance = m.instance;
     nearest = true;
-  }
+  } while (++k < count);
   return nearest;
 }
 
@@ -168,6 +176,9 @@ bool isInterior(uint word) { return (word & HMB_BVH_PACKED_MAX_COUNT) == 0u; }
 // Interior steps repeat until the ray holds a leaf, so that the lanes of a SIMD group test
 // their leaves together (the while-while form of Aila and Laine). True when a hit in this tree
 // became the closest.
+// Loops that run at least once test at their end: lavapipe (Mesa 22.3) runs every branch's
+// code under the lanes' mask, and a loop whose test comes first one more round for no lane
+// (a whole interior step after each descent, a triangle test after each leaf).
 bool walkMesh(MeshRay m, inout BvhHit best) {
   bool nearest = false;
   uint pending = 0u;
@@ -178,9 +189,11 @@ bool walkMesh(MeshRay m, inout BvhHit best) {
   uint word = root.w;  // the entered node's range: children, or triangles
   for (;;) {
     bool left = true;  // a subtree is left to walk
-    while (left && isInterior(word)) {
-      const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      left = interiorStep(MESH_WALK, meshNode(first), meshNode(first + 1u), tree, m.tMin, best.t, pending, word);
+    if (isInterior(word)) {
+      do {
+        const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
+        left = interiorStep(MESH_WALK, meshNode(first), meshNode(first + 1u), tree, m.tMin, best.t, pending, word);
+      } while (left && isInterior(word));
     }
     if (!left) return nearest;
     if (testLeaf(m, word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, best)) nearest = true;
@@ -233,11 +246,12 @@ void refineClosestHit(TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
 // The instances of a top-level leaf (first..first+count-1 of its primitive order), each traced
 // unless it is the ignored object.
 void traceTopLeaf(uint first, uint count, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
-  for (uint k = 0; k < count; ++k) {
+  uint k = 0u;
+  do {  // a leaf holds at least one instance
     const uint instance = topPrimitives[first + k];
     const TraceInstance record = traceInstanceAt(instance);  // read once for all it gives
     if (record.objectId != ray.ignoreObjectId) traceInstance(instance, record, ray, scene, best);
-  }
+  } while (++k < count);
 }
 
 // The top level walked as walkMesh walks a mesh tree.
@@ -252,9 +266,11 @@ void walkTop(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit bes
   uint word = root.w;
   for (;;) {
     bool left = true;
-    while (left && isInterior(word)) {
-      const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
-      left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), tree, tMin, best.t, pending, word);
+    if (isInterior(word)) {
+      do {
+        const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
+        left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), tree, tMin, best.t, pending, word);
+      } while (left && isInterior(word));
     }
     if (!left) return;
     traceTopLeaf(word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, ray, scene, best);
@@ -267,7 +283,12 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
   BvhHit best = missedHit(ray.directionTMax.w);
   const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
   if (!r.valid || scene.instanceCount == 0u) return best;
-  walkTop(r, ray, scene, best);
+  if (kTopLevelWalk) {
+    walkTop(r, ray, scene, best);
+  } else {
+    const TraceInstance record = traceInstanceAt(0u);
+    if (record.objectId != ray.ignoreObjectId) traceInstance(0u, record, ray, scene, best);
+  }
   refineClosestHit(ray, scene, best);
   return best;
 }

@@ -43,6 +43,11 @@
 // root, which the builder bounds, so no walk runs out.
 #define HMB_TRACE_STACK_SIZE HMB_BVH_MAX_DEPTH
 
+// Specialization constant of every kernel that traces (closest_hit.glsl): false builds it for a
+// scene of exactly one instance, whose tree rays then enter directly, with no top level over
+// it. Id 1: the shading kernels that trace use 0 (HMB_SPEC_TEXTURE_PATH).
+#define HMB_SPEC_TRACE_TOP_LEVEL 1
+
 // TraceInstance.flags
 #define HMB_TRACE_INSTANCE_SINGLE_SIDED 1u  // its material is not double-sided
 

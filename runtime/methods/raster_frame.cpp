@@ -44,7 +44,10 @@ GpuScene prepareRasterFrame(FrameResources& resources, const FrameRequest& reque
                             const passes::PostProcessSettings* blur, bool still) {
   GpuScene gpuScene(resources.context, request.scene);
   gpuScene.setFrame(request.scene, request.frameTime, request.width, request.height);
-  if (!request.settings.skipUnneededPasses) gpuScene.keepTexturePath();
+  if (!request.settings.skipUnneededPasses) {
+    gpuScene.keepTexturePath();
+    gpuScene.keepTopLevelWalk();
+  }
   const bool curved = blur && blur->motionPath == passes::MotionPath::Curved;
   std::optional<passes::GBufferStage::ShutterPaths> paths;
   if (curved && !still)

@@ -21,7 +21,10 @@ class ReferenceMethod final : public FrameMethod {
     const RenderSettings& settings = request.settings;
     GpuScene scene(resources_.context, request.scene);
     scene.setFrame(request.scene, request.frameTime, request.width, request.height);
-    if (!settings.skipUnneededPasses) scene.keepTexturePath();
+    if (!settings.skipUnneededPasses) {
+      scene.keepTexturePath();
+      scene.keepTopLevelWalk();
+    }
     const vk::Buffer linear = linearImageBuffer(resources_, request, "beauty (linear RGBA)");
     if (!(settings.skipUnneededPasses && settings.reuseAcrossFrames)) reference_.forgetTraceScene();
     reference_.plan(result.plan, request.scene, request.frameTime, request.width, request.height, settings.reference);

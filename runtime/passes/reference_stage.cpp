@@ -186,7 +186,8 @@ std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32
 ReferenceStage::ReferenceStage(const vk::Context& context, const HitShading* hits)
     : context_(context),
       findMovingPixels_(context, "reference/find_moving_pixels", sizeof(gpu::MovingPixelsParams)),
-      accumulate_(context, "reference/accumulate_sample", sizeof(gpu::ReferenceSampleParams), hits),
+      accumulate_(context, "reference/accumulate_sample", sizeof(gpu::ReferenceSampleParams), ShadingKernel::Rays::Traced,
+                  hits),
       average_(context, "reference/average_samples", sizeof(gpu::AverageParams)) {}
 
 ReferenceStage::~ReferenceStage() = default;
@@ -330,7 +331,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
                                 vk::groupsFor(height, HMB_REFERENCE_GROUP_Y), 1);
         frame.begin();
         if (groups.x > 0) {
-          const vk::ComputeKernel& kernel = accumulate_.forScene(gpuScene);
+          const vk::ComputeKernel& kernel = accumulate_.forScene(gpuScene, &ts);
           vk::Bindings bindings = {{HMB_REFERENCE_BINDING_CAMERAS, &cameraBuffer},
                                    {HMB_REFERENCE_BINDING_SUM, &sum},
                                    {HMB_REFERENCE_BINDING_PIXELS, &pixelList}};

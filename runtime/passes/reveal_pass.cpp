@@ -16,7 +16,7 @@
 namespace hmb::passes {
 
 RevealPass::RevealPass(const vk::Context& context, const HitShading* hits)
-    : kernel_(context, "hybrid/reveal_background", sizeof(gpu::RevealParams), hits) {}
+    : kernel_(context, "hybrid/reveal_background", sizeof(gpu::RevealParams), ShadingKernel::Rays::Traced, hits) {}
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
                         const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,
@@ -37,7 +37,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  0u,
                                  0u,
                                  0u};
-  const vk::ComputeKernel& kernel = kernel_.forScene(gpuScene);
+  const vk::ComputeKernel& kernel = kernel_.forScene(gpuScene, &ts);
   vk::Bindings bindings = {{HMB_REVEAL_BINDING_CAMERA_RAYS, &cameraRays},
                            {HMB_REVEAL_BINDING_LIST, &list},
                            {HMB_REVEAL_BINDING_RASTER_SURFACES, &rasterSurfaces},

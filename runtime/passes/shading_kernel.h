@@ -1,7 +1,8 @@
 // A kernel that shades surfaces (kernels/shared/shading.glsl), in two builds: with the texture
 // path, and without it (no texel reads, no uv interpolation) for scenes whose materials have
-// no texture. The frame plan lists the path as run or skipped; the second build is made the
-// first time a frame leaves the path out.
+// no texture. A kernel that also traces rays (kernels/trace/closest_hit.glsl) has each of those
+// with and without the top-level walk, left out for scenes of one instance. The frame plan
+// lists both paths as run or skipped; a build is made the first time a frame needs it.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +16,7 @@
 namespace hmb {
 class FramePlan;
 class GpuScene;
+class TraceScene;
 }  // namespace hmb
 
 namespace hmb::passes {
@@ -24,13 +26,18 @@ class HitShading;
 class ShadingKernel {
  public:
   static constexpr const char* kTexturePath = "texture-path";
-  // hits: how ray hits are shaded, for the kernels that shade them (null: the library's way).
+  static constexpr const char* kTopLevelWalk = "top-level-walk";
+  enum class Rays { None, Traced };
+  // rays: whether the kernel traces rays (and so has the top-level walk's constant); hits: how
+  // ray hits are shaded, for the kernels that shade them (null: the library's way).
   ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
-                const HitShading* hits = nullptr);
+                Rays rays = Rays::None, const HitShading* hits = nullptr);
   ~ShadingKernel();
 
-  // The build that shades this scene: without the texture path where scene.texturePath() is false.
-  const vk::ComputeKernel& forScene(const GpuScene& scene) const;
+  // The build for this scene: without the texture path where scene.texturePath() is false, and
+  // for a kernel that traces `traced`, without the top-level walk where scene.topLevelWalk() is
+  // false and `traced` has one instance.
+  const vk::ComputeKernel& forScene(const GpuScene& scene, const TraceScene* traced = nullptr) const;
 
  private:
   // The kernel with these specialization constants: the embedded builds, or with a user's
@@ -40,13 +47,15 @@ class ShadingKernel {
   const vk::Context& context_;
   std::string name_;
   uint32_t pushConstantBytes_;
+  bool traces_;              // the kernel traces rays: it has the top-level walk's constant
   const HitShading* hits_;  // non-null with a user's shading: the kernel's builds come from it
-  std::unique_ptr<vk::ComputeKernel> textured_;
-  mutable std::unique_ptr<vk::ComputeKernel> untextured_;
+  // [texture path][top-level walk]; the full build is made up front.
+  mutable std::unique_ptr<vk::ComputeKernel> builds_[2][2];
 };
 
 // Lists the texture path of the shading passes the plan runs as run inside them or skipped,
-// and why; call it once the plan holds every pass.
+// and why, and the same for the top-level walk of the passes that trace; call it once the plan
+// holds every pass.
 void planTexturePath(FramePlan& plan, const GpuScene& scene);
 
 }  // namespace hmb::passes

@@ -8,17 +8,23 @@
 
 namespace hmb::passes {
 
-TraceRaysPass::TraceRaysPass(const vk::Context& context)
-    : kernel_(context, "trace/trace_rays", sizeof(gpu::TraceParams)) {}
+TraceRaysPass::TraceRaysPass(const vk::Context& context) : context_(context) {}
 
 void TraceRaysPass::record(vk::FrameRecorder& frame, const TraceScene& scene, const vk::Buffer& rays,
-                           const vk::Buffer& hits, uint32_t rayCount, uint32_t flags) const {
+                           const vk::Buffer& hits, uint32_t rayCount, uint32_t flags, TopLevel topLevel) const {
   if (scene.timeCount() == 0) throw Error("trace-rays: the scene's shutter times are not set");
+  const bool walksTopLevel = topLevel == TopLevel::Always || scene.instanceCount() != 1;
+  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[walksTopLevel ? 1 : 0];
+  if (!kernel) {
+    uint32_t specialization[HMB_SPEC_TRACE_TOP_LEVEL + 1] = {};
+    specialization[HMB_SPEC_TRACE_TOP_LEVEL] = walksTopLevel ? 1u : 0u;  // VkBool32
+    kernel = std::make_unique<vk::ComputeKernel>(context_, "trace/trace_rays", sizeof(gpu::TraceParams),
+                                                 specialization);
+  }
   const gpu::TraceParams params{rayCount, scene.instanceCount(), scene.timeCount(), flags};
   vk::Bindings bindings = {{HMB_TRACE_BINDING_RAYS, &rays}, {HMB_TRACE_BINDING_HITS, &hits}};
-  scene.bind(bindings, HMB_TRACE_BINDING_SCENE, kernel_.bindsByAddress());
-  frame.dispatch(kName, kernel_, bindings, params,
-                 vk::foldedGroups(vk::groupsFor(rayCount, HMB_TRACE_GROUP)));
+  scene.bind(bindings, HMB_TRACE_BINDING_SCENE, kernel->bindsByAddress());
+  frame.dispatch(kName, *kernel, bindings, params, vk::foldedGroups(vk::groupsFor(rayCount, HMB_TRACE_GROUP)));
 }
 
 }  // namespace hmb::passes

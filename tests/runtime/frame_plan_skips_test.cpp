@@ -170,6 +170,32 @@ scene::Scene slidingWall() {
   return scene;
 }
 
+// A scene of one instance traces it with no top level over it (HMB_SPEC_TRACE_TOP_LEVEL); the
+// plan says so, and the images equal those of the full walk. The reference's rays hit the wall
+// at every sample; the hybrid's reveal rays ignore it and find nothing behind it.
+TEST_F(FramePlanSkipsTest, ASceneOfOneInstanceSkipsTheTopLevelWalkAndTheImageIsUnchanged) {
+  Renderer renderer(context());
+  const scene::Scene wall = slidingWall();
+  ASSERT_EQ(wall.instances.size(), 1u);
+  for (const char* method : {"hybrid", "reference"}) {
+    const RenderResult skipped = renderAt(renderer, wall, method, 1.0f, true);
+    const RenderResult everything = renderAt(renderer, wall, method, 1.0f, false);
+    const PlannedPass* walk = passNamed(skipped, "top-level-walk");
+    ASSERT_NE(walk, nullptr) << method;
+    EXPECT_FALSE(walk->run) << method;
+    EXPECT_NE(walk->reason.find("one instance"), std::string::npos) << method << ": " << walk->reason;
+    ASSERT_NE(passNamed(everything, "top-level-walk"), nullptr) << method;
+    EXPECT_TRUE(passNamed(everything, "top-level-walk")->run) << method;
+    EXPECT_EQ(skipped.display.pixels, everything.display.pixels) << method;
+  }
+  // A scene of many instances walks its top level inside the passes that trace.
+  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "reference", kMovingTime, true);
+  const PlannedPass* walk = passNamed(room, "top-level-walk");
+  ASSERT_NE(walk, nullptr);
+  EXPECT_TRUE(walk->run);
+  EXPECT_EQ(walk->within, "reference-accumulate-sample");
+}
+
 // A still frame asked for curved paths leaves the path passes out because nothing moves, not
 // because the blur is straight; with every pass run, they run.
 TEST_F(FramePlanSkipsTest, AStillFrameLeavesTheCurvedPathsOutAndSaysWhy) {
@@ -198,7 +224,8 @@ TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
   const scene::Scene wall = slidingWall();
   ASSERT_TRUE(anythingMovesOnScreen(wall, 1.0f));
   const RenderResult result = renderAt(renderer, wall, "hybrid", 1.0f, true);
-  EXPECT_EQ(skippedPasses(result), std::vector<std::string>{"texture-path"});  // the wall has no texture
+  // The wall has no texture, and is the scene's one instance.
+  EXPECT_EQ(skippedPasses(result), (std::vector<std::string>{"texture-path", "top-level-walk"}));
   EXPECT_EQ(result.hybrid->edgeCandidates, 0u);
   EXPECT_EQ(result.hybrid->maskPixels, 0u);
   EXPECT_EQ(result.hybrid->revealRays, 0u);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "runtime/passes/trace_rays_pass.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::trace::test {
@@ -27,7 +26,8 @@ gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time, uint32_t ignoreObject
 }
 
 std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceScene& scene,
-                                       std::span<const gpu::TraceRay> rays, uint32_t flags) {
+                                       std::span<const gpu::TraceRay> rays, uint32_t flags,
+                                       passes::TraceRaysPass::TopLevel topLevel) {
   const std::vector<gpu::TraceRay> rayList(rays.begin(), rays.end());
   const vk::Buffer rayBuffer = vk::uploadedBuffer(context, rayList, "test rays");
   const vk::Buffer hits(context, std::max<size_t>(rays.size(), 1) * sizeof(gpu::BvhHit), vk::MemoryUse::Device,
@@ -35,7 +35,7 @@ std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceSc
   const passes::TraceRaysPass pass(context);
   vk::FrameRecorder frame(context);
   frame.begin();
-  pass.record(frame, scene, rayBuffer, hits, static_cast<uint32_t>(rays.size()), flags);
+  pass.record(frame, scene, rayBuffer, hits, static_cast<uint32_t>(rays.size()), flags, topLevel);
   frame.submitAndWait();
   std::vector<gpu::BvhHit> out = hits.download<gpu::BvhHit>();
   out.resize(rays.size());

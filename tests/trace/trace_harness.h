@@ -11,6 +11,7 @@
 #include "bvh/bvh_layout.h"
 #include "bvh/ray_intersection.h"
 #include "kernels/trace/trace_layout.h"
+#include "runtime/passes/trace_rays_pass.h"
 #include "runtime/trace_scene.h"
 #include "runtime/vulkan/context.h"
 #include "tests/bvh/bvh_test_support.h"
@@ -23,8 +24,9 @@ scene::Scene sceneOf(const bvh::test::TriangleMesh& mesh);
 gpu::TraceRay traceRay(const bvh::Ray& ray, uint32_t time = 0, uint32_t ignoreObjectId = HMB_IGNORE_NONE);
 
 // Closest hits of `rays` through the scene (its shutter times must be set); flags: HMB_TRACE_*.
-std::vector<gpu::BvhHit> traceOnDevice(const vk::Context& context, const TraceScene& scene,
-                                       std::span<const gpu::TraceRay> rays, uint32_t flags = 0);
+std::vector<gpu::BvhHit> traceOnDevice(
+    const vk::Context& context, const TraceScene& scene, std::span<const gpu::TraceRay> rays, uint32_t flags = 0,
+    passes::TraceRaysPass::TopLevel topLevel = passes::TraceRaysPass::TopLevel::WhereNeeded);
 
 // Closest hits of `rays` through `mesh` as a one-instance scene at one shutter time.
 std::vector<gpu::BvhHit> traceMesh(const vk::Context& context, const bvh::test::TriangleMesh& mesh,

@@ -5,6 +5,7 @@
 // at every shutter time.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <sstream>
@@ -111,6 +112,42 @@ TEST_F(TraceRays, RandomSoupMatchesBruteForce) {
   const Comparison c = compareOnMesh(mesh, rays);
   EXPECT_EQ(c.mismatches, 0u) << c.firstMismatch;
   EXPECT_GE(c.hits, 1500u);
+}
+
+// A scene of one instance is traced without a top level (HMB_SPEC_TRACE_TOP_LEVEL): its hits
+// equal the full two-level walk's bit for bit, on mixed rays, rays along the axes, rays with a
+// short range, and rays that ignore the instance's object (which must then miss).
+TEST_F(TraceRays, OneInstanceScenesTraceTheSameWithoutTheTopLevel) {
+  const TriangleMesh mesh = bvh::test::randomSoup(2000, 0.1f, 21);
+  const scene::Scene scene = sceneOf(mesh);
+  ASSERT_EQ(scene.instances.size(), 1u);
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene, frame);
+  const float time = 0.0f;
+  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
+  std::vector<Ray> rays = bvh::test::mixedRays(mesh, 3000, 22);
+  const std::vector<Ray> alongAxes = axisRays(mesh, 300, 23);
+  rays.insert(rays.end(), alongAxes.begin(), alongAxes.end());
+  std::vector<gpu::TraceRay> traceRays;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    Ray ray = rays[i];
+    if (i % 7 == 3) ray.tMax = 0.5f;
+    traceRays.push_back(traceRay(ray, 0, i % 5 == 4 ? 1u : HMB_IGNORE_NONE));  // object 1: the mesh
+  }
+  using TopLevel = passes::TraceRaysPass::TopLevel;
+  const std::vector<gpu::BvhHit> direct = traceOnDevice(context(), traceScene, traceRays, 0, TopLevel::WhereNeeded);
+  const std::vector<gpu::BvhHit> walked = traceOnDevice(context(), traceScene, traceRays, 0, TopLevel::Always);
+  uint32_t hits = 0;
+  for (size_t i = 0; i < traceRays.size(); ++i) {
+    ASSERT_EQ(std::memcmp(&direct[i], &walked[i], sizeof(gpu::BvhHit)), 0)
+        << "ray " << i << ": triangle " << direct[i].triangle << " at " << direct[i].t << " without the top level, "
+        << walked[i].triangle << " at " << walked[i].t << " with it";
+    if (traceRays[i].ignoreObjectId == 1u) {
+      EXPECT_EQ(direct[i].triangle, HMB_NO_HIT) << "ray " << i;
+    }
+    hits += direct[i].triangle != HMB_NO_HIT;
+  }
+  EXPECT_GE(hits, 1000u);
 }
 
 // The trace meets each packed box through its tree's ray constants (t = q a + c per plane),
