@@ -97,21 +97,14 @@ bool intersectTriangle(PreparedRay r, vec3 v0, vec3 v1, vec3 v2, out float t, ou
 float planeHitDistance(PreparedRay r, vec3 v0, vec3 v1, vec3 v2, float shearedT) {
   precise const vec3 edge0 = v1 - v0, edge1 = v2 - v1, edge2 = v0 - v2;
   precise const float length0 = dot(edge0, edge0), length1 = dot(edge1, edge1), length2 = dot(edge2, edge2);
-  precise vec3 normal, vertex;
-  precise float lengths;
-  if (length0 >= length1 && length0 >= length2) {
-    normal = cross(edge1, edge2);
-    vertex = v2;
-    lengths = length1 * length2;
-  } else if (length1 >= length2) {
-    normal = cross(edge2, edge0);
-    vertex = v0;
-    lengths = length2 * length0;
-  } else {
-    normal = cross(edge0, edge1);
-    vertex = v1;
-    lengths = length0 * length1;
-  }
+  // The two edges other than the longest, chosen by selects: lavapipe would compute all three
+  // branches' cross products under masks.
+  const bool longest0 = length0 >= length1 && length0 >= length2, longest1 = !longest0 && length1 >= length2;
+  const vec3 first = longest0 ? edge1 : (longest1 ? edge2 : edge0);
+  const vec3 second = longest0 ? edge2 : (longest1 ? edge0 : edge1);
+  const vec3 vertex = longest0 ? v2 : (longest1 ? v0 : v1);
+  precise const float lengths = longest0 ? length1 * length2 : (longest1 ? length2 * length0 : length0 * length1);
+  precise const vec3 normal = cross(first, second);
   precise const float towards = dot(normal, r.direction);
   precise const float area2 = dot(normal, normal);
   if (!(towards != 0.0 && !isinf(towards) && !isnan(towards) && area2 >= kSliverSine * kSliverSine * lengths))
