@@ -1,6 +1,7 @@
 #include "runtime/passes/shading_kernel.h"
 
-#include <array>
+#include <initializer_list>
+#include <string>
 
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
@@ -51,26 +52,30 @@ const vk::ComputeKernel& ShadingKernel::forScene(const GpuScene& scene, const Tr
   return *kernel;
 }
 
-void planTexturePath(FramePlan& plan, const GpuScene& scene) {
-  std::string shadingPasses;
-  for (const char* name : {ResolveGBufferPass::kName, RevealPass::kName, ReferenceStage::kAccumulate})
-    if (plan.runs(name)) shadingPasses += (shadingPasses.empty() ? "" : ", ") + std::string(name);
-  if (shadingPasses.empty()) return;
-  if (scene.texturePath())
-    plan.runWithin(ShadingKernel::kTexturePath, shadingPasses);
-  else
-    plan.skip(ShadingKernel::kTexturePath,
-              "no material has a texture: " + shadingPasses + " run without texel reads and uv interpolation");
+namespace {
 
-  std::string tracingPasses;
-  for (const char* name : {RevealPass::kName, ReferenceStage::kAccumulate})
-    if (plan.runs(name)) tracingPasses += (tracingPasses.empty() ? "" : ", ") + std::string(name);
-  if (tracingPasses.empty()) return;
-  if (scene.topLevelWalk())
-    plan.runWithin(ShadingKernel::kTopLevelWalk, tracingPasses);
+// Lists a code path inside those of `passes` the plan runs: as run within them, or as skipped
+// with "`why`: <those passes> <skipped>"; nothing when the plan runs none of them.
+void planCodePath(FramePlan& plan, const char* path, std::initializer_list<const char*> passes, bool runs,
+                  const std::string& why, const std::string& skipped) {
+  std::string inside;
+  for (const char* name : passes)
+    if (plan.runs(name)) inside += (inside.empty() ? "" : ", ") + std::string(name);
+  if (inside.empty()) return;
+  if (runs)
+    plan.runWithin(path, inside);
   else
-    plan.skip(ShadingKernel::kTopLevelWalk,
-              "the scene has one instance: " + tracingPasses + " enter its tree with no top level over it");
+    plan.skip(path, why + ": " + inside + " " + skipped);
+}
+
+}  // namespace
+
+void planTexturePath(FramePlan& plan, const GpuScene& scene) {
+  planCodePath(plan, ShadingKernel::kTexturePath,
+               {ResolveGBufferPass::kName, RevealPass::kName, ReferenceStage::kAccumulate}, scene.texturePath(),
+               "no material has a texture", "run without texel reads and uv interpolation");
+  planCodePath(plan, ShadingKernel::kTopLevelWalk, {RevealPass::kName, ReferenceStage::kAccumulate},
+               scene.topLevelWalk(), "the scene has one instance", "enter its tree with no top level over it");
 }
 
 }  // namespace hmb::passes
