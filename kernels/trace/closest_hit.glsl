@@ -243,14 +243,17 @@ void refineClosestHit(TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   best.t = clamp(refined, ray.originTMin.w, ray.directionTMax.w);
 }
 
-// The instances of a top-level leaf (first..first+count-1 of its primitive order), each traced
-// unless it is the ignored object.
+// The instance traced unless it is the ignored object.
+void traceUnlessIgnored(uint instance, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
+  const TraceInstance record = traceInstanceAt(instance);  // read once for all it gives
+  if (record.objectId != ray.ignoreObjectId) traceInstance(instance, record, ray, scene, best);
+}
+
+// The instances of a top-level leaf (first..first+count-1 of its primitive order).
 void traceTopLeaf(uint first, uint count, TraceRay ray, TraceSceneInfo scene, inout BvhHit best) {
   uint k = 0u;
   do {  // a leaf holds at least one instance
-    const uint instance = topPrimitives[first + k];
-    const TraceInstance record = traceInstanceAt(instance);  // read once for all it gives
-    if (record.objectId != ray.ignoreObjectId) traceInstance(instance, record, ray, scene, best);
+    traceUnlessIgnored(topPrimitives[first + k], ray, scene, best);
   } while (++k < count);
 }
 
@@ -283,12 +286,10 @@ BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
   BvhHit best = missedHit(ray.directionTMax.w);
   const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
   if (!r.valid || scene.instanceCount == 0u) return best;
-  if (kTopLevelWalk) {
+  if (kTopLevelWalk)
     walkTop(r, ray, scene, best);
-  } else {
-    const TraceInstance record = traceInstanceAt(0u);
-    if (record.objectId != ray.ignoreObjectId) traceInstance(0u, record, ray, scene, best);
-  }
+  else
+    traceUnlessIgnored(0u, ray, scene, best);  // the scene's one instance
   refineClosestHit(ray, scene, best);
   return best;
 }
