@@ -34,6 +34,11 @@ io::Rgba8Image downloadDisplay(const vk::Buffer& display, uint32_t width, uint32
 // scaled with the image. Not validated: the callers validate what they build on it.
 passes::PostProcessSettings withChoices(passes::PostProcessSettings s, const RenderSettings& settings) {
   settings::applyAll(passes::postProcessSettingTable(), settings.postprocess, s);
+  // A boost chosen one way replaces a default of the other (the hybrid's falls with the speed);
+  // both chosen fail validation.
+  const passes::PostProcessChoices& chosen = settings.postprocess;
+  if (chosen.foregroundBoost && !chosen.foregroundBoostPixels) s.foregroundBoostPixels.reset();
+  if (chosen.foregroundBoostPixels && !chosen.foregroundBoost) s.foregroundBoost.reset();
   if (!s.tileSize) {
     // The paper's tile sizes are pixels of a 720-line image; velocities in pixels scale with the
     // image, so the tiles do too (else a small image is a handful of tiles and every blur

@@ -115,7 +115,10 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
             {"samples", p.samples},
             {"tile_size", p.effectiveTileSize()},
             {"neighborhood", p.neighborhood},
-            {"foreground_boost", p.effectiveForegroundBoost()},
+            // A constant boost, or null where it falls with the speed: max(1, pixels / |v_N|).
+            {"foreground_boost", p.foregroundBoostPixels ? nlohmann::json(nullptr)
+                                                         : nlohmann::json(p.effectiveForegroundBoost())},
+            {"foreground_boost_pixels", optionalNumber(p.foregroundBoostPixels)},
             {"soft_z_extent", p.softZExtent},
             {"exposure_s", p.exposure},
             {"fps", p.fps},

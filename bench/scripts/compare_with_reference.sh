@@ -6,7 +6,8 @@
 #   bench/scripts/compare_with_reference.sh SCENE REFERENCE.exr REFERENCE.png OUT_DIR [WIDTH HEIGHT [SET]]
 # SET: postprocess (the sharp frame and every post-process filter, the default) or hybrid
 # (the sharp frame, adapted post-process at the paper's foreground boost and at the hybrid's,
-# hybrid with each composite and at the paper's boost).
+# hybrid with each composite, at the paper's boost and at the constant 3 it had before its
+# boost fell with the speed).
 set -euo pipefail
 scene=$1 reference=$2 reference_png=$3 out=$4 width=${5:-1280} height=${6:-720} set=${7:-postprocess}
 hmblur=${HMBLUR:-build/hmblur}
@@ -18,10 +19,11 @@ case "$set" in
     declare -a args=("--method sharp" "--method postprocess --range adapted" "--method postprocess --range centered"
                      "--method postprocess --filter jimenez") ;;
   hybrid)
-    declare -a names=(sharp postprocess-adapted postprocess-boost3 hybrid hybrid-weights hybrid-boost30)
+    declare -a names=(sharp postprocess-adapted postprocess-boost80px hybrid hybrid-weights hybrid-boost30 hybrid-boost3)
     declare -a args=("--method sharp" "--method postprocess --range adapted"
-                     "--method postprocess --range adapted --foreground-boost 3" "--method hybrid"
-                     "--method hybrid --composite weights" "--method hybrid --foreground-boost 30") ;;
+                     "--method postprocess --range adapted --foreground-boost-pixels 80" "--method hybrid"
+                     "--method hybrid --composite weights" "--method hybrid --foreground-boost 30"
+                     "--method hybrid --foreground-boost 3") ;;
   *) echo "unknown set '$set' (postprocess|hybrid)" >&2; exit 2 ;;
 esac
 for i in "${!names[@]}"; do

@@ -16,8 +16,11 @@
 //    X sees the points now at X + u v, u in [0, 1]).
 // The pixel itself weighs 1 / max(|v_X|, 0.5) (McGuire: a pixel moving |v| px covers itself
 // for 1/|v| of the exposure; 0.5 px bounds the weight of still pixels at 2). w_f is multiplied
-// by foregroundBoost when the pixel is deeper than the sample by at least SOFT_Z_EXTENT (the
-// paper's section 4: x30 for the adapted range).
+// by a boost when the pixel is deeper than the sample by at least SOFT_Z_EXTENT (the paper's
+// section 4: x30 for the adapted range): foregroundBoost, or, where foregroundBoostPixels is
+// set (k), max(1, k / |v_N|) with |v_N| the tile's neighbour-max speed in pixels (at least 1):
+// slow motion's outer blur is read at a few whole pixels and needs more of it (the hybrid's
+// default; passes::PostProcessSettings::foregroundBoostAt is the host's twin).
 //
 // The curved path (HMB_GATHER_FLAG_CURVED_PATH, adapted range only): a pixel moving at least
 // kOwnPathShare of its tile's neighbour-max speed samples along the path its own surface
@@ -54,6 +57,7 @@ struct GatherCentre {
   float speed;    // its own, clamped to the tile size
   float depth;    // sanitized
   float jitter;   // of its samples
+  float foregroundBoost;  // w_f's factor where the pixel lies past SOFT_Z_EXTENT behind a sample
   bool ownPath;   // the curved path: samples at X + u pathLinear + u^2 pathQuadratic
   vec2 pathLinear;
   vec2 pathQuadratic;
@@ -105,6 +109,9 @@ bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
   const vec4 dominant = neighborMaxAt((pixel.y / params.tileSize) * params.tilesX + pixel.x / params.tileSize);
   if (dominant.z < kMinBlurPixels) return false;
   centre.dominant = dominant.xy;
+  centre.foregroundBoost = params.foregroundBoostPixels > 0.0
+                               ? max(1.0, params.foregroundBoostPixels / max(dominant.z, 1.0))
+                               : params.foregroundBoost;
   gatherVelocity(sampleVelocity(own), params.velocityScale, float(params.tileSize), centre.speed);
   centre.depth = sanitizeDepth(sampleDepth(own));
   centre.jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
@@ -170,7 +177,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     float wf = clamp(1.0 + z, 0.0, 1.0) * cone(ds, sampleSpeed);
     float wb = clamp(1.0 - z, 0.0, 1.0) * cone(ds, centreSpeed);
     const float ws = cylinder(sampleSpeed, ds) * cylinder(centreSpeed, ds) * 2.0;
-    if (centreDepth - sampleDepth >= params.softZExtent) wf *= params.foregroundBoost;
+    if (centreDepth - sampleDepth >= params.softZExtent) wf *= c.foregroundBoost;
     // Along curved paths a sample in front blurs over the pixel only if its own path crosses
     // it: near it is not enough where motion turns (a spinning plate's corner sweeps an arc,
     // not the tile's straight line).

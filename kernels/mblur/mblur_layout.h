@@ -105,12 +105,12 @@ struct GatherParams {
   uint flags;  // HMB_GATHER_FLAG_*
   float velocityScale;
   float softZExtent;
-  float foregroundBoost;       // multiplies w_f where z_t - z_s >= softZExtent
+  float foregroundBoost;       // multiplies w_f where z_t - z_s >= softZExtent (when foregroundBoostPixels is 0)
   float maskBackgroundBoost;   // the weights composite: multiplies w_b inside the mask
   float maskForegroundDivide;  // the weights composite: divides w_f inside the mask
   float maxSpeed;              // the coverage composite and the ray mask: v_X clamped to this length (the
                                // image's larger side)
-  uint pad1;
+  float foregroundBoostPixels;  // k > 0: w_f's boost is max(1, k / max(|v_N|, 1 px)) per pixel instead
   uint pad2;
 };
 

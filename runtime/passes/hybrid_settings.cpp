@@ -47,9 +47,10 @@ const settings::Table<HybridChoices, HybridSettings>& hybridSettingTable() {
 
 HybridSettings HybridSettings::fromScene(const scene::Settings& sceneSettings) {
   HybridSettings settings;
-  const std::optional<float> foregroundBoost = settings.blur.foregroundBoost;
+  const PostProcessSettings defaults = settings.blur;
   settings.blur = PostProcessSettings::fromScene(sceneSettings);
-  settings.blur.foregroundBoost = foregroundBoost;
+  settings.blur.foregroundBoost = defaults.foregroundBoost;
+  settings.blur.foregroundBoostPixels = defaults.foregroundBoostPixels;
   settings.edgeThreshold = sceneSettings.edgeThreshold;
   return settings;
 }

@@ -27,19 +27,23 @@ enum class HybridComposite {
 };
 
 // w_f's boost where the pixel is deeper than the sample by SOFT_Z_EXTENT, in both layers'
-// gathers (adapted post-process keeps the paper's 30). The paper's boost makes a silhouette's
-// outer blur opaque; with the inner blur revealed, 30 over-darkens it. Measured against
-// references on every scene at two sizes and several frame times, 3 has the smallest worst-case
-// loss against each case's best boost (1.1 dB; 30 loses up to 3.5 dB):
-// bench/results/hybrid-foreground-boost. --foreground-boost overrides it.
-inline constexpr float kHybridForegroundBoost = 3.0f;
+// gathers (adapted post-process keeps the paper's constant 30): max(1, k / |v_N|) with this k,
+// |v_N| the tile's neighbour-max speed in pixels (PostProcessSettings::foregroundBoostPixels).
+// The paper's boost makes a silhouette's outer blur opaque; with the inner blur revealed, 30
+// over-darkens it, and the boost that does not falls with the blur's length in pixels (slow
+// motion's outer blur is read at a few whole pixels). Measured against references on every
+// scene at two sizes and several frame times and on a shrinking mesh at three sizes, k = 80 has
+// the smallest worst-case loss against each case's best boost (1.1 dB; the constant 3, the
+// default before, loses up to 2.1 dB, 30 up to 3.5 dB): bench/results/hybrid-foreground-boost.
+// --foreground-boost (a constant) or --foreground-boost-pixels overrides it.
+inline constexpr float kHybridForegroundBoostPixels = 80.0f;
 
 struct HybridSettings {
   // The blur of both layers: the McGuire filter, the adapted range (the coverage composite needs
   // it) and the hybrid's foreground boost.
   PostProcessSettings blur = [] {
     PostProcessSettings s;
-    s.foregroundBoost = kHybridForegroundBoost;
+    s.foregroundBoostPixels = kHybridForegroundBoostPixels;
     return s;
   }();
   float edgeThreshold = 0.9f;          // e of eq. 4 (the scene's: 0.90 / 0.98 / 0.96 in the paper)

@@ -32,7 +32,8 @@ std::string defaultForegroundBoosts() {
   adapted.range = GatherRange::Adapted;
   centered.range = GatherRange::Centered;
   return settings::formatNumber(adapted.effectiveForegroundBoost()) + " adapted, " +
-         settings::formatNumber(centered.effectiveForegroundBoost()) + " centered";
+         settings::formatNumber(centered.effectiveForegroundBoost()) +
+         " centered; the hybrid's falls with the speed instead (foreground-boost-pixels)";
 }
 
 using Choices = PostProcessChoices;
@@ -56,6 +57,11 @@ settings::Table<Choices, Settings> makeTable() {
       number("foreground-boost", kReaders, "w_f factor where the pixel is past SOFT_Z_EXTENT behind the sample",
              &Choices::foregroundBoost, &Settings::foregroundBoost, Range<float>{0.0f, kMaxFactor, true},
              defaultForegroundBoosts()),
+      number("foreground-boost-pixels", kReaders,
+             "k: a foreground boost that falls with the blur, max(1, k / |v_N|), |v_N| the tile's neighbour-max speed "
+             "in pixels; replaces the constant foreground-boost",
+             &Choices::foregroundBoostPixels, &Settings::foregroundBoostPixels, Range<float>{0.0f, kMaxFactor, true},
+             "none"),
       number("soft-z-extent", kReaders, "SOFT_Z_EXTENT in scene units", &Choices::softZExtent,
              &Settings::softZExtent, Range<float>{0.0f, std::numeric_limits<float>::max(), true}, "the scene's"),
       number("seed", kReaders, "seed of the gathers' per-pixel sample jitter", &Choices::seed, &Settings::seed,
@@ -91,6 +97,11 @@ float PostProcessSettings::effectiveForegroundBoost() const {
   return effectiveRange() == GatherRange::Adapted ? 30.0f : 1.0f;
 }
 
+float PostProcessSettings::foregroundBoostAt(float neighborMaxSpeed) const {
+  if (!foregroundBoostPixels) return effectiveForegroundBoost();
+  return std::max(1.0f, *foregroundBoostPixels / std::max(neighborMaxSpeed, 1.0f));
+}
+
 uint32_t PostProcessSettings::effectiveTileSize() const { return tileSize.value_or(describe(filter).tileSize); }
 
 GatherRange PostProcessSettings::effectiveRange() const { return describe(filter).onlyRange.value_or(range); }
@@ -107,6 +118,8 @@ void validate(const PostProcessSettings& s) {
   const auto require = [](bool ok, const std::string& message) {
     if (!ok) throw Error("post-process settings: " + message);
   };
+  require(!(s.foregroundBoost && s.foregroundBoostPixels),
+          "foreground-boost and foreground-boost-pixels exclude each other: choose one");
   require(std::isfinite(s.exposure) && s.exposure >= 0.0f,
           "exposure must be finite and >= 0 s (got " + std::to_string(s.exposure) + ")");
   require(std::isfinite(s.fps) && s.fps > 0.0f, "fps must be finite and > 0 (got " + std::to_string(s.fps) + ")");

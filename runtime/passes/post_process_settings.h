@@ -40,6 +40,11 @@ struct PostProcessSettings {
   // the outer blur fade smoothly from the object's edge) and 1 for the centred range (McGuire's
   // weights are balanced for symmetric ranges; 1 is his filter unchanged).
   std::optional<float> foregroundBoost;
+  // Set (k pixels): the boost falls with the blur's length instead, max(1, k / |v_N|) per pixel,
+  // |v_N| its tile's neighbour-max speed in pixels (at least 1). Slow motion's outer blur is read
+  // at a few whole pixels, and needs more of a boost than fast motion's (the hybrid's default:
+  // kHybridForegroundBoostPixels). Exclusive with foregroundBoost.
+  std::optional<float> foregroundBoostPixels;
   // E, seconds: the span a gather blurs over, the shutter [t - E, t] (with time slices, one
   // slice of it: the scene's exposure / timeSlices).
   float exposure = 1.0f / 60.0f;
@@ -56,7 +61,12 @@ struct PostProcessSettings {
   // rest at their defaults.
   static PostProcessSettings fromScene(const scene::Settings& sceneSettings);
 
+  // The constant boost (foregroundBoost or its default); foregroundBoostAt gives the one a pixel
+  // gets, which is this unless foregroundBoostPixels is set.
   float effectiveForegroundBoost() const;
+  // The boost of a pixel whose tile's neighbour-max speed is neighborMaxSpeed pixels (the
+  // gathers' kernels compute the same: mblur/gather_samples.glsl).
+  float foregroundBoostAt(float neighborMaxSpeed) const;
   // The tile size, or the selected filter's.
   uint32_t effectiveTileSize() const;
   // The selected filter's range where it has only one.
@@ -76,6 +86,7 @@ struct PostProcessChoices {
   std::optional<uint32_t> tileSize;
   std::optional<uint32_t> neighborhood;
   std::optional<float> foregroundBoost;
+  std::optional<float> foregroundBoostPixels;
   std::optional<float> softZExtent;
   std::optional<uint32_t> seed;
   std::optional<uint32_t> timeSlices;

@@ -319,6 +319,32 @@ TEST(CliTest, PostProcessSettingsReachTheReportAndBadOnesFailInOneLine) {
                      "neighbo");
 }
 
+// The hybrid's foreground boost falls with the speed by default; a constant chosen replaces
+// that law, and so does a k chosen for post-process; both chosen is a one-line error.
+TEST(CliTest, TheForegroundBoostIsAConstantOrFallsWithTheSpeed) {
+  const fs::path dir = tempDir("boost");
+  const auto boostOf = [&](const std::string& options) {
+    const fs::path report = dir / "report.json";
+    const CliRun run = hmblur("--quiet render --scene temple --width 40 --height 24 " + options + " --report " +
+                              report.string());
+    EXPECT_EQ(run.exitCode, 0) << options << ": " << run.output;
+    nlohmann::json json;
+    std::ifstream(report) >> json;
+    return std::pair(json["settings"]["foreground_boost"], json["settings"]["foreground_boost_pixels"]);
+  };
+  using nlohmann::json;
+  EXPECT_EQ(boostOf("--method hybrid"), std::pair(json(nullptr), json(80.0)));
+  EXPECT_EQ(boostOf("--method hybrid --foreground-boost 3"), std::pair(json(3.0), json(nullptr)));
+  EXPECT_EQ(boostOf("--method hybrid --foreground-boost-pixels 20"), std::pair(json(nullptr), json(20.0)));
+  EXPECT_EQ(boostOf("--method postprocess"), std::pair(json(30.0), json(nullptr)));
+  EXPECT_EQ(boostOf("--method postprocess --foreground-boost-pixels 40"), std::pair(json(nullptr), json(40.0)));
+  expectOneLineError(hmblur("--quiet render --method hybrid --foreground-boost 3 --foreground-boost-pixels 40 "
+                            "--width 8 --height 8"),
+                     "exclude each other");
+  expectOneLineError(hmblur("--quiet render --method postprocess --foreground-boost-pixels 0 --width 8 --height 8"),
+                     "foreground-boost-pixels");
+}
+
 TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
   const fs::path dir = tempDir("hybrid");
   const CliRun run = hmblur("--quiet render --scene living-room --method hybrid --edge-threshold 0.5 "

@@ -151,6 +151,17 @@ TEST_F(HybridCompositeTest, WeightsMatchReferenceOnRandomLayers) {
   EXPECT_GT(changed, 150u);
 }
 
+// Both composites with the hybrid's default boost, which falls with the tile's speed.
+TEST_F(HybridCompositeTest, CompositesWithABoostThatFallsWithTheSpeedMatchReference) {
+  std::mt19937 rng(23);
+  for (const HybridComposite composite : {HybridComposite::Coverage, HybridComposite::Weights}) {
+    PostProcessSettings s = compositeSettings(16u, 15u, 5u);
+    s.foregroundBoostPixels = passes::kHybridForegroundBoostPixels;
+    const CompositeCase c = randomCase(67, 45, rng);
+    EXPECT_GT(expectCompositeMatches(c, s, composite, "falling boost"), 100u);
+  }
+}
+
 TEST_F(HybridCompositeTest, WeightsMatchReferenceWithTheCentredRange) {
   std::mt19937 rng(29);
   PostProcessSettings s = compositeSettings(12u, 15u, 9u);

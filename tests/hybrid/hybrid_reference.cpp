@@ -356,7 +356,7 @@ glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, 
   const uint32_t centreObject = in.objectId[index];
   const float backgroundScale = maskWeights.backgroundBoost;
   const float foregroundScale = 1.0f / maskWeights.foregroundDivide;
-  const float foregroundBoost = settings.effectiveForegroundBoost();
+  const float foregroundBoost = settings.foregroundBoostAt(dominant.z);
 
   float weightSum = 1.0f / std::max(centreSpeed, 0.5f);
   glm::vec4 sum = centreColor * weightSum;

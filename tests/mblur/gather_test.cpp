@@ -119,6 +119,25 @@ TEST_F(MblurGatherTest, AdversarialInputsStayFiniteAndMatchTheReference) {
   }
 }
 
+// The boost that falls with the tile's speed (max(1, k / |v_N|), the hybrid's default) against
+// the reference, at a k below the fastest tiles' speed (those keep 1) and one above the tile
+// size (every tile boosted); it must change the image from the constant boost's.
+TEST_F(MblurGatherTest, ABoostThatFallsWithTheSpeedMatchesTheReference) {
+  std::mt19937 rng(44);
+  const Layer layer = randomLayer(73, 41, rng);
+  for (GatherRange range : {GatherRange::Centered, GatherRange::Adapted})
+    for (const float pixels : {24.0f, 80.0f}) {
+      SCOPED_TRACE(testing::Message() << passes::rangeName(range) << " k " << pixels);
+      PostProcessSettings s = settingsFor(range, 40);
+      const auto tiles = referenceTiles(layer, s);
+      const std::vector<glm::vec4> constant = gather(layer, tiles, nullptr, s);
+      s.foregroundBoostPixels = pixels;
+      const std::vector<glm::vec4> falling = gather(layer, tiles, nullptr, s);
+      EXPECT_NE(falling, constant);
+      expectMatchesReference(runGather(VulkanTest::context(), layer, tiles, s), falling);
+    }
+}
+
 PostProcessSettings curvedSettings(uint32_t tileSize, uint32_t samples = 15) {
   PostProcessSettings s = settingsFor(GatherRange::Adapted, tileSize, samples);
   s.motionPath = passes::MotionPath::Curved;

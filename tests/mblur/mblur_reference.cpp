@@ -197,7 +197,6 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
   const passes::TileGrid grid = passes::tileGridFor(width, height, m);
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
   const bool adapted = settings.range == passes::GatherRange::Adapted;
-  const float foregroundBoost = settings.effectiveForegroundBoost();
   const float maxSpeed = float(m);
   const bool curved =
       adapted && settings.motionPath == passes::MotionPath::Curved && !layer.shutterPaths.empty();
@@ -211,6 +210,7 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
         out[index] = centreColor;
         continue;
       }
+      const float foregroundBoost = settings.foregroundBoostAt(dominant.z);
       float centreSpeed;
       gatherVelocity(layer.velocity[index], velocityScale, maxSpeed, centreSpeed);
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);

@@ -101,6 +101,7 @@ TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
       EXPECT_EQ(skipped.hybrid->settings.blur, everything.hybrid->settings.blur);
     }
     EXPECT_EQ(skipped.postprocess->effectiveForegroundBoost(), everything.postprocess->effectiveForegroundBoost());
+    EXPECT_EQ(skipped.postprocess->foregroundBoostPixels, everything.postprocess->foregroundBoostPixels);
   }
 }
 

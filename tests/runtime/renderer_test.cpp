@@ -270,7 +270,7 @@ TEST_F(RendererTest, TheHybridEqualsPostProcessOutsideItsRayMask) {
     const RenderResult hybrid = renderer.render(scene, settings);
     ASSERT_TRUE(hybrid.hybrid);
     settings.method = Method::PostProcess;
-    settings.postprocess.foregroundBoost = hybrid.hybrid->settings.blur.effectiveForegroundBoost();
+    settings.postprocess.foregroundBoostPixels = hybrid.hybrid->settings.blur.foregroundBoostPixels;
     const RenderResult post = renderer.render(scene, settings);
     ASSERT_TRUE(post.postprocess);
     EXPECT_EQ(*post.postprocess, hybrid.hybrid->settings.blur);

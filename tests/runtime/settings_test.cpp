@@ -134,7 +134,13 @@ TEST(SettingTablesTest, HybridSettingsContainTheBlurTheyExtend) {
   EXPECT_NO_THROW(passes::validate(defaults));
   EXPECT_EQ(defaults.blur.filter, passes::PostProcessFilter::McGuire);
   EXPECT_EQ(defaults.blur.range, passes::GatherRange::Adapted);
-  EXPECT_EQ(defaults.blur.effectiveForegroundBoost(), passes::kHybridForegroundBoost);
+  // The hybrid's boost falls with the tile's speed: k / |v_N|, at least 1, |v_N| at least 1 px.
+  EXPECT_FALSE(defaults.blur.foregroundBoost);
+  EXPECT_EQ(defaults.blur.foregroundBoostPixels, passes::kHybridForegroundBoostPixels);
+  EXPECT_EQ(defaults.blur.foregroundBoostAt(8.0f), passes::kHybridForegroundBoostPixels / 8.0f);
+  EXPECT_EQ(defaults.blur.foregroundBoostAt(0.25f), passes::kHybridForegroundBoostPixels);
+  EXPECT_EQ(defaults.blur.foregroundBoostAt(1e6f), 1.0f);
+  EXPECT_EQ(passes::PostProcessSettings{}.foregroundBoostAt(8.0f), 30.0f);  // post-process: the paper's constant
 
   scene::Settings scene;
   scene.softZExtent = 0.25f;
@@ -144,7 +150,8 @@ TEST(SettingTablesTest, HybridSettingsContainTheBlurTheyExtend) {
   EXPECT_EQ(fromScene.blur.softZExtent, 0.25f);
   EXPECT_EQ(fromScene.blur.fps, 30.0f);
   EXPECT_EQ(fromScene.edgeThreshold, 0.5f);
-  EXPECT_EQ(fromScene.blur.effectiveForegroundBoost(), passes::kHybridForegroundBoost);
+  EXPECT_EQ(fromScene.blur.foregroundBoostPixels, passes::kHybridForegroundBoostPixels);
+  EXPECT_FALSE(fromScene.blur.foregroundBoost);
 
   const std::vector<std::pair<std::string, std::function<void(passes::HybridSettings&)>>> absurd = {
       {"mask-background-boost", [](auto& s) { s.maskBackgroundBoost = -3.0f; }},
@@ -154,6 +161,8 @@ TEST(SettingTablesTest, HybridSettingsContainTheBlurTheyExtend) {
       {"McGuire", [](auto& s) { s.blur.filter = passes::PostProcessFilter::Jimenez; }},
       {"adapted", [](auto& s) { s.blur.range = passes::GatherRange::Centered; }},
       {"samples", [](auto& s) { s.blur.samples = 0; }},
+      {"foreground-boost-pixels", [](auto& s) { s.blur.foregroundBoostPixels = 0.0f; }},
+      {"exclude each other", [](auto& s) { s.blur.foregroundBoost = 3.0f; }},
   };
   for (const auto& [name, breakIt] : absurd) {
     passes::HybridSettings s;
@@ -188,9 +197,10 @@ TEST(SettingTablesTest, RenderDescriptionsComeFromTheTables) {
   EXPECT_NE(describe("spp").help.find("default " + std::to_string(passes::ReferenceSettings{}.samplesPerPixel)),
             std::string::npos);
   // The hybrid's own default of a blur setting is said where it differs.
-  EXPECT_NE(describe("foreground-boost").help.find("hybrid " + settings::formatNumber(passes::kHybridForegroundBoost)),
+  EXPECT_NE(describe("foreground-boost-pixels")
+                .help.find("hybrid " + settings::formatNumber(passes::kHybridForegroundBoostPixels)),
             std::string::npos)
-      << describe("foreground-boost").help;
+      << describe("foreground-boost-pixels").help;
   for (const passes::FilterDescription& filter : passes::kFilters)
     EXPECT_NE(describe("filter").help.find(std::string(filter.name)), std::string::npos);
 
