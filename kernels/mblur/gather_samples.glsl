@@ -18,7 +18,8 @@
 // for 1/|v| of the exposure; 0.5 px bounds the weight of still pixels at 2). w_f is multiplied
 // by a boost when the pixel is deeper than the sample by at least SOFT_Z_EXTENT (the paper's
 // section 4: x30 for the adapted range): foregroundBoost, or, where foregroundBoostPixels is
-// set (k), max(1, k / |v_N|) with |v_N| the tile's neighbour-max speed in pixels (at least 1):
+// set (k; k / K with K time slices, as the host passes it), max(1, k / |v_N|) with |v_N| the
+// tile's neighbour-max speed in pixels (at least 1):
 // slow motion's outer blur is read at a few whole pixels and needs more of it (the hybrid's
 // default; passes::PostProcessSettings::foregroundBoostAt is the host's twin).
 //

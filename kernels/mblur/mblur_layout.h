@@ -110,7 +110,8 @@ struct GatherParams {
   float maskForegroundDivide;  // the weights composite: divides w_f inside the mask
   float maxSpeed;              // the coverage composite and the ray mask: v_X clamped to this length (the
                                // image's larger side)
-  float foregroundBoostPixels;  // k > 0: w_f's boost is max(1, k / max(|v_N|, 1 px)) per pixel instead
+  float foregroundBoostPixels;  // k > 0: w_f's boost is max(1, k / max(|v_N|, 1 px)) per pixel instead (k
+                                // already divided by the time slices)
   uint pad2;
 };
 

@@ -27,7 +27,7 @@ gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t wid
                            mask.backgroundBoost,
                            mask.foregroundDivide,
                            float(std::max(width, height)),
-                           settings.foregroundBoostPixels.value_or(0.0f),
+                           settings.foregroundBoostPixelsPerSlice(),
                            0};
 }
 

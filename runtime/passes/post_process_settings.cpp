@@ -99,7 +99,11 @@ float PostProcessSettings::effectiveForegroundBoost() const {
 
 float PostProcessSettings::foregroundBoostAt(float neighborMaxSpeed) const {
   if (!foregroundBoostPixels) return effectiveForegroundBoost();
-  return std::max(1.0f, *foregroundBoostPixels / std::max(neighborMaxSpeed, 1.0f));
+  return std::max(1.0f, foregroundBoostPixelsPerSlice() / std::max(neighborMaxSpeed, 1.0f));
+}
+
+float PostProcessSettings::foregroundBoostPixelsPerSlice() const {
+  return foregroundBoostPixels ? *foregroundBoostPixels / float(std::max(timeSlices, 1u)) : 0.0f;
 }
 
 uint32_t PostProcessSettings::effectiveTileSize() const { return tileSize.value_or(describe(filter).tileSize); }

@@ -43,7 +43,9 @@ struct PostProcessSettings {
   // Set (k pixels): the boost falls with the blur's length instead, max(1, k / |v_N|) per pixel,
   // |v_N| its tile's neighbour-max speed in pixels (at least 1). Slow motion's outer blur is read
   // at a few whole pixels, and needs more of a boost than fast motion's (the hybrid's default:
-  // kHybridForegroundBoostPixels). Exclusive with foregroundBoost.
+  // kHybridForegroundBoostPixels). Exclusive with foregroundBoost. With time slices the boost
+  // follows the whole shutter's blur, K times a slice's: k / K per slice (measured against k:
+  // bench/results/hybrid-foreground-boost/).
   std::optional<float> foregroundBoostPixels;
   // E, seconds: the span a gather blurs over, the shutter [t - E, t] (with time slices, one
   // slice of it: the scene's exposure / timeSlices).
@@ -67,6 +69,8 @@ struct PostProcessSettings {
   // The boost of a pixel whose tile's neighbour-max speed is neighborMaxSpeed pixels (the
   // gathers' kernels compute the same: mblur/gather_samples.glsl).
   float foregroundBoostAt(float neighborMaxSpeed) const;
+  // k / timeSlices where foregroundBoostPixels is set (what the gathers get), else 0.
+  float foregroundBoostPixelsPerSlice() const;
   // The tile size, or the selected filter's.
   uint32_t effectiveTileSize() const;
   // The selected filter's range where it has only one.

@@ -208,8 +208,8 @@ TEST_F(RendererTest, CpuDevicesRasterizeWithTileListsAndRenderTheSameFrame) {
 
 // Time slices: the shutter cut into K slices, each the method's frame over its own slice (as
 // if the scene's exposure were E / K, closing K - 1 - k slices before the frame time, gather
-// seed k), and the frame their mean; its time is the slices' sum. One slice is the frame
-// without slices.
+// seed k; the hybrid's falling foreground boost k / K, the whole shutter's), and the frame their
+// mean; its time is the slices' sum. One slice is the frame without slices.
 TEST_F(RendererTest, TimeSlicesAreTheMeanOfTheirSlicesFrames) {
   const scene::Scene scene = scene::loadScene("living-room");
   Renderer renderer(context());
@@ -229,6 +229,8 @@ TEST_F(RendererTest, TimeSlicesAreTheMeanOfTheirSlicesFrames) {
     slice.settings.exposure = scene.settings.exposure / float(kSlices);
     RenderSettings one = settings;
     one.postprocess.timeSlices.reset();
+    if (method == Method::Hybrid)
+      one.postprocess.foregroundBoostPixels = passes::kHybridForegroundBoostPixels / float(kSlices);
     std::vector<glm::vec4> sum(size_t(64) * 36, glm::vec4(0.0f));
     for (uint32_t k = 0; k < kSlices; ++k) {
       one.frameTime = scene.settings.frameTime - float(kSlices - 1 - k) * slice.settings.exposure;

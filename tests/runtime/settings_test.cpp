@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "runtime/error.h"
+#include "runtime/passes/gather_pass.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/post_process_settings.h"
@@ -141,6 +142,13 @@ TEST(SettingTablesTest, HybridSettingsContainTheBlurTheyExtend) {
   EXPECT_EQ(defaults.blur.foregroundBoostAt(0.25f), passes::kHybridForegroundBoostPixels);
   EXPECT_EQ(defaults.blur.foregroundBoostAt(1e6f), 1.0f);
   EXPECT_EQ(passes::PostProcessSettings{}.foregroundBoostAt(8.0f), 30.0f);  // post-process: the paper's constant
+  // With K time slices the boost follows the whole shutter's blur: k / K against a slice's |v_N|.
+  passes::PostProcessSettings sliced = defaults.blur;
+  sliced.timeSlices = 4;
+  EXPECT_EQ(sliced.foregroundBoostPixelsPerSlice(), passes::kHybridForegroundBoostPixels / 4.0f);
+  EXPECT_EQ(sliced.foregroundBoostAt(5.0f), passes::kHybridForegroundBoostPixels / 20.0f);
+  EXPECT_EQ(passes::gatherParams(sliced, 64, 36).foregroundBoostPixels, passes::kHybridForegroundBoostPixels / 4.0f);
+  EXPECT_EQ(passes::gatherParams(passes::PostProcessSettings{}, 64, 36).foregroundBoostPixels, 0.0f);
 
   scene::Settings scene;
   scene.softZExtent = 0.25f;
