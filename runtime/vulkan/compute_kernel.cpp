@@ -8,13 +8,20 @@
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
+#include "runtime/vulkan/kernel_store.h"
 
 namespace hmb::vk {
 
 ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
                              std::span<const uint32_t> specialization)
     : context_(context), name_(kernelName), pushConstantBytes_(pushConstantBytes) {
-  build(findKernel(kernelName), findKernelIfBuilt(name_ + std::string(kByAddressSuffix)), specialization);
+  // The key: the name, the push-constant size and the specialization values.
+  std::string key = name_;
+  key.append(1, '/').append(std::to_string(pushConstantBytes));
+  for (const uint32_t value : specialization) key.append(1, '/').append(std::to_string(value));
+  pipeline_ = context.kernelStore().find(key, [&] {
+    return build(findKernel(kernelName), findKernelIfBuilt(name_ + std::string(kByAddressSuffix)), specialization);
+  });
 }
 
 ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, const KernelBuilds& builds,
@@ -23,13 +30,15 @@ ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName
   if (builds.plain.empty()) throw Error("kernel '" + name_ + "' was given no SPIR-V");
   const EmbeddedKernel plain{name_, builds.plain.data(), builds.plain.size()};
   const EmbeddedKernel byAddress{name_, builds.byAddress.data(), builds.byAddress.size()};
-  build(plain, builds.byAddress.empty() ? nullptr : &byAddress, specialization);
+  pipeline_ = build(plain, builds.byAddress.empty() ? nullptr : &byAddress, specialization);  // its own
 }
 
-void ComputeKernel::build(const EmbeddedKernel& plain, const EmbeddedKernel* byAddress,
-                          std::span<const uint32_t> specialization) {
+std::shared_ptr<const KernelPipeline> ComputeKernel::build(const EmbeddedKernel& plain,
+                                                           const EmbeddedKernel* byAddress,
+                                                           std::span<const uint32_t> specialization) const {
   const Context& context = context_;
   const uint32_t pushConstantBytes = pushConstantBytes_;
+  auto made = std::make_shared<KernelPipeline>(context.device());
   // The SPIR-V is the truth about what the kernel binds; the device must have room for it
   // before any Vulkan object is made.
   const EmbeddedKernel* spirvBuild = &plain;
@@ -48,16 +57,17 @@ void ComputeKernel::build(const EmbeddedKernel& plain, const EmbeddedKernel* byA
     spirvBuild = byAddress;
     declared = reflectKernel(*byAddress);
     doesNotFit = whyKernelDoesNotFit(name_ + " (by address)", declared, context.limits());
-    bindsByAddress_ = true;
+    made->bindsByAddress = true;
   }
   if (!doesNotFit.empty()) throw Error(doesNotFit);
   if (declared.usesDeviceAddresses && !context.info().bufferDeviceAddress)
     throw Error("kernel '" + name_ + "' reads buffers by device address, which the device lacks (bufferDeviceAddress)");
   const EmbeddedKernel& spirv = *spirvBuild;
-  bindings_ = declared.storageBufferBindings;
-  texelBindings_ = declared.texelBufferBindings;
-  bindings_.insert(bindings_.end(), texelBindings_.begin(), texelBindings_.end());
-  std::sort(bindings_.begin(), bindings_.end());
+  std::vector<uint32_t>& declaredBindings = made->bindings;
+  declaredBindings = declared.storageBufferBindings;
+  made->texelBindings = declared.texelBufferBindings;
+  declaredBindings.insert(declaredBindings.end(), made->texelBindings.begin(), made->texelBindings.end());
+  std::sort(declaredBindings.begin(), declaredBindings.end());
   if (declared.uniformBuffers != 0 || declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
     throw Error("kernel '" + name_ + "' declares descriptors other than storage and uniform texel buffers in set 0");
   if (declared.pushConstantBytes > pushConstantBytes)
@@ -70,26 +80,28 @@ void ComputeKernel::build(const EmbeddedKernel& plain, const EmbeddedKernel* byA
   const VkDevice device = context.device();
   VkShaderModule module = VK_NULL_HANDLE;
   try {
-    std::vector<VkDescriptorSetLayoutBinding> bindings(bindings_.size());
-    for (size_t i = 0; i < bindings_.size(); ++i) {
-      bindings[i].binding = bindings_[i];
+    std::vector<VkDescriptorSetLayoutBinding> bindings(declaredBindings.size());
+    for (size_t i = 0; i < declaredBindings.size(); ++i) {
+      bindings[i].binding = declaredBindings[i];
       bindings[i].descriptorType =
-          isTexelBinding(bindings_[i]) ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+          std::binary_search(made->texelBindings.begin(), made->texelBindings.end(), declaredBindings[i])
+              ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+              : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       bindings[i].descriptorCount = 1;
       bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.bindingCount = uint32_t(bindings.size());
     setInfo.pBindings = bindings.data();
-    HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout_));
+    HMB_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &made->setLayout));
 
     const VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &setLayout_;
+    layoutInfo.pSetLayouts = &made->setLayout;
     layoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
     layoutInfo.pPushConstantRanges = &pushRange;
-    HMB_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout_));
+    HMB_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &made->layout));
 
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     moduleInfo.codeSize = spirv.wordCount * sizeof(uint32_t);
@@ -107,30 +119,30 @@ void ComputeKernel::build(const EmbeddedKernel& plain, const EmbeddedKernel* byA
     pipelineInfo.stage.module = module;
     pipelineInfo.stage.pName = "main";
     pipelineInfo.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specializationInfo;
-    pipelineInfo.layout = layout_;
-    HMB_VK_CHECK(vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &pipelineInfo, nullptr, &pipeline_));
+    pipelineInfo.layout = made->layout;
+    HMB_VK_CHECK(vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &pipelineInfo, nullptr, &made->pipeline));
     vkDestroyShaderModule(device, module, nullptr);
   } catch (...) {
     if (module) vkDestroyShaderModule(device, module, nullptr);
-    release();
-    throw;
+    throw;  // `made` releases what was made
   }
+  return made;
 }
 
-ComputeKernel::~ComputeKernel() { release(); }
+ComputeKernel::~ComputeKernel() = default;
+
+uint32_t ComputeKernel::storageBufferCount() const {
+  return uint32_t(pipeline_->bindings.size() - pipeline_->texelBindings.size());
+}
+const std::vector<uint32_t>& ComputeKernel::bindings() const { return pipeline_->bindings; }
+const std::vector<uint32_t>& ComputeKernel::texelBindings() const { return pipeline_->texelBindings; }
+bool ComputeKernel::bindsByAddress() const { return pipeline_->bindsByAddress; }
+VkPipeline ComputeKernel::pipeline() const { return pipeline_->pipeline; }
+VkPipelineLayout ComputeKernel::layout() const { return pipeline_->layout; }
+VkDescriptorSetLayout ComputeKernel::setLayout() const { return pipeline_->setLayout; }
 
 bool ComputeKernel::isTexelBinding(uint32_t index) const {
-  return std::binary_search(texelBindings_.begin(), texelBindings_.end(), index);
-}
-
-void ComputeKernel::release() {
-  const VkDevice device = context_.device();
-  if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  pipeline_ = VK_NULL_HANDLE;
-  layout_ = VK_NULL_HANDLE;
-  setLayout_ = VK_NULL_HANDLE;
+  return std::binary_search(pipeline_->texelBindings.begin(), pipeline_->texelBindings.end(), index);
 }
 
 }  // namespace hmb::vk

@@ -5,11 +5,14 @@
 // groups of buffers bound as tables of device addresses) uses that build where its plain one
 // has more bindings than the device allows, or always with ContextOptions::bindByAddress.
 // Specialization constants, where a kernel has them, are 32-bit values with ids 0..M-1.
+// An embedded kernel's pipeline is made once per context and shared by every ComputeKernel
+// that asks for it with the same push-constant size and specialization (kernel_store.h).
 #pragma once
 
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -19,6 +22,7 @@ namespace hmb::vk {
 
 class Context;
 struct EmbeddedKernel;
+struct KernelPipeline;
 
 // A kernel's SPIR-V made at run time (glsl_compiler.h): its plain build and, where the kernel
 // has one, its address build (empty: none).
@@ -39,33 +43,28 @@ class ComputeKernel {
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
   const std::string& name() const { return name_; }
-  uint32_t storageBufferCount() const { return uint32_t(bindings_.size() - texelBindings_.size()); }
+  uint32_t storageBufferCount() const;
   // The binding numbers it declares, ascending. An address build keeps its plain build's
   // numbers: each group's table sits at the group's first number, the rest stay unused.
-  const std::vector<uint32_t>& bindings() const { return bindings_; }
+  const std::vector<uint32_t>& bindings() const;
   // Those of bindings() that it reads through a texel view (RGBA32UI), ascending.
-  const std::vector<uint32_t>& texelBindings() const { return texelBindings_; }
+  const std::vector<uint32_t>& texelBindings() const;
   bool isTexelBinding(uint32_t index) const;
   // Whether the address build runs: the passes then bind each group's table, not its buffers.
-  bool bindsByAddress() const { return bindsByAddress_; }
+  bool bindsByAddress() const;
   uint32_t pushConstantBytes() const { return pushConstantBytes_; }
-  VkPipeline pipeline() const { return pipeline_; }
-  VkPipelineLayout layout() const { return layout_; }
-  VkDescriptorSetLayout setLayout() const { return setLayout_; }
+  VkPipeline pipeline() const;
+  VkPipelineLayout layout() const;
+  VkDescriptorSetLayout setLayout() const;
 
  private:
-  void build(const EmbeddedKernel& plain, const EmbeddedKernel* byAddress, std::span<const uint32_t> specialization);
-  void release();
+  std::shared_ptr<const KernelPipeline> build(const EmbeddedKernel& plain, const EmbeddedKernel* byAddress,
+                                              std::span<const uint32_t> specialization) const;
 
   const Context& context_;
   std::string name_;
-  std::vector<uint32_t> bindings_;
-  std::vector<uint32_t> texelBindings_;
   uint32_t pushConstantBytes_ = 0;
-  bool bindsByAddress_ = false;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  std::shared_ptr<const KernelPipeline> pipeline_;
 };
 
 }  // namespace hmb::vk

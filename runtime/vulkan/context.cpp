@@ -448,6 +448,7 @@ void Context::releaseHandles() {
   if (device_) {
     if (adopted_ && queue_) vkQueueWaitIdle(queue_);
     if (!adopted_) vkDeviceWaitIdle(device_);
+    kernelStore_.clear();
     pipelineCache_.reset();
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
     if (!adopted_) vkDestroyDevice(device_, nullptr);

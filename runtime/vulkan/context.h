@@ -14,6 +14,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "runtime/vulkan/kernel_store.h"
 #include "runtime/vulkan/pipeline_cache.h"
 
 namespace hmb::vk {
@@ -103,6 +104,8 @@ class Context {
   bool adopted() const { return adopted_; }  // the instance and device are the engine's
   // Every kernel's pipeline is made through it (and kept on disk when the options say where).
   const PipelineCache& pipelineCache() const { return *pipelineCache_; }
+  // The kernels made on this device so far, shared by every pass that uses them.
+  KernelStore& kernelStore() const { return kernelStore_; }
   const DeviceInfo& info() const { return info_; }
   const VkPhysicalDeviceLimits& limits() const { return limits_; }
   bool validationEnabled() const { return validationEnabled_; }
@@ -166,6 +169,7 @@ class Context {
   uint32_t queueFamily_ = 0;
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   std::unique_ptr<PipelineCache> pipelineCache_;
+  mutable KernelStore kernelStore_;
   VkPhysicalDeviceLimits limits_{};
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
   std::array<uint32_t, VK_MAX_MEMORY_TYPES> allocationTypes_{};  // memoryProperties_ type -> the device's

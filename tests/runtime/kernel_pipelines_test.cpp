@@ -180,6 +180,35 @@ TEST_F(KernelPipelinesTest, HostsThatDisagreeWithTheKernelAreOneLineErrors) {
               "binds an empty buffer at binding 1");
 }
 
+// A kernel is made once per context: a second pass asking for it with the same push constants
+// and specialization shares the pipeline; another specialization, or another context, makes its
+// own; a failed build keeps nothing.
+TEST_F(KernelPipelinesTest, EachKernelIsMadeOncePerContextAndSpecialization) {
+  const KernelLayout& layout = layoutOf("bvh/build_level");
+  // The GPU shape of the level kernel (shared atomics) at two workgroup sizes.
+  const uint32_t eightLanes[] = {8u, 0u};
+  const uint32_t sixteenLanes[] = {16u, 0u};
+  const vk::ComputeKernel first(context(), layout.name, layout.pushBytes, eightLanes);
+  const size_t kept = context().kernelStore().size();
+  const vk::ComputeKernel again(context(), layout.name, layout.pushBytes, eightLanes);
+  EXPECT_EQ(first.pipeline(), again.pipeline());
+  EXPECT_EQ(first.layout(), again.layout());
+  EXPECT_EQ(context().kernelStore().size(), kept);
+  const vk::ComputeKernel wider(context(), layout.name, layout.pushBytes, sixteenLanes);
+  EXPECT_NE(first.pipeline(), wider.pipeline());
+  EXPECT_EQ(context().kernelStore().size(), kept + 1);
+  expectError([&] { vk::ComputeKernel(context(), layout.name, layout.pushBytes - 4, eightLanes); },
+              "bytes of push constants but its host passes");
+  EXPECT_EQ(context().kernelStore().size(), kept + 1);
+  vk::ContextOptions options;
+  options.validation = true;
+  const vk::Context other(options);
+  const vk::ComputeKernel elsewhere(other, layout.name, layout.pushBytes, eightLanes);
+  EXPECT_NE(elsewhere.pipeline(), first.pipeline());
+  EXPECT_EQ(other.kernelStore().size(), 1u);
+  EXPECT_EQ(other.validationErrors(), 0u);
+}
+
 // A device that takes fewer storage buffers per stage than the widest kernel: a kernel whose
 // plain build binds more runs its address build where it has one that fits, and pipeline
 // creation refuses the others in one line naming the kernel and the limit.
