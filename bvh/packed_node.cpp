@@ -1,5 +1,7 @@
 #include "bvh/packed_node.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace hmb::bvh {
@@ -25,8 +27,18 @@ gpu::BvhFrame frameOf(const Aabb& root) {
   return frame;
 }
 
+// Both searches start from the three steps around the quotient's guess where the bounds there
+// confirm it (kernels/bvh/packed_node.glsl says why), else from the whole range.
 uint32_t stepsBelow(float x, float origin, float step) {
   uint32_t low = 0, high = HMB_BVH_QUANTUM_MAX;
+  const float guess = (x - origin) / step;
+  if (guess >= 0.0f && guess <= float(HMB_BVH_QUANTUM_MAX)) {
+    const auto g = static_cast<uint32_t>(guess);
+    const uint32_t near = g > 0 ? g - 1 : 0, far = std::min<uint32_t>(g + 1, HMB_BVH_QUANTUM_MAX);
+    if ((near == 0 || boundAt(near, origin, step) <= x) &&
+        (far == HMB_BVH_QUANTUM_MAX || boundAt(far + 1, origin, step) > x))
+      low = near, high = far;
+  }
   while (low < high) {
     const uint32_t middle = (low + high + 1) >> 1;
     if (boundAt(middle, origin, step) <= x)
@@ -39,6 +51,14 @@ uint32_t stepsBelow(float x, float origin, float step) {
 
 uint32_t stepsAbove(float x, float origin, float step) {
   uint32_t low = 0, high = HMB_BVH_QUANTUM_MAX;
+  const float guess = std::ceil((x - origin) / step);
+  if (guess >= 0.0f && guess <= float(HMB_BVH_QUANTUM_MAX)) {
+    const auto g = static_cast<uint32_t>(guess);
+    const uint32_t near = g > 0 ? g - 1 : 0, far = std::min<uint32_t>(g + 1, HMB_BVH_QUANTUM_MAX);
+    if ((near == 0 || boundAt(near - 1, origin, step) < x) &&
+        (far == HMB_BVH_QUANTUM_MAX || boundAt(far, origin, step) >= x))
+      low = near, high = far;
+  }
   while (low < high) {
     const uint32_t middle = (low + high) >> 1;
     if (boundAt(middle, origin, step) >= x)

@@ -36,9 +36,19 @@ BvhFrame frameOf(vec3 lo, vec3 hi) {
   return frame;
 }
 
-// The most steps whose bound is at or below x (0 when none is).
+// The most steps whose bound is at or below x (0 when none is). boundAt rises with the steps,
+// so a binary search finds it; the quotient (x - origin) / step names it to within a step,
+// and where the bounds around that guess confirm it the search starts from those three steps
+// (two rounds where sixteen: every node the build writes packs six bounds).
 uint stepsBelow(float x, float origin, float step) {
   uint low = 0u, high = HMB_BVH_QUANTUM_MAX;
+  const float guess = (x - origin) / step;
+  if (guess >= 0.0 && guess <= float(HMB_BVH_QUANTUM_MAX)) {  // NaN and far guesses search it all
+    const uint g = uint(guess), near = g > 0u ? g - 1u : 0u, far = min(g + 1u, HMB_BVH_QUANTUM_MAX);
+    if ((near == 0u || boundAt(near, origin, step) <= x) &&
+        (far == HMB_BVH_QUANTUM_MAX || boundAt(far + 1u, origin, step) > x))
+      low = near, high = far;
+  }
   while (low < high) {
     const uint middle = (low + high + 1u) >> 1u;
     if (boundAt(middle, origin, step) <= x) low = middle;
@@ -47,9 +57,17 @@ uint stepsBelow(float x, float origin, float step) {
   return low;
 }
 
-// The fewest steps whose bound is at or above x (HMB_BVH_QUANTUM_MAX when none is).
+// The fewest steps whose bound is at or above x (HMB_BVH_QUANTUM_MAX when none is), found as
+// stepsBelow finds its answer.
 uint stepsAbove(float x, float origin, float step) {
   uint low = 0u, high = HMB_BVH_QUANTUM_MAX;
+  const float guess = ceil((x - origin) / step);
+  if (guess >= 0.0 && guess <= float(HMB_BVH_QUANTUM_MAX)) {
+    const uint g = uint(guess), near = g > 0u ? g - 1u : 0u, far = min(g + 1u, HMB_BVH_QUANTUM_MAX);
+    if ((near == 0u || boundAt(near - 1u, origin, step) < x) &&
+        (far == HMB_BVH_QUANTUM_MAX || boundAt(far, origin, step) >= x))
+      low = near, high = far;
+  }
   while (low < high) {
     const uint middle = (low + high) >> 1u;
     if (boundAt(middle, origin, step) >= x) high = middle;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -93,6 +94,51 @@ TEST(PackedNode, PackedBoxesAreAsSmallAsTheirStepsAllow) {
     for (int a = 0; a < 3; ++a) {
       EXPECT_LT(box.min[a] - packed.min[a], frame.step[a] * 1.01f);
       EXPECT_LT(packed.max[a] - box.max[a], frame.step[a] * 1.01f);
+    }
+  }
+}
+
+// The searches start from the quotient's guess; the answer must be the plain binary search's
+// over every step, wherever x falls: inside the frame, on its bounds, outside it, far from it,
+// infinite or NaN, in frames tiny, huge and far from the origin.
+TEST(PackedNode, GuessedSearchesAnswerAsTheFullSearch) {
+  const auto fullBelow = [](float x, float origin, float step) {
+    uint32_t low = 0, high = HMB_BVH_QUANTUM_MAX;
+    while (low < high) {
+      const uint32_t middle = (low + high + 1) >> 1;
+      if (boundAt(middle, origin, step) <= x) low = middle;
+      else high = middle - 1;
+    }
+    return low;
+  };
+  const auto fullAbove = [](float x, float origin, float step) {
+    uint32_t low = 0, high = HMB_BVH_QUANTUM_MAX;
+    while (low < high) {
+      const uint32_t middle = (low + high) >> 1;
+      if (boundAt(middle, origin, step) >= x) high = middle;
+      else low = middle + 1;
+    }
+    return low;
+  };
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> unit(-0.1f, 1.1f);
+  std::uniform_int_distribution<uint32_t> steps(0, HMB_BVH_QUANTUM_MAX);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (const Aabb& root : adversarialRoots()) {
+    const gpu::BvhFrame frame = frameOf(root);
+    for (int a = 0; a < 3; ++a) {
+      const float origin = frame.origin[a], step = frame.step[a];
+      std::vector<float> xs = {root.min[a], root.max[a], -kMax, kMax, -kInf, kInf, std::nanf(""), 0.0f, -0.0f};
+      for (int i = 0; i < 3000; ++i) {
+        const float t = unit(rng);
+        xs.push_back(root.min[a] * (1.0f - t) + root.max[a] * t);
+        const float bound = boundAt(steps(rng), origin, step);  // a bound, and its neighbours
+        xs.insert(xs.end(), {bound, std::nextafter(bound, -kInf), std::nextafter(bound, kInf)});
+      }
+      for (const float x : xs) {
+        ASSERT_EQ(stepsBelow(x, origin, step), fullBelow(x, origin, step)) << "x " << x << ", axis " << a;
+        ASSERT_EQ(stepsAbove(x, origin, step), fullAbove(x, origin, step)) << "x " << x << ", axis " << a;
+      }
     }
   }
 }
