@@ -4,8 +4,9 @@
 // bounds), costs every bin boundary by the surface area heuristic, and either makes the node a
 // leaf (at most params.maxLeaf primitives and no split cheaper) or partitions the range into
 // two child nodes; halved in the middle instead where the split would leave its larger side
-// too many primitives for the levels left (HMB_BVH_MAX_DEPTH). A child of one primitive becomes a leaf at once; others are the next
-// level's tasks. Primitive ranges alternate between the two halves of the primitive buffer by
+// too many primitives for the levels left (HMB_BVH_MAX_DEPTH). A large task bins a sample of
+// its primitives (HMB_BVH_BIN_SAMPLE), where no split could break that bound. A child of one
+// primitive becomes a leaf at once; others are the next level's tasks. Primitive ranges alternate between the two halves of the primitive buffer by
 // level parity; every leaf leaves its primitives in the first half, the final order.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
@@ -65,13 +66,13 @@ vec3 unordered(uvec3 ordered) {
 
 // A small task bins straight into the task's bins with shared atomics: cheaper than setting
 // up and merging a copy per lane when each lane bins only a few primitives.
-void binWithAtomics(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane) {
+void binWithAtomics(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint stride, uint lane) {
   for (uint i = lane; i < 3 * BINS; i += GROUP) {
     binLowerCount[i] = uvec4(uvec3(kOrderedPositiveInfinity), 0u);
     binUpper[i] = uvec4(uvec3(kOrderedNegativeInfinity), 0u);
   }
   barrier();
-  for (uint k = lane; k < task.count; k += GROUP) {
+  for (uint k = lane * stride; k < task.count; k += GROUP * stride) {
     const BvhBox box = boxAt(primitives[inBase + task.first + k]);
     const vec3 c = centroidOf(box);
     for (uint a = 0; a < 3; ++a) {
@@ -89,17 +90,18 @@ void binWithAtomics(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint 
 }
 
 // A large task bins into a copy per lane, without atomics, then merges the copies.
-void binPerLane(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint lane) {
+void binPerLane(BvhBuildTask task, uint inBase, vec3 scale, uint bins, uint stride, uint lane) {
   const uint mine = lane * 3 * BINS;
   for (uint a = 0; a < 3; ++a)
     for (uint b = 0; b < bins; ++b) {
       laneBinLower[mine + a * BINS + b] = vec4(vec3(kInfinity), 0.0);
       laneBinUpper[mine + a * BINS + b] = vec4(-vec3(kInfinity), 0.0);
     }
-  for (uint base = lane; base < task.count; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
-    const uint k = base + u * GROUP;
-    if (k >= task.count) break;
-    const BvhBox box = boxAt(primitives[inBase + task.first + k]);
+  const uint samples = (task.count + stride - 1u) / stride;
+  for (uint base = lane; base < samples; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
+    const uint j = base + u * GROUP;
+    if (j >= samples) break;
+    const BvhBox box = boxAt(primitives[inBase + task.first + j * stride]);
     const vec3 c = centroidOf(box);
     for (uint a = 0; a < 3; ++a) {
       if (scale[a] == 0.0) continue;
@@ -142,12 +144,15 @@ void main() {
   for (uint a = 0; a < 3; ++a)
     scale[a] = extent[a] > 0.0 && !isinf(extent[a]) ? min(float(bins) / extent[a], 3.0e38) : 0.0;
 
-  if (kLaneBins && task.count >= HMB_BVH_LANE_BINS_MIN) binPerLane(task, inBase, scale, bins, lane);
-  else binWithAtomics(task, inBase, scale, bins, lane);
+  // A sample where every split keeps the depth bound (the sample's counts cannot tell).
+  const uint stride = keepsDepthBound(params.level, task.count) ? max(1u, task.count / HMB_BVH_BIN_SAMPLE) : 1u;
+  if (kLaneBins && task.count >= HMB_BVH_LANE_BINS_MIN) binPerLane(task, inBase, scale, bins, stride, lane);
+  else binWithAtomics(task, inBase, scale, bins, stride, lane);
   barrier();
 
   // Each axis's splits "bins 0..s left, s+1.. right" costed in two sweeps by one lane per
-  // axis: left to right stores the left sides, right to left costs each split.
+  // axis: left to right stores the left sides, right to left costs each split. A sample's
+  // counts stand for stride primitives each.
   const BvhNode node = nodes[task.node];
   const float nodeArea = surfaceArea(vec3(node.minX, node.minY, node.minZ), vec3(node.maxX, node.maxY, node.maxZ));
   if (lane < 3) {
@@ -179,7 +184,7 @@ void main() {
         // A node with no area (all primitives on a line or a point) weighs children equally.
         const float leftShare = nodeArea > 0.0 ? leftSide.x / nodeArea : 1.0;
         const float rightShare = nodeArea > 0.0 ? surfaceArea(lo, hi) / nodeArea : 1.0;
-        const float cost = 1.0 + leftShare * float(left) + rightShare * float(n);
+        const float cost = 1.0 + (leftShare * float(left) + rightShare * float(n)) * float(stride);
         if (cost <= best) best = cost, bestSplit = b - 1u;  // ties: the lowest split
       }
     }
@@ -224,16 +229,18 @@ void main() {
 
   const uint axis = split == MEDIAN_SPLIT ? 0u : uint(split);
   const uint lastLeftBin = split == MEDIAN_SPLIT ? 0u : axisSplit[axis];
-  const uint leftCount = split == MEDIAN_SPLIT ? task.count / 2u : uint(leftAreaCount[axis * BINS + lastLeftBin].y);
-  const uint rightCount = task.count - leftCount;
+  const uint halfCount = task.count / 2u;
   // What this lane sends to each side, merged in registers (no per-primitive shared writes).
   vec3 boxLo[2] = vec3[2](vec3(kInfinity), vec3(kInfinity)), boxHi[2] = vec3[2](-vec3(kInfinity), -vec3(kInfinity));
   vec3 centreLo[2] = boxLo, centreHi[2] = boxHi;
-  // A child of one primitive is a leaf at once, its primitive's final place in the first half:
-  // at even levels that is this task's input, which other lanes may not have read yet, so the
-  // write waits for the barrier below. A lane meets at most one such primitive.
-  bool lone = false;
-  uint lonePosition = 0u, lonePrimitive = 0u;
+  // The left side fills the range from its start, the right side from its end, so that the
+  // sides' sizes (unknown where binning took a sample) are counted as they are filled. A side
+  // of one primitive is a leaf at once, its primitive's final place in the first half: at even
+  // levels that is this task's input, which other lanes may not have read yet, so the write
+  // waits for the barrier below. The lane that placed a side's first primitive keeps it.
+  bool placedLeftFirst = false, placedRightFirst = false;
+  uint leftFirst = 0u, rightFirst = 0u;
+  const uint last = task.first + task.count - 1u;
   for (uint base = lane; base < task.count; base += GROUP * UNROLL) [[unroll]] for (uint u = 0; u < UNROLL; ++u) {
     const uint k = base + u * GROUP;
     if (k >= task.count) break;
@@ -241,11 +248,12 @@ void main() {
     const BvhBox box = boxAt(primitive);
     const vec3 c = centroidOf(box);
     const bool right = split == MEDIAN_SPLIT
-                           ? k >= leftCount
+                           ? k >= halfCount
                            : binOf(c[axis], task.centroidMin[axis], scale[axis], bins) > lastLeftBin;
-    const uint position = task.first + (right ? leftCount + atomicAdd(cursor[1], 1u) : atomicAdd(cursor[0], 1u));
-    primitives[outBase + position] = primitive;
-    if ((right ? rightCount : leftCount) == 1u) lone = true, lonePosition = position, lonePrimitive = primitive;
+    const uint placed = atomicAdd(cursor[right ? 1u : 0u], 1u);
+    primitives[outBase + (right ? last - placed : task.first + placed)] = primitive;
+    if (placed == 0u && right) placedRightFirst = true, rightFirst = primitive;
+    if (placed == 0u && !right) placedLeftFirst = true, leftFirst = primitive;
     if (right) {
       boxLo[1] = min(boxLo[1], box.min.xyz), boxHi[1] = max(boxHi[1], box.max.xyz);
       centreLo[1] = min(centreLo[1], c), centreHi[1] = max(centreHi[1], c);
@@ -261,7 +269,9 @@ void main() {
     laneChildBounds[lane * 8 + side * 4 + 3] = vec4(centreHi[side], 0.0);
   }
   barrier();
-  if (lone) primitives[lonePosition] = lonePrimitive;
+  const uint leftCount = cursor[0], rightCount = cursor[1];
+  if (placedLeftFirst && leftCount == 1u) primitives[task.first] = leftFirst;
+  if (placedRightFirst && rightCount == 1u) primitives[last] = rightFirst;
   for (uint i = lane; i < 8; i += GROUP) {
     const bool lower = (i & 1u) == 0u;  // box min, box max, centroid min, centroid max per side
     vec3 v = vec3(lower ? kInfinity : -kInfinity);

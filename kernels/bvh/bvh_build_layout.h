@@ -34,6 +34,10 @@
 #define HMB_BVH_MAX_TREE_PRIMITIVES 2000000u
 // Centroid bins per axis. 16 keep the SAH cost within a few percent of a full sweep.
 #define HMB_BVH_BINS 16
+// A level task bins a sample of its primitives: every s-th, s = count / HMB_BVH_BIN_SAMPLE
+// (at least 1), so binning sees this many to twice as many; the partition still places every
+// primitive and counts the children exactly.
+#define HMB_BVH_BIN_SAMPLE 4096u
 // A task of at most this many primitives is not split level by level: build_small_tasks, one
 // invocation per task after the levels, builds its whole subtree, binning each node's
 // primitives into HMB_BVH_SMALL_TASK_BINS bins per axis held in registers. The deep levels'
