@@ -9,6 +9,9 @@
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 layout(push_constant) uniform Params { GatherParams params; };
 layout(constant_id = HMB_SPEC_GATHER_OUTSIDE_MASK) const bool kOutsideMask = false;
+// The curved path's code (HMB_GATHER_FLAG_CURVED_PATH) compiled in: only for frames that take it.
+layout(constant_id = HMB_SPEC_GATHER_CURVED_PATH) const bool kCurvedPath = false;
+#define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
 layout(std430, binding = HMB_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 
 uvec4 blurSampleAt(uint i) { return layerSampleAt(i); }

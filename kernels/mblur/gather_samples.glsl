@@ -102,6 +102,14 @@ void readOwnPath(uvec2 pixel, uint index, inout GatherCentre centre) {
   inversePath(a, c, change, float(params.tileSize), centre.pathLinear, centre.pathQuadratic);
 }
 
+// Whether the curved path's code is compiled in: gather.comp compiles it only for a frame that
+// takes the curved path (a specialization constant). On lavapipe every branch's code runs under
+// the lanes' mask, whatever the condition, so the linear gather paid the curved path's reads
+// and steps at every sample. Other kernels keep it, behind the run-time flag.
+#ifndef HMB_GATHER_CURVED_PATH_CODE
+#define HMB_GATHER_CURVED_PATH_CODE true
+#endif
+
 // Reads the pixel; false (centre.color alone set) when under kMinBlurPixels of blur reach its
 // whole neighbourhood, so that the gather leaves it its own colour.
 bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
@@ -118,7 +126,7 @@ bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
   centre.jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
   centre.ownPath = false;
   const uint curved = HMB_GATHER_FLAG_ADAPTED_RANGE | HMB_GATHER_FLAG_CURVED_PATH;
-  if ((params.flags & curved) == curved) readOwnPath(pixel, index, centre);
+  if (HMB_GATHER_CURVED_PATH_CODE && (params.flags & curved) == curved) readOwnPath(pixel, index, centre);
   return true;
 }
 
@@ -130,7 +138,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
   const vec2 dominant = c.dominant;
   const float maxSpeed = float(params.tileSize);
   const bool adapted = (params.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u;
-  const bool curved = adapted && (params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
+  const bool curved = HMB_GATHER_CURVED_PATH_CODE && adapted && (params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
   float weightSum = 1.0 / max(centreSpeed, 0.5);
   vec4 sum = centreColor * weightSum;
 
@@ -144,7 +152,8 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
       if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
       t = mix(-1.0, 1.0, (float(i) + jitter + 0.5) / float(samples + 1u));
     }
-    vec2 along = c.ownPath ? t * c.pathLinear + (t * t) * c.pathQuadratic : t * dominant;
+    const bool ownPath = HMB_GATHER_CURVED_PATH_CODE && c.ownPath;
+    vec2 along = ownPath ? t * c.pathLinear + (t * t) * c.pathQuadratic : t * dominant;
     ivec2 samplePixel = nearestPixel(centre + along, params.width, params.height);
     uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     uvec4 packed = blurSampleAt(sampleIndex);
@@ -152,7 +161,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     // lies on the pixel's surface, correct the second-order guess where rotation is fast (a
     // sixth of a turn per exposure bends a path by a radian). Kept only if it lands on that
     // surface too, within the tile's reach.
-    if (c.ownPath) {
+    if (ownPath) {
       vec2 a1, c1;
       if (abs(sanitizeDepth(sampleDepth(packed)) - centreDepth) < params.softZExtent &&
           shutterPathTerms(shutterPathAt(sampleIndex), a1, c1)) {

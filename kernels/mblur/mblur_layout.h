@@ -44,6 +44,9 @@
 #define HMB_GATHER_BINDING_MASK HMB_FILTER_BINDING_COUNT
 #define HMB_GATHER_BINDING_COUNT (HMB_GATHER_BINDING_MASK + 1)
 #define HMB_SPEC_GATHER_OUTSIDE_MASK 0
+// gather.comp's curved-path code, compiled in only where GatherParams::flags asks for the
+// curved path (HMB_GATHER_FLAG_CURVED_PATH); without it that flag is not read.
+#define HMB_SPEC_GATHER_CURVED_PATH 1
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]

@@ -52,16 +52,20 @@ void GatherPass::recordOutsideMask(vk::FrameRecorder& frame, const MotionBlurInp
 void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
                             const vk::Buffer& neighborMax, const vk::Buffer& output,
                             const PostProcessSettings& settings, const vk::Buffer& mask) const {
-  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[outsideMask ? 1 : 0];
+  const bool curved = settings.motionPath == MotionPath::Curved;
+  if (curved && !inputs.shutterPaths)
+    throw Error("post-process: the curved motion path needs the G-buffer's shutter paths");
+  // The linear gather is built without the curved path's code: on lavapipe that code runs for
+  // every sample whether or not the flag asks for it.
+  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[outsideMask ? 1 : 0][curved ? 1 : 0];
   if (!kernel) {
-    const uint32_t specialization[HMB_SPEC_GATHER_OUTSIDE_MASK + 1] = {outsideMask ? 1u : 0u};
+    uint32_t specialization[HMB_SPEC_GATHER_CURVED_PATH + 1] = {};
+    specialization[HMB_SPEC_GATHER_OUTSIDE_MASK] = outsideMask ? 1u : 0u;
+    specialization[HMB_SPEC_GATHER_CURVED_PATH] = curved ? 1u : 0u;
     kernel = std::make_unique<vk::ComputeKernel>(context_, "mblur/gather", sizeof(gpu::GatherParams), specialization);
   }
   gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
-  if (settings.motionPath == MotionPath::Curved) {
-    if (!inputs.shutterPaths) throw Error("post-process: the curved motion path needs the G-buffer's shutter paths");
-    params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
-  }
+  if (curved) params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
   vk::Bindings bindings = filterBindings(inputs, neighborMax, output);
   bindings.push_back({HMB_GATHER_BINDING_MASK, &mask});
   frame.dispatch(kName, *kernel, bindings, params,

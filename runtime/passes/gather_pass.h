@@ -46,7 +46,8 @@ class GatherPass final : public GatherFilter {
                   const vk::Buffer& mask) const;
 
   const vk::Context& context_;
-  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2];  // [outside the mask], each made on first use
+  // [outside the mask][curved path], each made on first use
+  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2];
 };
 
 }  // namespace hmb::passes
