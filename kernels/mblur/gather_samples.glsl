@@ -130,6 +130,13 @@ bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
   return true;
 }
 
+// Sample i's place along the range (see the top): u in (0, 1] for the adapted range, t in
+// (-1, 1) for the centred one.
+float gatherSampleT(uint i, uint samples, float jitter, bool adapted) {
+  return adapted ? (float(i) + 1.0 - jitter) / float(samples)
+                 : mix(-1.0, 1.0, (float(i) + jitter + 0.5) / float(samples + 1u));
+}
+
 // The blurred colour of `pixel`; the scales multiply w_f and w_b (the hybrid's mask boosts,
 // else 1).
 vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float backgroundScale) {
@@ -144,17 +151,27 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
 
   const vec2 centre = vec2(pixel) + 0.5;
   const uint samples = params.samples;
-  for (uint i = 0u; i < samples; ++i) {
-    float t;
-    if (adapted) {
-      t = (float(i) + 1.0 - jitter) / float(samples);
-    } else {
-      if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) continue;
-      t = mix(-1.0, 1.0, (float(i) + jitter + 0.5) / float(samples + 1u));
-    }
-    const bool ownPath = HMB_GATHER_CURVED_PATH_CODE && c.ownPath;
+  // McGuire's centred range skips its middle sample for odd S: X itself is already counted.
+  const uint skipped = adapted || (samples & 1u) == 0u ? samples : (samples - 1u) / 2u;
+  const bool ownPath = HMB_GATHER_CURVED_PATH_CODE && c.ownPath;
+  uint i = skipped == 0u ? 1u : 0u;
+  while (i < samples) {
+    const float t = gatherSampleT(i, samples, jitter, adapted);
     vec2 along = ownPath ? t * c.pathLinear + (t * t) * c.pathQuadratic : t * dominant;
     ivec2 samplePixel = nearestPixel(centre + along, params.width, params.height);
+    // Samples that land on the same pixel add the same term: the straight path counts the
+    // samples after this one that do, and weighs the term by their number. A blur of a few
+    // pixels then reads each pixel once where it read it S / |v_N| times. The same pixels as
+    // one sample at a time: each later sample's pixel is found as its own would be.
+    float count = 1.0;
+    i += i + 1u == skipped ? 2u : 1u;
+    if (!ownPath) {
+      while (i < samples && nearestPixel(centre + gatherSampleT(i, samples, jitter, adapted) * dominant, params.width,
+                                         params.height) == samplePixel) {
+        count += 1.0;
+        i += i + 1u == skipped ? 2u : 1u;
+      }
+    }
     uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
     uvec4 packed = blurSampleAt(sampleIndex);
     // One more step of p = X + u a(p) + u^2 c(p) from there: the sample's own terms, where it
@@ -194,7 +211,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     if (curved && z > 0.0) wf *= mix(1.0, pathReach(samplePixel, sampleIndex, sampleV, centre), min(z, 1.0));
     wf *= foregroundScale;
     wb *= backgroundScale;
-    const float w = wf + wb + ws;
+    const float w = (wf + wb + ws) * count;
     const vec4 sampleColor = sanitizeColor(vec4(sampleColor(packed), 1.0));
     weightSum += w;
     sum += w * contributionOf(sampleIndex, sampleColor);
