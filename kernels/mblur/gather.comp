@@ -1,7 +1,8 @@
 #version 450
 // The post-process gather: McGuire et al. 2012's reconstruction with the paper's weights and
-// its centred or adapted range (mblur/gather_samples.glsl), every pixel of the image; for the
-// hybrid (HMB_SPEC_GATHER_OUTSIDE_MASK) every pixel outside its ray mask, whose pixels its
+// its centred or adapted range (mblur/gather_samples.glsl), every pixel of the moving blocks
+// (list_gather_blocks.comp; copy_still_blocks.comp writes the others); for the hybrid
+// (HMB_SPEC_GATHER_OUTSIDE_MASK) every such pixel outside its ray mask, whose pixels its
 // composite writes: a lane group wholly inside the mask then costs a load.
 #extension GL_GOOGLE_include_directive : require
 #include "filter_bindings.glsl"
@@ -13,6 +14,8 @@ layout(constant_id = HMB_SPEC_GATHER_OUTSIDE_MASK) const bool kOutsideMask = fal
 layout(constant_id = HMB_SPEC_GATHER_CURVED_PATH) const bool kCurvedPath = false;
 #define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
 layout(std430, binding = HMB_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
+layout(std430, binding = HMB_GATHER_BINDING_BLOCKS) readonly buffer Blocks { uint blocks[]; };
+layout(std430, binding = HMB_GATHER_BINDING_BLOCK_COUNTERS) readonly buffer Counters { GatherBlockCounters counters; };
 
 uvec4 blurSampleAt(uint i) { return layerSampleAt(i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
@@ -20,7 +23,10 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 #include "gather_samples.glsl"
 
 void main() {
-  const uvec2 pixel = gl_GlobalInvocationID.xy;
+  const uint slot = gl_WorkGroupID.y * HMB_GATHER_BLOCKS_PER_ROW + gl_WorkGroupID.x;
+  if (slot >= counters.moving) return;
+  const uint entry = blocks[slot];
+  const uvec2 pixel = uvec2(entry & 0xFFFFu, entry >> 16u) * HMB_GATHER_BLOCK + gl_LocalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   if (kOutsideMask && mask[index] != 0u) return;

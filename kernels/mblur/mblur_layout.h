@@ -42,11 +42,43 @@
 // HMB_SPEC_GATHER_OUTSIDE_MASK: the gather then leaves the mask's pixels to the hybrid's
 // composite.
 #define HMB_GATHER_BINDING_MASK HMB_FILTER_BINDING_COUNT
-#define HMB_GATHER_BINDING_COUNT (HMB_GATHER_BINDING_MASK + 1)
+// The moving blocks (HMB_GATHER_BLOCK_*), the only ones gather.comp blurs: list_gather_blocks'
+// list and counters.
+#define HMB_GATHER_BINDING_BLOCKS (HMB_GATHER_BINDING_MASK + 1)
+#define HMB_GATHER_BINDING_BLOCK_COUNTERS (HMB_GATHER_BINDING_MASK + 2)
+#define HMB_GATHER_BINDING_COUNT (HMB_GATHER_BINDING_MASK + 3)
 #define HMB_SPEC_GATHER_OUTSIDE_MASK 0
 // gather.comp's curved-path code, compiled in only where GatherParams::flags asks for the
 // curved path (HMB_GATHER_FLAG_CURVED_PATH); without it that flag is not read.
 #define HMB_SPEC_GATHER_CURVED_PATH 1
+
+// The gather's blocks: the 8 x 8 pixels of one group (HMB_GATHER_GROUP_X/Y), row-major over
+// the image. A block is still when no pixel of it lies in a tile whose neighbour-max speed is
+// kMinBlurPixels or more: the gather would leave every pixel its own colour there, which
+// copy_still_blocks writes without the gather's reads of the neighbourhood. On a CPU device
+// the gather's code runs for every lane of a group whatever its branches take (a loop at least
+// once), so a still pixel costs nearly what a moving one does in one sample; on a GPU still
+// groups would retire early, and the lists save their launch and keep moving groups dense.
+#define HMB_GATHER_BLOCK 8u
+// The block list's groups are dispatched this many to a row of the grid (its y the rows), so
+// that a large image's blocks never ask for more than 65535 groups on an axis.
+#define HMB_GATHER_BLOCKS_PER_ROW 256u
+// list_gather_blocks: one invocation per block.
+#define HMB_GATHER_BLOCKS_GROUP 64
+#define HMB_GATHER_BLOCKS_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
+#define HMB_GATHER_BLOCKS_BINDING_COUNTERS 1      // GatherBlockCounters, zero before the pass
+// uint per block: the moving blocks from the front, the still ones from the back, each entry
+// the block's (y << 16) | x
+#define HMB_GATHER_BLOCKS_BINDING_LIST 2
+#define HMB_GATHER_BLOCKS_BINDING_COUNT 3
+// copy_still_blocks: one 8 x 8 group per listed still block.
+#define HMB_STILL_BLOCKS_BINDING_SAMPLES 0   // uvec4 per pixel: the layer's samples
+#define HMB_STILL_BLOCKS_BINDING_OUTPUT 1    // vec4 per pixel
+#define HMB_STILL_BLOCKS_BINDING_MASK 2      // uint per pixel (HMB_SPEC_STILL_BLOCKS_OUTSIDE_MASK)
+#define HMB_STILL_BLOCKS_BINDING_BLOCKS 3    // list_gather_blocks' list
+#define HMB_STILL_BLOCKS_BINDING_COUNTERS 4  // GatherBlockCounters
+#define HMB_STILL_BLOCKS_BINDING_COUNT 5
+#define HMB_SPEC_STILL_BLOCKS_OUTSIDE_MASK 0  // as HMB_SPEC_GATHER_OUTSIDE_MASK
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]
@@ -76,6 +108,38 @@ const float kMinBlurPixels = 0.5f;
 // its tile's neighbour-max speed; slower pixels, which faster neighbours may cover, keep
 // McGuire's straight line along the neighbour-max velocity.
 const float kOwnPathShare = 0.5f;
+
+// list_gather_blocks' counts, and the indirect dispatches of the moving and the still blocks
+// (HMB_GATHER_BLOCKS_PER_ROW groups to a row). All zero before the pass.
+struct GatherBlockCounters {
+  uint moving;
+  uint still;
+  uint movingDispatchX;
+  uint movingDispatchY;
+  uint movingDispatchZ;
+  uint stillDispatchX;
+  uint stillDispatchY;
+  uint stillDispatchZ;
+};
+
+struct GatherBlocksParams {
+  uint width;
+  uint height;
+  uint tileSize;
+  uint tilesX;
+  uint blocksX;
+  uint blockCount;
+  uint pad0;
+  uint pad1;
+};
+
+// copy_still_blocks
+struct StillBlocksParams {
+  uint width;
+  uint height;
+  uint blockCount;
+  uint pad0;
+};
 
 struct TileMaxParams {
   uint width;
@@ -133,6 +197,9 @@ struct JimenezParams {
   uint pad1;
 };
 HMB_GPU_END
+HMB_CHECK_SIZE(GatherBlockCounters, 32)
+HMB_CHECK_SIZE(GatherBlocksParams, 32)
+HMB_CHECK_SIZE(StillBlocksParams, 16)
 HMB_CHECK_SIZE(TileMaxParams, 32)
 HMB_CHECK_SIZE(NeighborMaxParams, 16)
 HMB_CHECK_SIZE(GatherParams, 64)

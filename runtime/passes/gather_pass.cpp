@@ -1,9 +1,12 @@
 #include "runtime/passes/gather_pass.h"
 
 #include <algorithm>
+#include <cstddef>
+#include <string>
 #include <span>
 
 #include "runtime/error.h"
+#include "runtime/frame_plan.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
@@ -31,7 +34,38 @@ gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t wid
                            0};
 }
 
-GatherPass::GatherPass(const vk::Context& context) : context_(context) {}
+GatherPass::GatherPass(const vk::Context& context)
+    : context_(context), listBlocks_(context, "mblur/list_gather_blocks", sizeof(gpu::GatherBlocksParams)) {}
+
+void GatherPass::plan(FramePlan& plan) const {
+  plan.run(kClearBlocks);
+  plan.run(kListBlocks);
+  plan.run(kName);
+  plan.run(kCopyStillBlocks);
+}
+
+uint32_t GatherPass::recordBlockLists(vk::FrameRecorder& frame, uint32_t width, uint32_t height, uint32_t tileSize,
+                                  const vk::Buffer& neighborMax) const {
+  const uint32_t blocksX = vk::groupsFor(width, HMB_GATHER_BLOCK), blocksY = vk::groupsFor(height, HMB_GATHER_BLOCK);
+  // A list entry holds a block's place in 16 bits an axis.
+  if (blocksX > 0xFFFFu || blocksY > 0xFFFFu)
+    throw Error("gather: " + std::to_string(width) + "x" + std::to_string(height) + " has more than 65535 blocks of " +
+                std::to_string(HMB_GATHER_BLOCK) + " pixels on a side");
+  const uint64_t blockCount = uint64_t(blocksX) * blocksY;
+  if (blocks_.size() < blockCount * sizeof(uint32_t))
+    blocks_ = vk::Buffer(context_, blockCount * sizeof(uint32_t), vk::MemoryUse::Device, "gather blocks");
+  if (!blockCounters_.handle())
+    blockCounters_ = vk::Buffer(context_, sizeof(gpu::GatherBlockCounters), vk::MemoryUse::Device, "gather block counters");
+  frame.fill(kClearBlocks, blockCounters_, 0u);
+  const TileGrid grid = tileGridFor(width, height, tileSize);
+  const gpu::GatherBlocksParams params{width, height, tileSize, grid.x, blocksX, uint32_t(blockCount), 0, 0};
+  frame.dispatch(kListBlocks, listBlocks_,
+                 {{HMB_GATHER_BLOCKS_BINDING_NEIGHBOR_MAX, &neighborMax},
+                  {HMB_GATHER_BLOCKS_BINDING_COUNTERS, &blockCounters_},
+                  {HMB_GATHER_BLOCKS_BINDING_LIST, &blocks_}},
+                 params, vk::foldedGroups(vk::groupsFor(uint32_t(blockCount), HMB_GATHER_BLOCKS_GROUP)));
+  return uint32_t(blockCount);
+}
 
 std::unique_ptr<GatherFilter> makeMcGuireGather(const vk::Context& context) {
   return std::make_unique<GatherPass>(context);
@@ -66,10 +100,28 @@ void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const Mo
   }
   gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
   if (curved) params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
+  const uint32_t blockCount = recordBlockLists(frame, inputs.width, inputs.height, params.tileSize, neighborMax);
   vk::Bindings bindings = filterBindings(inputs, neighborMax, output);
   bindings.push_back({HMB_GATHER_BINDING_MASK, &mask});
-  frame.dispatch(kName, *kernel, bindings, params,
-                 {vk::groupsFor(inputs.width, HMB_GATHER_GROUP_X), vk::groupsFor(inputs.height, HMB_GATHER_GROUP_Y), 1});
+  bindings.push_back({HMB_GATHER_BINDING_BLOCKS, &blocks_});
+  bindings.push_back({HMB_GATHER_BINDING_BLOCK_COUNTERS, &blockCounters_});
+  frame.dispatchIndirect(kName, *kernel, bindings, params, blockCounters_,
+                         offsetof(gpu::GatherBlockCounters, movingDispatchX));
+
+  std::unique_ptr<vk::ComputeKernel>& copy = copyStillBlocks_[outsideMask ? 1 : 0];
+  if (!copy) {
+    const uint32_t specialization[HMB_SPEC_STILL_BLOCKS_OUTSIDE_MASK + 1] = {outsideMask ? 1u : 0u};
+    copy = std::make_unique<vk::ComputeKernel>(context_, "mblur/copy_still_blocks", sizeof(gpu::StillBlocksParams),
+                                               specialization);
+  }
+  const gpu::StillBlocksParams still{inputs.width, inputs.height, blockCount, 0};
+  frame.dispatchIndirect(kCopyStillBlocks, *copy,
+                         {{HMB_STILL_BLOCKS_BINDING_SAMPLES, inputs.samples},
+                          {HMB_STILL_BLOCKS_BINDING_OUTPUT, &output},
+                          {HMB_STILL_BLOCKS_BINDING_MASK, &mask},
+                          {HMB_STILL_BLOCKS_BINDING_BLOCKS, &blocks_},
+                          {HMB_STILL_BLOCKS_BINDING_COUNTERS, &blockCounters_}},
+                         still, blockCounters_, offsetof(gpu::GatherBlockCounters, stillDispatchX));
 }
 
 }  // namespace hmb::passes

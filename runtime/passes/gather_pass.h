@@ -9,6 +9,7 @@
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/post_process_settings.h"
+#include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::passes {
@@ -29,8 +30,15 @@ gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t wid
 class GatherPass final : public GatherFilter {
  public:
   static constexpr const char* kName = "gather";
+  // Before it, the image's 8 x 8 blocks are sorted into moving and still
+  // (kernels/mblur/list_gather_blocks.comp); after it the still ones keep their own colour
+  // (copy_still_blocks.comp). The gather runs over the moving blocks alone.
+  static constexpr const char* kClearBlocks = "clear-gather-blocks";
+  static constexpr const char* kListBlocks = "list-gather-blocks";
+  static constexpr const char* kCopyStillBlocks = "copy-still-blocks";
   explicit GatherPass(const vk::Context& context);
   std::string_view passName() const override { return kName; }
+  void plan(FramePlan& plan) const override;
   // Uses the McGuire fields of settings whatever settings.filter.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,
               const vk::Buffer& output, const PostProcessSettings& settings) const override;
@@ -45,9 +53,17 @@ class GatherPass final : public GatherFilter {
                   const vk::Buffer& neighborMax, const vk::Buffer& output, const PostProcessSettings& settings,
                   const vk::Buffer& mask) const;
 
+  // Sorts the blocks of a width x height image into blocks_ (sized here as needed); returns
+  // how many there are.
+  uint32_t recordBlockLists(vk::FrameRecorder& frame, uint32_t width, uint32_t height, uint32_t tileSize,
+                        const vk::Buffer& neighborMax) const;
+
   const vk::Context& context_;
   // [outside the mask][curved path], each made on first use
   mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2];
+  vk::ComputeKernel listBlocks_;
+  mutable std::unique_ptr<vk::ComputeKernel> copyStillBlocks_[2];  // [outside the mask]
+  mutable vk::Buffer blocks_, blockCounters_;
 };
 
 }  // namespace hmb::passes

@@ -46,7 +46,7 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
     plan.run(kBvhInstances);
   postProcess_.planTiles(plan);
   rayMask_.plan(plan);
-  plan.run(GatherPass::kName);
+  gather_.plan(plan);
   plan.run(RevealPass::kName);
   plan.run(kGatherBackground);
   plan.run(kComposite);

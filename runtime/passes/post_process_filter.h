@@ -11,6 +11,10 @@
 
 #include "runtime/vulkan/binding.h"
 
+namespace hmb {
+class FramePlan;
+}  // namespace hmb
+
 namespace hmb::vk {
 class Context;
 class FrameRecorder;
@@ -51,6 +55,8 @@ class GatherFilter {
   virtual ~GatherFilter() = default;
   // Its pass in the frame plan.
   virtual std::string_view passName() const = 0;
+  // Its passes in the frame plan: passName() and any it records beside it.
+  virtual void plan(FramePlan& plan) const;
   // neighborMax: the tile passes' at settings.effectiveTileSize() and settings.velocityScale();
   // output: width * height vec4.
   virtual void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& neighborMax,

@@ -19,6 +19,8 @@ vk::Bindings filterBindings(const MotionBlurInputs& inputs, const vk::Buffer& ne
           {HMB_FILTER_BINDING_SHUTTER_PATHS, inputs.shutterPaths ? inputs.shutterPaths : inputs.samples}};
 }
 
+void GatherFilter::plan(FramePlan& plan) const { plan.run(std::string(passName())); }
+
 PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcessSettings& settings)
     : context_(context), tileMaxPass_(context), neighborMaxPass_(context) {
   configure(settings);
@@ -40,7 +42,7 @@ void PostProcessStage::planTiles(FramePlan& plan) const {
 
 void PostProcessStage::plan(FramePlan& plan) const {
   planTiles(plan);
-  plan.run(std::string(filters_.at(settings_.filter)->passName()));
+  filters_.at(settings_.filter)->plan(plan);
 }
 
 void PostProcessStage::prepare(uint32_t width, uint32_t height) {

@@ -138,6 +138,37 @@ TEST_F(MblurGatherTest, ABoostThatFallsWithTheSpeedMatchesTheReference) {
     }
 }
 
+// The gather runs over the 8 x 8 blocks that touch a moving tile and copies the others
+// (list_gather_blocks, copy_still_blocks): with tiles still at random, at the threshold and just
+// under it, every pixel must still be the reference's (the output starts as NaN, so a block in
+// neither list fails). Tile sizes under, at and over the block's, images of ragged blocks, and
+// more than 256 blocks of a kind (the lists' dispatches fold into rows).
+TEST_F(MblurGatherTest, StillAndMovingBlocksEachMatchTheReference) {
+  std::mt19937 rng(61);
+  const struct {
+    uint32_t width, height, tileSize;
+  } cases[] = {{1, 1, 1}, {9, 7, 3}, {97, 61, 8}, {200, 100, 13}, {203, 130, 40}, {300, 170, 5}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(testing::Message() << c.width << "x" << c.height << " m " << c.tileSize);
+    const Layer layer = randomLayer(c.width, c.height, rng);
+    for (GatherRange range : {GatherRange::Centered, GatherRange::Adapted}) {
+      const PostProcessSettings s = settingsFor(range, c.tileSize);
+      std::vector<glm::vec4> tiles = referenceTiles(layer, s);
+      std::uniform_int_distribution<int> pick(0, 3);
+      size_t still = 0;
+      for (glm::vec4& tile : tiles) {
+        const int kind = pick(rng);
+        if (kind == 0) tile = glm::vec4(0.0f);
+        if (kind == 1) tile = glm::vec4(0.3f, 0.0f, std::nextafter(gpu::kMinBlurPixels, 0.0f), 0.0f);
+        if (kind == 2) tile = glm::vec4(0.0f, -gpu::kMinBlurPixels, gpu::kMinBlurPixels, 0.0f);
+        still += kind < 2;
+      }
+      if (tiles.size() > 4) ASSERT_GT(still, 0u);
+      expectMatchesReference(runGather(context(), layer, tiles, s), gather(layer, tiles, nullptr, s));
+    }
+  }
+}
+
 PostProcessSettings curvedSettings(uint32_t tileSize, uint32_t samples = 15) {
   PostProcessSettings s = settingsFor(GatherRange::Adapted, tileSize, samples);
   s.motionPath = passes::MotionPath::Curved;

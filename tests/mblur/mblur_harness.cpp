@@ -26,8 +26,12 @@ vk::Buffer deviceBuffer(vk::Context& context, const std::vector<T>& values, cons
   return vk::uploadedBuffer(context, values, name);
 }
 
+// Filled with NaN: a pixel no pass writes fails the finite check of expectMatchesReference.
 vk::Buffer outputBuffer(vk::Context& context, size_t count, const char* name) {
-  return vk::Buffer(context, std::max<size_t>(count, 1) * sizeof(glm::vec4), vk::MemoryUse::Device, name);
+  vk::Buffer buffer(context, std::max<size_t>(count, 1) * sizeof(glm::vec4), vk::MemoryUse::Device, name);
+  const std::vector<glm::vec4> unwritten(std::max<size_t>(count, 1), glm::vec4(std::numeric_limits<float>::quiet_NaN()));
+  buffer.upload(std::span<const glm::vec4>(unwritten));
+  return buffer;
 }
 
 template <class T>

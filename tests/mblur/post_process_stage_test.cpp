@@ -107,10 +107,13 @@ TEST_F(MblurStageTest, PlansItsPassesAndChecksSizes) {
   passes::PostProcessStage mcguire(context(), s);
   FramePlan plan;
   mcguire.plan(plan);
-  ASSERT_EQ(plan.passes().size(), 3u);
+  ASSERT_EQ(plan.passes().size(), 6u);
   EXPECT_EQ(plan.passes()[0].name, "tile-max");
   EXPECT_EQ(plan.passes()[1].name, "neighbor-max");
-  EXPECT_EQ(plan.passes()[2].name, "gather");
+  EXPECT_EQ(plan.passes()[2].name, "clear-gather-blocks");
+  EXPECT_EQ(plan.passes()[3].name, "list-gather-blocks");
+  EXPECT_EQ(plan.passes()[4].name, "gather");
+  EXPECT_EQ(plan.passes()[5].name, "copy-still-blocks");
 
   s.filter = passes::PostProcessFilter::Jimenez;
   passes::PostProcessStage jimenez(context(), s);

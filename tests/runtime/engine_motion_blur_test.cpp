@@ -126,7 +126,8 @@ TEST_P(EngineMotionBlurScenes, BlursTheEnginesGBufferAsThePostProcessMethodBlurs
   EXPECT_GT(blurredPixels, 50u);
   std::vector<std::string> names;
   for (const vk::PassTiming& pass : timings.passes) names.push_back(pass.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"pack-engine-gbuffer", "tile-max", "neighbor-max", "gather"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"pack-engine-gbuffer", "tile-max", "neighbor-max", "clear-gather-blocks",
+                                             "list-gather-blocks", "gather", "copy-still-blocks"}));
 }
 
 INSTANTIATE_TEST_SUITE_P(EngineMotionBlurTest, EngineMotionBlurScenes, ::testing::Values("living-room", "temple"));

@@ -83,6 +83,8 @@ const KernelLayout kLayouts[] = {
     {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false},
     {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
     {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false, HMB_FILTER_TEXEL_BUFFERS},
+    {"mblur/list_gather_blocks", HMB_GATHER_BLOCKS_BINDING_COUNT, sizeof(gpu::GatherBlocksParams), false},
+    {"mblur/copy_still_blocks", HMB_STILL_BLOCKS_BINDING_COUNT, sizeof(gpu::StillBlocksParams), false, false, 1},
     {"mblur/gather_jimenez", HMB_FILTER_BINDING_COUNT, sizeof(gpu::JimenezParams), false, false,
      HMB_FILTER_TEXEL_BUFFERS},
     {"hybrid/composite", HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
