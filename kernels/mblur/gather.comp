@@ -13,6 +13,9 @@ layout(constant_id = HMB_SPEC_GATHER_OUTSIDE_MASK) const bool kOutsideMask = fal
 // The curved path's code (HMB_GATHER_FLAG_CURVED_PATH) compiled in: only for frames that take it.
 layout(constant_id = HMB_SPEC_GATHER_CURVED_PATH) const bool kCurvedPath = false;
 #define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
+// The range (HMB_GATHER_FLAG_ADAPTED_RANGE), compiled in: the other's code would run too.
+layout(constant_id = HMB_SPEC_GATHER_ADAPTED_RANGE) const bool kAdaptedRange = true;
+#define HMB_GATHER_ADAPTED_RANGE kAdaptedRange
 layout(std430, binding = HMB_GATHER_BINDING_MASK) readonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_GATHER_BINDING_BLOCKS) readonly buffer Blocks { uint blocks[]; };
 layout(std430, binding = HMB_GATHER_BINDING_BLOCK_COUNTERS) readonly buffer Counters { GatherBlockCounters counters; };

@@ -109,6 +109,10 @@ void readOwnPath(uvec2 pixel, uint index, inout GatherCentre centre) {
 #ifndef HMB_GATHER_CURVED_PATH_CODE
 #define HMB_GATHER_CURVED_PATH_CODE true
 #endif
+// The same for the range: gather.comp compiles the one its frame takes.
+#ifndef HMB_GATHER_ADAPTED_RANGE
+#define HMB_GATHER_ADAPTED_RANGE ((params.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u)
+#endif
 
 // Reads the pixel; false (centre.color alone set) when under kMinBlurPixels of blur reach its
 // whole neighbourhood, so that the gather leaves it its own colour.
@@ -121,7 +125,7 @@ bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
   centre.foregroundBoost = params.foregroundBoostPixels > 0.0
                                ? max(1.0, params.foregroundBoostPixels / max(dominant.z, 1.0))
                                : params.foregroundBoost;
-  gatherVelocity(sampleVelocity(own), params.velocityScale, float(params.tileSize), centre.speed);
+  centre.speed = gatherSpeed(sampleVelocity(own), params.velocityScale, float(params.tileSize));
   centre.depth = sanitizeDepth(sampleDepth(own));
   centre.jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.seed));
   centre.ownPath = false;
@@ -131,9 +135,11 @@ bool readGatherCentre(uvec2 pixel, uint index, out GatherCentre centre) {
 }
 
 // Sample i's place along the range (see the top): u in (0, 1] for the adapted range, t in
-// (-1, 1) for the centred one.
-float gatherSampleT(uint i, uint samples, float jitter, bool adapted) {
-  return adapted ? (float(i) + 1.0 - jitter) / float(samples)
+// (-1, 1) for the centred one. inverseSamples: 1 / S. The run of samples on one pixel is
+// counted one sample after another, each step waiting on the last, so a multiplication
+// stands where a division did.
+float gatherSampleT(uint i, uint samples, float inverseSamples, float jitter, bool adapted) {
+  return adapted ? (float(i) + 1.0 - jitter) * inverseSamples
                  : mix(-1.0, 1.0, (float(i) + jitter + 0.5) / float(samples + 1u));
 }
 
@@ -144,19 +150,20 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
   const float centreSpeed = c.speed, centreDepth = c.depth, jitter = c.jitter;
   const vec2 dominant = c.dominant;
   const float maxSpeed = float(params.tileSize);
-  const bool adapted = (params.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u;
+  const bool adapted = HMB_GATHER_ADAPTED_RANGE;
   const bool curved = HMB_GATHER_CURVED_PATH_CODE && adapted && (params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
   float weightSum = 1.0 / max(centreSpeed, 0.5);
   vec4 sum = centreColor * weightSum;
 
   const vec2 centre = vec2(pixel) + 0.5;
   const uint samples = params.samples;
+  const float inverseSamples = 1.0 / float(samples);
   // McGuire's centred range skips its middle sample for odd S: X itself is already counted.
   const uint skipped = adapted || (samples & 1u) == 0u ? samples : (samples - 1u) / 2u;
   const bool ownPath = HMB_GATHER_CURVED_PATH_CODE && c.ownPath;
   uint i = skipped == 0u ? 1u : 0u;
   while (i < samples) {
-    const float t = gatherSampleT(i, samples, jitter, adapted);
+    const float t = gatherSampleT(i, samples, inverseSamples, jitter, adapted);
     vec2 along = ownPath ? t * c.pathLinear + (t * t) * c.pathQuadratic : t * dominant;
     ivec2 samplePixel = nearestPixel(centre + along, params.width, params.height);
     // Samples that land on the same pixel add the same term: the straight path counts the
@@ -166,7 +173,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     float count = 1.0;
     i += i + 1u == skipped ? 2u : 1u;
     if (!ownPath) {
-      while (i < samples && nearestPixel(centre + gatherSampleT(i, samples, jitter, adapted) * dominant, params.width,
+      while (i < samples && nearestPixel(centre + gatherSampleT(i, samples, inverseSamples, jitter, adapted) * dominant, params.width,
                                          params.height) == samplePixel) {
         count += 1.0;
         i += i + 1u == skipped ? 2u : 1u;
@@ -196,8 +203,7 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
       }
     }
     const float ds = length(vec2(samplePixel - ivec2(pixel)));
-    float sampleSpeed;
-    const vec2 sampleV = gatherVelocity(sampleVelocity(packed), params.velocityScale, maxSpeed, sampleSpeed);
+    const float sampleSpeed = gatherSpeed(sampleVelocity(packed), params.velocityScale, maxSpeed);
     const float sampleDepth = sanitizeDepth(sampleDepth(packed));
 
     const float z = (centreDepth - sampleDepth) / params.softZExtent;
@@ -208,7 +214,11 @@ vec4 gatherSamples(uvec2 pixel, GatherCentre c, float foregroundScale, float bac
     // Along curved paths a sample in front blurs over the pixel only if its own path crosses
     // it: near it is not enough where motion turns (a spinning plate's corner sweeps an arc,
     // not the tile's straight line).
-    if (curved && z > 0.0) wf *= mix(1.0, pathReach(samplePixel, sampleIndex, sampleV, centre), min(z, 1.0));
+    if (curved && z > 0.0) {
+      float unused;
+      const vec2 sampleV = gatherVelocity(sampleVelocity(packed), params.velocityScale, maxSpeed, unused);
+      wf *= mix(1.0, pathReach(samplePixel, sampleIndex, sampleV, centre), min(z, 1.0));
+    }
     wf *= foregroundScale;
     wb *= backgroundScale;
     const float w = (wf + wb + ws) * count;

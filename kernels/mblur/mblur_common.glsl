@@ -28,6 +28,18 @@ vec2 gatherVelocity(vec2 q, float velocityScale, float maxSpeed, out float speed
   return unit * (maxSpeed / unitLength);
 }
 
+// gatherVelocity's speed alone, all the gathers' weights read of a velocity: min(|v|, maxSpeed),
+// 0 for non-finite velocities and speeds under 1e-30 px. |v| is sqrt(x^2 + y^2), without the
+// overflow guard's two divisions, which held up every sample: a square that overflows gives an
+// infinite |v|, clamped to maxSpeed as gatherVelocity clamps it, and one that underflows gives
+// 0, which every weight treats as it treats a speed under 1e-30 (within a ulp of gatherVelocity's).
+float gatherSpeed(vec2 q, float velocityScale, float maxSpeed) {
+  const vec2 v = q * velocityScale;
+  if (any(isnan(v)) || any(isinf(v))) return 0.0;
+  const float speed = min(length(v), maxSpeed);
+  return speed >= 1e-30 ? speed : 0.0;
+}
+
 // Inputs are sanitized so that no NaN or Inf can reach a weighted sum.
 float sanitizeChannel(float x) { return isnan(x) ? 0.0 : clamp(x, -HMB_MBLUR_MAX_COLOR, HMB_MBLUR_MAX_COLOR); }
 

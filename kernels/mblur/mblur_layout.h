@@ -51,6 +51,8 @@
 // gather.comp's curved-path code, compiled in only where GatherParams::flags asks for the
 // curved path (HMB_GATHER_FLAG_CURVED_PATH); without it that flag is not read.
 #define HMB_SPEC_GATHER_CURVED_PATH 1
+// gather.comp's range: true for HMB_GATHER_FLAG_ADAPTED_RANGE, which it then does not read.
+#define HMB_SPEC_GATHER_ADAPTED_RANGE 2
 
 // The gather's blocks: the 8 x 8 pixels of one group (HMB_GATHER_GROUP_X/Y), row-major over
 // the image. A block is still when no pixel of it lies in a tile whose neighbour-max speed is

@@ -89,13 +89,15 @@ void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const Mo
   const bool curved = settings.motionPath == MotionPath::Curved;
   if (curved && !inputs.shutterPaths)
     throw Error("post-process: the curved motion path needs the G-buffer's shutter paths");
-  // The linear gather is built without the curved path's code: on lavapipe that code runs for
-  // every sample whether or not the flag asks for it.
-  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[outsideMask ? 1 : 0][curved ? 1 : 0];
+  // The gather is built for its frame's path and range alone: on lavapipe the code of the
+  // others runs for every sample whether or not the flags ask for it.
+  const bool adapted = settings.range == GatherRange::Adapted;
+  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[outsideMask ? 1 : 0][curved ? 1 : 0][adapted ? 1 : 0];
   if (!kernel) {
-    uint32_t specialization[HMB_SPEC_GATHER_CURVED_PATH + 1] = {};
+    uint32_t specialization[HMB_SPEC_GATHER_ADAPTED_RANGE + 1] = {};
     specialization[HMB_SPEC_GATHER_OUTSIDE_MASK] = outsideMask ? 1u : 0u;
     specialization[HMB_SPEC_GATHER_CURVED_PATH] = curved ? 1u : 0u;
+    specialization[HMB_SPEC_GATHER_ADAPTED_RANGE] = adapted ? 1u : 0u;
     kernel = std::make_unique<vk::ComputeKernel>(context_, "mblur/gather", sizeof(gpu::GatherParams), specialization);
   }
   gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);

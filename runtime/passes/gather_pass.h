@@ -59,8 +59,8 @@ class GatherPass final : public GatherFilter {
                         const vk::Buffer& neighborMax) const;
 
   const vk::Context& context_;
-  // [outside the mask][curved path], each made on first use
-  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2];
+  // [outside the mask][curved path][adapted range], each made on first use
+  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2][2];
   vk::ComputeKernel listBlocks_;
   mutable std::unique_ptr<vk::ComputeKernel> copyStillBlocks_[2];  // [outside the mask]
   mutable vk::Buffer blocks_, blockCounters_;

@@ -350,8 +350,7 @@ glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, 
   const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
   const float maxSpeed = float(settings.effectiveTileSize());
   const bool adapted = settings.range == passes::GatherRange::Adapted;
-  float centreSpeed;
-  gatherVelocity(layer.velocity[index], velocityScale, maxSpeed, centreSpeed);
+  const float centreSpeed = mblur::gatherSpeed(layer.velocity[index], velocityScale, maxSpeed);
   const glm::vec4 revealed = sanitizeColor(in.background[index]);
   const uint32_t centreObject = in.objectId[index];
   const float backgroundScale = maskWeights.backgroundBoost;
@@ -370,8 +369,7 @@ glm::vec4 weightsComposite(const CompositeInputs& in, uint32_t px, uint32_t py, 
         nearestPixel({centre.x + t * dominant.x, centre.y + t * dominant.y}, layer.width, layer.height);
     const size_t sampleIndex = indexOf(layer.width, s);
     const float ds = length2(glm::vec2(float(s.x - int(px)), float(s.y - int(py))));
-    float sampleSpeed;
-    gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, sampleSpeed);
+    const float sampleSpeed = mblur::gatherSpeed(layer.velocity[sampleIndex], velocityScale, maxSpeed);
     const float sampleDepth = sanitizeDepth(layer.normalDepth[sampleIndex].w);
     mblur::AppendixWeights w =
         mblur::appendixWeights(centreDepth, sampleDepth, centreSpeed, sampleSpeed, ds, settings.softZExtent);

@@ -114,6 +114,13 @@ glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float
   return {unit.x * scale, unit.y * scale};
 }
 
+float gatherSpeed(glm::vec2 q, float velocityScale, float maxSpeed) {
+  const glm::vec2 v(q.x * velocityScale, q.y * velocityScale);
+  if (!finite(v)) return 0.0f;
+  const float speed = std::min(length2(v), maxSpeed);
+  return speed >= 1e-30f ? speed : 0.0f;
+}
+
 glm::vec4 sanitizeColor(glm::vec4 c) {
   for (int i = 0; i < 4; ++i) c[i] = std::isnan(c[i]) ? 0.0f : std::clamp(c[i], -kMaxColor, kMaxColor);
   return c;
@@ -129,7 +136,7 @@ glm::ivec2 nearestPixel(glm::vec2 position, uint32_t width, uint32_t height) {
 float cone(float ds, float v) { return saturate(1.0f - ds / std::max(v, 1e-6f)); }
 
 std::optional<float> gatherSampleParameter(uint32_t i, uint32_t samples, float jitter, bool adapted) {
-  if (adapted) return (float(i) + 1.0f - jitter) / float(samples);
+  if (adapted) return (float(i) + 1.0f - jitter) * (1.0f / float(samples));  // as gatherSampleT
   if ((samples & 1u) == 1u && i == (samples - 1u) / 2u) return std::nullopt;
   const float a = (float(i) + jitter + 0.5f) / float(samples + 1u);
   return -1.0f * (1.0f - a) + 1.0f * a;  // mix(-1, 1, a) as GLSL evaluates it
@@ -211,8 +218,7 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
         continue;
       }
       const float foregroundBoost = settings.foregroundBoostAt(dominant.z);
-      float centreSpeed;
-      gatherVelocity(layer.velocity[index], velocityScale, maxSpeed, centreSpeed);
+      const float centreSpeed = gatherSpeed(layer.velocity[index], velocityScale, maxSpeed);
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
       const bool inMask = mask && (*mask)[index] != 0;
       const float backgroundScale = inMask ? maskWeights.backgroundBoost : 1.0f;
@@ -259,8 +265,9 @@ std::vector<glm::vec4> gather(const Layer& input, const std::vector<glm::vec4>& 
           }
         }
         const float ds = length2(glm::vec2(float(s.x - int(px)), float(s.y - int(py))));
-        float sampleSpeed;
-        const glm::vec2 sampleV = gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, sampleSpeed);
+        const float sampleSpeed = gatherSpeed(layer.velocity[sampleIndex], velocityScale, maxSpeed);
+        float unused;
+        const glm::vec2 sampleV = gatherVelocity(layer.velocity[sampleIndex], velocityScale, maxSpeed, unused);
         const float sampleDepth = sanitizeDepth(layer.normalDepth[sampleIndex].w);
         AppendixWeights w =
             appendixWeights(centreDepth, sampleDepth, centreSpeed, sampleSpeed, ds, settings.softZExtent);

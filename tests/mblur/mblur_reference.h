@@ -40,6 +40,8 @@ std::vector<glm::uvec4> packedSurfaces(const Layer& layer);
 
 // mblur_common.glsl
 glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float& speed);
+// Its speed alone, as the gathers weigh samples (mblur_common.glsl).
+float gatherSpeed(glm::vec2 q, float velocityScale, float maxSpeed);
 glm::vec4 sanitizeColor(glm::vec4 c);
 float sanitizeDepth(float z);
 // The jitter hash is the kernels' own (kernels/mblur/mblur_hash.h).
