@@ -149,6 +149,10 @@
 // which a storage-buffer load fetches for less than a texel fetch's four gathers.
 #define HMB_EDGE_MASK_TEXEL_BUFFERS 2
 #define HMB_SPEC_COMPOSITE_COVERAGE 0  // true: the coverage form; false: the weights form
+// range_check's curved-path code, compiled in only where the blur takes the curved path
+// (HMB_GATHER_FLAG_CURVED_PATH): on a CPU device its walks ran, at least a round of each loop,
+// for every pixel of a straight frame.
+#define HMB_SPEC_RANGE_CHECK_CURVED_PATH 0
 
 // RevealParams.stop
 #define HMB_REVEAL_STOP_OBJECT_ID 0u  // the first surface of another object (one trace, the object skipped whole)

@@ -29,6 +29,7 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { u
 // Each pixel's path over the shutter, read only along curved paths (gbuffer/gbuffer_layout.h).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS) readonly buffer Paths { uvec2 shutterPaths[]; };
 layout(push_constant) uniform Params { RayMaskParams params; };
+layout(constant_id = HMB_SPEC_RANGE_CHECK_CURVED_PATH) const bool kCurvedPath = false;
 
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
@@ -149,7 +150,7 @@ void main() {
   // Along curved paths: the pixel's own (mblur_common.glsl's inversePath), as the coverage
   // composite samples it.
   vec2 q = vec2(0.0), a, c;
-  const bool curved = (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && speed > 0.0 &&
+  const bool curved = kCurvedPath && (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && speed > 0.0 &&
                       shutterPathTerms(shutterPaths[index], a, c);
   if (curved) {
     const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.blur.width, params.blur.height);

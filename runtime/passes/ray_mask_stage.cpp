@@ -88,7 +88,13 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
                           {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
                          params, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
-  frame.dispatchIndirect(kRangeCheck, rangeKernel_,
+  const bool curved = (blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
+  if (curved && !curvedRangeKernel_) {
+    const uint32_t specialization[HMB_SPEC_RANGE_CHECK_CURVED_PATH + 1] = {1u};
+    curvedRangeKernel_ =
+        std::make_unique<vk::ComputeKernel>(context_, "hybrid/range_check", sizeof(gpu::RayMaskParams), specialization);
+  }
+  frame.dispatchIndirect(kRangeCheck, curved ? *curvedRangeKernel_ : rangeKernel_,
                          {{HMB_RANGE_CHECK_BINDING_SURFACES, layer.surfaces},
                           {HMB_RANGE_CHECK_BINDING_SAMPLES, layer.samples},
                           {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/gather_pass.h"
@@ -64,7 +65,11 @@ class RayMaskStage {
 
  private:
   const vk::Context& context_;
-  vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, rangeKernel_, sizeKernel_;
+  vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, sizeKernel_;
+  // range_check, [curved path]: the straight build has none of the curved walks' code. The
+  // curved one is made on first use.
+  vk::ComputeKernel rangeKernel_;
+  mutable std::unique_ptr<vk::ComputeKernel> curvedRangeKernel_;
   ImageSize size_;
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each
