@@ -5,6 +5,7 @@
 // composite.
 #extension GL_GOOGLE_include_directive : require
 #include "mblur_layout.h"
+#include "../shared/indexing.glsl"
 #include "mblur_common.glsl"
 #include "../shared/layer_layout.h"
 #include "../shared/texel_records.glsl"
@@ -20,10 +21,9 @@ layout(push_constant) uniform Params { StillBlocksParams params; };
 layout(constant_id = HMB_SPEC_STILL_BLOCKS_OUTSIDE_MASK) const bool kOutsideMask = false;
 
 void main() {
-  const uint slot = gl_WorkGroupID.y * HMB_GATHER_BLOCKS_PER_ROW + gl_WorkGroupID.x;
-  if (slot >= counters.still) return;
-  const uint entry = blocks[params.blockCount - 1u - slot];
-  const uvec2 pixel = uvec2(entry & 0xFFFFu, entry >> 16u) * HMB_GATHER_BLOCK + gl_LocalInvocationID.xy;
+  const uint slot = foldedGroupIndex();  // the list's dispatch: HMB_GATHER_BLOCKS_PER_ROW a row
+  if (slot >= counters.lists[HMB_GATHER_BLOCKS_STILL].count) return;
+  const uvec2 pixel = gatherBlockPlace(blocks[params.blockCount - 1u - slot]) * HMB_GATHER_BLOCK + gl_LocalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   if (kOutsideMask && mask[index] != 0u) return;

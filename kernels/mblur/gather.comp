@@ -6,6 +6,7 @@
 // composite writes: a lane group wholly inside the mask then costs a load.
 #extension GL_GOOGLE_include_directive : require
 #include "filter_bindings.glsl"
+#include "../shared/indexing.glsl"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 layout(push_constant) uniform Params { GatherParams params; };
@@ -26,10 +27,9 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 #include "gather_samples.glsl"
 
 void main() {
-  const uint slot = gl_WorkGroupID.y * HMB_GATHER_BLOCKS_PER_ROW + gl_WorkGroupID.x;
-  if (slot >= counters.moving) return;
-  const uint entry = blocks[slot];
-  const uvec2 pixel = uvec2(entry & 0xFFFFu, entry >> 16u) * HMB_GATHER_BLOCK + gl_LocalInvocationID.xy;
+  const uint slot = foldedGroupIndex();  // the list's dispatch: HMB_GATHER_BLOCKS_PER_ROW a row
+  if (slot >= counters.lists[HMB_GATHER_BLOCKS_MOVING].count) return;
+  const uvec2 pixel = gatherBlockPlace(blocks[slot]) * HMB_GATHER_BLOCK + gl_LocalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
   if (kOutsideMask && mask[index] != 0u) return;

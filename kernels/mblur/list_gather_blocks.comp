@@ -25,19 +25,12 @@ void main() {
   for (uint y = first.y / params.tileSize; y <= last.y / params.tileSize; ++y)
     for (uint x = first.x / params.tileSize; x <= last.x / params.tileSize; ++x)
       moving = moving || !(neighborMax[y * params.tilesX + x].z < kMinBlurPixels);  // NaN: moving, as the gather
-  const uint entry = (place.y << 16u) | place.x;
-  if (moving) {
-    const uint slot = atomicAdd(counters.moving, 1u);
-    blocks[slot] = entry;
-    // The dispatch grows with the list: HMB_GATHER_BLOCKS_PER_ROW groups to a row.
-    if (slot < HMB_GATHER_BLOCKS_PER_ROW) atomicMax(counters.movingDispatchX, slot + 1u);
-    if (slot % HMB_GATHER_BLOCKS_PER_ROW == 0u) atomicMax(counters.movingDispatchY, slot / HMB_GATHER_BLOCKS_PER_ROW + 1u);
-    if (slot == 0u) counters.movingDispatchZ = 1u;
-  } else {
-    const uint slot = atomicAdd(counters.still, 1u);
-    blocks[params.blockCount - 1u - slot] = entry;
-    if (slot < HMB_GATHER_BLOCKS_PER_ROW) atomicMax(counters.stillDispatchX, slot + 1u);
-    if (slot % HMB_GATHER_BLOCKS_PER_ROW == 0u) atomicMax(counters.stillDispatchY, slot / HMB_GATHER_BLOCKS_PER_ROW + 1u);
-    if (slot == 0u) counters.stillDispatchZ = 1u;
-  }
+  // The moving blocks fill the list from its front, the still ones from its back; each list's
+  // dispatch grows with it, HMB_GATHER_BLOCKS_PER_ROW groups to a row.
+  const uint list = moving ? HMB_GATHER_BLOCKS_MOVING : HMB_GATHER_BLOCKS_STILL;
+  const uint slot = atomicAdd(counters.lists[list].count, 1u);
+  blocks[moving ? slot : params.blockCount - 1u - slot] = gatherBlockEntry(place);
+  if (slot < HMB_GATHER_BLOCKS_PER_ROW) atomicMax(counters.lists[list].dispatchX, slot + 1u);
+  if (slot % HMB_GATHER_BLOCKS_PER_ROW == 0u) atomicMax(counters.lists[list].dispatchY, slot / HMB_GATHER_BLOCKS_PER_ROW + 1u);
+  if (slot == 0u) counters.lists[list].dispatchZ = 1u;
 }

@@ -65,12 +65,15 @@
 // The block list's groups are dispatched this many to a row of the grid (its y the rows), so
 // that a large image's blocks never ask for more than 65535 groups on an axis.
 #define HMB_GATHER_BLOCKS_PER_ROW 256u
+// The two lists (GatherBlockCounters::lists).
+#define HMB_GATHER_BLOCKS_MOVING 0
+#define HMB_GATHER_BLOCKS_STILL 1
 // list_gather_blocks: one invocation per block.
 #define HMB_GATHER_BLOCKS_GROUP 64
 #define HMB_GATHER_BLOCKS_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
 #define HMB_GATHER_BLOCKS_BINDING_COUNTERS 1      // GatherBlockCounters, zero before the pass
 // uint per block: the moving blocks from the front, the still ones from the back, each entry
-// the block's (y << 16) | x
+// the block's place (gatherBlockEntry)
 #define HMB_GATHER_BLOCKS_BINDING_LIST 2
 #define HMB_GATHER_BLOCKS_BINDING_COUNT 3
 // copy_still_blocks: one 8 x 8 group per listed still block.
@@ -111,18 +114,22 @@ const float kMinBlurPixels = 0.5f;
 // McGuire's straight line along the neighbour-max velocity.
 const float kOwnPathShare = 0.5f;
 
-// list_gather_blocks' counts, and the indirect dispatches of the moving and the still blocks
+// One of list_gather_blocks' lists: its length, and the indirect dispatch of its blocks
 // (HMB_GATHER_BLOCKS_PER_ROW groups to a row). All zero before the pass.
-struct GatherBlockCounters {
-  uint moving;
-  uint still;
-  uint movingDispatchX;
-  uint movingDispatchY;
-  uint movingDispatchZ;
-  uint stillDispatchX;
-  uint stillDispatchY;
-  uint stillDispatchZ;
+struct GatherBlockList {
+  uint count;
+  uint dispatchX;
+  uint dispatchY;
+  uint dispatchZ;
 };
+
+struct GatherBlockCounters {
+  GatherBlockList lists[2];  // [HMB_GATHER_BLOCKS_MOVING], [HMB_GATHER_BLOCKS_STILL]
+};
+
+// A block's list entry: its place in blocks, 16 bits an axis.
+HMB_SHARED uint gatherBlockEntry(uvec2 place) { return (place.y << 16u) | place.x; }
+HMB_SHARED uvec2 gatherBlockPlace(uint entry) { return uvec2(entry & 0xFFFFu, entry >> 16u); }
 
 struct GatherBlocksParams {
   uint width;
@@ -199,6 +206,7 @@ struct JimenezParams {
   uint pad1;
 };
 HMB_GPU_END
+HMB_CHECK_SIZE(GatherBlockList, 16)
 HMB_CHECK_SIZE(GatherBlockCounters, 32)
 HMB_CHECK_SIZE(GatherBlocksParams, 32)
 HMB_CHECK_SIZE(StillBlocksParams, 16)

@@ -34,6 +34,16 @@ gpu::GatherParams gatherParams(const PostProcessSettings& settings, uint32_t wid
                            0};
 }
 
+namespace {
+
+// Where a block list's indirect dispatch lies in gpu::GatherBlockCounters.
+constexpr VkDeviceSize listDispatchOffset(uint32_t list) {
+  return offsetof(gpu::GatherBlockCounters, lists) + list * sizeof(gpu::GatherBlockList) +
+         offsetof(gpu::GatherBlockList, dispatchX);
+}
+
+}  // namespace
+
 GatherPass::GatherPass(const vk::Context& context)
     : context_(context), listBlocks_(context, "mblur/list_gather_blocks", sizeof(gpu::GatherBlocksParams)) {}
 
@@ -108,7 +118,7 @@ void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const Mo
   bindings.push_back({HMB_GATHER_BINDING_BLOCKS, &blocks_});
   bindings.push_back({HMB_GATHER_BINDING_BLOCK_COUNTERS, &blockCounters_});
   frame.dispatchIndirect(kName, *kernel, bindings, params, blockCounters_,
-                         offsetof(gpu::GatherBlockCounters, movingDispatchX));
+                         listDispatchOffset(HMB_GATHER_BLOCKS_MOVING));
 
   std::unique_ptr<vk::ComputeKernel>& copy = copyStillBlocks_[outsideMask ? 1 : 0];
   if (!copy) {
@@ -123,7 +133,7 @@ void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const Mo
                           {HMB_STILL_BLOCKS_BINDING_MASK, &mask},
                           {HMB_STILL_BLOCKS_BINDING_BLOCKS, &blocks_},
                           {HMB_STILL_BLOCKS_BINDING_COUNTERS, &blockCounters_}},
-                         still, blockCounters_, offsetof(gpu::GatherBlockCounters, stillDispatchX));
+                         still, blockCounters_, listDispatchOffset(HMB_GATHER_BLOCKS_STILL));
 }
 
 }  // namespace hmb::passes
