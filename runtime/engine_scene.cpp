@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
 
 #include "runtime/error.h"
@@ -30,6 +31,9 @@ scene::Trs trsOf(const glm::mat4& m, const std::string& what) {
 }
 
 // A node at its transform now, with two keys a frame: the previous transform at t - 1/fps.
+// When the exposure is longer than a frame, a third key carries the motion on, straight, to the
+// shutter's opening (the velocities the gathers read extrapolate the same way), so that rays at
+// any shutter time (the hybrid's shutter rays) see it where the blur puts it.
 void addMovingNode(scene::Scene& s, float t, const glm::mat4& now, const glm::mat4& previous, const std::string& what) {
   const scene::Trs a = trsOf(previous, what), b = trsOf(now, what);
   const auto node = static_cast<uint32_t>(s.nodes.size());
@@ -39,18 +43,30 @@ void addMovingNode(scene::Scene& s, float t, const glm::mat4& now, const glm::ma
   s.nodes.push_back(n);
   const float before = t - 1.0f / s.settings.fps;  // the time the methods take for the previous frame
   if (!(before < t)) throw Error("engine scene: frame time " + std::to_string(t) + " leaves no earlier frame");
-  const auto channel = [&](scene::AnimationPath path, glm::vec4 from, glm::vec4 to) {
+  const float open = t - s.settings.exposure;
+  // Past `before`, the previous transform continued: its share of the frame's step, more than 1.
+  const float onward = open < before ? (t - open) / (t - before) : 1.0f;
+  const auto channel = [&](scene::AnimationPath path, glm::vec4 from, glm::vec4 to, glm::vec4 opening) {
     scene::AnimationChannel c;
     c.node = node;
     c.path = path;
     c.times = {before, t};
     c.values = {from, to};
+    if (open < before) {
+      c.times.insert(c.times.begin(), open);
+      c.values.insert(c.values.begin(), opening);
+    }
     s.channels.push_back(std::move(c));
   };
-  channel(scene::AnimationPath::Translation, glm::vec4(a.translation, 0.0f), glm::vec4(b.translation, 0.0f));
+  const auto onwardLinear = [&](glm::vec3 p, glm::vec3 q) { return glm::vec4(q + (p - q) * onward, 0.0f); };
+  const glm::quat rotationAtOpen = glm::normalize(glm::slerp(b.rotation, a.rotation, onward));
+  channel(scene::AnimationPath::Translation, glm::vec4(a.translation, 0.0f), glm::vec4(b.translation, 0.0f),
+          onwardLinear(a.translation, b.translation));
   channel(scene::AnimationPath::Rotation, glm::vec4(a.rotation.x, a.rotation.y, a.rotation.z, a.rotation.w),
-          glm::vec4(b.rotation.x, b.rotation.y, b.rotation.z, b.rotation.w));
-  channel(scene::AnimationPath::Scale, glm::vec4(a.scale, 0.0f), glm::vec4(b.scale, 0.0f));
+          glm::vec4(b.rotation.x, b.rotation.y, b.rotation.z, b.rotation.w),
+          glm::vec4(rotationAtOpen.x, rotationAtOpen.y, rotationAtOpen.z, rotationAtOpen.w));
+  channel(scene::AnimationPath::Scale, glm::vec4(a.scale, 0.0f), glm::vec4(b.scale, 0.0f),
+          onwardLinear(a.scale, b.scale));
 }
 
 }  // namespace
