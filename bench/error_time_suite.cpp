@@ -58,6 +58,8 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
   }
   for (const float e : o.edgeThresholds)
     add("hybrid e" + fixed(e, 2), "hybrid edge threshold", e, "hybrid")->hybrid.edgeThreshold = e;
+  for (const uint32_t n : o.shutterRays)
+    add("hybrid shutter rays " + std::to_string(n), "hybrid shutter rays", n, "hybrid")->hybrid.shutterRays = n;
   for (const uint32_t k : o.timeSlices) {
     add("postprocess adapted K" + std::to_string(k), "postprocess adapted time slices", k, "postprocess")
         ->postprocess.timeSlices = k;

@@ -36,6 +36,7 @@ struct ErrorTimeSuiteOptions {
   std::vector<uint32_t> recursionLimits = {1, 5};      // hybrid, luminance stop
   std::vector<float> edgeThresholds = {0.5f, 0.8f, 0.95f};  // hybrid (the scene's own is in the samples series)
   std::vector<uint32_t> timeSlices = {2, 3, 4};              // adapted post-process and hybrid, the shutter cut in K
+  std::vector<uint32_t> shutterRays = {0, 2, 4, 16};         // hybrid's shutter strata (its default, 8, is in the samples series)
   std::vector<uint32_t> referenceSpp = {1, 2, 4, 8, 16, 32, 64, 128, 256};  // seed 2: not the judge's strata
   int warmup = 1;
   int repeats = 3;

@@ -133,7 +133,12 @@ std::vector<ExplainCase> runExplainSuite(vk::Context& context, const ExplainSuit
       inputs.region = &region;
       inputs.pathLength = paths.length;
       inputs.pathBend = paths.bend;
-      if (const io::ImageLayer* mask = result.image.find("rayMask")) inputs.rayMask = mask->ids;
+      // Traced: revealed behind (the ray mask) or rendered by shutter rays.
+      std::vector<uint32_t> traced;
+      if (const io::ImageLayer* mask = result.image.find("rayMask")) traced = mask->ids;
+      if (const io::ImageLayer* rays = result.image.find("shutterRays"))
+        for (size_t i = 0; i < traced.size() && i < rays->ids.size(); ++i) traced[i] |= rays->ids[i];
+      inputs.rayMask = traced;
       inputs.referenceNoise = judge.noise;
       ExplainCase c;
       c.scene = name;

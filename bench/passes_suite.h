@@ -21,9 +21,11 @@ class Context;
 
 namespace hmb::bench {
 
-// The methods it times (bench/method_variants.h: the -curved ones along curved paths).
-inline const std::vector<std::string> kPassesMethods = {"sharp", "postprocess", "postprocess-curved", "hybrid",
-                                                        "hybrid-curved"};
+// The methods it times (bench/method_variants.h: the -curved ones along curved paths, the
+// hybrid without its shutter rays).
+inline const std::vector<std::string> kPassesMethods = {"sharp",         "postprocess",
+                                                        "postprocess-curved", "hybrid",
+                                                        "hybrid-curved", "hybrid-without-shutter-rays"};
 
 struct PassesSuiteOptions {
   std::vector<std::string> scenes;  // reference scene names or glTF paths

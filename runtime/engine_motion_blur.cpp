@@ -192,7 +192,7 @@ vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
   FramePlan plan;
   plan.run(GpuScene::kFrameInputs);
   plan.run(kPackPass);
-  passes_->hybrid.plan(plan, scene_, frameTime);
+  passes_->hybrid.plan(plan, scene_, frameTime, settings_);
   const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, *passes_->gpuScene, frameTime, width_, height_,
                                                settings_, plan);
   passes_->plan = plan;

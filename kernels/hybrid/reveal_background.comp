@@ -55,7 +55,7 @@ void main() {
   ray.ignoreObjectId = HMB_IGNORE_NONE;
   ray.pad0 = 0u;
   ray.pad1 = 0u;
-  const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, 1u, HMB_TRACE_CULL_BACK_FACES);
+  const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES);
   const vec3 direction = ray.directionTMax.xyz;
 
   BvhHit hit;
@@ -67,13 +67,13 @@ void main() {
     hit = closestHit(ray, scene);
     if (hit.triangle != HMB_NO_HIT) {
       const vec3 eye = ray.originTMin.xyz;
-      const float firstLuminance = luminance(shadeHit(hitRecord(hit, eye, direction, hit.instance)));
+      const float firstLuminance = luminance(shadeHit(hitRecord(hit, eye, direction, hit.instance * params.timeCount)));
       for (uint step = 0u; step < params.maxRecursion; ++step) {
         ray.originTMin.w = pastHit(hit.t);
         hit = closestHit(ray, scene);
         ++traces;
         if (hit.triangle == HMB_NO_HIT) break;
-        const float difference = abs(luminance(shadeHit(hitRecord(hit, eye, direction, hit.instance))) - firstLuminance);
+        const float difference = abs(luminance(shadeHit(hitRecord(hit, eye, direction, hit.instance * params.timeCount))) - firstLuminance);
         if (difference > params.luminanceThreshold * max(firstLuminance, 1e-3)) break;
       }
     }
@@ -88,12 +88,12 @@ void main() {
   // The hit point now and at the previous frame: carried into the instance's space with the
   // frame-time transform and out again with the previous one.
   const vec3 world = ray.originTMin.xyz + hit.t * direction;
-  const vec4 objectPoint = objectFromWorldAt(hit.instance) * vec4(world, 1.0);
+  const vec4 objectPoint = objectFromWorldAt(hit.instance * params.timeCount) * vec4(world, 1.0);
   const vec4 previousClip = camera.viewProjPrevious * (instanceWorldPrevious(hit.instance) * objectPoint);
   vec2 motion = vec2(0.0);
   if (previousClip.w > 0.0) motion = centre - (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(params.width, params.height);
 
-  const HitRecord record = hitRecord(hit, ray.originTMin.xyz, direction, hit.instance);
+  const HitRecord record = hitRecord(hit, ray.originTMin.xyz, direction, hit.instance * params.timeCount);
   const vec3 shaded = shadeHit(record);
   const vec3 color = finite3(shaded) ? shaded : vec3(0.0);  // a user's shading too
   WRITE_LAYER(revealed, index, color, record.normal, record.objectId, hit.t, motion);  // non-finite motion packs as none

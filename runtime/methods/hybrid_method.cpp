@@ -34,7 +34,7 @@ class HybridMethod final : public FrameMethod {
     blur.configure(*result.postprocess);
     if (!(settings.skipUnneededPasses && settings.reuseAcrossFrames)) hybrid_.forgetTraceScene();
     FramePlan blurPlan;
-    hybrid_.plan(blurPlan, request.scene, request.frameTime);
+    hybrid_.plan(blurPlan, request.scene, request.frameTime, result.hybrid->settings);
     planBlur(result.plan, blurPlan, still);
     passes::planTexturePath(result.plan, scene);
 
@@ -74,7 +74,7 @@ class HybridMethod final : public FrameMethod {
   // when it is empty they dispatch no groups, and the plan says so.
   void collectHybridLayers(const FrameRequest& request, bool still, RenderResult& result) const {
     const uint64_t pixels = uint64_t(request.width) * request.height;
-    std::vector<uint32_t> mask(pixels, 0u), revealedId(pixels, 0u);
+    std::vector<uint32_t> mask(pixels, 0u), revealedId(pixels, 0u), shutterRays(pixels, 0u);
     std::vector<glm::vec4> revealed(pixels, glm::vec4(0.0f)), revealedDepth(pixels, glm::vec4(0.0f));
     if (!still) {
       const passes::RayMaskCounts counts = hybrid_.rayMask().counts();
@@ -94,6 +94,17 @@ class HybridMethod final : public FrameMethod {
         revealedDepth[i] = glm::vec4(revealedAll.depth[i], 0.0f, 0.0f, 0.0f);
         revealedId[i] = revealedAll.objectId[i];
       }
+      if (hybrid_.tracesShutterRays()) {
+        const passes::ShutterRayCounts shutter = hybrid_.shutterRays().counts();
+        result.hybrid->shutterRayPixels = shutter.pixels;
+        result.hybrid->shutterRays = shutter.rays;
+        std::vector<uint32_t> entries = hybrid_.shutterRays().list().download<uint32_t>();
+        entries.resize(std::min<size_t>(entries.size(), shutter.pixels));
+        for (const uint32_t entry : entries)
+          if (const uint32_t i = gpu::shutterRayEntryPixel(entry); i < pixels) shutterRays[i] = gpu::shutterRayEntryRays(entry);
+        if (shutter.pixels == 0)
+          result.plan.noteNoWork(passes::HybridStage::kShutterRaysTrace, "no moving pixel's path crosses another object");
+      }
       if (result.hybrid->edgeCandidates == 0)
         result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");
       if (result.hybrid->revealedPixels == 0) {
@@ -111,6 +122,8 @@ class HybridMethod final : public FrameMethod {
     result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));
     result.image.layers.push_back(vec4Layer("revealedDepth", {"Z"}, revealedDepth));
     result.image.layers.push_back(io::ImageLayer{"revealedObjectId", {"id"}, true, {}, std::move(revealedId)});
+    // Rays each pixel took over the shutter (0: the composite's colour stands).
+    result.image.layers.push_back(io::ImageLayer{"shutterRays", {"rays"}, true, {}, std::move(shutterRays)});
   }
 
   FrameResources& resources_;

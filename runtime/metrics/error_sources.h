@@ -3,8 +3,9 @@
 // first match wins:
 // - curved path: a path near the pixel bends off the straight line that screen-space blur
 //   assumes (rotation, dolly, perspective) by more than bendPixels at mid-shutter;
-// - inner blur, traced: the pixel's own surface moves and the hybrid's ray mask traced it (what
-//   error is left there is the revealed background's: wrong surface, or gathered wrongly);
+// - inner blur, traced: the pixel's own surface moves and the hybrid traced it (its ray mask:
+//   what error is left there is the revealed background's, wrong surface or gathered wrongly;
+//   or its shutter rays: their few shutter times);
 // - inner blur, not traced: the pixel's own surface moves and no ray revealed what is behind it
 //   (partial occlusion left to the gather: every pixel of a method that traces nothing);
 // - outer blur: the pixel's surface stands still and a moving one near it sweeps over it;

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "kernels/hybrid/hybrid_layout.h"
 #include "runtime/error.h"
 #include "scenes/scene.h"
 
@@ -35,6 +36,9 @@ settings::Table<Choices, Settings> makeTable() {
              &Choices::maskBackgroundBoost, &Settings::maskBackgroundBoost, factor),
       number("mask-foreground-divide", "hybrid", "weights composite: foreground weight divisor in the mask",
              &Choices::maskForegroundDivide, &Settings::maskForegroundDivide, factor),
+      number("shutter-rays", "hybrid",
+             "shutter strata for the rays of pixels whose path crosses another object (0 off; 2, 4, 8 or 16)",
+             &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA}),
   };
 }
 
@@ -62,6 +66,8 @@ void validate(const HybridSettings& s) {
     throw Error("hybrid settings: the hybrid method blurs with the McGuire filter (filter mcguire)");
   if (s.composite == HybridComposite::Coverage && s.blur.effectiveRange() != GatherRange::Adapted)
     throw Error("hybrid settings: the coverage composite needs the adapted range (range adapted)");
+  if (s.shutterRays != 0 && (s.shutterRays < 2 || (s.shutterRays & (s.shutterRays - 1)) != 0))
+    throw Error("hybrid settings: shutter-rays must be 0, 2, 4, 8 or 16, not " + std::to_string(s.shutterRays));
   // The weights form's gather would follow the paths but its mask weights assume straight ones.
   if (s.composite == HybridComposite::Weights && s.blur.motionPath == MotionPath::Curved)
     throw Error("hybrid settings: the weights composite follows straight paths only (motion-path linear)");

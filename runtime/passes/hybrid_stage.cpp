@@ -1,6 +1,7 @@
 #include "runtime/passes/hybrid_stage.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,7 +21,8 @@ HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProce
       reveal_(context, hits),
       gather_(context),
       backgroundGather_(context),
-      composite_(context) {}
+      composite_(context),
+      shutterRays_(context, hits) {}
 
 HybridStage::~HybridStage() = default;
 
@@ -36,20 +38,52 @@ void HybridStage::forgetTraceScene() {
   buildsInstanceTree_ = false;
 }
 
-void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const {
+namespace {
+
+// Why a frame traces no shutter rays; empty when it does.
+std::string shutterRaysSkipped(const scene::Scene& scene, const HybridSettings& settings) {
+  if (settings.shutterRays == 0) return "shutter-rays 0: turned off";
+  if (scene.hasDeformation())
+    return "deforming meshes are traced at the frame time only: shutter rays would see them in the wrong pose";
+  return {};
+}
+
+// The trace scene's times: the frame's first (the reveal's), then each shutter stratum's centre.
+std::vector<float> traceTimes(const scene::Scene& scene, float frameTime, const HybridSettings& settings) {
+  std::vector<float> times = {frameTime};
+  if (!shutterRaysSkipped(scene, settings).empty()) return times;
+  const float exposure = settings.blur.exposure;
+  for (uint32_t s = 0; s < settings.shutterRays; ++s)
+    times.push_back(frameTime - exposure + exposure * (float(s) + 0.5f) / float(settings.shutterRays));
+  return times;
+}
+
+}  // namespace
+
+void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime,
+                       const HybridSettings& settings) const {
   const bool sameMeshes = planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
   planDeformedTrees(plan, scene);
-  const float times[] = {frameTime};
+  const std::vector<float> times = traceTimes(scene, frameTime, settings);
   if (sameMeshes && !scene.hasDeformation() && traceScene_->hasShutterTimes(scene, times))
     plan.skip(kBvhInstances, "the top-level tree of the last frame serves this one: no instance moved since");
   else
     plan.run(kBvhInstances);
   postProcess_.planTiles(plan);
   rayMask_.plan(plan);
+  const std::string shutterSkipped = shutterRaysSkipped(scene, settings);
+  const auto planShutterRays = [&](const char* pass) {
+    if (shutterSkipped.empty())
+      plan.run(pass);
+    else
+      plan.skip(pass, shutterSkipped);
+  };
+  planShutterRays(kShutterRaysList);
   gather_.plan(plan);
   plan.run(RevealPass::kName);
   plan.run(kGatherBackground);
   plan.run(kComposite);
+  planShutterRays(kShutterRaysTrace);
 }
 
 HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene,
@@ -63,14 +97,20 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   // plan() decided what the last frame's trees still serve; only the others are built.
   if (const std::optional<double> meshMs = prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
     timings.setup = {{{kBvhMeshes, *meshMs}}, *meshMs};
-  const float times[] = {frameTime};
+  traceTimes_ = traceTimes(scene, frameTime, settings);
+  shutterStrata_ = plan.runs(kShutterRaysTrace) ? settings.shutterRays : 0u;
+  if (shutterStrata_ != 0 && traceTimes_.size() != shutterStrata_ + 1)
+    throw Error("hybrid: the plan traces shutter rays that these settings leave out");
   if (plan.runs(TraceScene::kRefit))
     vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
   buildsInstanceTree_ = plan.runs(kBvhInstances);
-  if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, times);
-  camera_ = pinholeCamera(scene, frameTime, width, height);
-  if (!cameraRays_.handle())
-    cameraRays_ = vk::Buffer(context_, sizeof(gpu::PinholeCamera), vk::MemoryUse::Device, "reveal camera rays");
+  if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, traceTimes_);
+  cameras_.clear();
+  for (const float t : traceTimes_) cameras_.push_back(pinholeCamera(scene, t, width, height));
+  const uint64_t cameraBytes = cameras_.size() * sizeof(gpu::PinholeCamera);
+  if (!cameraRays_.handle() || cameraRays_.size() < cameraBytes)
+    cameraRays_ = vk::Buffer(context_, cameraBytes, vk::MemoryUse::Device, "camera rays (frame, shutter strata)");
+  if (shutterStrata_ != 0) shutterRays_.prepare(width, height);
 
   rayMask_.prepare(width, height);
   if (size_.changesTo(width, height)) {
@@ -92,7 +132,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // Every frame recorded from this prepare() builds the staged tree (a frame recorded again
   // must not find it missing).
   if (buildsInstanceTree_) traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
-  frame.write(RevealPass::kName, cameraRays_, std::span<const gpu::PinholeCamera>(&camera_, 1));
+  frame.write(RevealPass::kName, cameraRays_, std::span<const gpu::PinholeCamera>(cameras_));
   const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height(),
                                 curved ? shutterPaths : nullptr};
   postProcess_.recordTiles(frame, raster);
@@ -109,6 +149,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // all stay on their object (alpha exactly 1) need no reveal (38% of bistro's mask at 1280x720).
   maskParameters.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
   rayMask_.record(frame, raster, maskParameters);
+  if (shutterStrata_ != 0) shutterRays_.recordList(frame, raster, blur, postProcess_.tileMax(), rayMask_, shutterStrata_);
   // Post-process's image outside the mask; the composite below writes the mask's pixels.
   gather_.recordOutsideMask(frame, raster, postProcess_.neighborMax(), output, settings_.blur, rayMask_.mask());
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, layer.surfaces(), rayMask_.list(), rayMask_.counters(),
@@ -118,6 +159,8 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
                            rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, raster.shutterPaths);
   composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(),
                     backgroundBlurred_, output, blur, settings_.composite, raster.shutterPaths);
+  if (shutterStrata_ != 0)
+    shutterRays_.recordTrace(frame, *traceScene_, gpuScene, cameraRays_, shutterStrata_, output);
 }
 
 }  // namespace hmb::passes

@@ -4,7 +4,9 @@
 //   -> ray reveal (RevealPass) at mask pixels -> gather of the background layer (the revealed
 //   surfaces over the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the
 //   background composited in at mask pixels (CompositePass, indirect;
-//   kernels/hybrid/composite.comp says how).
+//   kernels/hybrid/composite.comp says how) -> shutter rays (ShutterRaysPass) at the moving
+//   pixels whose path crosses another object: rays at stratified shutter times replace the
+//   colour there.
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
 // mask and the revealed surfaces.
 #pragma once
@@ -12,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/background_gather_pass.h"
@@ -21,6 +24,7 @@
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "runtime/passes/reveal_pass.h"
+#include "runtime/passes/shutter_rays_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/scene.h"
@@ -41,6 +45,8 @@ class HybridStage {
   static constexpr const char* kBvhInstances = "hybrid-bvh-instances";  // per frame
   static constexpr const char* kGatherBackground = BackgroundGatherPass::kName;
   static constexpr const char* kComposite = CompositePass::kName;
+  static constexpr const char* kShutterRaysList = ShutterRaysPass::kList;
+  static constexpr const char* kShutterRaysTrace = ShutterRaysPass::kTrace;
 
   // postProcess: the stage whose tiles and gather both layers use (configured for the
   // McGuire filter and the adapted range by the caller).
@@ -48,10 +54,10 @@ class HybridStage {
   HybridStage(const vk::Context& context, PostProcessStage& postProcess, const HitShading* hits = nullptr);
   ~HybridStage();
 
-  // The hybrid's passes for a frame of `scene` at `frameTime`: the trace scene's trees are
-  // skipped when the last frame's serve (same meshes; no instance moved, nothing deforms), as
-  // prepare() does. Deforming meshes are refitted every frame.
-  void plan(FramePlan& plan, const scene::Scene& scene, float frameTime) const;
+  // The hybrid's passes for a frame of `scene` at `frameTime` with `settings`: the trace
+  // scene's trees are skipped when the last frame's serve (same meshes; no instance moved,
+  // nothing deforms), as prepare() does. Deforming meshes are refitted every frame.
+  void plan(FramePlan& plan, const scene::Scene& scene, float frameTime, const HybridSettings& settings) const;
   // Builds the trace scene of `scene` (its mesh trees: returned as setup time, waited for)
   // where `plan` (this stage's plan() for the same frame) runs it, keeping the last frame's
   // where it skips it; stages the instances at the frame time for record(), which builds their
@@ -75,6 +81,9 @@ class HybridStage {
   void forgetTraceScene();
 
   const RayMaskStage& rayMask() const { return rayMask_; }
+  const ShutterRaysPass& shutterRays() const { return shutterRays_; }
+  // Whether the frame prepare()d traces shutter rays (the plan runs them).
+  bool tracesShutterRays() const { return shutterStrata_ != 0; }
   // After prepare(): the meshes' trees (nodes, triangle indices) in bytes per mesh
   // triangle (each mesh's tree is built once, however many instances it has), as allocated
   // and as built; none without triangles.
@@ -93,10 +102,16 @@ class HybridStage {
   GatherPass gather_;  // post-process's, outside the mask
   BackgroundGatherPass backgroundGather_;
   CompositePass composite_;
+  ShutterRaysPass shutterRays_;
   HybridSettings settings_;
   std::unique_ptr<TraceScene> traceScene_;
   ImageSize size_;
-  gpu::PinholeCamera camera_{};  // the frame's, written into cameraRays_ by record()
+  // The trace scene's times, the frame's first, then the shutter strata's when the frame traces
+  // shutter rays (shutterStrata_ of them, 0 when it does not); the camera at each, written
+  // into cameraRays_ by record().
+  std::vector<float> traceTimes_;
+  uint32_t shutterStrata_ = 0;
+  std::vector<gpu::PinholeCamera> cameras_;
   bool buildsInstanceTree_ = false;  // prepare() staged the instances: record() builds their tree
   vk::Buffer cameraRays_;
   ImageLayer revealed_;

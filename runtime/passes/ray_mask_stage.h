@@ -59,6 +59,7 @@ class RayMaskStage {
   const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
   const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal
   const vk::Buffer& candidates() const { return candidates_; }  // uint pixel index per edge candidate
+  const vk::Buffer& movingTiles() const { return tiles_; }  // uint tile index per moving tile (counters' tileCount)
   const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
   // After the frame: the mask's size and the reveal's traces.
   RayMaskCounts counts() const;

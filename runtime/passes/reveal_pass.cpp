@@ -22,7 +22,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                         const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,
                         const vk::Buffer& counters, const ImageLayer& output, uint32_t width, uint32_t height,
                         const HybridSettings& settings) const {
-  if (ts.timeCount() != 1) throw Error("ray reveal: the trace scene must hold the frame time alone");
+  if (ts.timeCount() == 0) throw Error("ray reveal: the trace scene holds no shutter time");
   const FrameCamera& camera = gpuScene.camera();
   const gpu::RevealParams params{width,
                                  height,
@@ -34,7 +34,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  camera.znear,
                                  camera.zfar,
                                  camera.zfar,
-                                 0u,
+                                 ts.timeCount(),
                                  0u,
                                  0u};
   const vk::ComputeKernel& kernel = kernel_.forScene(gpuScene, &ts);

@@ -25,7 +25,7 @@ class RevealPass {
   static constexpr const char* kName = "ray-reveal";
   // hits: how hits are shaded (null: the library's shading).
   explicit RevealPass(const vk::Context& context, const HitShading* hits = nullptr);
-  // traceScene: shutter times set to the frame time alone. cameraRays: one gpu::PinholeCamera
+  // traceScene: shutter times set, the frame time first (the reveal traces at it). cameraRays: one gpu::PinholeCamera
   // at the frame time. rasterSurfaces: the G-buffer's surfaces (for their object ids). list, counters: RayMaskStage's.
   // output: written at the listed pixels.
   void record(vk::FrameRecorder& frame, const TraceScene& traceScene, const GpuScene& gpuScene,

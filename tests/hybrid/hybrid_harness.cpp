@@ -1,11 +1,14 @@
 #include "tests/hybrid/hybrid_harness.h"
 
 #include <algorithm>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "kernels/hybrid/hybrid_layout.h"
 #include "kernels/shared/layer_layout.h"
@@ -16,6 +19,7 @@
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/reveal_pass.h"
+#include "runtime/passes/shutter_rays_pass.h"
 #include "runtime/passes/tile_max_pass.h"
 #include "runtime/trace_scene.h"
 #include "runtime/vulkan/buffer.h"
@@ -70,7 +74,13 @@ passes::LayerContents contentsOf(const MaskLayer& layer) {
 
 }  // namespace
 
-RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters) {
+namespace {
+
+// The ray mask's passes on `layer`; `more` records after them in the same frame.
+RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters,
+                              const std::function<void(vk::FrameRecorder&, const passes::MotionBlurInputs&,
+                                                       const passes::RayMaskStage&, const passes::RayMaskParameters&)>&
+                                  more) {
   const size_t pixels = size_t(layer.width) * layer.height;
   const passes::PackedLayer packed = passes::packLayer(contentsOf(layer));
   const vk::Buffer samples = vk::uploadedBuffer(context, packed.samples, "test samples");
@@ -95,6 +105,7 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   tileMax.record(frame, surfaces, tiles, layer.width, layer.height, parameters.blur.tileSize,
                  parameters.blur.velocityScale);
   stage.record(frame, inputs, withTiles);
+  if (more) more(frame, inputs, stage, withTiles);
   frame.submitAndWait();
 
   RayMaskReadback out;
@@ -107,6 +118,37 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
   const std::vector<uint32_t> all = downloadFirst<uint32_t>(stage.list(), pixels);
   out.unrevealedList.assign(all.end() - std::min<size_t>(out.counters.unrevealedCount, pixels), all.end());
   out.candidates = downloadFirst<uint32_t>(stage.candidates(), std::min<size_t>(out.counters.candidateCount, pixels));
+  return out;
+}
+
+}  // namespace
+
+RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters) {
+  return recordRayMask(context, layer, parameters, nullptr);
+}
+
+ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& layer,
+                                         const passes::RayMaskParameters& parameters, uint32_t strata) {
+  passes::ShutterRaysPass pass(context);
+  pass.prepare(layer.width, layer.height);
+  recordRayMask(context, layer, parameters,
+                [&](vk::FrameRecorder& frame, const passes::MotionBlurInputs& inputs, const passes::RayMaskStage& stage,
+                    const passes::RayMaskParameters& p) {
+                  pass.recordList(frame, inputs, p.blur, *p.tileMax, stage, strata);
+                });
+  ShutterRayListReadback out;
+  out.counters = pass.counters().download<gpu::ShutterRayCounters>().at(0);
+  const size_t pixels = size_t(layer.width) * layer.height;
+  out.rays.assign(pixels, 0u);
+  for (const uint32_t entry : downloadFirst<uint32_t>(pass.list(), std::min<size_t>(out.counters.count, pixels))) {
+    const uint32_t pixel = gpu::shutterRayEntryPixel(entry);
+    if (pixel >= pixels) {
+      ADD_FAILURE() << "shutter ray list entry " << entry << " names no pixel";
+      continue;
+    }
+    EXPECT_EQ(out.rays[pixel], 0u) << "pixel " << pixel << " listed twice";
+    out.rays[pixel] = gpu::shutterRayEntryRays(entry);
+  }
   return out;
 }
 

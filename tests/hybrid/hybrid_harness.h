@@ -39,6 +39,16 @@ struct RayMaskReadback {
 // RayMaskStage on `layer` (edge mask, range check, compaction, dispatch size).
 RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const passes::RayMaskParameters& parameters);
 
+// ShutterRaysPass's list (list_shutter_rays) of `layer` at `strata`, after the ray mask's
+// moving tiles (RayMaskStage): the rays per pixel the list holds (0 where it lists none; a
+// pixel listed twice fails the test), and its counters.
+struct ShutterRayListReadback {
+  std::vector<uint32_t> rays;
+  gpu::ShutterRayCounters counters{};
+};
+ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& layer,
+                                         const passes::RayMaskParameters& parameters, uint32_t strata);
+
 // One gather of `layer`: the composite (CompositePass) with `background`, which needs the mask
 // and the object ids; else with `list`, the background gather (BackgroundGatherPass) of the
 // listed pixels, its dispatch sized on the host as size_list_dispatch sizes it, reading

@@ -169,6 +169,39 @@ std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskPara
 
 }  // namespace
 
+std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskParameters& p, uint32_t strata) {
+  const MaskLayer layer = stored(input);
+  const uint32_t width = layer.width, height = layer.height, tileSize = p.blur.tileSize;
+  const uint32_t tilesX = (width + tileSize - 1) / tileSize;
+  const std::vector<glm::vec4> tiles = mblur::tileMax(layer.velocity, width, height, tileSize, p.blur.velocityScale);
+  const auto objectAt = [&](glm::ivec2 q) { return layer.objectId[indexOf(width, q)]; };
+  std::vector<uint32_t> out(size_t(width) * height, 0u);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const glm::vec4 fastest = tiles[size_t(y / tileSize) * tilesX + x / tileSize];
+      if (!(fastest.z >= gpu::kMinBlurPixels)) continue;  // list_moving_tiles
+      const size_t index = size_t(y) * width + x;
+      const uint32_t id = layer.objectId[index];
+      float speed;
+      const glm::vec2 own = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
+      const bool moves = speed >= 0.5f;
+      const glm::vec2 v = moves ? own : glm::vec2(fastest);
+      const float length = moves ? speed : fastest.z;
+      // The path X + u v, u in [-1, 1], and a pixel past either end, in steps of at most a pixel.
+      const glm::vec2 reach = v * (1.0f + 1.0f / length);
+      const int steps = int(std::ceil(length + 1.0f));
+      const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+      bool crosses = false;
+      for (int k = 1; k <= steps && !crosses; ++k) {
+        const glm::vec2 along = reach * (float(k) / float(steps));
+        crosses = objectAt(nearestPixel(centre + along, width, height)) != id ||
+                  objectAt(nearestPixel(centre - along, width, height)) != id;
+      }
+      if (crosses) out[index] = gpu::shutterRaysFor(std::max(speed, fastest.z), strata);
+    }
+  return out;
+}
+
 std::vector<uint32_t> edgeMask(const MaskLayer& input, const passes::RayMaskParameters& p) {
   const MaskLayer layer = stored(input);
   const std::vector<bool> candidates = candidatesOf(layer, p);

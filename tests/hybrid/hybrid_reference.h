@@ -66,6 +66,11 @@ std::vector<uint32_t> rangeCheck(const MaskLayer& layer, const std::vector<uint3
 std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint32_t>& mask,
                                  const passes::RayMaskParameters& parameters);
 
+// list_shutter_rays.comp: the rays each pixel takes over the shutter (0: not listed), for a
+// frame of `strata` strata, from the gather's tile-max at parameters.blur.tileSize. Only pixels
+// of tiles whose fastest pixel moves kMinBlurPixels or more (list_moving_tiles) are listed.
+std::vector<uint32_t> shutterRays(const MaskLayer& layer, const passes::RayMaskParameters& parameters, uint32_t strata);
+
 // size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
 // The same with `unrevealed` more mask pixels at the list's back: maskPixels and the

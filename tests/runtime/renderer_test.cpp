@@ -257,9 +257,10 @@ TEST_F(RendererTest, TimeSlicesAreTheMeanOfTheirSlicesFrames) {
   EXPECT_EQ(context().validationErrors(), 0u);
 }
 
-// The hybrid's image is the post-process gather's outside the ray mask, bit for bit: its
-// composite rewrites the mask's pixels alone. Both paths, on a scene whose mask is not empty;
-// post-process with the hybrid's foreground boost (the two methods' defaults differ).
+// The hybrid's image is the post-process gather's outside the ray mask and the shutter rays'
+// pixels, bit for bit: its composite rewrites the mask's pixels alone, its shutter rays their
+// own. Both paths, on a scene whose mask is not empty; post-process with the hybrid's
+// foreground boost (the two methods' defaults differ).
 TEST_F(RendererTest, TheHybridEqualsPostProcessOutsideItsRayMask) {
   const scene::Scene scene = scene::loadScene("living-room");
   Renderer renderer(context());
@@ -270,29 +271,40 @@ TEST_F(RendererTest, TheHybridEqualsPostProcessOutsideItsRayMask) {
     settings.postprocess.motionPath = path;
     settings.method = Method::Hybrid;
     const RenderResult hybrid = renderer.render(scene, settings);
-    ASSERT_TRUE(hybrid.hybrid);
+    settings.hybrid.shutterRays = 0;  // the composite's pixels alone: here every one also takes shutter rays
+    const RenderResult composited = renderer.render(scene, settings);
+    ASSERT_TRUE(hybrid.hybrid && composited.hybrid);
     settings.method = Method::PostProcess;
     settings.postprocess.foregroundBoostPixels = hybrid.hybrid->settings.blur.foregroundBoostPixels;
     const RenderResult post = renderer.render(scene, settings);
     ASSERT_TRUE(post.postprocess);
     EXPECT_EQ(*post.postprocess, hybrid.hybrid->settings.blur);
     const std::vector<float>& a = post.image.find("")->values;
-    const std::vector<float>& b = hybrid.image.find("")->values;
     const std::vector<uint32_t>& mask = hybrid.image.find("rayMask")->ids;
-    ASSERT_EQ(a.size(), b.size());
-    ASSERT_EQ(mask.size() * 4, b.size());
-    size_t inMask = 0, changed = 0;
+    const std::vector<uint32_t>& rays = hybrid.image.find("shutterRays")->ids;
+    ASSERT_EQ(mask.size() * 4, a.size());
+    ASSERT_EQ(rays.size(), mask.size());
+    ASSERT_EQ(composited.image.find("rayMask")->ids, mask);
+    // in[0]: the mask's pixels, in[1]: the shutter rays'; changed[k]: those that differ from
+    // post-process, without shutter rays and with.
+    size_t in[2] = {}, changed[2] = {};
     for (size_t i = 0; i < mask.size(); ++i) {
-      const bool same = std::equal(a.begin() + 4 * i, a.begin() + 4 * i + 4, b.begin() + 4 * i);
-      if (mask[i] != 0u) {
-        ++inMask;
-        changed += !same;
-      } else {
-        EXPECT_TRUE(same) << "pixel " << i << " outside the mask";
+      for (int k = 0; k < 2; ++k) {
+        const std::vector<float>& b = (k == 0 ? composited : hybrid).image.find("")->values;
+        ASSERT_EQ(a.size(), b.size());
+        const bool same = std::equal(a.begin() + 4 * i, a.begin() + 4 * i + 4, b.begin() + 4 * i);
+        const bool inside = k == 0 ? mask[i] != 0u : (mask[i] != 0u || rays[i] != 0u);
+        if (inside) {
+          ++in[k];
+          changed[k] += !same;
+        } else {
+          EXPECT_TRUE(same) << "pixel " << i << " outside the mask" << (k == 1 ? " and the shutter rays" : "");
+        }
       }
     }
-    EXPECT_GT(inMask, 20u);
-    EXPECT_GT(changed, inMask / 2) << "the composite changes the mask's pixels";
+    EXPECT_GT(in[0], 20u);
+    EXPECT_GT(changed[0], in[0] / 2) << "the composite changes the mask's pixels";
+    EXPECT_GT(changed[1], in[1] / 2) << "the composite and the shutter rays change theirs";
   }
   EXPECT_EQ(context().validationErrors(), 0u);
 }

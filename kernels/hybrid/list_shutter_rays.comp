@@ -1,0 +1,73 @@
+#version 450
+// Lists the pixels a single frame cannot blur right, with the rays each will take over the
+// shutter (trace_shutter_rays). A gather reads one frame, whose edges are sampled at pixel
+// centres: where an edge sweeps over a pixel during the shutter, the reference sees it pass
+// through sub-pixel positions that frame never held (the error of bistro's moving camera: a
+// few pixels of blur at every silhouette). Listed: a pixel whose path meets another object,
+// the path X + u v for u in [-1, 1] and a pixel on at each end, v its own displacement when it
+// moves half a pixel or more, else its tile's fastest (a still pixel a moving neighbour may
+// sweep over). Its rays: shutterRaysFor the faster of its own and its tile's fastest blur.
+// One group per moving tile (list_moving_tiles), its lanes striding over the tile as
+// edge_candidates' do; pixels of still tiles are never listed.
+#extension GL_GOOGLE_include_directive : require
+#include "hybrid_layout.h"
+#include "../mblur/mblur_layout.h"
+#include "../shared/layer_layout.h"
+
+layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
+
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILE_MAX) readonly buffer TileMax { vec4 tileMax[]; };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_COUNTERS) buffer Counters { ShutterRayCounters counters; };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_LIST) writeonly buffer List { uint list[]; };
+layout(push_constant) uniform Params { ShutterRayListParams params; };
+
+#include "../mblur/mblur_common.glsl"
+#include "ray_mask_common.glsl"
+
+uint objectAt(ivec2 p) { return surfaceObjectId(surfaces[uint(p.y) * params.blur.width + uint(p.x)]); }
+
+// The rays pixel `pixel` takes, 0 when it is not listed. fastest: its tile's (velocity, speed).
+uint shutterRaysAt(ivec2 pixel, vec3 fastest) {
+  const uvec4 here = surfaces[uint(pixel.y) * params.blur.width + uint(pixel.x)];
+  const uint id = surfaceObjectId(here);
+  float speed;
+  const vec2 own = gatherVelocity(surfaceVelocity(here), params.blur.velocityScale, params.blur.maxSpeed, speed);
+  const bool moves = speed >= 0.5;
+  const vec2 v = moves ? own : fastest.xy;
+  const float length = moves ? speed : fastest.z;
+  // Steps of at most a pixel over the path and a pixel past either end.
+  const vec2 reach = v * (1.0 + 1.0 / length);
+  const int steps = int(ceil(length + 1.0));
+  const vec2 centre = vec2(pixel) + 0.5;
+  bool crosses = false;
+  for (int k = 1; k <= steps && !crosses; ++k) {
+    const vec2 along = reach * (float(k) / float(steps));
+    crosses = objectAt(nearestPixel(centre + along, params.blur.width, params.blur.height)) != id ||
+              objectAt(nearestPixel(centre - along, params.blur.width, params.blur.height)) != id;
+  }
+  return crosses ? shutterRaysFor(max(speed, fastest.z), params.strata) : 0u;
+}
+
+void main() {
+  const uint tile = tiles[listedTileEntry()];
+  // A moving tile's fastest moves kMinBlurPixels or more (list_moving_tiles).
+  const vec3 fastest = tileMax[tile].xyz;
+  const uvec2 begin = uvec2(tile % params.blur.tilesX, tile / params.blur.tilesX) * params.blur.tileSize;
+  const uvec2 end = min(begin + params.blur.tileSize, uvec2(params.blur.width, params.blur.height));
+  for (uint y = begin.y + gl_LocalInvocationID.y; y < end.y; y += HMB_MASK_TILE_GROUP_Y) {
+    for (uint x = begin.x + gl_LocalInvocationID.x; x < end.x; x += HMB_MASK_TILE_GROUP_X) {
+      const uint rays = shutterRaysAt(ivec2(x, y), fastest);
+      if (rays == 0u) continue;
+      // The list's dispatch grows with it: a group per HMB_MASK_LIST_GROUP entries.
+      const uint slot = atomicAdd(counters.count, 1u);
+      list[slot] = shutterRayEntry(y * params.blur.width + x, rays);
+      if (slot % HMB_MASK_LIST_GROUP != 0u) continue;
+      const uint group = slot / HMB_MASK_LIST_GROUP;
+      atomicMax(counters.dispatchX, min(group + 1u, HMB_SHUTTER_RAY_GROUPS_PER_ROW));
+      atomicMax(counters.dispatchY, group / HMB_SHUTTER_RAY_GROUPS_PER_ROW + 1u);
+      if (group == 0u) counters.dispatchZ = 1u;
+    }
+  }
+}

@@ -1,0 +1,85 @@
+#include "runtime/passes/shutter_rays_pass.h"
+
+#include <cstddef>
+#include <string>
+
+#include "runtime/error.h"
+#include "runtime/gpu_scene.h"
+#include "runtime/passes/post_process_filter.h"
+#include "runtime/passes/ray_mask_stage.h"
+#include "runtime/trace_scene.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+
+ShutterRaysPass::ShutterRaysPass(const vk::Context& context, const HitShading* hits)
+    : context_(context),
+      listKernel_(context, "hybrid/list_shutter_rays", sizeof(gpu::ShutterRayListParams)),
+      traceKernel_(context, "hybrid/trace_shutter_rays", sizeof(gpu::ShutterRayTraceParams), ShadingKernel::Rays::Traced,
+                   hits) {}
+
+void ShutterRaysPass::prepare(uint32_t width, uint32_t height) {
+  if (width == 0 || height == 0) throw Error("shutter rays: empty image");
+  if (!size_.changesTo(width, height)) return;
+  list_ = {};  // the old list goes first: the two never take memory at once
+  list_ = vk::Buffer(context_, uint64_t(width) * height * sizeof(uint32_t), vk::MemoryUse::Device, "shutter ray list");
+  if (!counters_.handle())
+    counters_ = vk::Buffer(context_, sizeof(gpu::ShutterRayCounters), vk::MemoryUse::Device, "shutter ray counters");
+  size_.madeFor(width, height);
+}
+
+namespace {
+
+void requireStrata(uint32_t strata) {
+  if (strata < 2 || strata > HMB_MAX_SHUTTER_STRATA || (strata & (strata - 1)) != 0)
+    throw Error("shutter rays: the strata must be a power of two from 2 to " + std::to_string(HMB_MAX_SHUTTER_STRATA));
+}
+
+}  // namespace
+
+void ShutterRaysPass::recordList(vk::FrameRecorder& frame, const MotionBlurInputs& raster,
+                                 const gpu::GatherParams& blur, const vk::Buffer& tileMax, const RayMaskStage& rayMask,
+                                 uint32_t strata) const {
+  size_.requireMadeFor("shutter rays", raster.width, raster.height);
+  requireStrata(strata);
+  if (blur.width != raster.width || blur.height != raster.height)
+    throw Error("shutter rays: the blur's parameters are for another size");
+  frame.fill(kList, counters_, 0u);
+  const gpu::ShutterRayListParams listParams{blur, strata, 0u, 0u, 0u};
+  // One group per moving tile, as the ray mask's edge candidates.
+  frame.dispatchIndirect(kList, listKernel_,
+                         {{HMB_SHUTTER_LIST_BINDING_SURFACES, raster.surfaces},
+                          {HMB_SHUTTER_LIST_BINDING_TILE_MAX, &tileMax},
+                          {HMB_SHUTTER_LIST_BINDING_TILES, &rayMask.movingTiles()},
+                          {HMB_SHUTTER_LIST_BINDING_COUNTERS, &counters_},
+                          {HMB_SHUTTER_LIST_BINDING_LIST, &list_}},
+                         listParams, rayMask.counters(), offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
+}
+
+void ShutterRaysPass::recordTrace(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
+                                  const vk::Buffer& cameras, uint32_t strata, const vk::Buffer& output) const {
+  requireStrata(strata);
+  if (ts.timeCount() != strata + 1)
+    throw Error("shutter rays: the trace scene must hold the frame time and one time per stratum");
+  if (cameras.size() < uint64_t(ts.timeCount()) * sizeof(gpu::PinholeCamera))
+    throw Error("shutter rays: a camera per trace-scene time is needed");
+  const FrameCamera& camera = gpuScene.camera();
+  const gpu::ShutterRayTraceParams traceParams{size_.width(), size_.height(), ts.instanceCount(), ts.timeCount(),
+                                               strata,        camera.znear,  camera.zfar,         0u};
+  const vk::ComputeKernel& kernel = traceKernel_.forScene(gpuScene, &ts);
+  vk::Bindings bindings = {{HMB_SHUTTER_TRACE_BINDING_CAMERAS, &cameras},
+                           {HMB_SHUTTER_TRACE_BINDING_LIST, &list_},
+                           {HMB_SHUTTER_TRACE_BINDING_COUNTERS, &counters_},
+                           {HMB_SHUTTER_TRACE_BINDING_OUTPUT, &output}};
+  ts.bind(bindings, HMB_SHUTTER_TRACE_BINDING_TRACE_SCENE, kernel.bindsByAddress());
+  gpuScene.bind(bindings, HMB_SHUTTER_TRACE_BINDING_SCENE, kernel.bindsByAddress());
+  frame.dispatchIndirect(kTrace, kernel, bindings, traceParams, counters_,
+                         offsetof(gpu::ShutterRayCounters, dispatchX));
+}
+
+ShutterRayCounts ShutterRaysPass::counts() const {
+  const auto c = counters_.download<gpu::ShutterRayCounters>();
+  return {c.at(0).count, c.at(0).rayCount};
+}
+
+}  // namespace hmb::passes

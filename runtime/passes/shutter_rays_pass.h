@@ -1,0 +1,69 @@
+// Host side of kernels/hybrid/list_shutter_rays.comp and trace_shutter_rays.comp: the pixels
+// whose path over the shutter crosses another object (or another object's path crosses them),
+// where a gather of one frame misses the
+// edge's sub-pixel sweep, take a few rays at stratified shutter times (distributed ray
+// tracing, as the reference does) and their mean replaces the composite's colour there.
+#pragma once
+
+#include <cstdint>
+
+#include "kernels/hybrid/hybrid_layout.h"
+#include "runtime/passes/image_size.h"
+#include "runtime/passes/shading_kernel.h"
+#include "runtime/vulkan/buffer.h"
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb {
+class GpuScene;
+class TraceScene;
+}
+
+namespace hmb::vk {
+class FrameRecorder;
+}
+
+namespace hmb::passes {
+
+struct MotionBlurInputs;
+class RayMaskStage;
+
+struct ShutterRayCounts {
+  uint64_t pixels = 0;  // pixels listed
+  uint64_t rays = 0;    // rays traced
+};
+
+class ShutterRaysPass {
+ public:
+  static constexpr const char* kList = "shutter-rays-list";
+  static constexpr const char* kTrace = "shutter-rays-trace";
+
+  // hits: how hits are shaded (null: the library's shading).
+  explicit ShutterRaysPass(const vk::Context& context, const HitShading* hits = nullptr);
+
+  void prepare(uint32_t width, uint32_t height);
+  // The list, after the ray mask in the same frame (its moving tiles and their dispatch).
+  // blur: the frame's gather parameters (the mask's); tileMax: the gather's, at blur.tileSize;
+  // strata: a power of two from 2 to HMB_MAX_SHUTTER_STRATA.
+  void recordList(vk::FrameRecorder& frame, const MotionBlurInputs& raster, const gpu::GatherParams& blur,
+                  const vk::Buffer& tileMax, const RayMaskStage& rayMask, uint32_t strata) const;
+  // The rays, after the composite: traceScene holds the frame time, then one time per stratum
+  // (the strata's centres); cameras a gpu::PinholeCamera per trace-scene time. output:
+  // overwritten at the listed pixels.
+  void recordTrace(vk::FrameRecorder& frame, const TraceScene& traceScene, const GpuScene& gpuScene,
+                   const vk::Buffer& cameras, uint32_t strata, const vk::Buffer& output) const;
+
+  ShutterRayCounts counts() const;
+  // shutterRayEntry per listed pixel, counts().pixels of them.
+  const vk::Buffer& list() const { return list_; }
+  const vk::Buffer& counters() const { return counters_; }  // gpu::ShutterRayCounters
+
+ private:
+  const vk::Context& context_;
+  vk::ComputeKernel listKernel_;
+  ShadingKernel traceKernel_;
+  ImageSize size_;
+  vk::Buffer list_;
+  vk::Buffer counters_;
+};
+
+}  // namespace hmb::passes

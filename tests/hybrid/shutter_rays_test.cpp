@@ -1,0 +1,169 @@
+// list_shutter_rays.comp against the C++ reference on random and adversarial layers (which
+// pixels are listed, with how many rays, and the list's indirect dispatch), and the rule's
+// pieces by hand: rays per blur length, strata offsets and the list entry's packing.
+#include <algorithm>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/hybrid/hybrid_harness.h"
+#include "tests/hybrid/hybrid_reference.h"
+#include "tests/support/vulkan_test.h"
+
+namespace hmb::test {
+namespace {
+
+using namespace hybrid;
+using passes::RayMaskParameters;
+
+RayMaskParameters parametersWith(float maxSpeed, float velocityScale, uint32_t tileSize = 13) {
+  RayMaskParameters p;
+  p.blur.tileSize = tileSize;  // odd: partial 8x8 blocks and partial border tiles
+  p.blur.velocityScale = velocityScale;
+  p.blur.maxSpeed = maxSpeed;
+  p.blur.softZExtent = 0.03f;
+  p.edgeThreshold = 0.9f;
+  return p;
+}
+
+// Every pixel's rays as the device listed them equal the reference's; the list's dispatch
+// covers it in groups of HMB_MASK_LIST_GROUP. Returns the pixels listed.
+size_t expectListMatches(const MaskLayer& layer, const RayMaskParameters& p, uint32_t strata, const std::string& what) {
+  const ShutterRayListReadback device = runShutterRayList(VulkanTest::context(), layer, p, strata);
+  const std::vector<uint32_t> reference = shutterRays(layer, p, strata);
+  size_t listed = 0, wrong = 0;
+  for (size_t i = 0; i < reference.size(); ++i) {
+    listed += reference[i] != 0u;
+    if (device.rays[i] == reference[i]) continue;
+    if (++wrong <= 5)
+      ADD_FAILURE() << what << ": pixel (" << i % layer.width << ", " << i / layer.width << ") device "
+                    << device.rays[i] << " rays, reference " << reference[i] << " (velocity " << layer.velocity[i].x
+                    << "," << layer.velocity[i].y << ", object " << layer.objectId[i] << ")";
+  }
+  EXPECT_EQ(wrong, 0u) << what;
+  EXPECT_EQ(device.counters.count, listed) << what;
+  const uint32_t groups = (device.counters.count + HMB_MASK_LIST_GROUP - 1) / HMB_MASK_LIST_GROUP;
+  EXPECT_EQ(device.counters.dispatchX, std::min(groups, HMB_SHUTTER_RAY_GROUPS_PER_ROW)) << what;
+  EXPECT_EQ(device.counters.dispatchY, (groups + HMB_SHUTTER_RAY_GROUPS_PER_ROW - 1) / HMB_SHUTTER_RAY_GROUPS_PER_ROW)
+      << what;
+  EXPECT_EQ(device.counters.dispatchZ, groups == 0 ? 0u : 1u) << what;
+  EXPECT_EQ(device.counters.rayCount, 0u) << what << ": nothing traced yet";
+  return listed;
+}
+
+using HybridShutterRaysTest = VulkanTest;
+
+TEST_F(HybridShutterRaysTest, ListMatchesReferenceOnRandomLayers) {
+  std::mt19937 rng(23);
+  struct Case {
+    uint32_t width, height;
+    RayMaskParameters p;
+    uint32_t strata;
+  };
+  const Case cases[] = {{37, 23, parametersWith(40.0f, 1.0f), 8},     {64, 64, parametersWith(40.0f, 3.0f), 16},
+                        {129, 71, parametersWith(40.0f, 1.0f), 2},    {1, 41, parametersWith(40.0f, 1.0f), 8},
+                        {53, 1, parametersWith(40.0f, 1.0f), 4},      {1, 1, parametersWith(40.0f, 1.0f), 8},
+                        {61, 47, parametersWith(5.0f, 1.0f), 8},      // clamped to 5 px
+                        {61, 47, parametersWith(40.0f, 0.1f), 8},     // mostly sub-pixel
+                        {200, 90, parametersWith(40.0f, 1.0f, 40), 8}};  // over HMB_MASK_LIST_GROUP entries
+  size_t listed = 0, pixels = 0;
+  for (const Case& c : cases) {
+    const MaskLayer layer = randomMaskLayer(c.width, c.height, rng);
+    listed += expectListMatches(layer, c.p, c.strata,
+                                std::to_string(c.width) + "x" + std::to_string(c.height) + " strata " +
+                                    std::to_string(c.strata));
+    pixels += layer.objectId.size();
+  }
+  // Some pixels, not all: the rule decides.
+  EXPECT_GT(listed, 100u);
+  EXPECT_LT(listed, pixels / 2);
+}
+
+TEST_F(HybridShutterRaysTest, ListMatchesReferenceOnAdversarialLayers) {
+  std::mt19937 rng(29);
+  size_t listed = 0;
+  for (int round = 0; round < 5; ++round) {
+    const MaskLayer layer = adversarialMaskLayer(43, 37, rng);
+    for (const float velocityScale : {1.0f, 2.0f})
+      listed += expectListMatches(layer, parametersWith(40.0f, velocityScale), 8,
+                                  "round " + std::to_string(round) + " scale " + std::to_string(velocityScale));
+  }
+  EXPECT_GT(listed, 100u);
+}
+
+// A still frame lists nothing and dispatches no ray.
+TEST_F(HybridShutterRaysTest, StillLayerListsNothing) {
+  std::mt19937 rng(31);
+  MaskLayer layer = randomMaskLayer(40, 30, rng);
+  std::fill(layer.velocity.begin(), layer.velocity.end(), glm::vec2(0.0f));
+  EXPECT_EQ(expectListMatches(layer, parametersWith(40.0f, 1.0f), 8, "still"), 0u);
+}
+
+// By hand: object 2 fills columns 10-19 of a 30 x 6 image over object 1; everything moves
+// 3 px right, so a pixel is listed when its path (3 px either way, and a pixel more: 4) meets
+// the other object: columns 6-13 and 16-23. Columns 14 and 15 see object 2 from 10 to 19.
+// Then only object 2 moves: the still pixels of object 1 take the tile's fastest path, 4 px.
+TEST_F(HybridShutterRaysTest, PathsThatCrossAnEdgeByHand) {
+  MaskLayer layer;
+  layer.width = 30;
+  layer.height = 6;
+  const size_t pixels = size_t(layer.width) * layer.height;
+  layer.normalDepth.assign(pixels, glm::vec4(0.0f, 0.0f, 1.0f, 2.0f));
+  layer.velocity.assign(pixels, glm::vec2(3.0f, 0.0f));
+  layer.objectId.assign(pixels, 1u);
+  for (uint32_t y = 0; y < layer.height; ++y)
+    for (uint32_t x = 10; x < 20; ++x) layer.objectId[y * layer.width + x] = 2u;
+  const std::vector<uint32_t> reference = shutterRays(layer, parametersWith(40.0f, 1.0f, 30), 8);
+  for (uint32_t x = 0; x < layer.width; ++x) {
+    const bool listed = (x >= 6 && x <= 13) || (x >= 16 && x <= 23);
+    EXPECT_EQ(reference[x], listed ? 2u : 0u) << "column " << x;  // 3 px of blur: 2 rays
+  }
+  expectListMatches(layer, parametersWith(40.0f, 1.0f, 30), 8, "by hand");
+  for (uint32_t i = 0; i < pixels; ++i)
+    if (layer.objectId[i] == 1u) layer.velocity[i] = glm::vec2(0.0f);
+  const std::vector<uint32_t> stillBackground = shutterRays(layer, parametersWith(40.0f, 1.0f, 30), 8);
+  EXPECT_EQ(stillBackground, reference) << "a still pixel walks its tile's fastest path";
+  expectListMatches(layer, parametersWith(40.0f, 1.0f, 30), 8, "by hand, still background");
+}
+
+TEST(HybridShutterRaysRuleTest, RaysFollowTheBlurLength) {
+  // One ray per HMB_SHUTTER_RAY_SPACING pixels, a power of two from 2 to the strata.
+  EXPECT_EQ(gpu::shutterRaysFor(0.5f, 8), 2u);
+  EXPECT_EQ(gpu::shutterRaysFor(4.0f, 8), 2u);
+  EXPECT_EQ(gpu::shutterRaysFor(4.01f, 8), 4u);
+  EXPECT_EQ(gpu::shutterRaysFor(8.01f, 8), 8u);
+  EXPECT_EQ(gpu::shutterRaysFor(100.0f, 8), 8u);
+  EXPECT_EQ(gpu::shutterRaysFor(100.0f, 16), 16u);
+  EXPECT_EQ(gpu::shutterRaysFor(100.0f, 2), 2u);
+  EXPECT_EQ(gpu::shutterRaysFor(std::numeric_limits<float>::infinity(), 4), 4u);
+}
+
+TEST(HybridShutterRaysRuleTest, EntriesPackPixelAndRays) {
+  for (const uint32_t rays : {2u, 4u, 8u, 16u})
+    for (const uint32_t pixel : {0u, 1u, 12345u, (1u << HMB_SHUTTER_ENTRY_PIXEL_BITS) - 1u}) {
+      const uint32_t entry = gpu::shutterRayEntry(pixel, rays);
+      EXPECT_EQ(gpu::shutterRayEntryPixel(entry), pixel);
+      EXPECT_EQ(gpu::shutterRayEntryRays(entry), rays);
+    }
+  // The largest image (16384 x 16384) fits the pixel bits.
+  EXPECT_LE(uint64_t(16384) * 16384, uint64_t(1) << HMB_SHUTTER_ENTRY_PIXEL_BITS);
+}
+
+// Each pixel's rays take every (strata / rays)-th stratum from its first: all strata are used
+// when rays == strata, and over many pixels each offset comes up about equally often.
+TEST(HybridShutterRaysRuleTest, FirstStrataSpreadOverPixels) {
+  for (uint32_t pixel = 0; pixel < 100; ++pixel) EXPECT_EQ(gpu::shutterRayFirstStratum(pixel, 8, 8), 0u);
+  std::vector<int> seen(4, 0);
+  for (uint32_t pixel = 0; pixel < 4000; ++pixel) {
+    const uint32_t first = gpu::shutterRayFirstStratum(pixel, 2, 8);
+    ASSERT_LT(first, 4u);
+    ++seen[first];
+  }
+  for (const int n : seen) EXPECT_NEAR(n, 1000, 150);
+}
+
+}  // namespace
+}  // namespace hmb::test
