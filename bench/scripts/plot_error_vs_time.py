@@ -3,8 +3,8 @@
 
 Blur-region PSNR (higher is better) against median frame time (log axis); one curve per
 series (post-process centred, adapted and adapted along curved paths over sample counts, hybrid over sample counts,
-recursion limits and edge thresholds, adapted post-process and hybrid over time slices, the
-reference over spp), the sharp frame as a point, and
+recursion limits, edge thresholds and shutter strata, adapted post-process and hybrid over time
+slices, the reference over spp), the sharp frame as a point, and
 the Pareto front (no other case both faster and closer) drawn through the cases on it.
 
 Usage: bench/scripts/plot_error_vs_time.py RESULTS.json [OUT_DIR]   (default: beside the JSON)
@@ -30,6 +30,7 @@ styles = {
     "hybrid": dict(marker="o", color="tab:blue"),
     "hybrid luminance stop": dict(marker="D", color="tab:cyan"),
     "hybrid edge threshold": dict(marker="P", color="tab:purple"),
+    "hybrid shutter rays": dict(marker="X", color="tab:gray"),
     "postprocess adapted time slices": dict(marker="<", color="tab:brown"),
     "hybrid time slices": dict(marker="h", color="tab:pink"),
     "reference": dict(marker="*", color="tab:green"),
