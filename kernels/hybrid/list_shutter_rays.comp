@@ -3,7 +3,8 @@
 // shutter (trace_shutter_rays). A gather reads one frame, whose edges are sampled at pixel
 // centres: where an edge sweeps over a pixel during the shutter, the reference sees it pass
 // through sub-pixel positions that frame never held (the error of bistro's moving camera: a
-// few pixels of blur at every silhouette). Listed: a pixel whose path meets another object,
+// few pixels of blur at every silhouette). Listed: a pixel whose path meets another object or
+// a colour step (HMB_SHUTTER_RAY_COLOR_STEP: a texture's or the shading's edge on one object),
 // the path X + u v for u in [-1, 1] and a pixel on at each end, v its own displacement when it
 // moves half a pixel or more, else its tile's fastest (a still pixel a moving neighbour may
 // sweep over). Its rays: shutterRaysFor the faster of its own and its tile's fastest blur.
@@ -17,6 +18,7 @@
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILE_MAX) readonly buffer TileMax { vec4 tileMax[]; };
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_COUNTERS) buffer Counters { ShutterRayCounters counters; };
@@ -26,12 +28,19 @@ layout(push_constant) uniform Params { ShutterRayListParams params; };
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
 
-uint objectAt(ivec2 p) { return surfaceObjectId(surfaces[uint(p.y) * params.blur.width + uint(p.x)]); }
+// Whether pixel p shows another object than `id`, or a colour a step away from `key`'s.
+bool differs(ivec2 p, uint id, vec3 key) {
+  const uint index = uint(p.y) * params.blur.width + uint(p.x);
+  return surfaceObjectId(surfaces[index]) != id ||
+         shutterRayColorsDiffer(shutterRayColorKey(sampleColor(samples[index])), key);
+}
 
 // The rays pixel `pixel` takes, 0 when it is not listed. fastest: its tile's (velocity, speed).
 uint shutterRaysAt(ivec2 pixel, vec3 fastest) {
-  const uvec4 here = surfaces[uint(pixel.y) * params.blur.width + uint(pixel.x)];
+  const uint index = uint(pixel.y) * params.blur.width + uint(pixel.x);
+  const uvec4 here = surfaces[index];
   const uint id = surfaceObjectId(here);
+  const vec3 key = shutterRayColorKey(sampleColor(samples[index]));
   float speed;
   const vec2 own = gatherVelocity(surfaceVelocity(here), params.blur.velocityScale, params.blur.maxSpeed, speed);
   const bool moves = speed >= 0.5;
@@ -44,8 +53,8 @@ uint shutterRaysAt(ivec2 pixel, vec3 fastest) {
   bool crosses = false;
   for (int k = 1; k <= steps && !crosses; ++k) {
     const vec2 along = reach * (float(k) / float(steps));
-    crosses = objectAt(nearestPixel(centre + along, params.blur.width, params.blur.height)) != id ||
-              objectAt(nearestPixel(centre - along, params.blur.width, params.blur.height)) != id;
+    crosses = differs(nearestPixel(centre + along, params.blur.width, params.blur.height), id, key) ||
+              differs(nearestPixel(centre - along, params.blur.width, params.blur.height), id, key);
   }
   return crosses ? shutterRaysFor(max(speed, fastest.z), params.strata) : 0u;
 }

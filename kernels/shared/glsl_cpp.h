@@ -34,6 +34,7 @@
   using glm::max;                    \
   using glm::min;                    \
   using glm::normalize;              \
+  using glm::sqrt;                   \
   using glm::packHalf2x16;           \
   using glm::packSnorm2x16;          \
   using glm::uintBitsToFloat;        \

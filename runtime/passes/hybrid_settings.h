@@ -57,10 +57,10 @@ struct HybridSettings {
   float maskForegroundDivide = 3.0f;
   // Shutter rays (kernels/hybrid/list_shutter_rays.comp): the shutter is cut into this many
   // strata (a power of two up to 16; 0 turns them off), and the moving pixels whose path crosses
-  // another object trace a ray at up to that many of them, one per 2 px of blur around them.
-  // A gather of one frame cannot place an edge between pixel centres; where the camera moves,
-  // that is most of the error (bistro at 320x180: post-process 19.6 dB, hybrid without them
-  // 20.6, with 8 strata 21.8 over the blur region; see the README's "Shutter rays").
+  // another object or a colour step trace a ray at up to that many of them, one per 2 px of blur
+  // around them. A gather of one frame cannot place an edge between pixel centres; where the
+  // camera moves, that is most of the error (bistro at 320x180: post-process 19.6 dB, hybrid
+  // without them 20.6, with 8 strata 23.7 over the blur region; see the README's "Shutter rays").
   uint32_t shutterRays = 8;
 
   // The blur's exposure, fps and SOFT_Z_EXTENT and the edge threshold from a scene's settings,

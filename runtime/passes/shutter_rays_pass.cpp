@@ -50,6 +50,7 @@ void ShutterRaysPass::recordList(vk::FrameRecorder& frame, const MotionBlurInput
   frame.dispatchIndirect(kList, listKernel_,
                          {{HMB_SHUTTER_LIST_BINDING_SURFACES, raster.surfaces},
                           {HMB_SHUTTER_LIST_BINDING_TILE_MAX, &tileMax},
+                          {HMB_SHUTTER_LIST_BINDING_SAMPLES, raster.samples},
                           {HMB_SHUTTER_LIST_BINDING_TILES, &rayMask.movingTiles()},
                           {HMB_SHUTTER_LIST_BINDING_COUNTERS, &counters_},
                           {HMB_SHUTTER_LIST_BINDING_LIST, &list_}},

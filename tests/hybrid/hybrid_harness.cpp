@@ -69,7 +69,9 @@ vk::Buffer pathsBuffer(vk::Context& context, std::vector<glm::uvec2> paths) {
 }
 
 passes::LayerContents contentsOf(const MaskLayer& layer) {
-  return contentsOf(layer.normalDepth, layer.velocity, layer.objectId, nullptr);
+  passes::LayerContents c = contentsOf(layer.normalDepth, layer.velocity, layer.objectId, nullptr);
+  for (size_t i = 0; i < layer.color.size() && i < c.color.size(); ++i) c.color[i] = layer.color[i];
+  return c;
 }
 
 }  // namespace

@@ -120,7 +120,9 @@ std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskPara
 
 MaskLayer stored(const MaskLayer& layer) {
   MaskLayer out = layer;
+  out.color.resize(layer.objectId.size(), glm::vec3(0.0f));
   for (size_t i = 0; i < layer.objectId.size(); ++i) {
+    out.color[i] = gpu::sampleColor(gpu::packLayerSample(out.color[i], layer.normalDepth[i].w, layer.velocity[i]));
     const glm::uvec4 surface =
         gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), layer.objectId[i], layer.velocity[i]);
     out.normalDepth[i] = glm::vec4(gpu::surfaceNormal(surface), layer.normalDepth[i].w);  // depth: kept bit for bit
@@ -174,7 +176,6 @@ std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskP
   const uint32_t width = layer.width, height = layer.height, tileSize = p.blur.tileSize;
   const uint32_t tilesX = (width + tileSize - 1) / tileSize;
   const std::vector<glm::vec4> tiles = mblur::tileMax(layer.velocity, width, height, tileSize, p.blur.velocityScale);
-  const auto objectAt = [&](glm::ivec2 q) { return layer.objectId[indexOf(width, q)]; };
   std::vector<uint32_t> out(size_t(width) * height, 0u);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
@@ -182,6 +183,12 @@ std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskP
       if (!(fastest.z >= gpu::kMinBlurPixels)) continue;  // list_moving_tiles
       const size_t index = size_t(y) * width + x;
       const uint32_t id = layer.objectId[index];
+      const glm::vec3 key = gpu::shutterRayColorKey(layer.color[index]);
+      // Another object, or a colour a step away.
+      const auto differs = [&](glm::ivec2 q) {
+        const size_t i = indexOf(width, q);
+        return layer.objectId[i] != id || gpu::shutterRayColorsDiffer(gpu::shutterRayColorKey(layer.color[i]), key);
+      };
       float speed;
       const glm::vec2 own = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
       const bool moves = speed >= 0.5f;
@@ -194,8 +201,8 @@ std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskP
       bool crosses = false;
       for (int k = 1; k <= steps && !crosses; ++k) {
         const glm::vec2 along = reach * (float(k) / float(steps));
-        crosses = objectAt(nearestPixel(centre + along, width, height)) != id ||
-                  objectAt(nearestPixel(centre - along, width, height)) != id;
+        crosses = differs(nearestPixel(centre + along, width, height)) ||
+                  differs(nearestPixel(centre - along, width, height));
       }
       if (crosses) out[index] = gpu::shutterRaysFor(std::max(speed, fastest.z), strata);
     }

@@ -27,6 +27,8 @@ struct MaskLayer {
   // Each pixel's path over the shutter (mblur::Layer::shutterPaths); empty: none. Read where
   // parameters.blur.flags has HMB_GATHER_FLAG_CURVED_PATH.
   std::vector<glm::uvec2> shutterPaths;
+  // Linear RGB per pixel; empty: black. Read by the shutter rays' colour steps.
+  std::vector<glm::vec3> color;
 };
 
 // The layer as the kernels read it: every pixel through the packed surface the device holds
@@ -67,8 +69,9 @@ std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint3
                                  const passes::RayMaskParameters& parameters);
 
 // list_shutter_rays.comp: the rays each pixel takes over the shutter (0: not listed), for a
-// frame of `strata` strata, from the gather's tile-max at parameters.blur.tileSize. Only pixels
-// of tiles whose fastest pixel moves kMinBlurPixels or more (list_moving_tiles) are listed.
+// frame of `strata` strata, from the gather's tile-max at parameters.blur.tileSize and the
+// layer's object ids and colours. Only pixels of tiles whose fastest pixel moves
+// kMinBlurPixels or more (list_moving_tiles) are listed.
 std::vector<uint32_t> shutterRays(const MaskLayer& layer, const passes::RayMaskParameters& parameters, uint32_t strata);
 
 // size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).

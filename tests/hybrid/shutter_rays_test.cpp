@@ -1,8 +1,11 @@
 // list_shutter_rays.comp against the C++ reference on random and adversarial layers (which
 // pixels are listed, with how many rays, and the list's indirect dispatch), and the rule's
-// pieces by hand: rays per blur length, strata offsets and the list entry's packing.
+// pieces by hand: object and colour edges, rays per blur length, strata offsets and the list
+// entry's packing.
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <utility>
 #include <random>
 #include <string>
 #include <vector>
@@ -27,6 +30,24 @@ RayMaskParameters parametersWith(float maxSpeed, float velocityScale, uint32_t t
   p.blur.softZExtent = 0.03f;
   p.edgeThreshold = 0.9f;
   return p;
+}
+
+// Colours for a layer: each object a colour of its own, half of them striped across x (8 px
+// stripes) by steps some above and some below HMB_SHUTTER_RAY_COLOR_STEP, and a few pixels far
+// out of the display's range.
+MaskLayer withColors(MaskLayer layer, std::mt19937& rng) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::map<uint32_t, std::pair<glm::vec3, float>> looks;  // per object: base colour, stripe step
+  layer.color.resize(layer.objectId.size());
+  for (size_t i = 0; i < layer.objectId.size(); ++i) {
+    auto [it, added] = looks.try_emplace(layer.objectId[i]);
+    if (added) it->second = {glm::vec3(unit(rng), unit(rng), unit(rng)), unit(rng) < 0.5f ? 0.0f : 0.3f * unit(rng)};
+    const auto [base, step] = it->second;
+    const uint32_t x = uint32_t(i % layer.width);
+    layer.color[i] = base + glm::vec3(((x / 8) % 2 == 0) ? 0.0f : step);
+    if (unit(rng) < 0.01f) layer.color[i] *= 50.0f;
+  }
+  return layer;
 }
 
 // Every pixel's rays as the device listed them equal the reference's; the list's dispatch
@@ -71,7 +92,7 @@ TEST_F(HybridShutterRaysTest, ListMatchesReferenceOnRandomLayers) {
                         {200, 90, parametersWith(40.0f, 1.0f, 40), 8}};  // over HMB_MASK_LIST_GROUP entries
   size_t listed = 0, pixels = 0;
   for (const Case& c : cases) {
-    const MaskLayer layer = randomMaskLayer(c.width, c.height, rng);
+    const MaskLayer layer = withColors(randomMaskLayer(c.width, c.height, rng), rng);
     listed += expectListMatches(layer, c.p, c.strata,
                                 std::to_string(c.width) + "x" + std::to_string(c.height) + " strata " +
                                     std::to_string(c.strata));
@@ -86,7 +107,7 @@ TEST_F(HybridShutterRaysTest, ListMatchesReferenceOnAdversarialLayers) {
   std::mt19937 rng(29);
   size_t listed = 0;
   for (int round = 0; round < 5; ++round) {
-    const MaskLayer layer = adversarialMaskLayer(43, 37, rng);
+    const MaskLayer layer = withColors(adversarialMaskLayer(43, 37, rng), rng);
     for (const float velocityScale : {1.0f, 2.0f})
       listed += expectListMatches(layer, parametersWith(40.0f, velocityScale), 8,
                                   "round " + std::to_string(round) + " scale " + std::to_string(velocityScale));
@@ -127,6 +148,30 @@ TEST_F(HybridShutterRaysTest, PathsThatCrossAnEdgeByHand) {
   const std::vector<uint32_t> stillBackground = shutterRays(layer, parametersWith(40.0f, 1.0f, 30), 8);
   EXPECT_EQ(stillBackground, reference) << "a still pixel walks its tile's fastest path";
   expectListMatches(layer, parametersWith(40.0f, 1.0f, 30), 8, "by hand, still background");
+}
+
+// By hand: one object, its colour stepping at column 15 of a 30 x 6 image, everything moving
+// 3 px right: the step lists the pixels whose path (4 px either way) reaches it, columns 11-18,
+// when the step passes HMB_SHUTTER_RAY_COLOR_STEP in the colour's key, and none when it does not.
+TEST_F(HybridShutterRaysTest, ColourStepsOnOneObjectByHand) {
+  MaskLayer layer;
+  layer.width = 30;
+  layer.height = 6;
+  const size_t pixels = size_t(layer.width) * layer.height;
+  layer.normalDepth.assign(pixels, glm::vec4(0.0f, 0.0f, 1.0f, 2.0f));
+  layer.velocity.assign(pixels, glm::vec2(3.0f, 0.0f));
+  layer.objectId.assign(pixels, 1u);
+  // Keys sqrt(0.25) = 0.5 on the left; 0.64 (key 0.8) steps past 0.1, 0.3025 (key 0.55) does not.
+  for (const float right : {0.64f, 0.3025f}) {
+    layer.color.assign(pixels, glm::vec3(0.25f));
+    for (size_t i = 0; i < pixels; ++i)
+      if (i % layer.width >= 15) layer.color[i] = glm::vec3(0.25f, right, 0.25f);
+    const bool steps = right > 0.5f;
+    const std::vector<uint32_t> reference = shutterRays(layer, parametersWith(40.0f, 1.0f, 30), 8);
+    for (uint32_t x = 0; x < layer.width; ++x)
+      EXPECT_EQ(reference[x], steps && x >= 11 && x <= 18 ? 2u : 0u) << "column " << x << ", right " << right;
+    expectListMatches(layer, parametersWith(40.0f, 1.0f, 30), 8, steps ? "a colour step" : "a colour change under the step");
+  }
 }
 
 TEST(HybridShutterRaysRuleTest, RaysFollowTheBlurLength) {
