@@ -79,7 +79,7 @@ struct RenderResult {
     uint64_t maskPixels = 0;
     uint64_t revealedPixels = 0;  // mask pixels whose composite needs the background, traced
     uint64_t revealRays = 0;
-    uint64_t shutterRayPixels = 0;  // moving pixels whose path crosses another object, traced over the shutter
+    uint64_t shutterRayPixels = 0;  // pixels whose path crosses an edge, traced over the shutter
     uint64_t shutterRays = 0;
     std::optional<double> setupMilliseconds;  // the trace scene's mesh trees: per scene, not per frame
   };

@@ -103,7 +103,7 @@ class HybridMethod final : public FrameMethod {
         for (const uint32_t entry : entries)
           if (const uint32_t i = gpu::shutterRayEntryPixel(entry); i < pixels) shutterRays[i] = gpu::shutterRayEntryRays(entry);
         if (shutter.pixels == 0)
-          result.plan.noteNoWork(passes::HybridStage::kShutterRaysTrace, "no moving pixel's path crosses another object");
+          result.plan.noteNoWork(passes::HybridStage::kShutterRaysTrace, "no pixel's path crosses an edge (another object, a colour step)");
       }
       if (result.hybrid->edgeCandidates == 0)
         result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");

@@ -5,8 +5,8 @@
 //   surfaces over the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the
 //   background composited in at mask pixels (CompositePass, indirect;
 //   kernels/hybrid/composite.comp says how) -> shutter rays (ShutterRaysPass) at the moving
-//   pixels whose path crosses another object: rays at stratified shutter times replace the
-//   colour there.
+//   pixels whose path crosses an edge (object or colour): rays at stratified shutter times
+//   replace the colour there.
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
 // mask and the revealed surfaces.
 #pragma once

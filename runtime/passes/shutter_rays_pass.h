@@ -1,8 +1,8 @@
 // Host side of kernels/hybrid/list_shutter_rays.comp and trace_shutter_rays.comp: the pixels
-// whose path over the shutter crosses another object (or another object's path crosses them),
-// where a gather of one frame misses the
-// edge's sub-pixel sweep, take a few rays at stratified shutter times (distributed ray
-// tracing, as the reference does) and their mean replaces the composite's colour there.
+// whose path over the shutter crosses an edge (another object, a colour step), where a gather
+// of one frame misses the edge's sub-pixel sweep, take a few rays at stratified shutter times
+// (distributed ray tracing, as the reference does) and their mean replaces the composite's
+// colour there.
 #pragma once
 
 #include <cstdint>
