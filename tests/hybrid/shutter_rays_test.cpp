@@ -123,11 +123,9 @@ TEST_F(HybridShutterRaysTest, StillLayerListsNothing) {
   EXPECT_EQ(expectListMatches(layer, parametersWith(40.0f, 1.0f), 8, "still"), 0u);
 }
 
-// By hand: object 2 fills columns 10-19 of a 30 x 6 image over object 1; everything moves
-// 3 px right, so a pixel is listed when its path (3 px either way, and a pixel more: 4) meets
-// the other object: columns 6-13 and 16-23. Columns 14 and 15 see object 2 from 10 to 19.
-// Then only object 2 moves: the still pixels of object 1 take the tile's fastest path, 4 px.
-TEST_F(HybridShutterRaysTest, PathsThatCrossAnEdgeByHand) {
+// The by-hand cases' layer: 30 x 6 pixels of object 1 at depth 2, all moving 3 px right (one
+// tile of 30 px holds it).
+MaskLayer movingStrip() {
   MaskLayer layer;
   layer.width = 30;
   layer.height = 6;
@@ -135,6 +133,16 @@ TEST_F(HybridShutterRaysTest, PathsThatCrossAnEdgeByHand) {
   layer.normalDepth.assign(pixels, glm::vec4(0.0f, 0.0f, 1.0f, 2.0f));
   layer.velocity.assign(pixels, glm::vec2(3.0f, 0.0f));
   layer.objectId.assign(pixels, 1u);
+  return layer;
+}
+
+// By hand: object 2 fills columns 10-19 of a 30 x 6 image over object 1; everything moves
+// 3 px right, so a pixel is listed when its path (3 px either way, and a pixel more: 4) meets
+// the other object: columns 6-13 and 16-23. Columns 14 and 15 see object 2 from 10 to 19.
+// Then only object 2 moves: the still pixels of object 1 take the tile's fastest path, 4 px.
+TEST_F(HybridShutterRaysTest, PathsThatCrossAnEdgeByHand) {
+  MaskLayer layer = movingStrip();
+  const size_t pixels = layer.objectId.size();
   for (uint32_t y = 0; y < layer.height; ++y)
     for (uint32_t x = 10; x < 20; ++x) layer.objectId[y * layer.width + x] = 2u;
   const std::vector<uint32_t> reference = shutterRays(layer, parametersWith(40.0f, 1.0f, 30), 8);
@@ -154,13 +162,8 @@ TEST_F(HybridShutterRaysTest, PathsThatCrossAnEdgeByHand) {
 // 3 px right: the step lists the pixels whose path (4 px either way) reaches it, columns 11-18,
 // when the step passes HMB_SHUTTER_RAY_COLOR_STEP in the colour's key, and none when it does not.
 TEST_F(HybridShutterRaysTest, ColourStepsOnOneObjectByHand) {
-  MaskLayer layer;
-  layer.width = 30;
-  layer.height = 6;
-  const size_t pixels = size_t(layer.width) * layer.height;
-  layer.normalDepth.assign(pixels, glm::vec4(0.0f, 0.0f, 1.0f, 2.0f));
-  layer.velocity.assign(pixels, glm::vec2(3.0f, 0.0f));
-  layer.objectId.assign(pixels, 1u);
+  MaskLayer layer = movingStrip();
+  const size_t pixels = layer.objectId.size();
   // Keys sqrt(0.25) = 0.5 on the left; 0.64 (key 0.8) steps past 0.1, 0.3025 (key 0.55) does not.
   for (const float right : {0.64f, 0.3025f}) {
     layer.color.assign(pixels, glm::vec3(0.25f));
