@@ -23,6 +23,7 @@ layout(push_constant) uniform Params { ShutterRayTraceParams params; };
 
 #include "../shared/shading.glsl"
 #include "../trace/shade_hit.glsl"
+#include "../trace/camera_ray_color.glsl"
 
 void main() {
   const uint entry = linearInvocationIndex(HMB_MASK_LIST_GROUP);
@@ -37,20 +38,8 @@ void main() {
   vec3 sum = vec3(0.0);
   for (uint k = 0u, stratum = shutterRayFirstStratum(index, rays, params.strata); k < rays; ++k, stratum += step) {
     const uint time = 1u + stratum;
-    const PinholeCamera cam = cameras[time];
-    TraceRay ray;
-    ray.originTMin = vec4(cam.eye.xyz, params.tMin);
-    ray.directionTMax = vec4(pinholeRayDirection(cam, vec2(pixel) + 0.5, params.width, params.height), params.tMax);
-    ray.time = time;
-    ray.ignoreObjectId = HMB_IGNORE_NONE;
-    ray.pad0 = 0u;
-    ray.pad1 = 0u;
-    const BvhHit hit = closestHit(ray, scene);
-    vec3 color = hit.triangle == HMB_NO_HIT
-                     ? camera.background.rgb
-                     : shadeHit(hitRecord(hit, ray.originTMin.xyz, ray.directionTMax.xyz, hit.instance * params.timeCount + time));
-    if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
-    sum += color;
+    sum += cameraRayColor(cameras[time], vec2(pixel) + 0.5, params.width, params.height, params.tMin, params.tMax,
+                          time, scene);
   }
   atomicAdd(counters.rayCount, rays);
   outputColor[index] = vec4(sum / float(rays), 1.0);

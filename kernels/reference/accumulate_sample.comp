@@ -21,6 +21,7 @@ layout(push_constant) uniform Params { ReferenceSampleParams params; };
 
 #include "../shared/shading.glsl"
 #include "../trace/shade_hit.glsl"
+#include "../trace/camera_ray_color.glsl"
 
 // PCG hash (O'Neill 2014 output function): decorrelates pixels and samples for the jitter.
 uint pcgHash(uint x) {
@@ -48,17 +49,8 @@ void main() {
     const uint h = pcgHash(index ^ pcgHash(params.sampleIndex ^ pcgHash(params.seed)));
     offset = vec2(unitFloat(h), unitFloat(pcgHash(h)));
   }
-  const PinholeCamera cam = cameras[params.time];
-  TraceRay ray;
-  ray.originTMin = vec4(cam.eye.xyz, params.tMin);
-  ray.directionTMax = vec4(pinholeRayDirection(cam, vec2(pixel) + offset, params.width, params.height), params.tMax);
-  ray.time = params.time;
-  ray.ignoreObjectId = HMB_IGNORE_NONE;
-  ray.pad0 = 0u;
-  ray.pad1 = 0u;
-
-  const BvhHit hit = closestHit(ray, TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES));
-  vec3 color = hit.triangle == HMB_NO_HIT ? camera.background.rgb : shadeHit(hitRecord(hit, ray.originTMin.xyz, ray.directionTMax.xyz, hit.instance * params.timeCount + params.time));
-  if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
+  const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES);
+  const vec3 color = cameraRayColor(cameras[params.time], vec2(pixel) + offset, params.width, params.height,
+                                    params.tMin, params.tMax, params.time, scene);
   sum[index] += vec4(color, 1.0);
 }

@@ -1,5 +1,5 @@
-// The surface a ray hit and its colour, for every kernel that shades ray hits (the reference
-// and the ray reveal): normal and uv interpolated from the mesh's vertices, the normal carried
+// The surface a ray hit and its colour, for every kernel that shades ray hits (the reference,
+// the ray reveal and the shutter rays): normal and uv interpolated from the mesh's vertices, the normal carried
 // to world space with the instance's transform at the ray's time and turned to the viewer
 // when a (double-sided) back face is seen, as the G-buffer resolve does, gathered in a
 // HitRecord, then shadeHit(HitRecord): the shading function every method shares, or a user's

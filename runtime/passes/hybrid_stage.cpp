@@ -97,16 +97,16 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   // plan() decided what the last frame's trees still serve; only the others are built.
   if (const std::optional<double> meshMs = prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
     timings.setup = {{{kBvhMeshes, *meshMs}}, *meshMs};
-  traceTimes_ = traceTimes(scene, frameTime, settings);
+  const std::vector<float> times = traceTimes(scene, frameTime, settings);
   shutterStrata_ = plan.runs(kShutterRaysTrace) ? settings.shutterRays : 0u;
-  if (shutterStrata_ != 0 && traceTimes_.size() != shutterStrata_ + 1)
+  if (shutterStrata_ != 0 && times.size() != shutterStrata_ + 1)
     throw Error("hybrid: the plan traces shutter rays that these settings leave out");
   if (plan.runs(TraceScene::kRefit))
     vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
   buildsInstanceTree_ = plan.runs(kBvhInstances);
-  if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, traceTimes_);
+  if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, times);
   cameras_.clear();
-  for (const float t : traceTimes_) cameras_.push_back(pinholeCamera(scene, t, width, height));
+  for (const float t : times) cameras_.push_back(pinholeCamera(scene, t, width, height));
   const uint64_t cameraBytes = cameras_.size() * sizeof(gpu::PinholeCamera);
   if (!cameraRays_.handle() || cameraRays_.size() < cameraBytes)
     cameraRays_ = vk::Buffer(context_, cameraBytes, vk::MemoryUse::Device, "camera rays (frame, shutter strata)");

@@ -106,10 +106,9 @@ class HybridStage {
   HybridSettings settings_;
   std::unique_ptr<TraceScene> traceScene_;
   ImageSize size_;
-  // The trace scene's times, the frame's first, then the shutter strata's when the frame traces
-  // shutter rays (shutterStrata_ of them, 0 when it does not); the camera at each, written
-  // into cameraRays_ by record().
-  std::vector<float> traceTimes_;
+  // The shutter strata the frame traces rays at (0 when it traces none), and the camera at each
+  // of the trace scene's times (the frame's first, then the strata's), written into cameraRays_
+  // by record().
   uint32_t shutterStrata_ = 0;
   std::vector<gpu::PinholeCamera> cameras_;
   bool buildsInstanceTree_ = false;  // prepare() staged the instances: record() builds their tree
