@@ -221,6 +221,10 @@ vk::FrameTimings EngineHybridMotionBlur::timings() const { return passes_->recor
 
 uint32_t EngineHybridMotionBlur::maskPixels() const { return passes_->hybrid.rayMask().counts().maskPixels; }
 
+uint32_t EngineHybridMotionBlur::shutterRayPixels() const {
+  return passes_->hybrid.tracesShutterRays() ? uint32_t(passes_->hybrid.shutterRays().counts().pixels) : 0u;
+}
+
 const FramePlan& EngineHybridMotionBlur::plan() const { return passes_->plan; }
 
 }  // namespace hmb

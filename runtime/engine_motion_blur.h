@@ -124,8 +124,10 @@ class EngineHybridMotionBlur {
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
   vk::FrameTimings timings() const;
 
-  // After the frame completed: the ray mask's pixels, read back on request.
+  // After the frame completed, read back on request: the ray mask's pixels (none beside
+  // shutter rays: settings' shutterRays), and the pixels that took shutter rays.
   uint32_t maskPixels() const;
+  uint32_t shutterRayPixels() const;
   // The last prepare()'s plan: which trees it built or kept (and why), and the frame's passes.
   const FramePlan& plan() const;
 

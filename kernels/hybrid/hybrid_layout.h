@@ -42,13 +42,17 @@
 #define HMB_MOVING_TILES_BINDING_COUNT 3
 
 // range_check: one invocation per pixel of the listed tiles, in 8 x 8 blocks: group (x, y)
-// names the listed tile, group z the block within it (an invocation's loops stay under the
-// 65535 iterations llvmpipe allows). edge_candidates: one 8 x 8 group per listed tile, its
+// names the listed tile, group z a slice of its blocks (every gl_NumWorkGroups.z-th): one block
+// a group on a GPU, which wants many groups in flight; on a CPU device about
+// HMB_RANGE_CHECK_CPU_GROUPS in all, enough to keep every thread busy when few tiles move
+// without paying llvmpipe 22.3's cost per group (an empty range check over bistro's 14,400
+// blocks at 1280x720 took 9-12 ms). edge_candidates: one 8 x 8 group per listed tile, its
 // lanes striding over the tile (at most HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU
 // device pays per invocation, and most pixels only need a few reads there. Pixels of other
 // tiles keep the 0 their buffers are filled with.
 #define HMB_MASK_TILE_GROUP_X 8
 #define HMB_MASK_TILE_GROUP_Y 8
+#define HMB_RANGE_CHECK_CPU_GROUPS 256u
 
 #define HMB_EDGE_CANDIDATES_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples (shared/layer_layout.h)
 #define HMB_EDGE_CANDIDATES_BINDING_SURFACES 1  // uvec4 per pixel: the G-buffer's surfaces
@@ -238,8 +242,10 @@ struct MovingTilesParams {
 
 struct SizeListParams {
   uint list;           // HMB_SIZE_LIST_*
-  uint blocksPerTile;  // moving tiles: 8 x 8 blocks per tile (the block dispatch's z)
-  uint pad1;
+  uint tileBlocks;     // moving tiles: a tile's 8 x 8 blocks, the most groups range_check gives it
+  // moving tiles: range_check's groups wanted in all, each tile's blocks shared among
+  // ceil(wanted / tiles) of them (at most tileBlocks; 0: one block a group)
+  uint tileGroupsWanted;
   uint pad2;
 };
 

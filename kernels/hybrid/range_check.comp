@@ -141,9 +141,7 @@ bool meetsBackground(uvec2 pixel, uint index, vec2 v, vec2 q) {
   return false;
 }
 
-void main() {
-  const uvec2 pixel = listedTilePixel(tiles[listedTileEntry()], params.blur.tilesX, params.blur.tileSize);
-  if (pixel.x >= params.blur.width || pixel.y >= params.blur.height) return;
+void checkPixel(uvec2 pixel) {
   const uint index = pixel.y * params.blur.width + pixel.x;
   float speed;
   vec2 v = gatherVelocity(surfaceVelocity(surfaces[index]), params.blur.velocityScale, params.blur.maxSpeed, speed);
@@ -162,10 +160,8 @@ void main() {
                                     : vec2(0.0);
     inversePath(a, c, change, params.blur.maxSpeed, v, q);
   }
-  if (!(speed > 0.0) || !(curved ? curvedPathMeetsEdge(pixel, v, q) : meetsEdge(pixel, v, speed))) {
-    mask[index] = HMB_MASK_NONE;
-    return;
-  }
+  // The mask is filled with HMB_MASK_NONE before.
+  if (!(speed > 0.0) || !(curved ? curvedPathMeetsEdge(pixel, v, q) : meetsEdge(pixel, v, speed))) return;
   if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index, v, q)) {
     mask[index] = HMB_MASK_UNREVEALED;
     const uint lastEntry = params.blur.width * params.blur.height - 1u;
@@ -174,4 +170,22 @@ void main() {
   }
   mask[index] = HMB_MASK_REVEALED;
   list[atomicAdd(counters.maskCount, 1u)] = index;
+}
+
+// This group's slice of the tile's blocks: every gl_NumWorkGroups.z-th from its own (one block
+// a group on a GPU, a few on a CPU device: hybrid_layout.h; at most 128^2 a loop, under the
+// 65535 iterations llvmpipe allows).
+void main() {
+  const uint tile = tiles[listedTileEntry()];
+  const uint tileSize = params.blur.tileSize;
+  const uvec2 tileOrigin = uvec2(tile % params.blur.tilesX, tile / params.blur.tilesX) * tileSize;
+  const uint blocks = tileBlocks(tileSize);
+  for (uint block = gl_WorkGroupID.z; block < blocks; block += gl_NumWorkGroups.z) {
+    const uvec2 pixel = tileBlockOrigin(tile, block, params.blur.tilesX, tileSize) + gl_LocalInvocationID.xy;
+    // Lanes past the tile's or the image's edge have no pixel.
+    if (any(greaterThanEqual(pixel - tileOrigin, uvec2(tileSize))) || pixel.x >= params.blur.width ||
+        pixel.y >= params.blur.height)
+      continue;
+    checkPixel(pixel);
+  }
 }

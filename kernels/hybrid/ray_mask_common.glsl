@@ -27,17 +27,19 @@ float normalizedEdge(float x) {
   return clamp(1.0 - 1.0 / (max(x, 0.0) + 1.0), 0.0, 1.0);
 }
 
-// The pixel of this invocation in the mask passes' dispatch over the listed tiles (see
-// hybrid_layout.h): group (x, y) is the list entry, group z the 8 x 8 block in the tile.
-// Lanes past the tile's edge get a pixel outside every image.
+// The mask passes' dispatch over the listed tiles (see hybrid_layout.h): group (x, y) is the
+// list entry, group z one of gl_NumWorkGroups.z slices of the tile's 8 x 8 blocks.
 uint listedTileEntry() { return foldedGroupIndex(); }
 
-uvec2 listedTilePixel(uint tile, uint tilesX, uint tileSize) {
+// How many 8 x 8 blocks a tile has, and the first pixel of block `block` of `tile`.
+uint tileBlocks(uint tileSize) {
   const uint blocksX = (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;
-  const uvec2 block = uvec2(gl_WorkGroupID.z % blocksX, gl_WorkGroupID.z / blocksX);
-  const uvec2 inTile = block * uvec2(HMB_MASK_TILE_GROUP_X, HMB_MASK_TILE_GROUP_Y) + gl_LocalInvocationID.xy;
-  if (inTile.x >= tileSize || inTile.y >= tileSize) return uvec2(0xFFFFFFFFu);
-  return uvec2(tile % tilesX, tile / tilesX) * tileSize + inTile;
+  return blocksX * ((tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y);
+}
+uvec2 tileBlockOrigin(uint tile, uint block, uint tilesX, uint tileSize) {
+  const uint blocksX = (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;
+  return uvec2(tile % tilesX, tile / tilesX) * tileSize +
+         uvec2(block % blocksX, block / blocksX) * uvec2(HMB_MASK_TILE_GROUP_X, HMB_MASK_TILE_GROUP_Y);
 }
 
 #endif

@@ -1,8 +1,8 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
-// 65535 groups: the moving tiles (a group per tile: edge_candidates; a group per 8 x 8 block
-// of each: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask) or the ray
-// mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather
+// 65535 groups: the moving tiles (a group per tile: edge_candidates; a group per slice of each
+// one's 8 x 8 blocks: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask)
+// or the ray mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather
 // over the list's front, the composite over the whole mask).
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
@@ -24,7 +24,10 @@ void main() {
     counters.tileGroupDispatchZ = g.z;
     counters.tileDispatchX = g.x;
     counters.tileDispatchY = g.y;
-    counters.tileDispatchZ = g.x == 0u ? 1u : params.blocksPerTile;
+    const uint count = max(counters.tileCount, 1u);
+    const uint slices = params.tileGroupsWanted == 0u ? params.tileBlocks
+                                                      : (params.tileGroupsWanted + count - 1u) / count;
+    counters.tileDispatchZ = g.x == 0u ? 1u : clamp(slices, 1u, params.tileBlocks);
     return;
   }
   if (params.list == HMB_SIZE_LIST_EDGE_CANDIDATES) {

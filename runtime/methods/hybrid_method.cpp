@@ -105,16 +105,18 @@ class HybridMethod final : public FrameMethod {
         if (shutter.pixels == 0)
           result.plan.noteNoWork(passes::HybridStage::kShutterRaysTrace, "no pixel's path crosses an edge (another object, a colour step)");
       }
-      if (result.hybrid->edgeCandidates == 0)
+      // With the shutter rays the mask's own passes and the reveal are skipped (the plan says why).
+      const bool masks = result.plan.runs(passes::RayMaskStage::kRangeCheck);
+      if (masks && result.hybrid->edgeCandidates == 0)
         result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");
-      if (result.hybrid->revealedPixels == 0) {
+      if (masks && result.hybrid->revealedPixels == 0) {
         const std::string reason = result.hybrid->maskPixels == 0
                                        ? "the ray mask is empty: no ray traced"
                                        : "no mask pixel's composite meets the background: no ray traced";
         result.plan.noteNoWork(passes::RevealPass::kName, reason);
         result.plan.noteNoWork(passes::HybridStage::kGatherBackground, reason);
       }
-      if (result.hybrid->maskPixels == 0)
+      if (masks && result.hybrid->maskPixels == 0)
         result.plan.noteNoWork(passes::HybridStage::kComposite,
                                "the ray mask is empty: the post-process gather's image stands");
     }

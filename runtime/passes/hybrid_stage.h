@@ -4,9 +4,11 @@
 //   -> ray reveal (RevealPass) at mask pixels -> gather of the background layer (the revealed
 //   surfaces over the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the
 //   background composited in at mask pixels (CompositePass, indirect;
-//   kernels/hybrid/composite.comp says how) -> shutter rays (ShutterRaysPass) at the moving
-//   pixels whose path crosses an edge (object or colour): rays at stratified shutter times
-//   replace the colour there.
+//   kernels/hybrid/composite.comp says how). With shutter rays (settings' shutterRays, the
+//   default) the mask's own passes, the reveal and the composite are left out: post-process's
+//   gather covers the image, and at the moving pixels whose path crosses an edge (object or
+//   colour) rays at stratified shutter times replace its colour (ShutterRaysPass), the mask's
+//   pixels among them.
 // Owns the trace scene (mesh trees built once per scene, the instance tree per frame), the
 // mask and the revealed surfaces.
 #pragma once
@@ -38,6 +40,11 @@ class TraceScene;
 namespace hmb::passes {
 
 class PostProcessStage;
+
+// Why a frame with shutter rays skips the ray mask's own passes, the reveal and the composite.
+inline constexpr const char* kRevealLeftToShutterRaysReason =
+    "the shutter rays trace every pixel whose path crosses another object over the shutter "
+    "(--shutter-rays 0 reveals the ray mask instead, as the paper does)";
 
 class HybridStage {
  public:

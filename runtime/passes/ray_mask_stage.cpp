@@ -6,6 +6,7 @@
 #include "kernels/hybrid/hybrid_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
+#include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
@@ -15,15 +16,18 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
       tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
       candidatesKernel_(context, "hybrid/edge_candidates", sizeof(gpu::RayMaskParams)),
       edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
-      rangeKernel_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)),
-      sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)) {}
+      sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
+      rangeKernel_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
 
-void RayMaskStage::plan(FramePlan& plan) const {
+void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause) const {
   plan.run(kClear);
   plan.run(kMovingTiles);
-  plan.run(kEdgeCandidates);
-  plan.run(kEdges);
-  plan.run(kRangeCheck);
+  for (const char* pass : {kEdgeCandidates, kEdges, kRangeCheck}) {
+    if (movingTilesOnlyBecause.empty())
+      plan.run(pass);
+    else
+      plan.skip(pass, movingTilesOnlyBecause);
+  }
   plan.run(kSizeDispatch);
 }
 
@@ -54,7 +58,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
     throw Error("ray mask: the tile grid does not cover the image");
   // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
-  frame.fill(kClear, edges_, 0u);
+  if (!p.movingTilesOnly) frame.fill(kClear, edges_, 0u);
   frame.fill(kClear, mask_, 0u);
   const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
   frame.dispatch(kMovingTiles, tilesKernel_,
@@ -64,12 +68,16 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                  tileParams,
                  vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
   // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
-  const auto sizeDispatch = [&](uint32_t list, uint32_t blocksPerTile) {
+  const auto sizeDispatch = [&](uint32_t list, uint32_t tileBlocks, uint32_t tileGroupsWanted) {
     frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, blocksPerTile, 0u, 0u}, {1, 1, 1});
+                   gpu::SizeListParams{list, tileBlocks, tileGroupsWanted, 0u}, {1, 1, 1});
   };
+  // The range check's groups (hybrid_layout.h).
   const uint32_t blocksPerSide = vk::groupsFor(blur.tileSize, HMB_MASK_TILE_GROUP_X);
-  sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide);
+  const uint32_t groupsWanted =
+      p.rangeCheckGroups.value_or(context_.info().type == "cpu" ? HMB_RANGE_CHECK_CPU_GROUPS : 0u);
+  sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide, groupsWanted);
+  if (p.movingTilesOnly) return;
   const gpu::RayMaskParams params{blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u,
                                   0u};
   frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
@@ -80,7 +88,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_EDGE_CANDIDATES_BINDING_LIST, &candidates_}},
                          params,
                          counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
-  sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
+  sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_,
                          {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},
                           {HMB_EDGE_MASK_BINDING_SAMPLES, layer.samples},
@@ -105,7 +113,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           // Read only along curved paths; any buffer stands in otherwise.
                           {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
                          params, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
-  sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
+  sizeDispatch(HMB_SIZE_LIST_MASK, 0u, 0u);
 }
 
 RayMaskCounts RayMaskStage::counts() const {

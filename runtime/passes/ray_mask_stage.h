@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/gather_pass.h"
@@ -28,6 +30,12 @@ struct RayMaskParameters {
   // List only the mask pixels whose coverage composite samples (the gather's: its sample count
   // and seed) meet the background: the composite gives the others' reveal a weight of 0.
   bool listOnlyUncovered = false;
+  // List the moving tiles alone (for the shutter rays' list) and leave the mask empty: the
+  // frame traces its edges over the shutter instead of revealing them (HybridStage::plan).
+  bool movingTilesOnly = false;
+  // The range check's groups wanted in all (gpu::SizeListParams::tileGroupsWanted: 0 for one
+  // per 8 x 8 block, 1 for one per tile); unset: the device's type decides (hybrid_layout.h).
+  std::optional<uint32_t> rangeCheckGroups;
 };
 
 struct RayMaskCounts {
@@ -47,7 +55,9 @@ class RayMaskStage {
   static constexpr const char* kSizeDispatch = "ray-mask-size-dispatch";
 
   explicit RayMaskStage(const vk::Context& context);
-  void plan(FramePlan& plan) const;
+  // movingTilesOnlyBecause: empty for the whole mask; else why the mask's own passes are
+  // skipped (RayMaskParameters::movingTilesOnly).
+  void plan(FramePlan& plan, const std::string& movingTilesOnlyBecause = {}) const;
   // Sizes the buffers for this resolution (reuses them when it is unchanged).
   void prepare(uint32_t width, uint32_t height);
   // layer: the G-buffer (its samples' depths, its surfaces' velocities and ids). After the tile

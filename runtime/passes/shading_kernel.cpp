@@ -11,6 +11,7 @@
 #include "runtime/passes/reference_stage.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/reveal_pass.h"
+#include "runtime/passes/shutter_rays_pass.h"
 #include "runtime/trace_scene.h"
 
 namespace hmb::passes {
@@ -72,9 +73,10 @@ void planCodePath(FramePlan& plan, const char* path, std::initializer_list<const
 
 void planTexturePath(FramePlan& plan, const GpuScene& scene) {
   planCodePath(plan, ShadingKernel::kTexturePath,
-               {ResolveGBufferPass::kName, RevealPass::kName, ReferenceStage::kAccumulate}, scene.texturePath(),
+               {ResolveGBufferPass::kName, RevealPass::kName, ShutterRaysPass::kTrace, ReferenceStage::kAccumulate},
+               scene.texturePath(),
                "no material has a texture", "run without texel reads and uv interpolation");
-  planCodePath(plan, ShadingKernel::kTopLevelWalk, {RevealPass::kName, ReferenceStage::kAccumulate},
+  planCodePath(plan, ShadingKernel::kTopLevelWalk, {RevealPass::kName, ShutterRaysPass::kTrace, ReferenceStage::kAccumulate},
                scene.topLevelWalk(), "the scene has one instance", "enter its tree with no top level over it");
 }
 

@@ -347,7 +347,7 @@ TEST(CliTest, TheForegroundBoostIsAConstantOrFallsWithTheSpeed) {
 
 TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
   const fs::path dir = tempDir("hybrid");
-  const CliRun run = hmblur("--quiet render --scene living-room --method hybrid --edge-threshold 0.5 "
+  const CliRun run = hmblur("--quiet render --scene living-room --method hybrid --shutter-rays 0 --edge-threshold 0.5 "
                             "--reveal-stop luminance --max-recursion 3 --composite weights --width 64 --height 36 "
                             "--out " + (dir / "hybrid.exr").string() + " --report " + (dir / "report.json").string());
   ASSERT_EQ(run.exitCode, 0) << run.output;

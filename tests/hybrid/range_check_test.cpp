@@ -53,9 +53,10 @@ void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std:
 }
 
 // Mask equal to the reference's range check over the device's edges, every edge pixel in the
-// mask (its range starts at itself), the list the masked pixels each once, counters to match.
-// Returns the mask's size.
-size_t expectRayMaskMatches(const MaskLayer& layer, const RayMaskParameters& p, const std::string& what) {
+// mask (its range starts at itself), the list the masked pixels each once, counters to match;
+// with the range check's groups in any shape (a tile each, a block each, a tile's blocks
+// strided over a few). Returns the mask's size.
+size_t expectRayMaskMatchesIn(const MaskLayer& layer, const RayMaskParameters& p, const std::string& what) {
   const RayMaskReadback device = runRayMask(VulkanTest::context(), layer, p);
   const std::vector<uint32_t> reference = rangeCheck(layer.velocity, device.edges, layer.width, layer.height, p);
   EXPECT_EQ(device.mask, reference) << what;
@@ -71,6 +72,16 @@ size_t expectRayMaskMatches(const MaskLayer& layer, const RayMaskParameters& p, 
   EXPECT_EQ(list, masked) << what << ": the list must hold each masked pixel exactly once";
   expectDispatchFor(device.counters, masked.size(), what);
   return masked.size();
+}
+
+size_t expectRayMaskMatches(const MaskLayer& layer, RayMaskParameters p, const std::string& what) {
+  p.rangeCheckGroups = 1u;
+  const size_t perTile = expectRayMaskMatchesIn(layer, p, what + ", a group per tile");
+  p.rangeCheckGroups = 0u;
+  EXPECT_EQ(expectRayMaskMatchesIn(layer, p, what + ", a group per block"), perTile) << what;
+  p.rangeCheckGroups = 5u;  // a tile's blocks strided over a few groups (or one per block)
+  EXPECT_EQ(expectRayMaskMatchesIn(layer, p, what + ", five groups wanted"), perTile) << what;
+  return perTile;
 }
 
 // Object 2 (depth 1) over columns 0-19, moving by `velocity`, beside a still, deeper object 3

@@ -39,6 +39,7 @@
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
 #include "scenes/scene.h"
+#include "tests/support/method_names.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -65,7 +66,7 @@ Renderer& renderer() {
 RenderResult render(const scene::Scene& scene, const std::string& method, uint32_t width, uint32_t height,
                     uint32_t spp = kReferenceSpp, std::optional<float> frameTime = std::nullopt, bool skip = true) {
   RenderSettings settings;
-  settings.method = parseMethod(method);
+  setMethod(settings, method);
   settings.width = width;
   settings.height = height;
   settings.frameTime = frameTime;
@@ -585,7 +586,7 @@ void checkZeroVelocity(const Case& c, const scene::Scene& scene, const std::stri
     return;
   }
   const RenderResult sharp = render(scene, "sharp", c.width, c.height);
-  if (method == "postprocess" || method == "hybrid") {
+  if (method == "postprocess" || method == "hybrid" || method == kHybridReveal) {
     EXPECT_EQ(result.image.find("")->values, sharp.image.find("")->values);
     const RenderResult everyPass = render(scene, method, c.width, c.height, 1, std::nullopt, false);
     EXPECT_EQ(everyPass.image.find("")->values, sharp.image.find("")->values) << "with every pass run";
@@ -715,11 +716,12 @@ void checkMovingCamera(const Case& c, const scene::Scene& scene, const std::stri
                        const RenderResult& result) {
   if (method == "sharp" || method == "reference") return;
   const double error = meanErrorAgainstJudge(c, scene, result);
-  const std::string baseline = method == "hybrid" ? "postprocess" : "sharp";
+  const bool hybrid = method == "hybrid" || method == kHybridReveal;
+  const std::string baseline = hybrid ? "postprocess" : "sharp";
   const double baselineError = meanErrorAgainstJudge(c, scene, render(scene, baseline, c.width, c.height));
   std::cout << "[ camera    ] mean |error| vs reference: " << method << " " << error << ", " << baseline << " "
             << baselineError << "\n";
-  EXPECT_LE(error, (method == "hybrid" ? 1.1 : 1.0) * baselineError);
+  EXPECT_LE(error, (hybrid ? 1.1 : 1.0) * baselineError);
 }
 
 // Pixels of each object id in a frame's objectId layer.
@@ -827,9 +829,12 @@ TEST_P(RobustnessTest, FiniteWellFormedAndWithinBounds) {
   expectWithinShadeRange(result, scene);
   if (result.hybrid) {
     std::cout << "[ hybrid    ] " << name << ": mask " << result.hybrid->maskPixels << " px, reveal rays "
-              << result.hybrid->revealRays << "\n";
+              << result.hybrid->revealRays << ", shutter rays " << result.hybrid->shutterRays << "\n";
     if (c.hybridTraces) {
-      EXPECT_GT(result.hybrid->revealRays, 0u);
+      if (method == kHybridReveal)
+        EXPECT_GT(result.hybrid->revealRays, 0u);
+      else
+        EXPECT_GT(result.hybrid->shutterRays, 0u);
     }
   }
   if (method == "reference") {
@@ -844,12 +849,21 @@ TEST_P(RobustnessTest, FiniteWellFormedAndWithinBounds) {
   if (c.check != nullptr) c.check(c, scene, method, result);
 }
 
+// Every method, and the hybrid without its shutter rays.
+std::vector<std::string> robustnessMethods() {
+  std::vector<std::string> methods = methodNames();
+  methods.emplace_back(kHybridReveal);
+  return methods;
+}
+
 std::string testName(const ::testing::TestParamInfo<CaseAndMethod>& info) {
-  return std::get<0>(info.param) + "_" + std::get<1>(info.param);
+  std::string method = std::get<1>(info.param);
+  std::replace(method.begin(), method.end(), '-', '_');  // test names take letters, digits, _
+  return std::get<0>(info.param) + "_" + method;
 }
 
 INSTANTIATE_TEST_SUITE_P(ExtremeCases, RobustnessTest,
-                         ::testing::Combine(::testing::ValuesIn(caseNames()), ::testing::ValuesIn(methodNames())),
+                         ::testing::Combine(::testing::ValuesIn(caseNames()), ::testing::ValuesIn(robustnessMethods())),
                          testName);
 
 // ---------------------------------------------------------------------------------------------

@@ -12,11 +12,13 @@
 
 #include "runtime/deformed_vertices.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/shutter_path_pass.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
+#include "tests/support/method_names.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -32,7 +34,7 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
                       bool skip, passes::MotionPath path = passes::MotionPath::Linear) {
   RenderSettings settings;
   settings.postprocess.motionPath = path;
-  settings.method = parseMethod(method);
+  setMethod(settings, method);
   settings.width = 64;
   settings.height = 36;
   settings.frameTime = time;
@@ -42,12 +44,13 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
 }
 
 // The passes a frame skipped, beside those of what the scene does not have (skinned or
-// morphing meshes) or the settings do not ask for (curved paths): those are skipped even when
-// every pass is asked to run.
+// morphing meshes) or the settings do not ask for (curved paths, the reveal beside shutter
+// rays): those are skipped even when every pass is asked to run.
 std::vector<std::string> skippedPasses(const RenderResult& result) {
   std::vector<std::string> names;
   for (const PlannedPass& pass : result.plan.passes())
     if (!pass.run && pass.reason != kNoDeformationReason && pass.reason != passes::kStraightPathsReason &&
+        pass.reason != passes::kRevealLeftToShutterRaysReason &&
         !pass.reason.starts_with(passes::kVisibilitySchemeReason))
       names.push_back(pass.name);
   return names;
@@ -146,7 +149,7 @@ TEST_F(FramePlanSkipsTest, ASceneWithoutTexturesSkipsTheTexturePathAndTheImageIs
     EXPECT_FALSE(path->reason.empty()) << method;
     EXPECT_TRUE(passNamed(everything, "texture-path")->run) << method;
     if (std::string(method) == "hybrid") {
-      ASSERT_GT(skipped.hybrid->revealRays, 0u);
+      ASSERT_GT(skipped.hybrid->shutterRays, 0u);
     }
     ASSERT_EQ(skipped.image.layers.size(), everything.image.layers.size()) << method;
     for (size_t i = 0; i < skipped.image.layers.size(); ++i)
@@ -224,9 +227,10 @@ TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
   Renderer renderer(context());
   const scene::Scene wall = slidingWall();
   ASSERT_TRUE(anythingMovesOnScreen(wall, 1.0f));
-  const RenderResult result = renderAt(renderer, wall, "hybrid", 1.0f, true);
-  // The wall has no texture, and is the scene's one instance.
-  EXPECT_EQ(skippedPasses(result), (std::vector<std::string>{"texture-path", "top-level-walk"}));
+  const RenderResult result = renderAt(renderer, wall, kHybridReveal, 1.0f, true);
+  // The shutter rays are turned off; the wall has no texture, and is the scene's one instance.
+  EXPECT_EQ(skippedPasses(result),
+            (std::vector<std::string>{"shutter-rays-list", "shutter-rays-trace", "texture-path", "top-level-walk"}));
   EXPECT_EQ(result.hybrid->edgeCandidates, 0u);
   EXPECT_EQ(result.hybrid->maskPixels, 0u);
   EXPECT_EQ(result.hybrid->revealRays, 0u);
@@ -235,9 +239,28 @@ TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
   EXPECT_TRUE(noWorkOf(result, "gather").empty());
 
   // A frame with silhouettes has work in every pass.
-  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid", kMovingTime, true);
+  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), kHybridReveal, kMovingTime, true);
   ASSERT_GT(room.hybrid->revealRays, 0u);
   for (const PlannedPass& pass : room.plan.passes()) EXPECT_TRUE(pass.noWork.empty()) << pass.name;
+}
+
+// With shutter rays (the default), the ray mask's own passes, the reveal and the composite are
+// skipped and say why; the moving tiles are still listed for the rays, which trace.
+TEST_F(FramePlanSkipsTest, ShutterRaysLeaveTheRevealOutAndSayWhy) {
+  Renderer renderer(context());
+  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid", kMovingTime, true);
+  for (const char* name :
+       {"ray-mask-edge-candidates", "ray-mask-edges", "ray-mask-range-check", "ray-reveal", "gather-background", "composite"}) {
+    const PlannedPass* pass = passNamed(room, name);
+    ASSERT_NE(pass, nullptr) << name;
+    EXPECT_FALSE(pass->run) << name;
+    EXPECT_EQ(pass->reason, passes::kRevealLeftToShutterRaysReason) << name;
+  }
+  for (const char* name : {"ray-mask-moving-tiles", "shutter-rays-list", "gather", "shutter-rays-trace"})
+    EXPECT_TRUE(room.plan.runs(name)) << name;
+  EXPECT_EQ(room.hybrid->maskPixels, 0u);
+  EXPECT_EQ(room.hybrid->revealRays, 0u);
+  EXPECT_GT(room.hybrid->shutterRays, 0u);
 }
 
 }  // namespace

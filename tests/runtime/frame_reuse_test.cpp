@@ -74,7 +74,7 @@ TEST_F(FrameReuseTest, MovingInstancesRebuildTheTopLevelOnly) {
   EXPECT_FALSE(passNamed(after, kMeshes).milliseconds.has_value());
   EXPECT_TRUE(passNamed(after, kInstances).run);
   EXPECT_FALSE(after.hybrid->setupMilliseconds.has_value());
-  ASSERT_GT(after.hybrid->revealRays, 0u);
+  ASSERT_GT(after.hybrid->shutterRays, 0u);
 
   Renderer fresh(context());
   expectSameImage(after, renderHybrid(fresh, temple, second));
@@ -89,7 +89,7 @@ TEST_F(FrameReuseTest, AMovingCameraOverStillInstancesKeepsBothTrees) {
   EXPECT_FALSE(passNamed(after, kMeshes).run);
   EXPECT_FALSE(passNamed(after, kInstances).run);
   EXPECT_FALSE(passNamed(after, kInstances).reason.empty());
-  ASSERT_GT(after.hybrid->revealRays, 0u);
+  ASSERT_GT(after.hybrid->shutterRays, 0u);
 
   Renderer fresh(context());
   const RenderResult alone = renderHybrid(fresh, bistro, second);

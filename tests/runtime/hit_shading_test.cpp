@@ -61,8 +61,11 @@ TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
   RendererOptions magenta;
   magenta.shadeHit = kMagenta;
   Renderer custom(context(), magenta);
-  const RenderResult a = builtIn.render(scene, frameOf(Method::Hybrid));
-  const RenderResult b = custom.render(scene, frameOf(Method::Hybrid));
+  // The paper's hybrid: rays reveal the ray mask (the default's shutter rays: below).
+  RenderSettings paper = frameOf(Method::Hybrid);
+  paper.hybrid.shutterRays = 0;
+  const RenderResult a = builtIn.render(scene, paper);
+  const RenderResult b = custom.render(scene, paper);
   // The raster's G-buffer is the same: its shading is the library's.
   EXPECT_EQ(a.image.find("depth")->values, b.image.find("depth")->values);
   EXPECT_EQ(a.image.find("objectId")->ids, b.image.find("objectId")->ids);
@@ -90,6 +93,25 @@ TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
     }
   EXPECT_GT(changed, 10u);
   EXPECT_EQ(outside, 0u) << "of " << changed << " changed pixels";
+
+  // With shutter rays every pixel that took them is the shading's colour (each ray's is
+  // magenta), and no other pixel changes.
+  const RenderResult c = builtIn.render(scene, frameOf(Method::Hybrid));
+  const RenderResult d = custom.render(scene, frameOf(Method::Hybrid));
+  const std::vector<uint32_t>& rays = d.image.find("shutterRays")->ids;
+  ASSERT_EQ(rays, c.image.find("shutterRays")->ids);
+  size_t traced = 0, wrong = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const float* colour = &beauty(d)[4 * i];
+    if (rays[i] == 0) {
+      wrong += !std::equal(colour, colour + 4, &beauty(c)[4 * i]);
+      continue;
+    }
+    ++traced;
+    wrong += !(colour[0] == 1.0f && colour[1] == 0.0f && colour[2] == 1.0f);
+  }
+  EXPECT_GT(traced, 10u);
+  EXPECT_EQ(wrong, 0u) << "of " << rays.size() << " pixels";
 }
 
 TEST_F(HitShadingTest, AShadeHitThatDoesNotCompileIsAOneLineErrorNamingIt) {
