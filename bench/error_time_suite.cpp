@@ -51,13 +51,20 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
     settings->postprocess.samples = s;
   }
   for (const uint32_t s : o.samples) add("hybrid S" + std::to_string(s), "hybrid", s, "hybrid")->postprocess.samples = s;
+  // The reveal's settings act on the paper's hybrid alone (with shutter rays the mask is left
+  // out): hybrid-paper is the hybrid without them.
   for (const uint32_t r : o.recursionLimits) {
-    RenderSettings* settings = add("hybrid luminance stop R" + std::to_string(r), "hybrid luminance stop", r, "hybrid");
+    RenderSettings* settings =
+        add("hybrid-paper luminance stop R" + std::to_string(r), "hybrid-paper luminance stop", r, "hybrid");
+    settings->hybrid.shutterRays = 0;
     settings->hybrid.stop = passes::RevealStop::Luminance;
     settings->hybrid.maxRecursion = r;
   }
-  for (const float e : o.edgeThresholds)
-    add("hybrid e" + fixed(e, 2), "hybrid edge threshold", e, "hybrid")->hybrid.edgeThreshold = e;
+  for (const float e : o.edgeThresholds) {
+    RenderSettings* settings = add("hybrid-paper e" + fixed(e, 2), "hybrid-paper edge threshold", e, "hybrid");
+    settings->hybrid.shutterRays = 0;
+    settings->hybrid.edgeThreshold = e;
+  }
   for (const uint32_t n : o.shutterRays)
     add("hybrid shutter rays " + std::to_string(n), "hybrid shutter rays", n, "hybrid")->hybrid.shutterRays = n;
   for (const uint32_t k : o.timeSlices) {

@@ -1,6 +1,7 @@
 // The `error-vs-time` suite: for each scene, every method at a range of settings (sharp;
 // post-process, centred and adapted, at several sample counts; hybrid at several sample
-// counts, reveal-recursion limits and edge thresholds; both with the shutter cut into 2, 3
+// counts and shutter strata, and without its shutter rays (the paper's) at several
+// reveal-recursion limits and edge thresholds; both with the shutter cut into 2, 3
 // and 4 time slices; the reference at 1, 2, 4 ... spp), its
 // median frame time (device timestamps) and its error against a high-spp judge (PSNR and SSIM
 // over the frame and the blur region). Where hybrid sits on the reference's spp curve is the
@@ -33,8 +34,8 @@ struct ErrorTimeSuiteOptions {
   std::string referenceDir;
   uint32_t judgeSpp = 1024;
   std::vector<uint32_t> samples = {5, 9, 15, 23, 31};  // post-process and hybrid gather samples
-  std::vector<uint32_t> recursionLimits = {1, 5};      // hybrid, luminance stop
-  std::vector<float> edgeThresholds = {0.5f, 0.8f, 0.95f};  // hybrid (the scene's own is in the samples series)
+  std::vector<uint32_t> recursionLimits = {1, 5};      // hybrid without shutter rays, luminance stop
+  std::vector<float> edgeThresholds = {0.5f, 0.8f, 0.95f};  // hybrid without shutter rays (the scene's own: shutter rays 0)
   std::vector<uint32_t> timeSlices = {2, 3, 4};              // adapted post-process and hybrid, the shutter cut in K
   std::vector<uint32_t> shutterRays = {0, 2, 4, 16};         // hybrid's shutter strata (its default, 8, is in the samples series)
   std::vector<uint32_t> referenceSpp = {1, 2, 4, 8, 16, 32, 64, 128, 256};  // seed 2: not the judge's strata

@@ -2,8 +2,8 @@
 """Error against run time, one PNG per scene, from hmblur-bench error-vs-time's JSON.
 
 Blur-region PSNR (higher is better) against median frame time (log axis); one curve per
-series (post-process centred, adapted and adapted along curved paths over sample counts, hybrid over sample counts,
-recursion limits, edge thresholds and shutter strata, adapted post-process and hybrid over time
+series (post-process centred, adapted and adapted along curved paths over sample counts, hybrid over sample counts
+and shutter strata, the hybrid without shutter rays over recursion limits and edge thresholds, adapted post-process and hybrid over time
 slices, the reference over spp), the sharp frame as a point, and
 the Pareto front (no other case both faster and closer) drawn through the cases on it.
 
@@ -28,8 +28,8 @@ styles = {
     "postprocess adapted": dict(marker="^", color="tab:red"),
     "postprocess curved path": dict(marker=">", color="tab:olive"),
     "hybrid": dict(marker="o", color="tab:blue"),
-    "hybrid luminance stop": dict(marker="D", color="tab:cyan"),
-    "hybrid edge threshold": dict(marker="P", color="tab:purple"),
+    "hybrid-paper luminance stop": dict(marker="D", color="tab:cyan"),
+    "hybrid-paper edge threshold": dict(marker="P", color="tab:purple"),
     "hybrid shutter rays": dict(marker="X", color="tab:gray"),
     "postprocess adapted time slices": dict(marker="<", color="tab:brown"),
     "hybrid time slices": dict(marker="h", color="tab:pink"),
