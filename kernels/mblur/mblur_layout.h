@@ -79,11 +79,9 @@
 // copy_still_blocks: one 8 x 8 group per listed still block.
 #define HMB_STILL_BLOCKS_BINDING_SAMPLES 0   // uvec4 per pixel: the layer's samples
 #define HMB_STILL_BLOCKS_BINDING_OUTPUT 1    // vec4 per pixel
-#define HMB_STILL_BLOCKS_BINDING_MASK 2      // uint per pixel (HMB_SPEC_STILL_BLOCKS_OUTSIDE_MASK)
-#define HMB_STILL_BLOCKS_BINDING_BLOCKS 3    // list_gather_blocks' list
-#define HMB_STILL_BLOCKS_BINDING_COUNTERS 4  // GatherBlockCounters
-#define HMB_STILL_BLOCKS_BINDING_COUNT 5
-#define HMB_SPEC_STILL_BLOCKS_OUTSIDE_MASK 0  // as HMB_SPEC_GATHER_OUTSIDE_MASK
+#define HMB_STILL_BLOCKS_BINDING_BLOCKS 2    // list_gather_blocks' list
+#define HMB_STILL_BLOCKS_BINDING_COUNTERS 3  // GatherBlockCounters
+#define HMB_STILL_BLOCKS_BINDING_COUNT 4
 
 // GatherParams::flags
 #define HMB_GATHER_FLAG_ADAPTED_RANGE 1u  // samples over X + u v_N, u in (0, 1]; else McGuire's t in [-1, 1]

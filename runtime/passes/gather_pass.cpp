@@ -45,7 +45,9 @@ constexpr VkDeviceSize listDispatchOffset(uint32_t list) {
 }  // namespace
 
 GatherPass::GatherPass(const vk::Context& context)
-    : context_(context), listBlocks_(context, "mblur/list_gather_blocks", sizeof(gpu::GatherBlocksParams)) {}
+    : context_(context),
+      listBlocks_(context, "mblur/list_gather_blocks", sizeof(gpu::GatherBlocksParams)),
+      copyStillBlocks_(context, "mblur/copy_still_blocks", sizeof(gpu::StillBlocksParams)) {}
 
 void GatherPass::plan(FramePlan& plan) const {
   plan.run(kClearBlocks);
@@ -120,17 +122,11 @@ void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const Mo
   frame.dispatchIndirect(kName, *kernel, bindings, params, blockCounters_,
                          listDispatchOffset(HMB_GATHER_BLOCKS_MOVING));
 
-  std::unique_ptr<vk::ComputeKernel>& copy = copyStillBlocks_[outsideMask ? 1 : 0];
-  if (!copy) {
-    const uint32_t specialization[HMB_SPEC_STILL_BLOCKS_OUTSIDE_MASK + 1] = {outsideMask ? 1u : 0u};
-    copy = std::make_unique<vk::ComputeKernel>(context_, "mblur/copy_still_blocks", sizeof(gpu::StillBlocksParams),
-                                               specialization);
-  }
+  // The same for the hybrid: its mask has no pixel in a still block (copy_still_blocks.comp).
   const gpu::StillBlocksParams still{inputs.width, inputs.height, blockCount, 0};
-  frame.dispatchIndirect(kCopyStillBlocks, *copy,
+  frame.dispatchIndirect(kCopyStillBlocks, copyStillBlocks_,
                          {{HMB_STILL_BLOCKS_BINDING_SAMPLES, inputs.samples},
                           {HMB_STILL_BLOCKS_BINDING_OUTPUT, &output},
-                          {HMB_STILL_BLOCKS_BINDING_MASK, &mask},
                           {HMB_STILL_BLOCKS_BINDING_BLOCKS, &blocks_},
                           {HMB_STILL_BLOCKS_BINDING_COUNTERS, &blockCounters_}},
                          still, blockCounters_, listDispatchOffset(HMB_GATHER_BLOCKS_STILL));

@@ -62,7 +62,7 @@ class GatherPass final : public GatherFilter {
   // [outside the mask][curved path][adapted range], each made on first use
   mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2][2];
   vk::ComputeKernel listBlocks_;
-  mutable std::unique_ptr<vk::ComputeKernel> copyStillBlocks_[2];  // [outside the mask]
+  vk::ComputeKernel copyStillBlocks_;
   mutable vk::Buffer blocks_, blockCounters_;
 };
 

@@ -163,7 +163,9 @@ TEST_F(MblurGatherTest, StillAndMovingBlocksEachMatchTheReference) {
         if (kind == 2) tile = glm::vec4(0.0f, -gpu::kMinBlurPixels, gpu::kMinBlurPixels, 0.0f);
         still += kind < 2;
       }
-      if (tiles.size() > 4) ASSERT_GT(still, 0u);
+      if (tiles.size() > 4) {
+        ASSERT_GT(still, 0u);
+      }
       expectMatchesReference(runGather(context(), layer, tiles, s), gather(layer, tiles, nullptr, s));
     }
   }
