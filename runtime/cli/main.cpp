@@ -22,6 +22,7 @@
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
+#include "runtime/passes/hybrid_stage.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"
 #include "runtime/sample_summary.h"
@@ -238,6 +239,33 @@ fs::path framePath(const fs::path& out, uint32_t frame, uint32_t lastFrame) {
   return out.parent_path() / (out.stem().string() + "." + number + out.extension().string());
 }
 
+// The reveal's settings given for a frame whose shutter rays left the ray mask out
+// (passes::HybridStage::plan): said on stderr, as anything ignored is. Returns whether it was.
+bool warnRevealSettingsUnused(const GlobalOptions& global, const hmb::RenderSettings& settings,
+                              const hmb::RenderResult& result) {
+  if (global.quiet || !result.hybrid) return false;
+  const hmb::passes::HybridChoices& c = settings.hybrid;
+  const std::pair<bool, const char*> given[] = {{c.edgeThreshold.has_value(), "--edge-threshold"},
+                                                {c.stop.has_value(), "--reveal-stop"},
+                                                {c.maxRecursion.has_value(), "--max-recursion"},
+                                                {c.luminanceThreshold.has_value(), "--luminance-threshold"},
+                                                {c.composite.has_value(), "--composite"},
+                                                {c.maskBackgroundBoost.has_value(), "--mask-background-boost"},
+                                                {c.maskForegroundDivide.has_value(), "--mask-foreground-divide"}};
+  std::string names;
+  for (const auto& [set, name] : given)
+    if (set) names += (names.empty() ? "" : ", ") + std::string(name);
+  if (names.empty()) return false;
+  for (const hmb::PlannedPass& pass : result.plan.passes())
+    if (!pass.run && pass.reason == hmb::passes::kRevealLeftToShutterRaysReason) {
+      std::cerr << "hmblur: warning: " << names
+                << " ignored: they set the ray mask's reveal, which the shutter rays replace (--shutter-rays 0 "
+                   "reveals the mask)\n";
+      return true;
+    }
+  return false;
+}
+
 // --frames A:B: an image sequence, one renderer for all frames so that what a frame built and
 // the next can use (the hybrid's trees) is kept. One report lists every frame's passes.
 int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb::RenderSettings settings) {
@@ -255,9 +283,11 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
                            {"resolution", {settings.width, settings.height}},
                            {"fps", scene.settings.fps},
                            {"frames", nlohmann::json::array()}};
+  bool warned = false;  // once for the sequence
   for (uint32_t frame = range.first; frame <= range.last; ++frame) {
     settings.frameTime = static_cast<float>(frame / double(scene.settings.fps));
     const hmb::RenderResult result = renderer.render(scene, settings);
+    warned = warned || warnRevealSettingsUnused(global, settings, result);
     nlohmann::json entry = {{"frame", frame},
                             {"time_s", *settings.frameTime},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
@@ -409,6 +439,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
                        std::to_string(settings.height));
   const TimedRender timed = renderTimed(renderer, scene, settings, options.repeat);
   const hmb::RenderResult& result = timed.result;
+  warnRevealSettingsUnused(global, settings, result);
 
   writeImage(options.out, result);
   nlohmann::json report = hmb::renderReport(context.info(), hmb::querySystemInfo(), scene, result);

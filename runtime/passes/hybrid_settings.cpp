@@ -37,7 +37,8 @@ settings::Table<Choices, Settings> makeTable() {
       number("mask-foreground-divide", "hybrid", "weights composite: foreground weight divisor in the mask",
              &Choices::maskForegroundDivide, &Settings::maskForegroundDivide, factor),
       number("shutter-rays", "hybrid",
-             "shutter strata for the rays of pixels whose path crosses an edge: another object, a colour step (0 off; 2, 4, 8 or 16)",
+             "shutter strata for the rays of pixels whose path crosses an edge: another object, a colour step; they "
+             "replace the ray mask's reveal (0: no rays, the paper's reveal; 2, 4, 8 or 16)",
              &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA}),
   };
 }

@@ -345,6 +345,23 @@ TEST(CliTest, TheForegroundBoostIsAConstantOrFallsWithTheSpeed) {
                      "foreground-boost-pixels");
 }
 
+// The reveal's settings act on the ray mask, which the default hybrid leaves to its shutter
+// rays: given there, they are said to be ignored on stderr; with --shutter-rays 0 they act.
+TEST(CliTest, RevealSettingsBesideShutterRaysAreSaidToBeIgnored) {
+  const fs::path dir = tempDir("reveal-settings");
+  const std::string common = "render --scene living-room --method hybrid --width 32 --height 18 --out " +
+                             (dir / "hybrid.png").string();
+  const CliRun rays = hmblur(common + " --edge-threshold 0.5 --reveal-stop luminance");
+  ASSERT_EQ(rays.exitCode, 0) << rays.output;
+  EXPECT_NE(rays.output.find("warning: --edge-threshold, --reveal-stop ignored"), std::string::npos) << rays.output;
+  const CliRun paper = hmblur(common + " --edge-threshold 0.5 --reveal-stop luminance --shutter-rays 0");
+  ASSERT_EQ(paper.exitCode, 0) << paper.output;
+  EXPECT_EQ(paper.output.find("warning"), std::string::npos) << paper.output;
+  const CliRun plain = hmblur(common);
+  ASSERT_EQ(plain.exitCode, 0) << plain.output;
+  EXPECT_EQ(plain.output.find("warning"), std::string::npos) << plain.output;
+}
+
 TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
   const fs::path dir = tempDir("hybrid");
   const CliRun run = hmblur("--quiet render --scene living-room --method hybrid --shutter-rays 0 --edge-threshold 0.5 "
