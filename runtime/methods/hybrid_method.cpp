@@ -82,17 +82,22 @@ class HybridMethod final : public FrameMethod {
       result.hybrid->maskPixels = counts.maskPixels;
       result.hybrid->revealedPixels = counts.listedPixels;
       result.hybrid->revealRays = counts.revealRays;
-      mask = hybrid_.rayMask().mask().download<uint32_t>();
-      mask.resize(pixels);
-      const passes::ImageLayer& layer = hybrid_.revealed();
-      const passes::LayerContents revealedAll = passes::downloadLayer(layer, pixels);
-      std::vector<uint32_t> traced = hybrid_.rayMask().list().download<uint32_t>();
-      traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
-      for (const uint32_t i : traced) {
-        if (i >= pixels) continue;
-        revealed[i] = glm::vec4(revealedAll.color[i], 1.0f);
-        revealedDepth[i] = glm::vec4(revealedAll.depth[i], 0.0f, 0.0f, 0.0f);
-        revealedId[i] = revealedAll.objectId[i];
+      // With the shutter rays the mask's own passes and the reveal are skipped (the plan says
+      // why), and their buffers not made: the layers stay empty.
+      const bool masks = result.plan.runs(passes::RayMaskStage::kRangeCheck);
+      if (masks) {
+        mask = hybrid_.rayMask().mask().download<uint32_t>();
+        mask.resize(pixels);
+        const passes::ImageLayer& layer = hybrid_.revealed();
+        const passes::LayerContents revealedAll = passes::downloadLayer(layer, pixels);
+        std::vector<uint32_t> traced = hybrid_.rayMask().list().download<uint32_t>();
+        traced.resize(std::min<size_t>(traced.size(), counts.listedPixels));
+        for (const uint32_t i : traced) {
+          if (i >= pixels) continue;
+          revealed[i] = glm::vec4(revealedAll.color[i], 1.0f);
+          revealedDepth[i] = glm::vec4(revealedAll.depth[i], 0.0f, 0.0f, 0.0f);
+          revealedId[i] = revealedAll.objectId[i];
+        }
       }
       if (hybrid_.tracesShutterRays()) {
         const passes::ShutterRayCounts shutter = hybrid_.shutterRays().counts();
@@ -105,8 +110,6 @@ class HybridMethod final : public FrameMethod {
         if (shutter.pixels == 0)
           result.plan.noteNoWork(passes::HybridStage::kShutterRaysTrace, "no pixel's path crosses an edge (another object, a colour step)");
       }
-      // With the shutter rays the mask's own passes and the reveal are skipped (the plan says why).
-      const bool masks = result.plan.runs(passes::RayMaskStage::kRangeCheck);
       if (masks && result.hybrid->edgeCandidates == 0)
         result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");
       if (masks && result.hybrid->revealedPixels == 0) {

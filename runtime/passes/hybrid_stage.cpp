@@ -120,14 +120,21 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
     cameraRays_ = vk::Buffer(context_, cameraBytes, vk::MemoryUse::Device, "camera rays (frame, shutter strata)");
   if (shutterStrata_ != 0) shutterRays_.prepare(width, height);
 
-  rayMask_.prepare(width, height);
-  if (size_.changesTo(width, height)) {
+  // Beside the shutter rays the mask's own buffers and the reveal's layers are not made (64
+  // bytes a pixel): the frame lists the moving tiles alone.
+  const bool reveals = plan.runs(RevealPass::kName);
+  rayMask_.prepare(width, height, !reveals);
+  const bool resized = size_.changesTo(width, height);
+  size_.madeFor(width, height);
+  if (!reveals) {
+    revealed_ = {};
+    backgroundBlurred_ = {};
+  } else if (resized || !backgroundBlurred_.handle()) {
     const uint64_t pixels = uint64_t(width) * height;
     revealed_ = {};  // the old layer goes first: the two never take memory at once
     revealed_ = ImageLayer::allocate(context_, pixels, "revealed");
     backgroundBlurred_ =
         vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "background blurred (mask pixels)");
-    size_.madeFor(width, height);
   }
   return timings;
 }

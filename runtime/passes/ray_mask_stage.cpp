@@ -31,19 +31,29 @@ void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecau
   plan.run(kSizeDispatch);
 }
 
-void RayMaskStage::prepare(uint32_t width, uint32_t height) {
+void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly) {
   if (width == 0 || height == 0) throw Error("ray mask: empty image");
-  if (!size_.changesTo(width, height)) return;
   const uint64_t pixels = uint64_t(width) * height;
+  const bool resized = size_.changesTo(width, height);
+  if (resized) {
+    tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
+    counters_ = vk::Buffer(context_, sizeof(gpu::RayMaskCounters), vk::MemoryUse::Device, "ray mask counters");
+    size_.madeFor(width, height);
+  }
+  if (movingTilesOnly) {
+    edges_ = {};
+    mask_ = {};
+    list_ = {};
+    candidates_ = {};
+    return;
+  }
+  if (!resized && mask_.handle()) return;
   // The edge mask, then the coarse edge mask (kernels/hybrid/hybrid_layout.h).
   edges_ = vk::Buffer(context_, HMB_EDGE_BUFFER_ENTRIES(uint64_t(width), uint64_t(height)) * sizeof(uint32_t),
                       vk::MemoryUse::Device, "edge mask");
   mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
   candidates_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge candidates");
-  tiles_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "moving tiles");
-  counters_ = vk::Buffer(context_, sizeof(gpu::RayMaskCounters), vk::MemoryUse::Device, "ray mask counters");
-  size_.madeFor(width, height);
 }
 
 void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
@@ -58,8 +68,11 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
     throw Error("ray mask: the tile grid does not cover the image");
   // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
-  if (!p.movingTilesOnly) frame.fill(kClear, edges_, 0u);
-  frame.fill(kClear, mask_, 0u);
+  if (!p.movingTilesOnly) {
+    if (!mask_.handle()) throw Error("ray mask: prepared for the moving tiles only");
+    frame.fill(kClear, edges_, 0u);
+    frame.fill(kClear, mask_, 0u);
+  }
   const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
   frame.dispatch(kMovingTiles, tilesKernel_,
                  {{HMB_MOVING_TILES_BINDING_TILE_MAX, p.tileMax},

@@ -58,13 +58,15 @@ class RayMaskStage {
   // movingTilesOnlyBecause: empty for the whole mask; else why the mask's own passes are
   // skipped (RayMaskParameters::movingTilesOnly).
   void plan(FramePlan& plan, const std::string& movingTilesOnlyBecause = {}) const;
-  // Sizes the buffers for this resolution (reuses them when it is unchanged).
-  void prepare(uint32_t width, uint32_t height);
+  // Sizes the buffers for this resolution (reuses them when it is unchanged); movingTilesOnly:
+  // only those of the moving tiles' list (RayMaskParameters::movingTilesOnly), the others freed.
+  void prepare(uint32_t width, uint32_t height, bool movingTilesOnly = false);
   // layer: the G-buffer (its samples' depths, its surfaces' velocities and ids). After the tile
   // passes.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
               const RayMaskParameters& parameters) const;
 
+  // The mask's own buffers: none after a prepare() for the moving tiles only.
   const vk::Buffer& edges() const { return edges_; }        // uint per pixel, then per coarse block
   const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
   const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal

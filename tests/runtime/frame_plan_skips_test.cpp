@@ -261,6 +261,20 @@ TEST_F(FramePlanSkipsTest, ShutterRaysLeaveTheRevealOutAndSayWhy) {
   EXPECT_EQ(room.hybrid->maskPixels, 0u);
   EXPECT_EQ(room.hybrid->revealRays, 0u);
   EXPECT_GT(room.hybrid->shutterRays, 0u);
+  // Nor are their buffers made: the mask's edges, mask, list and candidates (16 bytes a pixel)
+  // and the revealed layer and its blur (48), less the rays' own list (4); at 640x360 the
+  // per-pixel buffers outweigh the trace scene's.
+  RenderSettings settings;
+  settings.method = Method::Hybrid;
+  settings.width = 640;
+  settings.height = 360;
+  settings.frameTime = kMovingTime;
+  const RenderResult rays = renderer.render(scene::loadScene("living-room"), settings);
+  settings.hybrid.shutterRays = 0;
+  const RenderResult paper = renderer.render(scene::loadScene("living-room"), settings);
+  const uint64_t pixels = uint64_t(settings.width) * settings.height;
+  EXPECT_LE(rays.memory.peakBytes + 56 * pixels, paper.memory.peakBytes)
+      << rays.memory.peakBytes << " bytes beside the rays, " << paper.memory.peakBytes << " without";
 }
 
 }  // namespace
