@@ -2,8 +2,8 @@
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
 // 65535 groups: the moving tiles (a group per tile: edge_candidates; a group per slice of each
 // one's 8 x 8 blocks: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask)
-// or the ray mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather
-// over the list's front, the composite over the whole mask).
+// or the ray mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background
+// layer's gather over the list's front, the composite over the whole mask).
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
