@@ -53,7 +53,9 @@ int main(int argc, char** argv) {
         std::cout << pass.milliseconds.value_or(0.0) << " ms\n";
     }
     if (frame.hybrid)
-      std::cout << "  ray mask " << frame.hybrid->maskPixels << " px, " << frame.hybrid->revealRays << " reveal rays\n";
+      std::cout << "  shutter rays " << frame.hybrid->shutterRayPixels << " px, " << frame.hybrid->shutterRays
+                << " rays; ray mask " << frame.hybrid->maskPixels << " px, " << frame.hybrid->revealRays
+                << " reveal rays\n";
     if (deviceOptions.validation && device.validationErrors() > 0) {
       std::cerr << "render_frame: " << device.validationErrors() << " validation errors\n";
       return 3;
