@@ -28,6 +28,13 @@ void FramePlan::skip(std::string name, std::string reason) {
   passes_.push_back({std::move(name), false, std::move(reason), std::nullopt, {}, {}});
 }
 
+void FramePlan::runUnless(std::string name, const std::string& skipReason) {
+  if (skipReason.empty())
+    run(std::move(name));
+  else
+    skip(std::move(name), skipReason);
+}
+
 bool FramePlan::runs(std::string_view name) const {
   return std::any_of(passes_.begin(), passes_.end(), runningNamed(name));
 }

@@ -30,6 +30,8 @@ class FramePlan {
  public:
   void run(std::string name);
   void skip(std::string name, std::string reason);
+  // Runs the pass when skipReason is empty, else skips it for that reason.
+  void runUnless(std::string name, const std::string& skipReason);
   // A code path that runs inside the passes named by `within` (comma separated).
   void runWithin(std::string name, std::string within);
   bool runs(std::string_view name) const;

@@ -63,7 +63,7 @@ void main() {
   const uint tile = tiles[listedTileEntry()];
   // A moving tile's fastest moves kMinBlurPixels or more (list_moving_tiles).
   const vec3 fastest = tileMax[tile].xyz;
-  const uvec2 begin = uvec2(tile % params.blur.tilesX, tile / params.blur.tilesX) * params.blur.tileSize;
+  const uvec2 begin = tileOrigin(tile, params.blur.tilesX, params.blur.tileSize);
   const uvec2 end = min(begin + params.blur.tileSize, uvec2(params.blur.width, params.blur.height));
   for (uint y = begin.y + gl_LocalInvocationID.y; y < end.y; y += HMB_MASK_TILE_GROUP_Y) {
     for (uint x = begin.x + gl_LocalInvocationID.x; x < end.x; x += HMB_MASK_TILE_GROUP_X) {

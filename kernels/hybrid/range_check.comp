@@ -178,12 +178,12 @@ void checkPixel(uvec2 pixel) {
 void main() {
   const uint tile = tiles[listedTileEntry()];
   const uint tileSize = params.blur.tileSize;
-  const uvec2 tileOrigin = uvec2(tile % params.blur.tilesX, tile / params.blur.tilesX) * tileSize;
+  const uvec2 origin = tileOrigin(tile, params.blur.tilesX, tileSize);
   const uint blocks = tileBlocks(tileSize);
   for (uint block = gl_WorkGroupID.z; block < blocks; block += gl_NumWorkGroups.z) {
     const uvec2 pixel = tileBlockOrigin(tile, block, params.blur.tilesX, tileSize) + gl_LocalInvocationID.xy;
     // Lanes past the tile's or the image's edge have no pixel.
-    if (any(greaterThanEqual(pixel - tileOrigin, uvec2(tileSize))) || pixel.x >= params.blur.width ||
+    if (any(greaterThanEqual(pixel - origin, uvec2(tileSize))) || pixel.x >= params.blur.width ||
         pixel.y >= params.blur.height)
       continue;
     checkPixel(pixel);

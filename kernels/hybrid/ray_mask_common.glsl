@@ -31,14 +31,17 @@ float normalizedEdge(float x) {
 // list entry, group z one of gl_NumWorkGroups.z slices of the tile's 8 x 8 blocks.
 uint listedTileEntry() { return foldedGroupIndex(); }
 
-// How many 8 x 8 blocks a tile has, and the first pixel of block `block` of `tile`.
+// The first pixel of `tile` in a grid tilesX tiles across.
+uvec2 tileOrigin(uint tile, uint tilesX, uint tileSize) { return uvec2(tile % tilesX, tile / tilesX) * tileSize; }
+
+// How many 8 x 8 blocks a tile has across and in all, and the first pixel of block `block`.
+uint tileBlocksAcross(uint tileSize) { return (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X; }
 uint tileBlocks(uint tileSize) {
-  const uint blocksX = (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;
-  return blocksX * ((tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y);
+  return tileBlocksAcross(tileSize) * ((tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y);
 }
 uvec2 tileBlockOrigin(uint tile, uint block, uint tilesX, uint tileSize) {
-  const uint blocksX = (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;
-  return uvec2(tile % tilesX, tile / tilesX) * tileSize +
+  const uint blocksX = tileBlocksAcross(tileSize);
+  return tileOrigin(tile, tilesX, tileSize) +
          uvec2(block % blocksX, block / blocksX) * uvec2(HMB_MASK_TILE_GROUP_X, HMB_MASK_TILE_GROUP_Y);
 }
 

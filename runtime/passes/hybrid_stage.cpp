@@ -77,21 +77,10 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
   // hybrid method").
   const std::string revealSkipped = shutterSkipped.empty() ? kRevealLeftToShutterRaysReason : "";
   rayMask_.plan(plan, revealSkipped);
-  const auto planShutterRays = [&](const char* pass) {
-    if (shutterSkipped.empty())
-      plan.run(pass);
-    else
-      plan.skip(pass, shutterSkipped);
-  };
-  planShutterRays(kShutterRaysList);
+  plan.runUnless(kShutterRaysList, shutterSkipped);
   gather_.plan(plan);
-  for (const char* pass : {RevealPass::kName, kGatherBackground, kComposite}) {
-    if (revealSkipped.empty())
-      plan.run(pass);
-    else
-      plan.skip(pass, revealSkipped);
-  }
-  planShutterRays(kShutterRaysTrace);
+  for (const char* pass : {RevealPass::kName, kGatherBackground, kComposite}) plan.runUnless(pass, revealSkipped);
+  plan.runUnless(kShutterRaysTrace, shutterSkipped);
 }
 
 HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene,

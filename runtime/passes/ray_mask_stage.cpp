@@ -22,12 +22,7 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause) const {
   plan.run(kClear);
   plan.run(kMovingTiles);
-  for (const char* pass : {kEdgeCandidates, kEdges, kRangeCheck}) {
-    if (movingTilesOnlyBecause.empty())
-      plan.run(pass);
-    else
-      plan.skip(pass, movingTilesOnlyBecause);
-  }
+  for (const char* pass : {kEdgeCandidates, kEdges, kRangeCheck}) plan.runUnless(pass, movingTilesOnlyBecause);
   plan.run(kSizeDispatch);
 }
 
