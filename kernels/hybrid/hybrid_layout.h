@@ -45,11 +45,11 @@
 // names the listed tile, group z a slice of its blocks (every gl_NumWorkGroups.z-th): one block
 // a group on a GPU, which wants many groups in flight; on a CPU device about
 // HMB_RANGE_CHECK_CPU_GROUPS in all, enough to keep every thread busy when few tiles move
-// without paying llvmpipe 22.3's cost per group (an empty range check over bistro's 14,400
-// blocks at 1280x720 took 9-12 ms). edge_candidates: one 8 x 8 group per listed tile, its
-// lanes striding over the tile (at most HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU
-// device pays per invocation, and most pixels only need a few reads there. Pixels of other
-// tiles keep the 0 their buffers are filled with.
+// without paying llvmpipe 22.3's cost per group (bistro at 1280x720 has 14,400 blocks).
+// edge_candidates: one 8 x 8 group per listed tile, its lanes striding over the tile (at most
+// HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU device pays per invocation, and most
+// pixels only need a few reads there. Pixels of other tiles keep the 0 their buffers are
+// filled with.
 #define HMB_MASK_TILE_GROUP_X 8
 #define HMB_MASK_TILE_GROUP_Y 8
 #define HMB_RANGE_CHECK_CPU_GROUPS 256u
