@@ -76,6 +76,7 @@ struct RenderResult {
   struct Hybrid {
     passes::HybridSettings settings;
     uint64_t edgeCandidates = 0;  // pixels whose end lies on a deeper object (eqs. 1-2)
+    uint64_t rangeBlocks = 0;     // 8 x 8 blocks the range check walked (an edge within reach)
     uint64_t maskPixels = 0;
     uint64_t revealedPixels = 0;  // mask pixels whose composite needs the background, traced
     uint64_t revealRays = 0;

@@ -135,6 +135,7 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
       json["mask_background_boost"] = h.maskBackgroundBoost;
       json["mask_foreground_divide"] = h.maskForegroundDivide;
       json["edge_candidates"] = result.hybrid->edgeCandidates;
+      json["range_blocks"] = result.hybrid->rangeBlocks;
       json["mask_pixels"] = result.hybrid->maskPixels;
       json["revealed_pixels"] = result.hybrid->revealedPixels;
       json["reveal_rays"] = result.hybrid->revealRays;

@@ -6,9 +6,12 @@
 //                  different, deeper object, listed (a few percent of the pixels)
 //   edge_mask      eqs. 3, 4: the listed candidates whose 5x5 Sobel of depth and normal passes
 //                  the edge threshold e (listing first keeps the Sobel's lanes busy)
-//   range_check    moving pixels whose range along their velocity meets the edge mask: the ray
-//                  mask, per pixel HMB_MASK_* (for the gathers), and a compacted list of the
-//                  pixels to reveal
+//   list_range_blocks  the 8 x 8 blocks of the moving tiles with a flagged coarse edge block
+//                  within their tile's fastest reach, listed: no pixel of another block can meet
+//                  an edge
+//   range_check    pixels of the listed blocks whose range along their velocity meets the edge
+//                  mask: the ray mask, per pixel HMB_MASK_* (for the gathers), and a compacted
+//                  list of the pixels to reveal
 //   size_list_dispatch    a list's length -> the indirect dispatch of the passes over it, so
 //                  an empty list dispatches nothing
 //   reveal_background     per listed pixel, the first surface behind the object the raster sees
@@ -41,11 +44,13 @@
 #define HMB_MOVING_TILES_BINDING_LIST 2      // uint tile index per moving tile, in no order
 #define HMB_MOVING_TILES_BINDING_COUNT 3
 
-// range_check: one invocation per pixel of the listed tiles, in 8 x 8 blocks: group (x, y)
-// names the listed tile, group z a slice of its blocks (every gl_NumWorkGroups.z-th): one block
-// a group on a GPU, which wants many groups in flight; on a CPU device about
-// HMB_RANGE_CHECK_CPU_GROUPS in all, enough to keep every thread busy when few tiles move
-// without paying llvmpipe 22.3's cost per group (bistro at 1280x720 has 14,400 blocks).
+// range_check: one invocation per pixel of the listed blocks, an 8 x 8 group per block: one
+// block a group on a GPU, which wants many groups in flight; on a CPU device about
+// HMB_RANGE_CHECK_CPU_GROUPS groups in all, each striding over the list, enough to keep every
+// thread busy without paying llvmpipe 22.3's cost per group (bistro at 1280x720 has 14,400
+// blocks in its moving tiles).
+// list_range_blocks: one 64-lane group per listed tile, its lanes striding over the tile's
+// blocks.
 // edge_candidates: one 8 x 8 group per listed tile, its lanes striding over the tile (at most
 // HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU device pays per invocation, and most
 // pixels only need a few reads there. Pixels of other tiles keep the 0 their buffers are
@@ -82,9 +87,20 @@
 #define HMB_EDGE_BUFFER_ENTRIES(width, height) \
   (HMB_EDGE_BLOCKS_FIRST(width, height) + HMB_EDGE_BLOCKS_ACROSS(width) * HMB_EDGE_BLOCKS_ACROSS(height))
 
+#define HMB_RANGE_BLOCKS_GROUP 64
+#define HMB_RANGE_BLOCKS_BINDING_TILES 0     // uint tile index per moving tile
+#define HMB_RANGE_BLOCKS_BINDING_TILE_MAX 1  // vec4 per tile: the gather's tile-max (velocity, speed)
+#define HMB_RANGE_BLOCKS_BINDING_EDGES 2     // the edge mask, then the coarse one (edge_mask)
+#define HMB_RANGE_BLOCKS_BINDING_COUNTERS 3  // RayMaskCounters: rangeBlockCount
+#define HMB_RANGE_BLOCKS_BINDING_LIST 4      // uint per listed block: its first pixel's index, in no order
+#define HMB_RANGE_BLOCKS_BINDING_COUNT 5
+// A block's reach is tested over at most this many coarse blocks a side; a wider one is listed
+// untested (its walks cost less than the test would).
+#define HMB_RANGE_BLOCKS_MAX_TEST_SIDE 16
+
 #define HMB_RANGE_CHECK_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_RANGE_CHECK_BINDING_EDGES 1     // the edge mask, then the coarse one (edge_mask)
-#define HMB_RANGE_CHECK_BINDING_TILES 2     // uint tile index per moving tile
+#define HMB_RANGE_CHECK_BINDING_BLOCKS 2    // list_range_blocks' list
 #define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
 // uint pixel index per mask pixel, in no order: those to reveal from the front (maskCount),
@@ -108,9 +124,10 @@
 #define HMB_SIZE_LIST_BINDING_COUNTERS 0
 #define HMB_SIZE_LIST_BINDING_COUNT 1
 // SizeListParams.list
-#define HMB_SIZE_LIST_MOVING_TILES 0u     // per moving tile: one group, and one per 8 x 8 block
+#define HMB_SIZE_LIST_MOVING_TILES 0u     // one group per moving tile
 #define HMB_SIZE_LIST_MASK 1u             // HMB_MASK_LIST_GROUP mask pixels per group
 #define HMB_SIZE_LIST_EDGE_CANDIDATES 2u  // HMB_MASK_LIST_GROUP edge candidates per group
+#define HMB_SIZE_LIST_RANGE_BLOCKS 3u     // one group per listed block, or SizeListParams::rangeGroupsWanted in all
 
 // The list passes (edge_mask, reveal_background, gather_background) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
@@ -208,7 +225,8 @@ HMB_GPU_BEGIN
 // Cleared each frame. maskCount (the list's front: the pixels listed for the reveal) and
 // unrevealedCount (its back: the other mask pixels): range_check; maskPixels (their sum) and
 // the *Dispatch triples (VkDispatchIndirectCommands): size_list_dispatch; rayCount:
-// reveal_background; tileCount: list_moving_tiles; candidateCount: edge_candidates.
+// reveal_background; tileCount: list_moving_tiles; candidateCount: edge_candidates;
+// rangeBlockCount: list_range_blocks.
 struct RayMaskCounters {
   uint maskCount;
   uint maskDispatchX;  // the mask list's passes
@@ -216,9 +234,9 @@ struct RayMaskCounters {
   uint maskDispatchZ;
   uint rayCount;  // closest-hit traces the reveal made
   uint tileCount;
-  uint tileDispatchX;  // a group per 8 x 8 block of each moving tile (range_check)
-  uint tileDispatchY;
-  uint tileDispatchZ;
+  uint rangeDispatchX;  // range_check over the listed blocks
+  uint rangeDispatchY;
+  uint rangeDispatchZ;
   uint maskPixels;  // every pixel of the ray mask: maskCount + unrevealedCount
   uint candidateCount;
   uint candidateDispatchX;  // edge_mask over the candidates
@@ -231,6 +249,10 @@ struct RayMaskCounters {
   uint compositeDispatchX;  // the composite, over all maskPixels of the list
   uint compositeDispatchY;
   uint compositeDispatchZ;
+  uint rangeBlockCount;  // 8 x 8 blocks listed for the range check
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 struct MovingTilesParams {
@@ -241,12 +263,12 @@ struct MovingTilesParams {
 };
 
 struct SizeListParams {
-  uint list;           // HMB_SIZE_LIST_*
-  uint tileBlocks;     // moving tiles: a tile's 8 x 8 blocks, the most groups range_check gives it
-  // moving tiles: range_check's groups wanted in all, each tile's blocks shared among
-  // ceil(wanted / tiles) of them (at most tileBlocks; 0: one block a group)
-  uint tileGroupsWanted;
-  uint pad2;
+  uint list;  // HMB_SIZE_LIST_*
+  // range blocks: range_check's groups wanted in all, each striding over the list (0: one per
+  // listed block)
+  uint rangeGroupsWanted;
+  uint pad0;
+  uint pad1;
 };
 
 // edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,
@@ -346,7 +368,7 @@ HMB_GPU_END
 HMB_CHECK_SIZE(ShutterRayCounters, 32)
 HMB_CHECK_SIZE(ShutterRayListParams, 80)
 HMB_CHECK_SIZE(ShutterRayTraceParams, 32)
-HMB_CHECK_SIZE(RayMaskCounters, 84)
+HMB_CHECK_SIZE(RayMaskCounters, 100)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
 HMB_CHECK_SIZE(SizeListParams, 16)
 HMB_CHECK_SIZE(RayMaskParams, 80)

@@ -8,8 +8,8 @@
 // indirect dispatch; with
 // the coverage composite, only those whose composite samples meet the background go there
 // (the others give the revealed background a weight of exactly 0) and the others fill the
-// list from its back, for the composite alone. Runs
-// over the moving tiles only (list_moving_tiles); the mask is 0 elsewhere.
+// list from its back, for the composite alone. Runs over the blocks list_range_blocks listed
+// (those of the moving tiles with an edge within reach); the mask is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
@@ -22,7 +22,7 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_SAMPLES) readonly buffer Sample
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGES) readonly buffer Edges { uint edges[]; };
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_BLOCKS) readonly buffer Blocks { uint blockList[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) writeonly buffer Mask { uint mask[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
@@ -172,20 +172,22 @@ void checkPixel(uvec2 pixel) {
   list[atomicAdd(counters.maskCount, 1u)] = index;
 }
 
-// This group's slice of the tile's blocks: every gl_NumWorkGroups.z-th from its own (one block
-// a group on a GPU, a few on a CPU device: hybrid_layout.h; at most 128^2 a loop, under the
-// 65535 iterations llvmpipe allows).
+// The listed blocks, a group each on a GPU; on a CPU device each group strides over the list
+// (hybrid_layout.h).
 void main() {
-  const uint tile = tiles[listedTileEntry()];
+  const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
   const uint tileSize = params.blur.tileSize;
-  const uvec2 origin = tileOrigin(tile, params.blur.tilesX, tileSize);
-  const uint blocks = tileBlocks(tileSize);
-  for (uint block = gl_WorkGroupID.z; block < blocks; block += gl_NumWorkGroups.z) {
-    const uvec2 pixel = tileBlockOrigin(tile, block, params.blur.tilesX, tileSize) + gl_LocalInvocationID.xy;
+  const uint count = counters.rangeBlockCount;
+  const uint run = (count + groups - 1u) / groups;
+  const uint begin = foldedGroupIndex() * run;
+  const uint end = min(begin + run, count);
+  for (uint entry = begin; entry < end; ++entry) {
+    const uint first = blockList[entry];
+    const uvec2 block = uvec2(first % params.blur.width, first / params.blur.width);
+    const uvec2 tileStart = block / tileSize * tileSize;
+    const uvec2 pixel = block + gl_LocalInvocationID.xy;
     // Lanes past the tile's or the image's edge have no pixel.
-    if (any(greaterThanEqual(pixel - origin, uvec2(tileSize))) || pixel.x >= params.blur.width ||
-        pixel.y >= params.blur.height)
-      continue;
-    checkPixel(pixel);
+    if (all(lessThan(pixel - tileStart, uvec2(tileSize))) && pixel.x < params.blur.width && pixel.y < params.blur.height)
+      checkPixel(pixel);
   }
 }

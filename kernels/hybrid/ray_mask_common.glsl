@@ -28,7 +28,7 @@ float normalizedEdge(float x) {
 }
 
 // The mask passes' dispatch over the listed tiles (see hybrid_layout.h): group (x, y) is the
-// list entry, group z one of gl_NumWorkGroups.z slices of the tile's 8 x 8 blocks.
+// list entry.
 uint listedTileEntry() { return foldedGroupIndex(); }
 
 // The first pixel of `tile` in a grid tilesX tiles across.

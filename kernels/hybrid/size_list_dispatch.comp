@@ -1,9 +1,10 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
-// 65535 groups: the moving tiles (a group per tile: edge_candidates; a group per slice of each
-// one's 8 x 8 blocks: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask)
-// or the ray mask's pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background
-// layer's gather over the list's front, the composite over the whole mask).
+// 65535 groups: the moving tiles (a group per tile: edge_candidates, list_range_blocks), the
+// range check's blocks (a group per block, or as many as wanted, striding over the list:
+// range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask) or the ray mask's
+// pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over
+// the list's front, the composite over the whole mask).
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "hybrid_layout.h"
@@ -22,12 +23,14 @@ void main() {
     counters.tileGroupDispatchX = g.x;
     counters.tileGroupDispatchY = g.y;
     counters.tileGroupDispatchZ = g.z;
-    counters.tileDispatchX = g.x;
-    counters.tileDispatchY = g.y;
-    const uint count = max(counters.tileCount, 1u);
-    const uint slices = params.tileGroupsWanted == 0u ? params.tileBlocks
-                                                      : (params.tileGroupsWanted + count - 1u) / count;
-    counters.tileDispatchZ = g.x == 0u ? 1u : clamp(slices, 1u, params.tileBlocks);
+    return;
+  }
+  if (params.list == HMB_SIZE_LIST_RANGE_BLOCKS) {
+    const uint count = counters.rangeBlockCount;
+    const uvec3 g = foldedGroups(params.rangeGroupsWanted == 0u ? count : min(count, params.rangeGroupsWanted));
+    counters.rangeDispatchX = g.x;
+    counters.rangeDispatchY = g.y;
+    counters.rangeDispatchZ = g.z;
     return;
   }
   if (params.list == HMB_SIZE_LIST_EDGE_CANDIDATES) {

@@ -79,6 +79,7 @@ class HybridMethod final : public FrameMethod {
     if (!still) {
       const passes::RayMaskCounts counts = hybrid_.rayMask().counts();
       result.hybrid->edgeCandidates = counts.edgeCandidates;
+      result.hybrid->rangeBlocks = counts.rangeBlocks;
       result.hybrid->maskPixels = counts.maskPixels;
       result.hybrid->revealedPixels = counts.listedPixels;
       result.hybrid->revealRays = counts.revealRays;

@@ -17,12 +17,14 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
       candidatesKernel_(context, "hybrid/edge_candidates", sizeof(gpu::RayMaskParams)),
       edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
       sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
+      blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
       rangeKernel_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause) const {
   plan.run(kClear);
   plan.run(kMovingTiles);
-  for (const char* pass : {kEdgeCandidates, kEdges, kRangeCheck}) plan.runUnless(pass, movingTilesOnlyBecause);
+  for (const char* pass : {kEdgeCandidates, kEdges, kRangeBlocks, kRangeCheck})
+    plan.runUnless(pass, movingTilesOnlyBecause);
   plan.run(kSizeDispatch);
 }
 
@@ -40,6 +42,7 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly
     mask_ = {};
     list_ = {};
     candidates_ = {};
+    rangeBlocks_ = {};
     return;
   }
   if (!resized && mask_.handle()) return;
@@ -49,6 +52,8 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly
   mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
   candidates_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge candidates");
+  // At most a block per pixel, whatever the tile size (a 1-pixel tile is a block).
+  rangeBlocks_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "range check blocks");
 }
 
 void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
@@ -76,15 +81,11 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                  tileParams,
                  vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
   // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
-  const auto sizeDispatch = [&](uint32_t list, uint32_t tileBlocks, uint32_t tileGroupsWanted) {
+  const auto sizeDispatch = [&](uint32_t list, uint32_t rangeGroupsWanted) {
     frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, tileBlocks, tileGroupsWanted, 0u}, {1, 1, 1});
+                   gpu::SizeListParams{list, rangeGroupsWanted, 0u, 0u}, {1, 1, 1});
   };
-  // The range check's groups (hybrid_layout.h).
-  const uint32_t blocksPerSide = vk::groupsFor(blur.tileSize, HMB_MASK_TILE_GROUP_X);
-  const uint32_t groupsWanted =
-      p.rangeCheckGroups.value_or(context_.info().type == "cpu" ? HMB_RANGE_CHECK_CPU_GROUPS : 0u);
-  sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, blocksPerSide * blocksPerSide, groupsWanted);
+  sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, 0u);
   if (p.movingTilesOnly) return;
   const gpu::RayMaskParams params{blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u,
                                   0u};
@@ -96,7 +97,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_EDGE_CANDIDATES_BINDING_LIST, &candidates_}},
                          params,
                          counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
-  sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u, 0u);
+  sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_,
                          {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},
                           {HMB_EDGE_MASK_BINDING_SAMPLES, layer.samples},
@@ -104,6 +105,16 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
                           {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
                          params, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
+  frame.dispatchIndirect(kRangeBlocks, blocksKernel_,
+                         {{HMB_RANGE_BLOCKS_BINDING_TILES, &tiles_},
+                          {HMB_RANGE_BLOCKS_BINDING_TILE_MAX, p.tileMax},
+                          {HMB_RANGE_BLOCKS_BINDING_EDGES, &edges_},
+                          {HMB_RANGE_BLOCKS_BINDING_COUNTERS, &counters_},
+                          {HMB_RANGE_BLOCKS_BINDING_LIST, &rangeBlocks_}},
+                         params, counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
+  // The range check's groups (hybrid_layout.h).
+  sizeDispatch(HMB_SIZE_LIST_RANGE_BLOCKS,
+               p.rangeCheckGroups.value_or(context_.info().type == "cpu" ? HMB_RANGE_CHECK_CPU_GROUPS : 0u));
   const bool curved = (blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
   if (curved && !curvedRangeKernel_) {
     const uint32_t specialization[HMB_SPEC_RANGE_CHECK_CURVED_PATH + 1] = {1u};
@@ -114,19 +125,19 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                          {{HMB_RANGE_CHECK_BINDING_SURFACES, layer.surfaces},
                           {HMB_RANGE_CHECK_BINDING_SAMPLES, layer.samples},
                           {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},
-                          {HMB_RANGE_CHECK_BINDING_TILES, &tiles_},
+                          {HMB_RANGE_CHECK_BINDING_BLOCKS, &rangeBlocks_},
                           {HMB_RANGE_CHECK_BINDING_MASK, &mask_},
                           {HMB_RANGE_CHECK_BINDING_COUNTERS, &counters_},
                           {HMB_RANGE_CHECK_BINDING_LIST, &list_},
                           // Read only along curved paths; any buffer stands in otherwise.
                           {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
-                         params, counters_, offsetof(gpu::RayMaskCounters, tileDispatchX));
-  sizeDispatch(HMB_SIZE_LIST_MASK, 0u, 0u);
+                         params, counters_, offsetof(gpu::RayMaskCounters, rangeDispatchX));
+  sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }
 
 RayMaskCounts RayMaskStage::counts() const {
   const auto c = counters_.download<gpu::RayMaskCounters>();
-  return {c.at(0).candidateCount, c.at(0).maskPixels, c.at(0).maskCount, c.at(0).rayCount};
+  return {c.at(0).candidateCount, c.at(0).rangeBlockCount, c.at(0).maskPixels, c.at(0).maskCount, c.at(0).rayCount};
 }
 
 }  // namespace hmb::passes

@@ -1,7 +1,7 @@
 // The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): list_moving_tiles (from
 // the gather's tile-max) -> edge_candidates (eqs. 1, 2, listed) -> edge_mask (eqs. 3, 4 over
-// that list) -> range_check (the mask as a 0/1 image and a compacted pixel list), over the
-// moving tiles only, with size_list_dispatch turning each list's length into an indirect
+// that list) -> list_range_blocks (the blocks with an edge within reach) -> range_check (the
+// mask as an image of HMB_MASK_* values and a compacted pixel list), over the moving tiles only, with size_list_dispatch turning each list's length into an indirect
 // dispatch. Owns those buffers.
 #pragma once
 
@@ -33,13 +33,14 @@ struct RayMaskParameters {
   // List the moving tiles alone (for the shutter rays' list) and leave the mask empty: the
   // frame traces its edges over the shutter instead of revealing them (HybridStage::plan).
   bool movingTilesOnly = false;
-  // The range check's groups wanted in all (gpu::SizeListParams::tileGroupsWanted: 0 for one
-  // per 8 x 8 block, 1 for one per tile); unset: the device's type decides (hybrid_layout.h).
+  // The range check's groups wanted in all (gpu::SizeListParams::rangeGroupsWanted: 0 for one
+  // per listed 8 x 8 block); unset: the device's type decides (hybrid_layout.h).
   std::optional<uint32_t> rangeCheckGroups;
 };
 
 struct RayMaskCounts {
   uint64_t edgeCandidates = 0;  // pixels where eqs. 1-2 hold (the Sobel ran there)
+  uint64_t rangeBlocks = 0;     // 8 x 8 blocks the range check walked (an edge within reach)
   uint64_t maskPixels = 0;
   uint64_t listedPixels = 0;  // the mask pixels the reveal traced
   uint64_t revealRays = 0;
@@ -51,6 +52,7 @@ class RayMaskStage {
   static constexpr const char* kMovingTiles = "ray-mask-moving-tiles";
   static constexpr const char* kEdgeCandidates = "ray-mask-edge-candidates";
   static constexpr const char* kEdges = "ray-mask-edges";
+  static constexpr const char* kRangeBlocks = "ray-mask-range-blocks";
   static constexpr const char* kRangeCheck = "ray-mask-range-check";
   static constexpr const char* kSizeDispatch = "ray-mask-size-dispatch";
 
@@ -71,6 +73,7 @@ class RayMaskStage {
   const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
   const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal
   const vk::Buffer& candidates() const { return candidates_; }  // uint pixel index per edge candidate
+  const vk::Buffer& rangeBlocks() const { return rangeBlocks_; }  // uint first pixel index per walked block
   const vk::Buffer& movingTiles() const { return tiles_; }  // uint tile index per moving tile (counters' tileCount)
   const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
   // After the frame: the mask's size and the reveal's traces.
@@ -78,7 +81,7 @@ class RayMaskStage {
 
  private:
   const vk::Context& context_;
-  vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, sizeKernel_;
+  vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
   // range_check, [curved path]: the straight build has none of the curved walks' code. The
   // curved one is made on first use.
   vk::ComputeKernel rangeKernel_;
@@ -87,6 +90,7 @@ class RayMaskStage {
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each
   vk::Buffer tiles_;       // moving tiles: at most one per pixel, whatever the tile size
+  vk::Buffer rangeBlocks_;  // the range check's 8 x 8 blocks: uint first pixel index each
 };
 
 }  // namespace hmb::passes

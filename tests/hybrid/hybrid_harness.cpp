@@ -120,6 +120,7 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   const std::vector<uint32_t> all = downloadFirst<uint32_t>(stage.list(), pixels);
   out.unrevealedList.assign(all.end() - std::min<size_t>(out.counters.unrevealedCount, pixels), all.end());
   out.candidates = downloadFirst<uint32_t>(stage.candidates(), std::min<size_t>(out.counters.candidateCount, pixels));
+  out.rangeBlocks = downloadFirst<uint32_t>(stage.rangeBlocks(), std::min<size_t>(out.counters.rangeBlockCount, pixels));
   return out;
 }
 

@@ -33,6 +33,7 @@ struct RayMaskReadback {
   std::vector<uint32_t> list;   // the list's first counters.maskCount entries
   std::vector<uint32_t> unrevealedList;  // its last counters.unrevealedCount entries
   std::vector<uint32_t> candidates;  // the edge candidates' first counters.candidateCount entries
+  std::vector<uint32_t> rangeBlocks;  // list_range_blocks' first counters.rangeBlockCount entries
   gpu::RayMaskCounters counters{};
 };
 

@@ -235,6 +235,52 @@ auto velocityOf(const MaskLayer& layer) {
 
 }  // namespace
 
+std::vector<uint32_t> rangeBlocks(const MaskLayer& input, const std::vector<uint32_t>& edges,
+                                  const passes::RayMaskParameters& p) {
+  const MaskLayer layer = stored(input);
+  const uint32_t width = layer.width, height = layer.height, tileSize = p.blur.tileSize;
+  const uint32_t tilesX = (width + tileSize - 1) / tileSize, tilesY = (height + tileSize - 1) / tileSize;
+  const std::vector<glm::vec4> tiles = mblur::tileMax(layer.velocity, width, height, tileSize, p.blur.velocityScale);
+  // edge_mask's coarse image: a block is flagged when an edge pixel lies within a pixel of it.
+  const uint32_t coarseX = HMB_EDGE_BLOCKS_ACROSS(width), coarseY = HMB_EDGE_BLOCKS_ACROSS(height);
+  std::vector<bool> coarse(size_t(coarseX) * coarseY, false);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      if (edges[size_t(y) * width + x] == 0u) continue;
+      for (uint32_t by = (y == 0 ? 0 : y - 1) / HMB_EDGE_BLOCK; by <= std::min(y + 1, height - 1) / HMB_EDGE_BLOCK; ++by)
+        for (uint32_t bx = (x == 0 ? 0 : x - 1) / HMB_EDGE_BLOCK; bx <= std::min(x + 1, width - 1) / HMB_EDGE_BLOCK;
+             ++bx)
+          coarse[size_t(by) * coarseX + bx] = true;
+    }
+  std::vector<uint32_t> out;
+  for (uint32_t ty = 0; ty < tilesY; ++ty)
+    for (uint32_t tx = 0; tx < tilesX; ++tx) {
+      const float reach = tiles[size_t(ty) * tilesX + tx].z;
+      if (!(reach >= gpu::kMinBlurPixels)) continue;  // list_moving_tiles
+      const bool bounded = !curvedFlag(p) && reach < float(tileSize);
+      const int margin = int(std::ceil(reach)) + 1;
+      for (uint32_t oy = ty * tileSize; oy < std::min((ty + 1) * tileSize, height); oy += HMB_MASK_TILE_GROUP_Y)
+        for (uint32_t ox = tx * tileSize; ox < std::min((tx + 1) * tileSize, width); ox += HMB_MASK_TILE_GROUP_X) {
+          bool listed = !bounded;
+          if (bounded) {
+            const auto coarseOf = [&](int v, uint32_t size) {
+              return uint32_t(std::clamp(v, 0, int(size) - 1)) / HMB_EDGE_BLOCK;
+            };
+            const uint32_t x0 = coarseOf(int(ox) - margin, width), y0 = coarseOf(int(oy) - margin, height);
+            const uint32_t x1 = coarseOf(int(ox) + HMB_MASK_TILE_GROUP_X - 1 + margin, width);
+            const uint32_t y1 = coarseOf(int(oy) + HMB_MASK_TILE_GROUP_Y - 1 + margin, height);
+            // Too wide a reach to test: listed.
+            listed = x1 - x0 >= HMB_RANGE_BLOCKS_MAX_TEST_SIDE || y1 - y0 >= HMB_RANGE_BLOCKS_MAX_TEST_SIDE;
+            for (uint32_t by = y0; by <= y1 && !listed; ++by)
+              for (uint32_t bx = x0; bx <= x1 && !listed; ++bx) listed = coarse[size_t(by) * coarseX + bx];
+          }
+          if (listed) out.push_back(oy * width + ox);
+        }
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 std::vector<uint32_t> rangeCheck(const MaskLayer& input, const std::vector<uint32_t>& edges,
                                  const passes::RayMaskParameters& p) {
   const MaskLayer layer = stored(input);

@@ -54,6 +54,14 @@ std::vector<uint32_t> edgeMask(const MaskLayer& layer, const passes::RayMaskPara
 // that is, where the edge mask is decided by x_n > e.
 std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskParameters& parameters);
 
+// list_range_blocks.comp: the first pixel's index of each 8 x 8 block the range check walks,
+// ascending: the blocks of the moving tiles (the gather's tile-max at parameters.blur.tileSize)
+// with a pixel of the edge mask `edges` (one per pixel) within ceil(tile-max speed) + 1 pixels'
+// coarse blocks (edge_mask's, a pixel of margin), or whose tile's speed was clamped, or along
+// curved paths.
+std::vector<uint32_t> rangeBlocks(const MaskLayer& layer, const std::vector<uint32_t>& edges,
+                                  const passes::RayMaskParameters& parameters);
+
 // range_check.comp: the ray mask (0/1 per pixel) from the velocities and an edge mask.
 std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const std::vector<uint32_t>& edges,
                                  uint32_t width, uint32_t height, const passes::RayMaskParameters& parameters);

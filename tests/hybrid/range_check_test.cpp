@@ -53,11 +53,16 @@ void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std:
 }
 
 // Mask equal to the reference's range check over the device's edges, every edge pixel in the
-// mask (its range starts at itself), the list the masked pixels each once, counters to match;
-// with the range check's groups in any shape (a tile each, a block each, a tile's blocks
-// strided over a few). Returns the mask's size.
+// mask (its range starts at itself), the list the masked pixels each once, counters to match,
+// the walked blocks the reference's (list_range_blocks); with the range check's groups in any
+// shape (one for every block, a block each, a few each taking a run of blocks). Returns the
+// mask's size.
 size_t expectRayMaskMatchesIn(const MaskLayer& layer, const RayMaskParameters& p, const std::string& what) {
   const RayMaskReadback device = runRayMask(VulkanTest::context(), layer, p);
+  std::vector<uint32_t> blocks = device.rangeBlocks;
+  std::sort(blocks.begin(), blocks.end());
+  EXPECT_EQ(blocks, rangeBlocks(layer, device.edges, p)) << what << ": the range check's blocks";
+  EXPECT_EQ(device.counters.rangeBlockCount, blocks.size()) << what;
   const std::vector<uint32_t> reference = rangeCheck(layer.velocity, device.edges, layer.width, layer.height, p);
   EXPECT_EQ(device.mask, reference) << what;
   std::vector<uint32_t> masked;
@@ -76,12 +81,12 @@ size_t expectRayMaskMatchesIn(const MaskLayer& layer, const RayMaskParameters& p
 
 size_t expectRayMaskMatches(const MaskLayer& layer, RayMaskParameters p, const std::string& what) {
   p.rangeCheckGroups = 1u;
-  const size_t perTile = expectRayMaskMatchesIn(layer, p, what + ", a group per tile");
+  const size_t oneGroup = expectRayMaskMatchesIn(layer, p, what + ", one group");
   p.rangeCheckGroups = 0u;
-  EXPECT_EQ(expectRayMaskMatchesIn(layer, p, what + ", a group per block"), perTile) << what;
-  p.rangeCheckGroups = 5u;  // a tile's blocks strided over a few groups (or one per block)
-  EXPECT_EQ(expectRayMaskMatchesIn(layer, p, what + ", five groups wanted"), perTile) << what;
-  return perTile;
+  EXPECT_EQ(expectRayMaskMatchesIn(layer, p, what + ", a group per block"), oneGroup) << what;
+  p.rangeCheckGroups = 5u;  // runs of blocks over a few groups (or one per block)
+  EXPECT_EQ(expectRayMaskMatchesIn(layer, p, what + ", five groups wanted"), oneGroup) << what;
+  return oneGroup;
 }
 
 // Object 2 (depth 1) over columns 0-19, moving by `velocity`, beside a still, deeper object 3
@@ -153,6 +158,55 @@ TEST_F(HybridRangeCheckTest, LongRangesFindAnEdgeOnePixelWide) {
       // Mask: every pixel whose range [x, x + 9] meets column 18 or 19, that is 9..19.
       EXPECT_EQ(device.mask[y * width + x], x >= 9 && x <= 19 ? 1u : 0u) << x << "," << y;
     }
+}
+
+// Only blocks with an edge within their tile's fastest reach are walked (list_range_blocks):
+// object 2 (columns 0-19) moves 3 px right onto object 3, and the edge pixels lie at columns
+// 18 and 19 (as in LongRangesFindAnEdgeOnePixelWide); blocks of columns 0-7 reach column 11 at most (3 px and a pixel of margin), so none of
+// them is walked, and the mask is still the reference's, which walks every pixel. A tile whose
+// speed was clamped to the tile size, or a curved path, has no such bound: every block of the
+// moving tiles is walked.
+TEST_F(HybridRangeCheckTest, BlocksWithNoEdgeWithinReachAreNotWalked) {
+  const uint32_t width = 120, height = 40;
+  const auto movingBlocks = [&](uint32_t tileSize) {
+    // The tiles over columns 0-19 move; every 8 x 8 block of theirs.
+    std::vector<uint32_t> out;
+    for (uint32_t ty = 0; ty * tileSize < height; ++ty)
+      for (uint32_t tx = 0; tx * tileSize < 20; ++tx)
+        for (uint32_t oy = ty * tileSize; oy < std::min((ty + 1) * tileSize, height); oy += 8)
+          for (uint32_t ox = tx * tileSize; ox < std::min((tx + 1) * tileSize, width); ox += 8)
+            out.push_back(oy * width + ox);
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const MaskLayer slow = slidingStep(width, height, {3.0f, 0.0f});
+  RayMaskParameters p = parametersWith(0.5f);
+  expectRayMaskMatches(slow, p, "slow step");
+  const RayMaskReadback device = runRayMask(context(), slow, p);
+  for (uint32_t x = 0; x < width; ++x) {
+    EXPECT_EQ(device.edges[x], x == 18 || x == 19 ? 1u : 0u) << x;
+  }
+  const std::vector<uint32_t> all = movingBlocks(p.blur.tileSize);
+  EXPECT_LT(device.rangeBlocks.size(), all.size());
+  EXPECT_GT(device.rangeBlocks.size(), 0u);
+  for (const uint32_t first : device.rangeBlocks) EXPECT_NE(first % width, 0u) << "block at row " << first / width;
+  // A speed of 20 px is clamped to the 13-pixel tiles: every block is walked.
+  const MaskLayer fast = slidingStep(width, height, {20.0f, 0.0f});
+  expectRayMaskMatches(fast, p, "fast step");
+  std::vector<uint32_t> walked = runRayMask(context(), fast, p).rangeBlocks;
+  std::sort(walked.begin(), walked.end());
+  EXPECT_EQ(walked, all);
+  // Along curved paths likewise.
+  MaskLayer curved = slow;
+  const float none = std::numeric_limits<float>::quiet_NaN();
+  curved.shutterPaths.assign(size_t(width) * height, mblur::packShutterPath(glm::vec2(none), glm::vec2(none)));
+  p.blur.flags = HMB_GATHER_FLAG_ADAPTED_RANGE | HMB_GATHER_FLAG_CURVED_PATH;
+  const RayMaskReadback curvedDevice = runRayMask(context(), curved, p);
+  walked = curvedDevice.rangeBlocks;
+  std::sort(walked.begin(), walked.end());
+  EXPECT_EQ(walked, all);
+  EXPECT_EQ(walked, rangeBlocks(curved, curvedDevice.edges, p));
+  EXPECT_EQ(curvedDevice.mask, rangeCheck(curved, curvedDevice.edges, p));
 }
 
 // Along curved paths (random paths, adversarial records among them) each pixel walks its own
