@@ -39,6 +39,11 @@ HMB_LAYER_TEXELS(raster, HMB_COMPOSITE_BINDING_RASTER)
 layout(push_constant) uniform Params { GatherParams params; };
 
 layout(constant_id = HMB_SPEC_COMPOSITE_COVERAGE) const bool kCoverage = true;
+// Built for the frame's path and range (hybrid_layout.h).
+layout(constant_id = HMB_SPEC_COMPOSITE_CURVED_PATH) const bool kCurvedPath = false;
+#define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
+layout(constant_id = HMB_SPEC_COMPOSITE_ADAPTED_RANGE) const bool kAdaptedRange = true;
+#define HMB_GATHER_ADAPTED_RANGE kAdaptedRange
 
 #include "../mblur/mblur_common.glsl"
 
@@ -73,7 +78,7 @@ vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDe
   vec2 v = gatherVelocity(surfaceVelocity(own), params.velocityScale, params.maxSpeed, speed);
   vec2 q = vec2(0.0);
   vec2 a, c;
-  if ((params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && shutterPathTerms(shutterPathAt(index), a, c)) {
+  if (kCurvedPath && (params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && shutterPathTerms(shutterPathAt(index), a, c)) {
     // Along its own curved path (mblur_common.glsl's inversePath), as range_check walks it.
     const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.width, params.height);
     const uint aheadIndex = uint(ahead.y) * params.width + uint(ahead.x);

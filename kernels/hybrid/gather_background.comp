@@ -31,6 +31,11 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 layout(binding = HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS) uniform utextureBuffer shutterPathTexels;
 uvec2 shutterPathAt(uint i) { return overlaid(i) ? uvec2(HMB_NO_SHUTTER_PATH) : halfRecordAt(shutterPathTexels, i); }
 
+// Built for the frame's path and range (hybrid_layout.h).
+layout(constant_id = HMB_SPEC_BACKGROUND_GATHER_CURVED_PATH) const bool kCurvedPath = false;
+#define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
+layout(constant_id = HMB_SPEC_BACKGROUND_GATHER_ADAPTED_RANGE) const bool kAdaptedRange = true;
+#define HMB_GATHER_ADAPTED_RANGE kAdaptedRange
 #include "../mblur/gather_samples.glsl"
 
 void main() {

@@ -3,6 +3,8 @@
 // listed pixels, dispatched indirectly from the list's length.
 #pragma once
 
+#include <memory>
+
 #include "runtime/passes/image_layer.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -25,7 +27,9 @@ class BackgroundGatherPass {
               const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
 
  private:
-  vk::ComputeKernel kernel_;
+  const vk::Context& context_;
+  // [curved path][adapted range], each built on first use.
+  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2];
 };
 
 }  // namespace hmb::passes

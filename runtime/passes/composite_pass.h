@@ -32,8 +32,8 @@ class CompositePass {
 
  private:
   const vk::Context& context_;
-  vk::ComputeKernel coverage_;  // the default form; the weights form is built on first use
-  mutable std::unique_ptr<vk::ComputeKernel> weights_;
+  // [coverage form][curved path][adapted range], each built on first use.
+  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2][2];
 };
 
 }  // namespace hmb::passes
