@@ -30,6 +30,7 @@ layout(std430, binding = HMB_REVEAL_BINDING_COUNTERS) buffer Counters { RayMaskC
 #include "../shared/layer_bindings.glsl"
 HMB_LAYER(revealed, HMB_REVEAL_BINDING_REVEALED, writeonly)
 layout(push_constant) uniform Params { RevealParams params; };
+layout(constant_id = HMB_SPEC_REVEAL_STOP) const uint kStop = HMB_REVEAL_STOP_OBJECT_ID;
 
 #include "../shared/shading.glsl"
 #include "../trace/shade_hit.glsl"
@@ -60,7 +61,7 @@ void main() {
 
   BvhHit hit;
   uint traces = 1u;
-  if (params.stop == HMB_REVEAL_STOP_OBJECT_ID) {
+  if (kStop == HMB_REVEAL_STOP_OBJECT_ID) {
     ray.ignoreObjectId = surfaceObjectId(rasterSurfaces[index]);
     hit = closestHit(ray, scene);
   } else {

@@ -47,6 +47,8 @@
 // scene of exactly one instance, whose tree rays then enter directly, with no top level over
 // it. Id 1: the shading kernels that trace use 0 (HMB_SPEC_TEXTURE_PATH).
 #define HMB_SPEC_TRACE_TOP_LEVEL 1
+// A shading kernel's own specialization constants take ids from here on (ShadingKernel).
+#define HMB_SPEC_KERNEL_CONSTANTS_FIRST 2
 
 // TraceInstance.flags
 #define HMB_TRACE_INSTANCE_SINGLE_SIDED 1u  // its material is not double-sided

@@ -15,8 +15,18 @@
 
 namespace hmb::passes {
 
+namespace {
+
+constexpr const char* kKernel = "hybrid/reveal_background";
+constexpr uint32_t kObjectIdStop[] = {HMB_REVEAL_STOP_OBJECT_ID};
+constexpr uint32_t kLuminanceStop[] = {HMB_REVEAL_STOP_LUMINANCE};
+
+}  // namespace
+
 RevealPass::RevealPass(const vk::Context& context, const HitShading* hits)
-    : kernel_(context, "hybrid/reveal_background", sizeof(gpu::RevealParams), ShadingKernel::Rays::Traced, hits) {}
+    : context_(context),
+      hits_(hits),
+      objectIdStop_(context, kKernel, sizeof(gpu::RevealParams), ShadingKernel::Rays::Traced, hits, kObjectIdStop) {}
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
                         const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,
@@ -27,8 +37,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
   const gpu::RevealParams params{width,
                                  height,
                                  ts.instanceCount(),
-                                 settings.stop == RevealStop::Luminance ? HMB_REVEAL_STOP_LUMINANCE
-                                                                        : HMB_REVEAL_STOP_OBJECT_ID,
+                                 0u,
                                  settings.maxRecursion,
                                  settings.luminanceThreshold,
                                  camera.znear,
@@ -37,7 +46,11 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  ts.timeCount(),
                                  0u,
                                  0u};
-  const vk::ComputeKernel& kernel = kernel_.forScene(gpuScene, &ts);
+  const bool luminance = settings.stop == RevealStop::Luminance;
+  if (luminance && !luminanceStop_)
+    luminanceStop_ = std::make_unique<ShadingKernel>(context_, kKernel, sizeof(gpu::RevealParams),
+                                                     ShadingKernel::Rays::Traced, hits_, kLuminanceStop);
+  const vk::ComputeKernel& kernel = (luminance ? *luminanceStop_ : objectIdStop_).forScene(gpuScene, &ts);
   vk::Bindings bindings = {{HMB_REVEAL_BINDING_CAMERA_RAYS, &cameraRays},
                            {HMB_REVEAL_BINDING_LIST, &list},
                            {HMB_REVEAL_BINDING_RASTER_SURFACES, &rasterSurfaces},

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"
@@ -34,7 +35,12 @@ class RevealPass {
               const HybridSettings& settings) const;
 
  private:
-  ShadingKernel kernel_;
+  const vk::Context& context_;
+  const HitShading* hits_;
+  // A build per stop (hybrid_layout.h's HMB_SPEC_REVEAL_STOP): the object-id one up front, the
+  // luminance one on first use.
+  ShadingKernel objectIdStop_;
+  mutable std::unique_ptr<ShadingKernel> luminanceStop_;
 };
 
 }  // namespace hmb::passes

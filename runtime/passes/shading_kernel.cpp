@@ -23,18 +23,29 @@ const HitShading* customOnly(const HitShading* hits) { return hits && hits->cust
 }  // namespace
 
 ShadingKernel::ShadingKernel(const vk::Context& context, std::string_view kernelName,
-                             uint32_t pushConstantBytes, Rays rays, const HitShading* hits)
+                             uint32_t pushConstantBytes, Rays rays, const HitShading* hits,
+                             std::span<const uint32_t> kernelConstants)
     : context_(context),
       name_(kernelName),
       pushConstantBytes_(pushConstantBytes),
       traces_(rays == Rays::Traced),
-      hits_(customOnly(hits)) {
-  builds_[1][1] = build({});
+      hits_(customOnly(hits)),
+      kernelConstants_(kernelConstants.begin(), kernelConstants.end()) {
+  const uint32_t full[2] = {1u, 1u};  // texture path, top-level walk
+  builds_[1][1] = build(kernelConstants_.empty() ? std::span<const uint32_t>{} : std::span(full));
 }
 
 ShadingKernel::~ShadingKernel() = default;
 
-std::unique_ptr<vk::ComputeKernel> ShadingKernel::build(std::span<const uint32_t> specialization) const {
+std::unique_ptr<vk::ComputeKernel> ShadingKernel::build(std::span<const uint32_t> shading) const {
+  // The shading's constants, then the kernel's own from their first id on (a kernel without the
+  // top-level walk's constant ignores its entry).
+  static_assert(HMB_SPEC_KERNEL_CONSTANTS_FIRST == 2);
+  std::vector<uint32_t> specialization(shading.begin(), shading.end());
+  if (!kernelConstants_.empty()) {
+    specialization.resize(HMB_SPEC_KERNEL_CONSTANTS_FIRST, 1u);
+    specialization.insert(specialization.end(), kernelConstants_.begin(), kernelConstants_.end());
+  }
   if (hits_)
     return std::make_unique<vk::ComputeKernel>(context_, name_, hits_->buildsFor(name_), pushConstantBytes_,
                                                specialization);

@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "runtime/vulkan/compute_kernel.h"
 
@@ -30,8 +31,11 @@ class ShadingKernel {
   enum class Rays { None, Traced };
   // rays: whether the kernel traces rays (and so has the top-level walk's constant); hits: how
   // ray hits are shaded, for the kernels that shade them (null: the library's way).
+  // kernelConstants: the kernel's own specialization constants, ids from
+  // HMB_SPEC_KERNEL_CONSTANTS_FIRST on, the same in every build.
   ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
-                Rays rays = Rays::None, const HitShading* hits = nullptr);
+                Rays rays = Rays::None, const HitShading* hits = nullptr,
+                std::span<const uint32_t> kernelConstants = {});
   ~ShadingKernel();
 
   // The build for this scene: without the texture path where scene.texturePath() is false, and
@@ -42,13 +46,14 @@ class ShadingKernel {
  private:
   // The kernel with these specialization constants: the embedded builds, or with a user's
   // shading the builds compiled from it.
-  std::unique_ptr<vk::ComputeKernel> build(std::span<const uint32_t> specialization) const;
+  std::unique_ptr<vk::ComputeKernel> build(std::span<const uint32_t> shading) const;
 
   const vk::Context& context_;
   std::string name_;
   uint32_t pushConstantBytes_;
   bool traces_;              // the kernel traces rays: it has the top-level walk's constant
   const HitShading* hits_;  // non-null with a user's shading: the kernel's builds come from it
+  std::vector<uint32_t> kernelConstants_;
   // [texture path][top-level walk]; the full build is made up front.
   mutable std::unique_ptr<vk::ComputeKernel> builds_[2][2];
 };
