@@ -10,7 +10,8 @@
 
 namespace hmb::passes {
 
-BackgroundGatherPass::BackgroundGatherPass(const vk::Context& context) : context_(context) {}
+BackgroundGatherPass::BackgroundGatherPass(const vk::Context& context)
+    : kernels_(context, "hybrid/gather_background", sizeof(gpu::GatherParams)) {}
 
 void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
                                   const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
@@ -18,16 +19,9 @@ void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& ra
                                   const gpu::GatherParams& blur, const vk::Buffer* shutterPaths) const {
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
   // Built for the frame's path and range alone (hybrid_layout.h).
-  const bool curved = (blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
-  const bool adapted = (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u;
-  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[curved ? 1 : 0][adapted ? 1 : 0];
-  if (!kernel) {
-    uint32_t specialization[HMB_SPEC_BACKGROUND_GATHER_ADAPTED_RANGE + 1] = {};
-    specialization[HMB_SPEC_BACKGROUND_GATHER_CURVED_PATH] = curved ? 1u : 0u;
-    specialization[HMB_SPEC_BACKGROUND_GATHER_ADAPTED_RANGE] = adapted ? 1u : 0u;
-    kernel = std::make_unique<vk::ComputeKernel>(context_, "hybrid/gather_background", sizeof(gpu::GatherParams),
-                                                 specialization);
-  }
+  static_assert(HMB_SPEC_BACKGROUND_GATHER_CURVED_PATH == 0 && HMB_SPEC_BACKGROUND_GATHER_ADAPTED_RANGE == 1);
+  const vk::ComputeKernel& kernel = kernels_.with(
+      {(blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u, (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u});
   vk::Bindings bindings = {{HMB_BACKGROUND_GATHER_BINDING_NEIGHBOR_MAX, &neighborMax},
                            {HMB_BACKGROUND_GATHER_BINDING_MASK, &mask},
                            {HMB_BACKGROUND_GATHER_BINDING_LIST, &list},
@@ -35,9 +29,9 @@ void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& ra
                            {HMB_BACKGROUND_GATHER_BINDING_OUTPUT, &output},
                            // Read only along curved paths; any texel buffer stands in otherwise.
                            {HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS, shutterPaths ? shutterPaths : &raster.samples()}};
-  raster.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_RASTER, kernel->bindsByAddress());
-  revealed.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_REVEALED, kernel->bindsByAddress());
-  frame.dispatchIndirect(kName, *kernel, bindings, blur, counters,
+  raster.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_RASTER, kernel.bindsByAddress());
+  revealed.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_REVEALED, kernel.bindsByAddress());
+  frame.dispatchIndirect(kName, kernel, bindings, blur, counters,
                          offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 

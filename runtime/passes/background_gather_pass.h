@@ -3,11 +3,9 @@
 // listed pixels, dispatched indirectly from the list's length.
 #pragma once
 
-#include <memory>
-
 #include "runtime/passes/image_layer.h"
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/kernel_variants.h"
 
 namespace hmb::vk {
 class FrameRecorder;
@@ -27,9 +25,7 @@ class BackgroundGatherPass {
               const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
 
  private:
-  const vk::Context& context_;
-  // [curved path][adapted range], each built on first use.
-  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2];
+  vk::KernelVariants kernels_;  // by path and range
 };
 
 }  // namespace hmb::passes

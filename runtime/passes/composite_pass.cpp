@@ -10,7 +10,8 @@
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
-CompositePass::CompositePass(const vk::Context& context) : context_(context) {}
+CompositePass::CompositePass(const vk::Context& context)
+    : kernels_(context, "hybrid/composite", sizeof(gpu::GatherParams)) {}
 
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
                            const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
@@ -20,18 +21,11 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
   if (composite == HybridComposite::Coverage && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
     throw Error("composite: the coverage form needs the adapted range");
   // Built for the frame's form, path and range alone (hybrid_layout.h).
-  const bool coverage = composite == HybridComposite::Coverage;
-  const bool curved = (blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
-  const bool adapted = (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u;
-  std::unique_ptr<vk::ComputeKernel>& built = kernels_[coverage ? 1 : 0][curved ? 1 : 0][adapted ? 1 : 0];
-  if (!built) {
-    uint32_t specialization[HMB_SPEC_COMPOSITE_ADAPTED_RANGE + 1] = {};
-    specialization[HMB_SPEC_COMPOSITE_COVERAGE] = coverage ? 1u : 0u;
-    specialization[HMB_SPEC_COMPOSITE_CURVED_PATH] = curved ? 1u : 0u;
-    specialization[HMB_SPEC_COMPOSITE_ADAPTED_RANGE] = adapted ? 1u : 0u;
-    built = std::make_unique<vk::ComputeKernel>(context_, "hybrid/composite", sizeof(gpu::GatherParams), specialization);
-  }
-  const vk::ComputeKernel& kernel = *built;
+  static_assert(HMB_SPEC_COMPOSITE_COVERAGE == 0 && HMB_SPEC_COMPOSITE_CURVED_PATH == 1 &&
+                HMB_SPEC_COMPOSITE_ADAPTED_RANGE == 2);
+  const vk::ComputeKernel& kernel = kernels_.with({composite == HybridComposite::Coverage,
+                                                   (blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u,
+                                                   (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u});
   vk::Bindings bindings = {{HMB_COMPOSITE_BINDING_NEIGHBOR_MAX, &neighborMax},
                            {HMB_COMPOSITE_BINDING_LIST, &list},
                            {HMB_COMPOSITE_BINDING_COUNTERS, &counters},

@@ -4,12 +4,11 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/kernel_variants.h"
 
 namespace hmb::vk {
 class FrameRecorder;
@@ -31,9 +30,7 @@ class CompositePass {
               const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
 
  private:
-  const vk::Context& context_;
-  // [coverage form][curved path][adapted range], each built on first use.
-  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2][2];
+  vk::KernelVariants kernels_;  // by form, path and range
 };
 
 }  // namespace hmb::passes

@@ -46,6 +46,7 @@ constexpr VkDeviceSize listDispatchOffset(uint32_t list) {
 
 GatherPass::GatherPass(const vk::Context& context)
     : context_(context),
+      kernels_(context, "mblur/gather", sizeof(gpu::GatherParams)),
       listBlocks_(context, "mblur/list_gather_blocks", sizeof(gpu::GatherBlocksParams)),
       copyStillBlocks_(context, "mblur/copy_still_blocks", sizeof(gpu::StillBlocksParams)) {}
 
@@ -104,14 +105,9 @@ void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const Mo
   // The gather is built for its frame's path and range alone: on lavapipe the code of the
   // others runs for every sample whether or not the flags ask for it.
   const bool adapted = settings.range == GatherRange::Adapted;
-  std::unique_ptr<vk::ComputeKernel>& kernel = kernels_[outsideMask ? 1 : 0][curved ? 1 : 0][adapted ? 1 : 0];
-  if (!kernel) {
-    uint32_t specialization[HMB_SPEC_GATHER_ADAPTED_RANGE + 1] = {};
-    specialization[HMB_SPEC_GATHER_OUTSIDE_MASK] = outsideMask ? 1u : 0u;
-    specialization[HMB_SPEC_GATHER_CURVED_PATH] = curved ? 1u : 0u;
-    specialization[HMB_SPEC_GATHER_ADAPTED_RANGE] = adapted ? 1u : 0u;
-    kernel = std::make_unique<vk::ComputeKernel>(context_, "mblur/gather", sizeof(gpu::GatherParams), specialization);
-  }
+  static_assert(HMB_SPEC_GATHER_OUTSIDE_MASK == 0 && HMB_SPEC_GATHER_CURVED_PATH == 1 &&
+                HMB_SPEC_GATHER_ADAPTED_RANGE == 2);
+  const vk::ComputeKernel& kernel = kernels_.with({outsideMask, curved, adapted});
   gpu::GatherParams params = gatherParams(settings, inputs.width, inputs.height);
   if (curved) params.flags |= HMB_GATHER_FLAG_CURVED_PATH;
   const uint32_t blockCount = recordBlockLists(frame, inputs.width, inputs.height, params.tileSize, neighborMax);
@@ -119,7 +115,7 @@ void GatherPass::recordWith(bool outsideMask, vk::FrameRecorder& frame, const Mo
   bindings.push_back({HMB_GATHER_BINDING_MASK, &mask});
   bindings.push_back({HMB_GATHER_BINDING_BLOCKS, &blocks_});
   bindings.push_back({HMB_GATHER_BINDING_BLOCK_COUNTERS, &blockCounters_});
-  frame.dispatchIndirect(kName, *kernel, bindings, params, blockCounters_,
+  frame.dispatchIndirect(kName, kernel, bindings, params, blockCounters_,
                          listDispatchOffset(HMB_GATHER_BLOCKS_MOVING));
 
   // The same for the hybrid: its mask has no pixel in a still block (copy_still_blocks.comp).

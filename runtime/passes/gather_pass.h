@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <string_view>
 
 #include "kernels/mblur/mblur_layout.h"
@@ -11,6 +10,7 @@
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/kernel_variants.h"
 
 namespace hmb::passes {
 
@@ -59,8 +59,7 @@ class GatherPass final : public GatherFilter {
                         const vk::Buffer& neighborMax) const;
 
   const vk::Context& context_;
-  // [outside the mask][curved path][adapted range], each made on first use
-  mutable std::unique_ptr<vk::ComputeKernel> kernels_[2][2][2];
+  vk::KernelVariants kernels_;  // by outside the mask, path and range
   vk::ComputeKernel listBlocks_;
   vk::ComputeKernel copyStillBlocks_;
   mutable vk::Buffer blocks_, blockCounters_;

@@ -18,7 +18,7 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
       edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
       sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
       blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
-      rangeKernel_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
+      rangeKernels_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause) const {
   plan.run(kClear);
@@ -115,13 +115,10 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   // The range check's groups (hybrid_layout.h).
   sizeDispatch(HMB_SIZE_LIST_RANGE_BLOCKS,
                p.rangeCheckGroups.value_or(context_.info().type == "cpu" ? HMB_RANGE_CHECK_CPU_GROUPS : 0u));
-  const bool curved = (blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
-  if (curved && !curvedRangeKernel_) {
-    const uint32_t specialization[HMB_SPEC_RANGE_CHECK_CURVED_PATH + 1] = {1u};
-    curvedRangeKernel_ =
-        std::make_unique<vk::ComputeKernel>(context_, "hybrid/range_check", sizeof(gpu::RayMaskParams), specialization);
-  }
-  frame.dispatchIndirect(kRangeCheck, curved ? *curvedRangeKernel_ : rangeKernel_,
+  // Built with the curved paths' walks only where the frame takes them.
+  static_assert(HMB_SPEC_RANGE_CHECK_CURVED_PATH == 0);
+  const vk::ComputeKernel& rangeKernel = rangeKernels_.with({(blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u});
+  frame.dispatchIndirect(kRangeCheck, rangeKernel,
                          {{HMB_RANGE_CHECK_BINDING_SURFACES, layer.surfaces},
                           {HMB_RANGE_CHECK_BINDING_SAMPLES, layer.samples},
                           {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},

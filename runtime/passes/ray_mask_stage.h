@@ -6,7 +6,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 
@@ -14,6 +13,7 @@
 #include "runtime/passes/gather_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/kernel_variants.h"
 
 namespace hmb {
 class FramePlan;
@@ -82,10 +82,8 @@ class RayMaskStage {
  private:
   const vk::Context& context_;
   vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
-  // range_check, [curved path]: the straight build has none of the curved walks' code. The
-  // curved one is made on first use.
-  vk::ComputeKernel rangeKernel_;
-  mutable std::unique_ptr<vk::ComputeKernel> curvedRangeKernel_;
+  // range_check by path: the straight build has none of the curved walks' code.
+  vk::KernelVariants rangeKernels_;
   ImageSize size_;
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each

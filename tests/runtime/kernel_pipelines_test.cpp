@@ -26,6 +26,7 @@
 #include "runtime/vulkan/frame_recorder.h"
 #include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
+#include "runtime/vulkan/kernel_variants.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"
 
@@ -283,6 +284,25 @@ TEST(KernelLimitsTest, EveryKernelBuildsOnADeviceWithEightStorageBuffers) {
     }) << kernel.name;
   }
   EXPECT_EQ(small.validationErrors(), 0u);
+}
+
+// A kernel built per combination of its switches: each combination once, each its own build,
+// and more switches than constant ids fit in is a one-line error.
+using KernelVariantsTest = VulkanTest;
+
+TEST_F(KernelVariantsTest, EachCombinationOfSwitchesIsBuiltOnce) {
+  const vk::KernelVariants gather(context(), "mblur/gather", sizeof(gpu::GatherParams));
+  const vk::ComputeKernel& straight = gather.with({false, false, true});
+  EXPECT_EQ(&gather.with({false, false, true}), &straight);
+  const vk::ComputeKernel& curved = gather.with({false, true, true});
+  EXPECT_NE(&curved, &straight);
+  EXPECT_EQ(&gather.with({false, true, true}), &curved);
+  EXPECT_NE(&gather.with({true, false, true}), &straight);
+  EXPECT_EQ(curved.bindings(), straight.bindings());
+  std::initializer_list<bool> tooMany = {true, true, true, true, true, true, true, true, true, true, true,
+                                         true, true, true, true, true, true, true, true, true, true, true,
+                                         true, true, true, true, true, true, true, true, true, true, true};
+  expectError([&] { gather.with(tooMany); }, "more than 32");
 }
 
 }  // namespace
