@@ -172,7 +172,7 @@ void checkPixel(uvec2 pixel) {
   list[atomicAdd(counters.maskCount, 1u)] = index;
 }
 
-// The listed blocks, a group each on a GPU; on a CPU device each group strides over the list
+// The listed blocks, a group each on a GPU; on a CPU device each group takes a run of the list
 // (hybrid_layout.h).
 void main() {
   const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;

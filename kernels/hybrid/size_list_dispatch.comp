@@ -27,7 +27,9 @@ void main() {
   }
   if (params.list == HMB_SIZE_LIST_RANGE_BLOCKS) {
     const uint count = counters.rangeBlockCount;
-    const uvec3 g = foldedGroups(params.rangeGroupsWanted == 0u ? count : min(count, params.rangeGroupsWanted));
+    const uint runs = (count + HMB_RANGE_CHECK_MAX_RUN - 1u) / HMB_RANGE_CHECK_MAX_RUN;
+    const uvec3 g =
+        foldedGroups(params.rangeGroupsWanted == 0u ? count : max(min(count, params.rangeGroupsWanted), runs));
     counters.rangeDispatchX = g.x;
     counters.rangeDispatchY = g.y;
     counters.rangeDispatchZ = g.z;

@@ -52,6 +52,20 @@ void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std:
   EXPECT_EQ(c.compositeDispatchZ, 1u) << what;
 }
 
+// The range check's dispatch over `blocks` listed blocks, written out here: a group per block,
+// or the groups wanted, more where a group's run would pass HMB_RANGE_CHECK_MAX_RUN blocks.
+void expectRangeDispatchFor(const gpu::RayMaskCounters& c, uint64_t blocks, const RayMaskParameters& p,
+                            const std::string& what) {
+  ASSERT_TRUE(p.rangeCheckGroups.has_value()) << what;
+  const uint64_t wanted = *p.rangeCheckGroups;
+  const uint64_t groups = wanted == 0 ? blocks
+                                      : std::max(std::min(blocks, wanted),
+                                                 (blocks + HMB_RANGE_CHECK_MAX_RUN - 1) / HMB_RANGE_CHECK_MAX_RUN);
+  EXPECT_EQ(c.rangeDispatchX, std::min<uint64_t>(groups, 65535)) << what;
+  EXPECT_EQ(c.rangeDispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
+  EXPECT_EQ(c.rangeDispatchZ, 1u) << what;
+}
+
 // Mask equal to the reference's range check over the device's edges, every edge pixel in the
 // mask (its range starts at itself), the list the masked pixels each once, counters to match,
 // the walked blocks the reference's (list_range_blocks); with the range check's groups in any
@@ -63,6 +77,7 @@ size_t expectRayMaskMatchesIn(const MaskLayer& layer, const RayMaskParameters& p
   std::sort(blocks.begin(), blocks.end());
   EXPECT_EQ(blocks, rangeBlocks(layer, device.edges, p)) << what << ": the range check's blocks";
   EXPECT_EQ(device.counters.rangeBlockCount, blocks.size()) << what;
+  expectRangeDispatchFor(device.counters, blocks.size(), p, what);
   const std::vector<uint32_t> reference = rangeCheck(layer.velocity, device.edges, layer.width, layer.height, p);
   EXPECT_EQ(device.mask, reference) << what;
   std::vector<uint32_t> masked;
@@ -360,9 +375,15 @@ TEST_F(HybridRangeCheckTest, LongListFoldsIntoASecondRowOfGroups) {
       layer.velocity.emplace_back(x + 1 < width ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f));
       layer.objectId.push_back(x + 1);
     }
-  const RayMaskReadback device = runRayMask(context(), layer, parametersWith(0.0f));
+  RayMaskParameters p = parametersWith(0.0f);
+  // One group wanted: its run would pass HMB_RANGE_CHECK_MAX_RUN blocks, so there are more.
+  p.rangeCheckGroups = 1u;
+  const RayMaskReadback device = runRayMask(context(), layer, p);
   const uint64_t expected = uint64_t(width - 1) * height;
   ASSERT_GT(expected, 65535u * 64u);
+  ASSERT_GT(device.counters.rangeBlockCount, HMB_RANGE_CHECK_MAX_RUN);
+  expectRangeDispatchFor(device.counters, device.counters.rangeBlockCount, p, "folded");
+  EXPECT_GT(device.counters.rangeDispatchX, 1u);
   expectDispatchFor(device.counters, expected, "folded");
   EXPECT_EQ(device.counters.maskDispatchX, 65535u);
   EXPECT_EQ(device.counters.maskDispatchY, 2u);
