@@ -74,10 +74,9 @@ void main() {
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
-  const uint blocks = HMB_EDGE_BLOCKS_FIRST(params.blur.width, params.blur.height);
-  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.blur.width);
   const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;
   const uvec2 last = min(pixel + 1u, uvec2(params.blur.width, params.blur.height) - 1u) / HMB_EDGE_BLOCK;
   for (uint y = first.y; y <= last.y; ++y)
-    for (uint x = first.x; x <= last.x; ++x) edges[blocks + y * blocksX + x] = 1u;
+    for (uint x = first.x; x <= last.x; ++x)
+      edges[HMB_EDGE_BLOCK_ENTRY(params.blur.width, params.blur.height, x, y)] = 1u;
 }

@@ -90,6 +90,9 @@
 #define HMB_EDGE_BLOCKS_FIRST(width, height) ((width) * (height))
 #define HMB_EDGE_BUFFER_ENTRIES(width, height) \
   (HMB_EDGE_BLOCKS_FIRST(width, height) + HMB_EDGE_BLOCKS_ACROSS(width) * HMB_EDGE_BLOCKS_ACROSS(height))
+// The edge buffer's entry of coarse block (x, y).
+#define HMB_EDGE_BLOCK_ENTRY(width, height, x, y) \
+  (HMB_EDGE_BLOCKS_FIRST(width, height) + (y) * HMB_EDGE_BLOCKS_ACROSS(width) + (x))
 
 #define HMB_RANGE_BLOCKS_GROUP 64
 #define HMB_RANGE_BLOCKS_BINDING_TILES 0     // uint tile index per moving tile
@@ -281,7 +284,7 @@ struct MovingTilesParams {
 
 struct SizeListParams {
   uint list;  // HMB_SIZE_LIST_*
-  // range blocks: range_check's groups wanted in all, each striding over the list (0: one per
+  // range blocks: range_check's groups wanted in all, each taking a run of the list (0: one per
   // listed block)
   uint rangeGroupsWanted;
   uint pad0;

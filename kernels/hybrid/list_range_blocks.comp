@@ -33,11 +33,9 @@ bool edgeBlockNear(uvec2 origin, int margin) {
       clamp(ivec2(origin) + ivec2(HMB_MASK_TILE_GROUP_X - 1, HMB_MASK_TILE_GROUP_Y - 1) + margin, ivec2(0), last) /
       int(HMB_EDGE_BLOCK);
   if (any(greaterThan(to - from, ivec2(HMB_RANGE_BLOCKS_MAX_TEST_SIDE - 1)))) return true;
-  const uint first = HMB_EDGE_BLOCKS_FIRST(params.blur.width, params.blur.height);
-  const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.blur.width);
   for (int y = from.y; y <= to.y; ++y)
     for (int x = from.x; x <= to.x; ++x)
-      if (edges[first + uint(y) * blocksX + uint(x)] != 0u) return true;
+      if (edges[HMB_EDGE_BLOCK_ENTRY(params.blur.width, params.blur.height, uint(x), uint(y))] != 0u) return true;
   return false;
 }
 

@@ -53,7 +53,7 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   vec2 tNext = vec2(d.x != 0.0 ? abs(boundary.x - a.x) * inverse.x : 2.0, d.y != 0.0 ? abs(boundary.y - a.y) * inverse.y : 2.0);
   const vec2 tStep = side * inverse;
   const uint moves = uint(abs(last.x - block.x) + abs(last.y - block.y));
-  uint entry = HMB_EDGE_BLOCKS_FIRST(params.blur.width, params.blur.height) + uint(block.y) * blocksX + uint(block.x);
+  uint entry = HMB_EDGE_BLOCK_ENTRY(params.blur.width, params.blur.height, uint(block.x), uint(block.y));
   const uint rowStep = uint(stepSign.y) * blocksX;  // modulo 2^32: one row up or down
   for (uint i = 0u; i < moves; ++i) {
     if (edges[entry] != 0u) return true;
@@ -187,7 +187,7 @@ void main() {
     const uvec2 tileStart = block / tileSize * tileSize;
     const uvec2 pixel = block + gl_LocalInvocationID.xy;
     // Lanes past the tile's or the image's edge have no pixel.
-    if (all(lessThan(pixel - tileStart, uvec2(tileSize))) && pixel.x < params.blur.width && pixel.y < params.blur.height)
-      checkPixel(pixel);
+    const bool inTile = all(lessThan(pixel - tileStart, uvec2(tileSize)));
+    if (inTile && pixel.x < params.blur.width && pixel.y < params.blur.height) checkPixel(pixel);
   }
 }

@@ -1,7 +1,7 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
 // 65535 groups: the moving tiles (a group per tile: edge_candidates, list_range_blocks), the
-// range check's blocks (a group per block, or as many as wanted, striding over the list:
+// range check's blocks (a group per block, or as many as wanted, each a run of the list:
 // range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask) or the ray mask's
 // pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over
 // the list's front, the composite over the whole mask).
