@@ -3,6 +3,7 @@
 // the identity order of that range, the tree's frame (the root box: its packed bounds count
 // steps across it), and the root's task for level 0. Roots are nodes 0..treeCount-1.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "bvh_build_common.glsl"
 #include "../shared/indexing.glsl"
 #include "../shared/ordered_float.glsl"

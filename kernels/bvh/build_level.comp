@@ -9,6 +9,7 @@
 // primitive becomes a leaf at once; others are the next level's tasks. Primitive ranges alternate between the two halves of the primitive buffer by
 // level parity; every leaf leaves its primitives in the first half, the final order.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #extension GL_EXT_control_flow_attributes : require
 #include "bvh_build_common.glsl"
 #include "../shared/ordered_float.glsl"

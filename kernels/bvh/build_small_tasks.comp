@@ -14,6 +14,7 @@
 // primitives sorted in such arrays, cost several times the arithmetic; on a GPU the unrolled
 // compares are as cheap as the indexed update.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #extension GL_EXT_control_flow_attributes : require
 #include "bvh_build_common.glsl"
 #include "../shared/indexing.glsl"

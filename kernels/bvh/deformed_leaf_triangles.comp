@@ -4,6 +4,7 @@
 // scene's vertex buffer (the vertex indices ride in w), and its triangle's new box for the
 // refit, at its primitive's index.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "bvh_build_layout.h"
 #include "triangle_box.glsl"
 #include "../shared/scene_layout.h"

@@ -6,6 +6,7 @@
 // dispatch (a climb from each leaf with a per-node arrival count needs it, and lost arrivals
 // on lavapipe with memoryBarrierBuffer in its loop).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "refit_common.glsl"
 
 REFIT_BOXES

@@ -2,6 +2,7 @@
 // Refit, last: every refitted node's new exact box packed in its tree's new frame (the root's
 // new box), which the root's invocation also stores. The index words stay.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "refit_common.glsl"
 
 REFIT_ROOTS

@@ -2,6 +2,7 @@
 // Refit's preparation, first: every interior node tells its two children it is their parent
 // (the trees keep only the way down).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "refit_common.glsl"
 
 REFIT_ROOTS

@@ -3,6 +3,7 @@
 // refit_bounds can go up the trees a depth per dispatch and refit_pack find each node's frame.
 // The host sorts the nodes by depth from these once per build.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "refit_common.glsl"
 
 REFIT_PARENTS

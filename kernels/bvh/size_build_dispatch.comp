@@ -3,6 +3,7 @@
 // empties the count that level L + 2 will append to; sizes build_small_tasks' dispatch from
 // the small tasks so far.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "bvh_build_common.glsl"
 #include "../shared/dispatch.h"
 

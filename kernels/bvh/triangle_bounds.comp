@@ -1,6 +1,7 @@
 #version 450
 // The box of every triangle: what the builder bins and partitions (triangle_box.glsl).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "bvh_build_layout.h"
 #include "triangle_box.glsl"
 #include "../shared/indexing.glsl"

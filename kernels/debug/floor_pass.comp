@@ -3,6 +3,7 @@
 // 8x8 groups and row-major addressing the per-pixel passes use. Every per-pixel pass is reported
 // as a multiple of this pass's time in the same run (bench/floor_pass.h).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "floor_pass.h"
 
 layout(local_size_x = HMB_FLOOR_GROUP_X, local_size_y = HMB_FLOOR_GROUP_Y) in;

@@ -3,6 +3,7 @@
 // a sample and a surface, and the two decoded again, for the test that holds the device's
 // rounding to the host's (tests/gbuffer/layer_packing_test.cpp).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "pack_layer.h"
 #include "../shared/indexing.glsl"
 #include "../shared/layer_layout.h"

@@ -2,6 +2,7 @@
 // Horizontal red ramp, vertical green ramp, a blue checker, and a white disc whose centre
 // moves with time. C++ reference: testPatternPixel in tests/runtime.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "test_pattern.h"
 
 layout(local_size_x = HMB_TEST_PATTERN_GROUP_X, local_size_y = HMB_TEST_PATTERN_GROUP_Y) in;

@@ -5,6 +5,7 @@
 // non-uniform scale keep it perpendicular). Written over the mesh vertex it deforms; the C++
 // twin is scene::deformVertex.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "deform_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"

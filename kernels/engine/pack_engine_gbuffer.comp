@@ -5,6 +5,7 @@
 // becomes camera-space depth; a pixel at or past the far plane is background (object 0) at the
 // largest depth the gathers know, as the library's own G-buffer writes the background.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "engine_layout.h"
 #include "../shared/layer_layout.h"
 #include "../mblur/mblur_layout.h"

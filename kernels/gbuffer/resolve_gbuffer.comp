@@ -5,6 +5,7 @@
 // normal, object id, screen velocity (the same surface point at t and t - 1/fps) and the
 // shaded colour.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "gbuffer_layout.h"
 #include "../raster/raster_layout.h"
 #include "../shared/scene_layout.h"

@@ -5,6 +5,7 @@
 // positions), as offsets from the pixel (gbuffer_layout.h). Runs only in frames that use the
 // curved motion path.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "gbuffer_layout.h"
 #include "../raster/raster_layout.h"
 

@@ -22,6 +22,7 @@
 //    X + u v + u^2 q (v and q from mblur_common.glsl's inversePath). The README gives the
 //    measured errors.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"

@@ -5,6 +5,7 @@
 // list with every lane busy instead of over the image with most lanes idle. One group per
 // moving tile (list_moving_tiles), its lanes striding over the tile as tile_max's do.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/layer_layout.h"

@@ -10,6 +10,7 @@
 // pixels, and at the coarse mask's blocks near them, only; the edge buffer is filled with 0
 // before.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"

@@ -4,6 +4,7 @@
 // wherever the mask says HMB_MASK_REVEALED, gathered as the post-process gather does
 // (mblur/gather_samples.glsl, no mask boosts). The composite reads the result at mask pixels.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"

@@ -3,6 +3,7 @@
 // tile-max, speeds in its z). Elsewhere every pixel's displacement ends on the pixel itself, so
 // no pixel can pass eq. 1 or meet an edge along its range: the mask passes skip those tiles.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"

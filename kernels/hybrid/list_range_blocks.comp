@@ -8,6 +8,7 @@
 // check's groups reach only these blocks: a CPU device runs every branch for every lane, and a
 // test within the range check's loop saved nothing; a GPU runs no group for the others.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 

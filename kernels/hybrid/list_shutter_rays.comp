@@ -11,6 +11,7 @@
 // One group per moving tile (list_moving_tiles), its lanes striding over the tile as
 // edge_candidates' do; pixels of still tiles are never listed.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/layer_layout.h"

@@ -11,6 +11,7 @@
 // list from its back, for the composite alone. Runs over the blocks list_range_blocks listed
 // (those of the moving tiles with an edge within reach); the mask is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/layer_layout.h"

@@ -13,6 +13,7 @@
 // surface point at t and t - 1/fps, as the resolve computes it) and object id. Nothing behind
 // reads as the background colour at the far depth.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"

@@ -7,6 +7,7 @@
 // the list's front, the composite over the whole mask).
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../shared/dispatch.h"
 

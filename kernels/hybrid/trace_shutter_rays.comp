@@ -5,6 +5,7 @@
 // time, the camera at that time) and shaded by the shading function every method shares, as
 // the reference's samples are. Their mean replaces the colour the composite wrote there.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"

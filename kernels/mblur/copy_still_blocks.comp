@@ -4,6 +4,7 @@
 // The hybrid's ray mask has no pixel here: it lies in moving tiles, whose blocks are moving
 // (a tile's neighbour-max is at least its own tile-max), and its composite runs after.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "mblur_layout.h"
 #include "../shared/indexing.glsl"
 #include "mblur_common.glsl"

@@ -5,6 +5,7 @@
 // (HMB_SPEC_GATHER_OUTSIDE_MASK) every such pixel outside its ray mask, whose pixels its
 // composite writes: a lane group wholly inside the mask then costs a load.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "filter_bindings.glsl"
 #include "../shared/indexing.glsl"
 

@@ -18,6 +18,7 @@
 //  - weights are coverage: the pixel's own colour fills what the 2P samples leave,
 //    result = (sum w c + (2P - sum w) c_X) / 2P.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "filter_bindings.glsl"
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;

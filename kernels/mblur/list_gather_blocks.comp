@@ -4,6 +4,7 @@
 // test the gather makes per pixel. The moving blocks fill the list from its front, the still
 // ones from its back, each in no order; the counters end as the indirect dispatches of the two.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "mblur_layout.h"
 #include "../shared/indexing.glsl"
 

@@ -3,6 +3,7 @@
 // of largest speed in the n x n tiles around it, the neighbourhood clipped at the grid border.
 // Ties go to the tile first in row-major order.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "mblur_layout.h"
 
 layout(local_size_x = HMB_NEIGHBOR_MAX_GROUP_X, local_size_y = HMB_NEIGHBOR_MAX_GROUP_Y) in;

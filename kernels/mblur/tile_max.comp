@@ -4,6 +4,7 @@
 // clamped to m first (mblur_common.glsl). Tiles at the right and bottom borders are partial.
 // Ties go to the pixel first in row-major image order, whatever order the lanes ran in.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "mblur_layout.h"
 #include "../shared/layer_layout.h"
 

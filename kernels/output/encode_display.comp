@@ -2,6 +2,7 @@
 // The display transform (design: metrics and PNGs use it): non-finite -> 0, clamp to [0, 1],
 // sRGB transfer function on RGB, quantize to 8 bits. C++ reference: hmb::io::encodeDisplay.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "encode_display.h"
 #include "../shared/layer_layout.h"
 

@@ -3,6 +3,7 @@
 // write the triangle's (triangle, tile) pairs side by side into the range setup reserved, so
 // a triangle covering the screen costs no single invocation more than a few pairs.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/indexing.glsl"
 

@@ -3,6 +3,7 @@
 // Sutherland-Hodgman against each plane, then a fan of up to six triangles, each snapped,
 // culled and binned like the unclipped ones (emit_triangle.glsl). Same bindings as setup.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"

@@ -3,6 +3,7 @@
 // its tile's list (one atomic exchange), overwriting the pair's tile with the next pair, so
 // rasterize_tile_lists can walk every pair of one tile.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/indexing.glsl"
 

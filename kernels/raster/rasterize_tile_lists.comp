@@ -9,6 +9,7 @@
 // registers here; there a workgroup per tile with a lane per pixel is the shape, and the
 // renderer keeps the atomic schemes for GPUs (rasterize_pass.cpp, defaultVisibilityScheme).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #extension GL_EXT_control_flow_attributes : require
 #include "raster_layout.h"
 #include "../shared/indexing.glsl"

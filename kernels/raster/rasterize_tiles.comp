@@ -4,6 +4,7 @@
 // first: raster_layout.h, depthKey). The current value is
 // read first, so pixels already holding a nearer surface cost no atomic.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 #include "raster_layout.h"

@@ -3,6 +3,7 @@
 // takes atomicMin of the depth keys (raster_layout.h, depthKey); pass 1 writes the triangle id where the depth matches
 // (atomicMin on the id, so equal depths resolve to the same triangle as the 64-bit path).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/indexing.glsl"
 #include "raster_coverage.glsl"

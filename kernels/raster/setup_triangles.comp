@@ -4,6 +4,7 @@
 // is listed for clip_triangles: kernels that clip hold polygons in arrays, and on CPU devices a
 // kernel with such arrays pays for them in every invocation, needed or not.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"

@@ -4,6 +4,7 @@
 // (after clip_triangles): bin_large_triangles (one workgroup per large triangle) and
 // rasterize_tiles (one invocation per (triangle, tile) pair).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/dispatch.h"
 

@@ -4,6 +4,7 @@
 // the curved motion path (resolve_shutter_path, the gathers) takes a quadratic. Runs only in
 // frames that use that path.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"

@@ -3,6 +3,7 @@
 // and what shading needs of it (world normal, uv). A deformed vertex has a position of its own
 // at each of the two times (kernels/deform/), so its screen velocity is exact.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "raster_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"

@@ -4,6 +4,7 @@
 // time, so any motion is exact), shaded by the shading function every method shares, and
 // added to the pixel's sum. One dispatch per sample: each invocation owns its pixel's sum.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "reference_layout.h"
 #include "../shared/indexing.glsl"
 #include "../shared/scene_layout.h"

@@ -2,6 +2,7 @@
 // The reference's mean: each pixel's sum of samples over their count (in w: pixels that
 // nothing moving crosses were sampled once).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "reference_layout.h"
 #include "../shared/indexing.glsl"
 

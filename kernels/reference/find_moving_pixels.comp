@@ -3,6 +3,7 @@
 // shutter's sample times. With the camera standing still, every other pixel sees the same
 // surface at every time, so one sample of it is exact and the reference samples only the list.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "reference_layout.h"
 #include "../trace/ray_tests.glsl"
 

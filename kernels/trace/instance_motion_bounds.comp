@@ -3,6 +3,7 @@
 // at every shutter time, merged, so that a ray traced at any of those times finds it. The root
 // box is the packed one traversal tests (it holds the exact one).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "trace_layout.h"
 #include "../shared/indexing.glsl"
 #include "../bvh/packed_node.glsl"

@@ -1,6 +1,7 @@
 #version 450
 // Closest hit of every ray in a list through the two-level BVH (closest_hit.glsl).
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/float_controls.glsl"
 #include "trace_layout.h"
 #define HMB_TRACE_SCENE_BINDING HMB_TRACE_BINDING_SCENE
 #include "closest_hit.glsl"

@@ -182,6 +182,7 @@ int listDevices() {
     if (!d.driverName.empty()) std::cout << ", " << d.driverName;
     if (!d.driverInfo.empty()) std::cout << " (" << d.driverInfo << ")";
     std::cout << (d.computeCapable ? "" : ", no compute queue")
+              << (d.preservesInfNan ? "" : ", cannot keep NaN and infinity in kernels (unusable)")
               << (d.int64BufferAtomics ? ", int64 atomics" : ", no int64 atomics")
               << (d.timestamps ? ", timestamps" : ", no timestamps") << '\n';
   }

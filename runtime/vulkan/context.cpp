@@ -12,6 +12,10 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 constexpr uint32_t kMaxKeptMessages = 64;
+// Why a device cannot run the kernels, which all keep NaN and infinity (kernels/shared/float_controls.glsl).
+constexpr const char* kNoInfNanPreserve =
+    "cannot keep NaN and infinity in its kernels (shaderSignedZeroInfNanPreserveFloat32 is false), and every "
+    "kernel relies on it to keep bad input out of the images";
 
 bool hasInstanceLayer(const char* name) {
   uint32_t count = 0;
@@ -116,11 +120,20 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
   const bool driverPropsExt = hasDeviceExtension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME);
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceFloatControlsProperties floatControls{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
+  const bool floatControlsKnown =
+      vulkan12 || hasDeviceExtension(device, VK_KHR_SHADER_FLOAT_CONTROLS_EXTENSION_NAME);
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props2.pNext = &subgroup;
-  if (vulkan12 || driverPropsExt) subgroup.pNext = &driver;
+  void** next = &subgroup.pNext;
+  if (vulkan12 || driverPropsExt) {
+    *next = &driver;
+    next = &driver.pNext;
+  }
+  if (floatControlsKnown) *next = &floatControls;
   vkGetPhysicalDeviceProperties2(device, &props2);
   info.subgroupSize = subgroup.subgroupSize;
+  info.preservesInfNan = floatControlsKnown && floatControls.shaderSignedZeroInfNanPreserveFloat32;
   if (vulkan12 || driverPropsExt) {
     info.driverName = driver.driverName;
     info.driverInfo = driver.driverInfo;
@@ -279,11 +292,14 @@ Context::Context(const ContextOptions& options) : options_(options) {
       if (!infos[options.deviceIndex].computeCapable)
         throw Error("device " + std::to_string(options.deviceIndex) + " (" + infos[options.deviceIndex].name +
                     ") has no compute queue");
+      if (!infos[options.deviceIndex].preservesInfNan)
+        throw Error("device " + std::to_string(options.deviceIndex) + " (" + infos[options.deviceIndex].name +
+                    ") " + kNoInfNanPreserve);
       chosen = options.deviceIndex;
     } else {
       int bestRank = 1 << 30;
       for (uint32_t i = 0; i < devices.size(); ++i) {
-        if (!infos[i].computeCapable) continue;
+        if (!infos[i].computeCapable || !infos[i].preservesInfNan) continue;
         VkPhysicalDeviceProperties props{};
         vkGetPhysicalDeviceProperties(devices[i], &props);
         const int rank = typeRank(props.deviceType);
@@ -292,7 +308,12 @@ Context::Context(const ContextOptions& options) : options_(options) {
           chosen = static_cast<int>(i);
         }
       }
-      if (chosen < 0) throw Error("no Vulkan device with a compute queue found");
+      if (chosen < 0) {
+        const bool anyCompute = std::any_of(infos.begin(), infos.end(), [](const DeviceInfo& d) { return d.computeCapable; });
+        throw Error(anyCompute ? std::string("no Vulkan device with a compute queue can run the kernels: each ") +
+                                     kNoInfNanPreserve
+                               : std::string("no Vulkan device with a compute queue found"));
+      }
     }
 
     physicalDevice_ = devices[chosen];
@@ -332,6 +353,8 @@ Context::Context(const ContextOptions& options) : options_(options) {
       if (props.apiVersion < VK_API_VERSION_1_2)
         deviceExtensions.push_back(VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME);
     }
+    // Every kernel declares SignedZeroInfNanPreserve: core in Vulkan 1.2, an extension before.
+    if (props.apiVersion < VK_API_VERSION_1_2) deviceExtensions.push_back(VK_KHR_SHADER_FLOAT_CONTROLS_EXTENSION_NAME);
     // Portability implementations must enable this extension when they expose it.
     if (hasDeviceExtension(physicalDevice_, "VK_KHR_portability_subset"))
       deviceExtensions.push_back("VK_KHR_portability_subset");
@@ -389,6 +412,11 @@ Context::Context(const AdoptedVulkan& adopted, const ContextOptions& options) : 
     for (uint32_t i = 0; i < devices.size(); ++i)
       if (devices[i] == physicalDevice_) index = i;
     info_ = describe(physicalDevice_, index);
+    require(info_.preservesInfNan, kNoInfNanPreserve);
+    require((adopted.apiVersion >= VK_API_VERSION_1_2 && props.apiVersion >= VK_API_VERSION_1_2) ||
+                adopted.shaderFloatControls,
+            "below Vulkan 1.2 the kernels need VK_KHR_shader_float_controls enabled at vkCreateDevice "
+            "(AdoptedVulkan::shaderFloatControls)");
     // What the engine enabled, not what the device could: a kernel may use only those.
     info_.int64BufferAtomics = info_.int64BufferAtomics && adopted.shaderInt64 && adopted.shaderBufferInt64Atomics;
     info_.bufferDeviceAddress = info_.bufferDeviceAddress && adopted.bufferDeviceAddress;

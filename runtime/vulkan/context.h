@@ -39,6 +39,9 @@ struct DeviceInfo {
   uint64_t deviceLocalBytes = 0;  // the largest device-local heap
   uint32_t maxComputeWorkGroupCount[3] = {0, 0, 0};
   uint32_t subgroupSize = 0;
+  // Kernels may declare SignedZeroInfNanPreserve for 32-bit floats (shaderSignedZeroInfNanPreserveFloat32,
+  // Vulkan 1.2 or VK_KHR_shader_float_controls): every kernel does (kernels/shared/float_controls.glsl).
+  bool preservesInfNan = false;
 };
 
 struct ContextOptions {
@@ -79,6 +82,9 @@ struct AdoptedVulkan {
   bool shaderInt64 = false;
   bool shaderBufferInt64Atomics = false;
   bool bufferDeviceAddress = false;
+  // VK_KHR_shader_float_controls enabled at vkCreateDevice: needed only where the instance or the
+  // device is older than Vulkan 1.2 (every kernel keeps NaN and infinity: DeviceInfo::preservesInfNan).
+  bool shaderFloatControls = false;
 };
 
 class Context {

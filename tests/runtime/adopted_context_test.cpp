@@ -87,6 +87,9 @@ TEST(AdoptedContextTest, WhatIsMissingIsAOneLineErrorNamingIt) {
   badQueue.queueIndex = families.at(badQueue.queueFamily).queueCount;
   EXPECT_NE(errorOf(badQueue, countingOptions()).find("queue " + std::to_string(badQueue.queueIndex) + " of family"),
             std::string::npos);
+  vk::AdoptedVulkan noFloatControls = engine.adopted();
+  noFloatControls.apiVersion = VK_API_VERSION_1_1;
+  EXPECT_NE(errorOf(noFloatControls, countingOptions()).find("VK_KHR_shader_float_controls"), std::string::npos);
   vk::AdoptedVulkan old = engine.adopted();
   old.apiVersion = VK_API_VERSION_1_0;
   EXPECT_NE(errorOf(old, countingOptions()).find("Vulkan 1.1 or later"), std::string::npos);

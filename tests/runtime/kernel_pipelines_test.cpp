@@ -219,6 +219,25 @@ TEST_F(KernelPipelinesTest, EachKernelIsMadeOncePerContextAndSpecialization) {
 // A device that takes fewer storage buffers per stage than the widest kernel: a kernel whose
 // plain build binds more runs its address build where it has one that fits, and pipeline
 // creation refuses the others in one line naming the kernel and the limit.
+// Every build of every kernel declares SignedZeroInfNanPreserve for 32-bit floats
+// (kernels/shared/float_controls.glsl): without it a driver may fold the kernels' isnan and
+// isinf tests away, and bad input would reach the images.
+TEST(KernelFloatControlsTest, EveryEmbeddedKernelKeepsNanAndInfinity) {
+  constexpr uint32_t kOpExecutionMode = 16, kSignedZeroInfNanPreserve = 4461, kHeaderWords = 5;
+  ASSERT_FALSE(vk::embeddedKernels().empty());
+  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
+    bool declared = false;
+    for (size_t i = kHeaderWords; i < kernel.wordCount;) {
+      const uint32_t words = kernel.words[i] >> 16, opcode = kernel.words[i] & 0xffffu;
+      if (words == 0 || i + words > kernel.wordCount) break;
+      if (opcode == kOpExecutionMode && words == 4 && kernel.words[i + 2] == kSignedZeroInfNanPreserve)
+        declared = kernel.words[i + 3] == 32u;
+      i += words;
+    }
+    EXPECT_TRUE(declared) << kernel.name << " does not keep NaN and infinity in 32-bit floats";
+  }
+}
+
 TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersTakesAddressBuildsOrRefusesInOneLine) {
   uint32_t widest = 0;
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels())
