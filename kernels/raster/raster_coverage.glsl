@@ -28,8 +28,12 @@ Edge makeEdge(vec2 a, vec2 b) {
   return e;
 }
 
+// `precise` here and in coverageDepth: no driver may fuse the products into multiply-adds, so
+// every device computes the reference's values, rounded as it rounds them (Vulkan lets a
+// driver fuse what is not `precise`; lavapipe does not here, a GPU driver may).
 float edgeFunction(Edge e, vec2 p) {
-  return e.sign * (e.direction.x * (p.y - e.origin.y) - e.direction.y * (p.x - e.origin.x));
+  precise const float value = e.sign * (e.direction.x * (p.y - e.origin.y) - e.direction.y * (p.x - e.origin.x));
+  return value;
 }
 
 bool insideEdge(Edge e, float value) { return value > 0.0 || (value == 0.0 && e.owned); }
@@ -55,7 +59,7 @@ float coverageDepth(SetupTriangle s, TriangleEdges t, uvec2 pixel) {
   const float w1 = edgeFunction(t.e1, p);
   const float w2 = edgeFunction(t.e2, p);
   if (!(insideEdge(t.e0, w0) && insideEdge(t.e1, w1) && insideEdge(t.e2, w2))) return -1.0;
-  const float depth = (w0 * s.depth.x + w1 * s.depth.y + w2 * s.depth.z) / (w0 + w1 + w2);
+  precise const float depth = (w0 * s.depth.x + w1 * s.depth.y + w2 * s.depth.z) / (w0 + w1 + w2);
   return (depth >= 0.0 && depth <= 1.0) ? depth : -1.0;
 }
 

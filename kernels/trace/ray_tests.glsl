@@ -82,13 +82,16 @@ bool intersectTriangle(PreparedRay r, vec3 v0, vec3 v1, vec3 v2, out float t, ou
   precise const float e1 = ax * cy - ay * cx;  // weight of v1
   precise const float e2 = bx * ay - by * ax;  // weight of v2
   if ((e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0)) return false;
-  const float det = e0 + e1 + e2;
+  precise const float det = e0 + e1 + e2;
   if (det == 0.0 || isnan(det)) return false;
-  const float scaledT = e0 * (r.shear.z * a[r.kz]) + e1 * (r.shear.z * b[r.kz]) + e2 * (r.shear.z * c[r.kz]);
-  const float inverseDet = 1.0 / det;
-  t = scaledT * inverseDet;
-  u = e1 * inverseDet;
-  v = e2 * inverseDet;
+  // precise as the edge functions: the host reference's rounding on any device (Vulkan lets a
+  // driver fuse products into multiply-adds where a result is not precise).
+  precise const float scaledT = e0 * (r.shear.z * a[r.kz]) + e1 * (r.shear.z * b[r.kz]) + e2 * (r.shear.z * c[r.kz]);
+  precise const float inverseDet = 1.0 / det;
+  precise const float hitT = scaledT * inverseDet, hitU = e1 * inverseDet, hitV = e2 * inverseDet;
+  t = hitT;
+  u = hitU;
+  v = hitV;
   return true;
 }
 
