@@ -212,6 +212,55 @@ std::string rayQueryAnchorSkipped(const vk::Context& context, const BvhSuiteOpti
   return RayQueryAnchor::unavailableReason(context);
 }
 
+namespace {
+// The world box of each instance's mesh at time t (its bounds' corners through the instance's
+// matrix): the top-level tree's primitives, as instance_motion_bounds makes them for one time.
+std::vector<Aabb> instanceBoxesAt(const scene::Scene& scene, float t) {
+  std::vector<Aabb> meshBounds(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    for (const glm::vec3& p : scene.meshes[m].positions) meshBounds[m].grow(p);
+  std::vector<Aabb> boxes;
+  for (const scene::Instance& instance : scene.instances) {
+    const Aabb& local = meshBounds.at(instance.mesh);
+    const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
+    Aabb box;
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p((corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                        (corner & 4) ? local.max.z : local.min.z);
+      box.grow(glm::vec3(world * glm::vec4(p, 1.0f)));
+    }
+    boxes.push_back(box);
+  }
+  return boxes;
+}
+
+void measureTopLevel(const vk::Context& context, const scene::Scene& source, const BvhSuiteOptions& options,
+                     BvhCase& c) {
+  c.instances = static_cast<uint32_t>(source.instances.size());
+  if (c.instances < 2) return;
+  const vk::Buffer boxes = vk::uploadedBuffer(
+      context, passes::bvhBoxes(instanceBoxesAt(source, source.settings.frameTime)), "bench instance boxes");
+  passes::BvhBuildPass tree(context, "bench top level", HMB_BVH_MAX_INSTANCE_LEAF);
+  const glm::uvec2 root(0u, c.instances);
+  std::vector<double> builds, smallTaskMs;
+  std::vector<std::vector<double>> levels;
+  for (int i = 0; i < options.warmup + options.repeats; ++i) {
+    vk::FrameRecorder frame(context);
+    const passes::BvhBuildStats& stats = tree.build(frame, boxes, c.instances, std::span(&root, 1));
+    if (i < options.warmup) continue;
+    builds.push_back(stats.deviceMilliseconds);
+    levels.push_back(stats.levelMilliseconds);
+    smallTaskMs.push_back(stats.smallTaskMilliseconds);
+    c.topLevelSmallTasks = stats.smallTasks;
+  }
+  c.topLevelMilliseconds = summarize(builds);
+  const auto median = std::find(builds.begin(), builds.end(), c.topLevelMilliseconds.median);
+  const size_t at = median == builds.end() ? 0 : static_cast<size_t>(median - builds.begin());
+  c.topLevelLevelMilliseconds = levels.at(at);
+  c.topLevelSmallTaskMilliseconds = smallTaskMs.at(at);
+}
+}  // namespace
+
 std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptions& options, const Progress& progress) {
   if (!context.info().timestamps) throw Error("device " + context.info().name + " has no timestamps");
   const bool embree = embreeAvailable();
@@ -313,6 +362,8 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
       c.anchorBuildMilliseconds = summarize(ms);
       c.anchorMeasured = true;
     }
+    progress("  top-level tree");
+    measureTopLevel(context, source, options, c);
     progress("  coherent rays");
     c.coherent = traceCase(context, *traceScene, tracePass, flat, coherent, options, embree, anchor.get());
     progress("  incoherent rays");
@@ -321,6 +372,7 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
   }
   return cases;
 }
+
 
 nlohmann::json bvhCaseJson(const BvhCase& c) {
   const double mtris = c.triangles / (c.deviceBuildMilliseconds.median * 1e3);
@@ -354,7 +406,14 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
             {"device_over_full_sweep", c.sahDevice / c.sahReference},
             {"embree_over_full_sweep", c.sahEmbree / c.sahReference}}},
           {"coherent", traceJson(c.coherent)},
-          {"incoherent", traceJson(c.incoherent)}};
+          {"incoherent", traceJson(c.incoherent)},
+          {"top_level",
+           c.instances < 2 ? nlohmann::json()
+                           : nlohmann::json{{"instances", c.instances},
+                                            {"device_ms", summaryJson(c.topLevelMilliseconds)},
+                                            {"device_level_ms", c.topLevelLevelMilliseconds},
+                                            {"device_small_tasks", c.topLevelSmallTasks},
+                                            {"device_small_task_ms", c.topLevelSmallTaskMilliseconds}}}};
 }
 
 void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
@@ -374,6 +433,21 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
       out << std::setprecision(2) << f->deviceMraysPerSecond << " / " << f->embreeMraysPerSecond << " ("
           << std::setprecision(3) << f->deviceMraysPerSecond / f->embreeMraysPerSecond << "x) | ";
     out << "\n";
+  }
+  if (std::any_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.instances >= 2; })) {
+    out << "\nThe top-level tree over each scene's instances (the same builder, a frame's top level):\n\n"
+        << "| scene | instances | device build ms | levels (their ms) | small tasks (their ms) | the rest ms (begin, "
+           "dispatch sizing, gaps) |\n"
+        << "|---|---:|---:|---:|---:|---:|\n";
+    for (const BvhCase& c : cases) {
+      if (c.instances < 2) continue;
+      double levelMs = 0.0;
+      for (const double ms : c.topLevelLevelMilliseconds) levelMs += ms;
+      out << "| " << c.scene << " | " << c.instances << " | " << std::setprecision(2) << c.topLevelMilliseconds.median
+          << " | " << c.topLevelLevelMilliseconds.size() << " (" << levelMs << ") | " << c.topLevelSmallTasks << " ("
+          << c.topLevelSmallTaskMilliseconds << ") | "
+          << c.topLevelMilliseconds.median - levelMs - c.topLevelSmallTaskMilliseconds << " |\n";
+    }
   }
   if (std::none_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.anchorMeasured; })) return;
   out << "\nThe driver's own acceleration structures and ray queries, same triangles and rays:\n\n"

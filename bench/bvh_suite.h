@@ -84,6 +84,15 @@ struct BvhCase {
   double cpuReferenceBuildMilliseconds = 0;  // full sweep, one thread
   double sahDevice = 0, sahReference = 0, sahEmbree = 0;
   TraceFigures coherent, incoherent;
+  // The top-level tree over the scene's own instances (before it is flattened into one mesh),
+  // built by the same builder with leaves of up to HMB_BVH_MAX_INSTANCE_LEAF instances, as the
+  // hybrid and the reference build one each frame: where such a build's time goes. Not measured
+  // for a scene of one instance (the frame leaves its top level out).
+  uint32_t instances = 0;
+  Summary topLevelMilliseconds;
+  std::vector<double> topLevelLevelMilliseconds;  // of the median build
+  uint32_t topLevelSmallTasks = 0;
+  double topLevelSmallTaskMilliseconds = 0;  // of the median build
 };
 
 // Why the suite leaves out the driver's ray queries on this context ("" when it runs them).
