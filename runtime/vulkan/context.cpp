@@ -309,7 +309,8 @@ Context::Context(const ContextOptions& options) : options_(options) {
         }
       }
       if (chosen < 0) {
-        const bool anyCompute = std::any_of(infos.begin(), infos.end(), [](const DeviceInfo& d) { return d.computeCapable; });
+        const bool anyCompute =
+            std::any_of(infos.begin(), infos.end(), [](const DeviceInfo& d) { return d.computeCapable; });
         throw Error(anyCompute ? std::string("no Vulkan device with a compute queue can run the kernels: each ") +
                                      kNoInfNanPreserve
                                : std::string("no Vulkan device with a compute queue found"));
