@@ -39,6 +39,9 @@ std::array<uint32_t, 2> levelSpecialization(const BvhBuildShape& shape) {
 // kernels/bvh/bvh_build_common.glsl's halvingsToOne.
 uint32_t halvingsToOne(uint32_t n) { return static_cast<uint32_t>(std::bit_width(std::max(n, 1u) - 1u)); }
 
+// Every tree goes to build_small_tasks from begin_build (kernels/bvh/begin_build.comp).
+bool allSmall(uint32_t largestTree) { return largestTree <= HMB_BVH_SMALL_TASK; }
+
 uint32_t largestTreeOf(std::span<const glm::uvec2> roots) {
   uint32_t largest = 0;
   for (const glm::uvec2& root : roots) largest = std::max(largest, root.y);
@@ -184,7 +187,12 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
       if (before) before(frame);
       frame.dispatch(kBegin, beginKernel_, s.buffers, params, s.rootGroups);
     }
-    const uint32_t end = level + (level == 0 ? firstSubmissionLevels(s.largestTree) : kLevelsPerLaterSubmission);
+    // Trees of at most HMB_BVH_SMALL_TASK primitives go to build_small_tasks from begin_build:
+    // no level, one sizing of its dispatch.
+    const uint32_t end =
+        level + (level == 0 ? (allSmall(s.largestTree) ? 0u : firstSubmissionLevels(s.largestTree))
+                            : kLevelsPerLaterSubmission);
+    if (end == 0) frame.dispatch(kSizeDispatch, sizeDispatchKernel_, s.buffers, params, glm::uvec3(1));
     for (; level < end; ++level) {
       params.level = level;
       frame.dispatchIndirect(kLevel, levelKernel_, s.buffers, params, tasks_,
@@ -233,10 +241,13 @@ void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const
   // halvingsToOne(HMB_BVH_SMALL_TASK + 1) more levels below it, and the builder keeps every
   // node within the bound: no such task lies deeper than the bound minus that. The levels
   // down to there finish every tree but the small subtrees they set aside, and those are
-  // finished after them. (A root is split at level 0 whatever its size.)
+  // finished after them. (A root of more than HMB_BVH_SMALL_TASK primitives is split at level
+  // 0 whatever the bound; smaller roots go to the small tasks at once, and where every root is
+  // that small no level is recorded, only the sizing of the small tasks' dispatch.)
   const uint32_t belowLargeTask = halvingsToOne(HMB_BVH_SMALL_TASK + 1u);
   const uint32_t deepestLargeTask = depthBound > belowLargeTask ? depthBound - belowLargeTask : 0u;
-  const uint32_t levels = deepestLargeTask + 1u;
+  const uint32_t levels = allSmall(s.largestTree) ? 0u : deepestLargeTask + 1u;
+  if (levels == 0) frame.dispatch(pass, sizeDispatchKernel_, s.buffers, s.params, glm::uvec3(1));
   for (uint32_t level = 0; level < levels; ++level) {
     s.params.level = level;
     frame.dispatchIndirect(pass, levelKernel_, s.buffers, s.params, tasks_,

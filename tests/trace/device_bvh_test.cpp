@@ -427,6 +427,41 @@ TEST_F(DeviceBvh, NonFiniteTrianglesGetEmptyBoxes) {
   EXPECT_LE(root.max.x, 1.1f);
 }
 
+// A tree of at most HMB_BVH_SMALL_TASK primitives goes from begin_build to build_small_tasks
+// (a top level over a few instances, a small mesh): no level is dispatched, and the tree is as
+// sound and as cheap as the levels make others. Beside a larger tree in the same build, each
+// takes its own way.
+TEST_F(DeviceBvh, SmallTreesGoStraightToTheSmallTasks) {
+  for (const uint32_t n : {2u, 17u, HMB_BVH_SMALL_TASK}) {
+    const TriangleMesh mesh = bvh::test::randomSoup(n, 0.1f, 40 + n);
+    vk::FrameRecorder frame(context());
+    const TraceScene traceScene(context(), sceneOf(mesh), frame);
+    const passes::BvhBuildStats& stats = traceScene.meshBvh().stats();
+    EXPECT_TRUE(stats.levelMilliseconds.empty()) << n << " triangles: " << stats.levelMilliseconds.size() << " levels";
+    EXPECT_EQ(stats.smallTasks, 1u) << n << " triangles";
+    EXPECT_LE(checkBuild(mesh, std::to_string(n) + " triangles, small"), kMaxSahRatio);
+  }
+  scene::Scene scene;
+  const std::vector<TriangleMesh> meshes = {bvh::test::randomSoup(HMB_BVH_SMALL_TASK, 0.1f, 3),
+                                            bvh::test::randomSoup(HMB_BVH_SMALL_TASK + 1, 0.1f, 4)};
+  for (const TriangleMesh& mesh : meshes) {
+    scene::Mesh m;
+    m.positions = mesh.positions;
+    m.indices = mesh.indices;
+    scene.meshes.push_back(m);
+  }
+  vk::FrameRecorder frame(context());
+  const TraceScene traceScene(context(), scene, frame);
+  EXPECT_FALSE(traceScene.meshBvh().stats().levelMilliseconds.empty()) << "the larger tree needs its levels";
+  for (uint32_t m = 0; m < meshes.size(); ++m) {
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(meshes[m].view());
+    const bvh::Bvh tree = traceScene.meshBvh().download(m);
+    EXPECT_EQ(bvh::test::structuralProblem(tree, input.bounds, HMB_BVH_MAX_LEAF), "") << "mesh " << m;
+    EXPECT_LE(bvh::sahCost(tree) / bvh::sahCost(bvh::buildReferenceSah(input.bounds, input.centroids)), kMaxSahRatio)
+        << "mesh " << m;
+  }
+}
+
 TEST_F(DeviceBvh, ManyMeshesBuildTogether) {
   scene::Scene scene;
   std::vector<TriangleMesh> meshes = {bvh::test::randomSoup(300, 0.05f, 5), bvh::test::grid(12, 6),
