@@ -5,7 +5,8 @@
 // depths, infinite velocities, overflowing coordinates) out of the images. The context
 // requires shaderSignedZeroInfNanPreserveFloat32 (runtime/vulkan/context.cpp). Each kernel
 // includes this file first; KernelFloatControlsTest (tests/runtime/kernel_pipelines_test.cpp)
-// checks that every embedded build declares the mode.
+// checks that every embedded build declares the mode, HitShadingBuildsTest the builds compiled
+// with a user's shading.
 #ifndef HMB_FLOAT_CONTROLS_GLSL
 #define HMB_FLOAT_CONTROLS_GLSL
 #extension GL_EXT_spirv_intrinsics : require

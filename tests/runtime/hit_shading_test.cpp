@@ -8,9 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "runtime/passes/hit_shading.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 #include "tests/support/expect_error.h"
+#include "tests/support/spirv_modes.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -112,6 +114,19 @@ TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
   }
   EXPECT_GT(traced, 10u);
   EXPECT_EQ(wrong, 0u) << "of " << rays.size() << " pixels";
+}
+
+// The kernels compiled with a user's shading keep NaN and infinity as the embedded ones do:
+// the mode comes with the kernel's own text (kernels/shared/float_controls.glsl).
+TEST(HitShadingBuildsTest, KernelsCompiledWithAUsersShadingKeepNanAndInfinity) {
+  const passes::HitShading shading(kMagenta);
+  for (const char* kernel : {"hybrid/reveal_background", "reference/accumulate_sample"}) {
+    const vk::KernelBuilds& builds = shading.buildsFor(kernel);
+    EXPECT_TRUE(keepsNanAndInfinity(builds.plain)) << kernel;
+    if (!builds.byAddress.empty()) {
+      EXPECT_TRUE(keepsNanAndInfinity(builds.byAddress)) << kernel << " (address build)";
+    }
+  }
 }
 
 TEST_F(HitShadingTest, AShadeHitThatDoesNotCompileIsAOneLineErrorNamingIt) {

@@ -28,6 +28,7 @@
 #include "runtime/vulkan/kernel_registry.h"
 #include "runtime/vulkan/kernel_variants.h"
 #include "tests/support/expect_error.h"
+#include "tests/support/spirv_modes.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -223,19 +224,10 @@ TEST_F(KernelPipelinesTest, EachKernelIsMadeOncePerContextAndSpecialization) {
 // (kernels/shared/float_controls.glsl): without it a driver may fold the kernels' isnan and
 // isinf tests away, and bad input would reach the images.
 TEST(KernelFloatControlsTest, EveryEmbeddedKernelKeepsNanAndInfinity) {
-  constexpr uint32_t kOpExecutionMode = 16, kSignedZeroInfNanPreserve = 4461, kHeaderWords = 5;
   ASSERT_FALSE(vk::embeddedKernels().empty());
-  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
-    bool declared = false;
-    for (size_t i = kHeaderWords; i < kernel.wordCount;) {
-      const uint32_t words = kernel.words[i] >> 16, opcode = kernel.words[i] & 0xffffu;
-      if (words == 0 || i + words > kernel.wordCount) break;
-      if (opcode == kOpExecutionMode && words == 4 && kernel.words[i + 2] == kSignedZeroInfNanPreserve)
-        declared = kernel.words[i + 3] == 32u;
-      i += words;
-    }
-    EXPECT_TRUE(declared) << kernel.name << " does not keep NaN and infinity in 32-bit floats";
-  }
+  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels())
+    EXPECT_TRUE(keepsNanAndInfinity(std::span(kernel.words, kernel.wordCount)))
+        << kernel.name << " does not keep NaN and infinity in 32-bit floats";
 }
 
 TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersTakesAddressBuildsOrRefusesInOneLine) {
