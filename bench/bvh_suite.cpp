@@ -12,6 +12,7 @@
 #include "bench/bench_scenes.h"
 #include "bench/embree_reference.h"
 #include "bench/ray_query_anchor.h"
+#include "bvh/aabb.h"
 #include "bvh/reference_builder.h"
 #include "bvh/reference_traversal.h"
 #include "runtime/error.h"
@@ -213,25 +214,23 @@ std::string rayQueryAnchorSkipped(const vk::Context& context, const BvhSuiteOpti
 }
 
 namespace {
-// The world box of each instance's mesh at time t (its bounds' corners through the instance's
-// matrix): the top-level tree's primitives, as instance_motion_bounds makes them for one time.
+// The world box of each instance's mesh at time t (its bounds through the instance's matrix):
+// the top-level tree's primitives, as instance_motion_bounds makes them for one time.
 std::vector<Aabb> instanceBoxesAt(const scene::Scene& scene, float t) {
   std::vector<Aabb> meshBounds(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m)
     for (const glm::vec3& p : scene.meshes[m].positions) meshBounds[m].grow(p);
   std::vector<Aabb> boxes;
-  for (const scene::Instance& instance : scene.instances) {
-    const Aabb& local = meshBounds.at(instance.mesh);
-    const glm::mat4 world = scene.worldMatrixAt(instance.node, t);
-    Aabb box;
-    for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 p((corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
-                        (corner & 4) ? local.max.z : local.min.z);
-      box.grow(glm::vec3(world * glm::vec4(p, 1.0f)));
-    }
-    boxes.push_back(box);
-  }
+  for (const scene::Instance& instance : scene.instances)
+    boxes.push_back(transformed(meshBounds.at(instance.mesh), scene.worldMatrixAt(instance.node, t)));
   return boxes;
+}
+
+// Where the build whose time is the summary's median lies among the builds (its stage times
+// are reported with it); the first when the median falls between two builds.
+size_t medianBuild(const std::vector<double>& builds, const Summary& summary) {
+  const auto at = std::find(builds.begin(), builds.end(), summary.median);
+  return at == builds.end() ? 0 : static_cast<size_t>(at - builds.begin());
 }
 
 void measureTopLevel(const vk::Context& context, const scene::Scene& source, const BvhSuiteOptions& options,
@@ -254,8 +253,7 @@ void measureTopLevel(const vk::Context& context, const scene::Scene& source, con
     c.topLevelSmallTasks = stats.smallTasks;
   }
   c.topLevelMilliseconds = summarize(builds);
-  const auto median = std::find(builds.begin(), builds.end(), c.topLevelMilliseconds.median);
-  const size_t at = median == builds.end() ? 0 : static_cast<size_t>(median - builds.begin());
+  const size_t at = medianBuild(builds, c.topLevelMilliseconds);
   c.topLevelLevelMilliseconds = levels.at(at);
   c.topLevelSmallTaskMilliseconds = smallTaskMs.at(at);
 }
@@ -303,9 +301,9 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
     }
     c.deviceBuildMilliseconds = summarize(builds);
     c.setupWallMilliseconds = summarize(setups);
-    const auto median = std::find(builds.begin(), builds.end(), c.deviceBuildMilliseconds.median);
-    c.deviceLevelMilliseconds = levels.at(median == builds.end() ? 0 : median - builds.begin());
-    c.deviceSmallTaskMilliseconds = smallTaskMs.at(median == builds.end() ? 0 : median - builds.begin());
+    const size_t median = medianBuild(builds, c.deviceBuildMilliseconds);
+    c.deviceLevelMilliseconds = levels.at(median);
+    c.deviceSmallTaskMilliseconds = smallTaskMs.at(median);
     c.deviceSmallTasks = traceScene->meshBvh().stats().smallTasks;
     c.deviceLevels = traceScene->meshBvh().stats().levels;
     c.deviceBuildShape = traceScene->meshBvh().shape().describe();
@@ -372,7 +370,6 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
   }
   return cases;
 }
-
 
 nlohmann::json bvhCaseJson(const BvhCase& c) {
   const double mtris = c.triangles / (c.deviceBuildMilliseconds.median * 1e3);
