@@ -1,6 +1,6 @@
 #version 450
-// Ray mask, second pass (paper, eqs. 3, 4): an edge candidate (edge_candidates: eqs. 1, 2
-// hold) enters the edge mask when the 5x5 Sobel of depth and normal around it passes the
+// Ray mask, second pass (paper, eqs. 3, 4): an edge candidate (eqs. 1, 2 hold: listed by
+// tile_max_edge_candidates) enters the edge mask when the 5x5 Sobel of depth and normal around it passes the
 // edge threshold e:
 //   x = delta_d + delta_n, x_n = saturate(1 - 1 / (x + 1)), edge when x_n > e.
 // delta_d is the Sobel gradient's length of depth divided by the pixel's own depth: a

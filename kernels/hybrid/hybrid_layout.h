@@ -1,9 +1,10 @@
 // Layout of the hybrid method's kernels (kernels/hybrid/), the paper's section 3.2:
+//   tile_max_edge_candidates    the gather's tile-max, and eqs. 1, 2 at each pixel it reads:
+//                  moving pixels whose predicted end position lies on a different, deeper
+//                  object, listed (a few percent of the pixels)
 //   list_moving_tiles     tiles of the gather's tile-max whose fastest pixel moves half a
 //                  pixel or more: only there can a pixel's displacement end on another pixel,
 //                  so the mask passes run on those tiles alone (a still scene costs two fills)
-//   edge_candidates    eqs. 1, 2: moving pixels whose predicted end position lies on a
-//                  different, deeper object, listed (a few percent of the pixels)
 //   edge_mask      eqs. 3, 4: the listed candidates whose 5x5 Sobel of depth and normal passes
 //                  the edge threshold e (listing first keeps the Sobel's lanes busy)
 //   list_range_blocks  the 8 x 8 blocks of the moving tiles with a flagged coarse edge block
@@ -53,26 +54,26 @@
 // with the list's entries dealt out in turn. A run is at most HMB_RANGE_CHECK_MAX_RUN blocks,
 // under the 65535 rounds llvmpipe allows a loop.
 // list_range_blocks: one 64-lane group per listed tile, its lanes striding over the tile's
-// blocks.
-// edge_candidates: one 8 x 8 group per listed tile, its lanes striding over the tile (at most
-// HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU device pays per invocation, and most
-// pixels only need a few reads there. Pixels of other tiles keep the 0 their buffers are
-// filled with.
+// blocks. list_shutter_rays: one 8 x 8 group per listed tile, its lanes striding over the tile
+// (at most HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU device pays per invocation, and
+// most pixels only need a few reads there.
 #define HMB_MASK_TILE_GROUP_X 8
 #define HMB_MASK_TILE_GROUP_Y 8
 #define HMB_RANGE_CHECK_CPU_GROUPS 256u
 #define HMB_RANGE_CHECK_MAX_RUN 16384u
 
-#define HMB_EDGE_CANDIDATES_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples (shared/layer_layout.h)
-#define HMB_EDGE_CANDIDATES_BINDING_SURFACES 1  // uvec4 per pixel: the G-buffer's surfaces
-#define HMB_EDGE_CANDIDATES_BINDING_TILES 2     // uint tile index per moving tile
-#define HMB_EDGE_CANDIDATES_BINDING_COUNTERS 3  // RayMaskCounters: candidateCount
-#define HMB_EDGE_CANDIDATES_BINDING_LIST 4      // uint pixel index per candidate, in no order
-#define HMB_EDGE_CANDIDATES_BINDING_COUNT 5
+// tile_max_edge_candidates: one HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y group per tile, as
+// the gather's tile_max.
+#define HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples (shared/layer_layout.h)
+#define HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES 1  // uvec4 per pixel: the G-buffer's surfaces
+#define HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX 2  // vec4 per tile: written as tile_max writes it
+#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS 3  // RayMaskCounters: candidateCount
+#define HMB_TILE_MAX_CANDIDATES_BINDING_LIST 4      // uint pixel index per candidate, in no order
+#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNT 5
 
 #define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
-#define HMB_EDGE_MASK_BINDING_CANDIDATES 2    // edge_candidates' list
+#define HMB_EDGE_MASK_BINDING_CANDIDATES 2    // tile_max_edge_candidates' list
 // The edge mask, then the coarse edge mask (HMB_EDGE_BLOCKS_FIRST): 1 in the mask, 0 elsewhere
 // (written at 1s only; the buffer is filled with 0 before).
 #define HMB_EDGE_MASK_BINDING_EDGES 3
@@ -182,7 +183,7 @@
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COUNTERS + 1)
 #define HMB_COMPOSITE_TEXEL_BUFFERS 3  // the G-buffer layer and its paths, read as uniform texel buffers
 // edge_mask reads the G-buffer's samples and surfaces as uniform texel buffers: its 5x5 window
-// uses most of each record. edge_candidates and range_check read one or two words of a record,
+// uses most of each record. tile_max_edge_candidates and range_check read one or two words of a record,
 // which a storage-buffer load fetches for less than a texel fetch's four gathers.
 #define HMB_EDGE_MASK_TEXEL_BUFFERS 2
 #define HMB_SPEC_COMPOSITE_COVERAGE 0  // true: the coverage form; false: the weights form
@@ -199,7 +200,7 @@
 // for every pixel of a straight frame.
 #define HMB_SPEC_RANGE_CHECK_CURVED_PATH 0
 
-// list_shutter_rays: one 8 x 8 group per moving tile, as edge_candidates.
+// list_shutter_rays: one 8 x 8 group per moving tile.
 #define HMB_SHUTTER_LIST_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces (velocity, object id)
 #define HMB_SHUTTER_LIST_BINDING_TILE_MAX 1  // vec4 per tile: the gather's tile-max (velocity, speed)
 #define HMB_SHUTTER_LIST_BINDING_TILES 2     // uint tile index per moving tile
@@ -245,7 +246,7 @@ HMB_GPU_BEGIN
 // Cleared each frame. maskCount (the list's front: the pixels listed for the reveal) and
 // unrevealedCount (its back: the other mask pixels): range_check; maskPixels (their sum) and
 // the *Dispatch triples (VkDispatchIndirectCommands): size_list_dispatch; rayCount:
-// reveal_background; tileCount: list_moving_tiles; candidateCount: edge_candidates;
+// reveal_background; tileCount: list_moving_tiles; candidateCount: tile_max_edge_candidates;
 // rangeBlockCount: list_range_blocks.
 struct RayMaskCounters {
   uint maskCount;
@@ -262,7 +263,7 @@ struct RayMaskCounters {
   uint candidateDispatchX;  // edge_mask over the candidates
   uint candidateDispatchY;
   uint candidateDispatchZ;
-  uint tileGroupDispatchX;  // a group per moving tile (edge_candidates)
+  uint tileGroupDispatchX;  // a group per moving tile (list_range_blocks, list_shutter_rays)
   uint tileGroupDispatchY;
   uint tileGroupDispatchZ;
   uint unrevealedCount;     // mask pixels whose composite needs no reveal, listed from the list's back
@@ -291,7 +292,7 @@ struct SizeListParams {
   uint pad1;
 };
 
-// edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,
+// tile_max_edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,
 // velocity scale, maximum speed, SOFT_Z_EXTENT, samples and seed), so that the mask finds the
 // pixels the gathers will blur as they blur them; then the mask's own.
 struct RayMaskParams {

@@ -8,8 +8,8 @@
 // the path X + u v for u in [-1, 1] and a pixel on at each end, v its own displacement when it
 // moves half a pixel or more, else its tile's fastest (a still pixel a moving neighbour may
 // sweep over). Its rays: shutterRaysFor the faster of its own and its tile's fastest blur.
-// One group per moving tile (list_moving_tiles), its lanes striding over the tile as
-// edge_candidates' do; pixels of still tiles are never listed.
+// One group per moving tile (list_moving_tiles), its lanes striding over the tile;
+// pixels of still tiles are never listed.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"

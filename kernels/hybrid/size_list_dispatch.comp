@@ -1,6 +1,6 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
-// 65535 groups: the moving tiles (a group per tile: edge_candidates, list_range_blocks), the
+// 65535 groups: the moving tiles (a group per tile: list_range_blocks, list_shutter_rays), the
 // range check's blocks (a group per block, or as many as wanted, each a run of the list:
 // range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask) or the ray mask's
 // pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over

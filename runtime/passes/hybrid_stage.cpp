@@ -141,7 +141,6 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
               std::span<const gpu::PinholeCamera>(cameras_));
   const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height(),
                                 curved ? shutterPaths : nullptr};
-  postProcess_.recordTiles(frame, raster);
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
   gpu::GatherParams blur = gatherParams(settings_.blur, size_.width(), size_.height(),
@@ -157,6 +156,13 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // The shutter rays stand in for the reveal (plan()): the mask's stage lists the moving tiles
   // their list walks, and post-process's image is theirs to correct.
   maskParameters.movingTilesOnly = shutterStrata_ != 0;
+  // The whole mask's tile-max lists its edge candidates as it reads each pixel.
+  if (maskParameters.movingTilesOnly) {
+    postProcess_.recordTiles(frame, raster);
+  } else {
+    rayMask_.recordTileMax(frame, raster, maskParameters);
+    postProcess_.recordNeighborMax(frame);
+  }
   rayMask_.record(frame, raster, maskParameters);
   if (shutterStrata_ != 0) {
     shutterRays_.recordList(frame, raster, blur, postProcess_.tileMax(), rayMask_, shutterStrata_);

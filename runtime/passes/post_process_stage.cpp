@@ -67,6 +67,11 @@ void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInp
   requirePreparedSize(inputs);
   tileMaxPass_.record(frame, *inputs.surfaces, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
                       settings_.velocityScale());
+  recordNeighborMax(frame);
+}
+
+void PostProcessStage::recordNeighborMax(vk::FrameRecorder& frame) const {
+  if (!tileMax_.handle()) throw Error("post-process: recordNeighborMax() before prepare()");
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
 }
 

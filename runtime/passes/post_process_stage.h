@@ -38,6 +38,9 @@ class PostProcessStage {
   // The tile passes alone over `inputs`' velocities, for stages that run their own gathers
   // on neighborMax() (the hybrid method).
   void recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const;
+  // Neighbour-max alone, over a tile-max another stage wrote into tileMax() (the hybrid's ray
+  // mask, which lists its edge candidates as it reads each pixel).
+  void recordNeighborMax(vk::FrameRecorder& frame) const;
 
   const PostProcessSettings& settings() const { return settings_; }
   TileGrid tileGrid() const { return grid_; }

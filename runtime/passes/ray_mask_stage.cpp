@@ -6,6 +6,7 @@
 #include "kernels/hybrid/hybrid_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
+#include "runtime/passes/tile_max_pass.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
@@ -13,8 +14,8 @@ namespace hmb::passes {
 
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
+      tileMaxKernel_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
       tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
-      candidatesKernel_(context, "hybrid/edge_candidates", sizeof(gpu::RayMaskParams)),
       edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
       sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
       blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
@@ -23,7 +24,7 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause) const {
   plan.run(kClear);
   plan.run(kMovingTiles);
-  for (const char* pass : {kEdgeCandidates, kEdges, kRangeBlocks, kRangeCheck})
+  for (const char* pass : {kEdges, kRangeBlocks, kRangeCheck})
     plan.runUnless(pass, movingTilesOnlyBecause);
   plan.run(kSizeDispatch);
 }
@@ -56,23 +57,44 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly
   rangeBlocks_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "range check blocks");
 }
 
-void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
-                          const RayMaskParameters& p) const {
+void RayMaskStage::requireFits(const MotionBlurInputs& layer, const RayMaskParameters& p) const {
   size_.requireMadeFor("ray mask", layer.width, layer.height);
-  const uint32_t width = size_.width(), height = size_.height();
   const gpu::GatherParams& blur = p.blur;
-  if (blur.width != width || blur.height != height) throw Error("ray mask: the blur's parameters are for another size");
+  if (blur.width != size_.width() || blur.height != size_.height())
+    throw Error("ray mask: the blur's parameters are for another size");
   const TileGrid grid{blur.tilesX, blur.tilesY};
   if (!p.tileMax || blur.tileSize == 0 || grid.count() == 0) throw Error("ray mask: no tile-max to start from");
-  if (uint64_t(grid.x) * blur.tileSize < width || uint64_t(grid.y) * blur.tileSize < height)
+  if (uint64_t(grid.x) * blur.tileSize < blur.width || uint64_t(grid.y) * blur.tileSize < blur.height)
     throw Error("ray mask: the tile grid does not cover the image");
+  if (!p.movingTilesOnly && !mask_.handle()) throw Error("ray mask: prepared for the moving tiles only");
+}
+
+void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
+                                 const RayMaskParameters& p) const {
+  requireFits(layer, p);
+  if (p.movingTilesOnly) throw Error("ray mask: the moving tiles alone start from the gather's own tile-max");
   // Pixels outside the moving tiles are never written: they stay out of both masks.
   frame.fill(kClear, counters_, 0u);
-  if (!p.movingTilesOnly) {
-    if (!mask_.handle()) throw Error("ray mask: prepared for the moving tiles only");
-    frame.fill(kClear, edges_, 0u);
-    frame.fill(kClear, mask_, 0u);
-  }
+  frame.fill(kClear, edges_, 0u);
+  frame.fill(kClear, mask_, 0u);
+  const gpu::RayMaskParams params{p.blur, p.edgeThreshold, 0u, 0u, 0u};
+  // One group per tile, as the gather's tile-max.
+  frame.dispatch(TileMaxPass::kName, tileMaxKernel_,
+                 {{HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES, layer.samples},
+                  {HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES, layer.surfaces},
+                  {HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX, p.tileMax},
+                  {HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS, &counters_},
+                  {HMB_TILE_MAX_CANDIDATES_BINDING_LIST, &candidates_}},
+                 params, {p.blur.tilesX, p.blur.tilesY, 1});
+}
+
+void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
+                          const RayMaskParameters& p) const {
+  requireFits(layer, p);
+  const gpu::GatherParams& blur = p.blur;
+  const TileGrid grid{blur.tilesX, blur.tilesY};
+  // The whole mask's counters were cleared before its tile-max listed the candidates.
+  if (p.movingTilesOnly) frame.fill(kClear, counters_, 0u);
   const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
   frame.dispatch(kMovingTiles, tilesKernel_,
                  {{HMB_MOVING_TILES_BINDING_TILE_MAX, p.tileMax},
@@ -89,14 +111,6 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   if (p.movingTilesOnly) return;
   const gpu::RayMaskParams params{blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u,
                                   0u};
-  frame.dispatchIndirect(kEdgeCandidates, candidatesKernel_,
-                         {{HMB_EDGE_CANDIDATES_BINDING_SAMPLES, layer.samples},
-                          {HMB_EDGE_CANDIDATES_BINDING_SURFACES, layer.surfaces},
-                          {HMB_EDGE_CANDIDATES_BINDING_TILES, &tiles_},
-                          {HMB_EDGE_CANDIDATES_BINDING_COUNTERS, &counters_},
-                          {HMB_EDGE_CANDIDATES_BINDING_LIST, &candidates_}},
-                         params,
-                         counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
   sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_,
                          {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},

@@ -1,8 +1,9 @@
-// The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): list_moving_tiles (from
-// the gather's tile-max) -> edge_candidates (eqs. 1, 2, listed) -> edge_mask (eqs. 3, 4 over
-// that list) -> list_range_blocks (the blocks with an edge within reach) -> range_check (the
-// mask as an image of HMB_MASK_* values and a compacted pixel list), over the moving tiles only, with size_list_dispatch turning each list's length into an indirect
-// dispatch. Owns those buffers.
+// The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): tile_max_edge_candidates
+// (the gather's tile-max, and eqs. 1, 2 at each pixel it reads, listed) -> list_moving_tiles
+// -> edge_mask (eqs. 3, 4 over that list) -> list_range_blocks (the blocks with an edge within
+// reach) -> range_check (the mask as an image of HMB_MASK_* values and a compacted pixel list),
+// over the moving tiles only, with size_list_dispatch turning each list's length into an
+// indirect dispatch. Owns those buffers.
 #pragma once
 
 #include <cstdint>
@@ -22,7 +23,9 @@ class FramePlan;
 namespace hmb::passes {
 
 struct RayMaskParameters {
-  const vk::Buffer* tileMax = nullptr;  // the gather's tile-max (PostProcessStage::tileMax())
+  // The gather's tile-max (PostProcessStage::tileMax()): recordTileMax() writes it for the whole
+  // mask; for the moving tiles alone the gather's own tile-max has.
+  const vk::Buffer* tileMax = nullptr;
   // The frame's gather parameters (gatherParams()): the mask walks the tiles, velocities (scaled
   // and clamped), depths and samples the gathers will.
   gpu::GatherParams blur{};
@@ -50,7 +53,6 @@ class RayMaskStage {
  public:
   static constexpr const char* kClear = "ray-mask-clear";
   static constexpr const char* kMovingTiles = "ray-mask-moving-tiles";
-  static constexpr const char* kEdgeCandidates = "ray-mask-edge-candidates";
   static constexpr const char* kEdges = "ray-mask-edges";
   static constexpr const char* kRangeBlocks = "ray-mask-range-blocks";
   static constexpr const char* kRangeCheck = "ray-mask-range-check";
@@ -63,8 +65,14 @@ class RayMaskStage {
   // Sizes the buffers for this resolution (reuses them when it is unchanged); movingTilesOnly:
   // only those of the moving tiles' list (RayMaskParameters::movingTilesOnly), the others freed.
   void prepare(uint32_t width, uint32_t height, bool movingTilesOnly = false);
+  // The whole mask's first pass, recorded as the gather's tile-max (TileMaxPass::kName): clears
+  // the mask, writes the tile-max into parameters.tileMax as the gather's would, and lists the
+  // edge candidates (eqs. 1, 2) as it reads each pixel: one read of the G-buffer where two.
+  // Neighbour-max and record() follow. Not for the moving tiles alone.
+  void recordTileMax(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
+                     const RayMaskParameters& parameters) const;
   // layer: the G-buffer (its samples' depths, its surfaces' velocities and ids). After the tile
-  // passes.
+  // passes: recordTileMax()'s for the whole mask, the gather's own for the moving tiles alone.
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
               const RayMaskParameters& parameters) const;
 
@@ -81,7 +89,10 @@ class RayMaskStage {
 
  private:
   const vk::Context& context_;
-  vk::ComputeKernel tilesKernel_, candidatesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
+  // Throws hmb::Error unless `parameters` fit the prepared size and tile grid.
+  void requireFits(const MotionBlurInputs& layer, const RayMaskParameters& parameters) const;
+
+  vk::ComputeKernel tileMaxKernel_, tilesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
   // range_check by path: the straight build has none of the curved walks' code.
   vk::KernelVariants rangeKernels_;
   ImageSize size_;

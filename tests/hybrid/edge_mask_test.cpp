@@ -1,7 +1,9 @@
-// edge_candidates.comp and edge_mask.comp (paper, eqs. 1-4) against the C++ reference on random layers of several
-// sizes and on adversarial ones (degenerate velocities, depths and normals), and the 5x5 Sobel
-// against values worked out by hand, with thresholds just either side of them.
+// tile_max_edge_candidates.comp and edge_mask.comp (paper, eqs. 1-4) against the C++ reference on
+// random layers of several sizes and on adversarial ones (degenerate velocities, depths and
+// normals), the tile-max the first writes against the gather's own, and the 5x5 Sobel against
+// values worked out by hand, with thresholds just either side of them.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -12,6 +14,7 @@
 
 #include "tests/hybrid/hybrid_harness.h"
 #include "tests/hybrid/hybrid_reference.h"
+#include "tests/mblur/mblur_harness.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -48,6 +51,19 @@ void expectCandidatesMatch(const RayMaskReadback& device, const std::vector<bool
   EXPECT_EQ(device.counters.candidateDispatchY, (groups + 65534) / 65535) << what << ": candidate dispatch";
 }
 
+// The mask's tile-max, which lists the candidates as it reads each pixel, is the gather's
+// tile_max bit for bit (the gathers blur over the tiles it wrote).
+void expectGatherTileMax(const MaskLayer& layer, const RayMaskParameters& p, const RayMaskReadback& device,
+                         const std::string& what) {
+  const std::vector<glm::vec4> gather = mblur::runTileMax(VulkanTest::context(), layer.velocity, layer.width, layer.height,
+                                                   p.blur.tileSize, p.blur.velocityScale);
+  ASSERT_EQ(device.tileMax.size(), gather.size()) << what;
+  for (size_t t = 0; t < gather.size(); ++t)
+    for (int c = 0; c < 4; ++c)
+      ASSERT_EQ(std::bit_cast<uint32_t>(device.tileMax[t][c]), std::bit_cast<uint32_t>(gather[t][c]))
+          << what << ": tile " << t << " component " << c;
+}
+
 // The device's edge mask equals the reference's, except at pixels whose x_n lies within 1e-5
 // of the threshold (float rounding may order the Sobel sums differently): at most 0.2% of the
 // pixels. A flat window (x_n exactly 0) must match exactly, even at threshold 0. Returns how
@@ -59,6 +75,7 @@ size_t expectEdgesMatch(const MaskLayer& layer, const RayMaskParameters& p, cons
   const std::vector<float> xn = normalizedEdges(layer);
   const std::vector<bool> candidates = edgeCandidates(layer, p);
   expectCandidatesMatch(device, candidates, what);
+  expectGatherTileMax(layer, p, device, what);
   EXPECT_EQ(device.edges.size(), reference.size());
   if (device.edges.size() != reference.size()) return 0;
   size_t nearThreshold = 0, wrong = 0, edges = 0;
@@ -101,6 +118,28 @@ TEST_F(HybridEdgeMaskTest, MatchesReferenceOnRandomLayers) {
     // Edges, but not everywhere: the threshold decides.
     EXPECT_GT(edges, 20u) << "e " << threshold;
     EXPECT_LT(edges, pixels / 4) << "e " << threshold;
+  }
+}
+
+// The candidates' ranges are clamped to maxSpeed, the tile-max's velocities to the tile size:
+// the kernel reuses the tile-max's velocity only where neither clamp acts, so ranges clamped
+// tighter than a tile (5 px) or far looser (400 px) list what the reference lists.
+TEST_F(HybridEdgeMaskTest, MatchesReferenceWhateverTheRangeClampBesideTheTileSize) {
+  std::mt19937 rng(31);
+  for (const float maxSpeed : {5.0f, 13.0f, 400.0f}) {
+    size_t candidates = 0;
+    for (int round = 0; round < 3; ++round) {
+      MaskLayer layer = randomMaskLayer(61, 47, rng);
+      // Speeds on both sides of the tile size (13) and of maxSpeed.
+      std::uniform_real_distribution<float> component(-30.0f, 30.0f);
+      for (glm::vec2& v : layer.velocity) v = {component(rng), component(rng)};
+      const RayMaskParameters p = parametersWith(0.9f, 0.03f, maxSpeed);
+      const std::string what = "maxSpeed " + std::to_string(maxSpeed) + " round " + std::to_string(round);
+      expectEdgesMatch(layer, p, what);
+      const std::vector<bool> listed = edgeCandidates(layer, p);
+      candidates += size_t(std::count(listed.begin(), listed.end(), true));
+    }
+    EXPECT_GT(candidates, 100u) << "maxSpeed " << maxSpeed;
   }
 }
 

@@ -92,7 +92,9 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   std::optional<vk::Buffer> paths;
   if (!layer.shutterPaths.empty()) paths = pathsBuffer(context, layer.shutterPaths);
   const passes::MotionBlurInputs inputs{&samples, &surfaces, layer.width, layer.height, paths ? &*paths : nullptr};
-  // The mask passes start from the gather's tile-max, run here at the parameters' tile size.
+  // The mask passes start from a tile-max at the parameters' tile size, as HybridStage records
+  // it: the mask's own (which lists the edge candidates) for the whole mask, the gather's for
+  // the moving tiles alone.
   const passes::TileMaxPass tileMax(context);
   passes::RayMaskParameters withTiles = parameters;
   const passes::TileGrid grid = passes::tileGridFor(layer.width, layer.height, parameters.blur.tileSize);
@@ -104,8 +106,11 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   withTiles.tileMax = &tiles;
   vk::FrameRecorder frame(context);
   frame.begin();
-  tileMax.record(frame, surfaces, tiles, layer.width, layer.height, parameters.blur.tileSize,
-                 parameters.blur.velocityScale);
+  if (parameters.movingTilesOnly)
+    tileMax.record(frame, surfaces, tiles, layer.width, layer.height, parameters.blur.tileSize,
+                   parameters.blur.velocityScale);
+  else
+    stage.recordTileMax(frame, inputs, withTiles);
   stage.record(frame, inputs, withTiles);
   if (more) more(frame, inputs, stage, withTiles);
   frame.submitAndWait();
@@ -121,6 +126,7 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   out.unrevealedList.assign(all.end() - std::min<size_t>(out.counters.unrevealedCount, pixels), all.end());
   out.candidates = downloadFirst<uint32_t>(stage.candidates(), std::min<size_t>(out.counters.candidateCount, pixels));
   out.rangeBlocks = downloadFirst<uint32_t>(stage.rangeBlocks(), std::min<size_t>(out.counters.rangeBlockCount, pixels));
+  out.tileMax = tiles.download<glm::vec4>();
   return out;
 }
 

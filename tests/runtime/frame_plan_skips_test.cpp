@@ -250,7 +250,7 @@ TEST_F(FramePlanSkipsTest, ShutterRaysLeaveTheRevealOutAndSayWhy) {
   Renderer renderer(context());
   const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid", kMovingTime, true);
   for (const char* name :
-       {"ray-mask-edge-candidates", "ray-mask-edges", "ray-mask-range-blocks", "ray-mask-range-check", "ray-reveal",
+       {"ray-mask-edges", "ray-mask-range-blocks", "ray-mask-range-check", "ray-reveal",
         "gather-background", "composite"}) {
     const PlannedPass* pass = passNamed(room, name);
     ASSERT_NE(pass, nullptr) << name;

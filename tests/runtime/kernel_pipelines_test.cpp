@@ -93,7 +93,7 @@ const KernelLayout kLayouts[] = {
      HMB_COMPOSITE_TEXEL_BUFFERS},
     {"hybrid/gather_background", HMB_BACKGROUND_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
      HMB_BACKGROUND_GATHER_TEXEL_BUFFERS},
-    {"hybrid/edge_candidates", HMB_EDGE_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
+    {"hybrid/tile_max_edge_candidates", HMB_TILE_MAX_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
     {"hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, HMB_EDGE_MASK_TEXEL_BUFFERS},
     {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
     {"hybrid/list_range_blocks", HMB_RANGE_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
