@@ -81,9 +81,13 @@ std::vector<gpu::GpuShutterClip> shutterClips(const scene::Scene& scene, float t
   return clips;
 }
 
+bool cameraMovesOnScreen(const scene::Scene& scene, float t) {
+  return cameraWorld(scene, t) != cameraWorld(scene, t - 1.0f / scene.settings.fps);
+}
+
 bool anythingMovesOnScreen(const scene::Scene& scene, float t) {
   const float previous = t - 1.0f / scene.settings.fps;
-  if (cameraWorld(scene, t) != cameraWorld(scene, previous)) return true;
+  if (cameraMovesOnScreen(scene, t)) return true;
   return std::any_of(scene.instances.begin(), scene.instances.end(), [&](const scene::Instance& instance) {
     return scene.worldMatrixAt(instance.node, t) != scene.worldMatrixAt(instance.node, previous) ||
            (instance.deforms() && scene::deformationDiffers(scene, instance, t, previous));

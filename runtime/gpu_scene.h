@@ -44,6 +44,9 @@ std::vector<gpu::GpuShutterClip> shutterClips(const scene::Scene& scene, float t
 // camera, any instance's world transform or any mesh's deformation differs. When nothing does, every screen velocity
 // is 0 and the blur passes return the sharp colour.
 bool anythingMovesOnScreen(const scene::Scene& scene, float t);
+// Whether the camera itself moves between the previous frame and t: then nearly every pixel
+// has a screen velocity.
+bool cameraMovesOnScreen(const scene::Scene& scene, float t);
 
 class GpuScene {
  public:

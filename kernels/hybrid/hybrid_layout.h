@@ -199,6 +199,9 @@
 // (HMB_GATHER_FLAG_CURVED_PATH): on a CPU device its walks ran, at least a round of each loop,
 // for every pixel of a straight frame.
 #define HMB_SPEC_RANGE_CHECK_CURVED_PATH 0
+// tile_max_edge_candidates: true, the test inside the reduction's loop; false, after it in the
+// tiles with a moving pixel (see the kernel: the host picks by device type and camera motion).
+#define HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP 0
 
 // list_shutter_rays: one 8 x 8 group per moving tile.
 #define HMB_SHUTTER_LIST_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces (velocity, object id)

@@ -15,6 +15,12 @@ bool endsOnDeeperObject(uint idHere, float depthHere, uint idEnd, float depthEnd
   return idEnd != idHere && sanitizeDepth(depthEnd) - sanitizeDepth(depthHere) > softZExtent;
 }
 
+// A pixel slower than this ends on itself: X + 1/2 + v stays within a quarter pixel of its
+// centre, which rounding cannot carry over a pixel border in an image up to 2^14 pixels a side
+// (a float there resolves 2^-10), so eq. 1 fails. The G-buffer's rounding leaves still surfaces
+// speeds around 1e-5 px (the living room's): those need no test.
+const float kMinCandidateSpeed = 0.25;
+
 // The 5x5 Sobel operator, separable: smoothing (1 4 6 4 1) across, derivative (-1 -2 0 2 1) along.
 float sobelSmooth(int k) { return k == 0 ? 6.0 : (abs(k) == 1 ? 4.0 : 1.0); }
 float sobelDerivative(int k) { return k == 0 ? 0.0 : float(sign(k)) * (abs(k) == 1 ? 2.0 : 1.0); }

@@ -1,11 +1,19 @@
 #version 450
-// The hybrid's tile-max: the gather's tile-max (mblur/tile_max_reduction.glsl), and, while each
-// pixel's surface is in hand, the ray mask's first test (paper, eqs. 1, 2): list the moving
-// pixels whose predicted end position lies on a different object deeper by more than
-// SOFT_Z_EXTENT. Only these can enter the edge mask, and they are few (bistro: 3% of its
-// pixels), so edge_mask runs its Sobel over this list with every lane busy. One read of the
-// G-buffer's surfaces serves both: a pass of its own read them all again (bistro at 1280x720 on
-// a CPU device: tile-max 6 ms, the separate candidates pass 12).
+// The hybrid's tile-max: the gather's tile-max (mblur/tile_max_reduction.glsl) and the ray
+// mask's first test (paper, eqs. 1, 2) at the pixels it reads: list the moving pixels whose
+// predicted end position lies on a different object deeper by more than SOFT_Z_EXTENT. Only
+// these can enter the edge mask, and they are few (bistro: 3% of its pixels), so edge_mask runs
+// its Sobel over this list with every lane busy. A pass of its own read the surfaces again
+// (bistro at 1280x720 on a CPU device: 12 ms). Where the test runs
+// (HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP, chosen by the host):
+//  - inside the reduction's loop, on the surface and velocity it has in hand: a GPU skips it at
+//    still pixels, and where every tile moves (a moving camera) it is the cheapest on a CPU too
+//    (bistro: 6 ms over the gather's tile-max);
+//  - after the reduction, in the tiles that move alone, reading the surfaces again: a CPU
+//    device runs the code of a branch no lane takes, so in the loop the test cost every pixel of
+//    a still tile as much as a moving one's (living room: 6-8 ms there, under 1 ms here).
+// Both list exactly the pixels where eqs. 1, 2 hold (kMinCandidateSpeed: the others end on
+// their own pixel).
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
@@ -21,34 +29,50 @@ layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX) writeonly buf
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_LIST) writeonly buffer Candidates { uint candidates[]; };
 layout(push_constant) uniform Params { RayMaskParams params; };
+layout(constant_id = HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP) const bool kTestInLoop = true;
 
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
 
-// Eqs. 1 and 2 at one pixel. tileV, tileSpeed: its velocity clamped to the tile size; the
-// ranges are clamped to params.blur.maxSpeed (the image's side), the same velocity unless
-// either clamp acts.
+// Eqs. 1 and 2 at a pixel moving by v (clamped to params.blur.maxSpeed, the image's side).
+void listIfCandidate(uvec2 pixel, uint index, uvec4 surface, vec2 v) {
+  const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
+  const uint endIndex = uint(end.y) * params.blur.width + uint(end.x);
+  if (endsOnDeeperObject(surfaceObjectId(surface), sanitizeDepth(sampleDepth(samples[index])),
+                         surfaceObjectId(surfaces[endIndex]), sampleDepth(samples[endIndex]), params.blur.softZExtent))
+    candidates[atomicAdd(counters.candidateCount, 1u)] = index;
+}
+
+// In the reduction's loop: tileV, tileSpeed are the velocity clamped to the tile size, the same
+// as the ranges' unless either clamp acts.
 void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 tileV, float tileSpeed) {
-  if (!(tileSpeed > 0.0)) return;
+  if (!kTestInLoop || !(tileSpeed >= kMinCandidateSpeed)) return;
   vec2 v = tileV;
   if (!(tileSpeed < float(params.blur.tileSize) && tileSpeed <= params.blur.maxSpeed)) {
     float speed;
     v = gatherVelocity(surfaceVelocity(surface), params.blur.velocityScale, params.blur.maxSpeed, speed);
     if (!(speed > 0.0)) return;
   }
-  const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
-  const uint endIndex = uint(end.y) * params.blur.width + uint(end.x);
-  // Eq. 1 first: most pixels end on their own object, and their depths need no read.
-  const uint idHere = surfaceObjectId(surface), idEnd = surfaceObjectId(surfaces[endIndex]);
-  if (idEnd == idHere) return;
-  if (endsOnDeeperObject(idHere, sanitizeDepth(sampleDepth(samples[index])), idEnd, sampleDepth(samples[endIndex]),
-                         params.blur.softZExtent))
-    candidates[atomicAdd(counters.candidateCount, 1u)] = index;
+  listIfCandidate(pixel, index, surface, v);
 }
 
 #include "../mblur/tile_max_reduction.glsl"
 
 void main() {
-  reduceTileMax(gl_WorkGroupID.xy, params.blur.width, params.blur.height, params.blur.tileSize, params.blur.tilesX,
-                params.blur.velocityScale);
+  const uvec2 tile = gl_WorkGroupID.xy;
+  const float tileSpeed = reduceTileMax(tile, params.blur.width, params.blur.height, params.blur.tileSize,
+                                        params.blur.tilesX, params.blur.velocityScale, !kTestInLoop);
+  // After the loop: a tile whose pixels all end on themselves has no candidate.
+  if (kTestInLoop || !(tileSpeed >= kMinCandidateSpeed)) return;
+  const uvec2 begin = tile * params.blur.tileSize;
+  const uvec2 end = min(begin + params.blur.tileSize, uvec2(params.blur.width, params.blur.height));
+  for (uint y = begin.y + gl_LocalInvocationID.y; y < end.y; y += HMB_TILE_MAX_GROUP_Y) {
+    for (uint x = begin.x + gl_LocalInvocationID.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
+      const uint index = y * params.blur.width + x;
+      const uvec4 surface = surfaces[index];
+      float speed;
+      const vec2 v = gatherVelocity(surfaceVelocity(surface), params.blur.velocityScale, params.blur.maxSpeed, speed);
+      if (speed >= kMinCandidateSpeed) listIfCandidate(uvec2(x, y), index, surface, v);
+    }
+  }
 }

@@ -22,5 +22,6 @@ void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 v, float speed)
 #include "tile_max_reduction.glsl"
 
 void main() {
-  reduceTileMax(gl_WorkGroupID.xy, params.width, params.height, params.tileSize, params.tilesX, params.velocityScale);
+  reduceTileMax(gl_WorkGroupID.xy, params.width, params.height, params.tileSize, params.tilesX, params.velocityScale,
+                false);
 }

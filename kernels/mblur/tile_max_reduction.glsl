@@ -1,5 +1,5 @@
 // Tile-max's reduction (McGuire et al. 2012), shared by the gather's tile_max.comp and the
-// hybrid's tile_max_edge_candidates.comp, which also tests each pixel while it holds its surface.
+// hybrid's tile_max_edge_candidates.comp, which also tests the tile's pixels.
 // The including kernel declares `surfaces[]` (the G-buffer's, shared/layer_layout.h) and
 // `tiles[]` (vec4 per tile, mblur_layout.h), and defines, before this file,
 //   void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 v, float speed)
@@ -12,6 +12,7 @@ const uint kTileMaxLanes = HMB_TILE_MAX_GROUP_X * HMB_TILE_MAX_GROUP_Y;
 shared vec2 laneVelocity[kTileMaxLanes];
 shared float laneSpeed[kTileMaxLanes];
 shared uint lanePixel[kTileMaxLanes];
+shared float tileSpeed;
 
 // Larger speed wins; equal speeds go to the smaller pixel index.
 bool better(float speedA, uint indexA, float speedB, uint indexB) {
@@ -21,7 +22,8 @@ bool better(float speedA, uint indexA, float speedB, uint indexB) {
 // For tile `tile` (m x m pixels; partial at the right and bottom borders), the gather velocity
 // of largest magnitude among its pixels, each converted and clamped to m first; ties go to the
 // pixel first in row-major image order, whatever order the lanes ran in. One group per tile.
-void reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, float velocityScale) {
+// Returns the tile's speed (as written) to every lane when toEveryLane, else to lane 0 alone.
+float reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, float velocityScale, bool toEveryLane) {
   const uvec2 lane = gl_LocalInvocationID.xy;
   const uvec2 begin = tile * m;
   const uvec2 end = min(begin + m, uvec2(width, height));
@@ -48,16 +50,20 @@ void reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, flo
   laneSpeed[laneIndex] = bestSpeed;
   lanePixel[laneIndex] = bestIndex;
   barrier();
-  if (laneIndex != 0u) return;
-
-  for (uint i = 1u; i < kTileMaxLanes; ++i) {
-    if (better(laneSpeed[i], lanePixel[i], bestSpeed, bestIndex)) {
-      bestVelocity = laneVelocity[i];
-      bestSpeed = laneSpeed[i];
-      bestIndex = lanePixel[i];
+  if (laneIndex == 0u) {
+    for (uint i = 1u; i < kTileMaxLanes; ++i) {
+      if (better(laneSpeed[i], lanePixel[i], bestSpeed, bestIndex)) {
+        bestVelocity = laneVelocity[i];
+        bestSpeed = laneSpeed[i];
+        bestIndex = lanePixel[i];
+      }
     }
+    tileSpeed = max(bestSpeed, 0.0);
+    tiles[tile.y * tilesX + tile.x] = vec4(bestVelocity, tileSpeed, 0.0);
   }
-  tiles[tile.y * tilesX + tile.x] = vec4(bestVelocity, max(bestSpeed, 0.0), 0.0);
+  if (!toEveryLane) return tileSpeed;
+  barrier();
+  return tileSpeed;
 }
 
 #endif

@@ -11,6 +11,7 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/trace_scene.h"
+#include "runtime/vulkan/context.h"
 
 namespace hmb::passes {
 
@@ -96,6 +97,7 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
     timings.setup = {{{kBvhMeshes, *meshMs}}, *meshMs};
   const std::vector<float> times = traceTimes(scene, frameTime, settings);
   shutterStrata_ = plan.runs(kShutterRaysTrace) ? settings.shutterRays : 0u;
+  candidatesInTileMaxLoop_ = context_.info().type != "cpu" || cameraMovesOnScreen(scene, frameTime);
   if (shutterStrata_ != 0 && times.size() != shutterStrata_ + 1)
     throw Error("hybrid: the plan traces shutter rays that these settings leave out");
   if (plan.runs(TraceScene::kRefit))
@@ -156,6 +158,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // The shutter rays stand in for the reveal (plan()): the mask's stage lists the moving tiles
   // their list walks, and post-process's image is theirs to correct.
   maskParameters.movingTilesOnly = shutterStrata_ != 0;
+  maskParameters.candidatesInTileMaxLoop = candidatesInTileMaxLoop_;
   // The whole mask's tile-max lists its edge candidates as it reads each pixel.
   if (maskParameters.movingTilesOnly) {
     postProcess_.recordTiles(frame, raster);

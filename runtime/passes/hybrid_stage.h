@@ -119,6 +119,7 @@ class HybridStage {
   uint32_t shutterStrata_ = 0;
   std::vector<gpu::PinholeCamera> cameras_;
   bool buildsInstanceTree_ = false;  // prepare() staged the instances: record() builds their tree
+  bool candidatesInTileMaxLoop_ = true;  // RayMaskParameters': a GPU, or the camera moves this frame
   vk::Buffer cameraRays_;
   ImageLayer revealed_;
   vk::Buffer backgroundBlurred_;

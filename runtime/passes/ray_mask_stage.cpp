@@ -14,11 +14,11 @@ namespace hmb::passes {
 
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
-      tileMaxKernel_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
       tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
       edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
       sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
       blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
+      tileMaxKernels_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
       rangeKernels_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause) const {
@@ -79,7 +79,8 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
   frame.fill(kClear, mask_, 0u);
   const gpu::RayMaskParams params{p.blur, p.edgeThreshold, 0u, 0u, 0u};
   // One group per tile, as the gather's tile-max.
-  frame.dispatch(TileMaxPass::kName, tileMaxKernel_,
+  static_assert(HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP == 0);
+  frame.dispatch(TileMaxPass::kName, tileMaxKernels_.with({p.candidatesInTileMaxLoop}),
                  {{HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES, layer.samples},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES, layer.surfaces},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX, p.tileMax},

@@ -36,6 +36,11 @@ struct RayMaskParameters {
   // List the moving tiles alone (for the shutter rays' list) and leave the mask empty: the
   // frame traces its edges over the shutter instead of revealing them (HybridStage::plan).
   bool movingTilesOnly = false;
+  // Where the hybrid's tile-max runs eqs. 1, 2 (kernels/hybrid/tile_max_edge_candidates.comp):
+  // inside its reduction's loop (a GPU, or a frame whose camera moves: every tile moves), or
+  // after it in the tiles with a moving pixel alone (a CPU device runs the loop's test at still
+  // pixels too). Either lists the same pixels.
+  bool candidatesInTileMaxLoop = true;
   // The range check's groups wanted in all (gpu::SizeListParams::rangeGroupsWanted: 0 for one
   // per listed 8 x 8 block); unset: the device's type decides (hybrid_layout.h).
   std::optional<uint32_t> rangeCheckGroups;
@@ -92,9 +97,10 @@ class RayMaskStage {
   // Throws hmb::Error unless `parameters` fit the prepared size and tile grid.
   void requireFits(const MotionBlurInputs& layer, const RayMaskParameters& parameters) const;
 
-  vk::ComputeKernel tileMaxKernel_, tilesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
-  // range_check by path: the straight build has none of the curved walks' code.
-  vk::KernelVariants rangeKernels_;
+  vk::ComputeKernel tilesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
+  // tile_max_edge_candidates by where its test runs; range_check by path: the straight build
+  // has none of the curved walks' code.
+  vk::KernelVariants tileMaxKernels_, rangeKernels_;
   ImageSize size_;
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each

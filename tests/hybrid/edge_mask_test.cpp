@@ -69,7 +69,7 @@ void expectGatherTileMax(const MaskLayer& layer, const RayMaskParameters& p, con
 // pixels. A flat window (x_n exactly 0) must match exactly, even at threshold 0. Returns how
 // many edges the reference marks (callers check the cases mark some, so the comparison means
 // something).
-size_t expectEdgesMatch(const MaskLayer& layer, const RayMaskParameters& p, const std::string& what) {
+size_t expectEdgesMatchWith(const MaskLayer& layer, const RayMaskParameters& p, const std::string& what) {
   const RayMaskReadback device = runRayMask(VulkanTest::context(), layer, p);
   const std::vector<uint32_t> reference = edgeMask(layer, p);
   const std::vector<float> xn = normalizedEdges(layer);
@@ -97,6 +97,16 @@ size_t expectEdgesMatch(const MaskLayer& layer, const RayMaskParameters& p, cons
   EXPECT_EQ(wrong, 0u) << what;
   EXPECT_LE(nearThreshold, reference.size() / 500) << what << ": pixels within 1e-5 of the threshold that differ";
   return edges;
+}
+
+// Both places of the tile-max's test (inside its loop, after it in the tiles that move) list
+// the reference's candidates.
+size_t expectEdgesMatch(const MaskLayer& layer, RayMaskParameters p, const std::string& what) {
+  p.candidatesInTileMaxLoop = false;
+  const size_t after = expectEdgesMatchWith(layer, p, what + " (test after the tile-max's loop)");
+  p.candidatesInTileMaxLoop = true;
+  EXPECT_EQ(expectEdgesMatchWith(layer, p, what + " (test in the loop)"), after) << what;
+  return after;
 }
 
 using HybridEdgeMaskTest = VulkanTest;
