@@ -12,7 +12,7 @@ const uint kTileMaxLanes = HMB_TILE_MAX_GROUP_X * HMB_TILE_MAX_GROUP_Y;
 shared vec2 laneVelocity[kTileMaxLanes];
 shared float laneSpeed[kTileMaxLanes];
 shared uint lanePixel[kTileMaxLanes];
-shared float tileSpeed;
+shared float reducedTileSpeed;
 
 // Larger speed wins; equal speeds go to the smaller pixel index.
 bool better(float speedA, uint indexA, float speedB, uint indexB) {
@@ -22,7 +22,8 @@ bool better(float speedA, uint indexA, float speedB, uint indexB) {
 // For tile `tile` (m x m pixels; partial at the right and bottom borders), the gather velocity
 // of largest magnitude among its pixels, each converted and clamped to m first; ties go to the
 // pixel first in row-major image order, whatever order the lanes ran in. One group per tile.
-// Returns the tile's speed (as written) to every lane when toEveryLane, else to lane 0 alone.
+// Returns the tile's speed (as written) to every lane when toEveryLane, else to lane 0 alone
+// (0 to the others), which saves the group a barrier.
 float reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, float velocityScale, bool toEveryLane) {
   const uvec2 lane = gl_LocalInvocationID.xy;
   const uvec2 begin = tile * m;
@@ -58,12 +59,12 @@ float reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, fl
         bestIndex = lanePixel[i];
       }
     }
-    tileSpeed = max(bestSpeed, 0.0);
-    tiles[tile.y * tilesX + tile.x] = vec4(bestVelocity, tileSpeed, 0.0);
+    reducedTileSpeed = max(bestSpeed, 0.0);
+    tiles[tile.y * tilesX + tile.x] = vec4(bestVelocity, reducedTileSpeed, 0.0);
   }
-  if (!toEveryLane) return tileSpeed;
+  if (!toEveryLane) return laneIndex == 0u ? reducedTileSpeed : 0.0;  // the others may not see it yet
   barrier();
-  return tileSpeed;
+  return reducedTileSpeed;
 }
 
 #endif
