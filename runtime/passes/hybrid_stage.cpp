@@ -159,7 +159,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // their list walks, and post-process's image is theirs to correct.
   maskParameters.movingTilesOnly = shutterStrata_ != 0;
   maskParameters.candidatesInTileMaxLoop = candidatesInTileMaxLoop_;
-  // The whole mask's tile-max lists its edge candidates as it reads each pixel.
+  // The whole mask's tile-max also lists its edge candidates.
   if (maskParameters.movingTilesOnly) {
     postProcess_.recordTiles(frame, raster);
   } else {

@@ -39,7 +39,7 @@ class PostProcessStage {
   // on neighborMax() (the hybrid method).
   void recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const;
   // Neighbour-max alone, over a tile-max another stage wrote into tileMax() (the hybrid's ray
-  // mask, which lists its edge candidates as it reads each pixel).
+  // mask, whose tile-max also lists its edge candidates).
   void recordNeighborMax(vk::FrameRecorder& frame) const;
 
   const PostProcessSettings& settings() const { return settings_; }

@@ -12,6 +12,14 @@
 
 namespace hmb::passes {
 
+namespace {
+// The mask kernels' push constants: the frame's blur, the edge threshold and the range check's
+// flags (the other kernels read no flag).
+gpu::RayMaskParams maskParams(const RayMaskParameters& p) {
+  return {p.blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u, 0u};
+}
+}  // namespace
+
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
       tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
@@ -77,7 +85,6 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
   frame.fill(kClear, counters_, 0u);
   frame.fill(kClear, edges_, 0u);
   frame.fill(kClear, mask_, 0u);
-  const gpu::RayMaskParams params{p.blur, p.edgeThreshold, 0u, 0u, 0u};
   // One group per tile, as the gather's tile-max.
   static_assert(HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP == 0);
   frame.dispatch(TileMaxPass::kName, tileMaxKernels_.with({p.candidatesInTileMaxLoop}),
@@ -86,7 +93,7 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
                   {HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX, p.tileMax},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS, &counters_},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_LIST, &candidates_}},
-                 params, {p.blur.tilesX, p.blur.tilesY, 1});
+                 maskParams(p), {p.blur.tilesX, p.blur.tilesY, 1});
 }
 
 void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
@@ -110,8 +117,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   };
   sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, 0u);
   if (p.movingTilesOnly) return;
-  const gpu::RayMaskParams params{blur, p.edgeThreshold, p.listOnlyUncovered ? HMB_RANGE_CHECK_LIST_UNCOVERED : 0u, 0u,
-                                  0u};
+  const gpu::RayMaskParams params = maskParams(p);
   sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_,
                          {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},

@@ -72,8 +72,9 @@ class RayMaskStage {
   void prepare(uint32_t width, uint32_t height, bool movingTilesOnly = false);
   // The whole mask's first pass, recorded as the gather's tile-max (TileMaxPass::kName): clears
   // the mask, writes the tile-max into parameters.tileMax as the gather's would, and lists the
-  // edge candidates (eqs. 1, 2) as it reads each pixel: one read of the G-buffer where two.
-  // Neighbour-max and record() follow. Not for the moving tiles alone.
+  // edge candidates (eqs. 1, 2) in the group that just read the tile
+  // (RayMaskParameters::candidatesInTileMaxLoop says where). Neighbour-max and record() follow.
+  // Not for the moving tiles alone.
   void recordTileMax(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
                      const RayMaskParameters& parameters) const;
   // layer: the G-buffer (its samples' depths, its surfaces' velocities and ids). After the tile

@@ -51,12 +51,12 @@ void expectCandidatesMatch(const RayMaskReadback& device, const std::vector<bool
   EXPECT_EQ(device.counters.candidateDispatchY, (groups + 65534) / 65535) << what << ": candidate dispatch";
 }
 
-// The mask's tile-max, which lists the candidates as it reads each pixel, is the gather's
+// The mask's tile-max, which also lists the candidates, is the gather's
 // tile_max bit for bit (the gathers blur over the tiles it wrote).
 void expectGatherTileMax(const MaskLayer& layer, const RayMaskParameters& p, const RayMaskReadback& device,
                          const std::string& what) {
-  const std::vector<glm::vec4> gather = mblur::runTileMax(VulkanTest::context(), layer.velocity, layer.width, layer.height,
-                                                   p.blur.tileSize, p.blur.velocityScale);
+  const std::vector<glm::vec4> gather = mblur::runTileMax(VulkanTest::context(), layer.velocity, layer.width,
+                                                          layer.height, p.blur.tileSize, p.blur.velocityScale);
   ASSERT_EQ(device.tileMax.size(), gather.size()) << what;
   for (size_t t = 0; t < gather.size(); ++t)
     for (int c = 0; c < 4; ++c)
