@@ -182,10 +182,13 @@
 #define HMB_COMPOSITE_BINDING_COUNTERS (HMB_COMPOSITE_BINDING_SHUTTER_PATHS + 1)  // RayMaskCounters
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COUNTERS + 1)
 #define HMB_COMPOSITE_TEXEL_BUFFERS 3  // the G-buffer layer and its paths, read as uniform texel buffers
-// edge_mask reads the G-buffer's samples and surfaces as uniform texel buffers: its 5x5 window
-// uses most of each record. tile_max_edge_candidates and range_check read one or two words of a record,
-// which a storage-buffer load fetches for less than a texel fetch's four gathers.
+// The mask's kernels read the G-buffer's samples and surfaces (and range_check the shutter
+// paths) as uniform texel buffers, even where they use a word or two of a record: on lavapipe a
+// storage-buffer load at per-lane addresses is a loop over the lanes with a branch each, which
+// was most of the tile-max test's cost (bench/results/texel-reads/).
 #define HMB_EDGE_MASK_TEXEL_BUFFERS 2
+#define HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS 2
+#define HMB_RANGE_CHECK_TEXEL_BUFFERS 3
 #define HMB_SPEC_COMPOSITE_COVERAGE 0  // true: the coverage form; false: the weights form
 // The curved path's code and the range, compiled into the background gather and the composite
 // only as the frame takes them (as mblur/gather.comp's): on a CPU device the code of a branch no

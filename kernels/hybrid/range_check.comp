@@ -18,9 +18,13 @@
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h.
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
+// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h, read
+// as uniform texel buffers (shared/texel_records.glsl), as are the shutter paths below.
+#include "../shared/texel_records.glsl"
+layout(binding = HMB_RANGE_CHECK_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
+layout(binding = HMB_RANGE_CHECK_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
+uvec4 sampleAt(uint index) { return recordAt(sampleTexels, index); }
+uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGES) readonly buffer Edges { uint edges[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_BLOCKS) readonly buffer Blocks { uint blockList[]; };
@@ -28,7 +32,8 @@ layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) writeonly buffer Mask { u
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
 // Each pixel's path over the shutter, read only along curved paths (gbuffer/gbuffer_layout.h).
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS) readonly buffer Paths { uvec2 shutterPaths[]; };
+layout(binding = HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS) uniform utextureBuffer shutterPathTexels;
+uvec2 shutterPathAt(uint index) { return halfRecordAt(shutterPathTexels, index); }
 layout(push_constant) uniform Params { RayMaskParams params; };
 layout(constant_id = HMB_SPEC_RANGE_CHECK_CURVED_PATH) const bool kCurvedPath = false;
 
@@ -128,13 +133,13 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
 // the composite gives the revealed background a weight above 0.
 bool meetsBackground(uvec2 pixel, uint index, vec2 v, vec2 q) {
   const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.blur.seed));
-  const uint centreObject = surfaceObjectId(surfaces[index]);
-  const float centreDepth = sanitizeDepth(sampleDepth(samples[index]));
+  const uint centreObject = surfaceObjectId(surfaceAt(index));
+  const float centreDepth = sanitizeDepth(sampleDepth(sampleAt(index)));
   for (uint i = 0u; i < params.blur.samples; ++i) {
     const ivec2 p =
         coverageSamplePixel(pixel, v, q, i, params.blur.samples, jitter, params.blur.width, params.blur.height);
     const uint sampleIndex = uint(p.y) * params.blur.width + uint(p.x);
-    if (behindShareOf(surfaceObjectId(surfaces[sampleIndex]), sanitizeDepth(sampleDepth(samples[sampleIndex])),
+    if (behindShareOf(surfaceObjectId(surfaceAt(sampleIndex)), sanitizeDepth(sampleDepth(sampleAt(sampleIndex))),
                       centreObject, centreDepth,
                       params.blur.softZExtent) > 0.0)
       return true;
@@ -145,18 +150,18 @@ bool meetsBackground(uvec2 pixel, uint index, vec2 v, vec2 q) {
 void checkPixel(uvec2 pixel) {
   const uint index = pixel.y * params.blur.width + pixel.x;
   float speed;
-  vec2 v = gatherVelocity(surfaceVelocity(surfaces[index]), params.blur.velocityScale, params.blur.maxSpeed, speed);
+  vec2 v = gatherVelocity(surfaceVelocity(surfaceAt(index)), params.blur.velocityScale, params.blur.maxSpeed, speed);
   // Along curved paths: the pixel's own (mblur_common.glsl's inversePath), as the coverage
   // composite samples it.
   vec2 q = vec2(0.0), a, c;
   const bool curved = kCurvedPath && (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && speed > 0.0 &&
-                      shutterPathTerms(shutterPaths[index], a, c);
+                      shutterPathTerms(shutterPathAt(index), a, c);
   if (curved) {
     const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.blur.width, params.blur.height);
     const uint aheadIndex = uint(ahead.y) * params.blur.width + uint(ahead.x);
-    const bool sameSurface = abs(sanitizeDepth(sampleDepth(samples[aheadIndex])) - sanitizeDepth(sampleDepth(samples[index]))) <
+    const bool sameSurface = abs(sanitizeDepth(sampleDepth(sampleAt(aheadIndex))) - sanitizeDepth(sampleDepth(sampleAt(index)))) <
                              params.blur.softZExtent;
-    const vec2 change = sameSurface ? (surfaceVelocity(surfaces[aheadIndex]) - surfaceVelocity(surfaces[index])) *
+    const vec2 change = sameSurface ? (surfaceVelocity(surfaceAt(aheadIndex)) - surfaceVelocity(surfaceAt(index))) *
                                           params.blur.velocityScale
                                     : vec2(0.0);
     inversePath(a, c, change, params.blur.maxSpeed, v, q);

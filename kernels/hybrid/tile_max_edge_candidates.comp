@@ -22,9 +22,13 @@
 
 layout(local_size_x = HMB_TILE_MAX_GROUP_X, local_size_y = HMB_TILE_MAX_GROUP_Y) in;
 
-// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h.
-layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
-layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
+// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h, read
+// as uniform texel buffers (shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
+layout(binding = HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
+layout(binding = HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
+uvec4 sampleAt(uint index) { return recordAt(sampleTexels, index); }
+uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX) writeonly buffer Tiles { vec4 tiles[]; };
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_LIST) writeonly buffer Candidates { uint candidates[]; };
@@ -38,8 +42,8 @@ layout(constant_id = HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP) const bool kTestInLoo
 void listIfCandidate(uvec2 pixel, uint index, uvec4 surface, vec2 v) {
   const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
   const uint endIndex = uint(end.y) * params.blur.width + uint(end.x);
-  if (endsOnDeeperObject(surfaceObjectId(surface), sanitizeDepth(sampleDepth(samples[index])),
-                         surfaceObjectId(surfaces[endIndex]), sampleDepth(samples[endIndex]), params.blur.softZExtent))
+  if (endsOnDeeperObject(surfaceObjectId(surface), sanitizeDepth(sampleDepth(sampleAt(index))),
+                         surfaceObjectId(surfaceAt(endIndex)), sampleDepth(sampleAt(endIndex)), params.blur.softZExtent))
     candidates[atomicAdd(counters.candidateCount, 1u)] = index;
 }
 
@@ -56,6 +60,8 @@ void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 tileV, float ti
   listIfCandidate(pixel, index, surface, v);
 }
 
+uvec4 tileSurfaceAt(uint index) { return surfaceAt(index); }
+
 #include "../mblur/tile_max_reduction.glsl"
 
 void main() {
@@ -69,7 +75,7 @@ void main() {
   for (uint y = begin.y + gl_LocalInvocationID.y; y < end.y; y += HMB_TILE_MAX_GROUP_Y) {
     for (uint x = begin.x + gl_LocalInvocationID.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
       const uint index = y * params.blur.width + x;
-      const uvec4 surface = surfaces[index];
+      const uvec4 surface = surfaceAt(index);
       float speed;
       const vec2 v = gatherVelocity(surfaceVelocity(surface), params.blur.velocityScale, params.blur.maxSpeed, speed);
       if (speed >= kMinCandidateSpeed) listIfCandidate(uvec2(x, y), index, surface, v);

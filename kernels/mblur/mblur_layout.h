@@ -20,6 +20,7 @@
 #define HMB_TILE_MAX_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces, velocity q in pixels per frame
 #define HMB_TILE_MAX_BINDING_TILES 1     // vec4 per tile (see above)
 #define HMB_TILE_MAX_BINDING_COUNT 2
+#define HMB_TILE_MAX_TEXEL_BUFFERS 1  // the surfaces, read as a uniform texel buffer
 
 // neighbor_max: one invocation per tile.
 #define HMB_NEIGHBOR_MAX_GROUP_X 8

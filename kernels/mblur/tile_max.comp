@@ -10,7 +10,9 @@
 
 layout(local_size_x = HMB_TILE_MAX_GROUP_X, local_size_y = HMB_TILE_MAX_GROUP_Y) in;
 
-layout(std430, binding = HMB_TILE_MAX_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
+// The G-buffer's surfaces, read as a uniform texel buffer (shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
+layout(binding = HMB_TILE_MAX_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
 layout(std430, binding = HMB_TILE_MAX_BINDING_TILES) writeonly buffer Tiles { vec4 tiles[]; };
 layout(push_constant) uniform Params { TileMaxParams params; };
 
@@ -18,6 +20,8 @@ layout(push_constant) uniform Params { TileMaxParams params; };
 
 // The velocities alone.
 void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 v, float speed) {}
+
+uvec4 tileSurfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 
 #include "tile_max_reduction.glsl"
 

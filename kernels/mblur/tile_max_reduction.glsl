@@ -1,9 +1,10 @@
 // Tile-max's reduction (McGuire et al. 2012), shared by the gather's tile_max.comp and the
 // hybrid's tile_max_edge_candidates.comp, which also tests the tile's pixels.
-// The including kernel declares `surfaces[]` (the G-buffer's, shared/layer_layout.h) and
-// `tiles[]` (vec4 per tile, mblur_layout.h), and defines, before this file,
+// The including kernel declares `tiles[]` (vec4 per tile, mblur_layout.h), and defines, before
+// this file,
+//   uvec4 tileSurfaceAt(uint index)  // the G-buffer's surface at a pixel (shared/layer_layout.h)
 //   void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 v, float speed)
-// called once per pixel of the tile with its gather velocity clamped to the tile size.
+// the latter called once per pixel of the tile with its gather velocity clamped to the tile size.
 // Include after mblur_common.glsl; the group is HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y.
 #ifndef HMB_KERNELS_MBLUR_TILE_MAX_REDUCTION_GLSL
 #define HMB_KERNELS_MBLUR_TILE_MAX_REDUCTION_GLSL
@@ -35,7 +36,7 @@ float reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, fl
   for (uint y = begin.y + lane.y; y < end.y; y += HMB_TILE_MAX_GROUP_Y) {
     for (uint x = begin.x + lane.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
       const uint index = y * width + x;
-      const uvec4 surface = surfaces[index];
+      const uvec4 surface = tileSurfaceAt(index);
       float speed;
       const vec2 v = gatherVelocity(surfaceVelocity(surface), velocityScale, float(m), speed);
       visitTilePixel(uvec2(x, y), index, surface, v, speed);
