@@ -376,8 +376,9 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   const hmb::SystemInfo system = hmb::querySystemInfo();
   std::ostringstream header;
   header << machineLine(context, system) << " Median device time (timestamp queries) of " << suite.repeats
-         << " renders after " << suite.warmup << " warm-up; the hybrid's mesh trees are scene setup, listed but "
-         << "not in its frame. Peak device memory: the most the renderer's buffers held at once during a render. "
+         << " renders after " << suite.warmup << " warm-up, the methods of a scene and size rendered in turn, a "
+         << "round at a time; x post-process is the median over the rounds of a frame over post-process's of the "
+         << "same round. The hybrid's mesh trees are scene setup, listed but not in its frame. Peak device memory: the most the renderer's buffers held at once during a render. "
          << "Command: `" << command << "`";
   hmb::bench::writePassesMarkdown(std::cout, cases, header.str());
   if (options.out.empty()) return validationVerdict({&context});

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 
 #include "bench/bench_scenes.h"
 #include "bench/floor_pass.h"
@@ -23,47 +24,90 @@ Summary timeFloor(const vk::Context& context, const ImageSize& size, const Passe
   return summarize(FloorPass(context, size.width, size.height).time(frame, o.warmup, o.repeats));
 }
 
-PassesCase runCase(Renderer& renderer, const scene::Scene& scene, const std::string& name, const std::string& method,
-                   const ImageSize& size, const PassesSuiteOptions& o) {
+// One method's renders at one size, interleaved with the other methods' (runPassesSuite).
+struct MethodRuns {
+  std::string method;
   RenderSettings settings;
-  applyMethodVariant(method, kPassesMethods, settings);
-  settings.width = size.width;
-  settings.height = size.height;
-  settings.reuseAcrossFrames = false;  // each repeat is timed as a new frame: nothing kept from the last one
+  std::unique_ptr<Renderer> renderer;
   std::vector<double> frames;
   std::map<std::string, std::vector<double>> passTimes;
   std::vector<std::string> order;
   RenderResult last;
-  for (int i = 0; i < o.warmup + o.repeats; ++i) {
-    last = renderer.render(scene, settings);
-    if (!last.frameMilliseconds) throw Error("the device gives no timestamps: pass times cannot be measured");
-    if (i < o.warmup) continue;
-    // The hybrid's mesh trees (scene setup) are listed as a pass but not counted in its frame.
-    for (const PlannedPass& pass : last.plan.passes()) {
-      if (!pass.run || !pass.milliseconds) continue;
-      if (!passTimes.count(pass.name)) order.push_back(pass.name);
-      passTimes[pass.name].push_back(*pass.milliseconds);
-    }
-    frames.push_back(*last.frameMilliseconds);
+  uint64_t peakBytes = 0;
+};
+
+void renderOnce(const scene::Scene& scene, MethodRuns& runs, bool timed) {
+  runs.last = runs.renderer->render(scene, runs.settings);
+  if (!runs.last.frameMilliseconds) throw Error("the device gives no timestamps: pass times cannot be measured");
+  if (!timed) return;
+  // The hybrid's mesh trees (scene setup) are listed as a pass but not counted in its frame.
+  for (const PlannedPass& pass : runs.last.plan.passes()) {
+    if (!pass.run || !pass.milliseconds) continue;
+    if (!runs.passTimes.count(pass.name)) runs.order.push_back(pass.name);
+    runs.passTimes[pass.name].push_back(*pass.milliseconds);
   }
+  runs.frames.push_back(*runs.last.frameMilliseconds);
+}
+
+PassesCase caseOf(const MethodRuns& runs, const scene::Scene& scene, const std::string& name, const ImageSize& size,
+                  const Summary& floor) {
   PassesCase c;
   c.scene = name;
-  c.method = method;
+  c.method = runs.method;
   c.size = size;
   c.triangles = scene.triangleCount();
-  c.frameMilliseconds = summarize(frames);  // setup left out, as the renderer reports it
-  for (const std::string& pass : order) c.passes.emplace_back(pass, summarize(passTimes[pass]));
-  for (const PlannedPass& pass : last.plan.passes())
+  c.frameMilliseconds = summarize(runs.frames);  // setup left out, as the renderer reports it
+  c.floor = floor;
+  for (const std::string& pass : runs.order) c.passes.emplace_back(pass, summarize(runs.passTimes.at(pass)));
+  for (const PlannedPass& pass : runs.last.plan.passes())
     if (!pass.run) c.skipped.emplace_back(pass.name, pass.reason);
-  c.peakBytes = last.memory.peakBytes;
-  c.gbufferBytesPerPixel = last.memory.gbufferBytesPerPixel;
-  c.bvhAllocatedBytesPerTriangle = last.memory.bvhAllocatedBytesPerTriangle;
-  c.bvhBuiltBytesPerTriangle = last.memory.bvhBuiltBytesPerTriangle;
-  if (last.hybrid) {
-    c.maskPixels = last.hybrid->maskPixels;
-    c.revealRays = last.hybrid->revealRays;
+  c.peakBytes = runs.peakBytes;
+  c.gbufferBytesPerPixel = runs.last.memory.gbufferBytesPerPixel;
+  c.bvhAllocatedBytesPerTriangle = runs.last.memory.bvhAllocatedBytesPerTriangle;
+  c.bvhBuiltBytesPerTriangle = runs.last.memory.bvhBuiltBytesPerTriangle;
+  if (runs.last.hybrid) {
+    c.maskPixels = runs.last.hybrid->maskPixels;
+    c.revealRays = runs.last.hybrid->revealRays;
   }
   return c;
+}
+
+// The methods of one scene and size, rendered in rounds (each method once a round, in the
+// order given), so that every method sees the machine as it is during the same seconds: a
+// machine whose speed drifts moves all of a round's frames together, and the per-round ratio
+// to post-process's frame (frameOverPostprocess) cancels it.
+std::vector<PassesCase> runSize(vk::Context& context, const scene::Scene& scene, const std::string& name,
+                                const ImageSize& size, const PassesSuiteOptions& o) {
+  const Summary floor = timeFloor(context, size, o);
+  std::vector<MethodRuns> runs(o.methods.size());
+  for (size_t m = 0; m < o.methods.size(); ++m) {
+    MethodRuns& r = runs[m];
+    r.method = o.methods[m];
+    applyMethodVariant(r.method, kPassesMethods, r.settings);
+    r.settings.width = size.width;
+    r.settings.height = size.height;
+    r.settings.reuseAcrossFrames = false;  // each repeat is timed as a new frame: nothing kept from the last one
+    // A renderer per method, its first render made while the others hold what they hold: its
+    // peak less that is what this method needs.
+    const uint64_t othersHold = context.memoryInUse();
+    r.renderer = std::make_unique<Renderer>(context);
+    renderOnce(scene, r, o.warmup == 0);
+    r.peakBytes = r.last.memory.peakBytes - std::min(othersHold, r.last.memory.peakBytes);
+    for (int i = 1; i < o.warmup; ++i) renderOnce(scene, r, false);
+  }
+  for (int round = o.warmup == 0 ? 1 : 0; round < o.repeats; ++round)
+    for (MethodRuns& r : runs) renderOnce(scene, r, true);
+
+  std::vector<PassesCase> cases;
+  const auto postprocess = std::find_if(runs.begin(), runs.end(), [](const MethodRuns& r) { return r.method == "postprocess"; });
+  for (const MethodRuns& r : runs) {
+    cases.push_back(caseOf(r, scene, name, size, floor));
+    if (postprocess == runs.end()) continue;
+    std::vector<double> ratios;
+    for (size_t i = 0; i < r.frames.size(); ++i) ratios.push_back(r.frames[i] / postprocess->frames[i]);
+    cases.back().frameOverPostprocess = summarize(ratios);
+  }
+  return cases;
 }
 
 }  // namespace
@@ -80,16 +124,10 @@ std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOp
   std::vector<PassesCase> cases;
   for (const std::string& name : options.scenes) {
     const scene::Scene scene = loadBenchScene(name);
-    for (const ImageSize& size : options.sizes)
-      for (const std::string& method : options.methods) {
-        progress(name + " " + sizeName(size) + " " + method);
-        // A renderer of its own: the peak then counts what this case needs, not what an
-        // earlier case left allocated.
-        const Summary floor = timeFloor(context, size, options);
-        Renderer renderer(context);
-        cases.push_back(runCase(renderer, scene, name, method, size, options));
-        cases.back().floor = floor;
-      }
+    for (const ImageSize& size : options.sizes) {
+      progress(name + " " + sizeName(size));
+      for (PassesCase& c : runSize(context, scene, name, size, options)) cases.push_back(std::move(c));
+    }
   }
   return cases;
 }
@@ -105,6 +143,7 @@ nlohmann::json passesCaseJson(const PassesCase& c) {
           {"height", c.size.height},
           {"triangles", c.triangles},
           {"frame_ms", summaryJson(c.frameMilliseconds)},
+          {"frame_over_postprocess", c.frameOverPostprocess ? summaryJson(*c.frameOverPostprocess) : nlohmann::json()},
           {"floor_ms", summaryJson(c.floor)},
           {"passes", passes},
           {"skipped", skipped},
@@ -132,14 +171,17 @@ void writePassesCsv(std::ostream& out, const std::vector<PassesCase>& cases) {
 
 void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases, const std::string& context) {
   out << context << "\n\n";
-  out << "| scene | size | method | frame ms | peak device MiB | G-buffer B/pixel | BVH B/triangle (allocated / built) "
-         "| mask pixels | reveal rays |\n|---|---|---|---:|---:|---:|---:|---:|---:|\n";
+  out << "| scene | size | method | frame ms | x post-process (per round) | peak device MiB | G-buffer B/pixel "
+         "| BVH B/triangle (allocated / built) | mask pixels | reveal rays |\n"
+         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const PassesCase& c : cases) {
     const std::string bvh = c.bvhAllocatedBytesPerTriangle
                                 ? fixed(*c.bvhAllocatedBytesPerTriangle, 1) + " / " + fixed(*c.bvhBuiltBytesPerTriangle, 1)
                                 : "-";
     out << "| " << c.scene << " | " << sizeName(c.size) << " | " << c.method << " | "
-        << fixed(c.frameMilliseconds.median, 1) << " | " << fixed(mib(c.peakBytes), 1) << " | "
+        << fixed(c.frameMilliseconds.median, 1) << " | "
+        << (c.frameOverPostprocess ? fixed(c.frameOverPostprocess->median, 3) : std::string("-")) << " | "
+        << fixed(mib(c.peakBytes), 1) << " | "
         << fixed(c.gbufferBytesPerPixel, 0) << " | " << bvh << " | " << c.maskPixels << " | " << c.revealRays << " |\n";
   }
   std::vector<std::string> scenes;
