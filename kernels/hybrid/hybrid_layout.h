@@ -182,10 +182,12 @@
 #define HMB_COMPOSITE_BINDING_COUNTERS (HMB_COMPOSITE_BINDING_SHUTTER_PATHS + 1)  // RayMaskCounters
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COUNTERS + 1)
 #define HMB_COMPOSITE_TEXEL_BUFFERS 3  // the G-buffer layer and its paths, read as uniform texel buffers
-// The mask's kernels read the G-buffer's samples and surfaces (and range_check the shutter
-// paths) as uniform texel buffers, even where they use a word or two of a record: on lavapipe a
-// storage-buffer load at per-lane addresses is a loop over the lanes with a branch each, which
-// was most of the tile-max test's cost (bench/results/texel-reads/).
+// The mask's kernels and list_shutter_rays read the G-buffer's samples and surfaces (and
+// range_check the shutter paths) as uniform texel buffers, even where they use a word or two of
+// a record: on lavapipe a storage-buffer load at per-lane addresses is a loop over the lanes
+// with a branch each, which was most of the tile-max test's cost and half the shutter rays'
+// list's (bench/results/texel-reads/). A single word (the edge mask, the ray mask) reads no
+// faster through a texel view.
 #define HMB_EDGE_MASK_TEXEL_BUFFERS 2
 #define HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS 2
 #define HMB_RANGE_CHECK_TEXEL_BUFFERS 3
@@ -214,6 +216,7 @@
 #define HMB_SHUTTER_LIST_BINDING_LIST 4      // uint per listed pixel: shutterRayEntry(pixel index, rays)
 #define HMB_SHUTTER_LIST_BINDING_SAMPLES 5    // uvec4 per pixel: the G-buffer's samples (colour)
 #define HMB_SHUTTER_LIST_BINDING_COUNT 6
+#define HMB_SHUTTER_LIST_TEXEL_BUFFERS 2  // the surfaces and samples, read as uniform texel buffers
 
 // trace_shutter_rays: one invocation per list entry, HMB_MASK_LIST_GROUP to a group.
 #define HMB_SHUTTER_TRACE_BINDING_CAMERAS 0   // PinholeCamera per trace-scene time: the frame's, then each stratum's

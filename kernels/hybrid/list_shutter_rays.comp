@@ -18,8 +18,13 @@
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-layout(std430, binding = HMB_SHUTTER_LIST_BINDING_SURFACES) readonly buffer Surfaces { uvec4 surfaces[]; };
-layout(std430, binding = HMB_SHUTTER_LIST_BINDING_SAMPLES) readonly buffer Samples { uvec4 samples[]; };
+// The G-buffer's surfaces (object id, velocity) and samples (colour): shared/layer_layout.h,
+// read as uniform texel buffers (shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
+layout(binding = HMB_SHUTTER_LIST_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
+layout(binding = HMB_SHUTTER_LIST_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
+uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
+uvec4 sampleAt(uint index) { return recordAt(sampleTexels, index); }
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILE_MAX) readonly buffer TileMax { vec4 tileMax[]; };
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_COUNTERS) buffer Counters { ShutterRayCounters counters; };
@@ -32,16 +37,16 @@ layout(push_constant) uniform Params { ShutterRayListParams params; };
 // Whether pixel p shows another object than `id`, or a colour a step away from `key`'s.
 bool differs(ivec2 p, uint id, vec3 key) {
   const uint index = uint(p.y) * params.blur.width + uint(p.x);
-  return surfaceObjectId(surfaces[index]) != id ||
-         shutterRayColorsDiffer(shutterRayColorKey(sampleColor(samples[index])), key);
+  return surfaceObjectId(surfaceAt(index)) != id ||
+         shutterRayColorsDiffer(shutterRayColorKey(sampleColor(sampleAt(index))), key);
 }
 
 // The rays pixel `pixel` takes, 0 when it is not listed. fastest: its tile's (velocity, speed).
 uint shutterRaysAt(ivec2 pixel, vec3 fastest) {
   const uint index = uint(pixel.y) * params.blur.width + uint(pixel.x);
-  const uvec4 here = surfaces[index];
+  const uvec4 here = surfaceAt(index);
   const uint id = surfaceObjectId(here);
-  const vec3 key = shutterRayColorKey(sampleColor(samples[index]));
+  const vec3 key = shutterRayColorKey(sampleColor(sampleAt(index)));
   float speed;
   const vec2 own = gatherVelocity(surfaceVelocity(here), params.blur.velocityScale, params.blur.maxSpeed, speed);
   const bool moves = speed >= 0.5;
