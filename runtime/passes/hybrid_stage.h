@@ -1,6 +1,7 @@
 // The hybrid method (paper, section 3): on top of the G-buffer,
 //   tile-max, neighbour-max of the raster's velocities -> ray mask (RayMaskStage, over the
-//   moving tiles) -> the post-process gather of the raster layer outside the mask (GatherPass)
+//   moving tiles) -> the post-process gather of the raster layer (GatherPass; outside the mask on
+//   a GPU)
 //   -> ray reveal (RevealPass) at mask pixels -> gather of the background layer (the revealed
 //   surfaces over the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the
 //   background composited in at mask pixels (CompositePass, indirect;
@@ -106,7 +107,7 @@ class HybridStage {
   PostProcessStage& postProcess_;
   RayMaskStage rayMask_;
   RevealPass reveal_;
-  GatherPass gather_;  // post-process's, outside the mask
+  GatherPass gather_;  // post-process's (outside the mask on a GPU)
   BackgroundGatherPass backgroundGather_;
   CompositePass composite_;
   ShutterRaysPass shutterRays_;
@@ -120,6 +121,7 @@ class HybridStage {
   std::vector<gpu::PinholeCamera> cameras_;
   bool buildsInstanceTree_ = false;  // prepare() staged the instances: record() builds their tree
   bool candidatesInTileMaxLoop_ = true;  // RayMaskParameters': a GPU, or the camera moves this frame
+  bool gatherSkipsMask_ = true;          // the gather leaves the mask's pixels to the composite: a GPU
   vk::Buffer cameraRays_;
   ImageLayer revealed_;
   vk::Buffer backgroundBlurred_;
