@@ -1,9 +1,10 @@
 #version 450
 // The post-process gather: McGuire et al. 2012's reconstruction with the paper's weights and
 // its centred or adapted range (mblur/gather_samples.glsl), every pixel of the moving blocks
-// (list_gather_blocks.comp; copy_still_blocks.comp writes the others); for the hybrid
+// (list_gather_blocks.comp; copy_still_blocks.comp writes the others); for the hybrid on a GPU
 // (HMB_SPEC_GATHER_OUTSIDE_MASK) every such pixel outside its ray mask, whose pixels its
-// composite writes: a lane group wholly inside the mask then costs a load.
+// composite writes: a lane group wholly inside the mask then costs a load. (A CPU device runs
+// every lane of a vector: there the hybrid takes the plain build, HybridStage::record.)
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "filter_bindings.glsl"
