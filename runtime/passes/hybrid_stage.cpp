@@ -98,7 +98,6 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   const std::vector<float> times = traceTimes(scene, frameTime, settings);
   shutterStrata_ = plan.runs(kShutterRaysTrace) ? settings.shutterRays : 0u;
   candidatesInTileMaxLoop_ = context_.info().type != "cpu" || cameraMovesOnScreen(scene, frameTime);
-  gatherSkipsMask_ = context_.info().type != "cpu";
   if (shutterStrata_ != 0 && times.size() != shutterStrata_ + 1)
     throw Error("hybrid: the plan traces shutter rays that these settings leave out");
   if (plan.runs(TraceScene::kRefit))
@@ -178,7 +177,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // gather leaves them out (a warp wholly inside the mask skips its samples); a CPU device runs
   // every lane of a vector and paid more for the mask's load at each pixel than the masked
   // pixels' gathers cost (bistro at 1280x720: the gather took 1.3 ms more than post-process's).
-  if (gatherSkipsMask_)
+  if (context_.info().type != "cpu")
     gather_.recordOutsideMask(frame, raster, postProcess_.neighborMax(), output, settings_.blur, rayMask_.mask());
   else
     gather_.record(frame, raster, postProcess_.neighborMax(), output, settings_.blur);

@@ -121,7 +121,6 @@ class HybridStage {
   std::vector<gpu::PinholeCamera> cameras_;
   bool buildsInstanceTree_ = false;  // prepare() staged the instances: record() builds their tree
   bool candidatesInTileMaxLoop_ = true;  // RayMaskParameters': a GPU, or the camera moves this frame
-  bool gatherSkipsMask_ = true;          // the gather leaves the mask's pixels to the composite: a GPU
   vk::Buffer cameraRays_;
   ImageLayer revealed_;
   vk::Buffer backgroundBlurred_;
