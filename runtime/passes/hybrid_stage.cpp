@@ -177,7 +177,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // gather leaves them out (a warp wholly inside the mask skips its samples); a CPU device runs
   // every lane of a vector and paid more for the mask's load at each pixel than the masked
   // pixels' gathers cost (bistro at 1280x720, bench/results/passes/: 1.4 ms more than
-  // post-process's gather at 2e93729, as much as it at 18b4904).
+  // post-process's gather at 2e93729, within a millisecond of it at 18b4904).
   if (context_.info().type != "cpu")
     gather_.recordOutsideMask(frame, raster, postProcess_.neighborMax(), output, settings_.blur, rayMask_.mask());
   else
