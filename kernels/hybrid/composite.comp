@@ -19,8 +19,9 @@
 //    (maxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
 //    even where the gather's tiles clamp its outer blur. Along curved paths
 //    (HMB_GATHER_FLAG_CURVED_PATH) the samples follow the pixel's own curved path instead,
-//    X + u v + u^2 q (v and q from mblur_common.glsl's inversePath). The README gives the
-//    measured errors.
+//    X + u v + u^2 q (v and q from mblur_common.glsl's inversePath). mask_coverage.comp takes
+//    those samples, before the reveal (it also decides which pixels the reveal needs), and
+//    keeps alpha and F; this pass blends them over B. The README gives the measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
@@ -36,6 +37,7 @@ layout(std430, binding = HMB_COMPOSITE_BINDING_LIST) readonly buffer List { uint
 layout(std430, binding = HMB_COMPOSITE_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
+layout(std430, binding = HMB_COMPOSITE_BINDING_COVERAGE) readonly buffer Coverage { vec4 coverage[]; };
 HMB_LAYER_TEXELS(raster, HMB_COMPOSITE_BINDING_RASTER)
 layout(push_constant) uniform Params { GatherParams params; };
 
@@ -72,38 +74,13 @@ uvec2 shutterPathAt(uint i) { return halfRecordAt(shutterPathTexels, i); }
 
 #include "../mblur/gather_samples.glsl"
 
-// The coverage form at a mask pixel (see above).
-vec4 coverageComposite(uvec2 pixel, uint index, vec4 centreColor, float centreDepth, float jitter) {
-  const uvec4 own = READ_LAYER_SURFACE(raster, index);
-  float speed;
-  vec2 v = gatherVelocity(surfaceVelocity(own), params.velocityScale, params.maxSpeed, speed);
-  vec2 q = vec2(0.0);
-  vec2 a, c;
-  if (kCurvedPath && (params.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && shutterPathTerms(shutterPathAt(index), a, c)) {
-    // Along its own curved path (mblur_common.glsl's inversePath), as range_check walks it.
-    const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.width, params.height);
-    const uint aheadIndex = uint(ahead.y) * params.width + uint(ahead.x);
-    const bool sameSurface =
-        abs(sanitizeDepth(sampleDepth(READ_LAYER_SAMPLE(raster, aheadIndex))) - centreDepth) < params.softZExtent;
-    const vec2 change =
-        sameSurface ? (surfaceVelocity(READ_LAYER_SURFACE(raster, aheadIndex)) - surfaceVelocity(own)) * params.velocityScale
-                    : vec2(0.0);
-    inversePath(a, c, change, params.maxSpeed, v, q);
-  }
-  const uint object = surfaceObjectId(own);
-  vec4 foregroundSum = centreColor;
-  float foregroundCount = 0.0;
-  for (uint i = 0u; i < params.samples; ++i) {
-    const ivec2 samplePixel = coverageSamplePixel(pixel, v, q, i, params.samples, jitter, params.width, params.height);
-    const uint sampleIndex = uint(samplePixel.y) * params.width + uint(samplePixel.x);
-    const float onObject = 1.0 - behindShare(sampleIndex, object, centreDepth);
-    foregroundSum += onObject * sanitizeColor(vec4(sampleColor(READ_LAYER_SAMPLE(raster, sampleIndex)), 1.0));
-    foregroundCount += onObject;
-  }
-  const float alpha = foregroundCount / float(params.samples);
-  // alpha is exactly 1 where no sample is behind: range_check leaves those pixels unrevealed
-  // (their background entry is stale, and sanitized, then weighted by exactly 0).
-  return alpha * (foregroundSum / (1.0 + foregroundCount)) + (1.0 - alpha) * sanitizeColor(background[index]);
+// The coverage form at a mask pixel (see above): mask_coverage found alpha and F.
+vec4 coverageComposite(uint index) {
+  const vec4 foreground = coverage[index];
+  const float alpha = foreground.w;
+  // alpha is exactly 1 where no sample is behind: those pixels were not revealed (their
+  // background entry is stale, and sanitized, then weighted by exactly 0).
+  return alpha * vec4(foreground.rgb, 1.0) + (1.0 - alpha) * sanitizeColor(background[index]);
 }
 
 void main() {
@@ -120,7 +97,7 @@ void main() {
     return;
   }
   if (kCoverage) {
-    outColor[index] = coverageComposite(pixel, index, centre.color, centre.depth, centre.jitter);
+    outColor[index] = coverageComposite(index);
     return;
   }
   blurredBackground = sanitizeColor(background[index]);

@@ -111,10 +111,10 @@
 #define HMB_RANGE_CHECK_BINDING_BLOCKS 2    // list_range_blocks' list
 #define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
-// uint pixel index per mask pixel, in no order: those to reveal from the front (maskCount),
-// the others from the back (unrevealedCount), so that the composite finds every mask pixel.
+// uint pixel index per mask pixel, in no order: every one from the front (maskCount), or with
+// HMB_RANGE_CHECK_LIST_UNCOVERED all of them for mask_coverage (coverageCount), which splits them.
 #define HMB_RANGE_CHECK_BINDING_LIST 5
-#define HMB_RANGE_CHECK_BINDING_SAMPLES 6   // uvec4 per pixel: the G-buffer's samples (the coverage test's depths)
+#define HMB_RANGE_CHECK_BINDING_SAMPLES 6   // uvec4 per pixel: the G-buffer's samples (depths, read along curved paths)
 #define HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS 7  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
 #define HMB_RANGE_CHECK_BINDING_COUNT 8
 
@@ -126,8 +126,28 @@
 
 // RayMaskParams.flags: list only the mask pixels whose coverage composite samples (the
 // gather's, same positions and jitter) meet the background; the others blend it with weight
-// exactly 0, so their reveal would change nothing.
+// exactly 0, so their reveal would change nothing. The range check lists every mask pixel for
+// mask_coverage, which tests them: in a list, the pixels a CPU device's lanes test are the mask's
+// alone, where inside the range check each vector with one mask pixel ran the samples for all
+// its lanes (bistro at 1280x720: 40,067 mask pixels among 0.9 million walked).
 #define HMB_RANGE_CHECK_LIST_UNCOVERED 1u
+
+// mask_coverage: the coverage composite's share of each mask pixel (paper, section 3; see
+// composite.comp), HMB_MASK_LIST_GROUP pixels a group, over the range check's list: the mean
+// colour of the pixel and its samples on its object, and alpha, for the composite; the mask's
+// value and the list entry, at the front for the reveal where a sample meets the background,
+// at the back otherwise.
+#define HMB_MASK_COVERAGE_BINDING_SAMPLES 0        // uvec4 per pixel: the G-buffer's samples (colour, depth)
+#define HMB_MASK_COVERAGE_BINDING_SURFACES 1       // uvec4 per pixel: the G-buffer's surfaces (velocity, object id)
+#define HMB_MASK_COVERAGE_BINDING_SHUTTER_PATHS 2  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
+#define HMB_MASK_COVERAGE_BINDING_PIXELS 3         // the range check's list: uint pixel index, coverageCount of them
+#define HMB_MASK_COVERAGE_BINDING_COUNTERS 4       // RayMaskCounters
+#define HMB_MASK_COVERAGE_BINDING_COVERAGE 5       // vec4 per pixel: (mean colour, alpha), written at mask pixels
+#define HMB_MASK_COVERAGE_BINDING_MASK 6           // uint per pixel: HMB_MASK_*, written at mask pixels
+#define HMB_MASK_COVERAGE_BINDING_LIST 7           // the mask's list, as the range check fills it otherwise
+#define HMB_MASK_COVERAGE_BINDING_COUNT 8
+#define HMB_MASK_COVERAGE_TEXEL_BUFFERS 3  // the G-buffer's samples and surfaces, the shutter paths
+#define HMB_SPEC_MASK_COVERAGE_CURVED_PATH 0  // the curved path's code, built only for frames that take it
 
 #define HMB_SIZE_LIST_BINDING_COUNTERS 0
 #define HMB_SIZE_LIST_BINDING_COUNT 1
@@ -138,6 +158,7 @@
 // One group per listed block, or SizeListParams::rangeGroupsWanted in all (more where a group's
 // run would pass HMB_RANGE_CHECK_MAX_RUN blocks).
 #define HMB_SIZE_LIST_RANGE_BLOCKS 3u
+#define HMB_SIZE_LIST_COVERAGE 4u  // HMB_MASK_LIST_GROUP of the range check's mask pixels per group
 
 // The list passes (edge_mask, reveal_background, gather_background) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
@@ -180,7 +201,9 @@
 // The G-buffer's shutter paths (gbuffer/gbuffer_layout.h), read along curved paths.
 #define HMB_COMPOSITE_BINDING_SHUTTER_PATHS (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
 #define HMB_COMPOSITE_BINDING_COUNTERS (HMB_COMPOSITE_BINDING_SHUTTER_PATHS + 1)  // RayMaskCounters
-#define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COUNTERS + 1)
+// vec4 per pixel: mask_coverage's (mean colour, alpha), read by the coverage form at mask pixels.
+#define HMB_COMPOSITE_BINDING_COVERAGE (HMB_COMPOSITE_BINDING_COUNTERS + 1)
+#define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COVERAGE + 1)
 #define HMB_COMPOSITE_TEXEL_BUFFERS 3  // the G-buffer layer and its paths, read as uniform texel buffers
 // The mask's kernels and list_shutter_rays read the G-buffer's samples and surfaces (and
 // range_check the shutter paths) as uniform texel buffers, even where they use a word or two of
@@ -280,6 +303,10 @@ struct RayMaskCounters {
   uint compositeDispatchY;
   uint compositeDispatchZ;
   uint rangeBlockCount;  // 8 x 8 blocks listed for the range check
+  uint coverageCount;    // mask pixels the range check listed for mask_coverage
+  uint coverageDispatchX;  // mask_coverage over them
+  uint coverageDispatchY;
+  uint coverageDispatchZ;
   uint pad0;
   uint pad1;
   uint pad2;
@@ -398,7 +425,7 @@ HMB_GPU_END
 HMB_CHECK_SIZE(ShutterRayCounters, 32)
 HMB_CHECK_SIZE(ShutterRayListParams, 80)
 HMB_CHECK_SIZE(ShutterRayTraceParams, 32)
-HMB_CHECK_SIZE(RayMaskCounters, 100)
+HMB_CHECK_SIZE(RayMaskCounters, 116)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
 HMB_CHECK_SIZE(SizeListParams, 16)
 HMB_CHECK_SIZE(RayMaskParams, 80)

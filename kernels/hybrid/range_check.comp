@@ -5,11 +5,10 @@
 // of a silhouette, where the raster holds no background. The range is walked at most a pixel
 // a step (ceil |v| + 1 positions on a straight one), so an edge band of any width is found.
 // Masked pixels are appended to a list (compaction) whose front sizes the ray reveal's
-// indirect dispatch; with
-// the coverage composite, only those whose composite samples meet the background go there
-// (the others give the revealed background a weight of exactly 0) and the others fill the
-// list from its back, for the composite alone. Runs over the blocks list_range_blocks listed
-// (those of the moving tiles with an edge within reach); the mask is 0 elsewhere.
+// indirect dispatch; with the coverage composite (HMB_RANGE_CHECK_LIST_UNCOVERED) they are
+// listed for mask_coverage instead, which writes their mask values and splits them between the
+// reveal and the composite alone. Runs over the blocks list_range_blocks listed (those of the
+// moving tiles with an edge within reach); the mask is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
@@ -18,7 +17,7 @@
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h, read
+// The G-buffer's samples (depth, along curved paths) and surfaces (velocity): shared/layer_layout.h, read
 // as uniform texel buffers (shared/texel_records.glsl), as are the shutter paths below.
 #include "../shared/texel_records.glsl"
 layout(binding = HMB_RANGE_CHECK_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
@@ -129,24 +128,6 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   return false;
 }
 
-// Whether any of the coverage composite's samples of this pixel lies behind it, i.e. whether
-// the composite gives the revealed background a weight above 0.
-bool meetsBackground(uvec2 pixel, uint index, vec2 v, vec2 q) {
-  const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.blur.seed));
-  const uint centreObject = surfaceObjectId(surfaceAt(index));
-  const float centreDepth = sanitizeDepth(sampleDepth(sampleAt(index)));
-  for (uint i = 0u; i < params.blur.samples; ++i) {
-    const ivec2 p =
-        coverageSamplePixel(pixel, v, q, i, params.blur.samples, jitter, params.blur.width, params.blur.height);
-    const uint sampleIndex = uint(p.y) * params.blur.width + uint(p.x);
-    if (behindShareOf(surfaceObjectId(surfaceAt(sampleIndex)), sanitizeDepth(sampleDepth(sampleAt(sampleIndex))),
-                      centreObject, centreDepth,
-                      params.blur.softZExtent) > 0.0)
-      return true;
-  }
-  return false;
-}
-
 void checkPixel(uvec2 pixel) {
   const uint index = pixel.y * params.blur.width + pixel.x;
   float speed;
@@ -168,10 +149,8 @@ void checkPixel(uvec2 pixel) {
   }
   // The mask is filled with HMB_MASK_NONE before.
   if (!(speed > 0.0) || !(curved ? curvedPathMeetsEdge(pixel, v, q) : meetsEdge(pixel, v, speed))) return;
-  if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u && !meetsBackground(pixel, index, v, q)) {
-    mask[index] = HMB_MASK_UNREVEALED;
-    const uint lastEntry = params.blur.width * params.blur.height - 1u;
-    list[lastEntry - atomicAdd(counters.unrevealedCount, 1u)] = index;
+  if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u) {
+    list[atomicAdd(counters.coverageCount, 1u)] = index;
     return;
   }
   mask[index] = HMB_MASK_REVEALED;

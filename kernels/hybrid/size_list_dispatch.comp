@@ -2,7 +2,8 @@
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
 // 65535 groups: the moving tiles (a group per tile: list_range_blocks, list_shutter_rays), the
 // range check's blocks (a group per block, or as many as wanted, each a run of the list:
-// range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask) or the ray mask's
+// range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's
+// mask pixels for the coverage test (HMB_MASK_LIST_GROUP each: mask_coverage) or the ray mask's
 // pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over
 // the list's front, the composite over the whole mask).
 // An empty list dispatches no group.
@@ -34,6 +35,13 @@ void main() {
     counters.rangeDispatchX = g.x;
     counters.rangeDispatchY = g.y;
     counters.rangeDispatchZ = g.z;
+    return;
+  }
+  if (params.list == HMB_SIZE_LIST_COVERAGE) {
+    const uvec3 g = listGroups(counters.coverageCount);
+    counters.coverageDispatchX = g.x;
+    counters.coverageDispatchY = g.y;
+    counters.coverageDispatchZ = g.z;
     return;
   }
   if (params.list == HMB_SIZE_LIST_EDGE_CANDIDATES) {

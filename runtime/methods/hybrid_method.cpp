@@ -120,9 +120,12 @@ class HybridMethod final : public FrameMethod {
         result.plan.noteNoWork(passes::RevealPass::kName, reason);
         result.plan.noteNoWork(passes::HybridStage::kGatherBackground, reason);
       }
-      if (masks && result.hybrid->maskPixels == 0)
+      if (masks && result.hybrid->maskPixels == 0) {
         result.plan.noteNoWork(passes::HybridStage::kComposite,
                                "the ray mask is empty: the post-process gather's image stands");
+        if (result.plan.runs(passes::RayMaskStage::kCoverage))
+          result.plan.noteNoWork(passes::RayMaskStage::kCoverage, "the ray mask is empty: no coverage to find");
+      }
     }
     result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::move(mask)});
     result.image.layers.push_back(vec4Layer("revealed", {"R", "G", "B"}, revealed));

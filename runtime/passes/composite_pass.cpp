@@ -16,10 +16,12 @@ CompositePass::CompositePass(const vk::Context& context)
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
                            const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
                            const vk::Buffer& output, const gpu::GatherParams& blur, HybridComposite composite,
-                           const vk::Buffer* shutterPaths) const {
+                           const vk::Buffer* shutterPaths, const vk::Buffer* coverage) const {
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
   if (composite == HybridComposite::Coverage && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
     throw Error("composite: the coverage form needs the adapted range");
+  if (composite == HybridComposite::Coverage && !coverage)
+    throw Error("composite: the coverage form needs the mask's coverage (RayMaskStage::coverage)");
   // Built for the frame's form, path and range alone (hybrid_layout.h).
   static_assert(HMB_SPEC_COMPOSITE_COVERAGE == 0 && HMB_SPEC_COMPOSITE_CURVED_PATH == 1 &&
                 HMB_SPEC_COMPOSITE_ADAPTED_RANGE == 2);
@@ -32,7 +34,9 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
                            {HMB_COMPOSITE_BINDING_BACKGROUND, &background},
                            {HMB_COMPOSITE_BINDING_OUTPUT, &output},
                            // Read only along curved paths; any texel buffer stands in otherwise.
-                           {HMB_COMPOSITE_BINDING_SHUTTER_PATHS, shutterPaths ? shutterPaths : &raster.samples()}};
+                           {HMB_COMPOSITE_BINDING_SHUTTER_PATHS, shutterPaths ? shutterPaths : &raster.samples()},
+                           // Read by the coverage form only; any buffer stands in otherwise.
+                           {HMB_COMPOSITE_BINDING_COVERAGE, coverage ? coverage : &background}};
   raster.bind(bindings, HMB_COMPOSITE_BINDING_RASTER, kernel.bindsByAddress());
   frame.dispatchIndirect(kName, kernel, bindings, blur, counters, offsetof(gpu::RayMaskCounters, compositeDispatchX));
 }

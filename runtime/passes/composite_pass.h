@@ -27,7 +27,9 @@ class CompositePass {
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
               const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
               const vk::Buffer& output, const gpu::GatherParams& blur, HybridComposite composite,
-              const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
+              const vk::Buffer* shutterPaths = nullptr,  // the raster's, along curved paths
+              // the coverage form's: RayMaskStage::coverage() (mask_coverage's alpha and foreground)
+              const vk::Buffer* coverage = nullptr) const;
 
  private:
   vk::KernelVariants kernels_;  // by form, path and range

@@ -77,7 +77,10 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
   // image moved by no more than 0.03 dB against the reference where it ran (README, "The
   // hybrid method").
   const std::string revealSkipped = shutterSkipped.empty() ? kRevealLeftToShutterRaysReason : "";
-  rayMask_.plan(plan, revealSkipped);
+  rayMask_.plan(plan, revealSkipped,
+                settings.composite == HybridComposite::Coverage
+                    ? ""
+                    : "composite weights: the composite takes its own samples, and every mask pixel is revealed");
   plan.runUnless(kShutterRaysList, shutterSkipped);
   gather_.plan(plan);
   for (const char* pass : {RevealPass::kName, kGatherBackground, kComposite}) plan.runUnless(pass, revealSkipped);
@@ -114,7 +117,7 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   // Beside the shutter rays the mask's own buffers and the reveal's layers are not made (64
   // bytes a pixel): the frame lists the moving tiles alone.
   const bool reveals = plan.runs(RevealPass::kName);
-  rayMask_.prepare(width, height, !reveals);
+  rayMask_.prepare(width, height, !reveals, settings.composite == HybridComposite::Coverage);
   const bool resized = size_.changesTo(width, height);
   size_.madeFor(width, height);
   if (!reveals) {
@@ -188,7 +191,8 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(),
                            rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, raster.shutterPaths);
   composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(),
-                    backgroundBlurred_, output, blur, settings_.composite, raster.shutterPaths);
+                    backgroundBlurred_, output, blur, settings_.composite, raster.shutterPaths,
+                    settings_.composite == HybridComposite::Coverage ? &rayMask_.coverage() : nullptr);
 }
 
 }  // namespace hmb::passes

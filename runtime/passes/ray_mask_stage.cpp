@@ -27,17 +27,20 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
       sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
       blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
       tileMaxKernels_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
+      coveragePass_(context),
       rangeKernels_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
 
-void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause) const {
+void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause,
+                        const std::string& coverageSkipped) const {
   plan.run(kClear);
   plan.run(kMovingTiles);
   for (const char* pass : {kEdges, kRangeBlocks, kRangeCheck})
     plan.runUnless(pass, movingTilesOnlyBecause);
+  plan.runUnless(kCoverage, movingTilesOnlyBecause.empty() ? coverageSkipped : movingTilesOnlyBecause);
   plan.run(kSizeDispatch);
 }
 
-void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly) {
+void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly, bool coverage) {
   if (width == 0 || height == 0) throw Error("ray mask: empty image");
   const uint64_t pixels = uint64_t(width) * height;
   const bool resized = size_.changesTo(width, height);
@@ -52,7 +55,16 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly
     list_ = {};
     candidates_ = {};
     rangeBlocks_ = {};
+    maskPixels_ = {};
+    coverage_ = {};
     return;
+  }
+  if (!coverage) {
+    maskPixels_ = {};
+    coverage_ = {};
+  } else if (resized || !coverage_.handle()) {
+    maskPixels_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "range check mask pixels");
+    coverage_ = vk::Buffer(context_, pixels * 4 * sizeof(float), vk::MemoryUse::Device, "mask coverage");
   }
   if (!resized && mask_.handle()) return;
   // The edge mask, then the coarse edge mask (kernels/hybrid/hybrid_layout.h).
@@ -75,6 +87,8 @@ void RayMaskStage::requireFits(const MotionBlurInputs& layer, const RayMaskParam
   if (uint64_t(grid.x) * blur.tileSize < blur.width || uint64_t(grid.y) * blur.tileSize < blur.height)
     throw Error("ray mask: the tile grid does not cover the image");
   if (!p.movingTilesOnly && !mask_.handle()) throw Error("ray mask: prepared for the moving tiles only");
+  if (!p.movingTilesOnly && p.listOnlyUncovered && !coverage_.handle())
+    throw Error("ray mask: prepared without the coverage test");
 }
 
 void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
@@ -146,10 +160,15 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_RANGE_CHECK_BINDING_BLOCKS, &rangeBlocks_},
                           {HMB_RANGE_CHECK_BINDING_MASK, &mask_},
                           {HMB_RANGE_CHECK_BINDING_COUNTERS, &counters_},
-                          {HMB_RANGE_CHECK_BINDING_LIST, &list_},
+                          // With the coverage test, every mask pixel for mask_coverage.
+                          {HMB_RANGE_CHECK_BINDING_LIST, p.listOnlyUncovered ? &maskPixels_ : &list_},
                           // Read only along curved paths; any buffer stands in otherwise.
                           {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
                          params, counters_, offsetof(gpu::RayMaskCounters, rangeDispatchX));
+  if (p.listOnlyUncovered) {
+    sizeDispatch(HMB_SIZE_LIST_COVERAGE, 0u);
+    coveragePass_.record(frame, layer, maskPixels_, counters_, coverage_, mask_, list_, params);
+  }
   sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }
 

@@ -1,9 +1,11 @@
 // The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): tile_max_edge_candidates
 // (the gather's tile-max, and eqs. 1, 2 at each pixel it reads, listed) -> list_moving_tiles
 // -> edge_mask (eqs. 3, 4 over that list) -> list_range_blocks (the blocks with an edge within
-// reach) -> range_check (the mask as an image of HMB_MASK_* values and a compacted pixel list),
-// over the moving tiles only, with size_list_dispatch turning each list's length into an
-// indirect dispatch. Owns those buffers.
+// reach) -> range_check (the mask as an image of HMB_MASK_* values and a compacted pixel list;
+// with the coverage composite the pixels' list alone) -> mask_coverage (with the coverage
+// composite: each mask pixel's alpha and foreground, its mask value and list entry), over the
+// moving tiles only, with size_list_dispatch turning each list's length into an indirect
+// dispatch. Owns those buffers.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +14,7 @@
 
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/gather_pass.h"
+#include "runtime/passes/mask_coverage_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"
@@ -31,7 +34,8 @@ struct RayMaskParameters {
   gpu::GatherParams blur{};
   float edgeThreshold = 0.9f;
   // List only the mask pixels whose coverage composite samples (the gather's: its sample count
-  // and seed) meet the background: the composite gives the others' reveal a weight of 0.
+  // and seed) meet the background: the composite gives the others' reveal a weight of 0. Runs
+  // mask_coverage, which also keeps each mask pixel's coverage for the composite (coverage()).
   bool listOnlyUncovered = false;
   // List the moving tiles alone (for the shutter rays' list) and leave the mask empty: the
   // frame traces its edges over the shutter instead of revealing them (HybridStage::plan).
@@ -62,14 +66,18 @@ class RayMaskStage {
   static constexpr const char* kRangeBlocks = "ray-mask-range-blocks";
   static constexpr const char* kRangeCheck = "ray-mask-range-check";
   static constexpr const char* kSizeDispatch = "ray-mask-size-dispatch";
+  static constexpr const char* kCoverage = MaskCoveragePass::kName;
 
   explicit RayMaskStage(const vk::Context& context);
   // movingTilesOnlyBecause: empty for the whole mask; else why the mask's own passes are
-  // skipped (RayMaskParameters::movingTilesOnly).
-  void plan(FramePlan& plan, const std::string& movingTilesOnlyBecause = {}) const;
+  // skipped (RayMaskParameters::movingTilesOnly). coverageSkipped: why mask_coverage is
+  // (empty: it runs, RayMaskParameters::listOnlyUncovered).
+  void plan(FramePlan& plan, const std::string& movingTilesOnlyBecause = {},
+            const std::string& coverageSkipped = {}) const;
   // Sizes the buffers for this resolution (reuses them when it is unchanged); movingTilesOnly:
-  // only those of the moving tiles' list (RayMaskParameters::movingTilesOnly), the others freed.
-  void prepare(uint32_t width, uint32_t height, bool movingTilesOnly = false);
+  // only those of the moving tiles' list (RayMaskParameters::movingTilesOnly), the others freed;
+  // coverage: those mask_coverage needs too (RayMaskParameters::listOnlyUncovered).
+  void prepare(uint32_t width, uint32_t height, bool movingTilesOnly = false, bool coverage = false);
   // The whole mask's first pass, recorded as the gather's tile-max (TileMaxPass::kName): clears
   // the mask, writes the tile-max into parameters.tileMax as the gather's would, and lists the
   // edge candidates (eqs. 1, 2) in the group that just read the tile
@@ -90,6 +98,8 @@ class RayMaskStage {
   const vk::Buffer& rangeBlocks() const { return rangeBlocks_; }  // uint first pixel index per walked block
   const vk::Buffer& movingTiles() const { return tiles_; }  // uint tile index per moving tile (counters' tileCount)
   const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
+  // vec4 per pixel, (foreground colour, alpha) at mask pixels: written with listOnlyUncovered.
+  const vk::Buffer& coverage() const { return coverage_; }
   // After the frame: the mask's size and the reveal's traces.
   RayMaskCounts counts() const;
 
@@ -99,6 +109,7 @@ class RayMaskStage {
   void requireFits(const MotionBlurInputs& layer, const RayMaskParameters& parameters) const;
 
   vk::ComputeKernel tilesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
+  MaskCoveragePass coveragePass_;
   // tile_max_edge_candidates by where its test runs; range_check by path: the straight build
   // has none of the curved walks' code.
   vk::KernelVariants tileMaxKernels_, rangeKernels_;
@@ -107,6 +118,8 @@ class RayMaskStage {
   vk::Buffer candidates_;  // edge candidates: uint pixel index each
   vk::Buffer tiles_;       // moving tiles: at most one per pixel, whatever the tile size
   vk::Buffer rangeBlocks_;  // the range check's 8 x 8 blocks: uint first pixel index each
+  // With mask_coverage: the range check's mask pixels (uint pixel index each), and their coverage.
+  vk::Buffer maskPixels_, coverage_;
 };
 
 }  // namespace hmb::passes

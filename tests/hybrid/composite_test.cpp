@@ -139,6 +139,57 @@ TEST_F(HybridCompositeTest, CoverageMatchesReferenceOnRandomLayers) {
   EXPECT_GT(changed, 1000u) << "the composite should change most moving mask pixels";
 }
 
+// mask_coverage (hybrid/mask_coverage.comp) on its own against the reference on random and
+// adversarial layers, straight and curved: each mask pixel's foreground colour and alpha, and
+// its mask value (revealed where a sample lies behind it); pixels outside the mask untouched.
+TEST_F(HybridCompositeTest, MaskCoverageMatchesReferenceAndSplitsTheMask) {
+  std::mt19937 rng(29);
+  size_t revealed = 0, unrevealed = 0, partial = 0;
+  for (uint32_t round = 0; round < 6; ++round) {
+    CompositeCase c = randomCase(59 + 4 * round, 37, rng);
+    if (round % 2 == 1) makeAdversarial(c, rng);
+    PostProcessSettings s = compositeSettings(8u + 4u * round, 3u + 3u * round, round);
+    if (round >= 4) {
+      c.layer.shutterPaths = mblur::randomShutterPaths(c.layer.velocity, rng, 1.0f);
+      s.motionPath = passes::MotionPath::Curved;
+    }
+    std::vector<glm::vec4> coverage;
+    std::vector<uint32_t> maskValues;
+    GatherRun run;
+    run.mask = &c.mask;
+    run.background = &c.background;
+    run.objectId = &c.objectId;
+    run.coverageOut = &coverage;
+    run.maskOut = &maskValues;
+    runGather(VulkanTest::context(), c.layer, mblur::referenceTiles(c.layer, s), run, s);
+    const std::vector<MaskCoverage> reference = maskCoverage(c.layer, c.mask, c.objectId, s);
+    size_t off = 0;
+    for (size_t i = 0; i < c.mask.size(); ++i) {
+      const std::string at = "round " + std::to_string(round) + " pixel " + std::to_string(i);
+      if (c.mask[i] == 0u) {
+        EXPECT_EQ(maskValues[i], HMB_MASK_NONE) << at;
+        EXPECT_TRUE(std::isnan(coverage[i].x)) << at << ": written outside the mask";
+        continue;
+      }
+      const glm::vec4 expected(reference[i].foreground, reference[i].alpha);
+      const float scale = std::max({1.0f, std::abs(expected.x), std::abs(expected.y), std::abs(expected.z)});
+      // As the composite's: a sample position a rounding step from a pixel edge may land on
+      // the other pixel on the device.
+      if (!(mblur::maxAbsDifference(coverage[i], expected) <= 1e-5f * scale)) {
+        ++off;
+        continue;
+      }
+      EXPECT_EQ(maskValues[i], reference[i].meetsBackground ? HMB_MASK_REVEALED : HMB_MASK_UNREVEALED) << at;
+      (reference[i].meetsBackground ? revealed : unrevealed) += 1;
+      partial += reference[i].alpha > 0.0f && reference[i].alpha < 1.0f;
+    }
+    EXPECT_LE(off, c.mask.size() / 1000) << "round " << round << ": " << off << " pixels differ";
+  }
+  EXPECT_GT(revealed, 100u);
+  EXPECT_GT(unrevealed, 100u);
+  EXPECT_GT(partial, 100u);
+}
+
 TEST_F(HybridCompositeTest, WeightsMatchReferenceOnRandomLayers) {
   std::mt19937 rng(19);
   size_t changed = 0;

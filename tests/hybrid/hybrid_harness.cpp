@@ -14,6 +14,7 @@
 #include "kernels/shared/layer_layout.h"
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"
+#include "runtime/passes/mask_coverage_pass.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/gbuffer_stage.h"
@@ -88,7 +89,7 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   const vk::Buffer samples = vk::uploadedBuffer(context, packed.samples, "test samples");
   const vk::Buffer surfaces = vk::uploadedBuffer(context, packed.surfaces, "test surfaces");
   passes::RayMaskStage stage(context);
-  stage.prepare(layer.width, layer.height);
+  stage.prepare(layer.width, layer.height, false, parameters.listOnlyUncovered);
   std::optional<vk::Buffer> paths;
   if (!layer.shutterPaths.empty()) paths = pathsBuffer(context, layer.shutterPaths);
   const passes::MotionBlurInputs inputs{&samples, &surfaces, layer.width, layer.height, paths ? &*paths : nullptr};
@@ -186,27 +187,45 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   if (run.background) {
     if (!run.mask || !run.objectId || run.list) throw std::runtime_error("the composite needs mask and ids, no list");
     const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
-    // As HybridStage records it: the post-process gather outside the mask, then the composite
-    // over the mask's pixels, listed as range_check lists them: every other one from the front
-    // (as if revealed), the rest from the back, so that both halves of the list are read.
-    std::vector<uint32_t> list(std::max<size_t>(pixels, 1), 0u);
+    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull};
+    const bool coverage = run.composite == passes::HybridComposite::Coverage;
+    // As HybridStage records it: with the coverage form, mask_coverage over the mask's pixels
+    // (which splits the list between its front and back); the post-process gather outside the
+    // mask; the composite over the mask's pixels. The weights form's list as range_check makes
+    // it: every other one from the front (as if revealed), the rest from the back, so that both
+    // halves of the list are read.
+    std::vector<uint32_t> list(std::max<size_t>(pixels, 1), 0u), maskPixels;
     uint32_t front = 0, back = 0;
     for (uint32_t i = 0; i < pixels; ++i)
       if ((*run.mask)[i] != HMB_MASK_NONE) {
+        maskPixels.push_back(i);
         if ((front + back) % 2 == 0)
           list[front++] = i;
         else
           list[pixels - 1 - back++] = i;
       }
     const vk::Buffer listBuffer = vk::uploadedBuffer(context, list, "test mask list");
-    const vk::Buffer counters =
-        vk::uploadedBuffer(context, std::vector<gpu::RayMaskCounters>{dispatchFor(front, back)}, "test mask counters");
+    const vk::Buffer counters = vk::uploadedBuffer(
+        context,
+        std::vector<gpu::RayMaskCounters>{coverage ? coverageDispatchFor(front + back)
+                                                   : dispatchFor(front, back)},
+        "test mask counters");
+    if (maskPixels.empty()) maskPixels.push_back(0u);  // unread: the count is 0
+    const vk::Buffer maskPixelsBuffer = vk::uploadedBuffer(context, maskPixels, "test mask pixels");
+    const vk::Buffer coverageBuffer = filledBuffer(context, pixels, glm::vec4(std::numeric_limits<float>::quiet_NaN()), "test coverage");
+    if (coverage) {
+      const passes::MaskCoveragePass coveragePass(context);
+      coveragePass.record(frame, inputs, maskPixelsBuffer, counters, coverageBuffer, mask, listBuffer,
+                          {params, 0.0f, HMB_RANGE_CHECK_LIST_UNCOVERED, 0u, 0u});
+    }
     const passes::GatherPass gather(context);
-    gather.recordOutsideMask(frame, {&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull},
-                             tiles, output, settings, mask);
+    gather.recordOutsideMask(frame, inputs, tiles, output, settings, mask);
     const passes::CompositePass pass(context);
-    pass.record(frame, raster, tiles, listBuffer, counters, background, output, params, run.composite, pathsOrNull);
+    pass.record(frame, raster, tiles, listBuffer, counters, background, output, params, run.composite, pathsOrNull,
+                &coverageBuffer);
     frame.submitAndWait();
+    if (run.coverageOut) *run.coverageOut = downloadFirst<glm::vec4>(coverageBuffer, pixels);
+    if (run.maskOut) *run.maskOut = downloadFirst<uint32_t>(mask, pixels);
   } else if (run.list) {
     const passes::ImageLayer revealed = imageLayer(run.revealed ? *run.revealed : layer, nullptr, "test revealed");
     const vk::Buffer list = vk::uploadedBuffer(context, *run.list, "test pixel list");

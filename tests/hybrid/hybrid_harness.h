@@ -51,9 +51,10 @@ struct ShutterRayListReadback {
 ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& layer,
                                          const passes::RayMaskParameters& parameters, uint32_t strata);
 
-// One gather of `layer`: the composite (CompositePass) with `background`, which needs the mask
-// and the object ids; else with `list`, the background gather (BackgroundGatherPass) of the
-// listed pixels, its dispatch sized on the host as size_list_dispatch sizes it, reading
+// One gather of `layer`: the composite (CompositePass, after MaskCoveragePass over the mask's
+// pixels for the coverage form) with `background`, which needs the mask and the object ids;
+// else with `list`, the background gather (BackgroundGatherPass) of the listed pixels, its
+// dispatch sized on the host as size_list_dispatch sizes it, reading
 // `revealed` (default: `layer` itself) where the mask is HMB_MASK_REVEALED; else the
 // post-process gather (GatherPass), outside the mask alone when there is one. The output
 // buffer starts as `sentinel` everywhere.
@@ -66,6 +67,10 @@ struct GatherRun {
   const mblur::Layer* revealed = nullptr;
   passes::MaskWeights maskWeights;  // the composite's and the background gather's
   glm::vec4 sentinel{0.0f};
+  // The coverage composite's: mask_coverage's output (vec4 per pixel, NaN where unwritten) and
+  // the mask's values after it, read back here when set.
+  std::vector<glm::vec4>* coverageOut = nullptr;
+  std::vector<uint32_t>* maskOut = nullptr;
 };
 std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer,
                                  const std::vector<glm::vec4>& neighborMax, const GatherRun& run,

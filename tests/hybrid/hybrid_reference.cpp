@@ -382,6 +382,18 @@ gpu::RayMaskCounters dispatchFor(uint32_t maskCount, uint32_t unrevealed) {
   return c;
 }
 
+gpu::RayMaskCounters coverageDispatchFor(uint32_t maskPixels) {
+  gpu::RayMaskCounters c = dispatchFor(maskPixels);
+  // The range check's count; mask_coverage moves each pixel to the front or the back.
+  c.coverageCount = maskPixels;
+  c.coverageDispatchX = c.maskDispatchX;
+  c.coverageDispatchY = c.maskDispatchY;
+  c.coverageDispatchZ = c.maskDispatchZ;
+  c.maskCount = 0u;
+  c.maskDispatchX = c.maskDispatchY = c.maskDispatchZ = 0u;
+  return c;
+}
+
 namespace {
 
 struct CompositeInputs {
@@ -398,31 +410,42 @@ float behindShare(const CompositeInputs& in, size_t sampleIndex, uint32_t centre
                        centreDepth, in.softZExtent);
 }
 
-glm::vec4 coverageComposite(const CompositeInputs& in, uint32_t px, uint32_t py, glm::vec4 centreColor,
-                            float centreDepth, float jitter, float velocityScale, float coverageMaxSpeed,
-                            uint32_t samples, bool curved) {
+// mask_coverage.comp at one mask pixel.
+MaskCoverage coverageAt(const CompositeInputs& in, uint32_t px, uint32_t py, float velocityScale, float maxSpeed,
+                        uint32_t samples, uint32_t seed, bool curved) {
   const mblur::Layer& layer = in.layer;
   const size_t index = size_t(py) * layer.width + px;
+  const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
+  const float jitter = mblur::unitFromHash(mblur::mblurHash(px, py, seed));
   float speed;
-  glm::vec2 v = gatherVelocity(in.surfaceVelocity[index], velocityScale, coverageMaxSpeed, speed);
+  glm::vec2 v = gatherVelocity(in.surfaceVelocity[index], velocityScale, maxSpeed, speed);
   glm::vec2 q(0.0f);
   if (curved)
     ownCurvedPath(
         layer.shutterPaths[index], px, py, layer.width, layer.height,
         [&](size_t i) { return sanitizeDepth(layer.normalDepth[i].w); }, [&](size_t i) { return in.surfaceVelocity[i]; },
-        velocityScale, coverageMaxSpeed, in.softZExtent, v, q);
+        velocityScale, maxSpeed, in.softZExtent, v, q);
   const uint32_t centreObject = in.objectId[index];
-  glm::vec4 foregroundSum = centreColor;
+  glm::vec4 foregroundSum = sanitizeColor(layer.color[index]);
   float foregroundCount = 0.0f;
+  MaskCoverage out;
   for (uint32_t i = 0; i < samples; ++i) {
     const size_t sampleIndex =
         indexOf(layer.width, coverageSamplePixel(px, py, v, q, i, samples, jitter, layer.width, layer.height));
-    const float onObject = 1.0f - behindShare(in, sampleIndex, centreObject, centreDepth);
+    const float behind = behindShare(in, sampleIndex, centreObject, centreDepth);
+    out.meetsBackground = out.meetsBackground || behind > 0.0f;
+    const float onObject = 1.0f - behind;
     foregroundSum += onObject * sanitizeColor(layer.color[sampleIndex]);
     foregroundCount += onObject;
   }
-  const float alpha = foregroundCount / float(samples);
-  return alpha * (foregroundSum / (1.0f + foregroundCount)) + (1.0f - alpha) * sanitizeColor(in.background[index]);
+  out.foreground = glm::vec3(foregroundSum) / (1.0f + foregroundCount);
+  out.alpha = foregroundCount / float(samples);
+  return out;
+}
+
+// The coverage form of composite.comp: F (opaque) over the blurred background by alpha.
+glm::vec4 coverageComposite(const MaskCoverage& c, glm::vec4 background) {
+  return c.alpha * glm::vec4(c.foreground, 1.0f) + (1.0f - c.alpha) * sanitizeColor(background);
 }
 
 glm::vec4 mixColor(glm::vec4 a, glm::vec4 b, float t) { return a * (1.0f - t) + b * t; }
@@ -494,15 +517,35 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& input, const std::vec
       if (mask[index] == 0u) continue;
       const glm::vec4 dominant = neighborMax[size_t(py / m) * grid.x + px / m];
       if (dominant.z < gpu::kMinBlurPixels) continue;
+      if (composite == passes::HybridComposite::Coverage) {
+        out[index] = coverageComposite(
+            coverageAt(in, px, py, velocityScale, coverageMaxSpeed, settings.samples, settings.seed, curved),
+            background[index]);
+        continue;
+      }
       const glm::vec4 centreColor = sanitizeColor(layer.color[index]);
       const float centreDepth = sanitizeDepth(layer.normalDepth[index].w);
       const float jitter = mblur::unitFromHash(mblur::mblurHash(px, py, settings.seed));
-      out[index] = composite == passes::HybridComposite::Coverage
-                       ? coverageComposite(in, px, py, centreColor, centreDepth, jitter, velocityScale,
-                                           coverageMaxSpeed, settings.samples, curved)
-                       : weightsComposite(in, px, py, dominant, centreColor, centreDepth, jitter, settings,
-                                          maskWeights);
+      out[index] = weightsComposite(in, px, py, dominant, centreColor, centreDepth, jitter, settings, maskWeights);
     }
+  return out;
+}
+
+std::vector<MaskCoverage> maskCoverage(const mblur::Layer& input, const std::vector<uint32_t>& mask,
+                                       const std::vector<uint32_t>& objectId,
+                                       const passes::PostProcessSettings& settings) {
+  const mblur::Layer layer = mblur::stored(input);
+  const std::vector<glm::vec2> surfaceVelocity = mblur::storedVelocity(input.velocity);
+  const std::vector<glm::vec4> noBackground;
+  const CompositeInputs in{layer, surfaceVelocity, noBackground, objectId, settings.softZExtent};
+  const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
+  const float maxSpeed = float(std::max(layer.width, layer.height));
+  const bool curved = settings.motionPath == passes::MotionPath::Curved && !layer.shutterPaths.empty();
+  std::vector<MaskCoverage> out(mask.size());
+  for (uint32_t py = 0; py < layer.height; ++py)
+    for (uint32_t px = 0; px < layer.width; ++px)
+      if (const size_t index = size_t(py) * layer.width + px; mask[index] != 0u)
+        out[index] = coverageAt(in, px, py, velocityScale, maxSpeed, settings.samples, settings.seed, curved);
   return out;
 }
 

@@ -1,6 +1,6 @@
 // Plain C++ of the hybrid method's kernel math (kernels/hybrid/ray_mask_common.glsl,
-// edge_mask.comp, range_check.comp, size_list_dispatch.comp, and the composites of
-// kernels/hybrid/composite.comp), operation for operation, so the kernels can be compared with it
+// edge_mask.comp, range_check.comp, size_list_dispatch.comp, mask_coverage.comp and the
+// composites of kernels/hybrid/composite.comp), operation for operation, so the kernels can be compared with it
 // on any input. The motion blur functions they share come from tests/mblur/mblur_reference.h.
 #pragma once
 
@@ -70,7 +70,7 @@ std::vector<uint32_t> rangeCheck(const std::vector<glm::vec2>& velocity, const s
 std::vector<uint32_t> rangeCheck(const MaskLayer& layer, const std::vector<uint32_t>& edges,
                                  const passes::RayMaskParameters& parameters);
 
-// range_check.comp with HMB_RANGE_CHECK_LIST_UNCOVERED: true for the mask pixels whose coverage
+// range_check.comp and mask_coverage.comp with HMB_RANGE_CHECK_LIST_UNCOVERED: true for the mask pixels whose coverage
 // composite samples (parameters.blur.samples, jitter from parameters.blur.seed, along the
 // displacement clamped to parameters.blur.maxSpeed) meet another object deeper than the pixel.
 std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint32_t>& mask,
@@ -87,6 +87,23 @@ gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
 // The same with `unrevealed` more mask pixels at the list's back: maskPixels and the
 // composite's dispatch over both.
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount, uint32_t unrevealed);
+// The counters as the range check leaves them for mask_coverage with `maskPixels` mask pixels
+// (its dispatch sized), and the composite's dispatch over them all: maskCount and
+// unrevealedCount 0, for mask_coverage to count.
+gpu::RayMaskCounters coverageDispatchFor(uint32_t maskPixels);
+
+// mask_coverage.comp at each pixel where `mask` is not 0 (the others zero): the coverage
+// composite's foreground F (the mean colour of the pixel and its samples on its object), alpha
+// (the samples' share on it), and whether a sample lies behind the pixel (the pixel is listed
+// for the reveal).
+struct MaskCoverage {
+  glm::vec3 foreground{0.0f};
+  float alpha = 0.0f;
+  bool meetsBackground = false;
+};
+std::vector<MaskCoverage> maskCoverage(const mblur::Layer& layer, const std::vector<uint32_t>& mask,
+                                       const std::vector<uint32_t>& objectId,
+                                       const passes::PostProcessSettings& settings);
 
 // The hybrid's image: hybrid/composite.comp at mask pixels with the background, the object ids
 // and the form, over the post-process gather (mblur/gather.comp) everywhere else.

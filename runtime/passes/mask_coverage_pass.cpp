@@ -1,0 +1,34 @@
+#include "runtime/passes/mask_coverage_pass.h"
+
+#include <cstddef>
+
+#include "runtime/error.h"
+#include "runtime/vulkan/frame_recorder.h"
+
+namespace hmb::passes {
+
+MaskCoveragePass::MaskCoveragePass(const vk::Context& context)
+    : kernels_(context, "hybrid/mask_coverage", sizeof(gpu::RayMaskParams)) {}
+
+void MaskCoveragePass::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer, const vk::Buffer& pixels,
+                              const vk::Buffer& counters, const vk::Buffer& coverage, const vk::Buffer& mask,
+                              const vk::Buffer& list, const gpu::RayMaskParams& params) const {
+  if (!layer.samples || !layer.surfaces) throw Error("mask coverage: no G-buffer");
+  const bool curved = (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
+  if (curved && !layer.shutterPaths) throw Error("mask coverage: the curved motion path needs the shutter paths");
+  // Built with the curved path's code only where the frame takes it.
+  static_assert(HMB_SPEC_MASK_COVERAGE_CURVED_PATH == 0);
+  frame.dispatchIndirect(kName, kernels_.with({curved}),
+                         {{HMB_MASK_COVERAGE_BINDING_SAMPLES, layer.samples},
+                          {HMB_MASK_COVERAGE_BINDING_SURFACES, layer.surfaces},
+                          // Read only along curved paths; any texel buffer stands in otherwise.
+                          {HMB_MASK_COVERAGE_BINDING_SHUTTER_PATHS, curved ? layer.shutterPaths : layer.samples},
+                          {HMB_MASK_COVERAGE_BINDING_PIXELS, &pixels},
+                          {HMB_MASK_COVERAGE_BINDING_COUNTERS, &counters},
+                          {HMB_MASK_COVERAGE_BINDING_COVERAGE, &coverage},
+                          {HMB_MASK_COVERAGE_BINDING_MASK, &mask},
+                          {HMB_MASK_COVERAGE_BINDING_LIST, &list}},
+                         params, counters, offsetof(gpu::RayMaskCounters, coverageDispatchX));
+}
+
+}  // namespace hmb::passes
