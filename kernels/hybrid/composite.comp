@@ -31,13 +31,17 @@
 
 layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 
-layout(std430, binding = HMB_COMPOSITE_BINDING_NEIGHBOR_MAX) readonly buffer NeighborMax { vec4 neighborMax[]; };
-vec4 neighborMaxAt(uint tile) { return neighborMax[tile]; }
+// The neighbour-max, the blurred background and the mask's coverage, read at per-lane
+// addresses: uniform texel buffers (shared/texel_records.glsl).
+#include "../shared/texel_records.glsl"
+layout(binding = HMB_COMPOSITE_BINDING_NEIGHBOR_MAX) uniform utextureBuffer neighborMaxTexels;
+layout(binding = HMB_COMPOSITE_BINDING_BACKGROUND) uniform utextureBuffer backgroundTexels;
+layout(binding = HMB_COMPOSITE_BINDING_COVERAGE) uniform utextureBuffer coverageTexels;
+vec4 neighborMaxAt(uint tile) { return floatRecordAt(neighborMaxTexels, tile); }
+vec4 backgroundAt(uint index) { return floatRecordAt(backgroundTexels, index); }
 layout(std430, binding = HMB_COMPOSITE_BINDING_LIST) readonly buffer List { uint pixelList[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
-layout(std430, binding = HMB_COMPOSITE_BINDING_BACKGROUND) readonly buffer Background { vec4 background[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
-layout(std430, binding = HMB_COMPOSITE_BINDING_COVERAGE) readonly buffer Coverage { vec4 coverage[]; };
 HMB_LAYER_TEXELS(raster, HMB_COMPOSITE_BINDING_RASTER)
 layout(push_constant) uniform Params { GatherParams params; };
 
@@ -68,7 +72,6 @@ vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {
   return mix(sampleColor, blurredBackground, behindShare(sampleIndex, centreObject, compositeCentreDepth));
 }
 
-#include "../shared/texel_records.glsl"
 layout(binding = HMB_COMPOSITE_BINDING_SHUTTER_PATHS) uniform utextureBuffer shutterPathTexels;
 uvec2 shutterPathAt(uint i) { return halfRecordAt(shutterPathTexels, i); }
 
@@ -76,11 +79,11 @@ uvec2 shutterPathAt(uint i) { return halfRecordAt(shutterPathTexels, i); }
 
 // The coverage form at a mask pixel (see above): mask_coverage found alpha and F.
 vec4 coverageComposite(uint index) {
-  const vec4 foreground = coverage[index];
+  const vec4 foreground = floatRecordAt(coverageTexels, index);
   const float alpha = foreground.w;
   // alpha is exactly 1 where no sample is behind: those pixels were not revealed (their
   // background entry is stale, and sanitized, then weighted by exactly 0).
-  return alpha * vec4(foreground.rgb, 1.0) + (1.0 - alpha) * sanitizeColor(background[index]);
+  return alpha * vec4(foreground.rgb, 1.0) + (1.0 - alpha) * sanitizeColor(backgroundAt(index));
 }
 
 void main() {
@@ -100,7 +103,7 @@ void main() {
     outColor[index] = coverageComposite(index);
     return;
   }
-  blurredBackground = sanitizeColor(background[index]);
+  blurredBackground = sanitizeColor(backgroundAt(index));
   centreObject = surfaceObjectId(READ_LAYER_SURFACE(raster, index));
   compositeCentreDepth = centre.depth;
   outColor[index] = gatherSamples(pixel, centre, 1.0 / params.maskForegroundDivide, params.maskBackgroundBoost);

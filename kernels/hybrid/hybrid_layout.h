@@ -204,7 +204,9 @@
 // vec4 per pixel: mask_coverage's (mean colour, alpha), read by the coverage form at mask pixels.
 #define HMB_COMPOSITE_BINDING_COVERAGE (HMB_COMPOSITE_BINDING_COUNTERS + 1)
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COVERAGE + 1)
-#define HMB_COMPOSITE_TEXEL_BUFFERS 3  // the G-buffer layer and its paths, read as uniform texel buffers
+// The G-buffer layer and its paths, the neighbour-max, the background and the coverage: read as
+// uniform texel buffers.
+#define HMB_COMPOSITE_TEXEL_BUFFERS 6
 // The mask's kernels and list_shutter_rays read the G-buffer's samples and surfaces (and
 // range_check the shutter paths) as uniform texel buffers, even where they use a word or two of
 // a record: on lavapipe a storage-buffer load at per-lane addresses is a loop over the lanes
