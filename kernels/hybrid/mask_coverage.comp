@@ -37,6 +37,7 @@ layout(push_constant) uniform Params { RayMaskParams params; };
 layout(constant_id = HMB_SPEC_MASK_COVERAGE_CURVED_PATH) const bool kCurvedPath = false;
 
 #include "../mblur/mblur_common.glsl"
+#include "own_curved_path.glsl"
 
 void main() {
   const uint entry = linearInvocationIndex(HMB_MASK_LIST_GROUP);
@@ -49,16 +50,9 @@ void main() {
   const float centreDepth = sanitizeDepth(sampleDepth(ownSample));
   float speed;
   vec2 v = gatherVelocity(surfaceVelocity(own), params.blur.velocityScale, params.blur.maxSpeed, speed);
-  vec2 q = vec2(0.0), a, c;
-  if (kCurvedPath && (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && shutterPathTerms(shutterPathAt(index), a, c)) {
-    // Along its own curved path (mblur_common.glsl's inversePath), as range_check walks it.
-    const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, width, height);
-    const uint aheadIndex = uint(ahead.y) * width + uint(ahead.x);
-    const bool sameSurface = abs(sanitizeDepth(sampleDepth(sampleAt(aheadIndex))) - centreDepth) < params.blur.softZExtent;
-    const vec2 change =
-        sameSurface ? (surfaceVelocity(surfaceAt(aheadIndex)) - surfaceVelocity(own)) * params.blur.velocityScale : vec2(0.0);
-    inversePath(a, c, change, params.blur.maxSpeed, v, q);
-  }
+  vec2 q = vec2(0.0);
+  if (kCurvedPath && (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u)
+    ownCurvedPath(pixel, index, own, centreDepth, v, q);  // as range_check walks it
   const float jitter = unitFromHash(mblurHash(pixel.x, pixel.y, params.blur.seed));
   const uint object = surfaceObjectId(own);
   vec4 foregroundSum = sanitizeColor(vec4(sampleColor(ownSample), 1.0));

@@ -38,6 +38,7 @@ layout(constant_id = HMB_SPEC_RANGE_CHECK_CURVED_PATH) const bool kCurvedPath = 
 
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
+#include "own_curved_path.glsl"
 
 // Whether the segment a -> b (both inside the image) passes through a flagged block of the
 // coarse edge image: a grid walk over the blocks it crosses, ~|b - a| / 2 steps where the fine
@@ -130,23 +131,13 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
 
 void checkPixel(uvec2 pixel) {
   const uint index = pixel.y * params.blur.width + pixel.x;
+  const uvec4 surface = surfaceAt(index);
   float speed;
-  vec2 v = gatherVelocity(surfaceVelocity(surfaceAt(index)), params.blur.velocityScale, params.blur.maxSpeed, speed);
-  // Along curved paths: the pixel's own (mblur_common.glsl's inversePath), as the coverage
-  // composite samples it.
-  vec2 q = vec2(0.0), a, c;
+  vec2 v = gatherVelocity(surfaceVelocity(surface), params.blur.velocityScale, params.blur.maxSpeed, speed);
+  // Along curved paths: the pixel's own, as the coverage composite samples it.
+  vec2 q = vec2(0.0);
   const bool curved = kCurvedPath && (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && speed > 0.0 &&
-                      shutterPathTerms(shutterPathAt(index), a, c);
-  if (curved) {
-    const ivec2 ahead = nearestPixel(vec2(pixel) + 0.5 + a, params.blur.width, params.blur.height);
-    const uint aheadIndex = uint(ahead.y) * params.blur.width + uint(ahead.x);
-    const bool sameSurface = abs(sanitizeDepth(sampleDepth(sampleAt(aheadIndex))) - sanitizeDepth(sampleDepth(sampleAt(index)))) <
-                             params.blur.softZExtent;
-    const vec2 change = sameSurface ? (surfaceVelocity(surfaceAt(aheadIndex)) - surfaceVelocity(surfaceAt(index))) *
-                                          params.blur.velocityScale
-                                    : vec2(0.0);
-    inversePath(a, c, change, params.blur.maxSpeed, v, q);
-  }
+                      ownCurvedPath(pixel, index, surface, sanitizeDepth(sampleDepth(sampleAt(index))), v, q);
   // The mask is filled with HMB_MASK_NONE before.
   if (!(speed > 0.0) || !(curved ? curvedPathMeetsEdge(pixel, v, q) : meetsEdge(pixel, v, speed))) return;
   if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u) {
