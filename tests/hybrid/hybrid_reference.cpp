@@ -508,9 +508,10 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& input, const std::vec
   const CompositeInputs in{layer, surfaceVelocity, background, objectId, settings.softZExtent};
   const uint32_t m = settings.effectiveTileSize();
   const passes::TileGrid grid = passes::tileGridFor(layer.width, layer.height, m);
-  const float velocityScale = passes::gatherVelocityScale(settings.range, settings.exposure, settings.fps);
-  const float coverageMaxSpeed = float(std::max(layer.width, layer.height));
-  const bool curved = settings.motionPath == passes::MotionPath::Curved && !layer.shutterPaths.empty();
+  // The coverage form blends mask_coverage's alpha and foreground, as the hybrid's passes do.
+  const std::vector<MaskCoverage> coverage = composite == passes::HybridComposite::Coverage
+                                                 ? maskCoverage(input, mask, objectId, settings)
+                                                 : std::vector<MaskCoverage>{};
   for (uint32_t py = 0; py < layer.height; ++py)
     for (uint32_t px = 0; px < layer.width; ++px) {
       const size_t index = size_t(py) * layer.width + px;
@@ -518,9 +519,7 @@ std::vector<glm::vec4> compositeGather(const mblur::Layer& input, const std::vec
       const glm::vec4 dominant = neighborMax[size_t(py / m) * grid.x + px / m];
       if (dominant.z < gpu::kMinBlurPixels) continue;
       if (composite == passes::HybridComposite::Coverage) {
-        out[index] = coverageComposite(
-            coverageAt(in, px, py, velocityScale, coverageMaxSpeed, settings.samples, settings.seed, curved),
-            background[index]);
+        out[index] = coverageComposite(coverage[index], background[index]);
         continue;
       }
       const glm::vec4 centreColor = sanitizeColor(layer.color[index]);
