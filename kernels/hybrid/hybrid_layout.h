@@ -100,7 +100,7 @@
 #define HMB_RANGE_BLOCKS_BINDING_TILE_MAX 1  // vec4 per tile: the gather's tile-max (velocity, speed)
 #define HMB_RANGE_BLOCKS_BINDING_EDGES 2     // the edge mask, then the coarse one (edge_mask)
 #define HMB_RANGE_BLOCKS_BINDING_COUNTERS 3  // RayMaskCounters: rangeBlockCount
-#define HMB_RANGE_BLOCKS_BINDING_LIST 4      // uint per listed block: its first pixel's index, in no order
+#define HMB_RANGE_BLOCKS_BINDING_LIST 4      // uint per listed block (rangeBlockEntry below), in no order
 #define HMB_RANGE_BLOCKS_BINDING_COUNT 5
 // A block's reach is tested over at most this many coarse blocks a side; a wider one is listed
 // untested (its walks cost less than the test would).
@@ -135,8 +135,8 @@
 // mask_coverage: the coverage composite's share of each mask pixel (paper, section 3; see
 // composite.comp), HMB_MASK_LIST_GROUP pixels a group, over the range check's list: the mean
 // colour of the pixel and its samples on its object, and alpha, for the composite; the mask's
-// value and the list entry, at the front for the reveal where a sample meets the background,
-// at the back otherwise.
+// value, and its block's bit, for the reveal where a sample meets the background, for the
+// composite alone otherwise (list_mask_blocks lists them).
 #define HMB_MASK_COVERAGE_BINDING_SAMPLES 0        // uvec4 per pixel: the G-buffer's samples (colour, depth)
 #define HMB_MASK_COVERAGE_BINDING_SURFACES 1       // uvec4 per pixel: the G-buffer's surfaces (velocity, object id)
 #define HMB_MASK_COVERAGE_BINDING_SHUTTER_PATHS 2  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
@@ -144,10 +144,28 @@
 #define HMB_MASK_COVERAGE_BINDING_COUNTERS 4       // RayMaskCounters
 #define HMB_MASK_COVERAGE_BINDING_COVERAGE 5       // vec4 per pixel: (mean colour, alpha), written at mask pixels
 #define HMB_MASK_COVERAGE_BINDING_MASK 6           // uint per pixel: HMB_MASK_*, written at mask pixels
-#define HMB_MASK_COVERAGE_BINDING_LIST 7           // the mask's list, as the range check fills it otherwise
+// uvec4 per HMB_MASK_BLOCK^2 block of the image, cleared before: a bit per pixel, (x, y) of the
+// block at bit 8 y + x of xy where the pixel needs the reveal, of zw where it does not.
+#define HMB_MASK_COVERAGE_BINDING_BLOCK_BITS 7
 #define HMB_MASK_COVERAGE_BINDING_COUNT 8
 #define HMB_MASK_COVERAGE_TEXEL_BUFFERS 3  // the G-buffer's samples and surfaces, the shutter paths
 #define HMB_SPEC_MASK_COVERAGE_CURVED_PATH 0  // the curved path's code, built only for frames that take it
+
+// list_mask_blocks: with the coverage composite, the mask's list, one lane per 8 x 8 block of
+// the image (blocks aligned to the image's corner), in row order of blocks: each block's pixels
+// mask_coverage marked as needing the reveal at the list's front, the others at its back, the
+// block's together, in row order. mask_coverage's lanes meet in whatever order its threads
+// run; in a list that keeps neighbours together the reveal's rays and the background gather's
+// reads find what their group's other lanes have just brought into the cache (bistro at
+// 1280x720 on a CPU device: the reveal 24% faster, the background gather 20%).
+#define HMB_MASK_BLOCK 8u
+#define HMB_MASK_BLOCKS_ACROSS(n) (((n) + HMB_MASK_BLOCK - 1u) / HMB_MASK_BLOCK)
+#define HMB_LIST_MASK_BLOCKS_GROUP 64
+#define HMB_LIST_MASK_BLOCKS_BINDING_BLOCK_BITS 0  // uvec4 per block (mask_coverage), read as texels
+#define HMB_LIST_MASK_BLOCKS_BINDING_COUNTERS 1    // RayMaskCounters: maskCount, unrevealedCount grow
+#define HMB_LIST_MASK_BLOCKS_BINDING_LIST 2        // the mask's list
+#define HMB_LIST_MASK_BLOCKS_BINDING_COUNT 3
+#define HMB_LIST_MASK_BLOCKS_TEXEL_BUFFERS 1  // the block bits
 
 #define HMB_SIZE_LIST_BINDING_COUNTERS 0
 #define HMB_SIZE_LIST_BINDING_COUNT 1
@@ -388,6 +406,18 @@ struct ShutterRayTraceParams {
   float tMax;  // the far plane's depth
   uint pad0;
 };
+
+// A block list_range_blocks lists for range_check: its first pixel x | y << 14 (image sides are
+// at most 2^14: runtime/renderer.h), and whether it is its tile's last block across and down,
+// which a tile side that is no multiple of 8 cuts short. The range check finds its pixels with
+// no division (a CPU device divides lane by lane).
+#define HMB_RANGE_BLOCK_LAST_ACROSS (1u << 28u)
+#define HMB_RANGE_BLOCK_LAST_DOWN (1u << 29u)
+HMB_SHARED uint rangeBlockEntry(uvec2 origin, bool lastAcross, bool lastDown) {
+  return origin.x | (origin.y << 14u) | (lastAcross ? HMB_RANGE_BLOCK_LAST_ACROSS : 0u) |
+         (lastDown ? HMB_RANGE_BLOCK_LAST_DOWN : 0u);
+}
+HMB_SHARED uvec2 rangeBlockOrigin(uint entry) { return uvec2(entry & 0x3FFFu, (entry >> 14u) & 0x3FFFu); }
 
 HMB_SHARED uint shutterRayEntry(uint pixelIndex, uint rays) {
   const uint log2Rays = rays >= 16u ? 4u : (rays >= 8u ? 3u : (rays >= 4u ? 2u : 1u));  // rays: 2, 4, 8 or 16

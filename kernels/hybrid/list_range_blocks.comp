@@ -49,11 +49,14 @@ void main() {
   const bool bounded = (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) == 0u && reach < float(tileSize);
   const int margin = bounded ? int(ceil(reach)) + 1 : 0;
   const uint blocks = tileBlocks(tileSize);
+  const uint blocksAcross = tileBlocksAcross(tileSize);
+  const uint blocksDown = tileBlocksDown(tileSize);
   for (uint block = gl_LocalInvocationIndex; block < blocks; block += HMB_RANGE_BLOCKS_GROUP) {
     const uvec2 origin = tileBlockOrigin(tile, block, params.blur.tilesX, tileSize);
     // Blocks past the image's edge (a border tile's) have no pixel.
     if (any(greaterThanEqual(origin, tileEnd))) continue;
     if (!bounded || edgeBlockNear(origin, margin))
-      blockList[atomicAdd(counters.rangeBlockCount, 1u)] = origin.y * params.blur.width + origin.x;
+      blockList[atomicAdd(counters.rangeBlockCount, 1u)] =
+          rangeBlockEntry(origin, block % blocksAcross == blocksAcross - 1u, block / blocksAcross == blocksDown - 1u);
   }
 }

@@ -5,9 +5,10 @@
 // the pixel's object (or not behind it) is alpha, and the mean colour of those samples and X is
 // the object's blurred colour F; the composite later blends F over the blurred background,
 // C = alpha F + (1 - alpha) B. A pixel with a sample behind it (alpha < 1, or a share too small
-// to move alpha) is listed from the list's front for the reveal and marked HMB_MASK_REVEALED; the
-// others (alpha exactly 1: the background gets no weight, their reveal would change nothing)
-// from its back, HMB_MASK_UNREVEALED. Tested here, over a list of the mask's pixels alone,
+// to move alpha) is marked HMB_MASK_REVEALED, for the reveal; the others (alpha exactly 1: the
+// background gets no weight, their reveal would change nothing) HMB_MASK_UNREVEALED; each sets
+// its bit in its block's words, from which list_mask_blocks lists the mask's pixels, those for
+// the reveal at the list's front. Tested here, over a list of the mask's pixels alone,
 // rather than in the range check: there a CPU device ran the samples of every lane of a vector
 // that held one mask pixel.
 #extension GL_GOOGLE_include_directive : require
@@ -32,7 +33,7 @@ layout(std430, binding = HMB_MASK_COVERAGE_BINDING_PIXELS) readonly buffer Pixel
 layout(std430, binding = HMB_MASK_COVERAGE_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_MASK_COVERAGE_BINDING_COVERAGE) writeonly buffer Coverage { vec4 coverage[]; };
 layout(std430, binding = HMB_MASK_COVERAGE_BINDING_MASK) writeonly buffer Mask { uint mask[]; };
-layout(std430, binding = HMB_MASK_COVERAGE_BINDING_LIST) writeonly buffer List { uint list[]; };
+layout(std430, binding = HMB_MASK_COVERAGE_BINDING_BLOCK_BITS) buffer BlockBits { uint blockBits[]; };
 layout(push_constant) uniform Params { RayMaskParams params; };
 layout(constant_id = HMB_SPEC_MASK_COVERAGE_CURVED_PATH) const bool kCurvedPath = false;
 
@@ -73,11 +74,9 @@ void main() {
   // could round apart), so the fourth word carries alpha.
   const vec3 foreground = foregroundSum.rgb / (1.0 + foregroundCount);
   coverage[index] = vec4(foreground, foregroundCount / float(params.blur.samples));
-  if (meetsBackground) {
-    mask[index] = HMB_MASK_REVEALED;
-    list[atomicAdd(counters.maskCount, 1u)] = index;
-  } else {
-    mask[index] = HMB_MASK_UNREVEALED;
-    list[width * height - 1u - atomicAdd(counters.unrevealedCount, 1u)] = index;
-  }
+  mask[index] = meetsBackground ? HMB_MASK_REVEALED : HMB_MASK_UNREVEALED;
+  // The pixel's bit in its block's words (list_mask_blocks lists them).
+  const uint block = pixel.y / HMB_MASK_BLOCK * HMB_MASK_BLOCKS_ACROSS(width) + pixel.x / HMB_MASK_BLOCK;
+  const uint bit = pixel.y % HMB_MASK_BLOCK * HMB_MASK_BLOCK + pixel.x % HMB_MASK_BLOCK;
+  atomicOr(blockBits[4u * block + (meetsBackground ? 0u : 2u) + bit / 32u], 1u << (bit % 32u));
 }

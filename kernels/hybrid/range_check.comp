@@ -152,18 +152,15 @@ void checkPixel(uvec2 pixel) {
 // (hybrid_layout.h).
 void main() {
   const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
-  const uint tileSize = params.blur.tileSize;
   const uint count = counters.rangeBlockCount;
   const uint run = (count + groups - 1u) / groups;
   const uint begin = foldedGroupIndex() * run;
   const uint end = min(begin + run, count);
   for (uint entry = begin; entry < end; ++entry) {
-    const uint first = blockList[entry];
-    const uvec2 block = uvec2(first % params.blur.width, first / params.blur.width);
-    const uvec2 tileStart = block / tileSize * tileSize;
-    const uvec2 pixel = block + gl_LocalInvocationID.xy;
+    const uint listed = blockList[entry];
+    const uvec2 pixel = rangeBlockOrigin(listed) + gl_LocalInvocationID.xy;
     // Lanes past the tile's or the image's edge have no pixel.
-    const bool inTile = all(lessThan(pixel - tileStart, uvec2(tileSize)));
+    const bool inTile = all(lessThan(gl_LocalInvocationID.xy, rangeBlockSide(listed, params.blur.tileSize)));
     if (inTile && pixel.x < params.blur.width && pixel.y < params.blur.height) checkPixel(pixel);
   }
 }

@@ -40,10 +40,17 @@ uint listedTileEntry() { return foldedGroupIndex(); }
 // The first pixel of `tile` in a grid tilesX tiles across.
 uvec2 tileOrigin(uint tile, uint tilesX, uint tileSize) { return uvec2(tile % tilesX, tile / tilesX) * tileSize; }
 
-// How many 8 x 8 blocks a tile has across and in all, and the first pixel of block `block`.
+// How many 8 x 8 blocks a tile has across, down and in all, and the first pixel of block `block`.
 uint tileBlocksAcross(uint tileSize) { return (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X; }
-uint tileBlocks(uint tileSize) {
-  return tileBlocksAcross(tileSize) * ((tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y);
+uint tileBlocksDown(uint tileSize) { return (tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y; }
+uint tileBlocks(uint tileSize) { return tileBlocksAcross(tileSize) * tileBlocksDown(tileSize); }
+// The pixels across and down of a listed block (rangeBlockEntry) inside its tile: 8 x 8, less
+// in a tile's last block across or down where the side is no multiple of 8.
+uvec2 rangeBlockSide(uint listed, uint tileSize) {
+  const uvec2 lastSide = uvec2(tileSize - (tileBlocksAcross(tileSize) - 1u) * HMB_MASK_TILE_GROUP_X,
+                               tileSize - (tileBlocksDown(tileSize) - 1u) * HMB_MASK_TILE_GROUP_Y);
+  return uvec2((listed & HMB_RANGE_BLOCK_LAST_ACROSS) != 0u ? lastSide.x : HMB_MASK_TILE_GROUP_X,
+               (listed & HMB_RANGE_BLOCK_LAST_DOWN) != 0u ? lastSide.y : HMB_MASK_TILE_GROUP_Y);
 }
 uvec2 tileBlockOrigin(uint tile, uint block, uint tilesX, uint tileSize) {
   const uint blocksX = tileBlocksAcross(tileSize);

@@ -123,8 +123,10 @@ class HybridMethod final : public FrameMethod {
       if (masks && result.hybrid->maskPixels == 0) {
         result.plan.noteNoWork(passes::HybridStage::kComposite,
                                "the ray mask is empty: the post-process gather's image stands");
-        if (result.plan.runs(passes::RayMaskStage::kCoverage))
+        if (result.plan.runs(passes::RayMaskStage::kCoverage)) {
           result.plan.noteNoWork(passes::RayMaskStage::kCoverage, "the ray mask is empty: no coverage to find");
+          result.plan.noteNoWork(passes::RayMaskStage::kListBlocks, "the ray mask is empty: no pixel to list");
+        }
       }
     }
     result.image.layers.push_back(io::ImageLayer{"rayMask", {"mask"}, true, {}, std::move(mask)});

@@ -26,8 +26,8 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
       edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
       sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
       blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
-      tileMaxKernels_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
       coveragePass_(context),
+      tileMaxKernels_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
       rangeKernels_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause,
@@ -36,7 +36,8 @@ void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecau
   plan.run(kMovingTiles);
   for (const char* pass : {kEdges, kRangeBlocks, kRangeCheck})
     plan.runUnless(pass, movingTilesOnlyBecause);
-  plan.runUnless(kCoverage, movingTilesOnlyBecause.empty() ? coverageSkipped : movingTilesOnlyBecause);
+  for (const char* pass : {kCoverage, kListBlocks})
+    plan.runUnless(pass, movingTilesOnlyBecause.empty() ? coverageSkipped : movingTilesOnlyBecause);
   plan.run(kSizeDispatch);
 }
 
@@ -57,14 +58,17 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly
     rangeBlocks_ = {};
     maskPixels_ = {};
     coverage_ = {};
+    blockBits_ = {};
     return;
   }
   if (!coverage) {
     maskPixels_ = {};
     coverage_ = {};
+    blockBits_ = {};
   } else if (resized || !coverage_.handle()) {
     maskPixels_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "range check mask pixels");
     coverage_ = vk::Buffer(context_, pixels * 4 * sizeof(float), vk::MemoryUse::Device, "mask coverage");
+    blockBits_ = vk::Buffer(context_, maskBlockBitsBytes(width, height), vk::MemoryUse::Device, "mask block bits");
   }
   if (!resized && mask_.handle()) return;
   // The edge mask, then the coarse edge mask (kernels/hybrid/hybrid_layout.h).
@@ -99,6 +103,7 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
   frame.fill(kClear, counters_, 0u);
   frame.fill(kClear, edges_, 0u);
   frame.fill(kClear, mask_, 0u);
+  if (blockBits_.handle()) frame.fill(kClear, blockBits_, 0u);
   // One group per tile, as the gather's tile-max.
   static_assert(HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP == 0);
   frame.dispatch(TileMaxPass::kName, tileMaxKernels_.with({p.candidatesInTileMaxLoop}),
@@ -167,7 +172,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                          params, counters_, offsetof(gpu::RayMaskCounters, rangeDispatchX));
   if (p.listOnlyUncovered) {
     sizeDispatch(HMB_SIZE_LIST_COVERAGE, 0u);
-    coveragePass_.record(frame, layer, maskPixels_, counters_, coverage_, mask_, list_, params);
+    coveragePass_.record(frame, layer, maskPixels_, counters_, coverage_, mask_, blockBits_, list_, params);
   }
   sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
 }

@@ -67,6 +67,7 @@ class RayMaskStage {
   static constexpr const char* kRangeCheck = "ray-mask-range-check";
   static constexpr const char* kSizeDispatch = "ray-mask-size-dispatch";
   static constexpr const char* kCoverage = MaskCoveragePass::kName;
+  static constexpr const char* kListBlocks = MaskCoveragePass::kListName;
 
   explicit RayMaskStage(const vk::Context& context);
   // movingTilesOnlyBecause: empty for the whole mask; else why the mask's own passes are
@@ -95,7 +96,7 @@ class RayMaskStage {
   const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
   const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal
   const vk::Buffer& candidates() const { return candidates_; }  // uint pixel index per edge candidate
-  const vk::Buffer& rangeBlocks() const { return rangeBlocks_; }  // uint first pixel index per walked block
+  const vk::Buffer& rangeBlocks() const { return rangeBlocks_; }  // gpu::rangeBlockEntry per walked block
   const vk::Buffer& movingTiles() const { return tiles_; }  // uint tile index per moving tile (counters' tileCount)
   const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
   // vec4 per pixel, (foreground colour, alpha) at mask pixels: written with listOnlyUncovered.
@@ -117,9 +118,10 @@ class RayMaskStage {
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each
   vk::Buffer tiles_;       // moving tiles: at most one per pixel, whatever the tile size
-  vk::Buffer rangeBlocks_;  // the range check's 8 x 8 blocks: uint first pixel index each
+  vk::Buffer rangeBlocks_;  // the range check's 8 x 8 blocks: gpu::rangeBlockEntry each
   // With mask_coverage: the range check's mask pixels (uint pixel index each), and their coverage.
   vk::Buffer maskPixels_, coverage_;
+  vk::Buffer blockBits_;  // mask_coverage's bits per 8 x 8 block (HMB_MASK_COVERAGE_BINDING_BLOCK_BITS)
 };
 
 }  // namespace hmb::passes

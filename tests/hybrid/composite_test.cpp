@@ -124,6 +124,34 @@ size_t expectCompositeMatches(const CompositeCase& c, const PostProcessSettings&
   return changed;
 }
 
+// The pixels whose mask value is `value`, listed as list_mask_blocks lists them: block by block
+// (HMB_MASK_BLOCK square, from the image's corner), each block's pixels in row order. The
+// blocks come in the order the device's list first reaches them (its atomics decide it), so
+// the two lists are equal exactly when the device listed every such pixel once, kept each
+// block's together and in row order.
+std::vector<uint32_t> listedByBlocks(const std::vector<uint32_t>& maskValues, uint32_t width, uint32_t height,
+                                     uint32_t value, const std::vector<uint32_t>& device) {
+  const uint32_t blocksAcross = HMB_MASK_BLOCKS_ACROSS(width);
+  const auto blockOf = [&](uint32_t pixel) {
+    return pixel / width / HMB_MASK_BLOCK * blocksAcross + pixel % width / HMB_MASK_BLOCK;
+  };
+  std::vector<uint32_t> blocks;
+  for (const uint32_t pixel : device)
+    if (pixel < maskValues.size() && std::find(blocks.begin(), blocks.end(), blockOf(pixel)) == blocks.end())
+      blocks.push_back(blockOf(pixel));
+  std::vector<uint32_t> out;
+  for (const uint32_t block : blocks) {
+    const uint32_t x0 = block % blocksAcross * HMB_MASK_BLOCK, y0 = block / blocksAcross * HMB_MASK_BLOCK;
+    for (uint32_t y = y0; y < std::min(y0 + HMB_MASK_BLOCK, height); ++y)
+      for (uint32_t x = x0; x < std::min(x0 + HMB_MASK_BLOCK, width); ++x)
+        if (maskValues[size_t(y) * width + x] == value) out.push_back(y * width + x);
+  }
+  // Pixels of blocks the device never reached: missing from its list.
+  for (uint32_t i = 0; i < maskValues.size(); ++i)
+    if (maskValues[i] == value && std::find(blocks.begin(), blocks.end(), blockOf(i)) == blocks.end()) out.push_back(i);
+  return out;
+}
+
 using HybridCompositeTest = VulkanTest;
 
 TEST_F(HybridCompositeTest, CoverageMatchesReferenceOnRandomLayers) {
@@ -154,14 +182,22 @@ TEST_F(HybridCompositeTest, MaskCoverageMatchesReferenceAndSplitsTheMask) {
       s.motionPath = passes::MotionPath::Curved;
     }
     std::vector<glm::vec4> coverage;
-    std::vector<uint32_t> maskValues;
+    std::vector<uint32_t> maskValues, front, back;
     GatherRun run;
     run.mask = &c.mask;
     run.background = &c.background;
     run.objectId = &c.objectId;
     run.coverageOut = &coverage;
     run.maskOut = &maskValues;
+    run.frontOut = &front;
+    run.backOut = &back;
     runGather(VulkanTest::context(), c.layer, mblur::referenceTiles(c.layer, s), run, s);
+    // list_mask_blocks: the revealed pixels at the list's front and the others at its back,
+    // each once, block by block (8 x 8 blocks in row order within each).
+    EXPECT_EQ(front, listedByBlocks(maskValues, c.layer.width, c.layer.height, HMB_MASK_REVEALED, front))
+        << "round " << round;
+    EXPECT_EQ(back, listedByBlocks(maskValues, c.layer.width, c.layer.height, HMB_MASK_UNREVEALED, back))
+        << "round " << round;
     const std::vector<MaskCoverage> reference = maskCoverage(c.layer, c.mask, c.objectId, s);
     size_t off = 0;
     for (size_t i = 0; i < c.mask.size(); ++i) {

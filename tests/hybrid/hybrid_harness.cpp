@@ -190,7 +190,7 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull};
     const bool coverage = run.composite == passes::HybridComposite::Coverage;
     // As HybridStage records it: with the coverage form, mask_coverage over the mask's pixels
-    // (which splits the list between its front and back); the post-process gather outside the
+    // and list_mask_blocks (which split the list between its front and back); the post-process gather outside the
     // mask; the composite over the mask's pixels. The weights form's list as range_check makes
     // it: every other one from the front (as if revealed), the rest from the back, so that both
     // halves of the list are read.
@@ -213,9 +213,12 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     if (maskPixels.empty()) maskPixels.push_back(0u);  // unread: the count is 0
     const vk::Buffer maskPixelsBuffer = vk::uploadedBuffer(context, maskPixels, "test mask pixels");
     const vk::Buffer coverageBuffer = filledBuffer(context, pixels, glm::vec4(std::numeric_limits<float>::quiet_NaN()), "test coverage");
+    const vk::Buffer blockBits(context, passes::maskBlockBitsBytes(layer.width, layer.height), vk::MemoryUse::Device,
+                               "test mask block bits");
     if (coverage) {
       const passes::MaskCoveragePass coveragePass(context);
-      coveragePass.record(frame, inputs, maskPixelsBuffer, counters, coverageBuffer, mask, listBuffer,
+      frame.fill("clear block bits", blockBits, 0u);
+      coveragePass.record(frame, inputs, maskPixelsBuffer, counters, coverageBuffer, mask, blockBits, listBuffer,
                           {params, 0.0f, HMB_RANGE_CHECK_LIST_UNCOVERED, 0u, 0u});
     }
     const passes::GatherPass gather(context);
@@ -226,6 +229,13 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     frame.submitAndWait();
     if (run.coverageOut) *run.coverageOut = downloadFirst<glm::vec4>(coverageBuffer, pixels);
     if (run.maskOut) *run.maskOut = downloadFirst<uint32_t>(mask, pixels);
+    if (run.frontOut || run.backOut) {
+      const gpu::RayMaskCounters after = counters.download<gpu::RayMaskCounters>().at(0);
+      const std::vector<uint32_t> all = downloadFirst<uint32_t>(listBuffer, pixels);
+      const size_t backCount = std::min<size_t>(after.unrevealedCount, pixels);
+      if (run.frontOut) run.frontOut->assign(all.begin(), all.begin() + std::min<size_t>(after.maskCount, pixels));
+      if (run.backOut) run.backOut->assign(all.rbegin(), all.rbegin() + backCount);
+    }
   } else if (run.list) {
     const passes::ImageLayer revealed = imageLayer(run.revealed ? *run.revealed : layer, nullptr, "test revealed");
     const vk::Buffer list = vk::uploadedBuffer(context, *run.list, "test pixel list");

@@ -71,6 +71,9 @@ struct GatherRun {
   // the mask's values after it, read back here when set.
   std::vector<glm::vec4>* coverageOut = nullptr;
   std::vector<uint32_t>* maskOut = nullptr;
+  // The list's front (for the reveal) and back (read from its end inwards) after list_mask_blocks.
+  std::vector<uint32_t>* frontOut = nullptr;
+  std::vector<uint32_t>* backOut = nullptr;
 };
 std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer,
                                  const std::vector<glm::vec4>& neighborMax, const GatherRun& run,

@@ -235,6 +235,12 @@ auto velocityOf(const MaskLayer& layer) {
 
 }  // namespace
 
+uint32_t rangeBlockEntryOf(uint32_t ox, uint32_t oy, uint32_t tileSize) {
+  const uint32_t lastX = (tileSize - 1) / HMB_MASK_TILE_GROUP_X * HMB_MASK_TILE_GROUP_X;
+  const uint32_t lastY = (tileSize - 1) / HMB_MASK_TILE_GROUP_Y * HMB_MASK_TILE_GROUP_Y;
+  return gpu::rangeBlockEntry(glm::uvec2(ox, oy), ox % tileSize == lastX, oy % tileSize == lastY);
+}
+
 std::vector<uint32_t> rangeBlocks(const MaskLayer& input, const std::vector<uint32_t>& edges,
                                   const passes::RayMaskParameters& p) {
   const MaskLayer layer = stored(input);
@@ -274,7 +280,7 @@ std::vector<uint32_t> rangeBlocks(const MaskLayer& input, const std::vector<uint
             for (uint32_t by = y0; by <= y1 && !listed; ++by)
               for (uint32_t bx = x0; bx <= x1 && !listed; ++bx) listed = coarse[size_t(by) * coarseX + bx];
           }
-          if (listed) out.push_back(oy * width + ox);
+          if (listed) out.push_back(rangeBlockEntryOf(ox, oy, tileSize));
         }
     }
   std::sort(out.begin(), out.end());

@@ -54,8 +54,12 @@ std::vector<uint32_t> edgeMask(const MaskLayer& layer, const passes::RayMaskPara
 // that is, where the edge mask is decided by x_n > e.
 std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskParameters& parameters);
 
-// list_range_blocks.comp: the first pixel's index of each 8 x 8 block the range check walks,
-// ascending: the blocks of the moving tiles (the gather's tile-max at parameters.blur.tileSize)
+// The list entry (gpu::rangeBlockEntry) of the 8 x 8 block at (ox, oy) in a tile of side
+// tileSize: its first pixel, and whether it is the tile's last block across and down.
+uint32_t rangeBlockEntryOf(uint32_t ox, uint32_t oy, uint32_t tileSize);
+
+// list_range_blocks.comp: the entry (rangeBlockEntryOf) of each 8 x 8 block the range check
+// walks, ascending: the blocks of the moving tiles (the gather's tile-max at parameters.blur.tileSize)
 // with a pixel of the edge mask `edges` (one per pixel) within ceil(tile-max speed) + 1 pixels'
 // coarse blocks (edge_mask's, a pixel of margin), or whose tile's speed was clamped, or along
 // curved paths.

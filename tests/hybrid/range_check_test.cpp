@@ -190,7 +190,7 @@ TEST_F(HybridRangeCheckTest, BlocksWithNoEdgeWithinReachAreNotWalked) {
       for (uint32_t tx = 0; tx * tileSize < 20; ++tx)
         for (uint32_t oy = ty * tileSize; oy < std::min((ty + 1) * tileSize, height); oy += 8)
           for (uint32_t ox = tx * tileSize; ox < std::min((tx + 1) * tileSize, width); ox += 8)
-            out.push_back(oy * width + ox);
+            out.push_back(rangeBlockEntryOf(ox, oy, tileSize));
     std::sort(out.begin(), out.end());
     return out;
   };
@@ -204,7 +204,8 @@ TEST_F(HybridRangeCheckTest, BlocksWithNoEdgeWithinReachAreNotWalked) {
   const std::vector<uint32_t> all = movingBlocks(p.blur.tileSize);
   EXPECT_LT(device.rangeBlocks.size(), all.size());
   EXPECT_GT(device.rangeBlocks.size(), 0u);
-  for (const uint32_t first : device.rangeBlocks) EXPECT_NE(first % width, 0u) << "block at row " << first / width;
+  for (const uint32_t entry : device.rangeBlocks)
+    EXPECT_NE(gpu::rangeBlockOrigin(entry).x, 0u) << "block at row " << gpu::rangeBlockOrigin(entry).y;
   // A speed of 20 px is clamped to the 13-pixel tiles: every block is walked.
   const MaskLayer fast = slidingStep(width, height, {20.0f, 0.0f});
   expectRayMaskMatches(fast, p, "fast step");

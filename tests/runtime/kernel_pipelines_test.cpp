@@ -100,6 +100,8 @@ const KernelLayout kLayouts[] = {
      HMB_RANGE_CHECK_TEXEL_BUFFERS},
     {"hybrid/mask_coverage", HMB_MASK_COVERAGE_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
      HMB_MASK_COVERAGE_TEXEL_BUFFERS},
+    {"hybrid/list_mask_blocks", HMB_LIST_MASK_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
+     HMB_LIST_MASK_BLOCKS_TEXEL_BUFFERS},
     {"hybrid/list_range_blocks", HMB_RANGE_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
     {"hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
     {"hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
