@@ -239,7 +239,8 @@ void measureTopLevel(const vk::Context& context, const scene::Scene& source, con
   if (c.instances < 2) return;
   const vk::Buffer boxes = vk::uploadedBuffer(
       context, passes::bvhBoxes(instanceBoxesAt(source, source.settings.frameTime)), "bench instance boxes");
-  passes::BvhBuildPass tree(context, "bench top level", HMB_BVH_MAX_INSTANCE_LEAF);
+  passes::BvhBuildPass tree(context, "bench top level", HMB_BVH_MAX_INSTANCE_LEAF,
+                            passes::BvhBuildShape::forTopLevel(context));
   const glm::uvec2 root(0u, c.instances);
   std::vector<double> builds, smallTaskMs;
   std::vector<std::vector<double>> levels;

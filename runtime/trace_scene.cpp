@@ -78,7 +78,7 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
       motionBoundsKernel_(context, "trace/instance_motion_bounds", sizeof(gpu::TraceParams)),
       deformedLeavesKernel_(context, "bvh/deformed_leaf_triangles", sizeof(glm::uvec2)),
       meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF),
-      instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF) {
+      instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF, passes::BvhBuildShape::forTopLevel(context)) {
   std::vector<glm::vec4> positions;
   std::vector<glm::uvec4> triangles;
   std::vector<glm::uvec2> roots;

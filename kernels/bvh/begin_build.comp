@@ -1,9 +1,9 @@
 #version 450
 // One workgroup per tree: the root's bounds and centroid bounds over its primitive range,
 // the identity order of that range, the tree's frame (the root box: its packed bounds count
-// steps across it), and the root's task: for level 0, or, for a root of at most
-// HMB_BVH_SMALL_TASK primitives, for build_small_tasks at once (a small tree, such as a top
-// level over a few instances, then costs no level's dispatches). Roots are nodes 0..treeCount-1.
+// steps across it), and the root's task: for level 0, or, for a root of at most kSmallTask
+// primitives, for build_small_tasks at once (a small tree, such as a top level over a few
+// hundred instances, then costs no level's dispatches). Roots are nodes 0..treeCount-1.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "bvh_build_common.glsl"
@@ -11,6 +11,7 @@
 #include "../shared/ordered_float.glsl"
 
 layout(local_size_x = HMB_BVH_BUILD_GROUP) in;
+layout(constant_id = HMB_SPEC_BVH_SMALL_TASK) const uint kSmallTask = HMB_BVH_SMALL_TASK;
 
 shared uint boundsMin[3];
 shared uint boundsMax[3];
@@ -78,7 +79,7 @@ void main() {
   task.tree = tree;
   task.centroidMin = vec4(orderedFloat(centroidMin[0]), orderedFloat(centroidMin[1]), orderedFloat(centroidMin[2]), 0.0);
   task.centroidMax = vec4(orderedFloat(centroidMax[0]), orderedFloat(centroidMax[1]), orderedFloat(centroidMax[2]), 0.0);
-  if (range.y <= HMB_BVH_SMALL_TASK) {
+  if (range.y <= kSmallTask) {
     // Level 0, its range in the primitive array's first half, where this kernel wrote it.
     task.centroidMin.w = 0.0;
     task.centroidMax.w = 0.0;

@@ -27,6 +27,8 @@
 // wave binning with shared atomics, and no per-lane copies.
 layout(local_size_x = HMB_BVH_LEVEL_GROUP, local_size_x_id = HMB_SPEC_BVH_LEVEL_GROUP) in;
 layout(constant_id = HMB_SPEC_BVH_LANE_BINS) const bool kLaneBins = true;
+// Tasks of at most this many primitives are left to build_small_tasks (bvh_build_layout.h).
+layout(constant_id = HMB_SPEC_BVH_LEVEL_SMALL_TASK) const uint kSmallTask = HMB_BVH_SMALL_TASK;
 const uint GROUP = gl_WorkGroupSize.x;
 const uint LANE_SLOTS = kLaneBins ? GROUP * 3u * BINS : 1u;
 
@@ -303,7 +305,7 @@ void main() {
     next.tree = task.tree;
     next.centroidMin = vec4(childBounds[b + 2].xyz, 0.0);
     next.centroidMax = vec4(childBounds[b + 3].xyz, 0.0);
-    if (count <= HMB_BVH_SMALL_TASK) {
+    if (count <= kSmallTask) {
       // Its range is in the half this level wrote; build_small_tasks finishes it after the levels.
       next.centroidMin.w = float(params.level + 1u);
       next.centroidMax.w = float(1u - parity);

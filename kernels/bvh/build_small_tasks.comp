@@ -1,6 +1,6 @@
 #version 450
-// The subtrees of the small tasks build_level set aside (at most HMB_BVH_SMALL_TASK primitives
-// each), one invocation per task, after the levels: top-down, each node split at the cheapest
+// The subtrees of the small tasks build_level set aside (at most kSmallTask primitives each:
+// bvh_build_layout.h), one invocation per task, after the levels: top-down, each node split at the cheapest
 // bin boundary by the surface area heuristic, as build_level does, or made a leaf when it may
 // be one and that costs no more, or halved where the depth bound asks (keepsDepthBound). Nodes
 // and packed nodes are written as build_level writes them, so traversal cannot tell the two
@@ -19,10 +19,10 @@
 #include "bvh_build_common.glsl"
 #include "../shared/indexing.glsl"
 
-#define SMALL HMB_BVH_SMALL_TASK
 #define BINS HMB_BVH_SMALL_TASK_BINS
 
 layout(local_size_x = HMB_BVH_SMALL_TASK_GROUP) in;
+layout(constant_id = HMB_SPEC_BVH_SMALL_TASK) const uint SMALL = HMB_BVH_SMALL_TASK;
 
 #define kInfinity uintBitsToFloat(0x7f800000u)
 

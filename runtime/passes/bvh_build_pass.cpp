@@ -30,17 +30,20 @@ uint64_t levelSharedBytes(const BvhBuildShape& shape) {
   return perLaneBins + slots * (16 + 16 + 8) + 3 * 8 + 16 + shape.levelGroup * 8 * 16 + 8 * 16;
 }
 
-std::array<uint32_t, 2> levelSpecialization(const BvhBuildShape& shape) {
-  static_assert(HMB_SPEC_BVH_LEVEL_GROUP == 0 && HMB_SPEC_BVH_LANE_BINS == 1);
-  return {shape.levelGroup, shape.laneBins ? 1u : 0u};
+std::array<uint32_t, 3> levelSpecialization(const BvhBuildShape& shape) {
+  static_assert(HMB_SPEC_BVH_LEVEL_GROUP == 0 && HMB_SPEC_BVH_LANE_BINS == 1 && HMB_SPEC_BVH_LEVEL_SMALL_TASK == 2);
+  return {shape.levelGroup, shape.laneBins ? 1u : 0u, shape.smallTask};
+}
+// begin_build's and build_small_tasks'.
+std::array<uint32_t, 1> smallTaskSpecialization(const BvhBuildShape& shape) {
+  static_assert(HMB_SPEC_BVH_SMALL_TASK == 0);
+  return {shape.smallTask};
 }
 
 // Levels that halving every range takes n primitives down to one in: ceil(log2(n)), as
 // kernels/bvh/bvh_build_common.glsl's halvingsToOne.
 uint32_t halvingsToOne(uint32_t n) { return static_cast<uint32_t>(std::bit_width(std::max(n, 1u) - 1u)); }
 
-// Every tree goes to build_small_tasks from begin_build (kernels/bvh/begin_build.comp).
-bool allSmall(uint32_t largestTree) { return largestTree <= HMB_BVH_SMALL_TASK; }
 
 uint32_t largestTreeOf(std::span<const glm::uvec2> roots) {
   uint32_t largest = 0;
@@ -59,8 +62,15 @@ BvhBuildShape BvhBuildShape::forDevice(const vk::Context& context) {
   return shape;
 }
 
+BvhBuildShape BvhBuildShape::forTopLevel(const vk::Context& context) {
+  BvhBuildShape shape = forDevice(context);
+  if (context.info().type == "cpu") shape.smallTask = HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU;
+  return shape;
+}
+
 std::string BvhBuildShape::describe() const {
-  return std::to_string(levelGroup) + " lanes, " + (laneBins ? "per-lane bins" : "shared atomics");
+  return std::to_string(levelGroup) + " lanes, " + (laneBins ? "per-lane bins" : "shared atomics") +
+         (smallTask == HMB_BVH_SMALL_TASK ? "" : ", small tasks of up to " + std::to_string(smallTask));
 }
 
 BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf)
@@ -71,10 +81,10 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       name_(std::move(name)),
       maxLeaf_(maxLeaf),
       shape_(shape),
-      beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams)),
+      beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams), smallTaskSpecialization(shape)),
       levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams), levelSpecialization(shape)),
       sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)),
-      smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams)),
+      smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams), smallTaskSpecialization(shape)),
       refitParentsKernel_(context, "bvh/refit_parents", sizeof(gpu::BvhRefitParams)),
       refitPlacesKernel_(context, "bvh/refit_places", sizeof(gpu::BvhRefitParams)),
       refitBoundsKernel_(context, "bvh/refit_bounds", sizeof(gpu::BvhRefitParams)),
@@ -89,6 +99,9 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
     throw Error(name_ + ": the build's " + shape_.describe() + " need " + std::to_string(levelSharedBytes(shape_)) +
                 " bytes of shared memory; the device has " +
                 std::to_string(context.limits().maxComputeSharedMemorySize));
+  if (shape_.smallTask < HMB_BVH_SMALL_TASK || shape_.smallTask > HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU)
+    throw Error(name_ + ": small tasks of up to " + std::to_string(shape_.smallTask) + " primitives are outside " +
+                std::to_string(HMB_BVH_SMALL_TASK) + " to " + std::to_string(HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU));
   if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
 }
@@ -187,7 +200,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
       if (before) before(frame);
       frame.dispatch(kBegin, beginKernel_, s.buffers, params, s.rootGroups);
     }
-    // Trees of at most HMB_BVH_SMALL_TASK primitives go to build_small_tasks from begin_build:
+    // Trees of at most shape_.smallTask primitives go to build_small_tasks from begin_build:
     // no level, one sizing of its dispatch.
     const uint32_t end =
         level + (level == 0 ? (allSmall(s.largestTree) ? 0u : firstSubmissionLevels(s.largestTree))
@@ -237,14 +250,14 @@ void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const
   frame.write(pass, tasks_, std::span<const gpu::BvhBuildCounters>(&s.counters, 1));
   if (before) before(frame);
   frame.dispatch(pass, beginKernel_, s.buffers, s.params, s.rootGroups);
-  // A task the levels split holds more than HMB_BVH_SMALL_TASK primitives, so it needs at least
-  // halvingsToOne(HMB_BVH_SMALL_TASK + 1) more levels below it, and the builder keeps every
+  // A task the levels split holds more than shape_.smallTask primitives, so it needs at least
+  // halvingsToOne(shape_.smallTask + 1) more levels below it, and the builder keeps every
   // node within the bound: no such task lies deeper than the bound minus that. The levels
   // down to there finish every tree but the small subtrees they set aside, and those are
-  // finished after them. (A root of more than HMB_BVH_SMALL_TASK primitives is split at level
+  // finished after them. (A root of more than shape_.smallTask primitives is split at level
   // 0 whatever the bound; smaller roots go to the small tasks at once, and where every root is
   // that small no level is recorded, only the sizing of the small tasks' dispatch.)
-  const uint32_t belowLargeTask = halvingsToOne(HMB_BVH_SMALL_TASK + 1u);
+  const uint32_t belowLargeTask = halvingsToOne(shape_.smallTask + 1u);
   const uint32_t deepestLargeTask = depthBound > belowLargeTask ? depthBound - belowLargeTask : 0u;
   const uint32_t levels = allSmall(s.largestTree) ? 0u : deepestLargeTask + 1u;
   if (levels == 0) frame.dispatch(pass, sizeDispatchKernel_, s.buffers, s.params, glm::uvec3(1));

@@ -47,15 +47,21 @@ struct BvhBuildStats {
 };
 
 // How build_level's workgroups are shaped (kernels/bvh/bvh_build_layout.h): their size and
-// whether large tasks bin into per-lane copies of the bins.
+// whether large tasks bin into per-lane copies of the bins; and the largest task
+// build_small_tasks takes whole.
 struct BvhBuildShape {
   uint32_t levelGroup = HMB_BVH_LEVEL_GROUP;
   bool laneBins = true;
+  uint32_t smallTask = HMB_BVH_SMALL_TASK;
   // The shape for the device: CPU devices (lavapipe) get 8 lanes and per-lane bins; GPUs a
   // warp or wave (the subgroup size, 32 to 64, within the device's workgroup limit) binning
   // with shared atomics.
   static BvhBuildShape forDevice(const vk::Context& context);
-  // "8 lanes, per-lane bins" / "32 lanes, shared atomics": for reports.
+  // The device's shape for a top level over instances: on a CPU device a tree of up to
+  // HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU instances is built by one invocation, with no level.
+  static BvhBuildShape forTopLevel(const vk::Context& context);
+  // "8 lanes, per-lane bins" / "32 lanes, shared atomics" (and ", small tasks of up to N"
+  // where N is not HMB_BVH_SMALL_TASK): for reports.
   std::string describe() const;
 };
 
@@ -160,6 +166,8 @@ class BvhBuildPass {
   const vk::Buffer& exactNodes() const { return nodes_; }
 
  private:
+  // Every tree goes to build_small_tasks from begin_build (kernels/bvh/begin_build.comp).
+  bool allSmall(uint32_t largestTree) const { return largestTree <= shape_.smallTask; }
   void reserve(uint32_t primitiveCount, uint32_t treeCount);
   // What build() and record() share: checks, buffers, the first counters and parameters.
   struct Start {

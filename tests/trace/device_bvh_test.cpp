@@ -462,6 +462,52 @@ TEST_F(DeviceBvh, SmallTreesGoStraightToTheSmallTasks) {
   }
 }
 
+// A top level's shape on a CPU device (BvhBuildShape::forTopLevel) hands a tree of up to
+// HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU primitives to one small task, with no level, built or
+// recorded; the tree is sound and as cheap as the levels' (leaves of one, as instances have, and
+// of up to four); one more primitive takes the levels.
+TEST_F(DeviceBvh, ATopLevelShapeBuildsHundredsOfPrimitivesInOneSmallTask) {
+  const passes::BvhBuildShape top{HMB_BVH_LEVEL_GROUP, true, HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU};
+  EXPECT_EQ(top.describe(), "8 lanes, per-lane bins, small tasks of up to " +
+                                std::to_string(HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU));
+  if (context().info().type == "cpu") {
+    EXPECT_EQ(passes::BvhBuildShape::forTopLevel(context()).smallTask, top.smallTask);
+  }
+  EXPECT_EQ(passes::BvhBuildShape::forDevice(context()).smallTask, HMB_BVH_SMALL_TASK);
+  for (const uint32_t n : {321u, HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU, HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU + 1u}) {
+    const TriangleMesh mesh = bvh::test::randomSoup(n, 0.1f, 60 + n);
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
+    const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "boxes");
+    const glm::uvec2 root(0u, n);
+    const bool oneTask = n <= HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU;
+    const std::string what = std::to_string(n) + " primitives";
+    for (const uint32_t maxLeaf : {HMB_BVH_MAX_INSTANCE_LEAF, HMB_BVH_MAX_LEAF}) {
+      passes::BvhBuildPass builder(context(), "top level", maxLeaf, top);
+      vk::FrameRecorder frame(context());
+      const passes::BvhBuildStats& stats = builder.build(frame, buffer, n, std::span(&root, 1));
+      EXPECT_EQ(stats.levelMilliseconds.empty(), oneTask) << what;
+      if (oneTask) {
+        EXPECT_EQ(stats.smallTasks, 1u) << what;
+      }
+      const bvh::Bvh built = builder.download(0);
+      EXPECT_EQ(bvh::test::structuralProblem(built, input.bounds, maxLeaf), "") << what << ", leaves of " << maxLeaf;
+      if (maxLeaf == HMB_BVH_MAX_LEAF) {
+        EXPECT_LE(bvh::sahCost(built) / bvh::sahCost(bvh::buildReferenceSah(input.bounds, input.centroids)),
+                  kMaxSahRatio)
+            << what;
+      }
+      // Recorded into a frame, under the depth bound it records for.
+      frame.begin();
+      builder.record(frame, "top level", buffer, n, std::span(&root, 1));
+      frame.submitAndWait();
+      builder.readRecordedCounts();
+      const bvh::Bvh recorded = builder.download(0);
+      EXPECT_EQ(bvh::test::structuralProblem(recorded, input.bounds, maxLeaf), "") << what << ", recorded";
+      EXPECT_LE(levelsBelowRoot(recorded), builder.recordedDepthBound(n)) << what;
+    }
+  }
+}
+
 TEST_F(DeviceBvh, ManyMeshesBuildTogether) {
   scene::Scene scene;
   std::vector<TriangleMesh> meshes = {bvh::test::randomSoup(300, 0.05f, 5), bvh::test::grid(12, 6),
