@@ -184,15 +184,17 @@
 // reveal_background
 #define HMB_REVEAL_BINDING_CAMERA_RAYS 0  // PinholeCamera at the frame time
 #define HMB_REVEAL_BINDING_LIST 1         // the ray mask's pixel list
-#define HMB_REVEAL_BINDING_RASTER_SURFACES 2  // the G-buffer's surfaces (shared/layer_layout.h): its object ids
-#define HMB_REVEAL_BINDING_COUNTERS 3     // RayMaskCounters: the list's length; rays are counted into it
+#define HMB_REVEAL_BINDING_COUNTERS 2     // RayMaskCounters: the list's length; rays are counted into it
+// The G-buffer (shared/layer_bindings.glsl, read as texels): its object ids and depths.
+#define HMB_REVEAL_BINDING_RASTER 3
 // The trace scene (trace/trace_scene_bindings.glsl), the scene's shading buffers
 // (shared/scene_bindings.glsl), then the revealed layer, written at the listed pixels
 // (shared/layer_bindings.glsl; object id 0 where nothing is behind).
-#define HMB_REVEAL_BINDING_TRACE_SCENE 4
+#define HMB_REVEAL_BINDING_TRACE_SCENE (HMB_REVEAL_BINDING_RASTER + HMB_LAYER_BINDINGS)
 #define HMB_REVEAL_BINDING_SCENE (HMB_REVEAL_BINDING_TRACE_SCENE + HMB_TRACE_SCENE_BINDINGS)
 #define HMB_REVEAL_BINDING_REVEALED (HMB_REVEAL_BINDING_SCENE + HMB_SCENE_BINDINGS)
 #define HMB_REVEAL_BINDING_COUNT (HMB_REVEAL_BINDING_REVEALED + HMB_LAYER_BINDINGS)
+#define HMB_REVEAL_TEXEL_BUFFERS (HMB_LAYER_BINDINGS + HMB_TRACE_SCENE_TEXEL_BUFFERS + HMB_SCENE_TEXEL_BUFFERS)
 
 // gather_background: the background layer (the raster, the revealed layer where the mask says
 // HMB_MASK_REVEALED) blurred at the listed pixels; one invocation per list entry.

@@ -1,6 +1,7 @@
 #version 450
 // Ray reveal (paper, section 3.2.2): for each pixel of the ray mask, the camera ray through
-// the pixel centre at the frame time, continued behind the object the raster sees there.
+// the pixel centre at the frame time, continued behind the object the raster sees there (and
+// started just short of the raster's surface).
 //  - object-id stop (default): the traversal skips that object's instances whole, so one
 //    trace finds the first surface of any other object (the paper's future work: our
 //    traversal knows object ids).
@@ -24,11 +25,11 @@ layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
 layout(std430, binding = HMB_REVEAL_BINDING_CAMERA_RAYS) readonly buffer CameraRays { PinholeCamera cameraRays; };
 layout(std430, binding = HMB_REVEAL_BINDING_LIST) readonly buffer List { uint list[]; };
-layout(std430, binding = HMB_REVEAL_BINDING_RASTER_SURFACES) readonly buffer RasterSurfaces { uvec4 rasterSurfaces[]; };
 layout(std430, binding = HMB_REVEAL_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 #define HMB_SCENE_BINDING HMB_REVEAL_BINDING_SCENE
 #include "../shared/scene_bindings.glsl"
 #include "../shared/layer_bindings.glsl"
+HMB_LAYER_TEXELS(raster, HMB_REVEAL_BINDING_RASTER)
 HMB_LAYER(revealed, HMB_REVEAL_BINDING_REVEALED, writeonly)
 layout(push_constant) uniform Params { RevealParams params; };
 layout(constant_id = HMB_SPEC_REVEAL_STOP) const uint kStop = HMB_REVEAL_STOP_OBJECT_ID;
@@ -41,6 +42,12 @@ float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 // The smallest t past a hit at t: a few ulps on, so the same triangle is not met again.
 float pastHit(float t) { return uintBitsToFloat(floatBitsToUint(max(t, 1e-30)) + 16u); }
 
+// Nothing of another object lies nearer than the surface the raster sees at a pixel's centre
+// (the same camera ray at the same time), so the ray starts a hundredth of that depth short of
+// it and the traversal culls every node before it; the margin covers the rasterizer's and the
+// traversal's different rounding. (A camera ray's t is camera-space depth: trace_layout.h.)
+const float kStartShort = 0.99;
+
 bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
 void main() {
@@ -50,8 +57,12 @@ void main() {
   const uvec2 pixel = uvec2(index % params.width, index / params.width);
   const vec2 centre = vec2(pixel) + 0.5;
 
+  // Where the raster's depth is not a positive number, from the near plane.
+  const float rasterDepth = sampleDepth(READ_LAYER_SAMPLE(raster, index));
+  const float start = rasterDepth > 0.0 ? min(rasterDepth * kStartShort, params.tMax) : params.tMin;
+
   TraceRay ray;
-  ray.originTMin = vec4(cameraRays.eye.xyz, params.tMin);
+  ray.originTMin = vec4(cameraRays.eye.xyz, max(params.tMin, start));
   ray.directionTMax = vec4(pinholeRayDirection(cameraRays, centre, params.width, params.height), params.tMax);
   ray.time = 0u;
   ray.ignoreObjectId = HMB_IGNORE_NONE;
@@ -63,7 +74,7 @@ void main() {
   BvhHit hit;
   uint traces = 1u;
   if (kStop == HMB_REVEAL_STOP_OBJECT_ID) {
-    ray.ignoreObjectId = surfaceObjectId(rasterSurfaces[index]);
+    ray.ignoreObjectId = surfaceObjectId(READ_LAYER_SURFACE(raster, index));
     hit = closestHit(ray, scene);
   } else {
     hit = closestHit(ray, scene);

@@ -185,7 +185,7 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
     gather_.recordOutsideMask(frame, raster, postProcess_.neighborMax(), output, settings_.blur, rayMask_.mask());
   else
     gather_.record(frame, raster, postProcess_.neighborMax(), output, settings_.blur);
-  reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, layer.surfaces(), rayMask_.list(), rayMask_.counters(),
+  reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, layer, rayMask_.list(), rayMask_.counters(),
                  revealed_, size_.width(), size_.height(), settings_);
   // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
   backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(),

@@ -29,7 +29,7 @@ RevealPass::RevealPass(const vk::Context& context, const HitShading* hits)
       objectIdStop_(context, kKernel, sizeof(gpu::RevealParams), ShadingKernel::Rays::Traced, hits, kObjectIdStop) {}
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
-                        const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,
+                        const vk::Buffer& cameraRays, const ImageLayer& raster, const vk::Buffer& list,
                         const vk::Buffer& counters, const ImageLayer& output, uint32_t width, uint32_t height,
                         const HybridSettings& settings) const {
   if (ts.timeCount() == 0) throw Error("ray reveal: the trace scene holds no shutter time");
@@ -53,8 +53,8 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
   const vk::ComputeKernel& kernel = (luminance ? *luminanceStop_ : objectIdStop_).forScene(gpuScene, &ts);
   vk::Bindings bindings = {{HMB_REVEAL_BINDING_CAMERA_RAYS, &cameraRays},
                            {HMB_REVEAL_BINDING_LIST, &list},
-                           {HMB_REVEAL_BINDING_RASTER_SURFACES, &rasterSurfaces},
                            {HMB_REVEAL_BINDING_COUNTERS, &counters}};
+  raster.bind(bindings, HMB_REVEAL_BINDING_RASTER, kernel.bindsByAddress());
   ts.bind(bindings, HMB_REVEAL_BINDING_TRACE_SCENE, kernel.bindsByAddress());
   gpuScene.bind(bindings, HMB_REVEAL_BINDING_SCENE, kernel.bindsByAddress());
   output.bind(bindings, HMB_REVEAL_BINDING_REVEALED, kernel.bindsByAddress());

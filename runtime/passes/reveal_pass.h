@@ -27,10 +27,11 @@ class RevealPass {
   // hits: how hits are shaded (null: the library's shading).
   explicit RevealPass(const vk::Context& context, const HitShading* hits = nullptr);
   // traceScene: shutter times set, the frame time first (the reveal traces at it). cameraRays: one gpu::PinholeCamera
-  // at the frame time. rasterSurfaces: the G-buffer's surfaces (for their object ids). list, counters: RayMaskStage's.
+  // at the frame time. raster: the G-buffer (its object ids, and its depths, where the rays start). list, counters:
+  // RayMaskStage's.
   // output: written at the listed pixels.
   void record(vk::FrameRecorder& frame, const TraceScene& traceScene, const GpuScene& gpuScene,
-              const vk::Buffer& cameraRays, const vk::Buffer& rasterSurfaces, const vk::Buffer& list,
+              const vk::Buffer& cameraRays, const ImageLayer& raster, const vk::Buffer& list,
               const vk::Buffer& counters, const ImageLayer& output, uint32_t width, uint32_t height,
               const HybridSettings& settings) const;
 

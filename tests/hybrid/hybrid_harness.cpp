@@ -257,7 +257,8 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
 }
 
 RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
-                         uint32_t height, const std::vector<uint32_t>& list, const passes::HybridSettings& settings) {
+                         uint32_t height, const std::vector<uint32_t>& list, const passes::HybridSettings& settings,
+                         const std::function<void(passes::LayerContents&)>& editRaster) {
   const size_t pixels = size_t(width) * height;
   GpuScene gpuScene(context, scene);
   gpuScene.setFrame(scene, frameTime, width, height);
@@ -281,9 +282,19 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
   const passes::ImageLayer output(filledBuffer(context, pixels, sentinelSample, "test revealed samples"),
                                   filledBuffer(context, pixels, sentinelSurface, "test revealed surfaces"));
 
+  if (editRaster) {
+    passes::LayerContents contents = passes::downloadLayer(gbuffer.layer(), pixels);
+    editRaster(contents);
+    const passes::PackedLayer packed = passes::packLayer(contents);
+    frame.begin();
+    frame.write("edit the G-buffer", gbuffer.layer().samples(), std::span<const glm::uvec4>(packed.samples));
+    frame.write("edit the G-buffer", gbuffer.layer().surfaces(), std::span<const glm::uvec4>(packed.surfaces));
+    frame.submitAndWait();
+  }
+
   const passes::RevealPass reveal(context);
   frame.begin();
-  reveal.record(frame, traceScene, gpuScene, cameraRays, gbuffer.layer().surfaces(), listBuffer, counters,
+  reveal.record(frame, traceScene, gpuScene, cameraRays, gbuffer.layer(), listBuffer, counters,
                 output, width, height, settings);
   frame.submitAndWait();
 

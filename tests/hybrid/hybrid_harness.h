@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/hybrid_settings.h"
+#include "runtime/passes/image_layer.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "scenes/scene.h"
@@ -96,8 +98,11 @@ inline constexpr glm::vec4 kSentinelColor{7.0f, 7.0f, 7.0f, 1.0f};
 inline constexpr float kSentinelDepth = -7.0f;
 inline constexpr glm::vec2 kSentinelVelocity{-7.0f, -7.0f};
 inline constexpr uint32_t kSentinelId = 0xDEADBEEFu;
+// editRaster, when given, changes the G-buffer (read back and written again) before the reveal
+// reads it; RevealReadback::raster is the G-buffer as the reveal read it.
 RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float frameTime, uint32_t width,
-                         uint32_t height, const std::vector<uint32_t>& list, const passes::HybridSettings& settings);
+                         uint32_t height, const std::vector<uint32_t>& list, const passes::HybridSettings& settings,
+                         const std::function<void(passes::LayerContents&)>& editRaster = {});
 
 // Random mask inputs: a few rectangles (objects with their own id, depth, normal and motion)
 // over a background object with noisy depth and normals, some pixels of it moving too.

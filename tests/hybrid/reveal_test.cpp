@@ -241,6 +241,40 @@ TEST_F(HybridRevealTest, ObjectIdStopFindsThePlaneBehindTheQuad) {
   EXPECT_EQ(r.counters.maskCount, list.size());
 }
 
+// The rays start just short of the surface the raster sees (nothing of another object lies
+// nearer on the same ray): where B's pixels are told they see A's depth, and no object, the ray
+// starts past B and meets A; where nothing lies behind B and they are told a depth past it, the
+// ray meets nothing. Started at the eye, both would meet B.
+TEST_F(HybridRevealTest, RaysStartAtTheRastersSurface) {
+  const RevealScene s = revealScene();
+  const std::vector<uint32_t> list = everyPixel();
+  FrameCamera camera;
+  std::vector<int> expected(list.size(), -1);  // the revealed id where the edit leaves one to expect
+  const auto edit = [&](passes::LayerContents& raster) {
+    for (const uint32_t index : list) {
+      const uint32_t x = index % kWidth, y = index / kWidth;
+      if (raster.objectId[index] != s.b.objectId || coverage(s.scene, camera, s.b, x, y) != Coverage::Inside) continue;
+      const Coverage onA = coverage(s.scene, camera, s.a, x, y);
+      if (onA == Coverage::Edge) continue;
+      const QuadHit a = hitQuad(s.scene, camera, s.a, x + 0.5, y + 0.5, kTime);
+      raster.objectId[index] = 0u;
+      raster.depth[index] = onA == Coverage::Inside ? float(a.depth) : 2.0f * raster.depth[index];
+      expected[index] = onA == Coverage::Inside ? int(s.a.objectId) : 0;
+    }
+  };
+  // The camera the edit projects with: the frame's, as a plain reveal reads it back.
+  camera = runReveal(context(), s.scene, kTime, kWidth, kHeight, {}, HybridSettings{}).camera;
+  const RevealReadback r = runReveal(context(), s.scene, kTime, kWidth, kHeight, list, HybridSettings{}, edit);
+  size_t toA = 0, toNothing = 0;
+  for (const uint32_t index : list) {
+    if (expected[index] < 0) continue;
+    EXPECT_EQ(r.revealed.objectId[index], uint32_t(expected[index])) << "pixel " << index;
+    (expected[index] == 0 ? toNothing : toA) += 1;
+  }
+  EXPECT_GT(toA, 50u);
+  EXPECT_GT(toNothing, 20u);
+}
+
 TEST_F(HybridRevealTest, LuminanceStopGivesTheSameAnswer) {
   const RevealScene s = revealScene();
   const std::vector<uint32_t> list = everyPixel();

@@ -106,7 +106,7 @@ const KernelLayout kLayouts[] = {
     {"hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
     {"hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
     {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false, true,
-     HMB_TRACE_SCENE_TEXEL_BUFFERS + HMB_SCENE_TEXEL_BUFFERS},
+     HMB_REVEAL_TEXEL_BUFFERS},
     {"hybrid/list_shutter_rays", HMB_SHUTTER_LIST_BINDING_COUNT, sizeof(gpu::ShutterRayListParams), false, false,
      HMB_SHUTTER_LIST_TEXEL_BUFFERS},
     {"hybrid/trace_shutter_rays", HMB_SHUTTER_TRACE_BINDING_COUNT, sizeof(gpu::ShutterRayTraceParams), false, true,
