@@ -157,7 +157,8 @@
 // block's together, in row order. mask_coverage's lanes meet in whatever order its threads
 // run; in a list that keeps neighbours together the reveal's rays and the background gather's
 // reads find what their group's other lanes have just brought into the cache (bistro at
-// 1280x720 on a CPU device: the reveal 24% faster, the background gather 20%).
+// 1280x720 on a CPU device: the reveal and the background gather each about a quarter faster,
+// bench/results/mask-list-order/).
 #define HMB_MASK_BLOCK 8u
 #define HMB_MASK_BLOCKS_ACROSS(n) (((n) + HMB_MASK_BLOCK - 1u) / HMB_MASK_BLOCK)
 #define HMB_LIST_MASK_BLOCKS_GROUP 64

@@ -44,7 +44,6 @@ std::array<uint32_t, 1> smallTaskSpecialization(const BvhBuildShape& shape) {
 // kernels/bvh/bvh_build_common.glsl's halvingsToOne.
 uint32_t halvingsToOne(uint32_t n) { return static_cast<uint32_t>(std::bit_width(std::max(n, 1u) - 1u)); }
 
-
 uint32_t largestTreeOf(std::span<const glm::uvec2> roots) {
   uint32_t largest = 0;
   for (const glm::uvec2& root : roots) largest = std::max(largest, root.y);
