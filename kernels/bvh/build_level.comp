@@ -296,7 +296,7 @@ void main() {
     const uint b = side * 4;
     const uint first = task.first + (side == 0u ? 0u : leftCount);
     const uint count = side == 0u ? leftCount : rightCount;
-    writeChild(left + side, first, count, task.tree, childBounds[b].xyz, childBounds[b + 1].xyz);
+    writeChild(left + side, first, count, task.tree, childBounds[b].xyz, childBounds[b + 1].xyz, false);
     if (count == 1u) continue;
     BvhBuildTask next;
     next.node = left + side;

@@ -4,8 +4,8 @@
 // bin boundary by the surface area heuristic, as build_level does, or made a leaf when it may
 // be one and that costs no more, or halved where the depth bound asks (keepsDepthBound). Nodes
 // and packed nodes are written as build_level writes them, so traversal cannot tell the two
-// apart; the subtree's primitives end in their
-// final order in the first half of the primitive array.
+// apart (or packed after, by pack_deferred_nodes: HMB_SPEC_BVH_PACK_LATER); the subtree's
+// primitives end in their final order in the first half of the primitive array.
 //
 // The bins live in registers: every bin is named by a constant once the loops over bins are
 // unrolled, and a primitive updates the bin it falls in by comparing its bin with each. On
@@ -23,6 +23,7 @@
 
 layout(local_size_x = HMB_BVH_SMALL_TASK_GROUP) in;
 layout(constant_id = HMB_SPEC_BVH_SMALL_TASK) const uint SMALL = HMB_BVH_SMALL_TASK;
+layout(constant_id = HMB_SPEC_BVH_PACK_LATER) const bool PACK_LATER = false;
 
 #define kInfinity uintBitsToFloat(0x7f800000u)
 
@@ -57,14 +58,14 @@ void main() {
     // The bins span the centroids' bounds.
     const vec3 extent = centreHi - centreLo;
     vec3 scale;
-    for (uint a = 0; a < 3; ++a)
+    [[unroll]] for (uint a = 0; a < 3; ++a)
       scale[a] = extent[a] > 0.0 && !isinf(extent[a]) ? min(float(BINS) / extent[a], 3.0e38) : 0.0;
 
     // Per axis, per bin: the count and the merged boxes, as vectors of four bins (bins 0-3,
     // then 4-7) so that no bin is ever named by a run-time index.
     vec4 count0[3], count1[3], loX0[3], loX1[3], loY0[3], loY1[3], loZ0[3], loZ1[3];
     vec4 hiX0[3], hiX1[3], hiY0[3], hiY1[3], hiZ0[3], hiZ1[3];
-    for (int a = 0; a < 3; ++a) {
+    [[unroll]] for (int a = 0; a < 3; ++a) {
       count0[a] = count1[a] = vec4(0.0);
       loX0[a] = loX1[a] = loY0[a] = loY1[a] = loZ0[a] = loZ1[a] = vec4(kInfinity);
       hiX0[a] = hiX1[a] = hiY0[a] = hiY1[a] = hiZ0[a] = hiZ1[a] = vec4(-kInfinity);
@@ -189,7 +190,7 @@ void main() {
           hi = max(hi, box.max.xyz);
         }
       }
-      writeChild(left + side, task.first + childFirst, childCount, task.tree, lo, hi);
+      writeChild(left + side, task.first + childFirst, childCount, task.tree, lo, hi, PACK_LATER);
       if (childCount <= 1u) continue;
       stackCentreLo[depth] = vec4(side == 0u ? sideCentreLo[0] : sideCentreLo[1], 0.0);
       stackCentreHi[depth] = vec4(side == 0u ? sideCentreHi[0] : sideCentreHi[1], 0.0);

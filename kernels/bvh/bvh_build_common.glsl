@@ -40,9 +40,10 @@ float surfaceArea(vec3 lo, vec3 hi) {
 }
 
 // A new child node over primitives first..first+count-1 with bounds lo..hi, exact and packed in
-// its tree's frame; a child of one primitive is a leaf at once (the others get their index word
-// when they are split or made leaves).
-void writeChild(uint index, uint first, uint count, uint tree, vec3 lo, vec3 hi) {
+// its tree's frame (or marked to be packed later: HMB_SPEC_BVH_PACK_LATER); a child of one
+// primitive is a leaf at once (the others get their index word when they are split or made
+// leaves).
+void writeChild(uint index, uint first, uint count, uint tree, vec3 lo, vec3 hi, bool packLater) {
   BvhNode child;
   child.minX = lo.x;
   child.minY = lo.y;
@@ -53,7 +54,8 @@ void writeChild(uint index, uint first, uint count, uint tree, vec3 lo, vec3 hi)
   child.leftOrFirst = first;
   child.count = count == 1u ? 1u : 0u;
   nodes[index] = child;
-  packedNodes[index] = uvec4(packBox(lo, hi, frames[tree]), packLeftOrFirstCount(first, child.count));
+  if (packLater) packedNodes[index] = uvec4(HMB_BVH_PACK_LATER, tree, 0u, packLeftOrFirstCount(first, child.count));
+  else packedNodes[index] = uvec4(packBox(lo, hi, frames[tree]), packLeftOrFirstCount(first, child.count));
   if (count == 1u) atomicAdd(counters.leafCount, 1u);
 }
 

@@ -56,8 +56,17 @@
 // 1.8 ms in a frame) where one lane builds the whole tree in 1.1 ms (1.24 alone, 1.5-1.6 in a
 // frame; on Mesa 25 2.19 where 2.32: bench/results/bvh-top-level/). A GPU keeps
 // HMB_BVH_SMALL_TASK, as its lanes run slowly alone.
-#define HMB_SPEC_BVH_SMALL_TASK 0        // begin_build's and build_small_tasks' one constant
+#define HMB_SPEC_BVH_SMALL_TASK 0        // begin_build's and build_small_tasks'
 #define HMB_SPEC_BVH_LEVEL_SMALL_TASK 2  // build_level's
+// bool, build_small_tasks': its nodes' bounds are packed after it, by pack_deferred_nodes,
+// a lane per node; the CPU top level's tasks do so. One invocation building a task of
+// hundreds packs a node's six bounds in turn, and their searches' loops count against
+// lavapipe's budget of loop iterations (BvhBuildPass::smallTaskDepthBound). Such a node's
+// packed x word is HMB_BVH_PACK_LATER (a lower step above the upper one, as no box packs:
+// an empty box packs HMB_BVH_QUANTUM_MAX over 0) and its y word its tree, until it is packed.
+#define HMB_SPEC_BVH_PACK_LATER 1
+#define HMB_BVH_PACK_LATER 0x0000fffeu
+#define HMB_BVH_PACK_GROUP 64
 #define HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU 512u
 // Leaves of mesh trees hold at most this many primitives (as the CPU reference builder's
 // default); each build names its own limit (BvhBuildParams::maxLeaf).

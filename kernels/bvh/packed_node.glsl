@@ -38,17 +38,24 @@ BvhFrame frameOf(vec3 lo, vec3 hi) {
 
 // The most steps whose bound is at or below x (0 when none is). boundAt rises with the steps,
 // so a binary search finds it; the quotient (x - origin) / step names it to within a step,
-// and where the bounds around that guess confirm it the search starts from those three steps
-// (two rounds where sixteen: every node the build writes packs six bounds).
+// and where the bounds around that guess confirm it (nearly always) two compares pick the
+// answer from those three steps, else the search runs over all of them. (Lavapipe runs both
+// sides of a branch, so an unrolled search would cost its sixteen halvings every time; the
+// loop costs one of an invocation's loop iterations where no lane needs it.)
 uint stepsBelow(float x, float origin, float step) {
-  uint low = 0u, high = HMB_BVH_QUANTUM_MAX;
+  if (step == 0.0) return x >= origin ? HMB_BVH_QUANTUM_MAX : 0u;  // a flat axis: every bound is the origin
   const float guess = (x - origin) / step;
   if (guess >= 0.0 && guess <= float(HMB_BVH_QUANTUM_MAX)) {  // NaN and far guesses search it all
     const uint g = uint(guess), near = g > 0u ? g - 1u : 0u, far = min(g + 1u, HMB_BVH_QUANTUM_MAX);
     if ((near == 0u || boundAt(near, origin, step) <= x) &&
-        (far == HMB_BVH_QUANTUM_MAX || boundAt(far + 1u, origin, step) > x))
-      low = near, high = far;
+        (far == HMB_BVH_QUANTUM_MAX || boundAt(far + 1u, origin, step) > x)) {
+      uint steps = near;
+      if (near + 1u <= far && boundAt(near + 1u, origin, step) <= x) steps = near + 1u;
+      if (near + 2u <= far && boundAt(near + 2u, origin, step) <= x) steps = near + 2u;
+      return steps;
+    }
   }
+  uint low = 0u, high = HMB_BVH_QUANTUM_MAX;
   while (low < high) {
     const uint middle = (low + high + 1u) >> 1u;
     if (boundAt(middle, origin, step) <= x) low = middle;
@@ -60,14 +67,19 @@ uint stepsBelow(float x, float origin, float step) {
 // The fewest steps whose bound is at or above x (HMB_BVH_QUANTUM_MAX when none is), found as
 // stepsBelow finds its answer.
 uint stepsAbove(float x, float origin, float step) {
-  uint low = 0u, high = HMB_BVH_QUANTUM_MAX;
+  if (step == 0.0) return x <= origin ? 0u : HMB_BVH_QUANTUM_MAX;
   const float guess = ceil((x - origin) / step);
   if (guess >= 0.0 && guess <= float(HMB_BVH_QUANTUM_MAX)) {
     const uint g = uint(guess), near = g > 0u ? g - 1u : 0u, far = min(g + 1u, HMB_BVH_QUANTUM_MAX);
     if ((near == 0u || boundAt(near - 1u, origin, step) < x) &&
-        (far == HMB_BVH_QUANTUM_MAX || boundAt(far, origin, step) >= x))
-      low = near, high = far;
+        (far == HMB_BVH_QUANTUM_MAX || boundAt(far, origin, step) >= x)) {
+      uint steps = far;
+      if (far >= near + 1u && boundAt(far - 1u, origin, step) >= x) steps = far - 1u;
+      if (far >= near + 2u && boundAt(far - 2u, origin, step) >= x) steps = far - 2u;
+      return steps;
+    }
   }
+  uint low = 0u, high = HMB_BVH_QUANTUM_MAX;
   while (low < high) {
     const uint middle = (low + high) >> 1u;
     if (boundAt(middle, origin, step) >= x) high = middle;
@@ -76,15 +88,18 @@ uint stepsAbove(float x, float origin, float step) {
   return low;
 }
 
+// One axis's bounds lo..hi as a packed node's word: the steps below, and above in the high half.
+uint packBounds(float lo, float hi, float origin, float step) {
+  return stepsBelow(lo, origin, step) | (stepsAbove(hi, origin, step) << 16u);
+}
+
 // The box lo..hi in the frame's steps (x, y, z of a packed node); an empty box packs as
 // lower HMB_BVH_QUANTUM_MAX, upper 0, which unpacks to no box at all.
 uvec3 packBox(vec3 lo, vec3 hi, BvhFrame frame) {
   if (!all(lessThanEqual(lo, hi))) return uvec3(HMB_BVH_QUANTUM_MAX);
-  uvec3 words;
-  for (uint a = 0; a < 3; ++a)
-    words[a] = stepsBelow(lo[a], frame.origin[a], frame.step[a]) |
-               (stepsAbove(hi[a], frame.origin[a], frame.step[a]) << 16u);
-  return words;
+  return uvec3(packBounds(lo.x, hi.x, frame.origin.x, frame.step.x),
+               packBounds(lo.y, hi.y, frame.origin.y, frame.step.y),
+               packBounds(lo.z, hi.z, frame.origin.z, frame.step.z));
 }
 
 uint packLeftOrFirstCount(uint leftOrFirst, uint count) { return (leftOrFirst << HMB_BVH_PACKED_COUNT_BITS) | count; }

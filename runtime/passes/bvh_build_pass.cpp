@@ -34,10 +34,15 @@ std::array<uint32_t, 3> levelSpecialization(const BvhBuildShape& shape) {
   static_assert(HMB_SPEC_BVH_LEVEL_GROUP == 0 && HMB_SPEC_BVH_LANE_BINS == 1 && HMB_SPEC_BVH_LEVEL_SMALL_TASK == 2);
   return {shape.levelGroup, shape.laneBins ? 1u : 0u, shape.smallTask};
 }
-// begin_build's and build_small_tasks'.
-std::array<uint32_t, 1> smallTaskSpecialization(const BvhBuildShape& shape) {
+// begin_build's.
+std::array<uint32_t, 1> beginSpecialization(const BvhBuildShape& shape) {
   static_assert(HMB_SPEC_BVH_SMALL_TASK == 0);
   return {shape.smallTask};
+}
+// build_small_tasks'.
+std::array<uint32_t, 2> smallTaskSpecialization(const BvhBuildShape& shape) {
+  static_assert(HMB_SPEC_BVH_SMALL_TASK == 0 && HMB_SPEC_BVH_PACK_LATER == 1);
+  return {shape.smallTask, shape.packsLater() ? 1u : 0u};
 }
 
 // Levels that halving every range takes n primitives down to one in: ceil(log2(n)), as
@@ -80,10 +85,11 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       name_(std::move(name)),
       maxLeaf_(maxLeaf),
       shape_(shape),
-      beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams), smallTaskSpecialization(shape)),
+      beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams), beginSpecialization(shape)),
       levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams), levelSpecialization(shape)),
       sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)),
       smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams), smallTaskSpecialization(shape)),
+      packDeferredKernel_(context, "bvh/pack_deferred_nodes", sizeof(gpu::BvhBuildParams)),
       refitParentsKernel_(context, "bvh/refit_parents", sizeof(gpu::BvhRefitParams)),
       refitPlacesKernel_(context, "bvh/refit_places", sizeof(gpu::BvhRefitParams)),
       refitBoundsKernel_(context, "bvh/refit_bounds", sizeof(gpu::BvhRefitParams)),
@@ -103,6 +109,24 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
                 std::to_string(HMB_BVH_SMALL_TASK) + " to " + std::to_string(HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU));
   if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
+}
+
+uint32_t BvhBuildPass::smallTaskDepthBound(uint32_t taskPrimitives, bool packsLater) {
+  // build_small_tasks' loops over a task of s primitives whose subtree spans L levels: copying
+  // in and out (2s), a round per node (2s), two sides per split (2s), each level's primitives
+  // binned, partitioned and moved (at most 3s a level); and lavapipe counts one iteration where
+  // a loop starts and ends at once: the split's other loops (under 8 a split, 1 a leaf: 9s) and,
+  // where the task packs its nodes, the searches of the six bounds each child packs (12 a
+  // split: 24s, and more where a bound's guess misses). An eighth of the budget is left for
+  // what this count misses: 15s (39s packing) + 3sL <= 65535 * 7 / 8.
+  constexpr uint64_t kLoopBudget = 65535u / 8u * 7u;
+  const uint64_t s = std::max(taskPrimitives, 1u), fixed = (packsLater ? 15u : 39u) * s;
+  const uint64_t levels = kLoopBudget > fixed ? (kLoopBudget - fixed) / (3u * s) : 0u;
+  return static_cast<uint32_t>(std::clamp<uint64_t>(levels, 1u, HMB_BVH_MAX_DEPTH + 1u) - 1u);
+}
+
+uint32_t BvhBuildPass::depthBound(uint32_t largestTree) const {
+  return std::min(maxDepth_, smallTaskDepthBound(std::min(shape_.smallTask, largestTree), shape_.packsLater()));
 }
 
 void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
@@ -187,7 +211,7 @@ BvhBuildPass::Start BvhBuildPass::start(const vk::Buffer& boxes, uint32_t primit
 const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
                                          std::span<const glm::uvec2> roots,
                                          const std::function<void(vk::FrameRecorder&)>& before) {
-  Start s = start(boxes, primitiveCount, roots, maxDepth_);
+  Start s = start(boxes, primitiveCount, roots, depthBound(largestTreeOf(roots)));
   rootBuffer_.write(std::as_bytes(roots));
   tasks_.write(std::as_bytes(std::span(&s.counters, 1)));
   gpu::BvhBuildCounters& counters = s.counters;
@@ -225,6 +249,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
     frame.begin();
     frame.dispatchIndirect(kSmallTasks, smallTasksKernel_, s.buffers, params, tasks_,
                            offsetof(gpu::BvhBuildCounters, smallDispatch));
+    recordDeferredPacking(frame, kPackDeferred, s);
     const vk::FrameTimings timings = frame.submitAndWait();
     ++stats_.submissions;
     stats_.deviceMilliseconds += timings.frameMilliseconds.value_or(0.0);
@@ -237,7 +262,7 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
 }
 
 uint32_t BvhBuildPass::recordedDepthBound(uint32_t largestTree) const {
-  return std::min(maxDepth_, firstSubmissionLevels(largestTree));
+  return std::min(depthBound(largestTree), firstSubmissionLevels(largestTree));
 }
 
 void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
@@ -268,6 +293,15 @@ void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const
   }
   frame.dispatchIndirect(pass, smallTasksKernel_, s.buffers, s.params, tasks_,
                          offsetof(gpu::BvhBuildCounters, smallDispatch));
+  recordDeferredPacking(frame, pass, s);
+}
+
+void BvhBuildPass::recordDeferredPacking(vk::FrameRecorder& frame, std::string_view pass, const Start& s) {
+  if (!shape_.packsLater()) return;
+  // Every node the trees may have: 2n - 1 a tree of n, an empty tree its root.
+  const uint64_t nodes = 2ull * primitiveCount_ + roots_.size();
+  frame.dispatch(pass, packDeferredKernel_, s.buffers, s.params,
+                 vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(nodes), HMB_BVH_PACK_GROUP)));
 }
 
 const BvhBuildStats& BvhBuildPass::readRecordedCounts(double deviceMilliseconds) {
@@ -406,12 +440,15 @@ std::vector<gpu::BvhNode> BvhBuildPass::downloadNodes() const {
   std::vector<gpu::BvhNode> nodes(stats_.nodes);
   // A node unpacks in its tree's frame: walk each tree from its root (an empty tree's root
   // has no children, whatever its index word says).
+  uint32_t visited = 0;
   for (uint32_t tree = 0; tree < roots_.size(); ++tree) {
     std::vector<uint32_t> stack{tree};
     while (!stack.empty()) {
       const uint32_t index = stack.back();
       stack.pop_back();
       const gpu::BvhNode node = bvh::unpackNode(packed.at(index), frames.at(tree));
+      if (++visited > stats_.nodes)  // a child index pointing back up: nodes left unwritten
+        throw Error(name_ + ": the built nodes do not form trees (a node is reached twice)");
       nodes.at(index) = node;
       if (node.count == 0 && roots_[tree].y > 1) stack.insert(stack.end(), {node.leftOrFirst, node.leftOrFirst + 1});
     }

@@ -60,6 +60,9 @@ struct BvhBuildShape {
   // The device's shape for a top level over instances: on a CPU device a tree of up to
   // HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU instances is built by one invocation, with no level.
   static BvhBuildShape forTopLevel(const vk::Context& context);
+  // Small tasks larger than HMB_BVH_SMALL_TASK (the CPU top level's) leave their nodes' bounds
+  // to be packed after them, a lane per node (HMB_SPEC_BVH_PACK_LATER).
+  bool packsLater() const { return smallTask > HMB_BVH_SMALL_TASK; }
   // "8 lanes, per-lane bins" / "32 lanes, shared atomics" (and ", small tasks of up to N"
   // where N is not HMB_BVH_SMALL_TASK): for reports.
   std::string describe() const;
@@ -71,6 +74,7 @@ class BvhBuildPass {
   static constexpr const char* kLevel = "bvh-build-level";
   static constexpr const char* kSizeDispatch = "bvh-size-build-dispatch";
   static constexpr const char* kSmallTasks = "bvh-build-small-tasks";
+  static constexpr const char* kPackDeferred = "bvh-pack-deferred-nodes";
   static constexpr const char* kCompact = "bvh-compact";
   static constexpr const char* kRefitParents = "bvh-refit-parents";
   static constexpr const char* kRefitPlaces = "bvh-refit-places";
@@ -95,6 +99,16 @@ class BvhBuildPass {
   const BvhBuildShape& shape() const { return shape_; }
   // Tests: bound the trees' depth tighter than HMB_BVH_MAX_DEPTH (what traversal's stack holds).
   void limitDepth(uint32_t levels);
+  // The deepest subtree one invocation of build_small_tasks may build over taskPrimitives
+  // primitives: HMB_BVH_MAX_DEPTH, or less where it would loop past lavapipe's budget (65535
+  // iterations in all, past which its loops end silently and leave the subtree unbuilt). Every
+  // build bounds its trees' depth by it for its largest small task (the CPU top level's tasks
+  // of up to 512 instances, packed later, to 31 levels, bistro's 321 to 53; tasks that pack
+  // their nodes keep 64 up to 245 primitives).
+  static uint32_t smallTaskDepthBound(uint32_t taskPrimitives, bool packsLater);
+  // The depth bound of a build whose largest tree holds largestTree primitives: the pass's
+  // (limitDepth), within smallTaskDepthBound of its largest small task.
+  uint32_t depthBound(uint32_t largestTree) const;
 
   // Builds the trees over `boxes` (BvhBox per primitive, primitiveCount of them) with
   // the given roots, whose ranges must not overlap. `before` records passes that must run
@@ -180,6 +194,8 @@ class BvhBuildPass {
   Start start(const vk::Buffer& boxes, uint32_t primitiveCount, std::span<const glm::uvec2> roots,
               uint32_t depthBound);
   void takeCounts(const gpu::BvhBuildCounters& counters);
+  // pack_deferred_nodes after build_small_tasks, where the shape packs later.
+  void recordDeferredPacking(vk::FrameRecorder& frame, std::string_view pass, const Start& s);
   void prepareRefits(vk::FrameRecorder& frame);
   void sortRefitNodes(std::span<const uint32_t> trees);
 
@@ -204,6 +220,7 @@ class BvhBuildPass {
   vk::ComputeKernel levelKernel_;
   vk::ComputeKernel sizeDispatchKernel_;
   vk::ComputeKernel smallTasksKernel_;
+  vk::ComputeKernel packDeferredKernel_;
   vk::ComputeKernel refitParentsKernel_;
   vk::ComputeKernel refitPlacesKernel_;
   vk::ComputeKernel refitBoundsKernel_;

@@ -508,6 +508,71 @@ TEST_F(DeviceBvh, ATopLevelShapeBuildsHundredsOfPrimitivesInOneSmallTask) {
   }
 }
 
+// Triangles along the x axis, flat in z, each `ratio` times as far out and as large as the one
+// before from `first` on, then `cluster` tiny ones near the first: the SAH peels the chain's
+// largest off level after level, each level binning the cluster again.
+TriangleMesh peeledChain(uint32_t chain, double ratio, double first, uint32_t cluster) {
+  TriangleMesh mesh;
+  double x = first;
+  for (uint32_t i = 0; i < chain; ++i, x *= ratio) {
+    const auto w = static_cast<float>(0.1 * x);
+    const glm::vec3 corner(static_cast<float>(x), 0.0f, 0.0f);
+    mesh.addTriangle(corner, corner + glm::vec3(w, 0.0f, 0.0f), corner + glm::vec3(0.0f, w, 0.0f), 1);
+  }
+  const TriangleMesh soup = bvh::test::randomSoup(cluster, 0.1f, 5);
+  for (uint32_t t = 0; t < soup.triangleCount(); ++t) {
+    glm::vec3 v[3];
+    for (int k = 0; k < 3; ++k)
+      v[k] = soup.positions[soup.indices[3 * t + k]] * static_cast<float>(first) + glm::vec3(first, 0.0, 0.0);
+    mesh.addTriangle(v[0], v[1], v[2], 1);
+  }
+  return mesh;
+}
+
+// One invocation builds a CPU top level of up to HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU instances,
+// and lavapipe ends an invocation's loops silently after 65535 iterations in all. Deep trees
+// of 512 (a chain spanning 31 decades, flat in z; a chain of 64 peeled off a cluster of 448)
+// are built whole, waited and recorded, within the depth bound that budget sets
+// (smallTaskDepthBound), their nodes packed after the task. Where the task packed its own
+// nodes and took no such bound, both came back unfinished.
+TEST_F(DeviceBvh, AOneInvocationTopLevelStaysWithinLavapipesLoopBudget) {
+  EXPECT_EQ(passes::BvhBuildPass::smallTaskDepthBound(HMB_BVH_SMALL_TASK, false), HMB_BVH_MAX_DEPTH);
+  const uint32_t n = HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU;
+  const uint32_t bound = passes::BvhBuildPass::smallTaskDepthBound(n, true);
+  EXPECT_LT(bound, HMB_BVH_MAX_DEPTH);
+  EXPECT_LT(passes::BvhBuildPass::smallTaskDepthBound(n, false), bound);
+  const passes::BvhBuildShape top{HMB_BVH_LEVEL_GROUP, true, n};
+  ASSERT_TRUE(top.packsLater());
+  const std::pair<const char*, TriangleMesh> cases[] = {{"a chain of 512", peeledChain(n, 1.15, 1e-15, 0)},
+                                                        {"64 peeled off 448", peeledChain(64, 3.0, 1e-14, n - 64)}};
+  for (const auto& [what, mesh] : cases) {
+    const bvh::PrimitiveBounds input = bvh::triangleBounds(mesh.view());
+    ASSERT_EQ(input.bounds.size(), n);
+    const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "boxes");
+    const glm::uvec2 root(0u, n);
+    passes::BvhBuildPass levels(context(), "levels", HMB_BVH_MAX_INSTANCE_LEAF);
+    vk::FrameRecorder frame(context());
+    levels.build(frame, buffer, n, std::span(&root, 1));
+    EXPECT_GT(levelsBelowRoot(levels.download(0)), bound) << what << ": deeper than the bound where unbounded";
+    passes::BvhBuildPass builder(context(), "top level", HMB_BVH_MAX_INSTANCE_LEAF, top);
+    EXPECT_EQ(builder.depthBound(n), bound);
+    const passes::BvhBuildStats stats = builder.build(frame, buffer, n, std::span(&root, 1));
+    EXPECT_EQ(stats.smallTasks, 1u) << what;
+    EXPECT_EQ(stats.leaves, n) << what;
+    const bvh::Bvh built = builder.download(0);
+    EXPECT_EQ(bvh::test::structuralProblem(built, input.bounds, HMB_BVH_MAX_INSTANCE_LEAF), "") << what;
+    EXPECT_LE(levelsBelowRoot(built), bound) << what;
+    frame.begin();
+    builder.record(frame, "top level", buffer, n, std::span(&root, 1));
+    frame.submitAndWait();
+    EXPECT_EQ(builder.readRecordedCounts().leaves, n) << what << ", recorded";
+    const bvh::Bvh recorded = builder.download(0);
+    EXPECT_EQ(bvh::test::structuralProblem(recorded, input.bounds, HMB_BVH_MAX_INSTANCE_LEAF), "") << what;
+    std::printf("[ budget   ] %s: %u levels below the root unbounded, %u under the bound of %u\n", what,
+                levelsBelowRoot(levels.download(0)), levelsBelowRoot(built), bound);
+  }
+}
+
 TEST_F(DeviceBvh, ManyMeshesBuildTogether) {
   scene::Scene scene;
   std::vector<TriangleMesh> meshes = {bvh::test::randomSoup(300, 0.05f, 5), bvh::test::grid(12, 6),
@@ -543,6 +608,7 @@ TEST_F(DeviceBvh, SahCostWithinBoundOfFullSweepOnAMillionTriangles) {
   ASSERT_GE(mesh.triangleCount(), 1000000u);
   EXPECT_LE(checkBuild(mesh, "cube sphere"), kMaxSahRatio);
 }
+
 
 }  // namespace
 }  // namespace hmb::trace::test
