@@ -52,7 +52,11 @@
 // each taking a run of consecutive entries: the mask's list then keeps the blocks' order,
 // which the reveal's rays and the background gather's reads were 20% faster for on bistro than
 // with the list's entries dealt out in turn. A run is at most HMB_RANGE_CHECK_MAX_RUN blocks,
-// under the 65535 rounds llvmpipe allows a loop.
+// and fewer where its walks could pass the 65535 loop iterations llvmpipe allows an
+// invocation in all (it ends every loop past them, silently): a pixel's walks take at most
+// 4 s + 16 rounds for a walk speed s (SizeListParams::walkSpeed), so a run is at most
+// HMB_RANGE_CHECK_LOOP_BUDGET / (4 s + 17) blocks (11 at 1280x720, where bistro lists about
+// 4,200).
 // list_range_blocks: one 64-lane group per listed tile, its lanes striding over the tile's
 // blocks. list_shutter_rays: one 8 x 8 group per listed tile, its lanes striding over the tile
 // (at most HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU device pays per invocation, and
@@ -61,6 +65,7 @@
 #define HMB_MASK_TILE_GROUP_Y 8
 #define HMB_RANGE_CHECK_CPU_GROUPS 256u
 #define HMB_RANGE_CHECK_MAX_RUN 16384u
+#define HMB_RANGE_CHECK_LOOP_BUDGET 57344u  // 7/8 of llvmpipe's 65535
 
 // tile_max_edge_candidates: one HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y group per tile, as
 // the gather's tile_max.
@@ -347,7 +352,9 @@ struct SizeListParams {
   // range blocks: range_check's groups wanted in all, each taking a run of the list (0: one per
   // listed block)
   uint rangeGroupsWanted;
-  uint pad0;
+  // range blocks: the farthest a range check's walk may reach, in pixels: the largest speed
+  // (GatherParams::maxSpeed), twice that along curved paths (|v| + 2 |q|)
+  float walkSpeed;
   uint pad1;
 };
 

@@ -1,8 +1,8 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
 // 65535 groups: the moving tiles (a group per tile: list_range_blocks, list_shutter_rays), the
-// range check's blocks (a group per block, or as many as wanted, each a run of the list:
-// range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's
+// range check's blocks (a group per block, or as many as wanted, each a run of the list no
+// longer than its walks' loop budget allows: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's
 // mask pixels for the coverage test (HMB_MASK_LIST_GROUP each: mask_coverage) or the ray mask's
 // pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over
 // the list's front, the composite over the whole mask).
@@ -29,7 +29,9 @@ void main() {
   }
   if (params.list == HMB_SIZE_LIST_RANGE_BLOCKS) {
     const uint count = counters.rangeBlockCount;
-    const uint runs = (count + HMB_RANGE_CHECK_MAX_RUN - 1u) / HMB_RANGE_CHECK_MAX_RUN;
+    const uint maxRun = clamp(HMB_RANGE_CHECK_LOOP_BUDGET / (4u * uint(ceil(min(params.walkSpeed, 1.0e6))) + 17u),
+                              1u, HMB_RANGE_CHECK_MAX_RUN);
+    const uint runs = (count + maxRun - 1u) / maxRun;
     const uvec3 g =
         foldedGroups(params.rangeGroupsWanted == 0u ? count : max(min(count, params.rangeGroupsWanted), runs));
     counters.rangeDispatchX = g.x;

@@ -130,9 +130,11 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                  tileParams,
                  vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
   // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
+  // How far a range check's walk may reach: the largest speed, twice it along curved paths.
+  const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
   const auto sizeDispatch = [&](uint32_t list, uint32_t rangeGroupsWanted) {
     frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, rangeGroupsWanted, 0u, 0u}, {1, 1, 1});
+                   gpu::SizeListParams{list, rangeGroupsWanted, walkSpeed, 0u}, {1, 1, 1});
   };
   sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, 0u);
   if (p.movingTilesOnly) return;

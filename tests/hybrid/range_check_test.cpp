@@ -4,6 +4,7 @@
 // dispatch it sizes, down to an empty mask dispatching nothing and a list too long for one row
 // of groups.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <string>
@@ -52,15 +53,24 @@ void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std:
   EXPECT_EQ(c.compositeDispatchZ, 1u) << what;
 }
 
+// The longest run of blocks one range check group may take: its walks, at most 4 s + 16 loop
+// rounds a pixel for a walk speed s (the largest speed, twice it along curved paths), stay
+// within llvmpipe's loop budget (hybrid_layout.h), written out here.
+uint64_t rangeRunLimit(const RayMaskParameters& p) {
+  const bool curved = (p.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
+  const float walkSpeed = (curved ? 2.0f : 1.0f) * p.blur.maxSpeed;
+  const uint64_t perBlock = 4u * static_cast<uint64_t>(std::ceil(walkSpeed)) + 17u;
+  return std::clamp<uint64_t>(57344u / perBlock, 1u, HMB_RANGE_CHECK_MAX_RUN);
+}
+
 // The range check's dispatch over `blocks` listed blocks, written out here: a group per block,
-// or the groups wanted, more where a group's run would pass HMB_RANGE_CHECK_MAX_RUN blocks.
-void expectRangeDispatchFor(const gpu::RayMaskCounters& c, uint64_t blocks, const RayMaskParameters& p,
+// or the groups wanted, more where a group's run would pass rangeRunLimit blocks.
+void expectRangeDispatchFor(const RayMaskReadback& device, uint64_t blocks, const RayMaskParameters& p,
                             const std::string& what) {
   ASSERT_TRUE(p.rangeCheckGroups.has_value()) << what;
-  const uint64_t wanted = *p.rangeCheckGroups;
-  const uint64_t groups = wanted == 0 ? blocks
-                                      : std::max(std::min(blocks, wanted),
-                                                 (blocks + HMB_RANGE_CHECK_MAX_RUN - 1) / HMB_RANGE_CHECK_MAX_RUN);
+  const gpu::RayMaskCounters& c = device.counters;
+  const uint64_t wanted = *p.rangeCheckGroups, run = rangeRunLimit(p);
+  const uint64_t groups = wanted == 0 ? blocks : std::max(std::min(blocks, wanted), (blocks + run - 1) / run);
   EXPECT_EQ(c.rangeDispatchX, std::min<uint64_t>(groups, 65535)) << what;
   EXPECT_EQ(c.rangeDispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
   EXPECT_EQ(c.rangeDispatchZ, 1u) << what;
@@ -77,7 +87,7 @@ size_t expectRayMaskMatchesIn(const MaskLayer& layer, const RayMaskParameters& p
   std::sort(blocks.begin(), blocks.end());
   EXPECT_EQ(blocks, rangeBlocks(layer, device.edges, p)) << what << ": the range check's blocks";
   EXPECT_EQ(device.counters.rangeBlockCount, blocks.size()) << what;
-  expectRangeDispatchFor(device.counters, blocks.size(), p, what);
+  expectRangeDispatchFor(device, blocks.size(), p, what);
   const std::vector<uint32_t> reference = rangeCheck(layer.velocity, device.edges, layer.width, layer.height, p);
   EXPECT_EQ(device.mask, reference) << what;
   std::vector<uint32_t> masked;
@@ -340,6 +350,31 @@ TEST_F(HybridRangeCheckTest, StillLayerMasksNothingAndDispatchesNothing) {
   EXPECT_EQ(device.counters.maskDispatchY, 0u);
 }
 
+// Long walks over many blocks: object 2 covers all but the last 20 columns of a 400 x 96
+// image and moves 300 px right onto a deeper, still object 3, so every listed block's pixels
+// walk up to 300 px (a coarse walk, and a fine one where the edge lies within reach). One
+// group wanted would take every block, about 300 loop rounds a pixel each, far past the
+// 65535 llvmpipe allows an invocation (it ends the loops silently: pixels left out of the
+// mask): its run is cut to what the budget holds, and the mask is the reference's.
+TEST_F(HybridRangeCheckTest, LongWalksCutTheRunsToTheLoopBudget) {
+  const uint32_t width = 400, height = 96;
+  MaskLayer layer{width, height, {}, {}, {}};
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const bool front = x + 20 < width;
+      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
+      layer.velocity.emplace_back(front ? glm::vec2(300.0f, 0.0f) : glm::vec2(0.0f));
+      layer.objectId.push_back(front ? 2u : 3u);
+    }
+  RayMaskParameters p = parametersWith(0.9f, 400.0f);
+  p.rangeCheckGroups = 1u;
+  const size_t masked = expectRayMaskMatchesIn(layer, p, "long walks, one group wanted");
+  EXPECT_GT(masked, size_t(300) * height);
+  const RayMaskReadback device = runRayMask(context(), layer, p);
+  EXPECT_GT(device.counters.rangeBlockCount * 300u, 65535u) << "one run would pass the budget";
+  EXPECT_GT(device.counters.rangeDispatchX, 1u);
+}
+
 // A row whose first n pixels each move 1 px right onto the next, deeper, object: each is an
 // edge (threshold 0; the depth ramp is in every window) and the mask is exactly those n. The
 // counts around multiples of 64 size the dispatch.
@@ -383,7 +418,7 @@ TEST_F(HybridRangeCheckTest, LongListFoldsIntoASecondRowOfGroups) {
   const uint64_t expected = uint64_t(width - 1) * height;
   ASSERT_GT(expected, 65535u * 64u);
   ASSERT_GT(device.counters.rangeBlockCount, HMB_RANGE_CHECK_MAX_RUN);
-  expectRangeDispatchFor(device.counters, device.counters.rangeBlockCount, p, "folded");
+  expectRangeDispatchFor(device, device.counters.rangeBlockCount, p, "folded");
   EXPECT_GT(device.counters.rangeDispatchX, 1u);
   expectDispatchFor(device.counters, expected, "folded");
   EXPECT_EQ(device.counters.maskDispatchX, 65535u);
