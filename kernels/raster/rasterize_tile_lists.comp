@@ -22,6 +22,7 @@ layout(std430, binding = HMB_TILE_LISTS_BINDING_PAIRS) readonly buffer Pairs { u
 layout(std430, binding = HMB_TILE_LISTS_BINDING_HEADS) readonly buffer Heads { uint heads[]; };
 // Entry i is uvec2(triangle id, depth key), as the other schemes write it.
 layout(std430, binding = HMB_TILE_LISTS_BINDING_VISIBILITY) writeonly buffer Visibility { uvec2 visibility[]; };
+layout(std430, binding = HMB_TILE_LISTS_BINDING_COUNTERS) buffer Counters { RasterCounters counters; };
 layout(push_constant) uniform Params { RasterParams params; };
 
 const uint kPixels = HMB_RASTER_TILE * HMB_RASTER_TILE;
@@ -40,7 +41,8 @@ void main() {
     nearestKey[k] = HMB_VIS_EMPTY;
     nearestId[k] = HMB_VIS_EMPTY;
   }
-  for (uint p = heads[tile]; p != HMB_TILE_LIST_END;) {
+  uint p = heads[tile];
+  while (p != HMB_TILE_LIST_END) {
     const uvec2 pair = pairs[p];  // (set-up triangle, next pair of this tile)
     const SetupTriangle s = setup[pair.x];
     const TriangleEdges edges = makeEdges(s);
@@ -57,6 +59,9 @@ void main() {
     }
     p = pair.y;
   }
+  // Only an ended loop leaves the list unfinished: a tile of 65535 triangles or more on
+  // llvmpipe. Its pixels are written anyway; the host refuses the frame.
+  if (p != HMB_TILE_LIST_END) atomicOr(counters.overflow, HMB_RASTER_OVERFLOW_TILE_LIST);
   [[unroll]] for (uint k = 0u; k < kPixels; ++k) {
     const uvec2 pixel = origin + uvec2(k % HMB_RASTER_TILE, k / HMB_RASTER_TILE);
     if (pixel.x < params.width && pixel.y < params.height)

@@ -193,7 +193,8 @@ void RasterizePass::record(vk::FrameRecorder& frame, const RasterInputs& inputs,
                    {{HMB_TILE_LISTS_BINDING_SETUP, &setup_},
                     {HMB_TILE_LISTS_BINDING_PAIRS, &pairs_},
                     {HMB_TILE_LISTS_BINDING_HEADS, &tileHeads_},
-                    {HMB_TILE_LISTS_BINDING_VISIBILITY, &visibility}},
+                    {HMB_TILE_LISTS_BINDING_VISIBILITY, &visibility},
+                    {HMB_TILE_LISTS_BINDING_COUNTERS, &counters_}},
                    params, vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(tiles), HMB_RASTER_GROUP)));
   } else {
     params.pass = 0;
@@ -213,6 +214,11 @@ bool RasterizePass::growIfOverflowed() {
   stats_.largeTriangles = counters.largeCount;
   stats_.clippedTriangles = counters.clipCount;
   if (counters.overflow == 0) return false;
+  if (counters.overflow & HMB_RASTER_OVERFLOW_TILE_LIST)
+    throw Error(std::string("a screen tile holds 65535 triangles or more, past what the tile-lists rasterizer walks on "
+                            "device '") +
+                context_.info().name + "' (its loops end there): render with RendererOptions::visibilityScheme " +
+                visibilitySchemeName(VisibilityScheme::Int64Atomics));
 
   // The counters kept counting past capacity, so they hold what the frame needs (unless the
   // pair count passed 2^32, which no single buffer can hold anyway).

@@ -73,6 +73,51 @@ TEST_F(CapacityTest, OverflowGrowsTheBuffersAndTheSecondFrameMatchesARoomyPass) 
   }
 }
 
+// One 8x8 tile under 70,000 triangles: the tile-lists scheme walks the tile's list in one loop,
+// and llvmpipe ends an invocation's loops after 65535 iterations, silently. There the frame is
+// refused in one line naming the scheme that renders it; elsewhere the walk finishes and
+// matches the 64-bit atomics' picture.
+TEST_F(CapacityTest, ATileListPastTheLoopBudgetIsRefusedNotHalfWalked) {
+  constexpr uint32_t kSide = 8, kTriangles = 70000;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> z(0.05f, 0.95f);
+  ClipTriangles input;
+  for (uint32_t i = 0; i < kTriangles; ++i) {
+    const float depth = z(rng);
+    input.add({-1.5f, -1.5f, depth, 1.0f}, {3.5f, -1.5f, depth, 1.0f}, {-1.5f, 3.5f, depth, 1.0f});
+  }
+  std::vector<gpu::GpuInstance> instances(input.doubleSided.size());
+  for (auto& instance : instances) instance.flags = HMB_INSTANCE_DOUBLE_SIDED;
+  const vk::Buffer clip = vk::uploadedBuffer(context(), input.clip, "clip");
+  const vk::Buffer triangles = vk::uploadedBuffer(context(), input.triangles, "triangles");
+  const vk::Buffer instanceBuffer = vk::uploadedBuffer(context(), instances, "instances");
+  vk::Buffer visibility(context(), passes::RasterizePass::visibilityBytes(kSide, kSide), vk::MemoryUse::Device,
+                        "visibility");
+  const passes::RasterInputs inputs{&triangles, &instanceBuffer, &clip, kTriangles};
+  passes::RasterizePass pass(context(), passes::VisibilityScheme::TileLists);
+  pass.reserve(kTriangles, kSide, kSide);
+  vk::FrameRecorder frame(context());
+  frame.begin();
+  pass.record(frame, inputs, visibility, kSide, kSide);
+  frame.submitAndWait();
+  if (context().info().type == "cpu") {
+    try {
+      pass.growIfOverflowed();
+      ADD_FAILURE() << "a tile list past the loop budget was not refused";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("65535 triangles"), std::string::npos) << message;
+      EXPECT_NE(message.find("int64-atomics"), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    return;
+  }
+  EXPECT_FALSE(pass.growIfOverflowed());
+  const Visibility atomics =
+      rasterizeClipTriangles(context(), input, kSide, kSide, passes::VisibilityScheme::Int64Atomics);
+  EXPECT_EQ(visibility.download<glm::uvec2>(), atomics.entries);
+}
+
 // Triangles crossing the near plane go through a list for clip_triangles, sized by estimate
 // too: more of them than the list holds must grow it, not drop them.
 TEST_F(CapacityTest, ClipListOverflowGrowsAndLosesNoTriangle) {
