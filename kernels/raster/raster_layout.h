@@ -167,8 +167,9 @@ HMB_CHECK_SIZE(RasterCounters, 64)
 #define HMB_RASTER_OVERFLOW_PAIRS 2u          // more (triangle, tile) pairs than pairCapacity
 #define HMB_RASTER_OVERFLOW_PAIRS_WRAPPED 4u  // the pair count passed 2^32
 #define HMB_RASTER_OVERFLOW_CLIP 8u           // more triangles to clip than clipCapacity
-// A tile's list was left unfinished: llvmpipe ends an invocation's loops after 65535
-// iterations in all, silently, and rasterize_tile_lists walks a tile's list in one loop.
+// A tile's list was left unfinished: llvmpipe (Mesa 22.3; not Mesa 25's) ends an invocation's
+// loops after 65535 iterations in all, silently, and rasterize_tile_lists walks a tile's list in
+// one loop.
 #define HMB_RASTER_OVERFLOW_TILE_LIST 16u
 
 // Byte offsets of the indirect dispatches inside RasterCounters.
