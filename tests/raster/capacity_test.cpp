@@ -33,20 +33,33 @@ ClipTriangles crowd(uint32_t count) {
   return t;
 }
 
+// The triangles on the device, every one double-sided, as RasterInputs.
+struct UploadedTriangles {
+  vk::Buffer clip, triangles, instances;
+  UploadedTriangles(const vk::Context& context, const ClipTriangles& input)
+      : clip(vk::uploadedBuffer(context, input.clip, "clip")),
+        triangles(vk::uploadedBuffer(context, input.triangles, "triangles")),
+        instances(vk::uploadedBuffer(context, doubleSided(input.doubleSided.size()), "instances")) {}
+  static std::vector<gpu::GpuInstance> doubleSided(size_t count) {
+    std::vector<gpu::GpuInstance> instances(count);
+    for (auto& instance : instances) instance.flags = HMB_INSTANCE_DOUBLE_SIDED;
+    return instances;
+  }
+  passes::RasterInputs inputs(size_t count) const {
+    return {&triangles, &instances, &clip, static_cast<uint32_t>(count)};
+  }
+};
+
 TEST_F(CapacityTest, OverflowGrowsTheBuffersAndTheSecondFrameMatchesARoomyPass) {
   constexpr uint32_t kWidth = 64, kHeight = 48;
   const ClipTriangles input = crowd(3000);
   for (auto scheme : {passes::VisibilityScheme::Int64Atomics, passes::VisibilityScheme::Depth32TwoPass,
                        passes::VisibilityScheme::TileLists}) {
     SCOPED_TRACE(passes::visibilitySchemeName(scheme));
-    std::vector<gpu::GpuInstance> instances(input.doubleSided.size());
-    for (auto& instance : instances) instance.flags = HMB_INSTANCE_DOUBLE_SIDED;
-    const vk::Buffer clip = vk::uploadedBuffer(context(), input.clip, "clip");
-    const vk::Buffer triangles = vk::uploadedBuffer(context(), input.triangles, "triangles");
-    const vk::Buffer instanceBuffer = vk::uploadedBuffer(context(), instances, "instances");
+    const UploadedTriangles uploaded(context(), input);
+    const passes::RasterInputs inputs = uploaded.inputs(input.triangles.size());
     vk::Buffer visibility(context(), passes::RasterizePass::visibilityBytes(kWidth, kHeight), vk::MemoryUse::Device,
                           "visibility");
-    const passes::RasterInputs inputs{&triangles, &instanceBuffer, &clip, uint32_t(input.triangles.size())};
 
     // Reserved for one triangle: both the setup and the pair capacity overflow.
     passes::RasterizePass pass(context(), scheme);
@@ -90,14 +103,10 @@ TEST_F(CapacityTest, ATileListPastTheLoopBudgetIsRefusedNotHalfWalked) {
     const glm::vec2 c((float(i % kSide) + 0.5f) / kSide * 2.0f - 1.0f, (float(i / kSide % kSide) + 0.5f) / kSide * 2.0f - 1.0f);
     input.add({c.x - 0.1f, c.y - 0.1f, depth, 1.0f}, {c.x + 0.1f, c.y - 0.1f, depth, 1.0f}, {c.x, c.y + 0.1f, depth, 1.0f});
   }
-  std::vector<gpu::GpuInstance> instances(input.doubleSided.size());
-  for (auto& instance : instances) instance.flags = HMB_INSTANCE_DOUBLE_SIDED;
-  const vk::Buffer clip = vk::uploadedBuffer(context(), input.clip, "clip");
-  const vk::Buffer triangles = vk::uploadedBuffer(context(), input.triangles, "triangles");
-  const vk::Buffer instanceBuffer = vk::uploadedBuffer(context(), instances, "instances");
+  const UploadedTriangles uploaded(context(), input);
+  const passes::RasterInputs inputs = uploaded.inputs(kTriangles);
   vk::Buffer visibility(context(), passes::RasterizePass::visibilityBytes(kSide, kSide), vk::MemoryUse::Device,
                         "visibility");
-  const passes::RasterInputs inputs{&triangles, &instanceBuffer, &clip, kTriangles};
   passes::RasterizePass pass(context(), passes::VisibilityScheme::TileLists);
   pass.reserve(kTriangles, kSide, kSide);
   vk::FrameRecorder frame(context());
