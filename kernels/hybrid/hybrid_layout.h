@@ -55,17 +55,20 @@
 // and fewer where its walks could pass the 65535 loop iterations llvmpipe allows an
 // invocation in all (it ends every loop past them, silently): a pixel's walks take at most
 // 4 s + 16 rounds for a walk speed s (SizeListParams::walkSpeed), so a run is at most
-// HMB_RANGE_CHECK_LOOP_BUDGET / (4 s + 17) blocks (11 at 1280x720, where bistro lists about
+// HMB_LOOP_BUDGET / (4 s + 17) blocks (11 at 1280x720, where bistro lists about
 // 4,200).
 // list_range_blocks: one 64-lane group per listed tile, its lanes striding over the tile's
-// blocks. list_shutter_rays: one 8 x 8 group per listed tile, its lanes striding over the tile
-// (at most HMB_MBLUR_MAX_TILE_SIZE^2 / 64 pixels each): a CPU device pays per invocation, and
-// most pixels only need a few reads there.
+// blocks. list_shutter_rays: an 8 x 8 group per block of the moving tiles, a pixel a lane, on a
+// GPU; on a CPU device HMB_SHUTTER_LIST_CPU_GROUPS groups, each a run of consecutive blocks as
+// the range check's, at most HMB_LOOP_BUDGET / (s + 6) blocks for a walk speed s (a block's
+// pixels take at most s + 3 rounds, a tile 2 more). A group per tile, its lanes striding over
+// it, passed the budget with tiles of 128 px and walks of 300 (a lane's last pixels unlisted).
 #define HMB_MASK_TILE_GROUP_X 8
 #define HMB_MASK_TILE_GROUP_Y 8
 #define HMB_RANGE_CHECK_CPU_GROUPS 256u
 #define HMB_RANGE_CHECK_MAX_RUN 16384u
-#define HMB_RANGE_CHECK_LOOP_BUDGET 57344u  // 7/8 of llvmpipe's 65535
+#define HMB_SHUTTER_LIST_CPU_GROUPS 256u
+#define HMB_LOOP_BUDGET 57344u  // 7/8 of the 65535 loop rounds llvmpipe 22.3 allows an invocation
 
 // tile_max_edge_candidates: one HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y group per tile, as
 // the gather's tile_max.
@@ -179,10 +182,13 @@
 #define HMB_SIZE_LIST_MOVING_TILES 0u     // one group per moving tile
 #define HMB_SIZE_LIST_MASK 1u             // HMB_MASK_LIST_GROUP mask pixels per group
 #define HMB_SIZE_LIST_EDGE_CANDIDATES 2u  // HMB_MASK_LIST_GROUP edge candidates per group
-// One group per listed block, or SizeListParams::rangeGroupsWanted in all (more where a group's
+// One group per listed block, or SizeListParams::groupsWanted in all (more where a group's
 // run would pass HMB_RANGE_CHECK_MAX_RUN blocks).
 #define HMB_SIZE_LIST_RANGE_BLOCKS 3u
 #define HMB_SIZE_LIST_COVERAGE 4u  // HMB_MASK_LIST_GROUP of the range check's mask pixels per group
+// The moving tiles' 8 x 8 blocks for list_shutter_rays: one group per block, or
+// SizeListParams::groupsWanted in all (more where a group's run would pass the loop budget).
+#define HMB_SIZE_LIST_SHUTTER_BLOCKS 5u
 
 // The list passes (edge_mask, reveal_background, gather_background) run 64 lanes per group.
 #define HMB_MASK_LIST_GROUP 64
@@ -266,7 +272,8 @@
 #define HMB_SHUTTER_LIST_BINDING_COUNTERS 3  // ShutterRayCounters (cleared each frame)
 #define HMB_SHUTTER_LIST_BINDING_LIST 4      // uint per listed pixel: shutterRayEntry(pixel index, rays)
 #define HMB_SHUTTER_LIST_BINDING_SAMPLES 5    // uvec4 per pixel: the G-buffer's samples (colour)
-#define HMB_SHUTTER_LIST_BINDING_COUNT 6
+#define HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS 6  // RayMaskCounters: the moving tiles' count
+#define HMB_SHUTTER_LIST_BINDING_COUNT 7
 #define HMB_SHUTTER_LIST_TEXEL_BUFFERS 2  // the surfaces and samples, read as uniform texel buffers
 
 // trace_shutter_rays: one invocation per list entry, HMB_MASK_LIST_GROUP to a group.
@@ -335,9 +342,9 @@ struct RayMaskCounters {
   uint coverageDispatchX;  // mask_coverage over them
   uint coverageDispatchY;
   uint coverageDispatchZ;
-  uint pad0;
-  uint pad1;
-  uint pad2;
+  uint shutterBlockDispatchX;  // list_shutter_rays over the moving tiles' blocks
+  uint shutterBlockDispatchY;
+  uint shutterBlockDispatchZ;
 };
 
 struct MovingTilesParams {
@@ -349,13 +356,15 @@ struct MovingTilesParams {
 
 struct SizeListParams {
   uint list;  // HMB_SIZE_LIST_*
-  // range blocks: range_check's groups wanted in all, each taking a run of the list (0: one per
-  // listed block)
-  uint rangeGroupsWanted;
-  // range blocks: the farthest a range check's walk may reach, in pixels: the largest speed
-  // (GatherParams::maxSpeed), twice that along curved paths (|v| + 2 |q|)
+  // range blocks, shutter blocks: the groups wanted in all, each taking a run of the blocks (0:
+  // one per block)
+  uint groupsWanted;
+  // range blocks, shutter blocks: the farthest a pixel's walk may reach, in pixels. The range
+  // check's: the largest speed (GatherParams::maxSpeed), twice that along curved paths
+  // (|v| + 2 |q|); the shutter list's: the larger of the largest speed and the tile size (a
+  // still pixel walks its tile's fastest, clamped to the tile)
   float walkSpeed;
-  uint pad1;
+  uint tileBlocks;  // shutter blocks: the 8 x 8 blocks of a tile (tileBlocks() in ray_mask_common.glsl)
 };
 
 // tile_max_edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,

@@ -8,8 +8,9 @@
 // the path X + u v for u in [-1, 1] and a pixel on at each end, v its own displacement when it
 // moves half a pixel or more, else its tile's fastest (a still pixel a moving neighbour may
 // sweep over). Its rays: shutterRaysFor the faster of its own and its tile's fastest blur.
-// One group per moving tile (list_moving_tiles), its lanes striding over the tile;
-// pixels of still tiles are never listed.
+// A lane per pixel of the moving tiles' 8 x 8 blocks (list_moving_tiles), a block per group or
+// a run of blocks per group (size_list_dispatch, hybrid_layout.h); pixels of still tiles are
+// never listed.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
@@ -29,6 +30,9 @@ layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILE_MAX) readonly buffer Tile
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_TILES) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_COUNTERS) buffer Counters { ShutterRayCounters counters; };
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_LIST) writeonly buffer List { uint list[]; };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS) readonly buffer MaskCounters {
+  RayMaskCounters maskCounters;
+};
 layout(push_constant) uniform Params { ShutterRayListParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -65,24 +69,45 @@ uint shutterRaysAt(ivec2 pixel, vec3 fastest) {
   return crosses ? shutterRaysFor(max(speed, fastest.z), params.strata) : 0u;
 }
 
+// Lists `pixel` with its rays; the list's dispatch grows with it, a group per
+// HMB_MASK_LIST_GROUP entries.
+void listPixel(uvec2 pixel, uint rays) {
+  const uint slot = atomicAdd(counters.count, 1u);
+  list[slot] = shutterRayEntry(pixel.y * params.blur.width + pixel.x, rays);
+  if (slot % HMB_MASK_LIST_GROUP != 0u) return;
+  const uint group = slot / HMB_MASK_LIST_GROUP;
+  atomicMax(counters.dispatchX, min(group + 1u, HMB_SHUTTER_RAY_GROUPS_PER_ROW));
+  atomicMax(counters.dispatchY, group / HMB_SHUTTER_RAY_GROUPS_PER_ROW + 1u);
+  if (group == 0u) counters.dispatchZ = 1u;
+}
+
 void main() {
-  const uint tile = tiles[listedTileEntry()];
-  // A moving tile's fastest moves kMinBlurPixels or more (list_moving_tiles).
-  const vec3 fastest = tileMax[tile].xyz;
-  const uvec2 begin = tileOrigin(tile, params.blur.tilesX, params.blur.tileSize);
-  const uvec2 end = min(begin + params.blur.tileSize, uvec2(params.blur.width, params.blur.height));
-  for (uint y = begin.y + gl_LocalInvocationID.y; y < end.y; y += HMB_MASK_TILE_GROUP_Y) {
-    for (uint x = begin.x + gl_LocalInvocationID.x; x < end.x; x += HMB_MASK_TILE_GROUP_X) {
-      const uint rays = shutterRaysAt(ivec2(x, y), fastest);
-      if (rays == 0u) continue;
-      // The list's dispatch grows with it: a group per HMB_MASK_LIST_GROUP entries.
-      const uint slot = atomicAdd(counters.count, 1u);
-      list[slot] = shutterRayEntry(y * params.blur.width + x, rays);
-      if (slot % HMB_MASK_LIST_GROUP != 0u) continue;
-      const uint group = slot / HMB_MASK_LIST_GROUP;
-      atomicMax(counters.dispatchX, min(group + 1u, HMB_SHUTTER_RAY_GROUPS_PER_ROW));
-      atomicMax(counters.dispatchY, group / HMB_SHUTTER_RAY_GROUPS_PER_ROW + 1u);
-      if (group == 0u) counters.dispatchZ = 1u;
+  // The blocks of every moving tile in turn, tileBlocks() to a tile; this group's run of them,
+  // taken a tile at a time so the divisions that place a block run once a tile.
+  const uint tileSize = params.blur.tileSize;
+  const uint perTile = tileBlocks(tileSize);
+  const uint blocksX = tileBlocksAcross(tileSize);
+  const uint count = maskCounters.tileCount * perTile;
+  const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
+  const uint run = (count + groups - 1u) / groups;
+  uint entry = foldedGroupIndex() * run;
+  const uint end = min(entry + run, count);
+  while (entry < end) {
+    const uint listed = entry / perTile;
+    const uint tile = tiles[listed];
+    const uvec2 corner = tileOrigin(tile, params.blur.tilesX, tileSize);
+    const uvec2 tileEnd = min(corner + tileSize, uvec2(params.blur.width, params.blur.height));
+    // A moving tile's fastest moves kMinBlurPixels or more (list_moving_tiles).
+    const vec3 fastest = tileMax[tile].xyz;
+    const uint block = entry - listed * perTile;
+    uvec2 at = uvec2(block % blocksX, block / blocksX);
+    for (const uint last = min(end, (listed + 1u) * perTile); entry < last; ++entry) {
+      const uvec2 pixel = corner + at * uvec2(HMB_MASK_TILE_GROUP_X, HMB_MASK_TILE_GROUP_Y) + gl_LocalInvocationID.xy;
+      at = at.x + 1u == blocksX ? uvec2(0u, at.y + 1u) : uvec2(at.x + 1u, at.y);
+      // Lanes past the tile's or the image's edge have no pixel.
+      if (any(greaterThanEqual(pixel, tileEnd))) continue;
+      const uint rays = shutterRaysAt(ivec2(pixel), fastest);
+      if (rays != 0u) listPixel(pixel, rays);
     }
   }
 }

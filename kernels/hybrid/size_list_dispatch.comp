@@ -1,11 +1,12 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
-// 65535 groups: the moving tiles (a group per tile: list_range_blocks, list_shutter_rays), the
-// range check's blocks (a group per block, or as many as wanted, each a run of the list no
-// longer than its walks' loop budget allows: range_check), the edge candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's
-// mask pixels for the coverage test (HMB_MASK_LIST_GROUP each: mask_coverage) or the ray mask's
-// pixels (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over
-// the list's front, the composite over the whole mask).
+// 65535 groups: the moving tiles (a group per tile: list_range_blocks); their 8 x 8 blocks
+// (list_shutter_rays) and the range check's listed blocks (range_check): a group per block, or
+// as many as wanted, each a run no longer than its walks' loop budget allows; the edge
+// candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's mask pixels for the
+// coverage test (HMB_MASK_LIST_GROUP each: mask_coverage) or the ray mask's pixels
+// (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over the
+// list's front, the composite over the whole mask).
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
@@ -19,6 +20,15 @@ layout(push_constant) uniform Params { SizeListParams params; };
 
 uvec3 listGroups(uint count) { return foldedGroups((count + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP); }
 
+// How far a walk may reach, rounded up: a loop round per pixel it steps.
+uint walkRounds() { return uint(ceil(min(params.walkSpeed, 1.0e6))); }
+
+// Groups for `count` blocks: one each, or as many as wanted, but never a run past maxRun blocks.
+uvec3 runGroups(uint count, uint maxRun) {
+  const uint runs = (count + maxRun - 1u) / maxRun;
+  return foldedGroups(params.groupsWanted == 0u ? count : max(min(count, params.groupsWanted), runs));
+}
+
 void main() {
   if (params.list == HMB_SIZE_LIST_MOVING_TILES) {
     const uvec3 g = foldedGroups(counters.tileCount);
@@ -29,14 +39,19 @@ void main() {
   }
   if (params.list == HMB_SIZE_LIST_RANGE_BLOCKS) {
     const uint count = counters.rangeBlockCount;
-    const uint maxRun = clamp(HMB_RANGE_CHECK_LOOP_BUDGET / (4u * uint(ceil(min(params.walkSpeed, 1.0e6))) + 17u),
-                              1u, HMB_RANGE_CHECK_MAX_RUN);
-    const uint runs = (count + maxRun - 1u) / maxRun;
-    const uvec3 g =
-        foldedGroups(params.rangeGroupsWanted == 0u ? count : max(min(count, params.rangeGroupsWanted), runs));
+    const uint maxRun = clamp(HMB_LOOP_BUDGET / (4u * walkRounds() + 17u), 1u, HMB_RANGE_CHECK_MAX_RUN);
+    const uvec3 g = runGroups(count, maxRun);
     counters.rangeDispatchX = g.x;
     counters.rangeDispatchY = g.y;
     counters.rangeDispatchZ = g.z;
+    return;
+  }
+  if (params.list == HMB_SIZE_LIST_SHUTTER_BLOCKS) {
+    const uint count = counters.tileCount * params.tileBlocks;
+    const uvec3 g = runGroups(count, max(HMB_LOOP_BUDGET / (walkRounds() + 6u), 1u));
+    counters.shutterBlockDispatchX = g.x;
+    counters.shutterBlockDispatchY = g.y;
+    counters.shutterBlockDispatchZ = g.z;
     return;
   }
   if (params.list == HMB_SIZE_LIST_COVERAGE) {

@@ -132,9 +132,9 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
   // How far a range check's walk may reach: the largest speed, twice it along curved paths.
   const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
-  const auto sizeDispatch = [&](uint32_t list, uint32_t rangeGroupsWanted) {
+  const auto sizeDispatch = [&](uint32_t list, uint32_t groupsWanted) {
     frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, rangeGroupsWanted, walkSpeed, 0u}, {1, 1, 1});
+                   gpu::SizeListParams{list, groupsWanted, walkSpeed, 0u}, {1, 1, 1});
   };
   sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, 0u);
   if (p.movingTilesOnly) return;

@@ -45,7 +45,7 @@ struct RayMaskParameters {
   // after it in the tiles with a moving pixel alone (a CPU device runs the loop's test at still
   // pixels too). Either lists the same pixels.
   bool candidatesInTileMaxLoop = true;
-  // The range check's groups wanted in all (gpu::SizeListParams::rangeGroupsWanted: 0 for one
+  // The range check's groups wanted in all (gpu::SizeListParams::groupsWanted: 0 for one
   // per listed 8 x 8 block); unset: the device's type decides (hybrid_layout.h).
   std::optional<uint32_t> rangeCheckGroups;
 };

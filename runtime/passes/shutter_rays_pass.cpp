@@ -1,5 +1,6 @@
 #include "runtime/passes/shutter_rays_pass.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 
@@ -8,12 +9,14 @@
 #include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "runtime/trace_scene.h"
+#include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
 
 ShutterRaysPass::ShutterRaysPass(const vk::Context& context, const HitShading* hits)
     : context_(context),
+      sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
       listKernel_(context, "hybrid/list_shutter_rays", sizeof(gpu::ShutterRayListParams)),
       traceKernel_(context, "hybrid/trace_shutter_rays", sizeof(gpu::ShutterRayTraceParams), ShadingKernel::Rays::Traced,
                    hits) {}
@@ -39,22 +42,31 @@ void requireStrata(uint32_t strata) {
 
 void ShutterRaysPass::recordList(vk::FrameRecorder& frame, const MotionBlurInputs& raster,
                                  const gpu::GatherParams& blur, const vk::Buffer& tileMax, const RayMaskStage& rayMask,
-                                 uint32_t strata) const {
+                                 uint32_t strata, std::optional<uint32_t> groupsWanted) const {
   size_.requireMadeFor("shutter rays", raster.width, raster.height);
   requireStrata(strata);
   if (blur.width != raster.width || blur.height != raster.height)
     throw Error("shutter rays: the blur's parameters are for another size");
+  if (blur.tileSize == 0) throw Error("shutter rays: the blur's tile size is 0");
   frame.fill(kList, counters_, 0u);
+  // The moving tiles' 8 x 8 blocks -> the list's groups (hybrid_layout.h). A pixel walks its own
+  // velocity, clamped to maxSpeed, or its tile's fastest, clamped to the tile.
+  const uint32_t tileBlocks =
+      vk::groupsFor(blur.tileSize, HMB_MASK_TILE_GROUP_X) * vk::groupsFor(blur.tileSize, HMB_MASK_TILE_GROUP_Y);
+  const float walkSpeed = std::max(blur.maxSpeed, float(blur.tileSize));
+  const uint32_t groups = groupsWanted.value_or(context_.info().type == "cpu" ? HMB_SHUTTER_LIST_CPU_GROUPS : 0u);
+  frame.dispatch(kList, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &rayMask.counters()}},
+                 gpu::SizeListParams{HMB_SIZE_LIST_SHUTTER_BLOCKS, groups, walkSpeed, tileBlocks}, {1, 1, 1});
   const gpu::ShutterRayListParams listParams{blur, strata, 0u, 0u, 0u};
-  // One group per moving tile, as the ray mask's edge candidates.
   frame.dispatchIndirect(kList, listKernel_,
                          {{HMB_SHUTTER_LIST_BINDING_SURFACES, raster.surfaces},
                           {HMB_SHUTTER_LIST_BINDING_TILE_MAX, &tileMax},
                           {HMB_SHUTTER_LIST_BINDING_SAMPLES, raster.samples},
                           {HMB_SHUTTER_LIST_BINDING_TILES, &rayMask.movingTiles()},
+                          {HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS, &rayMask.counters()},
                           {HMB_SHUTTER_LIST_BINDING_COUNTERS, &counters_},
                           {HMB_SHUTTER_LIST_BINDING_LIST, &list_}},
-                         listParams, rayMask.counters(), offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
+                         listParams, rayMask.counters(), offsetof(gpu::RayMaskCounters, shutterBlockDispatchX));
 }
 
 void ShutterRaysPass::recordTrace(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,

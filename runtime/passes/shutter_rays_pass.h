@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "kernels/hybrid/hybrid_layout.h"
 #include "runtime/passes/image_size.h"
@@ -43,9 +44,12 @@ class ShutterRaysPass {
   void prepare(uint32_t width, uint32_t height);
   // The list, after the ray mask in the same frame (its moving tiles and their dispatch).
   // blur: the frame's gather parameters (the mask's); tileMax: the gather's, at blur.tileSize;
-  // strata: a power of two from 2 to HMB_MAX_SHUTTER_STRATA.
+  // strata: a power of two from 2 to HMB_MAX_SHUTTER_STRATA; groupsWanted: the list's groups in
+  // all, each a run of the moving tiles' 8 x 8 blocks (0: one per block; unset: the device's type
+  // decides, hybrid_layout.h), more where a run would pass llvmpipe's loop budget.
   void recordList(vk::FrameRecorder& frame, const MotionBlurInputs& raster, const gpu::GatherParams& blur,
-                  const vk::Buffer& tileMax, const RayMaskStage& rayMask, uint32_t strata) const;
+                  const vk::Buffer& tileMax, const RayMaskStage& rayMask, uint32_t strata,
+                  std::optional<uint32_t> groupsWanted = std::nullopt) const;
   // The rays, after the composite: traceScene holds the frame time, then one time per stratum
   // (the strata's centres); cameras a gpu::PinholeCamera per trace-scene time. output:
   // overwritten at the listed pixels.
@@ -59,7 +63,7 @@ class ShutterRaysPass {
 
  private:
   const vk::Context& context_;
-  vk::ComputeKernel listKernel_;
+  vk::ComputeKernel sizeKernel_, listKernel_;
   ShadingKernel traceKernel_;
   ImageSize size_;
   vk::Buffer list_;

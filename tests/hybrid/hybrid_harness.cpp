@@ -138,15 +138,18 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
 }
 
 ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& layer,
-                                         const passes::RayMaskParameters& parameters, uint32_t strata) {
+                                         const passes::RayMaskParameters& parameters, uint32_t strata,
+                                         std::optional<uint32_t> groupsWanted) {
   passes::ShutterRaysPass pass(context);
   pass.prepare(layer.width, layer.height);
-  recordRayMask(context, layer, parameters,
-                [&](vk::FrameRecorder& frame, const passes::MotionBlurInputs& inputs, const passes::RayMaskStage& stage,
-                    const passes::RayMaskParameters& p) {
-                  pass.recordList(frame, inputs, p.blur, *p.tileMax, stage, strata);
-                });
+  const RayMaskReadback mask = recordRayMask(
+      context, layer, parameters,
+      [&](vk::FrameRecorder& frame, const passes::MotionBlurInputs& inputs, const passes::RayMaskStage& stage,
+          const passes::RayMaskParameters& p) {
+        pass.recordList(frame, inputs, p.blur, *p.tileMax, stage, strata, groupsWanted);
+      });
   ShutterRayListReadback out;
+  out.maskCounters = mask.counters;
   out.counters = pass.counters().download<gpu::ShutterRayCounters>().at(0);
   const size_t pixels = size_t(layer.width) * layer.height;
   out.rays.assign(pixels, 0u);

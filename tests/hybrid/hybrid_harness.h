@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <random>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -45,13 +46,16 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
 
 // ShutterRaysPass's list (list_shutter_rays) of `layer` at `strata`, after the ray mask's
 // moving tiles (RayMaskStage): the rays per pixel the list holds (0 where it lists none; a
-// pixel listed twice fails the test), and its counters.
+// pixel listed twice fails the test), its counters and the ray mask's (the list's dispatch).
+// groupsWanted: ShutterRaysPass::recordList's.
 struct ShutterRayListReadback {
   std::vector<uint32_t> rays;
   gpu::ShutterRayCounters counters{};
+  gpu::RayMaskCounters maskCounters{};
 };
 ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& layer,
-                                         const passes::RayMaskParameters& parameters, uint32_t strata);
+                                         const passes::RayMaskParameters& parameters, uint32_t strata,
+                                         std::optional<uint32_t> groupsWanted = std::nullopt);
 
 // One gather of `layer`: the composite (CompositePass, after MaskCoveragePass over the mask's
 // pixels for the coverage form) with `background`, which needs the mask and the object ids;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <optional>
 #include <utility>
 #include <random>
 #include <string>
@@ -51,9 +52,11 @@ MaskLayer withColors(MaskLayer layer, std::mt19937& rng) {
 }
 
 // Every pixel's rays as the device listed them equal the reference's; the list's dispatch
-// covers it in groups of HMB_MASK_LIST_GROUP. Returns the pixels listed.
-size_t expectListMatches(const MaskLayer& layer, const RayMaskParameters& p, uint32_t strata, const std::string& what) {
-  const ShutterRayListReadback device = runShutterRayList(VulkanTest::context(), layer, p, strata);
+// covers it in groups of HMB_MASK_LIST_GROUP. groupsWanted: the list's own groups (unset: the
+// device's type decides). Returns the pixels listed.
+size_t expectListMatches(const MaskLayer& layer, const RayMaskParameters& p, uint32_t strata, const std::string& what,
+                         std::optional<uint32_t> groupsWanted = std::nullopt) {
+  const ShutterRayListReadback device = runShutterRayList(VulkanTest::context(), layer, p, strata, groupsWanted);
   const std::vector<uint32_t> reference = shutterRays(layer, p, strata);
   size_t listed = 0, wrong = 0;
   for (size_t i = 0; i < reference.size(); ++i) {
@@ -93,10 +96,13 @@ TEST_F(HybridShutterRaysTest, ListMatchesReferenceOnRandomLayers) {
   size_t listed = 0, pixels = 0;
   for (const Case& c : cases) {
     const MaskLayer layer = withColors(randomMaskLayer(c.width, c.height, rng), rng);
-    listed += expectListMatches(layer, c.p, c.strata,
-                                std::to_string(c.width) + "x" + std::to_string(c.height) + " strata " +
-                                    std::to_string(c.strata));
+    const std::string what =
+        std::to_string(c.width) + "x" + std::to_string(c.height) + " strata " + std::to_string(c.strata);
+    listed += expectListMatches(layer, c.p, c.strata, what);
     pixels += layer.objectId.size();
+    // A group per block (a GPU's shape) and a few groups taking runs of blocks list the same.
+    for (const uint32_t groups : {0u, 3u})
+      expectListMatches(layer, c.p, c.strata, what + ", " + std::to_string(groups) + " groups wanted", groups);
   }
   // Some pixels, not all: the rule decides.
   EXPECT_GT(listed, 100u);
@@ -175,6 +181,35 @@ TEST_F(HybridShutterRaysTest, ColourStepsOnOneObjectByHand) {
       EXPECT_EQ(reference[x], steps && x >= 11 && x <= 18 ? 2u : 0u) << "column " << x << ", right " << right;
     expectListMatches(layer, parametersWith(40.0f, 1.0f, 30), 8, steps ? "a colour step" : "a colour change under the step");
   }
+}
+
+// Object 2 fills a 400 x 128 image but its last 20 columns and moves 300 px right; object 3
+// there is still. A pixel is listed when its walk (301 px either way) meets the other object,
+// and those more than 301 px from it walk the whole way. With tiles of 128 px, a group per tile
+// left 256 pixels to a lane, near 75,000 loop rounds, past the 65535 llvmpipe 22.3 allows an
+// invocation (it ends the loops silently: a lane's last pixels were never listed). One group
+// wanted: its run is cut to what the budget holds, and the list is the reference's.
+TEST_F(HybridShutterRaysTest, LongWalksCutTheRunsToTheLoopBudget) {
+  const uint32_t width = 400, height = 128, tileSize = 128;
+  MaskLayer layer{width, height, {}, {}, {}};
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const bool front = x + 20 < width;
+      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
+      layer.velocity.emplace_back(front ? glm::vec2(300.0f, 0.0f) : glm::vec2(0.0f));
+      layer.objectId.push_back(front ? 2u : 3u);
+    }
+  const RayMaskParameters p = parametersWith(400.0f, 1.0f, tileSize);
+  EXPECT_GT(expectListMatches(layer, p, 8, "long walks, one group wanted", 1u), size_t(300) * height);
+  const ShutterRayListReadback device = runShutterRayList(context(), layer, p, 8, 1u);
+  ASSERT_EQ(device.maskCounters.tileCount, 3u) << "the last tile, 16 still columns, does not move";
+  const uint32_t blocks = 3 * (tileSize / 8) * (tileSize / 8);
+  EXPECT_GT(uint64_t(blocks) * 301, 65535u) << "one run would pass the budget";
+  // A block's walks take at most s + 3 rounds for the larger s of the speed bound and the tile,
+  // and its tile 2 more.
+  const uint32_t maxRun = HMB_LOOP_BUDGET / (400 + 6);
+  EXPECT_EQ(device.maskCounters.shutterBlockDispatchX, (blocks + maxRun - 1) / maxRun);
+  EXPECT_EQ(device.maskCounters.shutterBlockDispatchY, 1u);
 }
 
 TEST(HybridShutterRaysRuleTest, RaysFollowTheBlurLength) {
