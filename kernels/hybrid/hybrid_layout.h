@@ -110,8 +110,9 @@
 #define HMB_RANGE_BLOCKS_BINDING_COUNTERS 3  // RayMaskCounters: rangeBlockCount
 #define HMB_RANGE_BLOCKS_BINDING_LIST 4      // uint per listed block (rangeBlockEntry below), in no order
 #define HMB_RANGE_BLOCKS_BINDING_COUNT 5
-// A block's reach is tested over at most this many coarse blocks a side; a wider one is listed
-// untested (its walks cost less than the test would).
+// A block's reach is tested over at most this many coarse blocks a side (fewer in the largest
+// tiles: rangeBlocksTestSide); a wider one is listed untested (its walks cost less than the
+// test would).
 #define HMB_RANGE_BLOCKS_MAX_TEST_SIDE 16
 
 #define HMB_RANGE_CHECK_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces
@@ -437,6 +438,19 @@ HMB_SHARED uint rangeBlockEntry(uvec2 origin, bool lastAcross, bool lastDown) {
          (lastDown ? HMB_RANGE_BLOCK_LAST_DOWN : 0u);
 }
 HMB_SHARED uvec2 rangeBlockOrigin(uint entry) { return uvec2(entry & 0x3FFFu, (entry >> 14u) & 0x3FFFu); }
+
+// The widest reach list_range_blocks tests, in coarse blocks a side: HMB_RANGE_BLOCKS_MAX_TEST_SIDE,
+// narrower where a lane's share of a tile's blocks, each tested over s x s coarse blocks (at
+// most (s + 1)^2 + 2 loop rounds), would pass HMB_LOOP_BUDGET: tiles past about 900 px. A
+// wider reach is listed untested, which costs the range check walks, never a mask pixel.
+HMB_SHARED uint rangeBlocksTestSide(uint tileSize) {
+  const uint across = (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;
+  const uint down = (tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y;
+  const uint perLane = (across * down + uint(HMB_RANGE_BLOCKS_GROUP) - 1u) / uint(HMB_RANGE_BLOCKS_GROUP);
+  uint side = uint(HMB_RANGE_BLOCKS_MAX_TEST_SIDE);
+  while (side > 1u && perLane * ((side + 1u) * (side + 1u) + 2u) > HMB_LOOP_BUDGET) side -= 1u;
+  return side;
+}
 
 HMB_SHARED uint shutterRayEntry(uint pixelIndex, uint rays) {
   const uint log2Rays = rays >= 16u ? 4u : (rays >= 8u ? 3u : (rays >= 4u ? 2u : 1u));  // rays: 2, 4, 8 or 16

@@ -26,14 +26,14 @@ layout(push_constant) uniform Params { RayMaskParams params; };
 #include "ray_mask_common.glsl"
 
 // Whether a flagged coarse block lies within `margin` pixels of the 8 x 8 block at `origin`
-// (clipped to the image); true, untested, when that is too many coarse blocks to read.
-bool edgeBlockNear(uvec2 origin, int margin) {
+// (clipped to the image); true, untested, when that is more than testSide coarse blocks a side.
+bool edgeBlockNear(uvec2 origin, int margin, int testSide) {
   const ivec2 last = ivec2(int(params.blur.width) - 1, int(params.blur.height) - 1);
   const ivec2 from = clamp(ivec2(origin) - margin, ivec2(0), last) / int(HMB_EDGE_BLOCK);
   const ivec2 to =
       clamp(ivec2(origin) + ivec2(HMB_MASK_TILE_GROUP_X - 1, HMB_MASK_TILE_GROUP_Y - 1) + margin, ivec2(0), last) /
       int(HMB_EDGE_BLOCK);
-  if (any(greaterThan(to - from, ivec2(HMB_RANGE_BLOCKS_MAX_TEST_SIDE - 1)))) return true;
+  if (any(greaterThan(to - from, ivec2(testSide - 1)))) return true;
   for (int y = from.y; y <= to.y; ++y)
     for (int x = from.x; x <= to.x; ++x)
       if (edges[HMB_EDGE_BLOCK_ENTRY(params.blur.width, params.blur.height, uint(x), uint(y))] != 0u) return true;
@@ -51,11 +51,13 @@ void main() {
   const uint blocks = tileBlocks(tileSize);
   const uint blocksAcross = tileBlocksAcross(tileSize);
   const uint blocksDown = tileBlocksDown(tileSize);
+  // Within llvmpipe's loop budget for this lane's share of the tile's blocks.
+  const int testSide = int(rangeBlocksTestSide(tileSize));
   for (uint block = gl_LocalInvocationIndex; block < blocks; block += HMB_RANGE_BLOCKS_GROUP) {
     const uvec2 origin = tileBlockOrigin(tile, block, params.blur.tilesX, tileSize);
     // Blocks past the image's edge (a border tile's) have no pixel.
     if (any(greaterThanEqual(origin, tileEnd))) continue;
-    if (!bounded || edgeBlockNear(origin, margin))
+    if (!bounded || edgeBlockNear(origin, margin, testSide))
       blockList[atomicAdd(counters.rangeBlockCount, 1u)] =
           rangeBlockEntry(origin, block % blocksAcross == blocksAcross - 1u, block / blocksAcross == blocksDown - 1u);
   }

@@ -375,6 +375,40 @@ TEST_F(HybridRangeCheckTest, LongWalksCutTheRunsToTheLoopBudget) {
   EXPECT_GT(device.counters.rangeDispatchX, 1u);
 }
 
+// One 1024-px tile over a 1024 x 1024 image: object 2 (depth 1) moving `speed` px right, and
+// a still, deeper object 3 in a 40-px square near the bottom, where the edges are. A lane has
+// 256 of the tile's blocks; testing each over 16 x 16 coarse blocks (a reach of 25 px) took near
+// 75,000 loop rounds, past the 65535 llvmpipe 22.3 allows an invocation (it ends the loops
+// silently: a lane's last blocks, the tile's bottom rows, were left unlisted and their pixels
+// out of the mask). There the test narrows to 13 coarse blocks a side and lists wider reaches
+// untested; a reach of 12 px is still tested, and most blocks are left out.
+TEST_F(HybridRangeCheckTest, ALargeTileTestsNoWiderThanTheLoopBudgetHolds) {
+  const uint32_t side = 1024;
+  EXPECT_EQ(gpu::rangeBlocksTestSide(side), 13u);
+  EXPECT_EQ(gpu::rangeBlocksTestSide(40), uint32_t(HMB_RANGE_BLOCKS_MAX_TEST_SIDE));
+  const size_t tileBlocks = (side / 8) * (side / 8);
+  for (const float speed : {25.0f, 12.0f}) {
+    MaskLayer layer{side, side, {}, {}, {}};
+    for (uint32_t y = 0; y < side; ++y)
+      for (uint32_t x = 0; x < side; ++x) {
+        const bool behind = x >= 500 && x < 540 && y >= 960 && y < 1000;
+        layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, behind ? 5.0f : 1.0f);
+        layer.velocity.emplace_back(behind ? glm::vec2(0.0f) : glm::vec2(speed, 0.0f));
+        layer.objectId.push_back(behind ? 3u : 2u);
+      }
+    RayMaskParameters p = parametersWith(0.5f);
+    p.blur.tileSize = side;
+    p.rangeCheckGroups = 0u;
+    const std::string what = "a 1024-px tile, speed " + std::to_string(speed);
+    EXPECT_GT(expectRayMaskMatchesIn(layer, p, what), 500u) << what;
+    const size_t listed = runRayMask(context(), layer, p).rangeBlocks.size();
+    if (speed > 20.0f)
+      EXPECT_GT(listed, tileBlocks * 9 / 10) << what << ": a reach wider than the test is listed untested";
+    else
+      EXPECT_LT(listed, tileBlocks / 10) << what;
+  }
+}
+
 // A row whose first n pixels each move 1 px right onto the next, deeper, object: each is an
 // edge (threshold 0; the depth ramp is in every window) and the mask is exactly those n. The
 // counts around multiples of 64 size the dispatch.
