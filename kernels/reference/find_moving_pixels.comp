@@ -20,8 +20,10 @@ void main() {
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const PinholeCamera cam = cameras[0];
   const PreparedRay r = prepareRay(cam.eye.xyz, pinholeRayDirection(cam, vec2(pixel) + 0.5, params.width, params.height));
-  bool moving = false;
-  for (uint b = 0; b < params.boxCount && !moving; ++b)
+  // A loop round a box: past HMB_MOVING_PIXELS_MAX_BOXES the pixel is listed untested.
+  const uint tested = min(params.boxCount, HMB_MOVING_PIXELS_MAX_BOXES);
+  bool moving = tested < params.boxCount;
+  for (uint b = 0; b < tested && !moving; ++b)
     moving = r.valid && intersectBox(r, boxes[2 * b].xyz, boxes[2 * b + 1].xyz, params.tMin, params.tMax);
   if (moving) list[atomicAdd(listLength, 1u)] = pixel.y * params.width + pixel.x;
 }

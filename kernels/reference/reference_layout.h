@@ -24,6 +24,10 @@
 
 // find_moving_pixels: pixels whose ray meets the box some moving instance sweeps over the
 // shutter. Only they can change over the shutter when the camera stands still.
+// An invocation tests every box in one loop, at most this many: llvmpipe 22.3 ends an
+// invocation's loops after 65535 rounds in all, silently. With more moving instances every
+// pixel is listed untested (it takes every sample: the image is the same, the saving gone).
+#define HMB_MOVING_PIXELS_MAX_BOXES 57344u
 #define HMB_MOVING_PIXELS_GROUP_X 8
 #define HMB_MOVING_PIXELS_GROUP_Y 8
 #define HMB_MOVING_PIXELS_BINDING_CAMERAS 0  // PinholeCamera (the first is used)
