@@ -347,6 +347,18 @@ MaskLayer randomMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng) {
   return layer;
 }
 
+MaskLayer movingOntoStillColumns(uint32_t width, uint32_t height, uint32_t stillColumns, glm::vec2 velocity) {
+  MaskLayer layer{width, height, {}, {}, {}};
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const bool front = x + stillColumns < width;
+      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
+      layer.velocity.emplace_back(front ? velocity : glm::vec2(0.0f));
+      layer.objectId.push_back(front ? 2u : 3u);
+    }
+  return layer;
+}
+
 MaskLayer adversarialMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng) {
   constexpr float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
   MaskLayer layer = randomMaskLayer(width, height, rng);

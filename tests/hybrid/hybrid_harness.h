@@ -117,4 +117,8 @@ MaskLayer randomMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng);
 // may (zero and sub-pixel motion, the background's id 0).
 MaskLayer adversarialMaskLayer(uint32_t width, uint32_t height, std::mt19937& rng);
 
+// Object 2 (depth 1) moving by `velocity` over all but the last `stillColumns` columns, where a
+// still, deeper object 3 (depth 5) is: long walks with an edge at their end.
+MaskLayer movingOntoStillColumns(uint32_t width, uint32_t height, uint32_t stillColumns, glm::vec2 velocity);
+
 }  // namespace hmb::test::hybrid

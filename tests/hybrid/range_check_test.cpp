@@ -358,14 +358,7 @@ TEST_F(HybridRangeCheckTest, StillLayerMasksNothingAndDispatchesNothing) {
 // mask): its run is cut to what the budget holds, and the mask is the reference's.
 TEST_F(HybridRangeCheckTest, LongWalksCutTheRunsToTheLoopBudget) {
   const uint32_t width = 400, height = 96;
-  MaskLayer layer{width, height, {}, {}, {}};
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const bool front = x + 20 < width;
-      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
-      layer.velocity.emplace_back(front ? glm::vec2(300.0f, 0.0f) : glm::vec2(0.0f));
-      layer.objectId.push_back(front ? 2u : 3u);
-    }
+  const MaskLayer layer = movingOntoStillColumns(width, height, 20, {300.0f, 0.0f});
   RayMaskParameters p = parametersWith(0.9f, 400.0f);
   p.rangeCheckGroups = 1u;
   const size_t masked = expectRayMaskMatchesIn(layer, p, "long walks, one group wanted");

@@ -191,14 +191,7 @@ TEST_F(HybridShutterRaysTest, ColourStepsOnOneObjectByHand) {
 // wanted: its run is cut to what the budget holds, and the list is the reference's.
 TEST_F(HybridShutterRaysTest, LongWalksCutTheRunsToTheLoopBudget) {
   const uint32_t width = 400, height = 128, tileSize = 128;
-  MaskLayer layer{width, height, {}, {}, {}};
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const bool front = x + 20 < width;
-      layer.normalDepth.emplace_back(0.0f, 0.0f, 1.0f, front ? 1.0f : 5.0f);
-      layer.velocity.emplace_back(front ? glm::vec2(300.0f, 0.0f) : glm::vec2(0.0f));
-      layer.objectId.push_back(front ? 2u : 3u);
-    }
+  const MaskLayer layer = movingOntoStillColumns(width, height, 20, {300.0f, 0.0f});
   const RayMaskParameters p = parametersWith(400.0f, 1.0f, tileSize);
   EXPECT_GT(expectListMatches(layer, p, 8, "long walks, one group wanted", 1u), size_t(300) * height);
   const ShutterRayListReadback device = runShutterRayList(context(), layer, p, 8, 1u);
