@@ -266,7 +266,7 @@
 // tiles with a moving pixel (see the kernel: the host picks by device type and camera motion).
 #define HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP 0
 
-// list_shutter_rays: one 8 x 8 group per moving tile.
+// list_shutter_rays: an 8 x 8 group per block of the moving tiles, or per run of blocks (above).
 #define HMB_SHUTTER_LIST_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces (velocity, object id)
 #define HMB_SHUTTER_LIST_BINDING_TILE_MAX 1  // vec4 per tile: the gather's tile-max (velocity, speed)
 #define HMB_SHUTTER_LIST_BINDING_TILES 2     // uint tile index per moving tile
@@ -331,7 +331,7 @@ struct RayMaskCounters {
   uint candidateDispatchX;  // edge_mask over the candidates
   uint candidateDispatchY;
   uint candidateDispatchZ;
-  uint tileGroupDispatchX;  // a group per moving tile (list_range_blocks, list_shutter_rays)
+  uint tileGroupDispatchX;  // a group per moving tile (list_range_blocks)
   uint tileGroupDispatchY;
   uint tileGroupDispatchZ;
   uint unrevealedCount;     // mask pixels whose composite needs no reveal, listed from the list's back
