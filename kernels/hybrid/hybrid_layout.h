@@ -365,7 +365,7 @@ struct SizeListParams {
   // (|v| + 2 |q|); the shutter list's: the larger of the largest speed and the tile size (a
   // still pixel walks its tile's fastest, clamped to the tile)
   float walkSpeed;
-  uint tileBlocks;  // shutter blocks: the 8 x 8 blocks of a tile (tileBlocks() in ray_mask_common.glsl)
+  uint tileBlocks;  // shutter blocks: the 8 x 8 blocks of a tile (tileBlocks() below)
 };
 
 // tile_max_edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,
@@ -439,14 +439,21 @@ HMB_SHARED uint rangeBlockEntry(uvec2 origin, bool lastAcross, bool lastDown) {
 }
 HMB_SHARED uvec2 rangeBlockOrigin(uint entry) { return uvec2(entry & 0x3FFFu, (entry >> 14u) & 0x3FFFu); }
 
+// How many 8 x 8 blocks a tile has across, down and in all.
+HMB_SHARED uint tileBlocksAcross(uint tileSize) {
+  return (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;
+}
+HMB_SHARED uint tileBlocksDown(uint tileSize) {
+  return (tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y;
+}
+HMB_SHARED uint tileBlocks(uint tileSize) { return tileBlocksAcross(tileSize) * tileBlocksDown(tileSize); }
+
 // The widest reach list_range_blocks tests, in coarse blocks a side: HMB_RANGE_BLOCKS_MAX_TEST_SIDE,
 // narrower where a lane's share of a tile's blocks, each tested over s x s coarse blocks (at
 // most (s + 1)^2 + 2 loop rounds), would pass HMB_LOOP_BUDGET: tiles past about 900 px. A
 // wider reach is listed untested, which costs the range check walks, never a mask pixel.
 HMB_SHARED uint rangeBlocksTestSide(uint tileSize) {
-  const uint across = (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X;
-  const uint down = (tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y;
-  const uint perLane = (across * down + uint(HMB_RANGE_BLOCKS_GROUP) - 1u) / uint(HMB_RANGE_BLOCKS_GROUP);
+  const uint perLane = (tileBlocks(tileSize) + uint(HMB_RANGE_BLOCKS_GROUP) - 1u) / uint(HMB_RANGE_BLOCKS_GROUP);
   uint side = uint(HMB_RANGE_BLOCKS_MAX_TEST_SIDE);
   while (side > 1u && perLane * ((side + 1u) * (side + 1u) + 2u) > HMB_LOOP_BUDGET) side -= 1u;
   return side;

@@ -87,11 +87,9 @@ void main() {
   const uint tileSize = params.blur.tileSize;
   const uint perTile = tileBlocks(tileSize);
   const uint blocksX = tileBlocksAcross(tileSize);
-  const uint count = maskCounters.tileCount * perTile;
-  const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
-  const uint run = (count + groups - 1u) / groups;
-  uint entry = foldedGroupIndex() * run;
-  const uint end = min(entry + run, count);
+  const uvec2 run = groupRun(maskCounters.tileCount * perTile);
+  uint entry = run.x;
+  const uint end = run.y;
   while (entry < end) {
     const uint listed = entry / perTile;
     const uint tile = tiles[listed];

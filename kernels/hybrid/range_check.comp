@@ -151,12 +151,8 @@ void checkPixel(uvec2 pixel) {
 // The listed blocks, a group each on a GPU; on a CPU device each group takes a run of the list
 // (hybrid_layout.h).
 void main() {
-  const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
-  const uint count = counters.rangeBlockCount;
-  const uint run = (count + groups - 1u) / groups;
-  const uint begin = foldedGroupIndex() * run;
-  const uint end = min(begin + run, count);
-  for (uint entry = begin; entry < end; ++entry) {
+  const uvec2 run = groupRun(counters.rangeBlockCount);
+  for (uint entry = run.x; entry < run.y; ++entry) {
     const uint listed = blockList[entry];
     const uvec2 pixel = rangeBlockOrigin(listed) + gl_LocalInvocationID.xy;
     // Lanes past the tile's or the image's edge have no pixel.

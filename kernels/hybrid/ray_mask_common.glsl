@@ -37,13 +37,18 @@ float normalizedEdge(float x) {
 // list entry.
 uint listedTileEntry() { return foldedGroupIndex(); }
 
+// This group's run [x, y) of `count` blocks dealt out in turn over all the dispatch's groups
+// (range_check, list_shutter_rays: a block each on a GPU, runs on a CPU device).
+uvec2 groupRun(uint count) {
+  const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
+  const uint run = (count + groups - 1u) / groups;
+  const uint begin = foldedGroupIndex() * run;
+  return uvec2(begin, min(begin + run, count));
+}
+
 // The first pixel of `tile` in a grid tilesX tiles across.
 uvec2 tileOrigin(uint tile, uint tilesX, uint tileSize) { return uvec2(tile % tilesX, tile / tilesX) * tileSize; }
 
-// How many 8 x 8 blocks a tile has across, down and in all, and the first pixel of block `block`.
-uint tileBlocksAcross(uint tileSize) { return (tileSize + HMB_MASK_TILE_GROUP_X - 1u) / HMB_MASK_TILE_GROUP_X; }
-uint tileBlocksDown(uint tileSize) { return (tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y; }
-uint tileBlocks(uint tileSize) { return tileBlocksAcross(tileSize) * tileBlocksDown(tileSize); }
 // The pixels across and down of a listed block (rangeBlockEntry) inside its tile: 8 x 8, less
 // in a tile's last block across or down where the side is no multiple of 8.
 uvec2 rangeBlockSide(uint listed, uint tileSize) {
@@ -52,6 +57,7 @@ uvec2 rangeBlockSide(uint listed, uint tileSize) {
   return uvec2((listed & HMB_RANGE_BLOCK_LAST_ACROSS) != 0u ? lastSide.x : HMB_MASK_TILE_GROUP_X,
                (listed & HMB_RANGE_BLOCK_LAST_DOWN) != 0u ? lastSide.y : HMB_MASK_TILE_GROUP_Y);
 }
+// The first pixel of block `block` of `tile` (tileBlocks() in hybrid_layout.h).
 uvec2 tileBlockOrigin(uint tile, uint block, uint tilesX, uint tileSize) {
   const uint blocksX = tileBlocksAcross(tileSize);
   return tileOrigin(tile, tilesX, tileSize) +

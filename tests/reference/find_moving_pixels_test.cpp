@@ -65,7 +65,6 @@ std::vector<uint32_t> leftHalf() {
   std::vector<uint32_t> out;
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth / 2; ++x) out.push_back(y * kWidth + x);
-  std::sort(out.begin(), out.end());
   return out;
 }
 
