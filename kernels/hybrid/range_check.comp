@@ -40,13 +40,15 @@ layout(constant_id = HMB_SPEC_RANGE_CHECK_CURVED_PATH) const bool kCurvedPath = 
 #include "ray_mask_common.glsl"
 #include "own_curved_path.glsl"
 
-// Whether the segment a -> b (both inside the image) passes through a flagged block of the
-// coarse edge image: a grid walk over the blocks it crosses, ~|b - a| / 2 steps where the fine
-// walk takes |b - a|. Every fine-walk pixel lies on the segment (up to rounding), and a block
-// is flagged when an edge pixel lies within a pixel of it, so "no" here means the fine walk
-// meets no edge. Each move steps one block towards the last one, so `moves` moves end there;
-// `entry`, the block's entry in the edge buffer, moves with it.
-bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
+// Where the segment a -> b (both inside the image) crosses flagged blocks of the coarse edge
+// image: the segment's parameters, in [0, 1], where it enters the first and leaves the last
+// (x < 0: none; with firstOnly the walk stops at the first, y unset). A grid walk over the blocks
+// it crosses, ~|b - a| / 2 steps where the fine walk takes |b - a|. Every fine-walk pixel lies on
+// the segment (up to rounding), and a block is flagged when an edge pixel lies within a pixel of
+// it, so the fine walk meets no edge outside that span. Each move steps one block towards the
+// last one, so `moves` moves end there; `entry`, the block's entry in the edge buffer, moves
+// with it, and `entered` is the parameter where the walk entered the block it is in.
+vec2 segmentEdgeBlockSpan(vec2 a, vec2 b, bool firstOnly) {
   const float side = float(HMB_EDGE_BLOCK);
   const uint blocksX = HMB_EDGE_BLOCKS_ACROSS(params.blur.width);
   ivec2 block = ivec2(floor(a / side));
@@ -61,20 +63,30 @@ bool segmentMeetsEdgeBlock(vec2 a, vec2 b) {
   const uint moves = uint(abs(last.x - block.x) + abs(last.y - block.y));
   uint entry = HMB_EDGE_BLOCK_ENTRY(params.blur.width, params.blur.height, uint(block.x), uint(block.y));
   const uint rowStep = uint(stepSign.y) * blocksX;  // modulo 2^32: one row up or down
+  float entered = 0.0;
+  vec2 span = vec2(-1.0);
   for (uint i = 0u; i < moves; ++i) {
-    if (edges[entry] != 0u) return true;
+    const bool flagged = edges[entry] != 0u;
+    if (flagged && span.x < 0.0) {
+      span.x = entered;
+      if (firstOnly) return span;
+    }
     const bool stepX = block.y == last.y || (block.x != last.x && tNext.x < tNext.y);
     if (stepX) {
       block.x += stepSign.x;
       entry += uint(stepSign.x);
+      entered = tNext.x;
       tNext.x += tStep.x;
     } else {
       block.y += stepSign.y;
       entry += rowStep;
+      entered = tNext.y;
       tNext.y += tStep.y;
     }
+    if (flagged) span.y = entered;
   }
-  return edges[entry] != 0u;
+  if (edges[entry] != 0u) span = vec2(span.x < 0.0 ? entered : span.x, 1.0);
+  return span;
 }
 
 bool insideImage(vec2 p) {
@@ -82,7 +94,7 @@ bool insideImage(vec2 p) {
 }
 
 // Whether the curved path X + s v + s^2 q, s in [0, 1], passes through a flagged block: its
-// chords over k equal steps of s, each walked by segmentMeetsEdgeBlock. A quadratic strays
+// chords over k equal steps of s, each walked by segmentEdgeBlockSpan. A quadratic strays
 // from its chord over a step h by at most |q| h^2 / 4, so k >= sqrt(|q| / 2) keeps every
 // fine-walk position within half a pixel of a chord, inside the pixel of margin a block's
 // flag has: "no" here still means the fine walk meets no edge.
@@ -92,7 +104,7 @@ bool curvedPathMeetsEdgeBlock(vec2 centre, vec2 v, vec2 q) {
   for (uint j = 1u; j <= chords; ++j) {
     const float s = float(j) / float(chords);
     const vec2 to = centre + s * v + (s * s) * q;
-    if (segmentMeetsEdgeBlock(from, to)) return true;
+    if (segmentEdgeBlockSpan(from, to, true).x >= 0.0) return true;
     from = to;
   }
   return false;
@@ -120,9 +132,19 @@ bool curvedPathMeetsEdge(uvec2 pixel, vec2 v, vec2 q) {
 bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   const uint steps = uint(ceil(speed));  // <= maxSpeed, the image's larger side
   const vec2 centre = vec2(pixel) + 0.5;
-  // Ranges that leave the image are clamped pixel by pixel; those take the fine walk alone.
-  if (insideImage(centre + v) && !segmentMeetsEdgeBlock(centre, centre + v)) return false;
-  for (uint i = 0u; i <= steps; ++i) {
+  // Ranges that leave the image are clamped pixel by pixel; those take the fine walk alone, the
+  // others over the flagged blocks' span and a step beyond each end (a step is over half a
+  // pixel, so a position two steps out lies a pixel or more outside the span: rounding cannot
+  // carry it into an edge pixel). On bistro at 1280x720 a CPU device took 2.6 ms over the
+  // fine walks from the range's start to its end, of 6 ms for the whole check.
+  uint first = 0u, last = steps;
+  if (insideImage(centre + v)) {
+    const vec2 span = segmentEdgeBlockSpan(centre, centre + v, false);
+    if (!(span.x >= 0.0)) return false;
+    first = uint(max(floor(span.x * float(steps)) - 1.0, 0.0));
+    last = uint(min(ceil(span.y * float(steps)) + 1.0, float(steps)));
+  }
+  for (uint i = first; i <= last; ++i) {
     const ivec2 p = nearestPixel(centre + v * (float(i) / float(steps)), params.blur.width, params.blur.height);
     if (edges[uint(p.y) * params.blur.width + uint(p.x)] != 0u) return true;
   }
