@@ -68,7 +68,9 @@ struct BvhHit {
   uint objectId;  // object of the hit triangle (HMB_NO_HIT when nothing was hit)
   uint instance;  // two-level traces: the instance hit (HMB_NO_HIT when nothing was hit)
   uint entry;     // device traces: the hit triangle's place in the leaves' order (TraceScene)
-  uint pad2;
+  // Device traces: 1 when the driver's loop limit cut the walk short (Mesa 22.3's lavapipe ends
+  // every loop of an invocation after 65535 rounds in all), so that the hit may be wrong.
+  uint cut;
 };
 
 HMB_GPU_END

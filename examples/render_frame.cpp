@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
       std::cout << "  shutter rays " << frame.hybrid->shutterRayPixels << " px, " << frame.hybrid->shutterRays
                 << " rays; ray mask " << frame.hybrid->maskPixels << " px, " << frame.hybrid->revealRays
                 << " reveal rays\n";
+    if (frame.cutTraces > 0)
+      std::cerr << "render_frame: warning: " << frame.cutTraces << " traces cut short by the device's loop limit\n";
     if (deviceOptions.validation && device.validationErrors() > 0) {
       std::cerr << "render_frame: " << device.validationErrors() << " validation errors\n";
       return 3;

@@ -225,6 +225,8 @@ uint32_t EngineHybridMotionBlur::shutterRayPixels() const {
   return passes_->hybrid.tracesShutterRays() ? uint32_t(passes_->hybrid.shutterRays().counts().pixels) : 0u;
 }
 
+uint32_t EngineHybridMotionBlur::cutTraces() const { return passes_->hybrid.cutTraces(); }
+
 const FramePlan& EngineHybridMotionBlur::plan() const { return passes_->plan; }
 
 }  // namespace hmb

@@ -125,9 +125,12 @@ class EngineHybridMotionBlur {
   vk::FrameTimings timings() const;
 
   // After the frame completed, read back on request: the ray mask's pixels (none beside
-  // shutter rays: settings' shutterRays), and the pixels that took shutter rays.
+  // shutter rays: settings' shutterRays), the pixels that took shutter rays, and the traces the
+  // device's loop limit cut short (Mesa 22.3's lavapipe: RenderResult::cutTraces), whose pixels
+  // may be wrong.
   uint32_t maskPixels() const;
   uint32_t shutterRayPixels() const;
+  uint32_t cutTraces() const;
   // The last prepare()'s plan: which trees it built or kept (and why), and the frame's passes.
   const FramePlan& plan() const;
 

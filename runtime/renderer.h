@@ -87,6 +87,9 @@ struct RenderResult {
   std::optional<Hybrid> hybrid;
   // The reference: samples per pixel in the image (resumed ones included).
   std::optional<passes::ReferenceProgress> reference;
+  // The methods that trace: the traces the device's loop limit cut short (Mesa 22.3's lavapipe
+  // ends every loop of an invocation after 65535 rounds in all), whose pixels may be wrong.
+  uint64_t cutTraces = 0;
 };
 
 // The names of the methods the demo renders, in its order (runtime/methods/method.h has them all).

@@ -164,6 +164,7 @@ nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& syst
       {"scene", sceneJson(scene)},
       {"passes", passesJson(result.plan)},
       {"frame_ms", optionalNumber(result.frameMilliseconds)},
+      {"cut_traces", result.cutTraces},
       {"raster", rasterJson(result)},
       {"device_memory",
        {{"peak_bytes", result.memory.peakBytes},

@@ -95,6 +95,7 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
     throw Error("the scene has more triangles than a BVH can index");
   meshCount_ = static_cast<uint32_t>(scene.meshes.size());
   meshFingerprint_ = fingerprintOf(scene);
+  status_ = vk::uploadedBuffer(context, std::vector<uint32_t>(HMB_TRACE_STATUS_WORDS, 0u), "trace status");
   triangleCount_ = static_cast<uint32_t>(triangles.size());
   // The build's input alone: traversal reads leafTriangles_ (below).
   const vk::Buffer positionBuffer = vk::uploadedBuffer(context, positions, "trace positions");
@@ -233,8 +234,21 @@ void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddr
   // The order of kernels/trace/trace_scene_bindings.glsl and of gpu::TraceSceneTable.
   const vk::Buffer* members[] = {&instanceBvh_.nodes(), &instanceBvh_.primitives(), &instances_,
                                  &transforms_,          &meshBvh_.nodes(),        &meshBvh_.primitives(),
-                                 &leafTriangles_,       &instanceBvh_.frames(),   &meshBvh_.frames()};
+                                 &leafTriangles_,       &instanceBvh_.frames(),   &meshBvh_.frames(),
+                                 &status_};
   group_.bind(bindings, firstBinding, byAddress, members);
+}
+
+void TraceScene::resetStatus() {
+  status_.upload(std::span<const uint32_t>(std::vector<uint32_t>(HMB_TRACE_STATUS_WORDS, 0u)));
+}
+
+void TraceScene::recordResetStatus(vk::FrameRecorder& frame, std::string_view pass) const {
+  frame.fill(pass, status_, 0u);
+}
+
+uint32_t TraceScene::cutTraces() const {
+  return status_.download<uint32_t>().at(HMB_TRACE_STATUS_CUT_TRACES);
 }
 
 void planDeformedTrees(FramePlan& plan, const scene::Scene& scene) {

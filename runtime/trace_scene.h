@@ -92,6 +92,13 @@ class TraceScene {
   // from firstBinding on: its 9 buffers, or the table of their addresses for a kernel that binds
   // by address.
   void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
+  // The traces' status: the traces the driver's loop limit cut short
+  // (kernels/trace/closest_hit.glsl) since the last reset, which a render makes before its
+  // traces (at once, or recorded in the frame as pass `pass` where nothing may wait), and reads
+  // after them.
+  void resetStatus();
+  void recordResetStatus(vk::FrameRecorder& frame, std::string_view pass) const;
+  uint32_t cutTraces() const;
 
  private:
   // The instances' motion bounds and the top level's build, from the transforms on the device.
@@ -118,6 +125,7 @@ class TraceScene {
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
   vk::Buffer deformedBoxes_;  // BvhBox per triangle, for refits (deforming scenes only)
+  vk::Buffer status_;         // HMB_TRACE_STATUS_WORDS uint, written by the traces
   vk::BufferGroup group_;     // the buffers above, as tracing kernels bind them
 };
 

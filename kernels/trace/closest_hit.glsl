@@ -5,6 +5,10 @@
 // a mask, its code cost 10-15% of the trace rate though no ray took it.) Instances of the
 // ignored object are skipped whole, so a reveal ray finds the first surface behind the object
 // it starts on.
+// Mesa 22.3's lavapipe ends every loop of an invocation, silently, once its rounds reach 65535
+// in all (a ray through 20,000 instances' boxes, or a kernel's many traces): each loop here
+// checks, as it leaves, whether it left before its end, and a cut trace is flagged
+// (BvhHit::cut) and counted in the trace status, so that the host can say so.
 // Binds the trace scene from the including kernel's HMB_TRACE_SCENE_BINDING on
 // (trace_scene_bindings.glsl).
 #ifndef HMB_KERNELS_TRACE_CLOSEST_HIT_GLSL
@@ -38,9 +42,13 @@ BvhHit missedHit(float tMax) {
   hit.objectId = HMB_NO_HIT;
   hit.instance = HMB_NO_HIT;
   hit.entry = HMB_NO_HIT;
-  hit.pad2 = 0u;
+  hit.cut = 0u;
   return hit;
 }
+
+// Set when a loop of the current trace left before its end (see the top).
+bool walkCut = false;
+void noteCut(bool cut) { walkCut = walkCut || cut; }
 
 // A ray against one tree's packed boxes, in the tree's steps: the plane q steps from the
 // frame's origin is met at t = q a + c on its axis (a = step / d, c = (origin - o) / d), one
@@ -48,8 +56,12 @@ BvhHit missedHit(float tMax) {
 // differs from the one through the stored float bound by the roundings of a, c and the fma and
 // by the bound's own rounding (origin + q step), together under 8 ulps of
 // q_max |a| + |c| + |origin / d|: the entry planes are moved nearer and the exit planes farther
-// by that much (cEntry, cExit), so every box the exact test meets is met. A zero direction
-// component makes its axis NaN or infinite both ways, which the test leaves out.
+// by that much (cEntry, cExit), so every box the exact test meets is met. On an axis the ray
+// runs across (a zero direction component) q a + c is inf - inf, a NaN the test leaves out, and
+// such a ray walked every box its other axes met (a ray along x beside 10,000 boxes in a row
+// visited 75,000 nodes): there the plane q is met at (q - s) K for the origin's place s in steps
+// and a large K, by its sign, widened a step each way, so a box is met exactly when the ray's
+// line lies within a step of its slab.
 struct TreeRay {
   vec3 a;
   vec3 cEntry;
@@ -66,6 +78,20 @@ TreeRay treeRay(PreparedRay r, BvhFrame frame) {
   t.cEntry = c - slack;
   t.cExit = c + slack;
   t.negative = r.negative;
+  const bvec3 across = isinf(r.inverseDirection);
+  if (any(across)) {
+    const float K = 1e30;  // 65537 K stays finite
+    const vec3 offset = r.origin - frame.origin.xyz;
+    // A flat frame axis (step 0) has every bound at its origin: the ray's place is below or
+    // above every q, or 0 on it.
+    const vec3 outside = mix(vec3(-2.0), vec3(float(HMB_BVH_QUANTUM_MAX) + 2.0), greaterThan(offset, vec3(0.0)));
+    const vec3 s = mix(offset / frame.step.xyz, outside, equal(frame.step.xyz, vec3(0.0)));
+    const vec3 place = mix(s, vec3(0.0), equal(offset, vec3(0.0)));
+    const vec3 a = mix(vec3(K), vec3(-K), r.negative);
+    t.a = mix(t.a, a, across);
+    t.cEntry = mix(t.cEntry, -place * a - K, across);
+    t.cExit = mix(t.cExit, -place * a + K, across);
+  }
   return t;
 }
 
@@ -117,6 +143,7 @@ bool testLeaf(MeshRay m, uint first, uint count, inout BvhHit best) {
     best.instance = m.instance;
     nearest = true;
   } while (++k < count);
+  noteCut(k < count);
   return nearest;
 }
 
@@ -137,6 +164,7 @@ bool popPending(uint walk, inout uint pending, float bestT, out uint word) {
     word = pendingWords[walk][pending];
     if (pendingEntries[walk][pending] <= bestT + abs(bestT) * kBoxSlack) return true;
   }
+  noteCut(pending > 0u);
   return false;
 }
 
@@ -187,18 +215,22 @@ bool walkMesh(MeshRay m, inout BvhHit best) {
   float entry;
   if (!intersectPackedBox(tree, root, m.tMin, best.t, entry)) return false;
   uint word = root.w;  // the entered node's range: children, or triangles
-  for (;;) {
+  // Ends by a return; the count only lets a cut show (a loop the driver ends falls through).
+  for (uint round = 0u; round != 0xFFFFFFFFu; ++round) {
     bool left = true;  // a subtree is left to walk
     if (isInterior(word)) {
       do {
         const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
         left = interiorStep(MESH_WALK, meshNode(first), meshNode(first + 1u), tree, m.tMin, best.t, pending, word);
       } while (left && isInterior(word));
+      noteCut(left && isInterior(word));
     }
-    if (!left) return nearest;
+    if (!left || walkCut) return nearest;
     if (testLeaf(m, word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, best)) nearest = true;
     if (!popPending(MESH_WALK, pending, best.t, word)) return nearest;
   }
+  noteCut(true);
+  return nearest;
 }
 
 // The ray carried into the instance's space at its shutter time.
@@ -255,6 +287,7 @@ void traceTopLeaf(uint first, uint count, TraceRay ray, TraceSceneInfo scene, in
   do {  // a leaf holds at least one instance
     traceUnlessIgnored(topPrimitives[first + k], ray, scene, best);
   } while (++k < count);
+  noteCut(k < count);
 }
 
 // The top level walked as walkMesh walks a mesh tree.
@@ -267,30 +300,38 @@ void walkTop(PreparedRay r, TraceRay ray, TraceSceneInfo scene, inout BvhHit bes
   float entry;
   if (!intersectPackedBox(tree, root, tMin, best.t, entry)) return;
   uint word = root.w;
-  for (;;) {
+  for (uint round = 0u; round != 0xFFFFFFFFu; ++round) {  // as walkMesh's
     bool left = true;
     if (isInterior(word)) {
       do {
         const uint first = word >> HMB_BVH_PACKED_COUNT_BITS;
         left = interiorStep(TOP_WALK, topNode(first), topNode(first + 1u), tree, tMin, best.t, pending, word);
       } while (left && isInterior(word));
+      noteCut(left && isInterior(word));
     }
-    if (!left) return;
+    if (!left || walkCut) return;
     traceTopLeaf(word >> HMB_BVH_PACKED_COUNT_BITS, word & HMB_BVH_PACKED_MAX_COUNT, ray, scene, best);
     if (!popPending(TOP_WALK, pending, best.t, word)) return;
   }
+  noteCut(true);
 }
 
 // The closest hit in [tMin, tMax] of the ray; a miss has triangle == HMB_NO_HIT and t == tMax.
+// A walk cut short (see the top) keeps what it found, flagged and counted.
 BvhHit closestHit(TraceRay ray, TraceSceneInfo scene) {
   BvhHit best = missedHit(ray.directionTMax.w);
   const PreparedRay r = prepareRay(ray.originTMin.xyz, ray.directionTMax.xyz);
   if (!r.valid || scene.instanceCount == 0u) return best;
+  walkCut = false;
   if (kTopLevelWalk)
     walkTop(r, ray, scene, best);
   else
     traceUnlessIgnored(0u, ray, scene, best);  // the scene's one instance
   refineClosestHit(ray, scene, best);
+  if (walkCut) {
+    best.cut = 1u;
+    atomicAdd(traceStatus[HMB_TRACE_STATUS_CUT_TRACES], 1u);
+  }
   return best;
 }
 

@@ -11,15 +11,19 @@
 
 #define HMB_TRACE_GROUP 64
 
-// The trace scene takes 9 binding numbers (trace_scene_bindings.glsl); a kernel that traces
+// The trace scene takes 10 binding numbers (trace_scene_bindings.glsl); a kernel that traces
 // puts it after its own bindings. HMB_BIND_BY_ADDRESS builds bind one table of addresses at the
 // first and leave the others unused, so both builds keep the same numbers for the host.
-#define HMB_TRACE_SCENE_BUFFERS 9
+#define HMB_TRACE_SCENE_BUFFERS 10
 #define HMB_TRACE_SCENE_BINDINGS HMB_TRACE_SCENE_BUFFERS
 // Of those, the top-level nodes, the instances' records and transforms, the mesh nodes, the
 // leaf triangles and the mesh frames are uniform texel buffers in the plain build
 // (trace_scene_bindings.glsl says why); the rest storage buffers.
 #define HMB_TRACE_SCENE_TEXEL_BUFFERS 6
+// The trace status the traces write (the last of the trace scene's buffers), in words: word 0
+// counts the traces the driver's loop limit cut short (closest_hit.glsl).
+#define HMB_TRACE_STATUS_WORDS 4
+#define HMB_TRACE_STATUS_CUT_TRACES 0
 
 // trace_rays
 #define HMB_TRACE_BINDING_RAYS 0  // TraceRay[]
@@ -115,6 +119,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer In
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Uvec4sRef { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4sRef { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhFramesRef { BvhFrame v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer TraceStatusRef { uint v[]; };
 #endif
 
 HMB_GPU_BEGIN
@@ -131,11 +136,12 @@ struct TraceSceneTable {
   HMB_REFERENCE(Vec4sRef) leafTriangles;            // 3 per leaf entry: vertex xyz, its index in w's bits
   HMB_REFERENCE(BvhFramesRef) topFrame;             // one
   HMB_REFERENCE(BvhFramesRef) meshFrames;           // one per mesh
+  HMB_REFERENCE(TraceStatusRef) status;             // HMB_TRACE_STATUS_WORDS, written
 };
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(TraceSceneTable, 72)
+HMB_CHECK_SIZE(TraceSceneTable, 80)
 #endif
 HMB_CHECK_SIZE(TraceParams, 16)
 HMB_CHECK_SIZE(TraceRay, 48)

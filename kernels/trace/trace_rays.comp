@@ -21,5 +21,5 @@ void main() {
   const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, params.timeCount, params.flags);
   const BvhHit hit = closestHit(rays[i], scene);
   hitWords[2u * i] = uvec4(floatBitsToUint(hit.t), floatBitsToUint(hit.u), floatBitsToUint(hit.v), hit.triangle);
-  hitWords[2u * i + 1u] = uvec4(hit.objectId, hit.instance, hit.entry, hit.pad2);
+  hitWords[2u * i + 1u] = uvec4(hit.objectId, hit.instance, hit.entry, hit.cut);
 }

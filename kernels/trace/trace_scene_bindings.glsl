@@ -1,5 +1,5 @@
 // The trace scene as a kernel binds it, from its binding HMB_TRACE_SCENE_BINDING on (defined
-// by the including kernel): the 9 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
+// by the including kernel): the 10 buffers, or in builds with HMB_BIND_BY_ADDRESS (devices
 // with few storage-buffer bindings) one TraceSceneTable of their addresses. Either way the
 // kernels read the same names: topPrimitives[i], ..., and topNode(i), meshNode(i),
 // leafTriangle(i), traceInstanceAt(i), objectFromWorldAt(i) and meshFrameAt(i) for the arrays
@@ -23,6 +23,7 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING) readonly buffer TraceScene { T
 #define leafTriangles traceScene.leafTriangles.v
 #define topFrame traceScene.topFrame.v[0]
 #define meshFrames traceScene.meshFrames.v
+#define traceStatus traceScene.status.v
 uvec4 topNode(uint i) { return topNodes[i]; }
 uvec4 meshNode(uint i) { return meshNodes[i]; }
 TraceInstance traceInstanceAt(uint i) { return traceInstances[i]; }
@@ -42,6 +43,8 @@ layout(std430, binding = HMB_TRACE_SCENE_BINDING + 5) readonly buffer MeshPrimit
 layout(binding = HMB_TRACE_SCENE_BINDING + 6) uniform utextureBuffer leafTriangleTexels;
 layout(std430, binding = HMB_TRACE_SCENE_BINDING + 7) readonly buffer TopFrame { BvhFrame topFrame; };
 layout(binding = HMB_TRACE_SCENE_BINDING + 8) uniform utextureBuffer meshFrameTexels;  // 2 records each
+// The traces' status (HMB_TRACE_STATUS_WORDS), the one buffer they write.
+layout(std430, binding = HMB_TRACE_SCENE_BINDING + 9) buffer TraceStatus { uint traceStatus[]; };
 uvec4 topNode(uint i) { return recordAt(topNodeTexels, i); }
 TraceInstance traceInstanceAt(uint i) {
   const uvec4 r = recordAt(traceInstanceTexels, i);

@@ -267,6 +267,16 @@ bool warnRevealSettingsUnused(const GlobalOptions& global, const hmb::RenderSett
   return false;
 }
 
+// Traces the device's loop limit cut short (RenderResult::cutTraces): said on stderr, as their
+// pixels may be wrong. Returns whether it was.
+bool warnCutTraces(const GlobalOptions& global, const hmb::RenderResult& result) {
+  if (global.quiet || result.cutTraces == 0) return false;
+  std::cerr << "hmblur: warning: " << result.cutTraces
+            << " ray trace(s) cut short by the device's loop limit (Mesa 22.3's lavapipe ends a kernel "
+               "invocation's loops after 65535 rounds): their pixels may be wrong; a newer Mesa has no such limit\n";
+  return true;
+}
+
 // --frames A:B: an image sequence, one renderer for all frames so that what a frame built and
 // the next can use (the hybrid's trees) is kept. One report lists every frame's passes.
 int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb::RenderSettings settings) {
@@ -289,6 +299,7 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
     settings.frameTime = static_cast<float>(frame / double(scene.settings.fps));
     const hmb::RenderResult result = renderer.render(scene, settings);
     warned = warned || warnRevealSettingsUnused(global, settings, result);
+    warnCutTraces(global, result);
     nlohmann::json entry = {{"frame", frame},
                             {"time_s", *settings.frameTime},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
@@ -441,6 +452,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
   const TimedRender timed = renderTimed(renderer, scene, settings, options.repeat);
   const hmb::RenderResult& result = timed.result;
   warnRevealSettingsUnused(global, settings, result);
+  warnCutTraces(global, result);
 
   writeImage(options.out, result);
   nlohmann::json report = hmb::renderReport(context.info(), hmb::querySystemInfo(), scene, result);
@@ -511,6 +523,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     const uint32_t repeat = settings.method == hmb::Method::Reference ? 1 : 9;
     const TimedRender timed = renderTimed(renderer, scene, settings, repeat);
     const hmb::RenderResult& result = timed.result;
+    warnCutTraces(global, result);
     const fs::path stem = fs::path(options.outDir) / (sceneName + "-" + method);
     hmb::io::writePng(stem.string() + ".png", result.display);
     hmb::io::writeExr(stem.string() + ".exr", result.image);
@@ -525,6 +538,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     if (settings.method == hmb::Method::Sharp) sharp = display;
     nlohmann::json entry = {{"method", method},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
+                            {"cut_traces", result.cutTraces},
                             {"timing", timingJson(timed, settings.method)},
                             {"settings", hmb::methodSettingsJson(result)},
                             {"passes", hmb::passesJson(result.plan)},

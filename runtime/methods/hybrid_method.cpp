@@ -83,6 +83,7 @@ class HybridMethod final : public FrameMethod {
       result.hybrid->maskPixels = counts.maskPixels;
       result.hybrid->revealedPixels = counts.listedPixels;
       result.hybrid->revealRays = counts.revealRays;
+      result.cutTraces = hybrid_.cutTraces();
       // With the shutter rays the mask's own passes and the reveal are skipped (the plan says
       // why), and their buffers not made: the layers stay empty.
       const bool masks = result.plan.runs(passes::RayMaskStage::kRangeCheck);

@@ -38,6 +38,7 @@ class ReferenceMethod final : public FrameMethod {
     resources_.encodeDisplay.record(frame, linear, request.display, request.width, request.height);
     vk::appendTimings(timings, frame.submitAndWait());
     result.reference = reference_.lastProgress();
+    result.cutTraces = reference_.cutTraces();
     result.image = beautyImage(request, linear);
     return timings;
   }

@@ -34,6 +34,8 @@ std::optional<HybridStage::TreeBytes> HybridStage::meshTreeBytes() const {
   return TreeBytes{double(trees.allocatedTreeBytes()) / triangles, double(trees.usedTreeBytes()) / triangles};
 }
 
+uint32_t HybridStage::cutTraces() const { return traceScene_ ? traceScene_->cutTraces() : 0u; }
+
 void HybridStage::forgetTraceScene() {
   traceScene_.reset();
   buildsInstanceTree_ = false;
@@ -141,9 +143,10 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // Every frame recorded from this prepare() builds the staged tree (a frame recorded again
   // must not find it missing).
   if (buildsInstanceTree_) traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
-  // The cameras' upload is timed with the first pass that reads them.
-  frame.write(shutterStrata_ != 0 ? kShutterRaysTrace : RevealPass::kName, cameraRays_,
-              std::span<const gpu::PinholeCamera>(cameras_));
+  // The cameras' upload and the traces' status reset are timed with the first pass that traces.
+  const char* firstTrace = shutterStrata_ != 0 ? kShutterRaysTrace : RevealPass::kName;
+  frame.write(firstTrace, cameraRays_, std::span<const gpu::PinholeCamera>(cameras_));
+  traceScene_->recordResetStatus(frame, firstTrace);
   const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height(),
                                 curved ? shutterPaths : nullptr};
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers

@@ -87,6 +87,8 @@ class HybridStage {
 
   // The next frame builds its trees anew, whatever the last frame built.
   void forgetTraceScene();
+  // After a frame: its traces the device's loop limit cut short (TraceScene::cutTraces).
+  uint32_t cutTraces() const;
 
   const RayMaskStage& rayMask() const { return rayMask_; }
   const ShutterRaysPass& shutterRays() const { return shutterRays_; }

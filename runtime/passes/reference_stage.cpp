@@ -194,6 +194,8 @@ ReferenceStage::~ReferenceStage() = default;
 
 void ReferenceStage::forgetTraceScene() { traceScene_.reset(); }
 
+uint32_t ReferenceStage::cutTraces() const { return traceScene_ ? traceScene_->cutTraces() : 0u; }
+
 namespace {
 
 // Why every pixel must take every sample, or empty when only the pixels that something moving
@@ -280,6 +282,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
   sum.upload(std::span<const glm::vec4>(sums));
 
   vk::FrameTimings total;
+  if (traceScene_) traceScene_->resetStatus();  // a new one starts at zero
   const std::vector<float> times =
       referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
   if (progress_.samplesDone < settings.samplesPerPixel) {

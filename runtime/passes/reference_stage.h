@@ -79,6 +79,8 @@ class ReferenceStage {
             const ReferenceSettings& settings) const;
   // Drops the kept trees: the next plan builds them.
   void forgetTraceScene();
+  // After render(): its traces the device's loop limit cut short (TraceScene::cutTraces).
+  uint32_t cutTraces() const;
 
   // Renders the mean of the samples into `color` (vec4 per pixel, row 0 at the top) and
   // returns the device time of every submission it made, merged. `gpuScene` must have its

@@ -352,6 +352,58 @@ TEST_F(TraceRays, BackFacesOfSingleSidedInstancesAreCulledOnRequest) {
   EXPECT_EQ(hitObject({0.1f, 0.2f, -9.0f}, up, HMB_TRACE_CULL_BACK_FACES), 3u);
 }
 
+// A ray through the boxes of 20,000 instances, missing every one's triangle, to a wall behind
+// them: Mesa 22.3's lavapipe ends every loop of an invocation after 65535 rounds in all, and
+// the walk with them. The trace is then flagged and counted (closest_hit.glsl), never a silent
+// miss; a driver without the limit finds the wall. A ray beside the instances, alone, is never
+// cut: it runs along their row, and the walk culls boxes on the axes a ray runs across (it once
+// walked every box, and was cut too).
+TEST_F(TraceRays, AWalkCutShortByTheDriversLoopLimitIsFlaggedAndCounted) {
+  const uint32_t slivers = 20000;
+  scene::Scene scene;
+  scene::Mesh sliver, wall;
+  // In the plane y = z, over the unit cube: a ray along x at y = 0.9, z = 0.1 passes through its
+  // box and misses it.
+  sliver.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 1}};
+  sliver.indices = {0, 1, 2};
+  wall.positions = {{0, -2, -2}, {0, 2, -2}, {0, 2, 2}, {0, -2, 2}};
+  wall.indices = {0, 1, 2, 0, 2, 3};
+  scene.meshes = {sliver, wall};
+  scene.materials = {scene::Material{}};
+  scene.materials[0].doubleSided = true;
+  for (uint32_t i = 0; i < slivers; ++i) {
+    scene::Node node;
+    node.local.translation = {float(i), 0, 0};
+    scene.nodes.push_back(node);
+    scene.instances.push_back({0, i, 1});
+  }
+  scene::Node end;
+  end.local.translation = {float(slivers + 1), 0, 0};
+  scene.nodes.push_back(end);
+  scene.instances.push_back({1, slivers, 2});
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene, frame);
+  const float time = 0.0f;
+  traceScene.setShutterTimes(scene, std::span(&time, 1), frame);
+  // The ray through the boxes, and one beside them in the same SIMD batch (the limit is the
+  // batch's: cut too, where the other is): each cut or right, and the cut ones counted.
+  const gpu::TraceRay through = traceRay({{-1.0f, 0.9f, 0.1f}, {1, 0, 0}, 0.0f, 1e6f});
+  const gpu::TraceRay beside = traceRay({{-1.0f, 1.5f, 1.5f}, {1, 0, 0}, 0.0f, 1e6f});
+  const std::vector<gpu::BvhHit> hits = traceOnDevice(context(), traceScene, std::vector{through, beside});
+  for (const gpu::BvhHit& hit : hits) {
+    if (hit.cut != 0u) continue;
+    EXPECT_EQ(hit.objectId, 2u) << "an uncut walk finds the wall";
+    EXPECT_NEAR(hit.t, float(slivers + 2), 1e-2f);
+  }
+  std::printf("[ cut      ] the walk through %u boxes was %s\n", slivers, hits[0].cut ? "cut short" : "whole");
+  EXPECT_EQ(traceScene.cutTraces(), hits[0].cut + hits[1].cut);
+  // Alone, the ray beside them is never cut.
+  const gpu::BvhHit alone = traceOnDevice(context(), traceScene, std::vector{beside}).at(0);
+  EXPECT_EQ(alone.cut, 0u);
+  EXPECT_EQ(alone.objectId, 2u);
+  EXPECT_EQ(traceScene.cutTraces(), hits[0].cut + hits[1].cut) << "the status counts since it was cleared";
+}
+
 // Two meshes, four instances, two of them rotating and one translating fast; traced at four
 // shutter times. The host reference: every instance's triangles carried into the world at the
 // ray's time, brute force.
