@@ -268,13 +268,12 @@ bool warnRevealSettingsUnused(const GlobalOptions& global, const hmb::RenderSett
 }
 
 // Traces the device's loop limit cut short (RenderResult::cutTraces): said on stderr, as their
-// pixels may be wrong. Returns whether it was.
-bool warnCutTraces(const GlobalOptions& global, const hmb::RenderResult& result) {
-  if (global.quiet || result.cutTraces == 0) return false;
+// pixels may be wrong.
+void warnCutTraces(const GlobalOptions& global, const hmb::RenderResult& result) {
+  if (global.quiet || result.cutTraces == 0) return;
   std::cerr << "hmblur: warning: " << result.cutTraces
             << " ray trace(s) cut short by the device's loop limit (Mesa 22.3's lavapipe ends a kernel "
                "invocation's loops after 65535 rounds): their pixels may be wrong; a newer Mesa has no such limit\n";
-  return true;
 }
 
 // --frames A:B: an image sequence, one renderer for all frames so that what a frame built and
@@ -303,6 +302,7 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
     nlohmann::json entry = {{"frame", frame},
                             {"time_s", *settings.frameTime},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
+                            {"cut_traces", result.cutTraces},
                             {"passes", hmb::passesJson(result.plan)}};
     // The first frame compiles the kernels and builds every tree; the next ones keep them.
     std::string line = "frame " + std::to_string(frame) + ": " + formatMs(result.frameMilliseconds) +
