@@ -1,27 +1,20 @@
 #version 450
-// The hybrid composite (paper, section 3: both layers blurred, then composited; the paper
-// leaves the form open) at the pixels of the ray mask, one invocation per entry of the mask's
-// pixel list (an indirect dispatch). Outside the mask the hybrid's image is the post-process
-// gather of the raster layer, which has written every pixel before this pass: run apart, the
-// gather keeps its own cost and a GPU's warps do not diverge between the two forms. At a mask
-// pixel X the raster holds the moving object, and the samples the gather takes behind X
-// (other objects deeper than X) are the wrong background: what lies beyond the silhouette,
-// not behind X. The background layer blurred at mask pixels (gather_background.comp) gives B,
-// the right background at X. Two forms, a specialization constant:
-//  - weights: the gather with the paper's mask boosts (w_b x maskBackgroundBoost, w_f /
-//    maskForegroundDivide: x3 and /3), each sample's colour becoming mix(c_s, B, b), b its
-//    share behind X.
-//  - coverage (default): under the linear-motion convention X is covered by its object at
-//    shutter fraction s exactly when X + (1 - s) v_X lies on that object now, so the share of
-//    samples X + u v_X, u in (0, 1], that are on it (or not behind X) estimates the coverage
-//    alpha, and the object's blurred colour F is the plain mean of those samples (and X):
-//    C = alpha F + (1 - alpha) B. v_X is the pixel's own velocity, clamped only to the image
-//    (maxSpeed), not to the tile: a fast object's inner blur is as wide as its motion
-//    even where the gather's tiles clamp its outer blur. Along curved paths
-//    (HMB_GATHER_FLAG_CURVED_PATH) the samples follow the pixel's own curved path instead,
-//    X + u v + u^2 q (v and q from mblur_common.glsl's inversePath). mask_coverage.comp takes
-//    those samples, before the reveal (it also decides which pixels the reveal needs), and
-//    keeps alpha and F; this pass blends them over B. The README gives the measured errors.
+// The hybrid composite (paper, section 3: both layers blurred, then composited; the paper leaves
+// the form open) at the pixels of the ray mask, one invocation per entry of the mask's pixel list
+// (an indirect dispatch). Outside the mask the hybrid's image is the post-process gather of the
+// raster layer, which has written every pixel before this pass: run apart, the gather keeps its
+// own cost and a GPU's warps do not diverge between the two forms. At a mask pixel X the raster
+// holds the moving object, and the samples the gather takes behind X (other objects deeper than
+// X) are the wrong background: what lies beyond the silhouette, not behind X. The background
+// layer blurred at mask pixels (gather_background.comp) gives B, the right background at X. Two
+// forms, a specialization constant:
+//  - weights: at every mask pixel (the list's front), the gather with the paper's mask boosts
+//    (w_b x maskBackgroundBoost, w_f / maskForegroundDivide: x3 and /3), each sample's colour
+//    becoming mix(c_s, B, b), b its share behind X.
+//  - coverage (default): C = alpha F + (1 - alpha) B (gather_background.comp gives the form and
+//    blends it at the revealed pixels); here the list's back, the mask pixels whose samples all
+//    stay on their object: alpha is exactly 1 and C = F, mask_coverage's foreground.
+// The README gives the measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "hybrid_layout.h"
@@ -36,26 +29,25 @@ layout(local_size_x = HMB_GATHER_GROUP_X, local_size_y = HMB_GATHER_GROUP_Y) in;
 #include "../shared/texel_records.glsl"
 layout(binding = HMB_COMPOSITE_BINDING_NEIGHBOR_MAX) uniform utextureBuffer neighborMaxTexels;
 layout(binding = HMB_COMPOSITE_BINDING_BACKGROUND) uniform utextureBuffer backgroundTexels;
-layout(binding = HMB_COMPOSITE_BINDING_COVERAGE) uniform utextureBuffer coverageTexels;
 vec4 neighborMaxAt(uint tile) { return floatRecordAt(neighborMaxTexels, tile); }
 vec4 backgroundAt(uint index) { return floatRecordAt(backgroundTexels, index); }
+layout(binding = HMB_COMPOSITE_BINDING_COVERAGE) uniform utextureBuffer coverageTexels;
 layout(std430, binding = HMB_COMPOSITE_BINDING_LIST) readonly buffer List { uint pixelList[]; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output { vec4 outColor[]; };
 HMB_LAYER_TEXELS(raster, HMB_COMPOSITE_BINDING_RASTER)
 layout(push_constant) uniform Params { GatherParams params; };
 
-layout(constant_id = HMB_SPEC_COMPOSITE_COVERAGE) const bool kCoverage = true;
 // Built for the frame's path and range (hybrid_layout.h).
 layout(constant_id = HMB_SPEC_COMPOSITE_CURVED_PATH) const bool kCurvedPath = false;
 #define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
 layout(constant_id = HMB_SPEC_COMPOSITE_ADAPTED_RANGE) const bool kAdaptedRange = true;
 #define HMB_GATHER_ADAPTED_RANGE kAdaptedRange
+layout(constant_id = HMB_SPEC_COMPOSITE_COVERAGE) const bool kCoverage = true;
 
 #include "../mblur/mblur_common.glsl"
 
-// The weights form at the current pixel (the only one that gathers): the blurred background B,
-// the pixel's object and depth.
+// At the current pixel: the blurred background B, the pixel's object and depth.
 vec4 blurredBackground = vec4(0.0);
 uint centreObject = 0u;
 float compositeCentreDepth = 0.0;
@@ -77,21 +69,11 @@ uvec2 shutterPathAt(uint i) { return halfRecordAt(shutterPathTexels, i); }
 
 #include "../mblur/gather_samples.glsl"
 
-// The coverage form at a mask pixel (see above): mask_coverage found alpha and F.
-vec4 coverageComposite(uint index) {
-  const vec4 foreground = floatRecordAt(coverageTexels, index);
-  const float alpha = foreground.w;
-  // alpha is exactly 1 where no sample is behind: those pixels were not revealed (their
-  // background entry is stale, and sanitized, then weighted by exactly 0).
-  return alpha * vec4(foreground.rgb, 1.0) + (1.0 - alpha) * sanitizeColor(backgroundAt(index));
-}
-
 void main() {
   const uint entry = linearInvocationIndex(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y);
-  if (entry >= counters.maskPixels) return;
-  // The pixels listed for the reveal fill the list from its front, the others from its back.
-  const uint lastEntry = params.width * params.height - 1u;
-  const uint index = pixelList[entry < counters.maskCount ? entry : lastEntry - (entry - counters.maskCount)];
+  if (entry >= (kCoverage ? counters.unrevealedCount : counters.maskCount)) return;
+  // The coverage form reads the list's back, from its end inwards.
+  const uint index = pixelList[kCoverage ? params.width * params.height - 1u - entry : entry];
   const uvec2 pixel = uvec2(index % params.width, index / params.width);
   if (pixel.y >= params.height) return;
   GatherCentre centre;
@@ -100,7 +82,7 @@ void main() {
     return;
   }
   if (kCoverage) {
-    outColor[index] = coverageComposite(index);
+    outColor[index] = vec4(floatRecordAt(coverageTexels, index).rgb, 1.0);
     return;
   }
   blurredBackground = sanitizeColor(backgroundAt(index));

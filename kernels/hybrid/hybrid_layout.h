@@ -38,7 +38,8 @@
 #include "../shared/scene_layout.h"
 #include "../trace/trace_layout.h"
 
-// list_moving_tiles: one invocation per tile.
+// list_moving_tiles: one invocation per tile; beside the shutter rays alone (the whole mask's
+// tile-max lists the moving tiles as it writes them).
 #define HMB_MOVING_TILES_GROUP 64
 #define HMB_MOVING_TILES_BINDING_TILE_MAX 0  // vec4 per tile (kernels/mblur/mblur_layout.h), z the speed
 #define HMB_MOVING_TILES_BINDING_COUNTERS 1  // RayMaskCounters
@@ -75,9 +76,11 @@
 #define HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples (shared/layer_layout.h)
 #define HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES 1  // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX 2  // vec4 per tile: written as tile_max writes it
-#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS 3  // RayMaskCounters: candidateCount
+#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS 3  // RayMaskCounters: candidateCount, tileCount
 #define HMB_TILE_MAX_CANDIDATES_BINDING_LIST 4      // uint pixel index per candidate, in no order
-#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNT 5
+// uint tile index per moving tile (as list_moving_tiles lists them), in no order
+#define HMB_TILE_MAX_CANDIDATES_BINDING_MOVING_TILES 5
+#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNT 6
 
 #define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
@@ -182,7 +185,9 @@
 // SizeListParams.list
 #define HMB_SIZE_LIST_MOVING_TILES 0u     // one group per moving tile
 #define HMB_SIZE_LIST_MASK 1u             // HMB_MASK_LIST_GROUP mask pixels per group
-#define HMB_SIZE_LIST_EDGE_CANDIDATES 2u  // HMB_MASK_LIST_GROUP edge candidates per group
+// Both lists the hybrid's tile-max makes: the moving tiles (a group each) and the edge
+// candidates (HMB_MASK_LIST_GROUP a group).
+#define HMB_SIZE_LIST_TILES_AND_CANDIDATES 2u
 // One group per listed block, or SizeListParams::groupsWanted in all (more where a group's
 // run would pass HMB_RANGE_CHECK_MAX_RUN blocks).
 #define HMB_SIZE_LIST_RANGE_BLOCKS 3u
@@ -210,7 +215,9 @@
 #define HMB_REVEAL_TEXEL_BUFFERS (HMB_LAYER_BINDINGS + HMB_TRACE_SCENE_TEXEL_BUFFERS + HMB_SCENE_TEXEL_BUFFERS)
 
 // gather_background: the background layer (the raster, the revealed layer where the mask says
-// HMB_MASK_REVEALED) blurred at the listed pixels; one invocation per list entry.
+// HMB_MASK_REVEALED) blurred at the listed pixels; one invocation per list entry. With the
+// coverage composite (HMB_SPEC_BACKGROUND_GATHER_COVERAGE) it also blends the result under
+// mask_coverage's foreground and writes the hybrid's image there.
 #define HMB_BACKGROUND_GATHER_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
 #define HMB_BACKGROUND_GATHER_BINDING_MASK 1          // uint per pixel: HMB_MASK_*
 #define HMB_BACKGROUND_GATHER_BINDING_LIST 2          // the ray mask's pixel list
@@ -220,21 +227,25 @@
 #define HMB_BACKGROUND_GATHER_BINDING_REVEALED (HMB_BACKGROUND_GATHER_BINDING_RASTER + HMB_LAYER_BINDINGS)
 // The raster layer's shutter paths (gbuffer/gbuffer_layout.h), read along curved paths.
 #define HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS (HMB_BACKGROUND_GATHER_BINDING_REVEALED + HMB_LAYER_BINDINGS)
-#define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS + 1)
-#define HMB_BACKGROUND_GATHER_TEXEL_BUFFERS 5  // both layers and the paths, read as uniform texel buffers
+// vec4 per pixel: mask_coverage's (mean colour, alpha), read with the coverage composite.
+#define HMB_BACKGROUND_GATHER_BINDING_COVERAGE (HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS + 1)
+#define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_COVERAGE + 1)
+// Both layers, the paths and the coverage, read as uniform texel buffers.
+#define HMB_BACKGROUND_GATHER_TEXEL_BUFFERS 6
 
-// composite: every pixel of the ray mask, one invocation per entry of the mask's pixel list
-// (the pixels listed for the reveal from its front, the others from its back); the form is a
-// specialization constant. The post-process gather has written every pixel before.
+// composite: the weights form at every pixel of the ray mask (all at the list's front), one
+// invocation per entry; the coverage form at the list's back (the mask pixels not revealed, read
+// from the list's end inwards), gather_background having blended its front. The post-process
+// gather has written every pixel before.
 #define HMB_COMPOSITE_BINDING_NEIGHBOR_MAX 0  // vec4 per tile
 #define HMB_COMPOSITE_BINDING_LIST 1          // the ray mask's pixel list
-#define HMB_COMPOSITE_BINDING_BACKGROUND 2    // vec4 per pixel: the blurred background, read at mask pixels
+#define HMB_COMPOSITE_BINDING_BACKGROUND 2    // vec4 per pixel: the blurred background (weights form)
 #define HMB_COMPOSITE_BINDING_OUTPUT 3        // vec4 per pixel, written at mask pixels
 #define HMB_COMPOSITE_BINDING_RASTER 4        // the G-buffer (shared/layer_bindings.glsl)
 // The G-buffer's shutter paths (gbuffer/gbuffer_layout.h), read along curved paths.
 #define HMB_COMPOSITE_BINDING_SHUTTER_PATHS (HMB_COMPOSITE_BINDING_RASTER + HMB_LAYER_BINDINGS)
 #define HMB_COMPOSITE_BINDING_COUNTERS (HMB_COMPOSITE_BINDING_SHUTTER_PATHS + 1)  // RayMaskCounters
-// vec4 per pixel: mask_coverage's (mean colour, alpha), read by the coverage form at mask pixels.
+// vec4 per pixel: mask_coverage's (mean colour, alpha), read by the coverage form.
 #define HMB_COMPOSITE_BINDING_COVERAGE (HMB_COMPOSITE_BINDING_COUNTERS + 1)
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COVERAGE + 1)
 // The G-buffer layer and its paths, the neighbour-max, the background and the coverage: read as
@@ -249,15 +260,19 @@
 #define HMB_EDGE_MASK_TEXEL_BUFFERS 2
 #define HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS 2
 #define HMB_RANGE_CHECK_TEXEL_BUFFERS 3
-#define HMB_SPEC_COMPOSITE_COVERAGE 0  // true: the coverage form; false: the weights form
 // The curved path's code and the range, compiled into the background gather and the composite
 // only as the frame takes them (as mblur/gather.comp's): on a CPU device the code of a branch no
 // lane takes still runs, and the curved path's reads at every sample cost the background gather
 // 2.1-3.8 ms of 3.3-6.6 at 1280x720 (living room, temple, bistro).
-#define HMB_SPEC_COMPOSITE_CURVED_PATH 1
-#define HMB_SPEC_COMPOSITE_ADAPTED_RANGE 2
+#define HMB_SPEC_COMPOSITE_CURVED_PATH 0
+#define HMB_SPEC_COMPOSITE_ADAPTED_RANGE 1
+#define HMB_SPEC_COMPOSITE_COVERAGE 2  // true: the coverage form (the list's back); false: the weights form
 #define HMB_SPEC_BACKGROUND_GATHER_CURVED_PATH 0
 #define HMB_SPEC_BACKGROUND_GATHER_ADAPTED_RANGE 1
+// true: the coverage composite blended where the background is gathered, at the revealed pixels
+// (the composite pass takes the others, a lane's gather code never run for them); false: the
+// background alone, for the weights form's composite.
+#define HMB_SPEC_BACKGROUND_GATHER_COVERAGE 2
 // range_check's curved-path code, compiled in only where the blur takes the curved path
 // (HMB_GATHER_FLAG_CURVED_PATH): on a CPU device its walks ran, at least a round of each loop,
 // for every pixel of a straight frame.
@@ -314,8 +329,8 @@ HMB_GPU_BEGIN
 // Cleared each frame. maskCount (the list's front: the pixels listed for the reveal) and
 // unrevealedCount (its back: the other mask pixels): range_check; maskPixels (their sum) and
 // the *Dispatch triples (VkDispatchIndirectCommands): size_list_dispatch; rayCount:
-// reveal_background; tileCount: list_moving_tiles; candidateCount: tile_max_edge_candidates;
-// rangeBlockCount: list_range_blocks.
+// reveal_background; tileCount: list_moving_tiles or tile_max_edge_candidates; candidateCount:
+// tile_max_edge_candidates; rangeBlockCount: list_range_blocks.
 struct RayMaskCounters {
   uint maskCount;
   uint maskDispatchX;  // the mask list's passes
@@ -335,9 +350,9 @@ struct RayMaskCounters {
   uint tileGroupDispatchY;
   uint tileGroupDispatchZ;
   uint unrevealedCount;     // mask pixels whose composite needs no reveal, listed from the list's back
-  uint compositeDispatchX;  // the composite, over all maskPixels of the list
-  uint compositeDispatchY;
-  uint compositeDispatchZ;
+  uint unrevealedDispatchX;  // the coverage composite over the list's back (unrevealedCount)
+  uint unrevealedDispatchY;
+  uint unrevealedDispatchZ;
   uint rangeBlockCount;  // 8 x 8 blocks listed for the range check
   uint coverageCount;    // mask pixels the range check listed for mask_coverage
   uint coverageDispatchX;  // mask_coverage over them

@@ -1,12 +1,13 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
-// 65535 groups: the moving tiles (a group per tile: list_range_blocks); their 8 x 8 blocks
+// 65535 groups: the moving tiles (a group per tile: list_range_blocks), alone or with the edge
+// candidates the same tile-max listed (one dispatch sizes both); their 8 x 8 blocks
 // (list_shutter_rays) and the range check's listed blocks (range_check): a group per block, or
 // as many as wanted, each a run no longer than its walks' loop budget allows; the edge
 // candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's mask pixels for the
 // coverage test (HMB_MASK_LIST_GROUP each: mask_coverage) or the ray mask's pixels
-// (HMB_MASK_LIST_GROUP each: reveal_background and the background layer's gather over the
-// list's front, the composite over the whole mask).
+// (HMB_MASK_LIST_GROUP each: reveal_background, the background layer's gather and the weights
+// composite over the list's front, the coverage composite over its back).
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
@@ -30,11 +31,16 @@ uvec3 runGroups(uint count, uint maxRun) {
 }
 
 void main() {
-  if (params.list == HMB_SIZE_LIST_MOVING_TILES) {
+  if (params.list == HMB_SIZE_LIST_MOVING_TILES || params.list == HMB_SIZE_LIST_TILES_AND_CANDIDATES) {
     const uvec3 g = foldedGroups(counters.tileCount);
     counters.tileGroupDispatchX = g.x;
     counters.tileGroupDispatchY = g.y;
     counters.tileGroupDispatchZ = g.z;
+    if (params.list == HMB_SIZE_LIST_MOVING_TILES) return;
+    const uvec3 c = listGroups(counters.candidateCount);
+    counters.candidateDispatchX = c.x;
+    counters.candidateDispatchY = c.y;
+    counters.candidateDispatchZ = c.z;
     return;
   }
   if (params.list == HMB_SIZE_LIST_RANGE_BLOCKS) {
@@ -61,20 +67,13 @@ void main() {
     counters.coverageDispatchZ = g.z;
     return;
   }
-  if (params.list == HMB_SIZE_LIST_EDGE_CANDIDATES) {
-    const uvec3 g = listGroups(counters.candidateCount);
-    counters.candidateDispatchX = g.x;
-    counters.candidateDispatchY = g.y;
-    counters.candidateDispatchZ = g.z;
-    return;
-  }
   const uvec3 g = listGroups(counters.maskCount);
   counters.maskDispatchX = g.x;
   counters.maskDispatchY = g.y;
   counters.maskDispatchZ = g.z;
   counters.maskPixels = counters.maskCount + counters.unrevealedCount;
-  const uvec3 all = listGroups(counters.maskPixels);
-  counters.compositeDispatchX = all.x;
-  counters.compositeDispatchY = all.y;
-  counters.compositeDispatchZ = all.z;
+  const uvec3 back = listGroups(counters.unrevealedCount);
+  counters.unrevealedDispatchX = back.x;
+  counters.unrevealedDispatchY = back.y;
+  counters.unrevealedDispatchZ = back.z;
 }

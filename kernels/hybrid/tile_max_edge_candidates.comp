@@ -1,6 +1,7 @@
 #version 450
-// The hybrid's tile-max: the gather's tile-max (mblur/tile_max_reduction.glsl) and the ray
-// mask's first test (paper, eqs. 1, 2) at the pixels it reads: list the moving pixels whose
+// The hybrid's tile-max: the gather's tile-max (mblur/tile_max_reduction.glsl), the moving
+// tiles listed as it writes them (list_moving_tiles' list, a pass fewer), and the ray mask's
+// first test (paper, eqs. 1, 2) at the pixels it reads: list the moving pixels whose
 // predicted end position lies on a different object deeper by more than SOFT_Z_EXTENT. Only
 // these can enter the edge mask, and they are few (bistro: 3% of its pixels), so edge_mask runs
 // its Sobel over this list with every lane busy. A pass of its own read the surfaces again
@@ -32,6 +33,7 @@ uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX) writeonly buffer Tiles { vec4 tiles[]; };
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_LIST) writeonly buffer Candidates { uint candidates[]; };
+layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_MOVING_TILES) writeonly buffer MovingTiles { uint movingTiles[]; };
 layout(push_constant) uniform Params { RayMaskParams params; };
 layout(constant_id = HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP) const bool kTestInLoop = true;
 
@@ -68,6 +70,9 @@ void main() {
   const uvec2 tile = gl_WorkGroupID.xy;
   const float tileSpeed = reduceTileMax(tile, params.blur.width, params.blur.height, params.blur.tileSize,
                                         params.blur.tilesX, params.blur.velocityScale, !kTestInLoop);
+  // Lane 0 has the tile's speed either way; NaN speeds never reach here (sanitized).
+  if (gl_LocalInvocationIndex == 0u && tileSpeed >= kMinBlurPixels)
+    movingTiles[atomicAdd(counters.tileCount, 1u)] = tile.y * params.blur.tilesX + tile.x;
   // After the loop: a tile whose pixels all end on themselves has no candidate.
   if (kTestInLoop || !(tileSpeed >= kMinCandidateSpeed)) return;
   const uvec2 begin = tile * params.blur.tileSize;

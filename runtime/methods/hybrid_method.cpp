@@ -121,6 +121,13 @@ class HybridMethod final : public FrameMethod {
         result.plan.noteNoWork(passes::RevealPass::kName, reason);
         result.plan.noteNoWork(passes::HybridStage::kGatherBackground, reason);
       }
+      // The coverage composite's pass takes the mask pixels not revealed (the background gather
+      // blends the others); the weights form's, every mask pixel.
+      const bool coverage = result.hybrid->settings.composite == passes::HybridComposite::Coverage;
+      if (masks && coverage && result.hybrid->maskPixels != 0 &&
+          result.hybrid->maskPixels == result.hybrid->revealedPixels)
+        result.plan.noteNoWork(passes::HybridStage::kComposite,
+                               "every mask pixel's composite meets the background: the background gather blended them");
       if (masks && result.hybrid->maskPixels == 0) {
         result.plan.noteNoWork(passes::HybridStage::kComposite,
                                "the ray mask is empty: the post-process gather's image stands");

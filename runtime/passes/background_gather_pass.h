@@ -1,6 +1,7 @@
 // Host side of kernels/hybrid/gather_background.comp: the hybrid's background layer (the raster
 // with the revealed surfaces in its place where the mask says so) blurred at the ray mask's
-// listed pixels, dispatched indirectly from the list's length.
+// listed pixels (the list's front), dispatched indirectly from its length; with the coverage
+// composite, blended under the mask's foreground into the hybrid's image there.
 #pragma once
 
 #include "runtime/passes/image_layer.h"
@@ -18,14 +19,17 @@ class BackgroundGatherPass {
   static constexpr const char* kName = "gather-background";
   explicit BackgroundGatherPass(const vk::Context& context);
   // neighborMax: the raster's (PostProcessStage). mask, list, counters: RayMaskStage's.
-  // output: width * height vec4, written at the listed pixels. blur: the frame's (gatherParams()).
+  // output: width * height vec4, written at the list's front: the blurred background, or with
+  // `coverage` (RayMaskStage::coverage(): mask_coverage's alpha and foreground) the hybrid's
+  // image (the adapted range only). blur: the frame's (gatherParams()).
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
               const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
               const vk::Buffer& counters, const vk::Buffer& output, const gpu::GatherParams& blur,
-              const vk::Buffer* shutterPaths = nullptr) const;  // the raster's, along curved paths
+              const vk::Buffer* shutterPaths = nullptr,  // the raster's, along curved paths
+              const vk::Buffer* coverage = nullptr) const;
 
  private:
-  vk::KernelVariants kernels_;  // by path and range
+  vk::KernelVariants kernels_;  // by path, range and use
 };
 
 }  // namespace hmb::passes

@@ -18,16 +18,17 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
                            const vk::Buffer& output, const gpu::GatherParams& blur, HybridComposite composite,
                            const vk::Buffer* shutterPaths, const vk::Buffer* coverage) const {
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
-  if (composite == HybridComposite::Coverage && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
+  const bool coverageForm = composite == HybridComposite::Coverage;
+  if (coverageForm && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
     throw Error("composite: the coverage form needs the adapted range");
-  if (composite == HybridComposite::Coverage && !coverage)
+  if (coverageForm && !coverage)
     throw Error("composite: the coverage form needs the mask's coverage (RayMaskStage::coverage)");
-  // Built for the frame's form, path and range alone (hybrid_layout.h).
-  static_assert(HMB_SPEC_COMPOSITE_COVERAGE == 0 && HMB_SPEC_COMPOSITE_CURVED_PATH == 1 &&
-                HMB_SPEC_COMPOSITE_ADAPTED_RANGE == 2);
-  const vk::ComputeKernel& kernel = kernels_.with({composite == HybridComposite::Coverage,
-                                                   (blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u,
-                                                   (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u});
+  // Built for the frame's path, range and form alone (hybrid_layout.h).
+  static_assert(HMB_SPEC_COMPOSITE_CURVED_PATH == 0 && HMB_SPEC_COMPOSITE_ADAPTED_RANGE == 1 &&
+                HMB_SPEC_COMPOSITE_COVERAGE == 2);
+  const vk::ComputeKernel& kernel =
+      kernels_.with({(blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u,
+                     (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) != 0u, coverageForm});
   vk::Bindings bindings = {{HMB_COMPOSITE_BINDING_NEIGHBOR_MAX, &neighborMax},
                            {HMB_COMPOSITE_BINDING_LIST, &list},
                            {HMB_COMPOSITE_BINDING_COUNTERS, &counters},
@@ -35,10 +36,13 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
                            {HMB_COMPOSITE_BINDING_OUTPUT, &output},
                            // Read only along curved paths; any texel buffer stands in otherwise.
                            {HMB_COMPOSITE_BINDING_SHUTTER_PATHS, shutterPaths ? shutterPaths : &raster.samples()},
-                           // Read by the coverage form only; any buffer stands in otherwise.
+                           // Read by the coverage form only; any texel buffer stands in otherwise.
                            {HMB_COMPOSITE_BINDING_COVERAGE, coverage ? coverage : &background}};
   raster.bind(bindings, HMB_COMPOSITE_BINDING_RASTER, kernel.bindsByAddress());
-  frame.dispatchIndirect(kName, kernel, bindings, blur, counters, offsetof(gpu::RayMaskCounters, compositeDispatchX));
+  // The weights form's mask is all at the list's front; the coverage form takes its back.
+  frame.dispatchIndirect(kName, kernel, bindings, blur, counters,
+                         coverageForm ? offsetof(gpu::RayMaskCounters, unrevealedDispatchX)
+                                      : offsetof(gpu::RayMaskCounters, maskDispatchX));
 }
 
 }  // namespace hmb::passes

@@ -1,6 +1,7 @@
-// Host side of kernels/hybrid/composite.comp: the hybrid's final image at the ray mask's pixels,
-// the blurred background composited in (coverage or weights), over the post-process gather's
-// image of the raster layer (every other pixel).
+// Host side of kernels/hybrid/composite.comp: the hybrid's final image at the ray mask's pixels
+// over the post-process gather's image of the raster layer (every other pixel): with the weights
+// composite at every mask pixel, the blurred background composited in; with the coverage
+// composite at the pixels not revealed (BackgroundGatherPass blends the others).
 #pragma once
 
 #include <cstdint>
@@ -22,8 +23,9 @@ class CompositePass {
   explicit CompositePass(const vk::Context& context);
   // neighborMax: the raster's. list, counters: RayMaskStage's (the mask's pixels, its front and
   // back; the indirect dispatch). background: BackgroundGatherPass's output, read at mask
-  // pixels. output: width * height vec4, written at mask pixels. blur: the frame's
-  // (gatherParams(), with the hybrid's mask weights). The coverage form needs the adapted range.
+  // pixels (weights form). output: width * height vec4, written at mask pixels. blur: the
+  // frame's (gatherParams(), with the hybrid's mask weights). The coverage form needs the
+  // adapted range.
   void record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
               const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
               const vk::Buffer& output, const gpu::GatherParams& blur, HybridComposite composite,
@@ -32,7 +34,7 @@ class CompositePass {
               const vk::Buffer* coverage = nullptr) const;
 
  private:
-  vk::KernelVariants kernels_;  // by form, path and range
+  vk::KernelVariants kernels_;  // by path, range and form
 };
 
 }  // namespace hmb::passes

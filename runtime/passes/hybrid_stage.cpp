@@ -122,16 +122,21 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   rayMask_.prepare(width, height, !reveals, settings.composite == HybridComposite::Coverage);
   const bool resized = size_.changesTo(width, height);
   size_.madeFor(width, height);
+  // The weights composite reads the blurred background from a buffer of its own; the coverage
+  // composite is blended where the background is gathered.
+  const bool weights = settings.composite == HybridComposite::Weights;
+  const uint64_t pixels = uint64_t(width) * height;
   if (!reveals) {
     revealed_ = {};
-    backgroundBlurred_ = {};
-  } else if (resized || !backgroundBlurred_.handle()) {
-    const uint64_t pixels = uint64_t(width) * height;
+  } else if (resized || !revealed_.samples().handle()) {
     revealed_ = {};  // the old layer goes first: the two never take memory at once
     revealed_ = ImageLayer::allocate(context_, pixels, "revealed");
+  }
+  if (!reveals || !weights)
+    backgroundBlurred_ = {};
+  else if (resized || !backgroundBlurred_.handle())
     backgroundBlurred_ =
         vk::Buffer(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "background blurred (mask pixels)");
-  }
   return timings;
 }
 
@@ -190,12 +195,22 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
     gather_.record(frame, raster, postProcess_.neighborMax(), output, settings_.blur);
   reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, layer, rayMask_.list(), rayMask_.counters(),
                  revealed_, size_.width(), size_.height(), settings_);
-  // The background layer: the revealed surfaces over the raster, gathered at mask pixels only.
-  backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(),
-                           rayMask_.list(), rayMask_.counters(), backgroundBlurred_, blur, raster.shutterPaths);
+  // The background layer: the revealed surfaces over the raster, gathered at the revealed pixels
+  // only; with the coverage composite blended under the mask's foreground into the image there,
+  // the composite taking the mask's other pixels.
+  if (settings_.composite == HybridComposite::Coverage) {
+    const vk::Buffer& coverage = rayMask_.coverage();
+    backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(), rayMask_.list(),
+                             rayMask_.counters(), output, blur, raster.shutterPaths, &coverage);
+    // No background buffer: the coverage stands in for its unread binding.
+    composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(), coverage,
+                      output, blur, settings_.composite, raster.shutterPaths, &coverage);
+    return;
+  }
+  backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(), rayMask_.list(),
+                           rayMask_.counters(), backgroundBlurred_, blur, raster.shutterPaths);
   composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(),
-                    backgroundBlurred_, output, blur, settings_.composite, raster.shutterPaths,
-                    settings_.composite == HybridComposite::Coverage ? &rayMask_.coverage() : nullptr);
+                    backgroundBlurred_, output, blur, settings_.composite, raster.shutterPaths);
 }
 
 }  // namespace hmb::passes

@@ -33,7 +33,8 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause,
                         const std::string& coverageSkipped) const {
   plan.run(kClear);
-  plan.run(kMovingTiles);
+  // The whole mask's tile-max lists the moving tiles.
+  plan.runUnless(kMovingTiles, movingTilesOnlyBecause.empty() ? "the ray mask's tile-max lists the moving tiles" : "");
   for (const char* pass : {kEdges, kRangeBlocks, kRangeCheck})
     plan.runUnless(pass, movingTilesOnlyBecause);
   for (const char* pass : {kCoverage, kListBlocks})
@@ -111,7 +112,8 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
                   {HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES, layer.surfaces},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX, p.tileMax},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS, &counters_},
-                  {HMB_TILE_MAX_CANDIDATES_BINDING_LIST, &candidates_}},
+                  {HMB_TILE_MAX_CANDIDATES_BINDING_LIST, &candidates_},
+                  {HMB_TILE_MAX_CANDIDATES_BINDING_MOVING_TILES, &tiles_}},
                  maskParams(p), {p.blur.tilesX, p.blur.tilesY, 1});
 }
 
@@ -120,15 +122,6 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   requireFits(layer, p);
   const gpu::GatherParams& blur = p.blur;
   const TileGrid grid{blur.tilesX, blur.tilesY};
-  // The whole mask's counters were cleared before its tile-max listed the candidates.
-  if (p.movingTilesOnly) frame.fill(kClear, counters_, 0u);
-  const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
-  frame.dispatch(kMovingTiles, tilesKernel_,
-                 {{HMB_MOVING_TILES_BINDING_TILE_MAX, p.tileMax},
-                  {HMB_MOVING_TILES_BINDING_COUNTERS, &counters_},
-                  {HMB_MOVING_TILES_BINDING_LIST, &tiles_}},
-                 tileParams,
-                 vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
   // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
   // How far a range check's walk may reach: the largest speed, twice it along curved paths.
   const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
@@ -136,10 +129,22 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
     frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
                    gpu::SizeListParams{list, groupsWanted, walkSpeed, 0u}, {1, 1, 1});
   };
-  sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, 0u);
-  if (p.movingTilesOnly) return;
+  if (p.movingTilesOnly) {
+    // From the gather's tile-max: the moving tiles alone.
+    frame.fill(kClear, counters_, 0u);
+    const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
+    frame.dispatch(kMovingTiles, tilesKernel_,
+                   {{HMB_MOVING_TILES_BINDING_TILE_MAX, p.tileMax},
+                    {HMB_MOVING_TILES_BINDING_COUNTERS, &counters_},
+                    {HMB_MOVING_TILES_BINDING_LIST, &tiles_}},
+                   tileParams, vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
+    sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, 0u);
+    return;
+  }
+  // The whole mask's counters were cleared before its tile-max listed the moving tiles and the
+  // candidates.
   const gpu::RayMaskParams params = maskParams(p);
-  sizeDispatch(HMB_SIZE_LIST_EDGE_CANDIDATES, 0u);
+  sizeDispatch(HMB_SIZE_LIST_TILES_AND_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_,
                          {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},
                           {HMB_EDGE_MASK_BINDING_SAMPLES, layer.samples},

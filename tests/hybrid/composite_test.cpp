@@ -1,12 +1,14 @@
-// The hybrid composites of hybrid/composite.comp (coverage and weights, at mask pixels) against the
-// C++ reference on random and adversarial layers, and the background gather over a pixel list
-// (hybrid/gather_background.comp): exactly the listed pixels written, each as the full-frame
-// gather writes it, also with more groups than one row of a dispatch holds, and the revealed
-// layer read where the mask says so.
+// The hybrid composites against the C++ reference on random and adversarial layers: the
+// coverage form (mask_coverage's alpha and foreground over the background that
+// hybrid/gather_background.comp gathers and blends at mask pixels) and the weights form
+// (hybrid/composite.comp); and the background gather over a pixel list alone: exactly the listed
+// pixels written, each as the full-frame gather writes it, also with more groups than one row of
+// a dispatch holds, and the revealed layer read where the mask says so.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -44,12 +46,15 @@ PostProcessSettings compositeSettings(uint32_t tileSize, uint32_t samples, uint3
 // The paper's boosts inside the mask (the weights composite's).
 constexpr passes::MaskWeights kMaskWeights{3.0f, 3.0f};
 
-// The composite's inputs beside the layer: a mask, a background and object ids.
+// The composite's inputs beside the layer: a mask, a background and object ids. The weights
+// form takes the background as the blurred background B; the coverage form gathers B itself from
+// the revealed layer (revealedLayer) where mask_coverage lists a pixel for the reveal.
 struct CompositeCase {
   Layer layer;
   std::vector<uint32_t> mask;
   std::vector<glm::vec4> background;
   std::vector<uint32_t> objectId;
+  std::optional<Layer> revealed;  // the coverage form's; default: the layer in the background's colours
 };
 
 // mblur's random layer (rectangles at one depth each over a noisy far background): each
@@ -86,15 +91,47 @@ void makeAdversarial(CompositeCase& c, std::mt19937& rng) {
   }
 }
 
+// What the reveal found behind the case's pixels: by default the layer with the background's
+// colours.
+Layer revealedLayer(const CompositeCase& c) {
+  if (c.revealed) return *c.revealed;
+  Layer revealed = c.layer;
+  revealed.color = c.background;
+  revealed.shutterPaths.clear();
+  return revealed;
+}
+
 std::vector<glm::vec4> runComposite(const CompositeCase& c, const std::vector<glm::vec4>& tiles,
                                     const PostProcessSettings& s, HybridComposite composite) {
+  const Layer revealed = revealedLayer(c);
   GatherRun run;
   run.mask = &c.mask;
-  run.background = &c.background;
   run.objectId = &c.objectId;
   run.composite = composite;
   run.maskWeights = kMaskWeights;
+  if (composite == HybridComposite::Coverage)
+    run.revealed = &revealed;
+  else
+    run.background = &c.background;
   return runGather(VulkanTest::context(), c.layer, tiles, run, s);
+}
+
+// The coverage form's blurred background B: the post-process gather of the raster with the
+// revealed layer in its place at the pixels mask_coverage lists for the reveal (those whose
+// samples meet another object behind them), whose samples go straight.
+std::vector<glm::vec4> coverageBackground(const CompositeCase& c, const std::vector<glm::vec4>& tiles,
+                                          const PostProcessSettings& s) {
+  const std::vector<MaskCoverage> coverage = maskCoverage(c.layer, c.mask, c.objectId, s);
+  const Layer revealed = revealedLayer(c);
+  Layer overlaid = c.layer;
+  for (size_t i = 0; i < c.mask.size(); ++i) {
+    if (c.mask[i] == 0u || !coverage[i].meetsBackground) continue;
+    overlaid.color[i] = revealed.color[i];
+    overlaid.normalDepth[i] = revealed.normalDepth[i];
+    overlaid.velocity[i] = revealed.velocity[i];
+    if (!overlaid.shutterPaths.empty()) overlaid.shutterPaths[i] = glm::uvec2(HMB_NO_SHUTTER_PATH);
+  }
+  return mblur::gather(overlaid, tiles, nullptr, s);
 }
 
 // Every output finite and within 1e-5 relative (colours are O(1)) of the reference, except
@@ -106,7 +143,9 @@ size_t expectCompositeMatches(const CompositeCase& c, const PostProcessSettings&
   const std::vector<glm::vec4> tiles = mblur::referenceTiles(c.layer, s);
   const std::vector<glm::vec4> device = runComposite(c, tiles, s, composite);
   const std::vector<glm::vec4> reference =
-      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, composite, kMaskWeights);
+      compositeGather(c.layer, tiles, c.mask,
+                      composite == HybridComposite::Coverage ? coverageBackground(c, tiles, s) : c.background,
+                      c.objectId, s, composite, kMaskWeights);
   const std::vector<glm::vec4> plain = mblur::gather(c.layer, tiles, &c.mask, s, kMaskWeights);
   EXPECT_TRUE(mblur::allFinite(device)) << what;
   size_t off = 0, changed = 0, maskPixels = 0;
@@ -183,9 +222,10 @@ TEST_F(HybridCompositeTest, MaskCoverageMatchesReferenceAndSplitsTheMask) {
     }
     std::vector<glm::vec4> coverage;
     std::vector<uint32_t> maskValues, front, back;
+    const Layer revealedLayerOfCase = revealedLayer(c);
     GatherRun run;
     run.mask = &c.mask;
-    run.background = &c.background;
+    run.revealed = &revealedLayerOfCase;
     run.objectId = &c.objectId;
     run.coverageOut = &coverage;
     run.maskOut = &maskValues;
@@ -318,7 +358,9 @@ TEST_F(HybridCompositeTest, CompositesMatchReferenceOnAdversarialLayers) {
 // The coverage composite by hand: a pixel of object 2 (depth 1) moving 4 px right, its range
 // covering two more pixels of object 2 and then object 1, far behind. With one sample per
 // pixel at u = (i + 1 - j) / S the share on object 2 is known: alpha = (samples on it) / S and
-// C = alpha (mean of the pixel and those samples) + (1 - alpha) B.
+// C = alpha (mean of the pixel and those samples) + (1 - alpha) B. Object 2's three pixels are
+// in the mask and revealed as a still green surface beside object 1's still ones, so the
+// background gather at the pixel meets only still samples: B is green.
 TEST_F(HybridCompositeTest, CoverageByHand) {
   const uint32_t width = 12, height = 1;
   CompositeCase c;
@@ -329,8 +371,13 @@ TEST_F(HybridCompositeTest, CoverageByHand) {
     c.layer.normalDepth[x].w = front ? 1.0f : 10.0f;
     c.layer.velocity[x] = front ? glm::vec2(4.0f, 0.0f) : glm::vec2(0.0f);
     c.objectId.push_back(front ? 2u : 1u);
-    c.mask.push_back(x == 2 ? 1u : 0u);
+    c.mask.push_back(front ? 1u : 0u);
     c.background.emplace_back(0.0f, 1.0f, 0.0f, 1.0f);
+  }
+  c.revealed = mblur::stillLayer(width, height);
+  for (uint32_t x = 0; x < width; ++x) {
+    c.revealed->color[x] = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+    c.revealed->normalDepth[x].w = 10.0f;
   }
   PostProcessSettings s = compositeSettings(4u, 8u, 0u);
   s.exposure = 1.0f / 120.0f;  // velocityScale E * fps = 1: 4 px per exposure
@@ -351,9 +398,8 @@ TEST_F(HybridCompositeTest, CoverageByHand) {
   const glm::vec4 expected = alpha * glm::vec4(1, 0, 0, 1) + (1.0f - alpha) * glm::vec4(0, 1, 0, 1);
   EXPECT_LT(mblur::maxAbsDifference(device[2], expected), 1e-6f)
       << device[2].x << " " << device[2].y << " " << device[2].z << " alpha " << alpha;
-  const std::vector<glm::vec4> reference =
-      compositeGather(c.layer, tiles, c.mask, c.background, c.objectId, s, HybridComposite::Coverage,
-                      kMaskWeights);
+  const std::vector<glm::vec4> reference = compositeGather(
+      c.layer, tiles, c.mask, coverageBackground(c, tiles, s), c.objectId, s, HybridComposite::Coverage, kMaskWeights);
   EXPECT_LT(mblur::maxAbsDifference(reference[2], expected), 1e-6f);
 }
 

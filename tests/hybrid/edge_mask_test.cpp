@@ -52,16 +52,25 @@ void expectCandidatesMatch(const RayMaskReadback& device, const std::vector<bool
 }
 
 // The mask's tile-max, which also lists the candidates, is the gather's
-// tile_max bit for bit (the gathers blur over the tiles it wrote).
+// tile_max bit for bit (the gathers blur over the tiles it wrote), and lists each tile whose
+// speed is kMinBlurPixels or more once, list_range_blocks' dispatch a group each.
 void expectGatherTileMax(const MaskLayer& layer, const RayMaskParameters& p, const RayMaskReadback& device,
                          const std::string& what) {
   const std::vector<glm::vec4> gather = mblur::runTileMax(VulkanTest::context(), layer.velocity, layer.width,
                                                           layer.height, p.blur.tileSize, p.blur.velocityScale);
   ASSERT_EQ(device.tileMax.size(), gather.size()) << what;
-  for (size_t t = 0; t < gather.size(); ++t)
+  std::vector<uint32_t> moving;
+  for (size_t t = 0; t < gather.size(); ++t) {
     for (int c = 0; c < 4; ++c)
       ASSERT_EQ(std::bit_cast<uint32_t>(device.tileMax[t][c]), std::bit_cast<uint32_t>(gather[t][c]))
           << what << ": tile " << t << " component " << c;
+    if (gather[t].z >= gpu::kMinBlurPixels) moving.push_back(uint32_t(t));
+  }
+  std::vector<uint32_t> listed = device.movingTiles;
+  std::sort(listed.begin(), listed.end());
+  EXPECT_EQ(listed, moving) << what << ": moving tiles";
+  EXPECT_EQ(device.counters.tileGroupDispatchX, std::min(device.counters.tileCount, 65535u)) << what;
+  EXPECT_EQ(device.counters.tileGroupDispatchY, (device.counters.tileCount + 65534u) / 65535u) << what;
 }
 
 // The device's edge mask equals the reference's, except at pixels whose x_n lies within 1e-5

@@ -128,6 +128,7 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   out.candidates = downloadFirst<uint32_t>(stage.candidates(), std::min<size_t>(out.counters.candidateCount, pixels));
   out.rangeBlocks = downloadFirst<uint32_t>(stage.rangeBlocks(), std::min<size_t>(out.counters.rangeBlockCount, pixels));
   out.tileMax = tiles.download<glm::vec4>();
+  out.movingTiles = downloadFirst<uint32_t>(stage.movingTiles(), std::min<size_t>(out.counters.tileCount, pixels));
   return out;
 }
 
@@ -187,31 +188,28 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   const vk::Buffer* pathsOrNull = paths ? &*paths : nullptr;
   vk::FrameRecorder frame(context);
   frame.begin();
-  if (run.background) {
-    if (!run.mask || !run.objectId || run.list) throw std::runtime_error("the composite needs mask and ids, no list");
-    const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
-    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull};
+  if (run.objectId) {
     const bool coverage = run.composite == passes::HybridComposite::Coverage;
+    if (!run.mask || run.list) throw std::runtime_error("the composite needs the mask and no list");
+    if (coverage ? !run.revealed : !run.background)
+      throw std::runtime_error("the coverage composite needs a revealed layer, the weights one a background");
+    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull};
     // As HybridStage records it: with the coverage form, mask_coverage over the mask's pixels
-    // and list_mask_blocks (which split the list between its front and back); the post-process gather outside the
-    // mask; the composite over the mask's pixels. The weights form's list as range_check makes
-    // it: every other one from the front (as if revealed), the rest from the back, so that both
-    // halves of the list are read.
+    // and list_mask_blocks (which split the list between its front, the pixels to reveal, and
+    // its back); the post-process gather outside the mask; then the background gather, which
+    // blends the coverage composite at the list's front, and the composite (the coverage form
+    // at the list's back, the weights form over the whole mask, all at the front as range_check
+    // lists it).
     std::vector<uint32_t> list(std::max<size_t>(pixels, 1), 0u), maskPixels;
-    uint32_t front = 0, back = 0;
     for (uint32_t i = 0; i < pixels; ++i)
       if ((*run.mask)[i] != HMB_MASK_NONE) {
+        list[maskPixels.size()] = i;
         maskPixels.push_back(i);
-        if ((front + back) % 2 == 0)
-          list[front++] = i;
-        else
-          list[pixels - 1 - back++] = i;
       }
+    const uint32_t count = uint32_t(maskPixels.size());
     const vk::Buffer listBuffer = vk::uploadedBuffer(context, list, "test mask list");
     const vk::Buffer counters = vk::uploadedBuffer(
-        context,
-        std::vector<gpu::RayMaskCounters>{coverage ? coverageDispatchFor(front + back)
-                                                   : dispatchFor(front, back)},
+        context, std::vector<gpu::RayMaskCounters>{coverage ? coverageDispatchFor(count) : dispatchFor(count)},
         "test mask counters");
     if (maskPixels.empty()) maskPixels.push_back(0u);  // unread: the count is 0
     const vk::Buffer maskPixelsBuffer = vk::uploadedBuffer(context, maskPixels, "test mask pixels");
@@ -226,10 +224,21 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     }
     const passes::GatherPass gather(context);
     gather.recordOutsideMask(frame, inputs, tiles, output, settings, mask);
-    const passes::CompositePass pass(context);
-    pass.record(frame, raster, tiles, listBuffer, counters, background, output, params, run.composite, pathsOrNull,
-                &coverageBuffer);
-    frame.submitAndWait();
+    const passes::CompositePass composite(context);
+    if (coverage) {
+      const passes::ImageLayer revealed = imageLayer(*run.revealed, nullptr, "test revealed");
+      const passes::BackgroundGatherPass gatherBackground(context);
+      gatherBackground.record(frame, raster, revealed, tiles, mask, listBuffer, counters, output, params, pathsOrNull,
+                              &coverageBuffer);
+      composite.record(frame, raster, tiles, listBuffer, counters, coverageBuffer, output, params, run.composite,
+                       pathsOrNull, &coverageBuffer);
+      frame.submitAndWait();
+    } else {
+      const vk::Buffer background = vk::uploadedBuffer(context, *run.background, "test background");
+      composite.record(frame, raster, tiles, listBuffer, counters, background, output, params, run.composite,
+                       pathsOrNull);
+      frame.submitAndWait();
+    }
     if (run.coverageOut) *run.coverageOut = downloadFirst<glm::vec4>(coverageBuffer, pixels);
     if (run.maskOut) *run.maskOut = downloadFirst<uint32_t>(mask, pixels);
     if (run.frontOut || run.backOut) {

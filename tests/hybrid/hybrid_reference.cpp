@@ -379,25 +379,25 @@ gpu::RayMaskCounters dispatchFor(uint32_t maskCount, uint32_t unrevealed) {
   c.maskCount = maskCount;
   c.unrevealedCount = unrevealed;
   c.maskPixels = maskCount + unrevealed;
-  const glm::uvec3 front = rows(maskCount), all = rows(c.maskPixels);
+  const glm::uvec3 front = rows(maskCount), back = rows(unrevealed);
   c.maskDispatchX = front.x;
   c.maskDispatchY = front.y;
   c.maskDispatchZ = front.z;
-  c.compositeDispatchX = all.x;
-  c.compositeDispatchY = all.y;
-  c.compositeDispatchZ = all.z;
+  c.unrevealedDispatchX = back.x;
+  c.unrevealedDispatchY = back.y;
+  c.unrevealedDispatchZ = back.z;
   return c;
 }
 
 gpu::RayMaskCounters coverageDispatchFor(uint32_t maskPixels) {
   gpu::RayMaskCounters c = dispatchFor(maskPixels);
-  // The range check's count; mask_coverage moves each pixel to the front or the back.
+  // The range check's count; mask_coverage moves each pixel to the front or the back. Either
+  // side may take them all: the passes over each are dispatched for all (they read the counts).
   c.coverageCount = maskPixels;
-  c.coverageDispatchX = c.maskDispatchX;
-  c.coverageDispatchY = c.maskDispatchY;
-  c.coverageDispatchZ = c.maskDispatchZ;
+  c.coverageDispatchX = c.unrevealedDispatchX = c.maskDispatchX;
+  c.coverageDispatchY = c.unrevealedDispatchY = c.maskDispatchY;
+  c.coverageDispatchZ = c.unrevealedDispatchZ = c.maskDispatchZ;
   c.maskCount = 0u;
-  c.maskDispatchX = c.maskDispatchY = c.maskDispatchZ = 0u;
   return c;
 }
 

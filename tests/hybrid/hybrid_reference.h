@@ -88,12 +88,12 @@ std::vector<uint32_t> shutterRays(const MaskLayer& layer, const passes::RayMaskP
 
 // size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount);
-// The same with `unrevealed` more mask pixels at the list's back: maskPixels and the
-// composite's dispatch over both.
+// The same with `unrevealed` more mask pixels at the list's back: maskPixels over both, and
+// the coverage composite's dispatch over the back.
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount, uint32_t unrevealed);
 // The counters as the range check leaves them for mask_coverage with `maskPixels` mask pixels
-// (its dispatch sized), and the composite's dispatch over them all: maskCount and
-// unrevealedCount 0, for mask_coverage to count.
+// (its dispatch sized), and the dispatches over the list's front and back each sized for them
+// all: maskCount and unrevealedCount 0, for list_mask_blocks to count.
 gpu::RayMaskCounters coverageDispatchFor(uint32_t maskPixels);
 
 // mask_coverage.comp at each pixel where `mask` is not 0 (the others zero): the coverage

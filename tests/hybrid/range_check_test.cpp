@@ -46,11 +46,13 @@ void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std:
   const gpu::RayMaskCounters mirror = dispatchFor(uint32_t(count), c.unrevealedCount);
   EXPECT_EQ(c.maskDispatchX, mirror.maskDispatchX) << what;
   EXPECT_EQ(c.maskDispatchY, mirror.maskDispatchY) << what;
-  // The composite runs over every mask pixel, the unrevealed ones at the list's back too.
+  // The coverage composite runs over the unrevealed pixels at the list's back.
   EXPECT_EQ(c.maskPixels, count + c.unrevealedCount) << what;
-  EXPECT_EQ(c.compositeDispatchX, mirror.compositeDispatchX) << what;
-  EXPECT_EQ(c.compositeDispatchY, mirror.compositeDispatchY) << what;
-  EXPECT_EQ(c.compositeDispatchZ, 1u) << what;
+  const uint64_t backGroups = (uint64_t(c.unrevealedCount) + 63) / 64;
+  EXPECT_EQ(c.unrevealedDispatchX, std::min<uint64_t>(backGroups, 65535)) << what;
+  EXPECT_EQ(c.unrevealedDispatchY, backGroups == 0 ? 0 : (backGroups + 65534) / 65535) << what;
+  EXPECT_EQ(c.unrevealedDispatchX, mirror.unrevealedDispatchX) << what;
+  EXPECT_EQ(c.unrevealedDispatchZ, 1u) << what;
 }
 
 // The longest run of blocks one range check group may take: its walks, at most 4 s + 16 loop
