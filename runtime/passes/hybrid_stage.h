@@ -125,7 +125,7 @@ class HybridStage {
   bool candidatesInTileMaxLoop_ = true;  // RayMaskParameters': a GPU, or the camera moves this frame
   vk::Buffer cameraRays_;
   ImageLayer revealed_;
-  vk::Buffer backgroundBlurred_;
+  vk::Buffer backgroundBlurred_;  // the weights composite's blurred background (none beside the coverage composite)
 };
 
 }  // namespace hmb::passes
