@@ -58,8 +58,9 @@
 // 4 s + 16 rounds for a walk speed s (SizeListParams::walkSpeed), so a run is at most
 // HMB_LOOP_BUDGET / (4 s + 17) blocks (11 at 1280x720, where bistro lists about
 // 4,200).
-// list_range_blocks: one 64-lane group per listed tile, its lanes striding over the tile's
-// blocks. list_shutter_rays: an 8 x 8 group per block of the moving tiles, a pixel a lane, on a
+// list_range_blocks: a lane per 8 x 8 block of the moving tiles (a 64-lane group per tile
+// left most lanes of its vectors idle at the default tiles, 25 blocks of 40 px, and gave a
+// lane a quarter of a 1024-px tile's blocks, past the loop budget). list_shutter_rays: an 8 x 8 group per block of the moving tiles, a pixel a lane, on a
 // GPU; on a CPU device HMB_SHUTTER_LIST_CPU_GROUPS groups, each a run of consecutive blocks as
 // the range check's, at most HMB_LOOP_BUDGET / (s + 6) blocks for a walk speed s (a block's
 // pixels take at most s + 3 rounds, a tile 2 more). A group per tile, its lanes striding over
@@ -113,9 +114,9 @@
 #define HMB_RANGE_BLOCKS_BINDING_COUNTERS 3  // RayMaskCounters: rangeBlockCount
 #define HMB_RANGE_BLOCKS_BINDING_LIST 4      // uint per listed block (rangeBlockEntry below), in no order
 #define HMB_RANGE_BLOCKS_BINDING_COUNT 5
-// A block's reach is tested over at most this many coarse blocks a side (fewer in the largest
-// tiles: rangeBlocksTestSide); a wider one is listed untested (its walks cost less than the
-// test would).
+// A block's reach is tested over at most this many coarse blocks a side; a wider one is listed
+// untested (its walks cost less than the test would, and (16 + 1)^2 rounds keep a lane well
+// within the loop budget).
 #define HMB_RANGE_BLOCKS_MAX_TEST_SIDE 16
 
 #define HMB_RANGE_CHECK_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces
@@ -183,10 +184,10 @@
 #define HMB_SIZE_LIST_BINDING_COUNTERS 0
 #define HMB_SIZE_LIST_BINDING_COUNT 1
 // SizeListParams.list
-#define HMB_SIZE_LIST_MOVING_TILES 0u     // one group per moving tile
 #define HMB_SIZE_LIST_MASK 1u             // HMB_MASK_LIST_GROUP mask pixels per group
-// Both lists the hybrid's tile-max makes: the moving tiles (a group each) and the edge
-// candidates (HMB_MASK_LIST_GROUP a group).
+// Both lists the hybrid's tile-max makes: the moving tiles (a lane per block of each,
+// HMB_RANGE_BLOCKS_GROUP a group; SizeListParams::tileBlocks to a tile) and the edge candidates
+// (HMB_MASK_LIST_GROUP a group).
 #define HMB_SIZE_LIST_TILES_AND_CANDIDATES 2u
 // One group per listed block, or SizeListParams::groupsWanted in all (more where a group's
 // run would pass HMB_RANGE_CHECK_MAX_RUN blocks).
@@ -346,9 +347,9 @@ struct RayMaskCounters {
   uint candidateDispatchX;  // edge_mask over the candidates
   uint candidateDispatchY;
   uint candidateDispatchZ;
-  uint tileGroupDispatchX;  // a group per moving tile (list_range_blocks)
-  uint tileGroupDispatchY;
-  uint tileGroupDispatchZ;
+  uint tileBlockDispatchX;  // a lane per block of the moving tiles (list_range_blocks)
+  uint tileBlockDispatchY;
+  uint tileBlockDispatchZ;
   uint unrevealedCount;     // mask pixels whose composite needs no reveal, listed from the list's back
   uint unrevealedDispatchX;  // the coverage composite over the list's back (unrevealedCount)
   uint unrevealedDispatchY;
@@ -380,7 +381,7 @@ struct SizeListParams {
   // (|v| + 2 |q|); the shutter list's: the larger of the largest speed and the tile size (a
   // still pixel walks its tile's fastest, clamped to the tile)
   float walkSpeed;
-  uint tileBlocks;  // shutter blocks: the 8 x 8 blocks of a tile (tileBlocks() below)
+  uint tileBlocks;  // tiles and candidates, shutter blocks: the 8 x 8 blocks of a tile (tileBlocks() below)
 };
 
 // tile_max_edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,
@@ -462,17 +463,6 @@ HMB_SHARED uint tileBlocksDown(uint tileSize) {
   return (tileSize + HMB_MASK_TILE_GROUP_Y - 1u) / HMB_MASK_TILE_GROUP_Y;
 }
 HMB_SHARED uint tileBlocks(uint tileSize) { return tileBlocksAcross(tileSize) * tileBlocksDown(tileSize); }
-
-// The widest reach list_range_blocks tests, in coarse blocks a side: HMB_RANGE_BLOCKS_MAX_TEST_SIDE,
-// narrower where a lane's share of a tile's blocks, each tested over s x s coarse blocks (at
-// most (s + 1)^2 + 2 loop rounds), would pass HMB_LOOP_BUDGET: tiles past about 900 px. A
-// wider reach is listed untested, which costs the range check walks, never a mask pixel.
-HMB_SHARED uint rangeBlocksTestSide(uint tileSize) {
-  const uint perLane = (tileBlocks(tileSize) + uint(HMB_RANGE_BLOCKS_GROUP) - 1u) / uint(HMB_RANGE_BLOCKS_GROUP);
-  uint side = uint(HMB_RANGE_BLOCKS_MAX_TEST_SIDE);
-  while (side > 1u && perLane * ((side + 1u) * (side + 1u) + 2u) > HMB_LOOP_BUDGET) side -= 1u;
-  return side;
-}
 
 HMB_SHARED uint shutterRayEntry(uint pixelIndex, uint rays) {
   const uint log2Rays = rays >= 16u ? 4u : (rays >= 8u ? 3u : (rays >= 4u ? 2u : 1u));  // rays: 2, 4, 8 or 16

@@ -1,6 +1,7 @@
 #version 450
 // Ray mask: the 8 x 8 blocks of the moving tiles whose pixels can meet the edge mask, listed
-// for range_check. The tile-max's speed bounds every pixel's of its tile when under the tile
+// for range_check, a lane per block of the moving tiles (the blocks of each listed tile in turn).
+// The tile-max's speed bounds every pixel's of its tile when under the tile
 // size (else it was clamped: no bound); a straight walk at speed r visits pixels within
 // ceil(r) + 1 of its own, and an edge pixel's own coarse block is flagged (edge_mask), so a
 // block with no flagged coarse block that near has no pixel in the mask. Along curved paths
@@ -41,24 +42,22 @@ bool edgeBlockNear(uvec2 origin, int margin, int testSide) {
 }
 
 void main() {
-  const uint tile = tiles[listedTileEntry()];
   const uint tileSize = params.blur.tileSize;
+  const uint blocks = tileBlocks(tileSize);
+  const uint entry = linearInvocationIndex(HMB_RANGE_BLOCKS_GROUP);
+  if (entry >= counters.tileCount * blocks) return;
+  const uint tile = tiles[entry / blocks];
+  const uint block = entry % blocks;
+  const uvec2 origin = tileBlockOrigin(tile, block, params.blur.tilesX, tileSize);
+  // Blocks past the image's edge (a border tile's) have no pixel.
   const uvec2 tileEnd = min(tileOrigin(tile, params.blur.tilesX, tileSize) + tileSize,
                             uvec2(params.blur.width, params.blur.height));
+  if (any(greaterThanEqual(origin, tileEnd))) return;
   const float reach = tileMax[tile].z;
   const bool bounded = (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) == 0u && reach < float(tileSize);
   const int margin = bounded ? int(ceil(reach)) + 1 : 0;
-  const uint blocks = tileBlocks(tileSize);
-  const uint blocksAcross = tileBlocksAcross(tileSize);
-  const uint blocksDown = tileBlocksDown(tileSize);
-  // Within llvmpipe's loop budget for this lane's share of the tile's blocks.
-  const int testSide = int(rangeBlocksTestSide(tileSize));
-  for (uint block = gl_LocalInvocationIndex; block < blocks; block += HMB_RANGE_BLOCKS_GROUP) {
-    const uvec2 origin = tileBlockOrigin(tile, block, params.blur.tilesX, tileSize);
-    // Blocks past the image's edge (a border tile's) have no pixel.
-    if (any(greaterThanEqual(origin, tileEnd))) continue;
-    if (!bounded || edgeBlockNear(origin, margin, testSide))
-      blockList[atomicAdd(counters.rangeBlockCount, 1u)] =
-          rangeBlockEntry(origin, block % blocksAcross == blocksAcross - 1u, block / blocksAcross == blocksDown - 1u);
-  }
+  if (!bounded || edgeBlockNear(origin, margin, int(HMB_RANGE_BLOCKS_MAX_TEST_SIDE)))
+    blockList[atomicAdd(counters.rangeBlockCount, 1u)] =
+        rangeBlockEntry(origin, block % tileBlocksAcross(tileSize) == tileBlocksAcross(tileSize) - 1u,
+                        block / tileBlocksAcross(tileSize) == tileBlocksDown(tileSize) - 1u);
 }

@@ -33,10 +33,6 @@ float normalizedEdge(float x) {
   return clamp(1.0 - 1.0 / (max(x, 0.0) + 1.0), 0.0, 1.0);
 }
 
-// The mask passes' dispatch over the listed tiles (see hybrid_layout.h): group (x, y) is the
-// list entry.
-uint listedTileEntry() { return foldedGroupIndex(); }
-
 // This group's run [x, y) of `count` blocks dealt out in turn over all the dispatch's groups
 // (range_check, list_shutter_rays: a block each on a GPU, runs on a CPU device).
 uvec2 groupRun(uint count) {

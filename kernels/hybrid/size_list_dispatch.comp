@@ -1,7 +1,7 @@
 #version 450
 // A list's length -> the indirect dispatch of the passes over it, folded into rows of at most
-// 65535 groups: the moving tiles (a group per tile: list_range_blocks), alone or with the edge
-// candidates the same tile-max listed (one dispatch sizes both); their 8 x 8 blocks
+// 65535 groups: the blocks of the moving tiles (a lane each: list_range_blocks) with the edge
+// candidates the same tile-max listed (one dispatch sizes both); the moving tiles' 8 x 8 blocks
 // (list_shutter_rays) and the range check's listed blocks (range_check): a group per block, or
 // as many as wanted, each a run no longer than its walks' loop budget allows; the edge
 // candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's mask pixels for the
@@ -31,12 +31,13 @@ uvec3 runGroups(uint count, uint maxRun) {
 }
 
 void main() {
-  if (params.list == HMB_SIZE_LIST_MOVING_TILES || params.list == HMB_SIZE_LIST_TILES_AND_CANDIDATES) {
-    const uvec3 g = foldedGroups(counters.tileCount);
-    counters.tileGroupDispatchX = g.x;
-    counters.tileGroupDispatchY = g.y;
-    counters.tileGroupDispatchZ = g.z;
-    if (params.list == HMB_SIZE_LIST_MOVING_TILES) return;
+  if (params.list == HMB_SIZE_LIST_TILES_AND_CANDIDATES) {
+    // At most a block per pixel: the product stays far below 2^32.
+    const uint blocks = counters.tileCount * params.tileBlocks;
+    const uvec3 g = foldedGroups((blocks + HMB_RANGE_BLOCKS_GROUP - 1u) / HMB_RANGE_BLOCKS_GROUP);
+    counters.tileBlockDispatchX = g.x;
+    counters.tileBlockDispatchY = g.y;
+    counters.tileBlockDispatchZ = g.z;
     const uvec3 c = listGroups(counters.candidateCount);
     counters.candidateDispatchX = c.x;
     counters.candidateDispatchY = c.y;

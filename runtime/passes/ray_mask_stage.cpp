@@ -39,7 +39,7 @@ void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecau
     plan.runUnless(pass, movingTilesOnlyBecause);
   for (const char* pass : {kCoverage, kListBlocks})
     plan.runUnless(pass, movingTilesOnlyBecause.empty() ? coverageSkipped : movingTilesOnlyBecause);
-  plan.run(kSizeDispatch);
+  plan.runUnless(kSizeDispatch, movingTilesOnlyBecause);
 }
 
 void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly, bool coverage) {
@@ -127,7 +127,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
   const auto sizeDispatch = [&](uint32_t list, uint32_t groupsWanted) {
     frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, groupsWanted, walkSpeed, 0u}, {1, 1, 1});
+                   gpu::SizeListParams{list, groupsWanted, walkSpeed, gpu::tileBlocks(blur.tileSize)}, {1, 1, 1});
   };
   if (p.movingTilesOnly) {
     // From the gather's tile-max: the moving tiles alone.
@@ -138,7 +138,6 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                     {HMB_MOVING_TILES_BINDING_COUNTERS, &counters_},
                     {HMB_MOVING_TILES_BINDING_LIST, &tiles_}},
                    tileParams, vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
-    sizeDispatch(HMB_SIZE_LIST_MOVING_TILES, 0u);
     return;
   }
   // The whole mask's counters were cleared before its tile-max listed the moving tiles and the
@@ -158,7 +157,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_RANGE_BLOCKS_BINDING_EDGES, &edges_},
                           {HMB_RANGE_BLOCKS_BINDING_COUNTERS, &counters_},
                           {HMB_RANGE_BLOCKS_BINDING_LIST, &rangeBlocks_}},
-                         params, counters_, offsetof(gpu::RayMaskCounters, tileGroupDispatchX));
+                         params, counters_, offsetof(gpu::RayMaskCounters, tileBlockDispatchX));
   // The range check's groups (hybrid_layout.h).
   sizeDispatch(HMB_SIZE_LIST_RANGE_BLOCKS,
                p.rangeCheckGroups.value_or(context_.info().type == "cpu" ? HMB_RANGE_CHECK_CPU_GROUPS : 0u));

@@ -53,7 +53,7 @@ void expectCandidatesMatch(const RayMaskReadback& device, const std::vector<bool
 
 // The mask's tile-max, which also lists the candidates, is the gather's
 // tile_max bit for bit (the gathers blur over the tiles it wrote), and lists each tile whose
-// speed is kMinBlurPixels or more once, list_range_blocks' dispatch a group each.
+// speed is kMinBlurPixels or more once, list_range_blocks' dispatch a lane per block of them.
 void expectGatherTileMax(const MaskLayer& layer, const RayMaskParameters& p, const RayMaskReadback& device,
                          const std::string& what) {
   const std::vector<glm::vec4> gather = mblur::runTileMax(VulkanTest::context(), layer.velocity, layer.width,
@@ -69,8 +69,10 @@ void expectGatherTileMax(const MaskLayer& layer, const RayMaskParameters& p, con
   std::vector<uint32_t> listed = device.movingTiles;
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, moving) << what << ": moving tiles";
-  EXPECT_EQ(device.counters.tileGroupDispatchX, std::min(device.counters.tileCount, 65535u)) << what;
-  EXPECT_EQ(device.counters.tileGroupDispatchY, (device.counters.tileCount + 65534u) / 65535u) << what;
+  const uint32_t blocks = device.counters.tileCount * ((p.blur.tileSize + 7) / 8) * ((p.blur.tileSize + 7) / 8);
+  const uint32_t groups = (blocks + 63) / 64;
+  EXPECT_EQ(device.counters.tileBlockDispatchX, std::min(groups, 65535u)) << what;
+  EXPECT_EQ(device.counters.tileBlockDispatchY, (groups + 65534u) / 65535u) << what;
 }
 
 // The device's edge mask equals the reference's, except at pixels whose x_n lies within 1e-5

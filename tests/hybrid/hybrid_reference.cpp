@@ -276,7 +276,7 @@ std::vector<uint32_t> rangeBlocks(const MaskLayer& input, const std::vector<uint
             const uint32_t x1 = coarseOf(int(ox) + HMB_MASK_TILE_GROUP_X - 1 + margin, width);
             const uint32_t y1 = coarseOf(int(oy) + HMB_MASK_TILE_GROUP_Y - 1 + margin, height);
             // Too wide a reach to test: listed.
-            const uint32_t side = gpu::rangeBlocksTestSide(tileSize);
+            const uint32_t side = HMB_RANGE_BLOCKS_MAX_TEST_SIDE;
             listed = x1 - x0 >= side || y1 - y0 >= side;
             for (uint32_t by = y0; by <= y1 && !listed; ++by)
               for (uint32_t bx = x0; bx <= x1 && !listed; ++bx) listed = coarse[size_t(by) * coarseX + bx];
