@@ -1,9 +1,10 @@
 // Layout of the hybrid method's kernels (kernels/hybrid/), the paper's section 3.2:
 //   tile_max_edge_candidates    the gather's tile-max, and eqs. 1, 2 at each pixel it reads:
 //                  moving pixels whose predicted end position lies on a different, deeper
-//                  object, listed (a few percent of the pixels)
+//                  object, listed (a few percent of the pixels); and the moving tiles, listed
 //   list_moving_tiles     tiles of the gather's tile-max whose fastest pixel moves half a
-//                  pixel or more: only there can a pixel's displacement end on another pixel,
+//                  pixel or more, for the shutter rays' list (the whole mask's tile-max lists
+//                  them itself): only there can a pixel's displacement end on another pixel,
 //                  so the mask passes run on those tiles alone (a still scene costs two fills)
 //   edge_mask      eqs. 3, 4: the listed candidates whose 5x5 Sobel of depth and normal passes
 //                  the edge threshold e (listing first keeps the Sobel's lanes busy)
@@ -18,9 +19,11 @@
 //   reveal_background     per listed pixel, the first surface behind the object the raster sees
 //                  there: its colour, depth, normal, velocity and object id
 //   gather_background     the background layer (the raster, the revealed surfaces where
-//                  revealed) blurred at the listed pixels
+//                  revealed) blurred at the listed pixels; with the coverage composite,
+//                  blended under the mask's foreground there
 //   composite      the raster layer's gather with the blurred background composited in at
-//                  mask pixels
+//                  mask pixels (weights), or the mask's foreground at those not revealed
+//                  (coverage)
 //   list_shutter_rays     pixels of the moving tiles whose path over the shutter crosses
 //                  another object or a colour step, listed with the rays each takes (a power of
 //                  two): there the single frame the gathers read holds no sub-pixel edge
