@@ -89,7 +89,7 @@ class TraceScene {
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
   // Binds the trace scene as a tracing kernel declares it (kernels/trace/trace_scene_bindings.glsl)
-  // from firstBinding on: its 9 buffers, or the table of their addresses for a kernel that binds
+  // from firstBinding on: its 10 buffers, or the table of their addresses for a kernel that binds
   // by address.
   void bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const;
   // The traces' status: the traces the driver's loop limit cut short

@@ -198,19 +198,16 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
   // The background layer: the revealed surfaces over the raster, gathered at the revealed pixels
   // only; with the coverage composite blended under the mask's foreground into the image there,
   // the composite taking the mask's other pixels.
-  if (settings_.composite == HybridComposite::Coverage) {
-    const vk::Buffer& coverage = rayMask_.coverage();
-    backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(), rayMask_.list(),
-                             rayMask_.counters(), output, blur, raster.shutterPaths, &coverage);
-    // No background buffer: the coverage stands in for its unread binding.
-    composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(), coverage,
-                      output, blur, settings_.composite, raster.shutterPaths, &coverage);
-    return;
-  }
+  const bool coverage = settings_.composite == HybridComposite::Coverage;
+  const vk::Buffer* coverageBuffer = coverage ? &rayMask_.coverage() : nullptr;
   backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(), rayMask_.list(),
-                           rayMask_.counters(), backgroundBlurred_, blur, raster.shutterPaths);
+                           rayMask_.counters(), coverage ? output : backgroundBlurred_, blur, raster.shutterPaths,
+                           coverageBuffer);
+  // Beside the coverage composite there is no background buffer: the coverage stands in for its
+  // unread binding.
   composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(),
-                    backgroundBlurred_, output, blur, settings_.composite, raster.shutterPaths);
+                    coverage ? rayMask_.coverage() : backgroundBlurred_, output, blur, settings_.composite,
+                    raster.shutterPaths, coverageBuffer);
 }
 
 }  // namespace hmb::passes

@@ -121,16 +121,9 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           const RayMaskParameters& p) const {
   requireFits(layer, p);
   const gpu::GatherParams& blur = p.blur;
-  const TileGrid grid{blur.tilesX, blur.tilesY};
-  // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
-  // How far a range check's walk may reach: the largest speed, twice it along curved paths.
-  const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
-  const auto sizeDispatch = [&](uint32_t list, uint32_t groupsWanted) {
-    frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, groupsWanted, walkSpeed, gpu::tileBlocks(blur.tileSize)}, {1, 1, 1});
-  };
   if (p.movingTilesOnly) {
     // From the gather's tile-max: the moving tiles alone.
+    const TileGrid grid{blur.tilesX, blur.tilesY};
     frame.fill(kClear, counters_, 0u);
     const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
     frame.dispatch(kMovingTiles, tilesKernel_,
@@ -140,6 +133,13 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                    tileParams, vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
     return;
   }
+  // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
+  // How far a range check's walk may reach: the largest speed, twice it along curved paths.
+  const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
+  const auto sizeDispatch = [&](uint32_t list, uint32_t groupsWanted) {
+    frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
+                   gpu::SizeListParams{list, groupsWanted, walkSpeed, gpu::tileBlocks(blur.tileSize)}, {1, 1, 1});
+  };
   // The whole mask's counters were cleared before its tile-max listed the moving tiles and the
   // candidates.
   const gpu::RayMaskParams params = maskParams(p);
