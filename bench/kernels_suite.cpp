@@ -269,7 +269,7 @@ RandomLayer randomLayer(const vk::Context& context, ImageSize size) {
     const float depth = 1.0f + 9.0f * unit(rng);
     const glm::vec2 velocity(motion(rng), motion(rng));
     samples[i] = gpu::packLayerSample(color, depth, velocity);
-    surfaces[i] = gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), 1u, velocity);
+    surfaces[i] = gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), 1u, depth, velocity);
   }
   RandomLayer layer{vk::uploadedBuffer(context, samples, "bench samples"),
                     vk::uploadedBuffer(context, surfaces, "bench surfaces"), {}};

@@ -21,7 +21,7 @@ void main() {
   if (i >= params.count) return;
   const LayerPixel p = inputs[i];
   const uvec4 s = packLayerSample(p.colorDepth.rgb, p.colorDepth.w, p.velocity);
-  const uvec4 f = packLayerSurface(p.normal.xyz, p.objectId, p.velocity);
+  const uvec4 f = packLayerSurface(p.normal.xyz, p.objectId, p.colorDepth.w, p.velocity);
   samples[i] = s;
   surfaces[i] = f;
   LayerPixel d;
@@ -30,6 +30,6 @@ void main() {
   d.velocity = surfaceVelocity(f);
   d.objectId = surfaceObjectId(f);
   d.sampleVelocity = sampleVelocity(s);
-  d.pad0 = 0u;
+  d.surfaceDepth = surfaceDepth(f);
   decoded[i] = d;
 }

@@ -18,10 +18,10 @@ HMB_GPU_BEGIN
 struct LayerPixel {
   vec4 colorDepth;       // rgb, w camera-space depth
   vec4 normal;           // xyz; w unused
-  vec2 velocity;         // pixels per frame (decoded: the surface's)
+  vec2 velocity;         // pixels per frame (decoded: the surface's, half floats)
   vec2 sampleVelocity;   // decoded only: the sample's (half floats)
   uint objectId;
-  uint pad0;
+  float surfaceDepth;    // decoded only: the surface's
   uint pad1;
   uint pad2;
 };

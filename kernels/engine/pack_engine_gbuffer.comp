@@ -49,6 +49,6 @@ void main() {
   samples[i] = packLayerSample(color[i].rgb, z, v);
   // The post-process needs neither normals nor object ids; the hybrid's ray mask, reveal and
   // composite read the engine's.
-  if (kEngineSurfaces) surfaces[i] = packLayerSurface(normal[i].xyz, objectId[i], v);
-  else surfaces[i] = packLayerSurface(vec3(0.0, 0.0, 1.0), background ? 0u : 1u, v);
+  if (kEngineSurfaces) surfaces[i] = packLayerSurface(normal[i].xyz, objectId[i], z, v);
+  else surfaces[i] = packLayerSurface(vec3(0.0, 0.0, 1.0), background ? 0u : 1u, z, v);
 }

@@ -56,8 +56,8 @@ uvec4 blurSampleAt(uint i) { return READ_LAYER_SAMPLE(raster, i); }
 
 // Share of sample `sampleIndex` that is background to the pixel (object `object` at `depth`).
 float behindShare(uint sampleIndex, uint object, float depth) {
-  return behindShareOf(surfaceObjectId(READ_LAYER_SURFACE(raster, sampleIndex)),
-                       sanitizeDepth(sampleDepth(READ_LAYER_SAMPLE(raster, sampleIndex))), object, depth, params.softZExtent);
+  const uvec4 surface = READ_LAYER_SURFACE(raster, sampleIndex);  // id and depth in one load
+  return behindShareOf(surfaceObjectId(surface), sanitizeDepth(surfaceDepth(surface)), object, depth, params.softZExtent);
 }
 
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) {

@@ -18,13 +18,10 @@
 
 layout(local_size_x = HMB_MASK_LIST_GROUP) in;
 
-// The G-buffer's samples (depth) and surfaces (normal): shared/layer_layout.h.
-// The layer's samples and surfaces, read at per-pixel addresses as uniform texel buffers (one
-// record a pixel each: shared/texel_records.glsl).
+// The G-buffer's surfaces (normal, depth: shared/layer_layout.h), read at per-pixel addresses as
+// a uniform texel buffer (one record a pixel: shared/texel_records.glsl).
 #include "../shared/texel_records.glsl"
-layout(binding = HMB_EDGE_MASK_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
 layout(binding = HMB_EDGE_MASK_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
-uvec4 sampleAt(uint i) { return recordAt(sampleTexels, i); }
 uvec4 surfaceAt(uint i) { return recordAt(surfaceTexels, i); }
 layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
@@ -47,7 +44,8 @@ float edgeStrength(ivec2 pixel, float depthHere) {
   for (int k = 0; k < 25; ++k) {
     const ivec2 p = clamp(pixel + ivec2(k % 5 - 2, k / 5 - 2), ivec2(0), last);
     const uint at = uint(p.y) * params.blur.width + uint(p.x);
-    window[k] = vec4(sanitizeNormal(surfaceNormal(surfaceAt(at))), sanitizeDepth(sampleDepth(sampleAt(at))));
+    const uvec4 surface = surfaceAt(at);
+    window[k] = vec4(sanitizeNormal(surfaceNormal(surface)), sanitizeDepth(surfaceDepth(surface)));
     largest = max(largest, window[k].w);
   }
   vec2 depthGradient = vec2(0.0);
@@ -71,7 +69,7 @@ void main() {
   if (entry >= counters.candidateCount) return;
   const uint index = candidates[entry];
   const uvec2 pixel = uvec2(index % params.blur.width, index / params.blur.width);
-  const float depthHere = sanitizeDepth(sampleDepth(sampleAt(index)));
+  const float depthHere = sanitizeDepth(surfaceDepth(surfaceAt(index)));
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   edges[index] = 1u;
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).

@@ -77,23 +77,22 @@
 
 // tile_max_edge_candidates: one HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y group per tile, as
 // the gather's tile_max.
-#define HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES 0   // uvec4 per pixel: the G-buffer's samples (shared/layer_layout.h)
-#define HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES 1  // uvec4 per pixel: the G-buffer's surfaces
-#define HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX 2  // vec4 per tile: written as tile_max writes it
-#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS 3  // RayMaskCounters: candidateCount, tileCount
-#define HMB_TILE_MAX_CANDIDATES_BINDING_LIST 4      // uint pixel index per candidate, in no order
+// uvec4 per pixel: the G-buffer's surfaces (velocity, object id, depth: shared/layer_layout.h)
+#define HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES 0
+#define HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX 1  // vec4 per tile: written as tile_max writes it
+#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS 2  // RayMaskCounters: candidateCount, tileCount
+#define HMB_TILE_MAX_CANDIDATES_BINDING_LIST 3      // uint pixel index per candidate, in no order
 // uint tile index per moving tile (as list_moving_tiles lists them), in no order
-#define HMB_TILE_MAX_CANDIDATES_BINDING_MOVING_TILES 5
-#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNT 6
+#define HMB_TILE_MAX_CANDIDATES_BINDING_MOVING_TILES 4
+#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNT 5
 
-#define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces
+#define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces (normal, depth)
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
 #define HMB_EDGE_MASK_BINDING_CANDIDATES 2    // tile_max_edge_candidates' list
 // The edge mask, then the coarse edge mask (HMB_EDGE_BLOCKS_FIRST): 1 in the mask, 0 elsewhere
 // (written at 1s only; the buffer is filled with 0 before).
 #define HMB_EDGE_MASK_BINDING_EDGES 3
-#define HMB_EDGE_MASK_BINDING_SAMPLES 4      // uvec4 per pixel: the G-buffer's samples (depth)
-#define HMB_EDGE_MASK_BINDING_COUNT 5
+#define HMB_EDGE_MASK_BINDING_COUNT 4
 
 // Side of the blocks of the coarse edge image, in pixels. A block is flagged when an edge
 // pixel lies within one pixel of it, so a segment passing through no flagged block passes
@@ -130,9 +129,8 @@
 // uint pixel index per mask pixel, in no order: every one from the front (maskCount), or with
 // HMB_RANGE_CHECK_LIST_UNCOVERED all of them for mask_coverage (coverageCount), which splits them.
 #define HMB_RANGE_CHECK_BINDING_LIST 5
-#define HMB_RANGE_CHECK_BINDING_SAMPLES 6   // uvec4 per pixel: the G-buffer's samples (depths, read along curved paths)
-#define HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS 7  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
-#define HMB_RANGE_CHECK_BINDING_COUNT 8
+#define HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS 6  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
+#define HMB_RANGE_CHECK_BINDING_COUNT 7
 
 // Ray mask values: a mask pixel is revealed (listed for the reveal, its revealed surface then
 // written) or not (the coverage composite gives its background no weight).
@@ -255,15 +253,15 @@
 // The G-buffer layer and its paths, the neighbour-max, the background and the coverage: read as
 // uniform texel buffers.
 #define HMB_COMPOSITE_TEXEL_BUFFERS 6
-// The mask's kernels and list_shutter_rays read the G-buffer's samples and surfaces (and
+// The mask's kernels and list_shutter_rays read the G-buffer's surfaces (and samples, and
 // range_check the shutter paths) as uniform texel buffers, even where they use a word or two of
 // a record: on lavapipe a storage-buffer load at per-lane addresses is a loop over the lanes
 // with a branch each, which was most of the tile-max test's cost and half the shutter rays'
 // list's (bench/results/texel-reads/). A single word (the edge mask, the ray mask) reads no
 // faster through a texel view.
-#define HMB_EDGE_MASK_TEXEL_BUFFERS 2
-#define HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS 2
-#define HMB_RANGE_CHECK_TEXEL_BUFFERS 3
+#define HMB_EDGE_MASK_TEXEL_BUFFERS 1
+#define HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS 1
+#define HMB_RANGE_CHECK_TEXEL_BUFFERS 2
 // The curved path's code and the range, compiled into the background gather and the composite
 // only as the frame takes them (as mblur/gather.comp's): on a CPU device the code of a branch no
 // lane takes still runs, and the curved path's reads at every sample cost the background gather

@@ -17,12 +17,10 @@
 
 layout(local_size_x = HMB_MASK_TILE_GROUP_X, local_size_y = HMB_MASK_TILE_GROUP_Y) in;
 
-// The G-buffer's samples (depth, along curved paths) and surfaces (velocity): shared/layer_layout.h, read
-// as uniform texel buffers (shared/texel_records.glsl), as are the shutter paths below.
+// The G-buffer's surfaces (velocity; depth along curved paths): shared/layer_layout.h, read as a
+// uniform texel buffer (shared/texel_records.glsl), as are the shutter paths below.
 #include "../shared/texel_records.glsl"
-layout(binding = HMB_RANGE_CHECK_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
 layout(binding = HMB_RANGE_CHECK_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
-uvec4 sampleAt(uint index) { return recordAt(sampleTexels, index); }
 uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGES) readonly buffer Edges { uint edges[]; };
@@ -159,7 +157,7 @@ void checkPixel(uvec2 pixel) {
   // Along curved paths: the pixel's own, as the coverage composite samples it.
   vec2 q = vec2(0.0);
   const bool curved = kCurvedPath && (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u && speed > 0.0 &&
-                      ownCurvedPath(pixel, index, surface, sanitizeDepth(sampleDepth(sampleAt(index))), v, q);
+                      ownCurvedPath(pixel, index, surface, sanitizeDepth(surfaceDepth(surface)), v, q);
   // The mask is filled with HMB_MASK_NONE before.
   if (!(speed > 0.0) || !(curved ? curvedPathMeetsEdge(pixel, v, q) : meetsEdge(pixel, v, speed))) return;
   if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u) {

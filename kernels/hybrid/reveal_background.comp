@@ -58,7 +58,8 @@ void main() {
   const vec2 centre = vec2(pixel) + 0.5;
 
   // Where the raster's depth is not a positive number, from the near plane.
-  const float rasterDepth = sampleDepth(READ_LAYER_SAMPLE(raster, index));
+  const uvec4 rasterSurface = READ_LAYER_SURFACE(raster, index);  // its depth and object id
+  const float rasterDepth = surfaceDepth(rasterSurface);
   const float start = rasterDepth > 0.0 ? min(rasterDepth * kStartShort, params.tMax) : params.tMin;
 
   TraceRay ray;
@@ -74,7 +75,7 @@ void main() {
   BvhHit hit;
   uint traces = 1u;
   if (kStop == HMB_REVEAL_STOP_OBJECT_ID) {
-    ray.ignoreObjectId = surfaceObjectId(READ_LAYER_SURFACE(raster, index));
+    ray.ignoreObjectId = surfaceObjectId(rasterSurface);
     hit = closestHit(ray, scene);
   } else {
     hit = closestHit(ray, scene);

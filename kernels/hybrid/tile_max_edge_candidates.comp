@@ -23,12 +23,10 @@
 
 layout(local_size_x = HMB_TILE_MAX_GROUP_X, local_size_y = HMB_TILE_MAX_GROUP_Y) in;
 
-// The G-buffer's samples (depth) and surfaces (velocity, object id): shared/layer_layout.h, read
-// as uniform texel buffers (shared/texel_records.glsl).
+// The G-buffer's surfaces (velocity, object id, depth): shared/layer_layout.h, read as a uniform
+// texel buffer (shared/texel_records.glsl). Eqs. 1, 2 take the end's id and depth in one load.
 #include "../shared/texel_records.glsl"
-layout(binding = HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES) uniform utextureBuffer sampleTexels;
 layout(binding = HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
-uvec4 sampleAt(uint index) { return recordAt(sampleTexels, index); }
 uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX) writeonly buffer Tiles { vec4 tiles[]; };
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
@@ -43,9 +41,9 @@ layout(constant_id = HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP) const bool kTestInLoo
 // Eqs. 1 and 2 at a pixel moving by v (clamped to params.blur.maxSpeed, the image's side).
 void listIfCandidate(uvec2 pixel, uint index, uvec4 surface, vec2 v) {
   const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
-  const uint endIndex = uint(end.y) * params.blur.width + uint(end.x);
-  if (endsOnDeeperObject(surfaceObjectId(surface), sanitizeDepth(sampleDepth(sampleAt(index))),
-                         surfaceObjectId(surfaceAt(endIndex)), sampleDepth(sampleAt(endIndex)), params.blur.softZExtent))
+  const uvec4 endSurface = surfaceAt(uint(end.y) * params.blur.width + uint(end.x));
+  if (endsOnDeeperObject(surfaceObjectId(surface), sanitizeDepth(surfaceDepth(surface)), surfaceObjectId(endSurface),
+                         surfaceDepth(endSurface), params.blur.softZExtent))
     candidates[atomicAdd(counters.candidateCount, 1u)] = index;
 }
 

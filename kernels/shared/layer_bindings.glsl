@@ -44,7 +44,7 @@
 #define WRITE_LAYER(name, i, color, normal, objectId, depth, velocity)              \
   {                                                                                  \
     LAYER_SAMPLE(name, i) = packLayerSample(color, depth, velocity);                 \
-    LAYER_SURFACE(name, i) = packLayerSurface(normal, objectId, velocity);           \
+    LAYER_SURFACE(name, i) = packLayerSurface(normal, objectId, depth, velocity);    \
   }
 
 #endif

@@ -56,7 +56,7 @@ PackedLayer packLayer(const LayerContents& c) {
   out.surfaces.reserve(pixels);
   for (size_t i = 0; i < pixels; ++i) {
     out.samples.push_back(gpu::packLayerSample(c.color[i], c.depth[i], c.velocity[i]));
-    out.surfaces.push_back(gpu::packLayerSurface(c.normal[i], c.objectId[i], c.velocity[i]));
+    out.surfaces.push_back(gpu::packLayerSurface(c.normal[i], c.objectId[i], c.depth[i], c.velocity[i]));
   }
   return out;
 }

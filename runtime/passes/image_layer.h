@@ -1,5 +1,5 @@
 // One image layer of per-pixel buffers (kernels/shared/layer_layout.h): the samples every
-// gather reads (colour, depth, velocity in halves) and the surfaces (normal, object id, velocity),
+// gather reads (colour, depth, velocity in halves) and the surfaces (normal, object id, velocity, depth),
 // bound together (vk::BufferGroup). The G-buffer and the hybrid's revealed layer are both one.
 #pragma once
 
@@ -23,7 +23,7 @@ class ImageLayer {
   static ImageLayer allocate(const vk::Context& context, uint64_t pixels, const std::string& name);
 
   const vk::Buffer& samples() const { return samples_; }    // uvec4: colour, depth, velocity (halves)
-  const vk::Buffer& surfaces() const { return surfaces_; }  // uvec4: normal, object id, velocity
+  const vk::Buffer& surfaces() const { return surfaces_; }  // uvec4: normal, object id, velocity (halves), depth
   // Binds the layer as a kernel declares it (kernels/shared/layer_bindings.glsl) from
   // firstBinding on: its two buffers, or the table of their addresses for a kernel that binds
   // by address.

@@ -108,8 +108,7 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
   // One group per tile, as the gather's tile-max.
   static_assert(HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP == 0);
   frame.dispatch(TileMaxPass::kName, tileMaxKernels_.with({p.candidatesInTileMaxLoop}),
-                 {{HMB_TILE_MAX_CANDIDATES_BINDING_SAMPLES, layer.samples},
-                  {HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES, layer.surfaces},
+                 {{HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES, layer.surfaces},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX, p.tileMax},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS, &counters_},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_LIST, &candidates_},
@@ -146,7 +145,6 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   sizeDispatch(HMB_SIZE_LIST_TILES_AND_CANDIDATES, 0u);
   frame.dispatchIndirect(kEdges, edgeKernel_,
                          {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},
-                          {HMB_EDGE_MASK_BINDING_SAMPLES, layer.samples},
                           {HMB_EDGE_MASK_BINDING_COUNTERS, &counters_},
                           {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
                           {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
@@ -166,7 +164,6 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   const vk::ComputeKernel& rangeKernel = rangeKernels_.with({(blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u});
   frame.dispatchIndirect(kRangeCheck, rangeKernel,
                          {{HMB_RANGE_CHECK_BINDING_SURFACES, layer.surfaces},
-                          {HMB_RANGE_CHECK_BINDING_SAMPLES, layer.samples},
                           {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},
                           {HMB_RANGE_CHECK_BINDING_BLOCKS, &rangeBlocks_},
                           {HMB_RANGE_CHECK_BINDING_MASK, &mask_},

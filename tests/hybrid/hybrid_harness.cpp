@@ -290,7 +290,7 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
       context, std::vector<gpu::RayMaskCounters>{dispatchFor(uint32_t(list.size()))}, "test counters");
   const glm::uvec4 sentinelSample = gpu::packLayerSample(glm::vec3(kSentinelColor), kSentinelDepth, kSentinelVelocity);
   const glm::uvec4 sentinelSurface =
-      gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), kSentinelId, kSentinelVelocity);
+      gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), kSentinelId, kSentinelDepth, kSentinelVelocity);
   const passes::ImageLayer output(filledBuffer(context, pixels, sentinelSample, "test revealed samples"),
                                   filledBuffer(context, pixels, sentinelSurface, "test revealed surfaces"));
 

@@ -124,7 +124,7 @@ MaskLayer stored(const MaskLayer& layer) {
   for (size_t i = 0; i < layer.objectId.size(); ++i) {
     out.color[i] = gpu::sampleColor(gpu::packLayerSample(out.color[i], layer.normalDepth[i].w, layer.velocity[i]));
     const glm::uvec4 surface =
-        gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), layer.objectId[i], layer.velocity[i]);
+        gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), layer.objectId[i], layer.normalDepth[i].w, layer.velocity[i]);
     out.normalDepth[i] = glm::vec4(gpu::surfaceNormal(surface), layer.normalDepth[i].w);  // depth: kept bit for bit
     out.velocity[i] = gpu::surfaceVelocity(surface);
     out.objectId[i] = gpu::surfaceObjectId(surface);

@@ -85,14 +85,14 @@ Layer stored(const Layer& layer) {
 std::vector<glm::uvec4> packedSurfaces(const Layer& layer) {
   std::vector<glm::uvec4> surfaces(layer.velocity.size());
   for (size_t i = 0; i < surfaces.size(); ++i)
-    surfaces[i] = gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), 1u, layer.velocity[i]);
+    surfaces[i] = gpu::packLayerSurface(glm::vec3(layer.normalDepth[i]), 1u, layer.normalDepth[i].w, layer.velocity[i]);
   return surfaces;
 }
 
 std::vector<glm::vec2> storedVelocity(const std::vector<glm::vec2>& velocity) {
   std::vector<glm::vec2> out(velocity.size());
   for (size_t i = 0; i < out.size(); ++i)
-    out[i] = gpu::surfaceVelocity(gpu::packLayerSurface(glm::vec3(0.0f), 1u, velocity[i]));
+    out[i] = gpu::surfaceVelocity(gpu::packLayerSurface(glm::vec3(0.0f), 1u, 1.0f, velocity[i]));
   return out;
 }
 

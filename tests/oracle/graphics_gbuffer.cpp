@@ -35,7 +35,7 @@ GraphicsGBuffer::GraphicsGBuffer(const vk::Context& context, const GpuScene& sce
   const gpu::GpuCamera camera = scene.cameraBuffer().download<gpu::GpuCamera>().at(0);
   const float far = scene.camera().zfar;
   backgroundSample_ = gpu::packLayerSample(glm::vec3(camera.background), far, glm::vec2(0.0f));
-  backgroundSurface_ = gpu::packLayerSurface(glm::vec3(0.0f), 0u, glm::vec2(0.0f));
+  backgroundSurface_ = gpu::packLayerSurface(glm::vec3(0.0f), 0u, far, glm::vec2(0.0f));
 
   // Consecutive triangles of the same sidedness share one draw, in id order (equal depths: the
   // first drawn wins, as the smallest id does in the compute rasterizer).

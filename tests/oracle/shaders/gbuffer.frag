@@ -31,5 +31,5 @@ void main() {
   const vec3 color = shadeSurface(instanceMaterial(inInstance), kTexturePath ? inUv : vec2(0.0), n);
   const uint objectId = instanceObjectId(inInstance);
   outSample = packLayerSample(color, inDepth, motion);
-  outSurface = packLayerSurface(n, objectId, motion);
+  outSurface = packLayerSurface(n, objectId, inDepth, motion);
 }
