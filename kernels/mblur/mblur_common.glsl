@@ -11,21 +11,36 @@
 // ones too large to scale, count as zero; so do speeds under 1e-30 px (no device agrees on
 // denormals). The length is taken after dividing by the largest component, so 1e30 px per
 // frame clamps to maxSpeed instead of overflowing to a zero-length vector.
+// In two steps, so that one velocity can be clamped to two lengths for the cost of one and a
+// division (the hybrid's tile-max: to the tile for the reduction, to the image for eqs. 1, 2),
+// the same bits as gatherVelocity gives for each.
+struct GatherVelocityParts {
+  vec2 v;           // q scaled
+  vec2 unit;        // v over its largest component
+  float unitLength;
+  float fullSpeed;  // |v|; 0 for no motion (non-finite, or under 1e-30 px)
+};
+GatherVelocityParts gatherVelocityParts(vec2 q, float velocityScale) {
+  GatherVelocityParts p;
+  p.v = q * velocityScale;
+  p.unit = vec2(0.0);
+  p.unitLength = 1.0;
+  p.fullSpeed = 0.0;
+  if (any(isnan(p.v)) || any(isinf(p.v))) return p;
+  const float largest = max(abs(p.v.x), abs(p.v.y));
+  if (!(largest >= 1e-30)) return p;
+  p.unit = p.v / largest;  // the largest component is +-1
+  p.unitLength = length(p.unit);
+  p.fullSpeed = largest * p.unitLength;
+  return p;
+}
+vec2 clampedGatherVelocity(GatherVelocityParts p, float maxSpeed, out float speed) {
+  speed = min(p.fullSpeed, maxSpeed);
+  if (!(p.fullSpeed > 0.0)) return vec2(0.0);
+  return p.fullSpeed <= maxSpeed ? p.v : p.unit * (maxSpeed / p.unitLength);
+}
 vec2 gatherVelocity(vec2 q, float velocityScale, float maxSpeed, out float speed) {
-  const vec2 v = q * velocityScale;
-  speed = 0.0;
-  if (any(isnan(v)) || any(isinf(v))) return vec2(0.0);
-  const float largest = max(abs(v.x), abs(v.y));
-  if (!(largest >= 1e-30)) return vec2(0.0);
-  const vec2 unit = v / largest;  // the largest component is +-1
-  const float unitLength = length(unit);
-  const float fullSpeed = largest * unitLength;
-  if (fullSpeed <= maxSpeed) {
-    speed = fullSpeed;
-    return v;
-  }
-  speed = maxSpeed;
-  return unit * (maxSpeed / unitLength);
+  return clampedGatherVelocity(gatherVelocityParts(q, velocityScale), maxSpeed, speed);
 }
 
 // gatherVelocity's speed alone, all the gathers' weights read of a velocity: min(|v|, maxSpeed),

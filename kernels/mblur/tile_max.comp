@@ -19,7 +19,7 @@ layout(push_constant) uniform Params { TileMaxParams params; };
 #include "mblur_common.glsl"
 
 // The velocities alone.
-void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 v, float speed) {}
+void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, GatherVelocityParts velocity, float speed) {}
 
 uvec4 tileSurfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 

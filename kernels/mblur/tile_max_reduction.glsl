@@ -3,8 +3,9 @@
 // The including kernel declares `tiles[]` (vec4 per tile, mblur_layout.h), and defines, before
 // this file,
 //   uvec4 tileSurfaceAt(uint index)  // the G-buffer's surface at a pixel (shared/layer_layout.h)
-//   void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, vec2 v, float speed)
-// the latter called once per pixel of the tile with its gather velocity clamped to the tile size.
+//   void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, GatherVelocityParts velocity, float speed)
+// the latter called once per pixel of the tile with its gather velocity's parts and its speed
+// clamped to the tile size.
 // Include after mblur_common.glsl; the group is HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y.
 #ifndef HMB_KERNELS_MBLUR_TILE_MAX_REDUCTION_GLSL
 #define HMB_KERNELS_MBLUR_TILE_MAX_REDUCTION_GLSL
@@ -37,9 +38,10 @@ float reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, fl
     for (uint x = begin.x + lane.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
       const uint index = y * width + x;
       const uvec4 surface = tileSurfaceAt(index);
+      const GatherVelocityParts parts = gatherVelocityParts(surfaceVelocity(surface), velocityScale);
       float speed;
-      const vec2 v = gatherVelocity(surfaceVelocity(surface), velocityScale, float(m), speed);
-      visitTilePixel(uvec2(x, y), index, surface, v, speed);
+      const vec2 v = clampedGatherVelocity(parts, float(m), speed);
+      visitTilePixel(uvec2(x, y), index, surface, parts, speed);
       if (better(speed, index, bestSpeed, bestIndex)) {
         bestVelocity = v;
         bestSpeed = speed;
