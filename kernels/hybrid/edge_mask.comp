@@ -26,7 +26,7 @@ uvec4 surfaceAt(uint i) { return recordAt(surfaceTexels, i); }
 layout(std430, binding = HMB_EDGE_MASK_BINDING_COUNTERS) readonly buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_EDGE_MASK_BINDING_CANDIDATES) readonly buffer Candidates { uint candidates[]; };
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
-layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) writeonly buffer Edges { uint edges[]; };
+layout(std430, binding = HMB_EDGE_MASK_BINDING_EDGES) buffer Edges { uint edges[]; };  // bits set by atomicOr
 layout(push_constant) uniform Params { RayMaskParams params; };
 
 #include "../mblur/mblur_common.glsl"
@@ -71,7 +71,7 @@ void main() {
   const uvec2 pixel = uvec2(index % params.blur.width, index / params.blur.width);
   const float depthHere = sanitizeDepth(surfaceDepth(surfaceAt(index)));
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
-  edges[index] = 1u;
+  atomicOr(edges[index / 32u], 1u << (index % 32u));
   // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
   const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;
   const uvec2 last = min(pixel + 1u, uvec2(params.blur.width, params.blur.height) - 1u) / HMB_EDGE_BLOCK;

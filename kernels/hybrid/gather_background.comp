@@ -36,7 +36,7 @@ HMB_LAYER_TEXELS(raster, HMB_BACKGROUND_GATHER_BINDING_RASTER)
 HMB_LAYER_TEXELS(revealed, HMB_BACKGROUND_GATHER_BINDING_REVEALED)
 layout(push_constant) uniform Params { GatherParams params; };
 
-bool overlaid(uint i) { return mask[i] == HMB_MASK_REVEALED; }
+bool overlaid(uint i) { return rayMaskValue(mask[i / 16u], i) == HMB_MASK_REVEALED; }
 uvec4 blurSampleAt(uint i) { return overlaid(i) ? READ_LAYER_SAMPLE(revealed, i) : READ_LAYER_SAMPLE(raster, i); }
 vec4 contributionOf(uint sampleIndex, vec4 sampleColor) { return sampleColor; }
 

@@ -89,8 +89,8 @@
 #define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces (normal, depth)
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount
 #define HMB_EDGE_MASK_BINDING_CANDIDATES 2    // tile_max_edge_candidates' list
-// The edge mask, then the coarse edge mask (HMB_EDGE_BLOCKS_FIRST): 1 in the mask, 0 elsewhere
-// (written at 1s only; the buffer is filled with 0 before).
+// The edge mask (a bit a pixel: edgeMaskBit), then the coarse edge mask (HMB_EDGE_BLOCKS_FIRST):
+// set in the mask, 0 elsewhere (written where set only; the buffer is filled with 0 before).
 #define HMB_EDGE_MASK_BINDING_EDGES 3
 #define HMB_EDGE_MASK_BINDING_COUNT 4
 
@@ -100,9 +100,11 @@
 #define HMB_EDGE_BLOCK 4u
 // Blocks across a side of n pixels (the coarse image is row-major, this many per row).
 #define HMB_EDGE_BLOCKS_ACROSS(n) (((n) + HMB_EDGE_BLOCK - 1u) / HMB_EDGE_BLOCK)
-// The edge buffer of a width x height image: a uint per pixel (the edge mask), then a uint
-// per HMB_EDGE_BLOCK^2 block (the coarse one), from this entry on; this many entries in all.
-#define HMB_EDGE_BLOCKS_FIRST(width, height) ((width) * (height))
+// The edge buffer of a width x height image: a bit per pixel, 32 to a uint (the edge mask:
+// edgeMaskBit), then a uint per HMB_EDGE_BLOCK^2 block (the coarse one), from this entry on;
+// this many entries in all.
+#define HMB_EDGE_MASK_WORDS(pixels) (((pixels) + 31u) / 32u)
+#define HMB_EDGE_BLOCKS_FIRST(width, height) HMB_EDGE_MASK_WORDS((width) * (height))
 #define HMB_EDGE_BUFFER_ENTRIES(width, height) \
   (HMB_EDGE_BLOCKS_FIRST(width, height) + HMB_EDGE_BLOCKS_ACROSS(width) * HMB_EDGE_BLOCKS_ACROSS(height))
 // The edge buffer's entry of coarse block (x, y).
@@ -137,6 +139,7 @@
 #define HMB_MASK_NONE 0u
 #define HMB_MASK_UNREVEALED 1u
 #define HMB_MASK_REVEALED 2u
+// The ray mask buffer holds each pixel's value in 2 bits (mblur_layout.h: rayMaskValue).
 
 // RayMaskParams.flags: list only the mask pixels whose coverage composite samples (the
 // gather's, same positions and jitter) meet the background; the others blend it with weight
@@ -455,6 +458,9 @@ HMB_SHARED uint rangeBlockEntry(uvec2 origin, bool lastAcross, bool lastDown) {
          (lastDown ? HMB_RANGE_BLOCK_LAST_DOWN : 0u);
 }
 HMB_SHARED uvec2 rangeBlockOrigin(uint entry) { return uvec2(entry & 0x3FFFu, (entry >> 14u) & 0x3FFFu); }
+
+// Whether pixel `pixel`'s bit is set in its word of the edge mask (word pixel / 32).
+HMB_SHARED bool edgeMaskBit(uint word, uint pixel) { return ((word >> (pixel % 32u)) & 1u) != 0u; }
 
 // How many 8 x 8 blocks a tile has across, down and in all.
 HMB_SHARED uint tileBlocksAcross(uint tileSize) {

@@ -25,7 +25,7 @@ uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 // The edge mask, then the coarse one (HMB_EDGE_BLOCKS_FIRST).
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_EDGES) readonly buffer Edges { uint edges[]; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_BLOCKS) readonly buffer Blocks { uint blockList[]; };
-layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) writeonly buffer Mask { uint mask[]; };
+layout(std430, binding = HMB_RANGE_CHECK_BINDING_MASK) buffer Mask { uint mask[]; };  // rayMaskBits, set by atomicOr
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_RANGE_CHECK_BINDING_LIST) writeonly buffer List { uint list[]; };
 // Each pixel's path over the shutter, read only along curved paths (gbuffer/gbuffer_layout.h).
@@ -121,7 +121,8 @@ bool curvedPathMeetsEdge(uvec2 pixel, vec2 v, vec2 q) {
   for (uint i = 0u; i <= steps; ++i) {
     const float s = steps == 0u ? 0.0 : float(i) / float(steps);
     const ivec2 p = nearestPixel(centre + s * v + (s * s) * q, params.blur.width, params.blur.height);
-    if (edges[uint(p.y) * params.blur.width + uint(p.x)] != 0u) return true;
+    const uint at = uint(p.y) * params.blur.width + uint(p.x);
+    if (edgeMaskBit(edges[at / 32u], at)) return true;
   }
   return false;
 }
@@ -144,7 +145,8 @@ bool meetsEdge(uvec2 pixel, vec2 v, float speed) {
   }
   for (uint i = first; i <= last; ++i) {
     const ivec2 p = nearestPixel(centre + v * (float(i) / float(steps)), params.blur.width, params.blur.height);
-    if (edges[uint(p.y) * params.blur.width + uint(p.x)] != 0u) return true;
+    const uint at = uint(p.y) * params.blur.width + uint(p.x);
+    if (edgeMaskBit(edges[at / 32u], at)) return true;
   }
   return false;
 }
@@ -164,7 +166,7 @@ void checkPixel(uvec2 pixel) {
     list[atomicAdd(counters.coverageCount, 1u)] = index;
     return;
   }
-  mask[index] = HMB_MASK_REVEALED;
+  atomicOr(mask[index / 16u], rayMaskBits(HMB_MASK_REVEALED, index));
   list[atomicAdd(counters.maskCount, 1u)] = index;
 }
 

@@ -34,7 +34,7 @@ void main() {
   const uvec2 pixel = gatherBlockPlace(blocks[slot]) * HMB_GATHER_BLOCK + gl_LocalInvocationID.xy;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   const uint index = pixel.y * params.width + pixel.x;
-  if (kOutsideMask && mask[index] != 0u) return;
+  if (kOutsideMask && rayMaskValue(mask[index / 16u], index) != 0u) return;
   GatherCentre centre;
   outColor[index] = readGatherCentre(pixel, index, centre) ? gatherSamples(pixel, centre, 1.0, 1.0) : centre.color;
 }

@@ -39,9 +39,9 @@
 #define HMB_FILTER_BINDING_SHUTTER_PATHS 3 // uvec2 per pixel (gbuffer/gbuffer_layout.h)
 #define HMB_FILTER_BINDING_COUNT 4
 #define HMB_FILTER_TEXEL_BUFFERS 3  // samples, neighbour-max and paths, read as uniform texel buffers
-// gather.comp beside those: the hybrid's ray mask (uint per pixel, 0 outside), read only with
-// HMB_SPEC_GATHER_OUTSIDE_MASK: the gather then leaves the mask's pixels to the hybrid's
-// composite.
+// gather.comp beside those: the hybrid's ray mask (2 bits a pixel, 16 to a uint: rayMaskValue
+// below, 0 outside), read only with HMB_SPEC_GATHER_OUTSIDE_MASK: the gather then leaves the
+// mask's pixels to the hybrid's composite.
 #define HMB_GATHER_BINDING_MASK HMB_FILTER_BINDING_COUNT
 // The moving blocks (HMB_GATHER_BLOCK_*), the only ones gather.comp blurs: list_gather_blocks'
 // list and counters.
@@ -129,6 +129,16 @@ struct GatherBlockCounters {
 // A block's list entry: its place in blocks, 16 bits an axis.
 HMB_SHARED uint gatherBlockEntry(uvec2 place) { return (place.y << 16u) | place.x; }
 HMB_SHARED uvec2 gatherBlockPlace(uint entry) { return uvec2(entry & 0xFFFFu, entry >> 16u); }
+
+// The hybrid's ray mask buffer (kernels/hybrid/hybrid_layout.h: HMB_MASK_*) holds each pixel's
+// value in 2 bits, 16 pixels to a uint: pixel `pixel`'s value in its word (word pixel / 16), and
+// the bits that set it there (by atomicOr). The mask and the edge mask (a bit a pixel) are
+// cleared each frame: as a uint a pixel the two fills stored 7.4 MB at 1280x720 (0.45 ms of
+// bistro's hybrid frame on a CPU device, bench/results/packed-masks/), and a GPU's walks and
+// samples read a sixteenth and a thirty-second as many cache lines.
+#define HMB_RAY_MASK_WORDS(pixels) (((pixels) + 15u) / 16u)
+HMB_SHARED uint rayMaskValue(uint word, uint pixel) { return (word >> (2u * (pixel % 16u))) & 3u; }
+HMB_SHARED uint rayMaskBits(uint value, uint pixel) { return value << (2u * (pixel % 16u)); }
 
 struct GatherBlocksParams {
   uint width;

@@ -88,8 +88,7 @@ class HybridMethod final : public FrameMethod {
       // why), and their buffers not made: the layers stay empty.
       const bool masks = result.plan.runs(passes::RayMaskStage::kRangeCheck);
       if (masks) {
-        mask = hybrid_.rayMask().mask().download<uint32_t>();
-        mask.resize(pixels);
+        mask = passes::unpackRayMask(hybrid_.rayMask().mask().download<uint32_t>(), pixels);
         const passes::ImageLayer& layer = hybrid_.revealed();
         const passes::LayerContents revealedAll = passes::downloadLayer(layer, pixels);
         std::vector<uint32_t> traced = hybrid_.rayMask().list().download<uint32_t>();

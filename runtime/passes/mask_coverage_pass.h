@@ -24,7 +24,7 @@ class MaskCoveragePass {
   explicit MaskCoveragePass(const vk::Context& context);
   // layer: the G-buffer (samples, surfaces; the shutter paths along curved paths). pixels: the
   // range check's list, counters: its coverageCount and the dispatch sized from it.
-  // coverage: width * height vec4, mask: uint per pixel, written at the listed pixels.
+  // coverage: width * height vec4, mask: the ray mask (2 bits a pixel), set at the listed pixels.
   // blockBits: maskBlockBitsBytes, filled with 0 before. list: the mask's (RayMaskStage's);
   // counters' maskCount and unrevealedCount count its two ends. params: the mask's (the frame's
   // blur).

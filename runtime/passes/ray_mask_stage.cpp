@@ -20,6 +20,29 @@ gpu::RayMaskParams maskParams(const RayMaskParameters& p) {
 }
 }  // namespace
 
+std::vector<uint32_t> unpackRayMask(std::span<const uint32_t> words, size_t pixels) {
+  if (words.size() < HMB_RAY_MASK_WORDS(uint64_t(pixels))) throw Error("ray mask: fewer words than its pixels need");
+  std::vector<uint32_t> values(pixels);
+  for (size_t i = 0; i < pixels; ++i) values[i] = gpu::rayMaskValue(words[i / 16], uint32_t(i));
+  return values;
+}
+
+std::vector<uint32_t> packRayMask(std::span<const uint32_t> values) {
+  std::vector<uint32_t> words(HMB_RAY_MASK_WORDS(uint64_t(values.size())), 0u);
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (values[i] > HMB_MASK_REVEALED) throw Error("ray mask: " + std::to_string(values[i]) + " is no mask value");
+    words[i / 16] |= gpu::rayMaskBits(values[i], uint32_t(i));
+  }
+  return words;
+}
+
+std::vector<uint32_t> unpackEdgeMask(std::span<const uint32_t> words, size_t pixels) {
+  if (words.size() < HMB_EDGE_MASK_WORDS(uint64_t(pixels))) throw Error("edge mask: fewer words than its pixels need");
+  std::vector<uint32_t> values(pixels);
+  for (size_t i = 0; i < pixels; ++i) values[i] = gpu::edgeMaskBit(words[i / 32], uint32_t(i)) ? 1u : 0u;
+  return values;
+}
+
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
       tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
@@ -75,7 +98,7 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly
   // The edge mask, then the coarse edge mask (kernels/hybrid/hybrid_layout.h).
   edges_ = vk::Buffer(context_, HMB_EDGE_BUFFER_ENTRIES(uint64_t(width), uint64_t(height)) * sizeof(uint32_t),
                       vk::MemoryUse::Device, "edge mask");
-  mask_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
+  mask_ = vk::Buffer(context_, HMB_RAY_MASK_WORDS(pixels) * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
   list_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask list");
   candidates_ = vk::Buffer(context_, pixels * sizeof(uint32_t), vk::MemoryUse::Device, "edge candidates");
   // At most a block per pixel, whatever the tile size (a 1-pixel tile is a block).

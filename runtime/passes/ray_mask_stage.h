@@ -10,7 +10,9 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/gather_pass.h"
@@ -49,6 +51,13 @@ struct RayMaskParameters {
   // per listed 8 x 8 block); unset: the device's type decides (hybrid_layout.h).
   std::optional<uint32_t> rangeCheckGroups;
 };
+
+// The ray mask's buffer (2 bits a pixel, 16 to a word: gpu::rayMaskValue) read back as a value
+// per pixel (HMB_MASK_*), and per-pixel values packed as it holds them; the edge mask's (a bit a
+// pixel, 32 to a word) as 1 at edge pixels, 0 elsewhere.
+std::vector<uint32_t> unpackRayMask(std::span<const uint32_t> words, size_t pixels);
+std::vector<uint32_t> packRayMask(std::span<const uint32_t> values);
+std::vector<uint32_t> unpackEdgeMask(std::span<const uint32_t> words, size_t pixels);
 
 struct RayMaskCounts {
   uint64_t edgeCandidates = 0;  // pixels where eqs. 1-2 hold (the Sobel ran there)
@@ -92,8 +101,9 @@ class RayMaskStage {
               const RayMaskParameters& parameters) const;
 
   // The mask's own buffers: none after a prepare() for the moving tiles only.
-  const vk::Buffer& edges() const { return edges_; }        // uint per pixel, then per coarse block
-  const vk::Buffer& mask() const { return mask_; }          // uint per pixel, 0/1
+  // A bit per pixel (unpackEdgeMask), then a uint per coarse block.
+  const vk::Buffer& edges() const { return edges_; }
+  const vk::Buffer& mask() const { return mask_; }  // HMB_MASK_* in 2 bits per pixel (unpackRayMask)
   const vk::Buffer& list() const { return list_; }          // uint pixel index per pixel to reveal
   const vk::Buffer& candidates() const { return candidates_; }  // uint pixel index per edge candidate
   const vk::Buffer& rangeBlocks() const { return rangeBlocks_; }  // gpu::rangeBlockEntry per walked block

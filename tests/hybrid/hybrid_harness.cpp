@@ -117,8 +117,8 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   frame.submitAndWait();
 
   RayMaskReadback out;
-  out.edges = downloadFirst<uint32_t>(stage.edges(), pixels);
-  out.maskValues = downloadFirst<uint32_t>(stage.mask(), pixels);
+  out.edges = passes::unpackEdgeMask(stage.edges().download<uint32_t>(), pixels);
+  out.maskValues = passes::unpackRayMask(stage.mask().download<uint32_t>(), pixels);
   out.mask.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) out.mask[i] = out.maskValues[i] != HMB_MASK_NONE ? 1u : 0u;
   out.counters = stage.counters().download<gpu::RayMaskCounters>().at(0);
@@ -178,8 +178,12 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   const passes::ImageLayer raster = imageLayer(layer, run.objectId, "test raster");
   const vk::Buffer tiles = vk::uploadedBuffer(context, neighborMax, "test neighbor max");
   const vk::Buffer output = filledBuffer(context, pixels, run.sentinel, "test output");
-  const vk::Buffer mask = run.mask ? vk::uploadedBuffer(context, *run.mask, "test mask")
-                                   : filledBuffer(context, pixels, HMB_MASK_NONE, "test mask");
+  // Packed as the ray mask's buffer holds it (2 bits a pixel). The coverage composite's
+  // mask_coverage sets the mask's values itself, as the frame's buffer starts cleared.
+  const bool masksCoverage = run.objectId && run.composite == passes::HybridComposite::Coverage;
+  const std::vector<uint32_t> cleared(std::max<size_t>(pixels, 1), HMB_MASK_NONE);
+  const vk::Buffer mask =
+      vk::uploadedBuffer(context, passes::packRayMask(run.mask && !masksCoverage ? *run.mask : cleared), "test mask");
   gpu::GatherParams params = passes::gatherParams(settings, layer.width, layer.height, run.maskWeights);
   // Along curved paths the raster's paths go with it, as HybridStage binds them.
   std::optional<vk::Buffer> paths;
@@ -240,7 +244,7 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
       frame.submitAndWait();
     }
     if (run.coverageOut) *run.coverageOut = downloadFirst<glm::vec4>(coverageBuffer, pixels);
-    if (run.maskOut) *run.maskOut = downloadFirst<uint32_t>(mask, pixels);
+    if (run.maskOut) *run.maskOut = passes::unpackRayMask(mask.download<uint32_t>(), pixels);
     if (run.frontOut || run.backOut) {
       const gpu::RayMaskCounters after = counters.download<gpu::RayMaskCounters>().at(0);
       const std::vector<uint32_t> all = downloadFirst<uint32_t>(listBuffer, pixels);
