@@ -13,7 +13,10 @@
 //                  an edge
 //   range_check    pixels of the listed blocks whose range along their velocity meets the edge
 //                  mask: the ray mask, per pixel HMB_MASK_* (for the gathers), and a compacted
-//                  list of the pixels to reveal
+//                  list of the pixels to reveal (with the coverage composite: marked only)
+//   list_range_mask       with the coverage composite, the marked pixels listed block by block
+//                  for mask_coverage (which splits them between the reveal and the composite
+//                  alone, and list_mask_blocks lists them so)
 //   size_list_dispatch    a list's length -> the indirect dispatch of the passes over it, so
 //                  an empty list dispatches nothing
 //   reveal_background     per listed pixel, the first surface behind the object the raster sees
@@ -126,10 +129,13 @@
 #define HMB_RANGE_CHECK_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces
 #define HMB_RANGE_CHECK_BINDING_EDGES 1     // the edge mask, then the coarse one (edge_mask)
 #define HMB_RANGE_CHECK_BINDING_BLOCKS 2    // list_range_blocks' list
-#define HMB_RANGE_CHECK_BINDING_MASK 3      // uint per pixel: HMB_MASK_* (0: not in the ray mask)
+// The ray mask (2 bits a pixel: HMB_MASK_*, 0 outside it): each mask pixel set to
+// HMB_MASK_REVEALED, or with HMB_RANGE_CHECK_LIST_UNCOVERED to HMB_MASK_UNREVEALED until
+// mask_coverage tests it (list_range_mask lists them for it).
+#define HMB_RANGE_CHECK_BINDING_MASK 3
 #define HMB_RANGE_CHECK_BINDING_COUNTERS 4  // RayMaskCounters
-// uint pixel index per mask pixel, in no order: every one from the front (maskCount), or with
-// HMB_RANGE_CHECK_LIST_UNCOVERED all of them for mask_coverage (coverageCount), which splits them.
+// uint pixel index per mask pixel, in no order, from the front (maskCount); unwritten with
+// HMB_RANGE_CHECK_LIST_UNCOVERED.
 #define HMB_RANGE_CHECK_BINDING_LIST 5
 #define HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS 6  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
 #define HMB_RANGE_CHECK_BINDING_COUNT 7
@@ -143,11 +149,24 @@
 
 // RayMaskParams.flags: list only the mask pixels whose coverage composite samples (the
 // gather's, same positions and jitter) meet the background; the others blend it with weight
-// exactly 0, so their reveal would change nothing. The range check lists every mask pixel for
-// mask_coverage, which tests them: in a list, the pixels a CPU device's lanes test are the mask's
-// alone, where inside the range check each vector with one mask pixel ran the samples for all
-// its lanes (bistro at 1280x720: 40,067 mask pixels among 0.9 million walked).
+// exactly 0, so their reveal would change nothing. The range check marks every mask pixel
+// (HMB_MASK_UNREVEALED), list_range_mask lists them for mask_coverage, which tests them: in a
+// list, the pixels a CPU device's lanes test are the mask's alone, where inside the range check
+// each vector with one mask pixel ran the samples for all its lanes (bistro at 1280x720: 40,067
+// mask pixels among 0.9 million walked).
 #define HMB_RANGE_CHECK_LIST_UNCOVERED 1u
+
+// list_range_mask: with HMB_RANGE_CHECK_LIST_UNCOVERED, a lane per block the range check walked
+// (its list's order): the block's mask pixels, in row order, appended to mask_coverage's list
+// with one atomic. The range check appended each mask pixel itself before: one counter's
+// atomic per pixel from every thread of a CPU device (bistro at 1280x720: about 0.8 ms of its
+// 5.4, bench/results/range-mask-list/), and the list in whatever order the threads met them.
+#define HMB_RANGE_MASK_LIST_GROUP 64
+#define HMB_RANGE_MASK_LIST_BINDING_BLOCKS 0    // list_range_blocks' list (rangeBlockCount)
+#define HMB_RANGE_MASK_LIST_BINDING_MASK 1      // the ray mask, as the range check marked it
+#define HMB_RANGE_MASK_LIST_BINDING_COUNTERS 2  // RayMaskCounters: coverageCount grows
+#define HMB_RANGE_MASK_LIST_BINDING_LIST 3      // uint pixel index per mask pixel, for mask_coverage
+#define HMB_RANGE_MASK_LIST_BINDING_COUNT 4
 
 // mask_coverage: the coverage composite's share of each mask pixel (paper, section 3; see
 // composite.comp), HMB_MASK_LIST_GROUP pixels a group, over the range check's list: the mean
@@ -160,7 +179,9 @@
 #define HMB_MASK_COVERAGE_BINDING_PIXELS 3         // the range check's list: uint pixel index, coverageCount of them
 #define HMB_MASK_COVERAGE_BINDING_COUNTERS 4       // RayMaskCounters
 #define HMB_MASK_COVERAGE_BINDING_COVERAGE 5       // vec4 per pixel: (mean colour, alpha), written at mask pixels
-#define HMB_MASK_COVERAGE_BINDING_MASK 6           // uint per pixel: HMB_MASK_*, written at mask pixels
+// The ray mask: HMB_MASK_UNREVEALED at the listed pixels (the range check's), turned to
+// HMB_MASK_REVEALED where a sample meets the background.
+#define HMB_MASK_COVERAGE_BINDING_MASK 6
 // uvec4 per HMB_MASK_BLOCK^2 block of the image, cleared before: a bit per pixel, (x, y) of the
 // block at bit 8 y + x of xy where the pixel needs the reveal, of zw where it does not.
 #define HMB_MASK_COVERAGE_BINDING_BLOCK_BITS 7
@@ -194,7 +215,8 @@
 // (HMB_MASK_LIST_GROUP a group).
 #define HMB_SIZE_LIST_TILES_AND_CANDIDATES 2u
 // One group per listed block, or SizeListParams::groupsWanted in all (more where a group's
-// run would pass HMB_RANGE_CHECK_MAX_RUN blocks).
+// run would pass HMB_RANGE_CHECK_MAX_RUN blocks); and a lane per listed block for
+// list_range_mask.
 #define HMB_SIZE_LIST_RANGE_BLOCKS 3u
 #define HMB_SIZE_LIST_COVERAGE 4u  // HMB_MASK_LIST_GROUP of the range check's mask pixels per group
 // The moving tiles' 8 x 8 blocks for list_shutter_rays: one group per block, or
@@ -366,6 +388,9 @@ struct RayMaskCounters {
   uint shutterBlockDispatchX;  // list_shutter_rays over the moving tiles' blocks
   uint shutterBlockDispatchY;
   uint shutterBlockDispatchZ;
+  uint rangeListDispatchX;  // list_range_mask over the listed blocks (rangeBlockCount)
+  uint rangeListDispatchY;
+  uint rangeListDispatchZ;
 };
 
 struct MovingTilesParams {
@@ -509,7 +534,7 @@ HMB_GPU_END
 HMB_CHECK_SIZE(ShutterRayCounters, 32)
 HMB_CHECK_SIZE(ShutterRayListParams, 80)
 HMB_CHECK_SIZE(ShutterRayTraceParams, 32)
-HMB_CHECK_SIZE(RayMaskCounters, 116)
+HMB_CHECK_SIZE(RayMaskCounters, 128)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
 HMB_CHECK_SIZE(SizeListParams, 16)
 HMB_CHECK_SIZE(RayMaskParams, 80)

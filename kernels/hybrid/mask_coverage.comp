@@ -32,7 +32,7 @@ uvec2 shutterPathAt(uint index) { return halfRecordAt(shutterPathTexels, index);
 layout(std430, binding = HMB_MASK_COVERAGE_BINDING_PIXELS) readonly buffer Pixels { uint maskPixels[]; };
 layout(std430, binding = HMB_MASK_COVERAGE_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(std430, binding = HMB_MASK_COVERAGE_BINDING_COVERAGE) writeonly buffer Coverage { vec4 coverage[]; };
-layout(std430, binding = HMB_MASK_COVERAGE_BINDING_MASK) buffer Mask { uint mask[]; };  // rayMaskBits, set by atomicOr
+layout(std430, binding = HMB_MASK_COVERAGE_BINDING_MASK) buffer Mask { uint mask[]; };  // rayMaskBits, turned by atomicXor
 layout(std430, binding = HMB_MASK_COVERAGE_BINDING_BLOCK_BITS) buffer BlockBits { uint blockBits[]; };
 layout(push_constant) uniform Params { RayMaskParams params; };
 layout(constant_id = HMB_SPEC_MASK_COVERAGE_CURVED_PATH) const bool kCurvedPath = false;
@@ -74,7 +74,8 @@ void main() {
   // could round apart), so the fourth word carries alpha.
   const vec3 foreground = foregroundSum.rgb / (1.0 + foregroundCount);
   coverage[index] = vec4(foreground, foregroundCount / float(params.blur.samples));
-  atomicOr(mask[index / 16u], rayMaskBits(meetsBackground ? HMB_MASK_REVEALED : HMB_MASK_UNREVEALED, index));
+  // The range check marked it HMB_MASK_UNREVEALED; the reveal's pixels turn to HMB_MASK_REVEALED.
+  if (meetsBackground) atomicXor(mask[index / 16u], rayMaskBits(HMB_MASK_UNREVEALED ^ HMB_MASK_REVEALED, index));
   // The pixel's bit in its block's words (list_mask_blocks lists them).
   const uint block = pixel.y / HMB_MASK_BLOCK * HMB_MASK_BLOCKS_ACROSS(width) + pixel.x / HMB_MASK_BLOCK;
   const uint bit = pixel.y % HMB_MASK_BLOCK * HMB_MASK_BLOCK + pixel.x % HMB_MASK_BLOCK;

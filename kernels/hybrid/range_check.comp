@@ -6,8 +6,8 @@
 // a step (ceil |v| + 1 positions on a straight one), so an edge band of any width is found.
 // Masked pixels are appended to a list (compaction) whose front sizes the ray reveal's
 // indirect dispatch; with the coverage composite (HMB_RANGE_CHECK_LIST_UNCOVERED) they are
-// listed for mask_coverage instead, which writes their mask values and splits them between the
-// reveal and the composite alone. Runs over the blocks list_range_blocks listed (those of the
+// marked HMB_MASK_UNREVEALED instead, for list_range_mask to list them for mask_coverage, which
+// splits them between the reveal and the composite alone. Runs over the blocks list_range_blocks listed (those of the
 // moving tiles with an edge within reach); the mask is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
@@ -163,7 +163,7 @@ void checkPixel(uvec2 pixel) {
   // The mask is filled with HMB_MASK_NONE before.
   if (!(speed > 0.0) || !(curved ? curvedPathMeetsEdge(pixel, v, q) : meetsEdge(pixel, v, speed))) return;
   if ((params.flags & HMB_RANGE_CHECK_LIST_UNCOVERED) != 0u) {
-    list[atomicAdd(counters.coverageCount, 1u)] = index;
+    atomicOr(mask[index / 16u], rayMaskBits(HMB_MASK_UNREVEALED, index));  // list_range_mask lists it
     return;
   }
   atomicOr(mask[index / 16u], rayMaskBits(HMB_MASK_REVEALED, index));

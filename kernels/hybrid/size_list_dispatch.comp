@@ -3,7 +3,8 @@
 // 65535 groups: the blocks of the moving tiles (a lane each: list_range_blocks) with the edge
 // candidates the same tile-max listed (one dispatch sizes both); the moving tiles' 8 x 8 blocks
 // (list_shutter_rays) and the range check's listed blocks (range_check): a group per block, or
-// as many as wanted, each a run no longer than its walks' loop budget allows; the edge
+// as many as wanted, each a run no longer than its walks' loop budget allows (and a lane per
+// block: list_range_mask); the edge
 // candidates (HMB_MASK_LIST_GROUP each: edge_mask), the range check's mask pixels for the
 // coverage test (HMB_MASK_LIST_GROUP each: mask_coverage) or the ray mask's pixels
 // (HMB_MASK_LIST_GROUP each: reveal_background, the background layer's gather and the weights
@@ -51,6 +52,10 @@ void main() {
     counters.rangeDispatchX = g.x;
     counters.rangeDispatchY = g.y;
     counters.rangeDispatchZ = g.z;
+    const uvec3 l = foldedGroups((count + HMB_RANGE_MASK_LIST_GROUP - 1u) / HMB_RANGE_MASK_LIST_GROUP);
+    counters.rangeListDispatchX = l.x;
+    counters.rangeListDispatchY = l.y;
+    counters.rangeListDispatchZ = l.z;
     return;
   }
   if (params.list == HMB_SIZE_LIST_SHUTTER_BLOCKS) {

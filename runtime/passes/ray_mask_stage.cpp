@@ -51,7 +51,8 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
       blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
       coveragePass_(context),
       tileMaxKernels_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
-      rangeKernels_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)) {}
+      rangeKernels_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)),
+      rangeListKernel_(context, "hybrid/list_range_mask", sizeof(gpu::RayMaskParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause,
                         const std::string& coverageSkipped) const {
@@ -191,12 +192,18 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_RANGE_CHECK_BINDING_BLOCKS, &rangeBlocks_},
                           {HMB_RANGE_CHECK_BINDING_MASK, &mask_},
                           {HMB_RANGE_CHECK_BINDING_COUNTERS, &counters_},
-                          // With the coverage test, every mask pixel for mask_coverage.
-                          {HMB_RANGE_CHECK_BINDING_LIST, p.listOnlyUncovered ? &maskPixels_ : &list_},
+                          {HMB_RANGE_CHECK_BINDING_LIST, &list_},
                           // Read only along curved paths; any buffer stands in otherwise.
                           {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
                          params, counters_, offsetof(gpu::RayMaskCounters, rangeDispatchX));
   if (p.listOnlyUncovered) {
+    // The pixels it marked, listed block by block for the coverage test (timed with it).
+    frame.dispatchIndirect(kRangeCheck, rangeListKernel_,
+                           {{HMB_RANGE_MASK_LIST_BINDING_BLOCKS, &rangeBlocks_},
+                            {HMB_RANGE_MASK_LIST_BINDING_MASK, &mask_},
+                            {HMB_RANGE_MASK_LIST_BINDING_COUNTERS, &counters_},
+                            {HMB_RANGE_MASK_LIST_BINDING_LIST, &maskPixels_}},
+                           params, counters_, offsetof(gpu::RayMaskCounters, rangeListDispatchX));
     sizeDispatch(HMB_SIZE_LIST_COVERAGE, 0u);
     coveragePass_.record(frame, layer, maskPixels_, counters_, coverage_, mask_, blockBits_, list_, params);
   }

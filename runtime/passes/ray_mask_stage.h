@@ -109,6 +109,9 @@ class RayMaskStage {
   const vk::Buffer& rangeBlocks() const { return rangeBlocks_; }  // gpu::rangeBlockEntry per walked block
   const vk::Buffer& movingTiles() const { return tiles_; }  // uint tile index per moving tile (counters' tileCount)
   const vk::Buffer& counters() const { return counters_; }  // gpu::RayMaskCounters
+  // With listOnlyUncovered: the mask's pixels for the coverage test (uint pixel index each,
+  // counters' coverageCount), each walked block's together in row order.
+  const vk::Buffer& coverageList() const { return maskPixels_; }
   // vec4 per pixel, (foreground colour, alpha) at mask pixels: written with listOnlyUncovered.
   const vk::Buffer& coverage() const { return coverage_; }
   // After the frame: the mask's size and the reveal's traces.
@@ -124,6 +127,7 @@ class RayMaskStage {
   // tile_max_edge_candidates by where its test runs; range_check by path: the straight build
   // has none of the curved walks' code.
   vk::KernelVariants tileMaxKernels_, rangeKernels_;
+  vk::ComputeKernel rangeListKernel_;  // list_range_mask: the range check's marks, for the coverage test
   ImageSize size_;
   vk::Buffer edges_, mask_, list_, counters_;
   vk::Buffer candidates_;  // edge candidates: uint pixel index each

@@ -127,6 +127,9 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   out.unrevealedList.assign(all.end() - std::min<size_t>(out.counters.unrevealedCount, pixels), all.end());
   out.candidates = downloadFirst<uint32_t>(stage.candidates(), std::min<size_t>(out.counters.candidateCount, pixels));
   out.rangeBlocks = downloadFirst<uint32_t>(stage.rangeBlocks(), std::min<size_t>(out.counters.rangeBlockCount, pixels));
+  if (parameters.listOnlyUncovered && !parameters.movingTilesOnly)
+    out.coverageList =
+        downloadFirst<uint32_t>(stage.coverageList(), std::min<size_t>(out.counters.coverageCount, pixels));
   out.tileMax = tiles.download<glm::vec4>();
   out.movingTiles = downloadFirst<uint32_t>(stage.movingTiles(), std::min<size_t>(out.counters.tileCount, pixels));
   return out;
@@ -178,12 +181,14 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   const passes::ImageLayer raster = imageLayer(layer, run.objectId, "test raster");
   const vk::Buffer tiles = vk::uploadedBuffer(context, neighborMax, "test neighbor max");
   const vk::Buffer output = filledBuffer(context, pixels, run.sentinel, "test output");
-  // Packed as the ray mask's buffer holds it (2 bits a pixel). The coverage composite's
-  // mask_coverage sets the mask's values itself, as the frame's buffer starts cleared.
+  // Packed as the ray mask's buffer holds it (2 bits a pixel). For the coverage composite, as the
+  // range check marks them: every mask pixel HMB_MASK_UNREVEALED, for mask_coverage to turn.
   const bool masksCoverage = run.objectId && run.composite == passes::HybridComposite::Coverage;
-  const std::vector<uint32_t> cleared(std::max<size_t>(pixels, 1), HMB_MASK_NONE);
-  const vk::Buffer mask =
-      vk::uploadedBuffer(context, passes::packRayMask(run.mask && !masksCoverage ? *run.mask : cleared), "test mask");
+  std::vector<uint32_t> maskValues(std::max<size_t>(pixels, 1), HMB_MASK_NONE);
+  if (run.mask)
+    for (size_t i = 0; i < pixels; ++i)
+      maskValues[i] = masksCoverage && (*run.mask)[i] != HMB_MASK_NONE ? HMB_MASK_UNREVEALED : (*run.mask)[i];
+  const vk::Buffer mask = vk::uploadedBuffer(context, passes::packRayMask(maskValues), "test mask");
   gpu::GatherParams params = passes::gatherParams(settings, layer.width, layer.height, run.maskWeights);
   // Along curved paths the raster's paths go with it, as HybridStage binds them.
   std::optional<vk::Buffer> paths;

@@ -37,6 +37,7 @@ struct RayMaskReadback {
   std::vector<uint32_t> unrevealedList;  // its last counters.unrevealedCount entries
   std::vector<uint32_t> candidates;  // the edge candidates' first counters.candidateCount entries
   std::vector<uint32_t> rangeBlocks;  // list_range_blocks' first counters.rangeBlockCount entries
+  std::vector<uint32_t> coverageList;  // with listOnlyUncovered: its first counters.coverageCount entries
   std::vector<glm::vec4> tileMax;     // the tile-max the mask started from (vec4 per tile)
   std::vector<uint32_t> movingTiles;  // the moving tiles' first counters.tileCount entries
   gpu::RayMaskCounters counters{};

@@ -335,6 +335,62 @@ TEST_F(HybridRangeCheckTest, OnlyPixelsWhoseCoverageMeetsTheBackgroundAreListed)
   EXPECT_GT(unlisted, 20u);
 }
 
+// With the coverage composite the range check marks its mask pixels and list_range_mask lists
+// them for the coverage test, a lane per walked block: every mask pixel once, each block's
+// together and in row order (the order its reads want), whatever order the blocks take.
+TEST_F(HybridRangeCheckTest, TheCoverageTestsListHoldsEachWalkedBlocksMaskPixelsTogetherInRowOrder) {
+  size_t blocksWithMore = 0;
+  for (uint32_t round = 0; round < 4; ++round) {
+    std::mt19937 rng(500 + round);
+    const uint32_t width = 45 + 19 * round, height = 27 + 9 * round;
+    const MaskLayer layer = randomMaskLayer(width, height, rng);
+    RayMaskParameters p = parametersWith(0.5f);
+    p.listOnlyUncovered = true;
+    p.blur.tileSize = 6 + 7 * round;  // 8 x 8 blocks cut short at tiles that are no multiple of 8
+    const RayMaskReadback device = runRayMask(context(), layer, p);
+    const std::vector<uint32_t> reference = rangeCheck(layer.velocity, device.edges, width, height, p);
+    ASSERT_EQ(device.mask, reference) << round;
+    // Each walked block's pixels, as the range check takes them (inside its tile and the image).
+    std::vector<int64_t> blockOf(size_t(width) * height, -1);
+    for (size_t b = 0; b < device.rangeBlocks.size(); ++b) {
+      const uint32_t listed = device.rangeBlocks[b];
+      const glm::uvec2 origin = gpu::rangeBlockOrigin(listed);
+      const uint32_t tileSide = p.blur.tileSize;
+      const uint32_t lastAcross = tileSide - (gpu::tileBlocksAcross(tileSide) - 1u) * HMB_MASK_TILE_GROUP_X;
+      const uint32_t lastDown = tileSide - (gpu::tileBlocksDown(tileSide) - 1u) * HMB_MASK_TILE_GROUP_Y;
+      const uint32_t across = (listed & HMB_RANGE_BLOCK_LAST_ACROSS) != 0u ? lastAcross : HMB_MASK_TILE_GROUP_X;
+      const uint32_t down = (listed & HMB_RANGE_BLOCK_LAST_DOWN) != 0u ? lastDown : HMB_MASK_TILE_GROUP_Y;
+      for (uint32_t y = origin.y; y < std::min(origin.y + down, height); ++y)
+        for (uint32_t x = origin.x; x < std::min(origin.x + across, width); ++x) blockOf[size_t(y) * width + x] = int64_t(b);
+    }
+    std::vector<uint32_t> expected;
+    for (uint32_t i = 0; i < reference.size(); ++i)
+      if (reference[i] != 0u) {
+        expected.push_back(i);
+        EXPECT_GE(blockOf[i], 0) << round << ": mask pixel " << i << " in no walked block";
+      }
+    std::vector<uint32_t> listed = device.coverageList;
+    std::vector<bool> finished(device.rangeBlocks.size(), false);
+    for (size_t k = 0; k < listed.size(); ++k) {
+      ASSERT_LT(listed[k], reference.size()) << round;
+      const int64_t block = blockOf[listed[k]];
+      ASSERT_GE(block, 0) << round << ": pixel " << listed[k] << " in no walked block";
+      const bool continues = k > 0 && blockOf[listed[k - 1]] == block;
+      if (continues) {
+        EXPECT_GT(listed[k], listed[k - 1]) << round << ": block " << block << " out of row order";
+        ++blocksWithMore;
+      } else {
+        EXPECT_FALSE(finished[size_t(block)]) << round << ": block " << block << " listed in two pieces";
+        finished[size_t(block)] = true;
+      }
+    }
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(listed, expected) << round;
+    EXPECT_EQ(device.counters.coverageCount, expected.size()) << round;
+  }
+  EXPECT_GT(blocksWithMore, 20u) << "blocks with several mask pixels test the order";
+}
+
 TEST_F(HybridRangeCheckTest, StillLayerMasksNothingAndDispatchesNothing) {
   const uint32_t width = 33, height = 17;
   std::mt19937 rng(3);

@@ -99,6 +99,7 @@ const KernelLayout kLayouts[] = {
     {"hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, HMB_EDGE_MASK_TEXEL_BUFFERS},
     {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
      HMB_RANGE_CHECK_TEXEL_BUFFERS},
+    {"hybrid/list_range_mask", HMB_RANGE_MASK_LIST_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, 0},
     {"hybrid/mask_coverage", HMB_MASK_COVERAGE_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
      HMB_MASK_COVERAGE_TEXEL_BUFFERS},
     {"hybrid/list_mask_blocks", HMB_LIST_MASK_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
