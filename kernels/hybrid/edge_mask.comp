@@ -72,10 +72,12 @@ void main() {
   const float depthHere = sanitizeDepth(surfaceDepth(surfaceAt(index)));
   if (!(normalizedEdge(edgeStrength(ivec2(pixel), depthHere)) > params.edgeThreshold)) return;
   atomicOr(edges[index / 32u], 1u << (index % 32u));
-  // Flag every block within one pixel of this one (all writers store 1: the race is harmless).
+  // Flag every block within one pixel of this one, in both forms of the coarse mask.
   const uvec2 first = uvec2(max(ivec2(pixel) - 1, ivec2(0))) / HMB_EDGE_BLOCK;
   const uvec2 last = min(pixel + 1u, uvec2(params.blur.width, params.blur.height) - 1u) / HMB_EDGE_BLOCK;
   for (uint y = first.y; y <= last.y; ++y)
-    for (uint x = first.x; x <= last.x; ++x)
+    for (uint x = first.x; x <= last.x; ++x) {
       edges[HMB_EDGE_BLOCK_ENTRY(params.blur.width, params.blur.height, x, y)] = 1u;
+      atomicOr(edges[HMB_EDGE_BLOCK_WORD(params.blur.width, params.blur.height, x, y)], 1u << (x % 32u));
+    }
 }

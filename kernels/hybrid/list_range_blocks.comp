@@ -35,9 +35,15 @@ bool edgeBlockNear(uvec2 origin, int margin, int testSide) {
       clamp(ivec2(origin) + ivec2(HMB_MASK_TILE_GROUP_X - 1, HMB_MASK_TILE_GROUP_Y - 1) + margin, ivec2(0), last) /
       int(HMB_EDGE_BLOCK);
   if (any(greaterThan(to - from, ivec2(testSide - 1)))) return true;
-  for (int y = from.y; y <= to.y; ++y)
-    for (int x = from.x; x <= to.x; ++x)
-      if (edges[HMB_EDGE_BLOCK_ENTRY(params.blur.width, params.blur.height, uint(x), uint(y))] != 0u) return true;
+  // A row's blocks from.x..to.x (at most testSide < 32 of them) lie in one word or two.
+  const uint fromBit = uint(from.x) % 32u, toBit = uint(to.x) % 32u;
+  const bool oneWord = uint(from.x) / 32u == uint(to.x) / 32u;
+  const uint fromBits = ~0u << fromBit, toBits = ~0u >> (31u - toBit);
+  for (int y = from.y; y <= to.y; ++y) {
+    const uint first = edges[HMB_EDGE_BLOCK_WORD(params.blur.width, params.blur.height, uint(from.x), uint(y))];
+    const uint last = edges[HMB_EDGE_BLOCK_WORD(params.blur.width, params.blur.height, uint(to.x), uint(y))];
+    if ((oneWord ? first & fromBits & toBits : (first & fromBits) | (last & toBits)) != 0u) return true;
+  }
   return false;
 }
 
