@@ -21,25 +21,28 @@ layout(push_constant) uniform Params { RayMaskParams params; };
 #include "../mblur/mblur_common.glsl"
 #include "ray_mask_common.glsl"
 
-// A row of the block: its first pixel and its two mask words (a row of at most 8 pixels spans
-// at most two of 16), so that its pixels are read with two loads.
+// A row of the block (at most 8 pixels, within two of the mask's 16-pixel words): a bit per
+// marked pixel, at bit 2x for pixel x, read with two loads and a few bit operations, so that
+// the lane's loop runs over the row's marked pixels alone.
 struct BlockRow {
-  uint first;
-  uint firstWord;
-  uvec2 words;
+  uint first;   // the row's first pixel
+  uint marked;  // any value but HMB_MASK_NONE
 };
 
 BlockRow blockRow(uvec2 origin, uint y, uint across) {
   BlockRow row;
   row.first = (origin.y + y) * params.blur.width + origin.x;
-  row.firstWord = row.first / 16u;
-  row.words = uvec2(mask[row.firstWord], mask[(row.first + across - 1u) / 16u]);
+  const uint shift = 2u * (row.first % 16u);
+  const uint low = mask[row.first / 16u], high = mask[(row.first + across - 1u) / 16u];
+  // The row's 2 x across bits, from its first pixel's on (a shift by 32 is undefined: none).
+  const uint bits = (shift == 0u ? low : (low >> shift) | (high << (32u - shift))) & (0xFFFFu >> (16u - 2u * across));
+  row.marked = (bits | (bits >> 1u)) & 0x5555u;
   return row;
 }
 
-bool marked(BlockRow row, uint x) {
-  const uint at = row.first + x;
-  return rayMaskValue(at / 16u == row.firstWord ? row.words.x : row.words.y, at) != HMB_MASK_NONE;
+// Lists the row's pixels whose bits are set in `bits`, from `at` on.
+void listRow(uint first, uint bits, inout uint at) {
+  for (; bits != 0u; bits &= bits - 1u) list[at++] = first + uint(findLSB(bits)) / 2u;
 }
 
 void main() {
@@ -50,15 +53,11 @@ void main() {
   // The block's pixels inside its tile and the image, as the range check walked them.
   const uvec2 side = min(rangeBlockSide(listed, params.blur.tileSize), uvec2(params.blur.width, params.blur.height) - origin);
   uint count = 0u;
-  for (uint y = 0u; y < side.y; ++y) {
-    const BlockRow row = blockRow(origin, y, side.x);
-    for (uint x = 0u; x < side.x; ++x) count += marked(row, x) ? 1u : 0u;
-  }
+  for (uint y = 0u; y < side.y; ++y) count += bitCount(blockRow(origin, y, side.x).marked);
   if (count == 0u) return;
   uint at = atomicAdd(counters.coverageCount, count);
   for (uint y = 0u; y < side.y; ++y) {
     const BlockRow row = blockRow(origin, y, side.x);
-    for (uint x = 0u; x < side.x; ++x)
-      if (marked(row, x)) list[at++] = row.first + x;
+    listRow(row.first, row.marked, at);
   }
 }
