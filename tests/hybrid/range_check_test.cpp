@@ -34,6 +34,19 @@ RayMaskParameters parametersWith(float edgeThreshold, float maxSpeed = 40.0f, fl
   return p;
 }
 
+// A random layer of the given size for the coverage composite's mask (mask_coverage tests
+// every mask pixel), at threshold 0.5.
+struct CoverageCase {
+  MaskLayer layer;
+  RayMaskParameters p;
+};
+CoverageCase coverageCase(uint32_t seed, uint32_t width, uint32_t height) {
+  std::mt19937 rng(seed);
+  CoverageCase c{randomMaskLayer(width, height, rng), parametersWith(0.5f)};
+  c.p.listOnlyUncovered = true;
+  return c;
+}
+
 // The dispatch of `count` listed pixels, 64 per group in rows of at most 65535 groups, written
 // out here rather than taken from the reference.
 void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std::string& what) {
@@ -297,11 +310,8 @@ TEST_F(HybridRangeCheckTest, CurvedPathsAreWalkedAPixelAStepWhereTheySpeedUp) {
 TEST_F(HybridRangeCheckTest, OnlyPixelsWhoseCoverageMeetsTheBackgroundAreListed) {
   size_t listed = 0, unlisted = 0;
   for (uint32_t round = 0; round < 4; ++round) {
-    std::mt19937 rng(100 + round);
     const uint32_t width = 37 + 11 * round, height = 23 + 5 * round;
-    const MaskLayer layer = randomMaskLayer(width, height, rng);
-    RayMaskParameters p = parametersWith(0.5f);
-    p.listOnlyUncovered = true;
+    auto [layer, p] = coverageCase(100 + round, width, height);
     p.blur.samples = 3 + 4 * round;
     p.blur.seed = round;
     const RayMaskReadback device = runRayMask(context(), layer, p);
@@ -341,11 +351,8 @@ TEST_F(HybridRangeCheckTest, OnlyPixelsWhoseCoverageMeetsTheBackgroundAreListed)
 TEST_F(HybridRangeCheckTest, TheCoverageTestsListHoldsEachWalkedBlocksMaskPixelsTogetherInRowOrder) {
   size_t blocksWithMore = 0;
   for (uint32_t round = 0; round < 4; ++round) {
-    std::mt19937 rng(500 + round);
     const uint32_t width = 45 + 19 * round, height = 27 + 9 * round;
-    const MaskLayer layer = randomMaskLayer(width, height, rng);
-    RayMaskParameters p = parametersWith(0.5f);
-    p.listOnlyUncovered = true;
+    auto [layer, p] = coverageCase(500 + round, width, height);
     p.blur.tileSize = 6 + 7 * round;  // 8 x 8 blocks cut short at tiles that are no multiple of 8
     const RayMaskReadback device = runRayMask(context(), layer, p);
     const std::vector<uint32_t> reference = rangeCheck(layer.velocity, device.edges, width, height, p);
