@@ -179,14 +179,15 @@
 #define HMB_RANGE_MASK_LIST_BINDING_COUNT 4
 
 // mask_coverage: the coverage composite's share of each mask pixel (paper, section 3; see
-// composite.comp), HMB_MASK_LIST_GROUP pixels a group, over the range check's list: the mean
+// composite.comp), HMB_MASK_LIST_GROUP pixels a group, over the range check's mask pixels as
+// list_range_mask lists them: the mean
 // colour of the pixel and its samples on its object, and alpha, for the composite; the mask's
 // value, and its block's bit, for the reveal where a sample meets the background, for the
 // composite alone otherwise (list_mask_blocks lists them).
 #define HMB_MASK_COVERAGE_BINDING_SAMPLES 0        // uvec4 per pixel: the G-buffer's samples (colour, depth)
 #define HMB_MASK_COVERAGE_BINDING_SURFACES 1       // uvec4 per pixel: the G-buffer's surfaces (velocity, object id)
 #define HMB_MASK_COVERAGE_BINDING_SHUTTER_PATHS 2  // uvec2 per pixel (gbuffer/gbuffer_layout.h), read along curved paths
-#define HMB_MASK_COVERAGE_BINDING_PIXELS 3         // the range check's list: uint pixel index, coverageCount of them
+#define HMB_MASK_COVERAGE_BINDING_PIXELS 3         // list_range_mask's list: uint pixel index, coverageCount of them
 #define HMB_MASK_COVERAGE_BINDING_COUNTERS 4       // RayMaskCounters
 #define HMB_MASK_COVERAGE_BINDING_COVERAGE 5       // vec4 per pixel: (mean colour, alpha), written at mask pixels
 // The ray mask: HMB_MASK_UNREVEALED at the listed pixels (the range check's), turned to

@@ -62,8 +62,8 @@ void main() {
   const float reach = tileMax[tile].z;
   const bool bounded = (params.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) == 0u && reach < float(tileSize);
   const int margin = bounded ? int(ceil(reach)) + 1 : 0;
+  const uint across = tileBlocksAcross(tileSize);
   if (!bounded || edgeBlockNear(origin, margin, int(HMB_RANGE_BLOCKS_MAX_TEST_SIDE)))
     blockList[atomicAdd(counters.rangeBlockCount, 1u)] =
-        rangeBlockEntry(origin, block % tileBlocksAcross(tileSize) == tileBlocksAcross(tileSize) - 1u,
-                        block / tileBlocksAcross(tileSize) == tileBlocksDown(tileSize) - 1u);
+        rangeBlockEntry(origin, block % across == across - 1u, block / across == tileBlocksDown(tileSize) - 1u);
 }

@@ -1,6 +1,6 @@
 #version 450
 // Ray mask, last pass with the coverage composite (composite.comp): at each pixel the range
-// check listed, the coverage composite's foreground. The pixel's samples X + u v, u in (0, 1]
+// check marked (list_range_mask lists them), the coverage composite's foreground. The pixel's samples X + u v, u in (0, 1]
 // (along curved paths its own curve X + u v + u^2 q), as the composite takes them: the share on
 // the pixel's object (or not behind it) is alpha, and the mean colour of those samples and X is
 // the object's blurred colour F; the composite later blends F over the blurred background,

@@ -10,10 +10,10 @@
 // `speed` is min(|v|, maxSpeed), the ranking key of the tile passes. Non-finite velocities, and
 // ones too large to scale, count as zero; so do speeds under 1e-30 px (no device agrees on
 // denormals). The length is taken after dividing by the largest component, so 1e30 px per
-// frame clamps to maxSpeed instead of overflowing to a zero-length vector.
-// In two steps, so that one velocity can be clamped to two lengths for the cost of one and a
-// division (the hybrid's tile-max: to the tile for the reduction, to the image for eqs. 1, 2),
-// the same bits as gatherVelocity gives for each.
+// frame clamps to maxSpeed instead of overflowing to a zero-length vector. Also in two steps
+// (gatherVelocityParts, then clampedGatherVelocity), so that one velocity can be clamped to two
+// lengths for the cost of one and a division (the hybrid's tile-max: to the tile for the
+// reduction, to the image for eqs. 1, 2), the same bits as gatherVelocity gives for each.
 struct GatherVelocityParts {
   vec2 v;           // q scaled
   vec2 unit;        // v over its largest component

@@ -23,8 +23,10 @@ class MaskCoveragePass {
   static constexpr const char* kListName = "ray-mask-list";
   explicit MaskCoveragePass(const vk::Context& context);
   // layer: the G-buffer (samples, surfaces; the shutter paths along curved paths). pixels: the
-  // range check's list, counters: its coverageCount and the dispatch sized from it.
-  // coverage: width * height vec4, mask: the ray mask (2 bits a pixel), set at the listed pixels.
+  // range check's mask pixels (list_range_mask's list), counters: their coverageCount and the
+  // dispatch sized from it. coverage: width * height vec4, mask: the ray mask (2 bits a pixel),
+  // HMB_MASK_UNREVEALED at the listed pixels, which it turns to HMB_MASK_REVEALED where a sample
+  // meets the background.
   // blockBits: maskBlockBitsBytes, filled with 0 before. list: the mask's (RayMaskStage's);
   // counters' maskCount and unrevealedCount count its two ends. params: the mask's (the frame's
   // blur).
