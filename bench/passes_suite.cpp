@@ -40,7 +40,8 @@ void renderOnce(const scene::Scene& scene, MethodRuns& runs, bool timed) {
   runs.last = runs.renderer->render(scene, runs.settings);
   if (!runs.last.frameMilliseconds) throw Error("the device gives no timestamps: pass times cannot be measured");
   if (!timed) return;
-  // The hybrid's mesh trees (scene setup) are listed as a pass but not counted in its frame.
+  // The hybrid's scene setup (its mesh trees, its still instances' tree) is listed as passes
+  // but not counted in its frame.
   for (const PlannedPass& pass : runs.last.plan.passes()) {
     if (!pass.run || !pass.milliseconds) continue;
     if (!runs.passTimes.count(pass.name)) runs.order.push_back(pass.name);

@@ -9,6 +9,7 @@
 #include "runtime/frame_plan.h"
 #include "runtime/deformed_vertices.h"
 #include "runtime/gpu_scene.h"
+#include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {
@@ -48,6 +49,34 @@ bool sameInstances(const std::vector<gpu::TraceInstance>& a, const std::vector<g
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
            return x.mesh == y.mesh && x.objectId == y.objectId && x.flags == y.flags;
          });
+}
+
+// The top level's order of the instances: the still ones first (no animation above their node
+// and no deformation: their boxes are the same in every frame), then the moving ones; and how
+// many are still.
+std::pair<std::vector<uint32_t>, uint32_t> stillFirstOrder(const scene::Scene& scene) {
+  std::vector<uint32_t> order, moving;
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const scene::Instance& instance = scene.instances[i];
+    (instance.deforms() || scene.isAnimated(instance.node) ? moving : order).push_back(i);
+  }
+  const auto still = static_cast<uint32_t>(order.size());
+  order.insert(order.end(), moving.begin(), moving.end());
+  return {std::move(order), still};
+}
+
+// The still instances' records and transforms (the same at every time), in `order`'s first
+// `still` places: what their tree is built from.
+void stillRecords(const scene::Scene& scene, std::span<const uint32_t> order, uint32_t still,
+                  std::vector<gpu::TraceInstance>& instances, std::vector<gpu::InstanceTransform>& transforms) {
+  std::vector<gpu::TraceInstance> all;
+  std::vector<gpu::InstanceTransform> allTransforms;
+  const float time = 0.0f;
+  instancesAt(scene, std::span(&time, 1), all, allTransforms);
+  for (uint32_t k = 0; k < still; ++k) {
+    instances.push_back(all.at(order[k]));
+    transforms.push_back(allTransforms.at(order[k]));
+  }
 }
 
 bool sameTransforms(const std::vector<gpu::InstanceTransform>& a, const std::vector<gpu::InstanceTransform>& b) {
@@ -201,9 +230,64 @@ void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const fl
   fit(instances_, slots * sizeof(gpu::TraceInstance), "trace instances");
   fit(transforms_, std::max<size_t>(transforms.size(), 1) * sizeof(gpu::InstanceTransform), "instance transforms");
   fit(instanceBoxes_, slots * sizeof(gpu::BvhBox), "instance boxes");
+  // Where enough instances stand still and others move, the still ones' tree is kept from the
+  // frame that built it, so long as they are the same instances with the same transforms.
+  auto [order, still] = stillFirstOrder(scene);
+  const bool split = whyNotSplit(scene, splitFrom_).empty();
+  std::vector<gpu::TraceInstance> stillInstances;
+  std::vector<gpu::InstanceTransform> stillTransforms;
+  if (split) stillRecords(scene, order, still, stillInstances, stillTransforms);
+  keepsStillTree_ = split && stillTreeRecorded_ && order == topOrder_ && sameInstances(stillInstances, stillInstances_) &&
+                    sameTransforms(stillTransforms, stillTransforms_);
+  if (!keepsStillTree_) stillTreeRecorded_ = false;  // until this frame's split build is recorded
+  topOrder_ = split ? std::move(order) : std::vector<uint32_t>{};
+  stillCount_ = split ? still : 0u;
+  stillInstances_ = std::move(stillInstances);
+  stillTransforms_ = std::move(stillTransforms);
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
   treeRecorded_ = false;
+}
+
+uint32_t TraceScene::stillInstancesToSplit(const vk::Context& context) {
+  return context.info().type == "cpu" ? 128u : 0u;
+}
+
+std::string TraceScene::whyNotSplit(const scene::Scene& scene, uint32_t stillInstances) {
+  if (stillInstances == 0) return "one tree over all instances: this renderer does not split its top level";
+  const uint32_t still = stillFirstOrder(scene).second;
+  const auto moving = static_cast<uint32_t>(scene.instances.size()) - still;
+  if (moving == 0) return "no instance moves";
+  if (still < stillInstances)
+    return std::to_string(still) + " still instances, fewer than the " + std::to_string(stillInstances) +
+           " for which keeping their tree pays on this device: one tree over all";
+  if (moving > HMB_BVH_MAX_INSERTED ||
+      passes::BvhBuildPass::firstSubmissionLevels(still) + moving > HMB_BVH_MAX_DEPTH)
+    return std::to_string(moving) + " moving instances, more than are inserted into a kept tree (" +
+           std::to_string(HMB_BVH_MAX_INSERTED) + "): one tree over all";
+  return "";
+}
+
+bool TraceScene::hasStillInstanceTreeOf(const scene::Scene& scene) const {
+  if (!stillTreeRecorded_ || !whyNotSplit(scene, splitFrom_).empty()) return false;
+  const auto [order, still] = stillFirstOrder(scene);
+  std::vector<gpu::TraceInstance> instances;
+  std::vector<gpu::InstanceTransform> transforms;
+  stillRecords(scene, order, still, instances, transforms);
+  return order == topOrder_ && sameInstances(instances, stillInstances_) && sameTransforms(transforms, stillTransforms_);
+}
+
+double TraceScene::buildStillInstanceTree(vk::FrameRecorder& frame) {
+  if (topOrder_.empty() || timeCount_ == 0)
+    throw Error("the trace scene's still instances' tree was built without a staged split top level");
+  instances_.upload(std::span<const gpu::TraceInstance>(builtInstances_));
+  transforms_.upload(std::span<const gpu::InstanceTransform>(builtTransforms_));
+  frame.begin();
+  recordInstanceTree(frame, kStillInstanceTree);
+  const vk::FrameTimings timings = frame.submitAndWait();
+  instanceBvh_.readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
+  keepsStillTree_ = true;  // the frames of this staging rebuild the moving ones' tree alone
+  return timings.frameMilliseconds.value_or(0.0);
 }
 
 void TraceScene::recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_view pass) {
@@ -216,8 +300,7 @@ void TraceScene::recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_
 
 void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view pass) {
   const gpu::TraceParams params{0u, instanceCount_, timeCount_, 0u};
-  const glm::uvec2 root(0u, instanceCount_);
-  instanceBvh_.record(frame, pass, instanceBoxes_, instanceCount_, std::span(&root, 1), [&](vk::FrameRecorder& f) {
+  const auto motionBounds = [&](vk::FrameRecorder& f) {
     f.dispatch(pass, motionBoundsKernel_,
                {{HMB_MOTION_BOUNDS_BINDING_MESH_NODES, &meshBvh_.nodes()},
                 {HMB_MOTION_BOUNDS_BINDING_INSTANCES, &instances_},
@@ -225,7 +308,18 @@ void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view p
                 {HMB_MOTION_BOUNDS_BINDING_BOXES, &instanceBoxes_},
                 {HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES, &meshBvh_.frames()}},
                params, vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
-  });
+  };
+  // The still instances' tree kept, the moving ones inserted into it again (on a CPU device one
+  // invocation built bistro's 321 instances in about 1 ms).
+  if (keepsStillTree_) {
+    instanceBvh_.recordInsertionsAgain(frame, pass, instanceBoxes_, motionBounds);
+  } else if (!topOrder_.empty()) {
+    instanceBvh_.recordKeptWithInsertions(frame, pass, instanceBoxes_, topOrder_, stillCount_, motionBounds);
+  } else {
+    const glm::uvec2 root(0u, instanceCount_);
+    instanceBvh_.record(frame, pass, instanceBoxes_, instanceCount_, std::span(&root, 1), motionBounds);
+  }
+  stillTreeRecorded_ = !topOrder_.empty();
   treeRecorded_ = true;  // only once the whole build is recorded
 }
 

@@ -3,13 +3,16 @@
 // at a frame's shutter times under a top-level BVH over their motion bounds, rebuilt on the
 // device whenever an instance's transform at those times changes. A renderer keeps one trace
 // scene across frames: its mesh trees serve every frame of the same meshes, and its top
-// level every frame in which no instance moved.
+// level every frame in which no instance moved; where only some move, the top level's tree
+// over the still ones serves too, and only the moving ones' is built again, under a root
+// joining the two.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -40,6 +43,21 @@ class TraceScene {
   static constexpr const char* kDeformedLeaves = "bvh-deformed-leaves";
   static constexpr const char* kRefit = "bvh-refit";
   static constexpr const char* kInstanceTree = "bvh-instance-tree";  // setShutterTimes' passes
+  static constexpr const char* kStillInstanceTree = "bvh-still-instance-tree";  // buildStillInstanceTree's
+
+  // Where at least `stillInstances` instances stand still (no animation above their node, no
+  // deformation) and a few others move (at most HMB_BVH_MAX_INSERTED), the top level is split:
+  // the still ones' tree is kept from frame to frame while they stay as they are, and the
+  // moving ones are inserted into it again in each (passes::BvhBuildPass::recordKeptWithInsertions).
+  // 0 (the default) builds one tree over all in every frame.
+  void splitTopLevel(uint32_t stillInstances) { splitFrom_ = stillInstances; }
+  // The fewest still instances for which the split pays on this device: on a CPU device one
+  // invocation builds the top level, in time growing as n log n (bistro's 321 instances about
+  // 1 ms), where the insertions are one dispatch; on a GPU the build's levels cost microseconds
+  // and one lane's walks down the tree wait on memory at every level: 0, never split.
+  static uint32_t stillInstancesToSplit(const vk::Context& context);
+  // Why `scene`'s top level is not split at that threshold (empty: it is).
+  static std::string whyNotSplit(const scene::Scene& scene, uint32_t stillInstances);
 
   // Uploads the meshes and builds their trees (submits on `frame`).
   TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame);
@@ -72,6 +90,17 @@ class TraceScene {
   // Whether the top level was last built for the same instances with the same transforms at
   // each of these shutter times, so setShutterTimes would rebuild the same tree.
   bool hasShutterTimes(const scene::Scene& scene, std::span<const float> times) const;
+
+  // The staged shutter times insert the moving instances into the top level alone: the still
+  // ones' tree, built for an earlier frame, serves them.
+  bool keepsStillInstanceTree() const { return keepsStillTree_; }
+  // Whether a split build of `scene`'s still instances as they are now was recorded (so a
+  // frame of it keeps their tree).
+  bool hasStillInstanceTreeOf(const scene::Scene& scene) const;
+  // Builds the staged split top level now (submits on `frame` and waits), so that the frames
+  // recorded from this staging only insert the moving instances: a renderer's scene setup, as
+  // the mesh trees are. Returns the device milliseconds.
+  double buildStillInstanceTree(vk::FrameRecorder& frame);
 
   uint32_t meshCount() const { return meshCount_; }
   uint32_t instanceCount() const { return instanceCount_; }
@@ -120,6 +149,16 @@ class TraceScene {
   std::vector<gpu::TraceInstance> builtInstances_;
   std::vector<gpu::InstanceTransform> builtTransforms_;
   bool treeRecorded_ = false;  // a build of the staged instances was recorded (or built)
+  // The top level's split (splitTopLevel): the instances, still ones first (empty: one tree
+  // over all), how many are still, and what the still ones' tree was last built from.
+  // keepsStillTree_: the staged frame inserts the moving ones into the kept tree alone.
+  std::vector<uint32_t> topOrder_;
+  uint32_t stillCount_ = 0;
+  uint32_t splitFrom_ = 0;  // splitTopLevel
+  std::vector<gpu::TraceInstance> stillInstances_;
+  std::vector<gpu::InstanceTransform> stillTransforms_;
+  bool stillTreeRecorded_ = false;
+  bool keepsStillTree_ = false;
   vk::Buffer leafTriangles_;  // per triangle in the leaves' order: 3 vec4 (vertex xyz, index bits)
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)

@@ -44,7 +44,7 @@ def render(scene, method, report):
 
 
 # The hybrid's scene setup: listed with the passes, not part of its frame.
-SETUP_PASSES = {"hybrid-bvh-meshes"}
+SETUP_PASSES = {"hybrid-bvh-meshes", "hybrid-bvh-still-instances"}
 
 
 def passes_ratio(entry):

@@ -14,7 +14,7 @@ import matplotlib
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
 
-SETUP_PASSES = {"hybrid-bvh-meshes"}  # scene setup, not part of a frame
+SETUP_PASSES = {"hybrid-bvh-meshes", "hybrid-bvh-still-instances"}  # scene setup, not part of a frame
 
 
 def main() -> int:

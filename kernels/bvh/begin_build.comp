@@ -3,7 +3,9 @@
 // the identity order of that range, the tree's frame (the root box: its packed bounds count
 // steps across it), and the root's task: for level 0, or, for a root of at most kSmallTask
 // primitives, for build_small_tasks at once (a small tree, such as a top level over a few
-// hundred instances, then costs no level's dispatches). Roots are nodes 0..treeCount-1.
+// hundred instances, then costs no level's dispatches). Roots are nodes 0..treeCount-1. A build
+// over the host's order (HMB_BVH_BUILD_GIVEN_ORDER) takes its ranges' primitives as they are
+// in the array, where others start from the identity.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "bvh_build_common.glsl"
@@ -31,10 +33,12 @@ void main() {
   barrier();
 
   const uvec2 range = roots[tree];
+  const bool givenOrder = (params.flags & HMB_BVH_BUILD_GIVEN_ORDER) != 0u;
   vec3 lo = vec3(uintBitsToFloat(0x7f800000u)), hi = -lo, cLo = lo, cHi = hi;
   for (uint k = lane; k < range.y; k += HMB_BVH_BUILD_GROUP) {
-    const uint primitive = range.x + k;
-    primitives[primitive] = primitive;
+    uint primitive = range.x + k;
+    if (givenOrder) primitive = primitives[primitive];
+    else primitives[primitive] = primitive;
     const BvhBox box = boxAt(primitive);
     const vec3 c = centroidOf(box);
     lo = min(lo, box.min.xyz);

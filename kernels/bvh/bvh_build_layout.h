@@ -67,6 +67,16 @@
 #define HMB_SPEC_BVH_PACK_LATER 1
 #define HMB_BVH_PACK_LATER 0x0000fffeu
 #define HMB_BVH_PACK_GROUP 64
+// A tree over some primitives, kept from frame to frame, with a few others inserted into it in
+// each (BvhBuildPass::recordKeptWithInsertions): the kept tree is built over the first
+// roots[0].y places of a primitive order the host gives, its exact nodes saved; insert_primitives
+// restores them and inserts the order's later places one by one, each a new pair of nodes past
+// the kept tree's (at most 2 k + 1 for k kept primitives).
+#define HMB_BVH_MAX_INSERTED 32u
+#define HMB_BUILD_BINDING_KEPT_NODES 7  // insert_primitives: the kept tree's exact nodes, as built
+#define HMB_INSERT_BINDING_COUNT 8
+// BvhBuildParams::flags
+#define HMB_BVH_BUILD_GIVEN_ORDER 1u  // begin_build keeps the primitive order the host wrote
 #define HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU 512u
 // Leaves of mesh trees hold at most this many primitives (as the CPU reference builder's
 // default); each build names its own limit (BvhBuildParams::maxLeaf).
@@ -151,8 +161,8 @@ struct BvhBuildParams {
   uint level;         // build_level / size_build_dispatch: the level being built (0 = roots)
   uint maxLeaf;       // the most primitives a leaf may hold (>= 1)
   uint maxDepth;      // levels a node may lie below its root: HMB_BVH_MAX_DEPTH, or fewer in tests
-  uint pad1;
-  uint pad2;
+  uint pad;
+  uint flags;         // HMB_BVH_BUILD_*
 };
 
 // A node still to split and the primitives below it; its bounds are already in the node.

@@ -190,13 +190,7 @@ BvhBuildPass::Start BvhBuildPass::start(const vk::Buffer& boxes, uint32_t primit
   s.rootGroups = vk::foldedGroups(treeCount);
   s.counters.dispatch[0] = glm::uvec4(s.rootGroups, 0u);
   s.counters.dispatch[1] = glm::uvec4(0u, 0u, 1u, 0u);
-  s.buffers = {{HMB_BUILD_BINDING_BOXES, &boxes},
-               {HMB_BUILD_BINDING_ROOTS, &rootBuffer_},
-               {HMB_BUILD_BINDING_PRIMITIVES, &primitives_},
-               {HMB_BUILD_BINDING_NODES, &nodes_},
-               {HMB_BUILD_BINDING_TASKS, &tasks_},
-               {HMB_BUILD_BINDING_PACKED_NODES, &packedNodes_},
-               {HMB_BUILD_BINDING_FRAMES, &frames_}};
+  s.buffers = buildBindings(boxes);
   s.largestTree = largestTreeOf(roots);
   const uint32_t halvings = halvingsToOne(s.largestTree);
   if (halvings > depthBound)
@@ -205,7 +199,15 @@ BvhBuildPass::Start BvhBuildPass::start(const vk::Buffer& boxes, uint32_t primit
   s.params = {primitiveCount, treeCount, taskCapacity_, 0, maxLeaf_, depthBound, 0, 0};
   stats_ = {};
   refits_ = {};  // the old trees' places and order
+  inserted_ = false;
   return s;
+}
+
+vk::Bindings BvhBuildPass::buildBindings(const vk::Buffer& boxes) const {
+  return {{HMB_BUILD_BINDING_BOXES, &boxes},           {HMB_BUILD_BINDING_ROOTS, &rootBuffer_},
+          {HMB_BUILD_BINDING_PRIMITIVES, &primitives_}, {HMB_BUILD_BINDING_NODES, &nodes_},
+          {HMB_BUILD_BINDING_TASKS, &tasks_},           {HMB_BUILD_BINDING_PACKED_NODES, &packedNodes_},
+          {HMB_BUILD_BINDING_FRAMES, &frames_}};
 }
 
 const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
@@ -268,9 +270,15 @@ uint32_t BvhBuildPass::recordedDepthBound(uint32_t largestTree) const {
 void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
                           uint32_t primitiveCount, std::span<const glm::uvec2> roots,
                           const std::function<void(vk::FrameRecorder&)>& before) {
-  const uint32_t depthBound = recordedDepthBound(largestTreeOf(roots));
-  Start s = start(boxes, primitiveCount, roots, depthBound);
+  Start s = start(boxes, primitiveCount, roots, recordedDepthBound(largestTreeOf(roots)));
   frame.write(pass, rootBuffer_, roots);
+  recordTrees(frame, pass, s, before);
+  recordDeferredPacking(frame, pass, s);
+}
+
+void BvhBuildPass::recordTrees(vk::FrameRecorder& frame, std::string_view pass, Start& s,
+                               const std::function<void(vk::FrameRecorder&)>& before) {
+  const uint32_t depthBound = s.params.maxDepth;
   frame.write(pass, tasks_, std::span<const gpu::BvhBuildCounters>(&s.counters, 1));
   if (before) before(frame);
   frame.dispatch(pass, beginKernel_, s.buffers, s.params, s.rootGroups);
@@ -293,7 +301,47 @@ void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const
   }
   frame.dispatchIndirect(pass, smallTasksKernel_, s.buffers, s.params, tasks_,
                          offsetof(gpu::BvhBuildCounters, smallDispatch));
-  recordDeferredPacking(frame, pass, s);
+}
+
+void BvhBuildPass::recordKeptWithInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
+                                            std::span<const uint32_t> order, uint32_t kept,
+                                            const std::function<void(vk::FrameRecorder&)>& before) {
+  const auto count = static_cast<uint32_t>(order.size());
+  if (kept == 0 || kept > count) throw Error(name_ + ": a kept tree needs primitives of its own");
+  if (count - kept > HMB_BVH_MAX_INSERTED)
+    throw Error(name_ + ": " + std::to_string(count - kept) + " insertions, more than " +
+                std::to_string(HMB_BVH_MAX_INSERTED));
+  const glm::uvec2 root(0u, kept);
+  const uint32_t depthBound = recordedDepthBound(kept);
+  if (depthBound + (count - kept) > HMB_BVH_MAX_DEPTH)
+    throw Error(name_ + ": the insertions could take the kept tree past the depth traversal holds");
+  Start s = start(boxes, count, std::span(&root, 1), depthBound);
+  s.params.flags = HMB_BVH_BUILD_GIVEN_ORDER;
+  frame.write(pass, rootBuffer_, std::span(&root, 1));
+  frame.write(pass, primitives_, order);
+  recordTrees(frame, pass, s, before);  // its nodes are packed by the insertion, with the others
+  const uint64_t keptBytes = (2ull * kept + 1) * sizeof(gpu::BvhNode);
+  if (keptNodes_.size() < keptBytes)
+    keptNodes_ = vk::Buffer(context_, keptBytes, vk::MemoryUse::Device, name_ + " kept nodes");
+  frame.copy(pass, nodes_, keptNodes_, keptBytes);
+  inserted_ = true;
+  recordInsertions(frame, pass, boxes);
+}
+
+void BvhBuildPass::recordInsertionsAgain(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
+                                         const std::function<void(vk::FrameRecorder&)>& before) {
+  if (!inserted_) throw Error(name_ + ": insertions again without a kept tree");
+  if (before) before(frame);
+  recordInsertions(frame, pass, boxes);
+}
+
+void BvhBuildPass::recordInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes) {
+  if (!insertKernel_)
+    insertKernel_ = std::make_unique<vk::ComputeKernel>(context_, "bvh/insert_primitives", sizeof(gpu::BvhBuildParams));
+  vk::Bindings buffers = buildBindings(boxes);
+  buffers.push_back({HMB_BUILD_BINDING_KEPT_NODES, &keptNodes_});
+  const gpu::BvhBuildParams params{primitiveCount_, 1u, taskCapacity_, 0u, maxLeaf_, maxDepth_, 0u, HMB_BVH_BUILD_GIVEN_ORDER};
+  frame.dispatch(pass, *insertKernel_, buffers, params, glm::uvec3(1));
 }
 
 void BvhBuildPass::recordDeferredPacking(vk::FrameRecorder& frame, std::string_view pass, const Start& s) {
@@ -369,6 +417,7 @@ void BvhBuildPass::sortRefitNodes(std::span<const uint32_t> trees) {
 
 double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::span<const uint32_t> trees) {
   if (stats_.nodes == 0) throw Error(name_ + ": refit() before a build");
+  if (inserted_) throw Error(name_ + ": a tree with insertions is built again, not refitted");
   if (boxes.size() < uint64_t(primitiveCount_) * sizeof(gpu::BvhBox))
     throw Error(name_ + ": refit() needs a box for each of the " + std::to_string(primitiveCount_) + " primitives");
   double milliseconds = 0.0;
@@ -407,6 +456,7 @@ double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, st
 
 void BvhBuildPass::compact(vk::FrameRecorder& frame) {
   if (stats_.nodes == 0) throw Error(name_ + ": compact() before a build");
+  if (inserted_) throw Error(name_ + ": a tree with insertions is built again, not compacted");
   // The scratch goes first, so the copies below add less to the peak: the tasks, and the
   // exact nodes, which only the build reads.
   tasks_ = {};
@@ -439,7 +489,7 @@ std::vector<gpu::BvhNode> BvhBuildPass::downloadNodes() const {
   const std::vector<gpu::BvhFrame> frames = frames_.download<gpu::BvhFrame>();
   std::vector<gpu::BvhNode> nodes(stats_.nodes);
   // A node unpacks in its tree's frame: walk each tree from its root (an empty tree's root
-  // has no children, whatever its index word says).
+  // has no children, whatever its index word says; one with insertions has).
   uint32_t visited = 0;
   for (uint32_t tree = 0; tree < roots_.size(); ++tree) {
     std::vector<uint32_t> stack{tree};
@@ -447,10 +497,11 @@ std::vector<gpu::BvhNode> BvhBuildPass::downloadNodes() const {
       const uint32_t index = stack.back();
       stack.pop_back();
       const gpu::BvhNode node = bvh::unpackNode(packed.at(index), frames.at(tree));
-      if (++visited > stats_.nodes)  // a child index pointing back up: nodes left unwritten
+      if (++visited > nodes.size())  // a child index pointing back up: nodes left unwritten
         throw Error(name_ + ": the built nodes do not form trees (a node is reached twice)");
       nodes.at(index) = node;
-      if (node.count == 0 && roots_[tree].y > 1) stack.insert(stack.end(), {node.leftOrFirst, node.leftOrFirst + 1});
+      if (node.count == 0 && (inserted_ || roots_[tree].y > 1))
+        stack.insert(stack.end(), {node.leftOrFirst, node.leftOrFirst + 1});
     }
   }
   return nodes;
@@ -460,7 +511,8 @@ bvh::Bvh BvhBuildPass::download(uint32_t root) const {
   if (root >= roots_.size()) throw Error(name_ + ": no tree " + std::to_string(root));
   const std::vector<gpu::BvhNode> nodes = downloadNodes();
   const std::vector<uint32_t> primitives = primitives_.download<uint32_t>();
-  const glm::uvec2 range = roots_[root];
+  // With insertions, the tree holds every place of the order.
+  const glm::uvec2 range = inserted_ ? glm::uvec2(0u, primitiveCount_) : roots_[root];
   bvh::Bvh out;
   if (range.y == 0) return out;
   // Breadth-first copy keeps siblings adjacent, as the layout requires.

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -131,6 +132,21 @@ class BvhBuildPass {
   // The depth bound record() gives trees of up to largestTree primitives: the levels build()'s
   // first submission records, at most the pass's depth bound.
   uint32_t recordedDepthBound(uint32_t largestTree) const;
+  // A tree kept from frame to frame with a few primitives inserted into it in each, for a top
+  // level over instances of which most stand still: recordKeptWithInsertions records a build over
+  // the first `kept` primitives of `order` (boxes indexed by primitive; the leaves index
+  // `order`), as record() does, saves its exact nodes, and inserts the rest of the order, at
+  // most HMB_BVH_MAX_INSERTED (kernels/bvh/insert_primitives.comp); recordInsertionsAgain
+  // restores the kept tree and inserts the rest again from new boxes (the kept primitives'
+  // boxes as they were). One dispatch, where a build of hundreds of primitives is one
+  // invocation's work on a CPU device. Such a tree is not refitted or compacted.
+  void recordKeptWithInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
+                                std::span<const uint32_t> order, uint32_t kept,
+                                const std::function<void(vk::FrameRecorder&)>& before = {});
+  void recordInsertionsAgain(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
+                             const std::function<void(vk::FrameRecorder&)>& before = {});
+  // The last build kept a tree and inserted into it.
+  bool hasInsertions() const { return inserted_; }
   // After a recorded build completed on the device: its node, leaf and level counts read back
   // into stats() (tests, reports), with the device time its frame measured.
   const BvhBuildStats& readRecordedCounts(double deviceMilliseconds = 0.0);
@@ -193,6 +209,13 @@ class BvhBuildPass {
   };
   Start start(const vk::Buffer& boxes, uint32_t primitiveCount, std::span<const glm::uvec2> roots,
               uint32_t depthBound);
+  // The build kernels' buffers (kernels/bvh/bvh_build_layout.h), over `boxes`.
+  vk::Bindings buildBindings(const vk::Buffer& boxes) const;
+  // record()'s passes from begin_build to build_small_tasks.
+  void recordTrees(vk::FrameRecorder& frame, std::string_view pass, Start& s,
+                   const std::function<void(vk::FrameRecorder&)>& before);
+  // insert_primitives over the kept tree.
+  void recordInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes);
   void takeCounts(const gpu::BvhBuildCounters& counters);
   // pack_deferred_nodes after build_small_tasks, where the shape packs later.
   void recordDeferredPacking(vk::FrameRecorder& frame, std::string_view pass, const Start& s);
@@ -236,6 +259,9 @@ class BvhBuildPass {
   vk::Buffer tasks_;  // gpu::BvhBuildCounters, then the tasks of two levels
   BvhBuildStats stats_;
   Refits refits_;
+  vk::Buffer keptNodes_;  // the kept tree's exact nodes, as built (recordKeptWithInsertions)
+  bool inserted_ = false;
+  std::unique_ptr<vk::ComputeKernel> insertKernel_;  // made with the first insertions
 };
 
 }  // namespace hmb::passes

@@ -72,6 +72,13 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
     plan.skip(kBvhInstances, "the top-level tree of the last frame serves this one: no instance moved since");
   else
     plan.run(kBvhInstances);
+  // Only a split top level has the still instances' tree (scene setup, as the mesh trees).
+  if (TraceScene::whyNotSplit(scene, TraceScene::stillInstancesToSplit(context_)).empty()) {
+    if (sameMeshes && traceScene_->hasStillInstanceTreeOf(scene))
+      plan.skip(kBvhStillInstances, "the still instances' tree of an earlier frame serves this one");
+    else
+      plan.run(kBvhStillInstances);
+  }
   postProcess_.planTiles(plan);
   const std::string shutterSkipped = shutterRaysSkipped(scene, settings);
   // With the shutter rays, the paper's reveal is left out: the rays re-render nearly every
@@ -108,7 +115,12 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   if (plan.runs(TraceScene::kRefit))
     vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
   buildsInstanceTree_ = plan.runs(kBvhInstances);
+  traceScene_->splitTopLevel(TraceScene::stillInstancesToSplit(context_));
   if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, times);
+  if (buildsInstanceTree_ && plan.runs(kBvhStillInstances) && !traceScene_->keepsStillInstanceTree()) {
+    const double ms = traceScene_->buildStillInstanceTree(frame);
+    vk::appendTimings(timings.setup, {{{kBvhStillInstances, ms}}, ms});
+  }
   cameras_.clear();
   for (const float t : times) cameras_.push_back(pinholeCamera(scene, t, width, height));
   const uint64_t cameraBytes = cameras_.size() * sizeof(gpu::PinholeCamera);

@@ -50,6 +50,9 @@ inline constexpr const char* kRevealLeftToShutterRaysReason =
 class HybridStage {
  public:
   static constexpr const char* kBvhMeshes = "hybrid-bvh-meshes";        // scene setup: not in the frame time
+  // scene setup, in the plan only where the top level is split (TraceScene::splitTopLevel):
+  // the still instances' tree
+  static constexpr const char* kBvhStillInstances = "hybrid-bvh-still-instances";
   static constexpr const char* kBvhInstances = "hybrid-bvh-instances";  // per frame
   static constexpr const char* kGatherBackground = BackgroundGatherPass::kName;
   static constexpr const char* kComposite = CompositePass::kName;

@@ -53,6 +53,7 @@ const KernelLayout kLayouts[] = {
     {"bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
     {"bvh/build_small_tasks", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
     {"bvh/pack_deferred_nodes", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
+    {"bvh/insert_primitives", HMB_INSERT_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
     {"bvh/refit_parents", HMB_REFIT_PARENTS_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"bvh/refit_places", HMB_REFIT_PLACES_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"bvh/refit_bounds", HMB_REFIT_BOUNDS_BINDINGS, sizeof(gpu::BvhRefitParams), false},

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -505,6 +506,74 @@ TEST_F(DeviceBvh, ATopLevelShapeBuildsHundredsOfPrimitivesInOneSmallTask) {
       EXPECT_EQ(bvh::test::structuralProblem(recorded, input.bounds, maxLeaf), "") << what << ", recorded";
       EXPECT_LE(levelsBelowRoot(recorded), builder.recordedDepthBound(n)) << what;
     }
+  }
+}
+
+// What a kept tree with insertions (passes::BvhBuildPass::recordKeptWithInsertions) must be:
+// sound over every primitive (each in one leaf, every node bounding its children, as
+// traversal unpacks them), the frame tree 0's root's, every node the host's packing of its
+// exact node in it, the kept primitives' leaves all where the kept tree had them, and no node
+// deeper than traversal's stack holds.
+void expectInserted(const passes::BvhBuildPass& builder, std::span<const Aabb> boxes, const std::string& what) {
+  const auto exact = builder.exactNodes().download<gpu::BvhNode>();
+  const auto packed = builder.nodes().download<gpu::BvhPackedNode>();
+  const gpu::BvhFrame frame = builder.frames().download<gpu::BvhFrame>().at(0);
+  const gpu::BvhFrame expected = bvh::frameOf(bvh::boundsOf(exact.at(0)));
+  EXPECT_EQ(frame.origin, expected.origin) << what;
+  EXPECT_EQ(frame.step, expected.step) << what;
+  for (std::vector<uint32_t> stack{0u}; !stack.empty();) {
+    const uint32_t index = stack.back();
+    stack.pop_back();
+    const gpu::BvhNode node = exact.at(index);
+    const gpu::BvhPackedNode want = bvh::packNode(node, expected), got = packed.at(index);
+    ASSERT_TRUE(got.x == want.x && got.y == want.y && got.z == want.z && got.leftOrFirstCount == want.leftOrFirstCount)
+        << what << ", node " << index;
+    if (node.count == 0) stack.insert(stack.end(), {node.leftOrFirst, node.leftOrFirst + 1});
+  }
+  const bvh::Bvh tree = builder.download(0);
+  EXPECT_EQ(bvh::test::structuralProblem(tree, boxes, HMB_BVH_MAX_INSTANCE_LEAF), "") << what;
+  EXPECT_LE(levelsBelowRoot(tree), HMB_BVH_MAX_DEPTH) << what;
+}
+
+// A top level whose still instances' tree is kept and whose moving ones are inserted into it
+// (passes::BvhBuildPass::recordKeptWithInsertions), in both shapes (the kept tree one small
+// task, the CPU top level's; or split in levels): sound, packed as the host packs, its SAH
+// cost near a build over all. Inserted again from moved boxes (recordInsertionsAgain), the
+// kept tree's exact nodes are restored as they were built, and the moved ones are in.
+TEST_F(DeviceBvh, AKeptTreeTakesInsertionsAndTakesThemAgainFromMovedBoxes) {
+  const uint32_t n = 300, kept = n - HMB_BVH_MAX_INSERTED;
+  std::vector<uint32_t> order(n);
+  for (uint32_t i = 0; i < n; ++i) order[i] = (i * 7u + 3u) % n;  // kept and inserted primitives interleave
+  const std::vector<Aabb> boxes = bvh::triangleBounds(bvh::test::randomSoup(n, 0.1f, 72).view()).bounds;
+  std::vector<Aabb> moved = boxes;
+  const std::vector<Aabb> elsewhere = bvh::triangleBounds(bvh::test::randomSoup(n, 0.1f, 73).view()).bounds;
+  for (uint32_t k = kept; k < n; ++k) moved[order[k]] = {elsewhere[k].min * 1.5f, elsewhere[k].max * 1.5f};
+  const passes::BvhBuildShape shapes[] = {{HMB_BVH_LEVEL_GROUP, true, HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU}, {}};
+  for (const passes::BvhBuildShape& shape : shapes) {
+    const std::string what = shape.describe();
+    passes::BvhBuildPass builder(context(), "kept", HMB_BVH_MAX_INSTANCE_LEAF, shape);
+    const vk::Buffer first = vk::uploadedBuffer(context(), passes::bvhBoxes(boxes), "boxes");
+    vk::FrameRecorder frame(context());
+    frame.begin();
+    builder.recordKeptWithInsertions(frame, "kept", first, order, kept);
+    frame.submitAndWait();
+    builder.readRecordedCounts();
+    ASSERT_TRUE(builder.hasInsertions());
+    expectInserted(builder, boxes, what + ", first insertions");
+    std::vector<glm::vec3> centres;
+    for (const Aabb& box : boxes) centres.push_back(box.center());
+    const double ratio = bvh::sahCost(builder.download(0)) / bvh::sahCost(bvh::buildReferenceSah(boxes, centres));
+    std::printf("[ device   ] %s: %u kept, %u inserted: SAH %.3fx the full sweep's over all\n", what.c_str(), kept, n - kept,
+                ratio);
+    EXPECT_LE(ratio, 1.3) << what;
+
+    const vk::Buffer second = vk::uploadedBuffer(context(), passes::bvhBoxes(moved), "moved boxes");
+    frame.begin();
+    builder.recordInsertionsAgain(frame, "kept", second);
+    frame.submitAndWait();
+    builder.readRecordedCounts();
+    expectInserted(builder, moved, what + ", inserted again");
+    EXPECT_THROW(builder.compact(frame), Error) << what;
   }
 }
 

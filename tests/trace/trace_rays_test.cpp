@@ -440,6 +440,9 @@ class TwoLevelScene : public TraceRays {
                                {glm::vec4(-3, -1, 1, 0), glm::vec4(1, -1, 1, 0)}});
   }
 
+  // Rays at each of the shutter times set, a third of them ignoring an object, against brute force.
+  void expectRaysMatchBruteForce(const TraceScene& traceScene, std::span<const float> times);
+
   scene::Scene scene_;
   const std::vector<float> times_ = {0.0f, 0.3f, 0.65f, 1.0f};
 };
@@ -475,13 +478,49 @@ TEST_F(TwoLevelScene, RaysAtEachShutterTimeMatchBruteForceWithAndWithoutIgnoredO
   vk::FrameRecorder frame(context());
   TraceScene traceScene(context(), scene_, frame);
   traceScene.setShutterTimes(scene_, times_, frame);
+  EXPECT_FALSE(traceScene.instanceBvh().hasInsertions()) << "a trace scene splits its top level when asked";
+  expectRaysMatchBruteForce(traceScene, times_);
+}
+
+// Split from one still instance on (TraceScene::splitTopLevel): the moving instances inserted
+// into the still one's tree trace as one tree over all. Built for other shutter times, the
+// still one's tree serves these: only the insertions are made again
+// (BvhBuildPass::recordInsertionsAgain), and every ray still finds what brute force finds. Moving
+// the still instance builds it again; a threshold above the still instances builds one tree.
+TEST_F(TwoLevelScene, ASplitTopLevelKeepsTheStillInstancesTreeAndTracesTheSame) {
+  vk::FrameRecorder frame(context());
+  TraceScene traceScene(context(), scene_, frame);
+  traceScene.splitTopLevel(1);
+  EXPECT_EQ(TraceScene::whyNotSplit(scene_, 1), "");
+  traceScene.setShutterTimes(scene_, std::vector<float>{0.8f, 0.9f}, frame);
+  EXPECT_TRUE(traceScene.instanceBvh().hasInsertions()) << "a still instance and three moving ones";
+  EXPECT_FALSE(traceScene.keepsStillInstanceTree());
+  expectRaysMatchBruteForce(traceScene, std::vector<float>{0.8f, 0.9f});
+  EXPECT_TRUE(traceScene.hasStillInstanceTreeOf(scene_));
+  traceScene.setShutterTimes(scene_, times_, frame);
+  EXPECT_TRUE(traceScene.keepsStillInstanceTree());
+  expectRaysMatchBruteForce(traceScene, times_);
+  scene_.nodes[0].local.translation.z += 0.5f;
+  EXPECT_FALSE(traceScene.hasStillInstanceTreeOf(scene_));
+  traceScene.setShutterTimes(scene_, times_, frame);
+  EXPECT_FALSE(traceScene.keepsStillInstanceTree());
+  EXPECT_TRUE(traceScene.instanceBvh().hasInsertions());
+  expectRaysMatchBruteForce(traceScene, times_);
+  traceScene.splitTopLevel(2);
+  EXPECT_NE(TraceScene::whyNotSplit(scene_, 2), "");
+  traceScene.setShutterTimes(scene_, times_, frame);
+  EXPECT_FALSE(traceScene.instanceBvh().hasInsertions());
+  expectRaysMatchBruteForce(traceScene, times_);
+}
+
+void TwoLevelScene::expectRaysMatchBruteForce(const TraceScene& traceScene, std::span<const float> times) {
   std::vector<TriangleMesh> world;  // per time: every instance's triangles, object id = instance
-  std::vector<std::vector<uint32_t>> instanceBase(times_.size());
-  for (size_t k = 0; k < times_.size(); ++k) {
+  std::vector<std::vector<uint32_t>> instanceBase(times.size());
+  for (size_t k = 0; k < times.size(); ++k) {
     TriangleMesh mesh;
     for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
       instanceBase[k].push_back(mesh.triangleCount());
-      mesh.append(scene_.meshes[scene_.instances[i].mesh], scene_.worldMatrixAt(scene_.instances[i].node, times_[k]),
+      mesh.append(scene_.meshes[scene_.instances[i].mesh], scene_.worldMatrixAt(scene_.instances[i].node, times[k]),
                   i);
     }
     world.push_back(std::move(mesh));
@@ -492,7 +531,7 @@ TEST_F(TwoLevelScene, RaysAtEachShutterTimeMatchBruteForceWithAndWithoutIgnoredO
   std::vector<uint32_t> rayTime, rayIgnore;
   const std::vector<Ray> mixed = bvh::test::mixedRays(world[0], 3000, 31);
   for (size_t r = 0; r < mixed.size(); ++r) {
-    const auto k = static_cast<uint32_t>(r % times_.size());
+    const auto k = static_cast<uint32_t>(r % times.size());
     const uint32_t ignore = r % 3 == 0 ? static_cast<uint32_t>(rng() % scene_.instances.size()) : HMB_IGNORE_NONE;
     rays.push_back(traceRay(mixed[r], k, ignore == HMB_IGNORE_NONE ? HMB_IGNORE_NONE : 10 + ignore));
     hostRays.push_back(mixed[r]);
