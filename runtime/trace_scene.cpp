@@ -249,10 +249,6 @@ void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const fl
   treeRecorded_ = false;
 }
 
-uint32_t TraceScene::stillInstancesToSplit(const vk::Context& context) {
-  return context.info().type == "cpu" ? 128u : 0u;
-}
-
 std::string TraceScene::whyNotSplit(const scene::Scene& scene, uint32_t stillInstances) {
   if (stillInstances == 0) return "one tree over all instances: this renderer does not split its top level";
   const uint32_t still = stillFirstOrder(scene).second;

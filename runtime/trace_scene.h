@@ -51,11 +51,14 @@ class TraceScene {
   // moving ones are inserted into it again in each (passes::BvhBuildPass::recordKeptWithInsertions).
   // 0 (the default) builds one tree over all in every frame.
   void splitTopLevel(uint32_t stillInstances) { splitFrom_ = stillInstances; }
-  // The fewest still instances for which the split pays on this device: on a CPU device one
-  // invocation builds the top level, in time growing as n log n (bistro's 321 instances about
-  // 1 ms), where the insertions are one dispatch; on a GPU the build's levels cost microseconds
-  // and one lane's walks down the tree wait on memory at every level: 0, never split.
-  static uint32_t stillInstancesToSplit(const vk::Context& context);
+  // The fewest still instances for which a renderer splits. On a CPU device one invocation
+  // builds the top level, in time growing as n log n (bistro's 321 instances about 1 ms of a
+  // frame's 1.5 ms top level; temple's 30 0.13 ms), where the insertions are one dispatch, which
+  // costs the traces a little (the moving ones sit where they were inserted, not where a build
+  // would put them: bistro's reveal about 3% slower). On a GPU an NVIDIA H200 spent 4.8 ms of
+  // bistro's frame on the build's levels (bench/results/nvidia-h200/), where the insertions are
+  // one workgroup's walks down some 15 levels each (not measured on a GPU).
+  static constexpr uint32_t kStillInstancesToSplit = 128;
   // Why `scene`'s top level is not split at that threshold (empty: it is).
   static std::string whyNotSplit(const scene::Scene& scene, uint32_t stillInstances);
 

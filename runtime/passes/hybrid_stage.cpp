@@ -73,7 +73,7 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
   else
     plan.run(kBvhInstances);
   // Only a split top level has the still instances' tree (scene setup, as the mesh trees).
-  if (TraceScene::whyNotSplit(scene, TraceScene::stillInstancesToSplit(context_)).empty()) {
+  if (TraceScene::whyNotSplit(scene, TraceScene::kStillInstancesToSplit).empty()) {
     if (sameMeshes && traceScene_->hasStillInstanceTreeOf(scene))
       plan.skip(kBvhStillInstances, "the still instances' tree of an earlier frame serves this one");
     else
@@ -115,7 +115,7 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   if (plan.runs(TraceScene::kRefit))
     vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
   buildsInstanceTree_ = plan.runs(kBvhInstances);
-  traceScene_->splitTopLevel(TraceScene::stillInstancesToSplit(context_));
+  traceScene_->splitTopLevel(TraceScene::kStillInstancesToSplit);
   if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, times);
   if (buildsInstanceTree_ && plan.runs(kBvhStillInstances) && !traceScene_->keepsStillInstanceTree()) {
     const double ms = traceScene_->buildStillInstanceTree(frame);
