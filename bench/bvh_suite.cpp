@@ -257,6 +257,24 @@ void measureTopLevel(const vk::Context& context, const scene::Scene& source, con
   const size_t at = medianBuild(builds, c.topLevelMilliseconds);
   c.topLevelLevelMilliseconds = levels.at(at);
   c.topLevelSmallTaskMilliseconds = smallTaskMs.at(at);
+
+  if (!TraceScene::whyNotSplit(source, TraceScene::kStillInstancesToSplit).empty()) return;
+  const auto [order, still] = TraceScene::stillFirstOrder(source);
+  passes::BvhBuildPass kept(context, "bench kept top level", HMB_BVH_MAX_INSTANCE_LEAF,
+                            passes::BvhBuildShape::forTopLevel(context));
+  vk::FrameRecorder frame(context);
+  frame.begin();
+  kept.recordKeptWithInsertions(frame, "bench kept top level", boxes, order, still);
+  frame.submitAndWait();
+  std::vector<double> insertions;
+  for (int i = 0; i < options.warmup + options.repeats; ++i) {
+    frame.begin();
+    kept.recordInsertionsAgain(frame, "bench insertions", boxes);
+    const std::optional<double> ms = frame.submitAndWait().frameMilliseconds;
+    if (i >= options.warmup) insertions.push_back(ms.value_or(0.0));
+  }
+  c.topLevelInserted = c.instances - still;
+  c.topLevelInsertionMilliseconds = summarize(insertions);
 }
 }  // namespace
 
@@ -411,7 +429,11 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
                                             {"device_ms", summaryJson(c.topLevelMilliseconds)},
                                             {"device_level_ms", c.topLevelLevelMilliseconds},
                                             {"device_small_tasks", c.topLevelSmallTasks},
-                                            {"device_small_task_ms", c.topLevelSmallTaskMilliseconds}}}};
+                                            {"device_small_task_ms", c.topLevelSmallTaskMilliseconds},
+                                            {"inserted", c.topLevelInserted},
+                                            {"insertion_ms", c.topLevelInserted == 0
+                                                                 ? nlohmann::json()
+                                                                 : summaryJson(c.topLevelInsertionMilliseconds)}}}};
 }
 
 void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
@@ -435,8 +457,8 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
   if (std::any_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.instances >= 2; })) {
     out << "\nThe top-level tree over each scene's instances (the same builder, a frame's top level):\n\n"
         << "| scene | instances | device build ms | levels (their ms) | small tasks (their ms) | the rest ms (begin, "
-           "dispatch sizing, gaps) |\n"
-        << "|---|---:|---:|---:|---:|---:|\n";
+           "dispatch sizing, gaps) | moving ones inserted into the still ones' kept tree ms |\n"
+        << "|---|---:|---:|---:|---:|---:|---:|\n";
     for (const BvhCase& c : cases) {
       if (c.instances < 2) continue;
       double levelMs = 0.0;
@@ -444,7 +466,11 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
       out << "| " << c.scene << " | " << c.instances << " | " << std::setprecision(2) << c.topLevelMilliseconds.median
           << " | " << c.topLevelLevelMilliseconds.size() << " (" << levelMs << ") | " << c.topLevelSmallTasks << " ("
           << c.topLevelSmallTaskMilliseconds << ") | "
-          << c.topLevelMilliseconds.median - levelMs - c.topLevelSmallTaskMilliseconds << " |\n";
+          << c.topLevelMilliseconds.median - levelMs - c.topLevelSmallTaskMilliseconds << " | ";
+      if (c.topLevelInserted == 0)
+        out << "not split |\n";
+      else
+        out << c.topLevelInserted << " (" << c.topLevelInsertionMilliseconds.median << ") |\n";
     }
   }
   if (std::none_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.anchorMeasured; })) return;

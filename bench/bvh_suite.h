@@ -93,6 +93,10 @@ struct BvhCase {
   std::vector<double> topLevelLevelMilliseconds;  // of the median build
   uint32_t topLevelSmallTasks = 0;
   double topLevelSmallTaskMilliseconds = 0;  // of the median build
+  // Where the hybrid splits the top level (TraceScene::splitTopLevel): the moving instances
+  // inserted into the still ones' kept tree, as each frame does (0 inserted: not split).
+  uint32_t topLevelInserted = 0;
+  Summary topLevelInsertionMilliseconds;
 };
 
 // Why the suite leaves out the driver's ray queries on this context ("" when it runs them).

@@ -51,20 +51,6 @@ bool sameInstances(const std::vector<gpu::TraceInstance>& a, const std::vector<g
          });
 }
 
-// The top level's order of the instances: the still ones first (no animation above their node
-// and no deformation: their boxes are the same in every frame), then the moving ones; and how
-// many are still.
-std::pair<std::vector<uint32_t>, uint32_t> stillFirstOrder(const scene::Scene& scene) {
-  std::vector<uint32_t> order, moving;
-  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-    const scene::Instance& instance = scene.instances[i];
-    (instance.deforms() || scene.isAnimated(instance.node) ? moving : order).push_back(i);
-  }
-  const auto still = static_cast<uint32_t>(order.size());
-  order.insert(order.end(), moving.begin(), moving.end());
-  return {std::move(order), still};
-}
-
 // The still instances' records and transforms (the same at every time), in `order`'s first
 // `still` places: what their tree is built from.
 void stillRecords(const scene::Scene& scene, std::span<const uint32_t> order, uint32_t still,
@@ -247,6 +233,19 @@ void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const fl
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
   treeRecorded_ = false;
+}
+
+// Still: no animation above the instance's node and no deformation, so its box is the same in
+// every frame.
+std::pair<std::vector<uint32_t>, uint32_t> TraceScene::stillFirstOrder(const scene::Scene& scene) {
+  std::vector<uint32_t> order, moving;
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const scene::Instance& instance = scene.instances[i];
+    (instance.deforms() || scene.isAnimated(instance.node) ? moving : order).push_back(i);
+  }
+  const auto still = static_cast<uint32_t>(order.size());
+  order.insert(order.end(), moving.begin(), moving.end());
+  return {std::move(order), still};
 }
 
 std::string TraceScene::whyNotSplit(const scene::Scene& scene, uint32_t stillInstances) {

@@ -14,6 +14,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "kernels/trace/trace_layout.h"
@@ -59,6 +60,8 @@ class TraceScene {
   // bistro's frame on the build's levels (bench/results/nvidia-h200/), where the insertions are
   // one workgroup's walks down some 15 levels each (not measured on a GPU).
   static constexpr uint32_t kStillInstancesToSplit = 128;
+  // The instances in the split's order, the still ones first, and how many are still.
+  static std::pair<std::vector<uint32_t>, uint32_t> stillFirstOrder(const scene::Scene& scene);
   // Why `scene`'s top level is not split at that threshold (empty: it is).
   static std::string whyNotSplit(const scene::Scene& scene, uint32_t stillInstances);
 

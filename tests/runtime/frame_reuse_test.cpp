@@ -81,7 +81,7 @@ TEST_F(FrameReuseTest, MovingInstancesRebuildTheTopLevelOnly) {
   expectSameImage(after, renderHybrid(fresh, temple, second));
 }
 
-// Bistro's tray and fan move among 311 still instances: the first frame builds the still ones'
+// Bistro's tray and fan move among 315 still instances: the first frame builds the still ones'
 // tree as scene setup (TraceScene::splitTopLevel), and the next keeps it and inserts the moving
 // ones alone, to the image a fresh renderer makes.
 TEST_F(FrameReuseTest, MovingInstancesAmongStillOnesAreInsertedIntoTheKeptTree) {
