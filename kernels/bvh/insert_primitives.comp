@@ -5,12 +5,12 @@
 // passes growing to take it in, to the child whose area it enlarges least (the smaller on a
 // tie), down to a leaf, which moves to a new pair of nodes beside the inserted primitive's leaf
 // and becomes their parent; then every node is packed again in the frame of the new root box
-// (tree 0's). Going down to a leaf served bistro's reveal rays better than stopping where a
-// new node costs less surface area than going on (Goldsmith and Salmon's greedy insertion:
-// the reveal 3% slower in alternated runs). The kept tree's nodes are packed on each insertion
-// because the root's box, and so the frame, moves with the inserted boxes. Each insertion
-// deepens the tree by at most a level: the host keeps the kept tree's depth bound and the
-// insertions within HMB_BVH_MAX_DEPTH.
+// (tree 0's). Stopping higher, where a new node costs less surface area than going on
+// (Goldsmith and Salmon's greedy insertion), traced bistro's reveal no faster (within the
+// spread of alternated runs: bench/results/top-level-insertion/). The kept tree's nodes are
+// packed on each insertion because the root's box, and so the frame, moves with the inserted
+// boxes. Each insertion deepens the tree by at most a level: the host keeps the kept tree's
+// depth bound and the insertions within HMB_BVH_MAX_DEPTH.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "bvh_build_common.glsl"
