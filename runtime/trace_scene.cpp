@@ -190,14 +190,19 @@ bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const floa
 
 void TraceScene::setShutterTimes(const scene::Scene& scene, std::span<const float> times, vk::FrameRecorder& frame) {
   stageShutterTimes(scene, times);
+  buildStagedTree(frame, kInstanceTree);
+}
+
+double TraceScene::buildStagedTree(vk::FrameRecorder& frame, std::string_view pass) {
   // This path waits anyway: the transforms (a batch of shutter times can be megabytes) go
   // through the buffers' own writes, not the command buffer.
   instances_.upload(std::span<const gpu::TraceInstance>(builtInstances_));
   transforms_.upload(std::span<const gpu::InstanceTransform>(builtTransforms_));
   frame.begin();
-  recordInstanceTree(frame, kInstanceTree);
-  const vk::FrameTimings timings = frame.submitAndWait();
-  instanceBvh_.readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
+  recordInstanceTree(frame, pass);
+  const double milliseconds = frame.submitAndWait().frameMilliseconds.value_or(0.0);
+  instanceBvh_.readRecordedCounts(milliseconds);
+  return milliseconds;
 }
 
 void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const float> times) {
@@ -256,10 +261,12 @@ std::string TraceScene::whyNotSplit(const scene::Scene& scene, uint32_t stillIns
   if (still < stillInstances)
     return std::to_string(still) + " still instances, fewer than the " + std::to_string(stillInstances) +
            " for which keeping their tree pays on this device: one tree over all";
-  if (moving > HMB_BVH_MAX_INSERTED ||
-      passes::BvhBuildPass::firstSubmissionLevels(still) + moving > HMB_BVH_MAX_DEPTH)
+  if (moving > HMB_BVH_MAX_INSERTED)
     return std::to_string(moving) + " moving instances, more than are inserted into a kept tree (" +
            std::to_string(HMB_BVH_MAX_INSERTED) + "): one tree over all";
+  if (passes::BvhBuildPass::firstSubmissionLevels(still) + moving > HMB_BVH_MAX_DEPTH)
+    return std::to_string(moving) + " insertions could take the still instances' tree deeper than traversal's " +
+           std::to_string(HMB_BVH_MAX_DEPTH) + " levels: one tree over all";
   return "";
 }
 
@@ -275,14 +282,9 @@ bool TraceScene::hasStillInstanceTreeOf(const scene::Scene& scene) const {
 double TraceScene::buildStillInstanceTree(vk::FrameRecorder& frame) {
   if (topOrder_.empty() || timeCount_ == 0)
     throw Error("the trace scene's still instances' tree was built without a staged split top level");
-  instances_.upload(std::span<const gpu::TraceInstance>(builtInstances_));
-  transforms_.upload(std::span<const gpu::InstanceTransform>(builtTransforms_));
-  frame.begin();
-  recordInstanceTree(frame, kStillInstanceTree);
-  const vk::FrameTimings timings = frame.submitAndWait();
-  instanceBvh_.readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
-  keepsStillTree_ = true;  // the frames of this staging rebuild the moving ones' tree alone
-  return timings.frameMilliseconds.value_or(0.0);
+  const double milliseconds = buildStagedTree(frame, kStillInstanceTree);
+  keepsStillTree_ = true;  // the frames of this staging insert the moving ones alone
+  return milliseconds;
 }
 
 void TraceScene::recordStagedShutterTimes(vk::FrameRecorder& frame, std::string_view pass) {

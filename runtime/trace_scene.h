@@ -3,9 +3,8 @@
 // at a frame's shutter times under a top-level BVH over their motion bounds, rebuilt on the
 // device whenever an instance's transform at those times changes. A renderer keeps one trace
 // scene across frames: its mesh trees serve every frame of the same meshes, and its top
-// level every frame in which no instance moved; where only some move, the top level's tree
-// over the still ones serves too, and only the moving ones' is built again, under a root
-// joining the two.
+// level every frame in which no instance moved; where most stand still and a few move, the
+// top level's tree over the still ones serves too, and the moving ones are inserted into it.
 #pragma once
 
 #include <cstdint>
@@ -138,6 +137,9 @@ class TraceScene {
  private:
   // The instances' motion bounds and the top level's build, from the transforms on the device.
   void recordInstanceTree(vk::FrameRecorder& frame, std::string_view pass);
+  // The staged instances and transforms uploaded and their tree built, waited for; returns the
+  // device milliseconds.
+  double buildStagedTree(vk::FrameRecorder& frame, std::string_view pass);
 
   const vk::Context& context_;
   vk::ComputeKernel triangleBoundsKernel_;

@@ -12,8 +12,13 @@
 layout(binding = HMB_BUILD_BINDING_BOXES) uniform utextureBuffer boxTexels;
 layout(std430, binding = HMB_BUILD_BINDING_ROOTS) readonly buffer Roots { uvec2 roots[]; };
 layout(std430, binding = HMB_BUILD_BINDING_PRIMITIVES) buffer Primitives { uint primitives[]; };
-layout(std430, binding = HMB_BUILD_BINDING_NODES) buffer Nodes { BvhNode nodes[]; };
-layout(std430, binding = HMB_BUILD_BINDING_TASKS) buffer Tasks {
+// A kernel whose lanes read, within one dispatch, what others wrote (insert_primitives) defines
+// HMB_BVH_BUILD_COHERENT as `coherent` before including this file.
+#ifndef HMB_BVH_BUILD_COHERENT
+#define HMB_BVH_BUILD_COHERENT
+#endif
+layout(std430, binding = HMB_BUILD_BINDING_NODES) HMB_BVH_BUILD_COHERENT buffer Nodes { BvhNode nodes[]; };
+layout(std430, binding = HMB_BUILD_BINDING_TASKS) HMB_BVH_BUILD_COHERENT buffer Tasks {
   BvhBuildCounters counters;
   BvhBuildTask tasks[];
 };

@@ -13,6 +13,8 @@
 // depth bound and the insertions within HMB_BVH_MAX_DEPTH.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
+// The lanes read the nodes and the node count that others wrote before a barrier.
+#define HMB_BVH_BUILD_COHERENT coherent
 #include "bvh_build_common.glsl"
 
 layout(local_size_x = HMB_BVH_PACK_GROUP) in;

@@ -139,7 +139,8 @@ class BvhBuildPass {
   // most HMB_BVH_MAX_INSERTED (kernels/bvh/insert_primitives.comp); recordInsertionsAgain
   // restores the kept tree and inserts the rest again from new boxes (the kept primitives'
   // boxes as they were). One dispatch, where a build of hundreds of primitives is one
-  // invocation's work on a CPU device. Such a tree is not refitted or compacted.
+  // invocation's work on a CPU device. Such a tree is not refitted or compacted; stats() gives
+  // its node count with the insertions, its leaf and level counts as the kept tree's build.
   void recordKeptWithInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
                                 std::span<const uint32_t> order, uint32_t kept,
                                 const std::function<void(vk::FrameRecorder&)>& before = {});
