@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <string>
+#include <tuple>
 
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
@@ -49,20 +50,6 @@ bool sameInstances(const std::vector<gpu::TraceInstance>& a, const std::vector<g
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
            return x.mesh == y.mesh && x.objectId == y.objectId && x.flags == y.flags;
          });
-}
-
-// The still instances' records and transforms (the same at every time), in `order`'s first
-// `still` places: what their tree is built from.
-void stillRecords(const scene::Scene& scene, std::span<const uint32_t> order, uint32_t still,
-                  std::vector<gpu::TraceInstance>& instances, std::vector<gpu::InstanceTransform>& transforms) {
-  std::vector<gpu::TraceInstance> all;
-  std::vector<gpu::InstanceTransform> allTransforms;
-  const float time = 0.0f;
-  instancesAt(scene, std::span(&time, 1), all, allTransforms);
-  for (uint32_t k = 0; k < still; ++k) {
-    instances.push_back(all.at(order[k]));
-    transforms.push_back(allTransforms.at(order[k]));
-  }
 }
 
 bool sameTransforms(const std::vector<gpu::InstanceTransform>& a, const std::vector<gpu::InstanceTransform>& b) {
@@ -223,18 +210,10 @@ void TraceScene::stageShutterTimes(const scene::Scene& scene, std::span<const fl
   fit(instanceBoxes_, slots * sizeof(gpu::BvhBox), "instance boxes");
   // Where enough instances stand still and others move, the still ones' tree is kept from the
   // frame that built it, so long as they are the same instances with the same transforms.
-  auto [order, still] = stillFirstOrder(scene);
-  const bool split = whyNotSplit(scene, splitFrom_).empty();
-  std::vector<gpu::TraceInstance> stillInstances;
-  std::vector<gpu::InstanceTransform> stillTransforms;
-  if (split) stillRecords(scene, order, still, stillInstances, stillTransforms);
-  keepsStillTree_ = split && stillTreeRecorded_ && order == topOrder_ && sameInstances(stillInstances, stillInstances_) &&
-                    sameTransforms(stillTransforms, stillTransforms_);
+  StillPart still = whyNotSplit(scene, splitFrom_).empty() ? stillPartOf(scene) : StillPart{};
+  keepsStillTree_ = !still.order.empty() && servesStill(still);
   if (!keepsStillTree_) stillTreeRecorded_ = false;  // until this frame's split build is recorded
-  topOrder_ = split ? std::move(order) : std::vector<uint32_t>{};
-  stillCount_ = split ? still : 0u;
-  stillInstances_ = std::move(stillInstances);
-  stillTransforms_ = std::move(stillTransforms);
+  still_ = std::move(still);
   builtInstances_ = std::move(instances);
   builtTransforms_ = std::move(transforms);
   treeRecorded_ = false;
@@ -270,17 +249,31 @@ std::string TraceScene::whyNotSplit(const scene::Scene& scene, uint32_t stillIns
   return "";
 }
 
-bool TraceScene::hasStillInstanceTreeOf(const scene::Scene& scene) const {
-  if (!stillTreeRecorded_ || !whyNotSplit(scene, splitFrom_).empty()) return false;
-  const auto [order, still] = stillFirstOrder(scene);
+TraceScene::StillPart TraceScene::stillPartOf(const scene::Scene& scene) {
+  StillPart part;
+  std::tie(part.order, part.count) = stillFirstOrder(scene);
   std::vector<gpu::TraceInstance> instances;
   std::vector<gpu::InstanceTransform> transforms;
-  stillRecords(scene, order, still, instances, transforms);
-  return order == topOrder_ && sameInstances(instances, stillInstances_) && sameTransforms(transforms, stillTransforms_);
+  const float time = 0.0f;  // the same at every time
+  instancesAt(scene, std::span(&time, 1), instances, transforms);
+  for (uint32_t k = 0; k < part.count; ++k) {
+    part.instances.push_back(instances.at(part.order[k]));
+    part.transforms.push_back(transforms.at(part.order[k]));
+  }
+  return part;
+}
+
+bool TraceScene::servesStill(const StillPart& part) const {
+  return stillTreeRecorded_ && part.order == still_.order && sameInstances(part.instances, still_.instances) &&
+         sameTransforms(part.transforms, still_.transforms);
+}
+
+bool TraceScene::hasStillInstanceTreeOf(const scene::Scene& scene) const {
+  return whyNotSplit(scene, splitFrom_).empty() && servesStill(stillPartOf(scene));
 }
 
 double TraceScene::buildStillInstanceTree(vk::FrameRecorder& frame) {
-  if (topOrder_.empty() || timeCount_ == 0)
+  if (still_.order.empty() || timeCount_ == 0)
     throw Error("the trace scene's still instances' tree was built without a staged split top level");
   const double milliseconds = buildStagedTree(frame, kStillInstanceTree);
   keepsStillTree_ = true;  // the frames of this staging insert the moving ones alone
@@ -310,13 +303,13 @@ void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view p
   // invocation built bistro's 321 instances in about 1 ms).
   if (keepsStillTree_) {
     instanceBvh_.recordInsertionsAgain(frame, pass, instanceBoxes_, motionBounds);
-  } else if (!topOrder_.empty()) {
-    instanceBvh_.recordKeptWithInsertions(frame, pass, instanceBoxes_, topOrder_, stillCount_, motionBounds);
+  } else if (!still_.order.empty()) {
+    instanceBvh_.recordKeptWithInsertions(frame, pass, instanceBoxes_, still_.order, still_.count, motionBounds);
   } else {
     const glm::uvec2 root(0u, instanceCount_);
     instanceBvh_.record(frame, pass, instanceBoxes_, instanceCount_, std::span(&root, 1), motionBounds);
   }
-  stillTreeRecorded_ = !topOrder_.empty();
+  stillTreeRecorded_ = !still_.order.empty();
   treeRecorded_ = true;  // only once the whole build is recorded
 }
 

@@ -158,13 +158,20 @@ class TraceScene {
   std::vector<gpu::InstanceTransform> builtTransforms_;
   bool treeRecorded_ = false;  // a build of the staged instances was recorded (or built)
   // The top level's split (splitTopLevel): the instances, still ones first (empty: one tree
-  // over all), how many are still, and what the still ones' tree was last built from.
-  // keepsStillTree_: the staged frame inserts the moving ones into the kept tree alone.
-  std::vector<uint32_t> topOrder_;
-  uint32_t stillCount_ = 0;
+  // over all), how many are still, and the still ones' records and transforms (the same at
+  // every time), which their tree is built from.
+  struct StillPart {
+    std::vector<uint32_t> order;
+    uint32_t count = 0;
+    std::vector<gpu::TraceInstance> instances;
+    std::vector<gpu::InstanceTransform> transforms;
+  };
+  static StillPart stillPartOf(const scene::Scene& scene);
+  // Whether the still tree last recorded was built from `part`.
+  bool servesStill(const StillPart& part) const;
+  StillPart still_;  // the staged frame's (empty order: not split)
   uint32_t splitFrom_ = 0;  // splitTopLevel
-  std::vector<gpu::TraceInstance> stillInstances_;
-  std::vector<gpu::InstanceTransform> stillTransforms_;
+  // keepsStillTree_: the staged frame inserts the moving ones into the kept tree alone.
   bool stillTreeRecorded_ = false;
   bool keepsStillTree_ = false;
   vk::Buffer leafTriangles_;  // per triangle in the leaves' order: 3 vec4 (vertex xyz, index bits)
