@@ -164,6 +164,23 @@ TEST_F(HybridEdgeMaskTest, MatchesReferenceWhateverTheRangeClampBesideTheTileSiz
   }
 }
 
+// The tile-max's test visits each tile's pixels HMB_TILE_MAX_GROUP_X / _Y apart: tiles under, at
+// and over a lane's single visit (8), odd and even, up to more than 64 visits a lane, list what
+// the reference lists.
+TEST_F(HybridEdgeMaskTest, ListsTheReferencesCandidatesWhateverTheTileSize) {
+  std::mt19937 rng(47);
+  MaskLayer layer = randomMaskLayer(157, 93, rng);
+  std::uniform_real_distribution<float> component(-12.0f, 12.0f);
+  for (glm::vec2& v : layer.velocity) v = {component(rng), component(rng)};
+  for (const uint32_t tileSize : {1u, 7u, 8u, 41u, 48u, 64u, 65u, 100u}) {
+    RayMaskParameters p = parametersWith(0.9f);
+    p.blur.tileSize = tileSize;
+    const std::vector<bool> listed = edgeCandidates(layer, p);
+    EXPECT_GT(std::count(listed.begin(), listed.end(), true), 200) << "tile " << tileSize;
+    expectEdgesMatch(layer, p, "tile " + std::to_string(tileSize));
+  }
+}
+
 TEST_F(HybridEdgeMaskTest, MatchesReferenceOnOnePixelImages) {
   // A lone pixel ends on itself: never a different object, never an edge.
   MaskLayer layer{1, 1, {glm::vec4(0, 0, 1, 2.0f)}, {glm::vec2(5.0f, -3.0f)}, {4u}};
