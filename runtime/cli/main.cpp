@@ -488,6 +488,72 @@ int render(const GlobalOptions& global, RenderOptions options) {
   return validationVerdict(context);
 }
 
+// A method's warm frame time and its blur-region PSNR against the reference.
+struct CostAndGain {
+  std::optional<double> frameMs;
+  std::optional<double> regionPsnr;
+};
+
+CostAndGain costAndGain(const TimedRender& timed, const hmb::metrics::Comparison& comparison) {
+  CostAndGain c{timed.medianMs(), std::nullopt};
+  if (comparison.region && std::isfinite(comparison.region->psnr)) c.regionPsnr = comparison.region->psnr;
+  return c;
+}
+
+struct HybridSettingsReport {
+  nlohmann::json json;
+  std::string line;  // one line for stdout
+};
+
+// The hybrid with and without its shutter rays, each frame over post-process's and its
+// blur-region PSNR over post-process's, from `measured` (postprocess, hybrid,
+// hybrid-without-shutter-rays).
+HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGain>& measured) {
+  const CostAndGain& post = measured.at("postprocess");
+  const auto over = [](const std::optional<double>& a, const std::optional<double>& b, bool ratio) {
+    if (!a || !b || (ratio && !(*b > 0.0))) return std::optional<double>();
+    return std::optional<double>(ratio ? *a / *b : *a - *b);
+  };
+  HybridSettingsReport out;
+  out.json = {{"what", "the hybrid's shutter rays, its higher setting, beside the paper's method: each frame over "
+                       "post-process's and its blur-region PSNR against the reference over post-process's, "
+                       "measured in this run"},
+              {"postprocess", {{"frame_ms", hmb::optionalNumber(post.frameMs)},
+                               {"blur_region_psnr_db", hmb::optionalNumber(post.regionPsnr)}}},
+              {"settings", nlohmann::json::array()}};
+  const uint32_t defaultRays = hmb::passes::HybridSettings{}.shutterRays;
+  out.line = "hybrid settings:";
+  for (const auto& [method, setting] :
+       {std::pair<const char*, std::string>{"hybrid-without-shutter-rays", "--shutter-rays 0 (the paper's method)"},
+        {"hybrid", "--shutter-rays " + std::to_string(defaultRays) + " (the default)"}}) {
+    const CostAndGain& m = measured.at(method);
+    const std::optional<double> ratio = over(m.frameMs, post.frameMs, true);
+    const std::optional<double> gain = over(m.regionPsnr, post.regionPsnr, false);
+    out.json["settings"].push_back({{"setting", setting},
+                                    {"frame_ms", hmb::optionalNumber(m.frameMs)},
+                                    {"x_postprocess", hmb::optionalNumber(ratio)},
+                                    {"blur_region_psnr_db", hmb::optionalNumber(m.regionPsnr)},
+                                    {"over_postprocess_db", hmb::optionalNumber(gain)}});
+    char text[200];
+    std::snprintf(text, sizeof(text), " %s %.2fx post-process's frame, %+.1f dB over it in the blur region;",
+                  setting.c_str(), ratio.value_or(NAN), gain.value_or(NAN));
+    out.line += text;
+  }
+  // What the rays buy over the paper's method, and for how much more time.
+  const CostAndGain& paper = measured.at("hybrid-without-shutter-rays");
+  const CostAndGain& rays = measured.at("hybrid");
+  const std::optional<double> buys = over(rays.regionPsnr, paper.regionPsnr, false);
+  const std::optional<double> costs = over(rays.frameMs, paper.frameMs, true);
+  out.json["shutter_rays_buy"] = {{"blur_region_db", hmb::optionalNumber(buys)},
+                                  {"x_paper_frame", hmb::optionalNumber(costs)}};
+  char text[120];
+  std::snprintf(text, sizeof(text), " the rays buy %+.1f dB for %.2fx the paper's frame", buys.value_or(NAN),
+                costs.value_or(NAN));
+  out.line.back() = ':';
+  out.line += text;
+  return out;
+}
+
 // The main job: the default scene with every method this build has, images and one report.
 int demo(const GlobalOptions& global, const DemoOptions& options) {
   hmb::cli::prepareOutputFolder(options.outDir, "--out-dir");
@@ -510,6 +576,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
                         [](const std::string& m) { return hmb::parseMethod(m) == hmb::Method::Reference; });
   std::optional<hmb::metrics::DisplayImage> judge, sharp;
   std::map<std::string, hmb::io::CaptionedImage> stripPanels;
+  std::map<std::string, CostAndGain> measured;  // postprocess and hybrid, for the hybrid's settings
   for (const std::string& method : methods) {
     hmb::RenderSettings settings;
     settings.method = hmb::parseMethod(method);
@@ -548,6 +615,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     if (judge && method != "reference") {
       const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*judge, sharp.value_or(display));
       const hmb::metrics::Comparison comparison = hmb::metrics::compareImages(*judge, display, &region);
+      measured[method] = costAndGain(timed, comparison);
       entry["metrics"] = hmb::metrics::metricsJson(comparison);
       hmb::io::writePng(stem.string() + "-error.png", hmb::metrics::errorImage(comparison.flip));
       const std::string metrics = metricsLine(comparison);
@@ -558,6 +626,23 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     }
     report["methods"].push_back(entry);
     if (!global.quiet) std::cout << line << " -> " << stem.string() << ".png\n";
+  }
+  // The hybrid's shutter rays are its higher setting: the paper's method beside it, so the
+  // report says what they cost and what they buy, measured in this run.
+  if (judge && sharp && measured.count("postprocess") && measured.count("hybrid")) {
+    hmb::RenderSettings paper;
+    paper.method = hmb::Method::Hybrid;
+    paper.width = options.width;
+    paper.height = options.height;
+    paper.hybrid.shutterRays = 0u;
+    progress(global, "rendering hybrid --shutter-rays 0 (the paper's method)");
+    const TimedRender timed = renderTimed(renderer, scene, paper, 9);
+    const hmb::metrics::DisplayImage display = hmb::metrics::displayImageFromLayered(timed.result.image);
+    const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*judge, *sharp);
+    measured["hybrid-without-shutter-rays"] = costAndGain(timed, hmb::metrics::compareImages(*judge, display, &region));
+    const HybridSettingsReport settingsReport = hybridSettingsReport(measured);
+    report["hybrid_settings"] = settingsReport.json;
+    if (!global.quiet) std::cout << settingsReport.line << '\n';
   }
   // Side by side, sharp to reference, each captioned with its method, warm time and PSNR
   // against the reference: what a newcomer looks at first.

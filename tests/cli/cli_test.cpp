@@ -228,6 +228,17 @@ TEST(CliTest, DemoWritesImagesAndAReport) {
     EXPECT_TRUE(method["timing"]["median_ms"].is_number()) << method.dump();
     EXPECT_TRUE(method["timing"]["cold_ms"].is_number()) << method.dump();
   }
+  // The hybrid's higher setting (its shutter rays) beside the paper's method, each frame over
+  // post-process's of the same run.
+  const nlohmann::json& settings = report["hybrid_settings"]["settings"];
+  ASSERT_EQ(settings.size(), 2u) << report.dump();
+  EXPECT_EQ(settings[0]["setting"], "--shutter-rays 0 (the paper's method)");
+  EXPECT_EQ(settings[1]["setting"], "--shutter-rays 8 (the default)");
+  for (const auto& setting : settings) {
+    EXPECT_GT(setting["x_postprocess"].get<double>(), 0.0) << setting.dump();
+    EXPECT_GT(setting["frame_ms"].get<double>(), 0.0) << setting.dump();
+  }
+  EXPECT_GT(report["hybrid_settings"]["shutter_rays_buy"]["x_paper_frame"].get<double>(), 0.0) << report.dump();
 }
 
 // The reference with its settings in the report, and another method measured against it.
