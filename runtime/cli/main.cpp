@@ -514,6 +514,13 @@ HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGai
     if (!a || !b || (ratio && !(*b > 0.0))) return std::optional<double>();
     return std::optional<double>(ratio ? *a / *b : *a - *b);
   };
+  // Printed numbers, or what stands for a missing one (no time stamps; an empty blur region).
+  const auto printed = [](const std::optional<double>& value, const char* format, const char* missing) {
+    if (!value) return std::string(missing);
+    char text[32];
+    std::snprintf(text, sizeof(text), format, *value);
+    return std::string(text);
+  };
   HybridSettingsReport out;
   out.json = {{"what", "the hybrid's shutter rays, its higher setting, beside the paper's method: each frame over "
                        "post-process's and its blur-region PSNR against the reference over post-process's, "
@@ -534,10 +541,8 @@ HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGai
                                     {"x_postprocess", hmb::optionalNumber(ratio)},
                                     {"blur_region_psnr_db", hmb::optionalNumber(m.regionPsnr)},
                                     {"over_postprocess_db", hmb::optionalNumber(gain)}});
-    char text[200];
-    std::snprintf(text, sizeof(text), " %s %.2fx post-process's frame, %+.1f dB over it in the blur region;",
-                  setting.c_str(), ratio.value_or(NAN), gain.value_or(NAN));
-    out.line += text;
+    out.line += " " + setting + " " + printed(ratio, "%.2fx", "untimed against") + " post-process's frame, " +
+                printed(gain, "%+.1f dB", "no blur region") + " over it in the blur region;";
   }
   // What the rays buy over the paper's method, and for how much more time.
   const CostAndGain& paper = measured.at("hybrid-without-shutter-rays");
@@ -546,11 +551,9 @@ HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGai
   const std::optional<double> costs = over(rays.frameMs, paper.frameMs, true);
   out.json["shutter_rays_buy"] = {{"blur_region_db", hmb::optionalNumber(buys)},
                                   {"x_paper_frame", hmb::optionalNumber(costs)}};
-  char text[120];
-  std::snprintf(text, sizeof(text), " the rays buy %+.1f dB for %.2fx the paper's frame", buys.value_or(NAN),
-                costs.value_or(NAN));
   out.line.back() = ':';
-  out.line += text;
+  out.line += " the rays buy " + printed(buys, "%+.1f dB", "an unmeasured gain") + " for " +
+              printed(costs, "%.2fx", "an untimed share of") + " the paper's frame";
   return out;
 }
 
