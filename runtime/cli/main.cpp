@@ -488,6 +488,10 @@ int render(const GlobalOptions& global, RenderOptions options) {
   return validationVerdict(context);
 }
 
+// The demo times each method by the median of nine frames: one frame's time moves by a third
+// between runs here.
+constexpr uint32_t kDemoTimedFrames = 9;
+
 // A method's warm frame time and its blur-region PSNR against the reference.
 struct CostAndGain {
   std::optional<double> frameMs;
@@ -510,12 +514,11 @@ struct HybridSettingsReport {
 // hybrid-without-shutter-rays).
 HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGain>& measured) {
   const CostAndGain& post = measured.at("postprocess");
-  const auto over = [](const std::optional<double>& a, const std::optional<double>& b, bool ratio) {
-    if (!a || !b || (ratio && !(*b > 0.0))) return std::optional<double>();
-    return std::optional<double>(ratio ? *a / *b : *a - *b);
-  };
+  using Number = std::optional<double>;
+  const auto ratio = [](const Number& a, const Number& b) { return a && b && *b > 0.0 ? Number(*a / *b) : Number(); };
+  const auto difference = [](const Number& a, const Number& b) { return a && b ? Number(*a - *b) : Number(); };
   // Printed numbers, or what stands for a missing one (no time stamps; an empty blur region).
-  const auto printed = [](const std::optional<double>& value, const char* format, const char* missing) {
+  const auto printed = [](const Number& value, const char* format, const char* missing) {
     if (!value) return std::string(missing);
     char text[32];
     std::snprintf(text, sizeof(text), format, *value);
@@ -534,21 +537,21 @@ HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGai
        {std::pair<const char*, std::string>{"hybrid-without-shutter-rays", "--shutter-rays 0 (the paper's method)"},
         {"hybrid", "--shutter-rays " + std::to_string(defaultRays) + " (the default)"}}) {
     const CostAndGain& m = measured.at(method);
-    const std::optional<double> ratio = over(m.frameMs, post.frameMs, true);
-    const std::optional<double> gain = over(m.regionPsnr, post.regionPsnr, false);
+    const Number times = ratio(m.frameMs, post.frameMs);
+    const Number gain = difference(m.regionPsnr, post.regionPsnr);
     out.json["settings"].push_back({{"setting", setting},
                                     {"frame_ms", hmb::optionalNumber(m.frameMs)},
-                                    {"x_postprocess", hmb::optionalNumber(ratio)},
+                                    {"x_postprocess", hmb::optionalNumber(times)},
                                     {"blur_region_psnr_db", hmb::optionalNumber(m.regionPsnr)},
                                     {"over_postprocess_db", hmb::optionalNumber(gain)}});
-    out.line += " " + setting + " " + printed(ratio, "%.2fx", "untimed against") + " post-process's frame, " +
+    out.line += " " + setting + " " + printed(times, "%.2fx", "untimed against") + " post-process's frame, " +
                 printed(gain, "%+.1f dB", "no blur region") + " over it in the blur region;";
   }
   // What the rays buy over the paper's method, and for how much more time.
   const CostAndGain& paper = measured.at("hybrid-without-shutter-rays");
   const CostAndGain& rays = measured.at("hybrid");
-  const std::optional<double> buys = over(rays.regionPsnr, paper.regionPsnr, false);
-  const std::optional<double> costs = over(rays.frameMs, paper.frameMs, true);
+  const Number buys = difference(rays.regionPsnr, paper.regionPsnr);
+  const Number costs = ratio(rays.frameMs, paper.frameMs);
   out.json["shutter_rays_buy"] = {{"blur_region_db", hmb::optionalNumber(buys)},
                                   {"x_paper_frame", hmb::optionalNumber(costs)}};
   out.line.back() = ':';
@@ -588,9 +591,8 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     settings.reference.samplesPerPixel = options.referenceSpp;
     if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
     progress(global, "rendering " + method);
-    // The median of nine frames: one frame's time moves by a third between runs here. The
-    // reference, seconds long, is timed once.
-    const uint32_t repeat = settings.method == hmb::Method::Reference ? 1 : 9;
+    // The reference, seconds long, is timed once.
+    const uint32_t repeat = settings.method == hmb::Method::Reference ? 1 : kDemoTimedFrames;
     const TimedRender timed = renderTimed(renderer, scene, settings, repeat);
     const hmb::RenderResult& result = timed.result;
     warnCutTraces(global, result);
@@ -639,7 +641,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     paper.height = options.height;
     paper.hybrid.shutterRays = 0u;
     progress(global, "rendering hybrid --shutter-rays 0 (the paper's method)");
-    const TimedRender timed = renderTimed(renderer, scene, paper, 9);
+    const TimedRender timed = renderTimed(renderer, scene, paper, kDemoTimedFrames);
     const hmb::metrics::DisplayImage display = hmb::metrics::displayImageFromLayered(timed.result.image);
     const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*judge, *sharp);
     measured["hybrid-without-shutter-rays"] = costAndGain(timed, hmb::metrics::compareImages(*judge, display, &region));
