@@ -49,6 +49,7 @@ struct GlobalOptions {
   int device = -1;
   bool validation = false;
   bool bindByAddress = false;
+  std::string deviceProfile;  // auto, cpu or gpu; empty: HMB_DEVICE_PROFILE, else auto
   std::string driverFiles;  // run on this unpacked driver (driver_files.h)
 };
 
@@ -173,7 +174,7 @@ nlohmann::json reportHead(const std::string& suite, const std::string& what, con
           {"what", what},
           {"command", command},
           {"date", hmb::utcTimestamp()},
-          {"device", hmb::deviceJson(context.info())},
+          {"device", hmb::deviceJson(context)},
           {"system", hmb::systemJson(system)}};
 }
 
@@ -183,6 +184,8 @@ hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
   options.deviceIndex = global.device;
   options.validation = global.validation;
   options.bindByAddress = global.bindByAddress;
+  options.deviceProfile = global.deviceProfile.empty() ? hmb::vk::deviceProfileChoiceFromEnvironment()
+                                                       : hmb::vk::parseDeviceProfileChoice(global.deviceProfile);
   return options;
 }
 
@@ -225,7 +228,7 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
   deviceOptions.deviceIndex = static_cast<int>(context.info().index);
   const hmb::vk::Context graphicsContext(deviceOptions);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name);
+  progress("device: " + context.info().name + "; profile " + context.profile().describe());
   const std::vector<hmb::bench::RasterCase> cases =
       hmb::bench::runRasterSuite(context, graphicsContext, suite, progress);
 
@@ -278,7 +281,7 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   checkOutputDirectory(options.out);
   const hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name);
+  progress("device: " + context.info().name + "; profile " + context.profile().describe());
   const std::vector<hmb::bench::BvhCase> cases = hmb::bench::runBvhSuite(context, suite, progress);
   hmb::bench::printBvhTable(std::cout, cases);
   if (options.out.empty()) return validationVerdict({&context});
@@ -327,7 +330,7 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
     throw hmb::Error("--reference-dir '" + suite.referenceDir + "' is not a directory");
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name);
+  progress("device: " + context.info().name + "; profile " + context.profile().describe());
   const std::vector<hmb::bench::ErrorTimeScene> scenes = hmb::bench::runErrorTimeSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -370,7 +373,7 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   checkOutputDirectory(options.out);
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name);
+  progress("device: " + context.info().name + "; profile " + context.profile().describe());
   const std::vector<hmb::bench::PassesCase> cases = hmb::bench::runPassesSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -407,7 +410,7 @@ int engine(const GlobalOptions& global, const EngineOptions& options, const std:
   checkOutputDirectory(options.out);
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name);
+  progress("device: " + context.info().name + "; profile " + context.profile().describe());
   const std::vector<hmb::bench::EngineCase> cases = hmb::bench::runEngineSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -446,7 +449,7 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   }
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name);
+  progress("device: " + context.info().name + "; profile " + context.profile().describe());
   const std::vector<hmb::bench::ExplainCase> cases = hmb::bench::runExplainSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -510,6 +513,7 @@ int kernelsOnDrivers(const GlobalOptions& global, const KernelsOptions& options,
     if (global.device >= 0) line += " --device " + std::to_string(global.device);
     if (global.validation) line += " --validation";
     if (global.bindByAddress) line += " --bind-by-address";
+    if (!global.deviceProfile.empty()) line += " --device-profile " + global.deviceProfile;
     if (driver != "default") line += " --driver-files " + shellQuoted(driver);
     line += " kernels --sizes " + commaList(options.sizes) + " --triangles " + commaList(options.suite.triangles) +
             " --rays " + commaList(options.suite.rays) + " --kernels " + commaList(options.suite.kernels) +
@@ -544,7 +548,7 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
   checkOutputDirectory(options.out);
   const hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name);
+  progress("device: " + context.info().name + "; profile " + context.profile().describe());
   const hmb::bench::CpuSample cpuBefore = hmb::bench::sampleCpu();
   const std::vector<hmb::bench::KernelCase> cases = hmb::bench::runKernelsSuite(context, suite, progress);
   const double otherCpuLoad = hmb::bench::otherLoad(cpuBefore, hmb::bench::sampleCpu());
@@ -615,6 +619,10 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& global) {
   app.add_flag("--bind-by-address", global.bindByAddress,
                "Kernels with an address build bind their groups of buffers as tables of device addresses "
                "(default: only where the device has too few storage-buffer bindings)");
+  app.add_option("--device-profile", global.deviceProfile,
+                 "Whose choices the passes make: auto (the device type's), cpu or gpu (forced); default: "
+                 "HMB_DEVICE_PROFILE, else auto")
+      ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
   app.add_option("--driver-files", global.driverFiles,
                  "Run on the Vulkan driver of this ICD manifest or folder (e.g. the one "
                  "scripts/mesa25-lavapipe.sh unpacks), not the installed one");

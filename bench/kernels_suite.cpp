@@ -123,7 +123,7 @@ KernelCase rasterCase(const vk::Context& context, ImageSize size, uint32_t count
   const vk::Buffer instances = vk::uploadedBuffer(context, std::vector{instance}, "bench instance");
   const vk::Buffer visibility(context, passes::RasterizePass::visibilityBytes(size.width, size.height),
                               vk::MemoryUse::Device, "bench visibility");
-  passes::RasterizePass pass(context, passes::defaultVisibilityScheme(context.info()));
+  passes::RasterizePass pass(context, passes::defaultVisibilityScheme(context));
   pass.reserve(count, size.width, size.height);
   const passes::RasterInputs inputs{&triangles, &instances, &clip, count};
   const auto record = [&](vk::FrameRecorder& f) { pass.record(f, inputs, visibility, size.width, size.height); };

@@ -63,6 +63,7 @@ PassesCase caseOf(const MethodRuns& runs, const scene::Scene& scene, const std::
   for (const PlannedPass& pass : runs.last.plan.passes())
     if (!pass.run) c.skipped.emplace_back(pass.name, pass.reason);
   c.peakBytes = runs.peakBytes;
+  c.shape = runs.last.frameShape;
   c.gbufferBytesPerPixel = runs.last.memory.gbufferBytesPerPixel;
   c.bvhAllocatedBytesPerTriangle = runs.last.memory.bvhAllocatedBytesPerTriangle;
   c.bvhBuiltBytesPerTriangle = runs.last.memory.bvhBuiltBytesPerTriangle;
@@ -144,6 +145,7 @@ nlohmann::json passesCaseJson(const PassesCase& c) {
           {"height", c.size.height},
           {"triangles", c.triangles},
           {"frame_ms", summaryJson(c.frameMilliseconds)},
+          {"frame", frameShapeJson(c.shape)},
           {"frame_over_postprocess", c.frameOverPostprocess ? summaryJson(*c.frameOverPostprocess) : nlohmann::json()},
           {"floor_ms", summaryJson(c.floor)},
           {"passes", passes},
@@ -172,9 +174,10 @@ void writePassesCsv(std::ostream& out, const std::vector<PassesCase>& cases) {
 
 void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases, const std::string& context) {
   out << context << "\n\n";
-  out << "| scene | size | method | frame ms | x post-process (per round) | peak device MiB | G-buffer B/pixel "
+  out << "| scene | size | method | frame ms | x post-process (per round) | dispatches (indirect) | barriers | "
+         "host waits | dependent chain | peak device MiB | G-buffer B/pixel "
          "| BVH B/triangle (allocated / built) | mask pixels | reveal rays |\n"
-         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const PassesCase& c : cases) {
     const std::string bvh = c.bvhAllocatedBytesPerTriangle
                                 ? fixed(*c.bvhAllocatedBytesPerTriangle, 1) + " / " + fixed(*c.bvhBuiltBytesPerTriangle, 1)
@@ -182,7 +185,8 @@ void writePassesMarkdown(std::ostream& out, const std::vector<PassesCase>& cases
     out << "| " << c.scene << " | " << sizeName(c.size) << " | " << c.method << " | "
         << fixed(c.frameMilliseconds.median, 1) << " | "
         << (c.frameOverPostprocess ? fixed(c.frameOverPostprocess->median, 3) : std::string("-")) << " | "
-        << fixed(mib(c.peakBytes), 1) << " | "
+        << c.shape.dispatches << " (" << c.shape.indirectDispatches << ") | " << c.shape.barriers << " | "
+        << c.shape.hostWaits << " | " << c.shape.dependentChain << " | " << fixed(mib(c.peakBytes), 1) << " | "
         << fixed(c.gbufferBytesPerPixel, 0) << " | " << bvh << " | " << c.maskPixels << " | " << c.revealRays << " |\n";
   }
   std::vector<std::string> scenes;

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/raster_suite.h"
+#include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::vk {
 class Context;
@@ -51,6 +52,7 @@ struct PassesCase {
   double gbufferBytesPerPixel = 0;
   std::optional<double> bvhAllocatedBytesPerTriangle, bvhBuiltBytesPerTriangle;
   uint64_t maskPixels = 0, revealRays = 0;  // hybrid
+  vk::FrameShape shape;  // the last timed frame's dispatches, barriers, host waits and chain
 };
 
 std::vector<PassesCase> runPassesSuite(vk::Context& context, const PassesSuiteOptions& options,

@@ -102,7 +102,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   const std::string label = sceneName + " " + sizeName(size);
   GpuScene gpuScene(context, scene);
   gpuScene.setFrame(scene, scene.settings.frameTime, size.width, size.height);
-  passes::GBufferStage stage(context, passes::defaultVisibilityScheme(context.info()));
+  passes::GBufferStage stage(context, passes::defaultVisibilityScheme(context));
   stage.prepare(gpuScene, size.width, size.height);
   vk::FrameRecorder frame(context);
   const auto renderCompute = [&] {

@@ -191,6 +191,7 @@ RenderResult Renderer::renderTimeSlices(const scene::Scene& scene, const RenderS
   RenderSettings one = settings;
   std::vector<glm::vec4> sum(size_t(settings.width) * settings.height, glm::vec4(0.0f));
   std::optional<double> milliseconds = 0.0;
+  vk::FrameShape shape;
   RenderResult result;
   const auto beautyOf = [](RenderResult& r) -> io::ImageLayer& {
     for (io::ImageLayer& layer : r.image.layers)
@@ -206,6 +207,7 @@ RenderResult Renderer::renderTimeSlices(const scene::Scene& scene, const RenderS
       sum[i] += glm::vec4(beauty[4 * i], beauty[4 * i + 1], beauty[4 * i + 2], beauty[4 * i + 3]);
     milliseconds = milliseconds && result.frameMilliseconds ? std::optional(*milliseconds + *result.frameMilliseconds)
                                                              : std::nullopt;
+    shape += result.frameShape;
   }
   std::vector<float>& beauty = beautyOf(result).values;
   for (size_t i = 0; i < sum.size(); ++i) {
@@ -221,13 +223,14 @@ RenderResult Renderer::renderTimeSlices(const scene::Scene& scene, const RenderS
   result.settings.onProgress = nullptr;
   result.frameTime = frameTime;
   result.frameMilliseconds = milliseconds;
+  result.frameShape = shape;
   return result;
 }
 
 RenderResult Renderer::renderFrame(const scene::Scene& scene, const RenderSettings& settings) {
   if (!shared_)
     shared_ = std::make_unique<Shared>(
-        context_, options_.visibilityScheme.value_or(passes::defaultVisibilityScheme(context_.info())),
+        context_, options_.visibilityScheme.value_or(passes::defaultVisibilityScheme(context_)),
         options_.shadeHit);
   FrameMethod& method = methodFor(settings.method);
 
@@ -242,7 +245,9 @@ RenderResult Renderer::renderFrame(const scene::Scene& scene, const RenderSettin
   const vk::Buffer display(context_, uint64_t(settings.width) * settings.height * sizeof(uint32_t),
                            vk::MemoryUse::Device, "display (RGBA8)");
   const FrameRequest request{scene, settings, result.frameTime, settings.width, settings.height, display};
+  const vk::FrameRecorder::ShapeMark before = shared_->recorder.mark();
   const vk::FrameTimings timings = method.render(request, result);
+  result.frameShape = shared_->recorder.shapeSince(before) - result.setupShape.value_or(vk::FrameShape{});
   result.plan.attachTimings(timings);
   result.frameMilliseconds = timings.frameMilliseconds;
   result.memory.peakBytes = context_.memoryPeak();

@@ -16,6 +16,7 @@
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/reference_stage.h"
+#include "runtime/vulkan/frame_recorder.h"
 #include "scenes/scene.h"
 
 namespace hmb::vk {
@@ -58,6 +59,11 @@ struct RenderResult {
   io::Rgba8Image display;    // the display transform of the beauty layer
   FramePlan plan;
   std::optional<double> frameMilliseconds;
+  // What the frame asked of the device and the host (dispatches, barriers, host waits, the
+  // longest chain of dependent dispatches), scene setup left out as from its time; and the
+  // setup's own where this render made one (the hybrid's mesh trees).
+  vk::FrameShape frameShape;
+  std::optional<vk::FrameShape> setupShape;
   // Device memory (every vk::Buffer of the context): the most held at once during the render,
   // the G-buffer's bytes per pixel, and (hybrid) the mesh trees' bytes per mesh triangle as
   // allocated (for the worst case) and as built.

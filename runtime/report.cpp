@@ -26,6 +26,37 @@ nlohmann::json deviceJson(const vk::DeviceInfo& device) {
   };
 }
 
+nlohmann::json deviceProfileJson(const vk::DeviceProfile& profile) {
+  return {
+      {"name", profile.name},
+      {"forced", profile.forced},
+      {"loop_budget", profile.loopBudget ? nlohmann::json(*profile.loopBudget) : nlohmann::json(nullptr)},
+      {"raster_tile_lists", profile.rasterTileLists},
+      {"bvh_level_group", profile.bvhLevelGroup},
+      {"bvh_lane_bins", profile.bvhLaneBins},
+      {"top_level_small_task", profile.topLevelSmallTask},
+      {"gather_skips_ray_mask", profile.gatherSkipsRayMask},
+      {"edge_candidates_in_tile_max", profile.edgeCandidatesInTileMax},
+      {"range_check_groups", profile.rangeCheckGroups},
+      {"shutter_list_groups", profile.shutterListGroups},
+  };
+}
+
+nlohmann::json deviceJson(const vk::Context& context) {
+  nlohmann::json json = deviceJson(context.info());
+  json["profile"] = deviceProfileJson(context.profile());
+  return json;
+}
+
+nlohmann::json frameShapeJson(const vk::FrameShape& shape) {
+  return {
+      {"dispatches", shape.dispatches},   {"indirect_dispatches", shape.indirectDispatches},
+      {"transfers", shape.transfers},     {"barriers", shape.barriers},
+      {"submissions", shape.submissions}, {"host_waits", shape.hostWaits},
+      {"dependent_chain", shape.dependentChain},
+  };
+}
+
 nlohmann::json systemJson(const SystemInfo& system) {
   return {
       {"cpu", system.cpu},
@@ -150,12 +181,12 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
   return nlohmann::json::object();
 }
 
-nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& system, const scene::Scene& scene,
+nlohmann::json renderReport(const vk::Context& context, const SystemInfo& system, const scene::Scene& scene,
                             const RenderResult& result) {
   return {
       {"tool", "hmblur"},
       {"date", utcTimestamp()},
-      {"device", deviceJson(device)},
+      {"device", deviceJson(context)},
       {"system", systemJson(system)},
       {"method", methodName(result.method)},
       {"resolution", {{"width", result.width}, {"height", result.height}}},
@@ -164,6 +195,8 @@ nlohmann::json renderReport(const vk::DeviceInfo& device, const SystemInfo& syst
       {"scene", sceneJson(scene)},
       {"passes", passesJson(result.plan)},
       {"frame_ms", optionalNumber(result.frameMilliseconds)},
+      {"frame", frameShapeJson(result.frameShape)},
+      {"setup", result.setupShape ? frameShapeJson(*result.setupShape) : nlohmann::json(nullptr)},
       {"cut_traces", result.cutTraces},
       {"raster", rasterJson(result)},
       {"device_memory",

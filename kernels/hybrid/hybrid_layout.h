@@ -37,6 +37,7 @@
 #ifndef HMB_KERNELS_HYBRID_HYBRID_LAYOUT_H
 #define HMB_KERNELS_HYBRID_HYBRID_LAYOUT_H
 
+#include "../shared/dispatch.h"
 #include "../shared/glsl_cpp.h"
 #include "../mblur/mblur_hash.h"
 #include "../mblur/mblur_layout.h"
@@ -76,7 +77,6 @@
 #define HMB_RANGE_CHECK_CPU_GROUPS 256u
 #define HMB_RANGE_CHECK_MAX_RUN 16384u
 #define HMB_SHUTTER_LIST_CPU_GROUPS 256u
-#define HMB_LOOP_BUDGET 57344u  // 7/8 of the 65535 loop rounds llvmpipe 22.3 allows an invocation
 
 // tile_max_edge_candidates: one HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y group per tile, as
 // the gather's tile_max.

@@ -7,6 +7,11 @@
 
 #include "glsl_cpp.h"
 
+// Loop rounds an invocation may take where the driver has a budget: 7/8 of the 65535 llvmpipe
+// 22.3 allows (it ends every loop of an invocation past them, silently), an eighth kept for
+// what a kernel's count of its rounds misses (vk::DeviceProfile::loopBudget).
+#define HMB_LOOP_BUDGET 57344u
+
 HMB_GPU_BEGIN
 
 HMB_SHARED uvec3 foldedGroups(uint groups) {

@@ -43,6 +43,7 @@ struct GlobalOptions {
   int device = -1;
   bool validation = false;
   bool bindByAddress = false;
+  std::string deviceProfile;  // auto, cpu or gpu; empty: HMB_DEVICE_PROFILE, else auto
 };
 
 struct RenderOptions {
@@ -107,6 +108,8 @@ hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
   options.deviceIndex = global.device;
   options.validation = global.validation;
   options.bindByAddress = global.bindByAddress;
+  options.deviceProfile = global.deviceProfile.empty() ? hmb::vk::deviceProfileChoiceFromEnvironment()
+                                                       : hmb::vk::parseDeviceProfileChoice(global.deviceProfile);
   return options;
 }
 
@@ -282,11 +285,11 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
   const FrameRange range = parseFrames(options.frames);
   const hmb::scene::Scene scene = loadSceneSaying(global, options.scene, options.shutter);
   hmb::vk::Context context(contextOptions(global));
-  progress(global, "device: " + context.info().name);
+  progress(global, "device: " + context.info().name + "; profile " + context.profile().describe());
   hmb::Renderer renderer(context);
   nlohmann::json report = {{"tool", "hmblur render --frames"},
                            {"date", hmb::utcTimestamp()},
-                           {"device", hmb::deviceJson(context.info())},
+                           {"device", hmb::deviceJson(context)},
                            {"system", hmb::systemJson(hmb::querySystemInfo())},
                            {"scene", hmb::sceneJson(scene)},
                            {"method", options.method},
@@ -445,7 +448,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
 
   const hmb::scene::Scene scene = loadSceneSaying(global, options.scene, options.shutter);
   hmb::vk::Context context(contextOptions(global));
-  progress(global, "device: " + context.info().name);
+  progress(global, "device: " + context.info().name + "; profile " + context.profile().describe());
   hmb::Renderer renderer(context);
   progress(global, "rendering " + options.method + " at " + std::to_string(settings.width) + "x" +
                        std::to_string(settings.height));
@@ -455,7 +458,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
   warnCutTraces(global, result);
 
   writeImage(options.out, result);
-  nlohmann::json report = hmb::renderReport(context.info(), hmb::querySystemInfo(), scene, result);
+  nlohmann::json report = hmb::renderReport(context, hmb::querySystemInfo(), scene, result);
   report["timing"] = timingJson(timed, settings.method);
   report["image"] = options.out;
   if (referenceImage) {
@@ -477,6 +480,10 @@ int render(const GlobalOptions& global, RenderOptions options) {
   if (!global.quiet) {
     std::cout << options.method << ": " << timingText(timed, settings.method) << " on " << context.info().name
               << " -> " << options.out << '\n';
+    const hmb::vk::FrameShape& shape = result.frameShape;
+    std::cout << "  frame shape: " << shape.dispatches << " dispatches (" << shape.indirectDispatches
+              << " indirect), " << shape.barriers << " barriers, " << shape.hostWaits << " host waits, "
+              << shape.dependentChain << " dependent dispatches in a chain\n";
     for (const auto& pass : result.plan.passes())
       std::cout << "  " << pass.name << ": "
                 << (!pass.run ? "skipped (" + pass.reason + ")"
@@ -566,13 +573,13 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
   const std::string sceneName = hmb::scene::referenceSceneNames().front();
   const hmb::scene::Scene scene = loadSceneSaying(global, sceneName);
   hmb::vk::Context context(contextOptions(global));
-  progress(global, "device: " + context.info().name);
+  progress(global, "device: " + context.info().name + "; profile " + context.profile().describe());
   hmb::Renderer renderer(context);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
   nlohmann::json report = {{"tool", "hmblur demo"},
                            {"date", hmb::utcTimestamp()},
-                           {"device", hmb::deviceJson(context.info())},
+                           {"device", hmb::deviceJson(context)},
                            {"system", hmb::systemJson(system)},
                            {"scene", hmb::sceneJson(scene)},
                            {"methods", nlohmann::json::array()}};
@@ -690,6 +697,10 @@ int main(int argc, char** argv) {
   app.add_flag("--bind-by-address", global.bindByAddress,
                "Kernels with an address build bind their groups of buffers as tables of device addresses "
                "(default: only where the device has too few storage-buffer bindings)");
+  app.add_option("--device-profile", global.deviceProfile,
+                 "Whose choices the passes make: auto (the device type's), cpu or gpu (forced, so a GPU's "
+                 "choices run on a CPU device and the other way round); default: HMB_DEVICE_PROFILE, else auto")
+      ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
 
   RenderOptions renderOptions;
   CLI::App* renderCmd = app.add_subcommand("render", "Render one frame of a scene with one method");

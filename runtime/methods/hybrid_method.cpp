@@ -48,6 +48,7 @@ class HybridMethod final : public FrameMethod {
       const auto prepared = hybrid_.prepare(resources_.recorder, request.scene, scene, request.frameTime,
                                             request.width, request.height, result.hybrid->settings, result.plan);
       result.hybrid->setupMilliseconds = prepared.setup.frameMilliseconds;
+      if (prepared.setupShape != vk::FrameShape{}) result.setupShape = prepared.setupShape;
       timings = prepared.frame;
       // The setup passes are listed with their times, but not added to the frame's.
       timings.passes.insert(timings.passes.begin(), prepared.setup.passes.begin(), prepared.setup.passes.end());

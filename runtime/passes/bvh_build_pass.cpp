@@ -58,17 +58,14 @@ uint32_t largestTreeOf(std::span<const glm::uvec2> roots) {
 
 BvhBuildShape BvhBuildShape::forDevice(const vk::Context& context) {
   BvhBuildShape shape;
-  if (context.info().type == "cpu") return shape;  // lavapipe: 8 lanes, per-lane bins
-  shape.laneBins = false;
-  shape.levelGroup = std::clamp(context.info().subgroupSize, 32u, 64u);
-  shape.levelGroup = std::min(shape.levelGroup, context.limits().maxComputeWorkGroupSize[0]);
-  shape.levelGroup = std::min(shape.levelGroup, context.limits().maxComputeWorkGroupInvocations);
+  shape.levelGroup = context.profile().bvhLevelGroup;
+  shape.laneBins = context.profile().bvhLaneBins;
   return shape;
 }
 
 BvhBuildShape BvhBuildShape::forTopLevel(const vk::Context& context) {
   BvhBuildShape shape = forDevice(context);
-  if (context.info().type == "cpu") shape.smallTask = HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU;
+  shape.smallTask = context.profile().topLevelSmallTask;
   return shape;
 }
 
@@ -111,22 +108,26 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
 }
 
-uint32_t BvhBuildPass::smallTaskDepthBound(uint32_t taskPrimitives, bool packsLater) {
+uint32_t BvhBuildPass::smallTaskDepthBound(uint32_t taskPrimitives, bool packsLater,
+                                           std::optional<uint32_t> loopBudget) {
+  if (!loopBudget) return HMB_BVH_MAX_DEPTH;
   // build_small_tasks' loops over a task of s primitives whose subtree spans L levels: copying
   // in and out (2s), a round per node (2s), two sides per split (2s), each level's primitives
   // binned, partitioned and moved (at most 3s a level); and lavapipe counts one iteration where
   // a loop starts and ends at once: the split's other loops (under 8 a split, 1 a leaf: 9s) and,
   // where the task packs its nodes, the searches of the six bounds each child packs (12 a
   // split: 24s, and more where a bound's guess misses). An eighth of the budget is left for
-  // what this count misses: 15s (39s packing) + 3sL <= 65535 * 7 / 8.
-  constexpr uint64_t kLoopBudget = 65535u / 8u * 7u;
+  // what this count misses (the profile's budget is 7/8 of the driver's): 15s (39s packing) +
+  // 3sL <= budget.
+  const uint64_t budget = *loopBudget;
   const uint64_t s = std::max(taskPrimitives, 1u), fixed = (packsLater ? 15u : 39u) * s;
-  const uint64_t levels = kLoopBudget > fixed ? (kLoopBudget - fixed) / (3u * s) : 0u;
+  const uint64_t levels = budget > fixed ? (budget - fixed) / (3u * s) : 0u;
   return static_cast<uint32_t>(std::clamp<uint64_t>(levels, 1u, HMB_BVH_MAX_DEPTH + 1u) - 1u);
 }
 
 uint32_t BvhBuildPass::depthBound(uint32_t largestTree) const {
-  return std::min(maxDepth_, smallTaskDepthBound(std::min(shape_.smallTask, largestTree), shape_.packsLater()));
+  return std::min(maxDepth_, smallTaskDepthBound(std::min(shape_.smallTask, largestTree), shape_.packsLater(),
+                                                context_.profile().loopBudget));
 }
 
 void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {

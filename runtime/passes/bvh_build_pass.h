@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -101,12 +102,13 @@ class BvhBuildPass {
   // Tests: bound the trees' depth tighter than HMB_BVH_MAX_DEPTH (what traversal's stack holds).
   void limitDepth(uint32_t levels);
   // The deepest subtree one invocation of build_small_tasks may build over taskPrimitives
-  // primitives: HMB_BVH_MAX_DEPTH, or less where it would loop past lavapipe's budget (65535
-  // iterations in all, past which its loops end silently and leave the subtree unbuilt). Every
-  // build bounds its trees' depth by it for its largest small task (the CPU top level's tasks
-  // of up to 512 instances, packed later, to 31 levels, bistro's 321 to 53; tasks that pack
-  // their nodes keep 64 up to 245 primitives).
-  static uint32_t smallTaskDepthBound(uint32_t taskPrimitives, bool packsLater);
+  // primitives: HMB_BVH_MAX_DEPTH, or less where it would loop past the driver's loop budget
+  // (vk::DeviceProfile::loopBudget: lavapipe 22.3 ends an invocation's loops silently after
+  // 65535 iterations and leaves the subtree unbuilt). Every build bounds its trees' depth by it
+  // for its largest small task (within lavapipe 22.3's budget the CPU top level's tasks of up
+  // to 512 instances, packed later, to 31 levels, bistro's 321 to 53; tasks that pack their
+  // nodes keep 64 up to 245 primitives). Without a budget: HMB_BVH_MAX_DEPTH.
+  static uint32_t smallTaskDepthBound(uint32_t taskPrimitives, bool packsLater, std::optional<uint32_t> loopBudget);
   // The depth bound of a build whose largest tree holds largestTree primitives: the pass's
   // (limitDepth), within smallTaskDepthBound of its largest small task.
   uint32_t depthBound(uint32_t largestTree) const;

@@ -105,11 +105,13 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   settings_ = settings;
   PrepareTimings timings;
   // plan() decided what the last frame's trees still serve; only the others are built.
+  const vk::FrameRecorder::ShapeMark meshesStart = frame.mark();
   if (const std::optional<double> meshMs = prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
     timings.setup = {{{kBvhMeshes, *meshMs}}, *meshMs};
+  timings.setupShape = frame.shapeSince(meshesStart, vk::FrameRecorder::HostWaitsUntil::Now);
   const std::vector<float> times = traceTimes(scene, frameTime, settings);
   shutterStrata_ = plan.runs(kShutterRaysTrace) ? settings.shutterRays : 0u;
-  candidatesInTileMaxLoop_ = context_.info().type != "cpu" || cameraMovesOnScreen(scene, frameTime);
+  candidatesInTileMaxLoop_ = context_.profile().edgeCandidatesInTileMax || cameraMovesOnScreen(scene, frameTime);
   if (shutterStrata_ != 0 && times.size() != shutterStrata_ + 1)
     throw Error("hybrid: the plan traces shutter rays that these settings leave out");
   if (plan.runs(TraceScene::kRefit))
@@ -118,8 +120,10 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   traceScene_->splitTopLevel(TraceScene::kStillInstancesToSplit);
   if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, times);
   if (buildsInstanceTree_ && plan.runs(kBvhStillInstances) && !traceScene_->keepsStillInstanceTree()) {
+    const vk::FrameRecorder::ShapeMark stillStart = frame.mark();
     const double ms = traceScene_->buildStillInstanceTree(frame);
     vk::appendTimings(timings.setup, {{{kBvhStillInstances, ms}}, ms});
+    timings.setupShape += frame.shapeSince(stillStart, vk::FrameRecorder::HostWaitsUntil::Now);
   }
   cameras_.clear();
   for (const float t : times) cameras_.push_back(pinholeCamera(scene, t, width, height));
@@ -196,12 +200,9 @@ void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, cons
     shutterRays_.recordTrace(frame, *traceScene_, gpuScene, cameraRays_, shutterStrata_, output);
     return;
   }
-  // Post-process's image; the composite below writes the mask's pixels over it. On a GPU the
-  // gather leaves them out (a warp wholly inside the mask skips its samples); a CPU device runs
-  // every lane of a vector and paid more for the mask's load at each pixel than the masked
-  // pixels' gathers cost (bistro at 1280x720, bench/results/passes/: 1.4 ms more than
-  // post-process's gather at 2e93729, within a millisecond of it at 18b4904).
-  if (context_.info().type != "cpu")
+  // Post-process's image; the composite below writes the mask's pixels over it, so the gather
+  // may leave them out where the device profile says that pays (DeviceProfile::gatherSkipsRayMask).
+  if (context_.profile().gatherSkipsRayMask)
     gather_.recordOutsideMask(frame, raster, postProcess_.neighborMax(), output, settings_.blur, rayMask_.mask());
   else
     gather_.record(frame, raster, postProcess_.neighborMax(), output, settings_.blur);

@@ -75,6 +75,7 @@ class HybridStage {
   // tree in the frame where the plan runs kBvhInstances; sizes the buffers.
   struct PrepareTimings {
     vk::FrameTimings setup;
+    vk::FrameShape setupShape;  // what the setup recorded and waited for (vk::FrameShape)
     vk::FrameTimings frame;
   };
   // `gpuScene`'s deforming meshes are deformed to the frame time for the refit.

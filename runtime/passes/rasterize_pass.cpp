@@ -40,11 +40,11 @@ const char* visibilitySchemeName(VisibilityScheme scheme) {
   return "";
 }
 
-VisibilityScheme defaultVisibilityScheme(const vk::DeviceInfo& device) {
+VisibilityScheme defaultVisibilityScheme(const vk::Context& context) {
   // A CPU runs a tile's 64 pixels as vector code over several tiles at once, so per-pixel
   // atomics (each a locked instruction per lane) are what it can skip; GPUs keep atomics.
-  if (device.type == "cpu") return VisibilityScheme::TileLists;
-  return device.int64BufferAtomics ? VisibilityScheme::Int64Atomics : VisibilityScheme::Depth32TwoPass;
+  if (context.profile().rasterTileLists) return VisibilityScheme::TileLists;
+  return context.info().int64BufferAtomics ? VisibilityScheme::Int64Atomics : VisibilityScheme::Depth32TwoPass;
 }
 
 RasterizePass::RasterizePass(const vk::Context& context, VisibilityScheme scheme)

@@ -20,7 +20,7 @@
 
 namespace hmb::vk {
 class FrameRecorder;
-struct DeviceInfo;
+class Context;
 struct FrameTimings;
 }
 
@@ -42,7 +42,7 @@ const char* visibilitySchemeName(VisibilityScheme scheme);
 // Every pass the rasterizer's plan leaves out because of its scheme (the device's choice, not
 // the frame's content) gives a reason that starts with this.
 inline constexpr const char* kVisibilitySchemeReason = "visibility scheme ";
-VisibilityScheme defaultVisibilityScheme(const vk::DeviceInfo& device);
+VisibilityScheme defaultVisibilityScheme(const vk::Context& context);
 
 // Clip-space triangles to rasterize: GpuTriangle (v0, v1, v2, instance), GpuInstance (for the
 // double-sided flag) and one clip-space vec4 per vertex.

@@ -182,7 +182,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                          params, counters_, offsetof(gpu::RayMaskCounters, tileBlockDispatchX));
   // The range check's groups (hybrid_layout.h).
   sizeDispatch(HMB_SIZE_LIST_RANGE_BLOCKS,
-               p.rangeCheckGroups.value_or(context_.info().type == "cpu" ? HMB_RANGE_CHECK_CPU_GROUPS : 0u));
+               p.rangeCheckGroups.value_or(context_.profile().rangeCheckGroups));
   // Built with the curved paths' walks only where the frame takes them.
   static_assert(HMB_SPEC_RANGE_CHECK_CURVED_PATH == 0);
   const vk::ComputeKernel& rangeKernel = rangeKernels_.with({(blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u});

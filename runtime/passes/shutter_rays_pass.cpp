@@ -52,7 +52,7 @@ void ShutterRaysPass::recordList(vk::FrameRecorder& frame, const MotionBlurInput
   // The moving tiles' 8 x 8 blocks -> the list's groups (hybrid_layout.h). A pixel walks its own
   // velocity, clamped to maxSpeed, or its tile's fastest, clamped to the tile.
   const float walkSpeed = std::max(blur.maxSpeed, float(blur.tileSize));
-  const uint32_t groups = groupsWanted.value_or(context_.info().type == "cpu" ? HMB_SHUTTER_LIST_CPU_GROUPS : 0u);
+  const uint32_t groups = groupsWanted.value_or(context_.profile().shutterListGroups);
   const gpu::SizeListParams sizeParams{HMB_SIZE_LIST_SHUTTER_BLOCKS, groups, walkSpeed, gpu::tileBlocks(blur.tileSize)};
   frame.dispatch(kList, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &rayMask.counters()}}, sizeParams, {1, 1, 1});
   const gpu::ShutterRayListParams listParams{blur, strata, 0u, 0u, 0u};

@@ -459,6 +459,8 @@ void Context::readDevice(const ContextOptions& options) {
       memoryProperties_.memoryHeaps[h].size = std::min(memoryProperties_.memoryHeaps[h].size, options.memoryLimitBytes);
     info_.deviceLocalBytes = std::min(info_.deviceLocalBytes, options.memoryLimitBytes);
   }
+  profile_ = makeDeviceProfile(info_, limits_.maxComputeWorkGroupSize[0], limits_.maxComputeWorkGroupInvocations,
+                               options.deviceProfile);
 }
 
 void Context::createOwnObjects(const ContextOptions& options) {

@@ -14,6 +14,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "runtime/vulkan/device_profile.h"
 #include "runtime/vulkan/kernel_store.h"
 #include "runtime/vulkan/pipeline_cache.h"
 
@@ -59,6 +60,8 @@ struct ContextOptions {
   // this many bytes (256 MiB on such GPUs): device-local memory the host cannot map, that small
   // heap, and system memory for staging. Tests that frames fit such devices.
   uint64_t hostVisibleDeviceLocalBytes = 0;
+  // Whose choices the passes make (device_profile.h): the device type's, or the one forced.
+  DeviceProfileChoice deviceProfile = DeviceProfileChoice::Auto;
   // Where compiled kernels are kept across runs (pipeline_cache.h); empty: in memory only.
   std::filesystem::path pipelineCacheFolder = PipelineCache::defaultFolder();
 };
@@ -113,6 +116,8 @@ class Context {
   // The kernels made on this device so far, shared by every pass that uses them.
   KernelStore& kernelStore() const { return kernelStore_; }
   const DeviceInfo& info() const { return info_; }
+  // Every choice that differs between CPU devices and GPUs (device_profile.h).
+  const DeviceProfile& profile() const { return profile_; }
   const VkPhysicalDeviceLimits& limits() const { return limits_; }
   bool validationEnabled() const { return validationEnabled_; }
   const ContextOptions& options() const { return options_; }
@@ -180,6 +185,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
   std::array<uint32_t, VK_MAX_MEMORY_TYPES> allocationTypes_{};  // memoryProperties_ type -> the device's
   DeviceInfo info_;
+  DeviceProfile profile_;
   ContextOptions options_;
   bool adopted_ = false;
   bool validationEnabled_ = false;

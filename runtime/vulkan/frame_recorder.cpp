@@ -11,6 +11,29 @@
 
 namespace hmb::vk {
 
+FrameShape& FrameShape::operator+=(const FrameShape& other) {
+  dispatches += other.dispatches;
+  indirectDispatches += other.indirectDispatches;
+  transfers += other.transfers;
+  barriers += other.barriers;
+  submissions += other.submissions;
+  hostWaits += other.hostWaits;
+  dependentChain += other.dependentChain;
+  return *this;
+}
+
+FrameShape FrameShape::operator-(const FrameShape& other) const {
+  FrameShape d;
+  d.dispatches = dispatches - other.dispatches;
+  d.indirectDispatches = indirectDispatches - other.indirectDispatches;
+  d.transfers = transfers - other.transfers;
+  d.barriers = barriers - other.barriers;
+  d.submissions = submissions - other.submissions;
+  d.hostWaits = hostWaits - other.hostWaits;
+  d.dependentChain = dependentChain - other.dependentChain;
+  return d;
+}
+
 void appendTimings(FrameTimings& total, const FrameTimings& part) {
   total.passes.insert(total.passes.end(), part.passes.begin(), part.passes.end());
   if (part.frameMilliseconds) total.frameMilliseconds = total.frameMilliseconds.value_or(0.0) + *part.frameMilliseconds;
@@ -84,6 +107,7 @@ void FrameRecorder::beginInto(VkCommandBuffer commandBuffer) {
   vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0,
                        nullptr, 0, nullptr);
+  recordBarrier();
 }
 
 void FrameRecorder::startFrame(VkCommandBuffer commandBuffer, bool external) {
@@ -104,6 +128,7 @@ void FrameRecorder::endInto() {
   barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
   vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                        VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+  recordBarrier();
 }
 
 uint32_t FrameRecorder::beginPass(std::string_view pass) {
@@ -124,6 +149,32 @@ void FrameRecorder::endPass(uint32_t index) {
                   VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
               VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
                   VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+  recordBarrier();
+}
+
+void FrameRecorder::recordBarrier() {
+  ++shape_.barriers;
+  if (dispatchSinceBarrier_) ++shape_.dependentChain;
+  dispatchSinceBarrier_ = false;
+}
+
+void FrameRecorder::recordDispatch(bool indirect) {
+  ++shape_.dispatches;
+  if (indirect) ++shape_.indirectDispatches;
+  dispatchSinceBarrier_ = true;
+}
+
+FrameRecorder::ShapeMark FrameRecorder::mark() const {
+  return {shape_, context_.hostWaits() + context_.hostReadbacks()};
+}
+
+FrameShape FrameRecorder::shapeSince(const ShapeMark& mark, HostWaitsUntil until) const {
+  FrameShape shape = shape_ - mark.recorded;
+  const uint64_t roundTrips = until == HostWaitsUntil::Now ? context_.hostWaits() + context_.hostReadbacks()
+                              : shape.submissions > 0      ? roundTripsAtLastSubmit_
+                                                           : mark.hostRoundTrips;
+  shape.hostWaits = static_cast<uint32_t>(roundTrips - mark.hostRoundTrips);
+  return shape;
 }
 
 uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel,
@@ -197,7 +248,10 @@ void FrameRecorder::dispatch(std::string_view pass, const ComputeKernel& kernel,
                   " work groups along axis " + std::to_string(axis) + "; the device allows " +
                   std::to_string(limits.maxComputeWorkGroupCount[axis]));
   const uint32_t index = bindAndBeginPass(pass, kernel, bindings, pushConstants);
-  if (groups.x > 0 && groups.y > 0 && groups.z > 0) vkCmdDispatch(commandBuffer_, groups.x, groups.y, groups.z);
+  if (groups.x > 0 && groups.y > 0 && groups.z > 0) {
+    vkCmdDispatch(commandBuffer_, groups.x, groups.y, groups.z);
+    recordDispatch(false);
+  }
   endPass(index);
 }
 
@@ -209,12 +263,14 @@ void FrameRecorder::dispatchIndirect(std::string_view pass, const ComputeKernel&
                 " does not fit buffer '" + indirect.name() + "'");
   const uint32_t index = bindAndBeginPass(pass, kernel, bindings, pushConstants);
   vkCmdDispatchIndirect(commandBuffer_, indirect.handle(), offset);
+  recordDispatch(true);
   endPass(index);
 }
 
 void FrameRecorder::fill(std::string_view pass, const Buffer& buffer, uint32_t value) {
   const uint32_t index = beginPass(pass);
   vkCmdFillBuffer(commandBuffer_, buffer.handle(), 0, VK_WHOLE_SIZE, value);
+  ++shape_.transfers;
   endPass(index);
 }
 
@@ -225,6 +281,7 @@ void FrameRecorder::copy(std::string_view pass, const Buffer& from, const Buffer
   const uint32_t index = beginPass(pass);
   const VkBufferCopy region{0, 0, bytes};
   vkCmdCopyBuffer(commandBuffer_, from.handle(), to.handle(), 1, &region);
+  ++shape_.transfers;
   endPass(index);
 }
 
@@ -241,6 +298,7 @@ void FrameRecorder::write(std::string_view pass, const Buffer& buffer, std::span
     const VkDeviceSize part = std::min<VkDeviceSize>(kMaxUpdate, bytes.size() - done);
     vkCmdUpdateBuffer(commandBuffer_, buffer.handle(), offset + done, part, bytes.data() + done);
   }
+  ++shape_.transfers;
   endPass(index);
 }
 
@@ -249,8 +307,11 @@ FrameTimings FrameRecorder::submitAndWait() {
   recording_ = false;
   // The host reads results after the fence: make every write visible to it.
   passBarrier(commandBuffer_, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  recordBarrier();
   HMB_VK_CHECK(vkEndCommandBuffer(commandBuffer_));
   context_.submitAndWait(commandBuffer_);
+  ++shape_.submissions;
+  roundTripsAtLastSubmit_ = context_.hostWaits() + context_.hostReadbacks();
   return readTimings();
 }
 

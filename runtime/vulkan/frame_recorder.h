@@ -29,6 +29,30 @@ struct PassTiming {
   std::optional<double> milliseconds;  // empty when the queue has no timestamps
 };
 
+// What a frame asks of the device and the host, counted as it is recorded: on a GPU every
+// dispatch behind a barrier pays its launch and drain whatever its work, and every host wait a
+// round trip. Shapes of a frame's parts add up (a submission waits for the one before).
+struct FrameShape {
+  uint32_t dispatches = 0;          // compute dispatches recorded, the indirect ones included
+  uint32_t indirectDispatches = 0;  // of those, the ones whose group counts an earlier pass wrote
+  uint32_t transfers = 0;           // fills, copies and buffer writes
+  uint32_t barriers = 0;            // pipeline barriers
+  uint32_t submissions = 0;         // command buffers the library submitted
+  // Round trips of the host through the device: each submission the library waited for, and
+  // its staging uploads and read-backs between them (vk::Context::hostWaits, hostReadbacks). A
+  // frame the library submits has at least the wait at its end; a frame recorded into an
+  // engine's command buffer has none.
+  uint32_t hostWaits = 0;
+  // The longest chain of dispatches each of which waits for the one before (a barrier between
+  // them, or a host wait): the frame's latency in launches on a device that could run the
+  // rest side by side.
+  uint32_t dependentChain = 0;
+
+  FrameShape& operator+=(const FrameShape& other);
+  FrameShape operator-(const FrameShape& other) const;
+  bool operator==(const FrameShape&) const = default;
+};
+
 struct FrameTimings {
   std::vector<PassTiming> passes;
   std::optional<double> frameMilliseconds;  // first pass start to last pass end
@@ -117,6 +141,19 @@ class FrameRecorder {
   // Ends the command buffer, submits it, waits, and reads the timestamps.
   FrameTimings submitAndWait();
 
+  // The shape of what was recorded and submitted since a mark (FrameShape): take a mark before
+  // a frame, and the shape once its last submission completed. Its host waits are the
+  // context's from the mark up to the recorder's last submission since it (staging and
+  // read-backs between a frame's submissions included, the reads of its results after it
+  // not), or up to now (a part of a frame that ends with its reads, such as scene setup).
+  struct ShapeMark {
+    FrameShape recorded;
+    uint64_t hostRoundTrips = 0;
+  };
+  enum class HostWaitsUntil { LastSubmission, Now };
+  ShapeMark mark() const;
+  FrameShape shapeSince(const ShapeMark& mark, HostWaitsUntil until = HostWaitsUntil::LastSubmission) const;
+
  private:
   // Checks the bindings, binds pipeline, descriptors and push constants, opens the pass.
   uint32_t bindAndBeginPass(std::string_view pass, const ComputeKernel& kernel, std::span<const Binding> bindings,
@@ -124,6 +161,8 @@ class FrameRecorder {
   void startFrame(VkCommandBuffer commandBuffer, bool external);
   uint32_t beginPass(std::string_view pass);
   void endPass(uint32_t index);
+  void recordBarrier();  // counts a barrier recorded into the frame
+  void recordDispatch(bool indirect);
 
   const Context& context_;
   uint32_t maxPasses_;
@@ -134,6 +173,9 @@ class FrameRecorder {
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
   std::vector<std::string> passNames_;
   bool recording_ = false;
+  FrameShape shape_;                   // since creation; host waits left to shapeSince()
+  bool dispatchSinceBarrier_ = false;  // a dispatch recorded after the last barrier
+  uint64_t roundTripsAtLastSubmit_ = 0;  // the context's host round trips after the last submission
 };
 
 }  // namespace hmb::vk

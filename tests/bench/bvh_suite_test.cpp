@@ -79,7 +79,7 @@ TEST(BvhSuite, TheTopLevelTreeOverTheScenesInstancesIsTimedByStage) {
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("The top-level tree over each scene's instances"), std::string::npos) << run.output;
   const nlohmann::json report = readJson(out);
-  const bool cpu = report.at("device").at("type") == "cpu";
+  const bool cpu = report.at("device").at("profile").at("name") == "cpu";
   ASSERT_EQ(report.at("cases").size(), 2u);
   for (const nlohmann::json& c : report.at("cases")) {
     const nlohmann::json& top = c.at("top_level");

@@ -283,7 +283,7 @@ RevealReadback runReveal(vk::Context& context, const scene::Scene& scene, float 
   const size_t pixels = size_t(width) * height;
   GpuScene gpuScene(context, scene);
   gpuScene.setFrame(scene, frameTime, width, height);
-  passes::GBufferStage gbuffer(context, passes::defaultVisibilityScheme(context.info()));
+  passes::GBufferStage gbuffer(context, passes::defaultVisibilityScheme(context));
   gbuffer.prepare(gpuScene, width, height);
   vk::FrameRecorder frame(context);
   passes::submitUntilRasterFits(frame, gbuffer.rasterizer(),

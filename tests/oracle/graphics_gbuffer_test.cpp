@@ -29,7 +29,7 @@ TEST_F(GraphicsGBufferTest, AgreesWithTheComputeGBufferOnTheReferenceScenes) {
     const scene::Scene scene = scene::loadScene(name);
     GpuScene gpuScene(context(), scene);
     gpuScene.setFrame(scene, scene.settings.frameTime, kWidth, kHeight);
-    passes::GBufferStage stage(context(), passes::defaultVisibilityScheme(context().info()));
+    passes::GBufferStage stage(context(), passes::defaultVisibilityScheme(context()));
     stage.prepare(gpuScene, kWidth, kHeight);
     vk::FrameRecorder frame(context());
     passes::submitUntilRasterFits(frame, stage.rasterizer(), [&](vk::FrameRecorder& f) { stage.record(f, gpuScene); });

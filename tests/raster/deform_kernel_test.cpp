@@ -192,7 +192,7 @@ TEST_F(DeformKernelTest, ShutterPathPositionsFollowTheDeformationBetweenItsTwoTi
   scene.settings.exposure = 1.5f / scene.settings.fps;
   GpuScene gpu(context(), scene);
   gpu.setFrame(scene, kTime, 64, 64);
-  passes::GBufferStage stage(context(), passes::defaultVisibilityScheme(context().info()));
+  passes::GBufferStage stage(context(), passes::defaultVisibilityScheme(context()));
   const std::vector<gpu::GpuShutterClip> clips = shutterClips(scene, kTime, scene.settings.exposure, 64, 64);
   stage.prepare(gpu, 64, 64, passes::GBufferStage::ShutterPaths{scene.settings.exposure, scene.settings.fps, clips});
   vk::FrameRecorder frame(context());

@@ -57,7 +57,7 @@ TEST(AdoptedContextTest, UsesOnlyTheFeaturesTheEngineEnabled) {
   Renderer renderer(context);
   RenderSettings settings = hybridAt(48, 27);
   const RenderResult result = renderer.render(scene::loadScene("temple"), settings);
-  EXPECT_EQ(result.visibilityScheme, context.info().type == "cpu" ? "tile-lists" : "depth32-two-pass");
+  EXPECT_EQ(result.visibilityScheme, context.profile().rasterTileLists ? "tile-lists" : "depth32-two-pass");
   EXPECT_EQ(context.validationErrors(), 0u);
 }
 

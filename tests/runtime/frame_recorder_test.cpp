@@ -105,5 +105,59 @@ TEST_F(FrameRecorderTest, MisuseIsAClearError) {
   frame.submitAndWait();
 }
 
+// A frame's shape is counted as it is recorded: every dispatch (an empty one is not recorded),
+// the indirect ones apart, transfers, the barrier after each pass and the one before the host
+// reads, the submission and its wait, and the chain of dispatches each waiting on the one before.
+TEST_F(FrameRecorderTest, CountsTheFramesShape) {
+  vk::FrameRecorder frame(context());
+  vk::Buffer image(context(), 16 * 16 * sizeof(glm::vec4), vk::MemoryUse::Device, "image");
+  vk::Buffer a(context(), 4096, vk::MemoryUse::Device, "a");
+  passes::TestPatternPass pattern(context());
+  const vk::FrameRecorder::ShapeMark start = frame.mark();
+  frame.begin();
+  frame.fill("clear", a, 0u);
+  pattern.record(frame, image, 16, 16, 0.0f);
+  pattern.record(frame, image, 16, 16, 0.5f);
+  frame.submitAndWait();
+  const vk::FrameShape one = frame.shapeSince(start);
+  EXPECT_EQ(one.dispatches, 2u);
+  EXPECT_EQ(one.indirectDispatches, 0u);
+  EXPECT_EQ(one.transfers, 1u);
+  EXPECT_EQ(one.barriers, 4u);  // one a pass, one for the host
+  EXPECT_EQ(one.submissions, 1u);
+  EXPECT_EQ(one.hostWaits, 1u);
+  EXPECT_EQ(one.dependentChain, 2u);
+  // A read-back after the frame is not the frame's; a second submission, and the read-back
+  // between the two, are.
+  (void)a.download<uint32_t>();
+  EXPECT_EQ(frame.shapeSince(start), one);
+  const vk::FrameRecorder::ShapeMark second = frame.mark();
+  frame.begin();
+  pattern.record(frame, image, 16, 16, 0.0f);
+  frame.submitAndWait();
+  (void)a.download<uint32_t>();
+  frame.begin();
+  pattern.record(frame, image, 16, 16, 0.0f);
+  frame.submitAndWait();
+  const vk::FrameShape two = frame.shapeSince(second);
+  EXPECT_EQ(two.dispatches, 2u);
+  EXPECT_EQ(two.submissions, 2u);
+  EXPECT_GE(two.hostWaits, 3u);  // two submissions and the read-back (through staging: its wait too)
+  EXPECT_EQ(two.dependentChain, 2u);
+  // Recorded into someone else's command buffer: no submission and no wait of the library's.
+  const vk::FrameRecorder::ShapeMark engine = frame.mark();
+  context().submitAndWait([&](VkCommandBuffer commandBuffer) {
+    frame.beginInto(commandBuffer);
+    pattern.record(frame, image, 16, 16, 0.0f);
+    frame.endInto();
+  });
+  const vk::FrameShape recorded = frame.shapeSince(engine);
+  EXPECT_EQ(recorded.dispatches, 1u);
+  EXPECT_EQ(recorded.barriers, 3u);  // before the passes, after the pass, after the frame
+  EXPECT_EQ(recorded.submissions, 0u);
+  EXPECT_EQ(recorded.hostWaits, 0u);
+  EXPECT_EQ(recorded.dependentChain, 1u);
+}
+
 }  // namespace
 }  // namespace hmb::test

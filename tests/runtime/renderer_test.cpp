@@ -130,7 +130,7 @@ TEST_F(RendererTest, SharpFrameHasBeautyAovsPlanAndRasterStats) {
   ASSERT_EQ(ids->ids.size(), pixels);
   EXPECT_GT(std::count_if(ids->ids.begin(), ids->ids.end(), [](uint32_t id) { return id != 0; }), 0);
 
-  EXPECT_EQ(result.visibilityScheme, passes::visibilitySchemeName(passes::defaultVisibilityScheme(context().info())));
+  EXPECT_EQ(result.visibilityScheme, passes::visibilitySchemeName(passes::defaultVisibilityScheme(context())));
   EXPECT_GT(result.raster.setupTriangles, 0u);
   EXPECT_GT(result.raster.tilePairs, 0u);
   for (const char* pass : {"transform-vertices", "setup-triangles", "bin-large-triangles", "resolve-gbuffer",
@@ -196,7 +196,7 @@ TEST_F(RendererTest, CpuDevicesRasterizeWithTileListsAndRenderTheSameFrame) {
   EXPECT_TRUE(a.plan.runs("link-tile-pairs"));
   EXPECT_TRUE(a.plan.runs("rasterize-tile-lists"));
   EXPECT_FALSE(a.plan.runs("clear-visibility"));
-  if (context().info().type == "cpu") {
+  if (context().profile().rasterTileLists) {
     Renderer byDefault(context());
     EXPECT_EQ(byDefault.render(scene, settings).visibilityScheme, "tile-lists");
   }

@@ -25,7 +25,7 @@ TEST_F(ReportTest, ReportNamesDeviceSystemSettingsAndEveryPass) {
   RenderResult result = renderer.render(scene, settings);
   result.plan.skip("ray-reveal", "no pixel in the ray mask");
 
-  const nlohmann::json report = renderReport(context().info(), querySystemInfo(), scene, result);
+  const nlohmann::json report = renderReport(context(), querySystemInfo(), scene, result);
   EXPECT_EQ(report["device"]["name"], context().info().name);
   EXPECT_TRUE(report["system"].contains("LP_NUM_THREADS"));
   EXPECT_FALSE(report["system"]["cpu"].get<std::string>().empty());
@@ -41,6 +41,18 @@ TEST_F(ReportTest, ReportNamesDeviceSystemSettingsAndEveryPass) {
       EXPECT_TRUE(pass.contains("ms"));
   }
   EXPECT_EQ(report["passes"].back()["reason"], "no pixel in the ray mask");
+  // The profile the passes chose by, and the frame's shape: one submission, waited for at its end.
+  EXPECT_EQ(report["device"]["profile"]["name"], context().profile().name);
+  const nlohmann::json& frame = report["frame"];
+  for (const char* key : {"dispatches", "indirect_dispatches", "transfers", "barriers", "submissions", "host_waits",
+                          "dependent_chain"})
+    EXPECT_TRUE(frame.contains(key)) << key;
+  EXPECT_GT(frame["dispatches"].get<int>(), 0);
+  EXPECT_EQ(frame["submissions"], 1);
+  EXPECT_EQ(frame["host_waits"], 1);
+  EXPECT_LE(frame["dependent_chain"].get<int>(), frame["dispatches"].get<int>());
+  EXPECT_GE(frame["barriers"].get<int>(), frame["dependent_chain"].get<int>());
+  EXPECT_TRUE(report["setup"].is_null());
   // The empty scene has no texture: its shading path is listed as skipped, with why.
   bool texturePathListed = false;
   for (const auto& pass : report["passes"])

@@ -1,5 +1,6 @@
 // Base fixture of every test that touches Vulkan: one context per test process with the
-// Khronos validation layer on, and any validation error during a test fails that test.
+// Khronos validation layer on, and any validation error during a test fails that test. Its
+// device profile is HMB_DEVICE_PROFILE's (auto where unset), so a whole run can force one.
 #pragma once
 
 #include <memory>
@@ -18,6 +19,7 @@ class VulkanTest : public ::testing::Test {
       vk::ContextOptions options;
       options.validation = true;
       options.synchronizationValidation = true;
+      options.deviceProfile = vk::deviceProfileChoiceFromEnvironment();
       return std::make_unique<vk::Context>(options);
     }();
     return *shared;

@@ -13,6 +13,7 @@
 
 #include "bvh/packed_node.h"
 #include "bvh/reference_builder.h"
+#include "kernels/shared/dispatch.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/reference_scenes.h"
@@ -471,9 +472,7 @@ TEST_F(DeviceBvh, ATopLevelShapeBuildsHundredsOfPrimitivesInOneSmallTask) {
   const passes::BvhBuildShape top{HMB_BVH_LEVEL_GROUP, true, HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU};
   EXPECT_EQ(top.describe(), "8 lanes, per-lane bins, small tasks of up to " +
                                 std::to_string(HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU));
-  if (context().info().type == "cpu") {
-    EXPECT_EQ(passes::BvhBuildShape::forTopLevel(context()).smallTask, top.smallTask);
-  }
+  EXPECT_EQ(passes::BvhBuildShape::forTopLevel(context()).smallTask, context().profile().topLevelSmallTask);
   EXPECT_EQ(passes::BvhBuildShape::forDevice(context()).smallTask, HMB_BVH_SMALL_TASK);
   for (const uint32_t n : {321u, HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU, HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU + 1u}) {
     const TriangleMesh mesh = bvh::test::randomSoup(n, 0.1f, 60 + n);
@@ -605,11 +604,14 @@ TriangleMesh peeledChain(uint32_t chain, double ratio, double first, uint32_t cl
 // (smallTaskDepthBound), their nodes packed after the task. Where the task packed its own
 // nodes and took no such bound, both came back unfinished.
 TEST_F(DeviceBvh, AOneInvocationTopLevelStaysWithinLavapipesLoopBudget) {
-  EXPECT_EQ(passes::BvhBuildPass::smallTaskDepthBound(HMB_BVH_SMALL_TASK, false), HMB_BVH_MAX_DEPTH);
+  const std::optional<uint32_t> budget = HMB_LOOP_BUDGET;
+  EXPECT_EQ(passes::BvhBuildPass::smallTaskDepthBound(HMB_BVH_SMALL_TASK, false, budget), HMB_BVH_MAX_DEPTH);
   const uint32_t n = HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU;
-  const uint32_t bound = passes::BvhBuildPass::smallTaskDepthBound(n, true);
+  const uint32_t bound = passes::BvhBuildPass::smallTaskDepthBound(n, true, budget);
   EXPECT_LT(bound, HMB_BVH_MAX_DEPTH);
-  EXPECT_LT(passes::BvhBuildPass::smallTaskDepthBound(n, false), bound);
+  EXPECT_LT(passes::BvhBuildPass::smallTaskDepthBound(n, false, budget), bound);
+  // A driver without a budget (vk::DeviceProfile::loopBudget empty) leaves every tree its 64 levels.
+  EXPECT_EQ(passes::BvhBuildPass::smallTaskDepthBound(n, false, std::nullopt), HMB_BVH_MAX_DEPTH);
   const passes::BvhBuildShape top{HMB_BVH_LEVEL_GROUP, true, n};
   ASSERT_TRUE(top.packsLater());
   const std::pair<const char*, TriangleMesh> cases[] = {{"a chain of 512", peeledChain(n, 1.15, 1e-15, 0)},
