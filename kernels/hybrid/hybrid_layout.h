@@ -60,16 +60,15 @@
 // each taking a run of consecutive entries: the mask's list then keeps the blocks' order,
 // which the reveal's rays and the background gather's reads were 20% faster for on bistro than
 // with the list's entries dealt out in turn. A run is at most HMB_RANGE_CHECK_MAX_RUN blocks,
-// and fewer where its walks could pass the 65535 loop iterations llvmpipe allows an
-// invocation in all (it ends every loop past them, silently): a pixel's walks take at most
-// 4 s + 16 rounds for a walk speed s (SizeListParams::walkSpeed), so a run is at most
-// HMB_LOOP_BUDGET / (4 s + 17) blocks (11 at 1280x720, where bistro lists about
-// 4,200).
+// and fewer where the driver has a loop budget its walks could pass (SizeListParams::loopBudget:
+// llvmpipe 22.3 ends every loop of an invocation past 65535 rounds in all, silently): a pixel's
+// walks take at most 4 s + 16 rounds for a walk speed s (SizeListParams::walkSpeed), so a run is
+// at most loopBudget / (4 s + 17) blocks (11 at 1280x720, where bistro lists about 4,200).
 // list_range_blocks: a lane per 8 x 8 block of the moving tiles (a 64-lane group per tile
 // left most lanes of its vectors idle at the default tiles, 25 blocks of 40 px, and gave a
 // lane a quarter of a 1024-px tile's blocks, past the loop budget). list_shutter_rays: an 8 x 8 group per block of the moving tiles, a pixel a lane, on a
 // GPU; on a CPU device HMB_SHUTTER_LIST_CPU_GROUPS groups, each a run of consecutive blocks as
-// the range check's, at most HMB_LOOP_BUDGET / (s + 6) blocks for a walk speed s (a block's
+// the range check's, at most loopBudget / (s + 6) blocks for a walk speed s (a block's
 // pixels take at most s + 3 rounds, a tile 2 more). A group per tile, its lanes striding over
 // it, passed the budget with tiles of 128 px and walks of 300 (a lane's last pixels unlisted).
 #define HMB_MASK_TILE_GROUP_X 8
@@ -422,6 +421,9 @@ struct SizeListParams {
   // still pixel walks its tile's fastest, clamped to the tile)
   float walkSpeed;
   uint tileBlocks;  // tiles and candidates, shutter blocks: the 8 x 8 blocks of a tile (tileBlocks() below)
+  // range blocks, shutter blocks: the loop rounds an invocation may take (vk::DeviceProfile::
+  // loopBudget), which a run of blocks stays within; 0: the driver has no budget
+  uint loopBudget;
 };
 
 // tile_max_edge_candidates, edge_mask and range_check: the blur's own parameters this frame (its tiles,
@@ -547,7 +549,7 @@ HMB_CHECK_SIZE(ShutterRayListParams, 80)
 HMB_CHECK_SIZE(ShutterRayTraceParams, 32)
 HMB_CHECK_SIZE(RayMaskCounters, 128)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
-HMB_CHECK_SIZE(SizeListParams, 16)
+HMB_CHECK_SIZE(SizeListParams, 20)
 HMB_CHECK_SIZE(RayMaskParams, 80)
 HMB_CHECK_SIZE(RevealParams, 48)
 

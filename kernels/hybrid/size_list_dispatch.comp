@@ -25,6 +25,12 @@ uvec3 listGroups(uint count) { return foldedGroups((count + HMB_MASK_LIST_GROUP 
 // How far a walk may reach, rounded up: a loop round per pixel it steps.
 uint walkRounds() { return uint(ceil(min(params.walkSpeed, 1.0e6))); }
 
+// The most blocks a run may take where each takes `rounds` loop rounds: within the driver's
+// loop budget, if it has one.
+uint runWithinBudget(uint rounds, uint most) {
+  return params.loopBudget == 0u ? most : clamp(params.loopBudget / rounds, 1u, most);
+}
+
 // Groups for `count` blocks: one each, or as many as wanted, but never a run past maxRun blocks.
 uvec3 runGroups(uint count, uint maxRun) {
   const uint runs = (count + maxRun - 1u) / maxRun;
@@ -47,7 +53,7 @@ void main() {
   }
   if (params.list == HMB_SIZE_LIST_RANGE_BLOCKS) {
     const uint count = counters.rangeBlockCount;
-    const uint maxRun = clamp(HMB_LOOP_BUDGET / (4u * walkRounds() + 17u), 1u, HMB_RANGE_CHECK_MAX_RUN);
+    const uint maxRun = runWithinBudget(4u * walkRounds() + 17u, HMB_RANGE_CHECK_MAX_RUN);
     const uvec3 g = runGroups(count, maxRun);
     counters.rangeDispatchX = g.x;
     counters.rangeDispatchY = g.y;
@@ -60,7 +66,7 @@ void main() {
   }
   if (params.list == HMB_SIZE_LIST_SHUTTER_BLOCKS) {
     const uint count = counters.tileCount * params.tileBlocks;
-    const uvec3 g = runGroups(count, max(HMB_LOOP_BUDGET / (walkRounds() + 6u), 1u));
+    const uvec3 g = runGroups(count, runWithinBudget(walkRounds() + 6u, max(count, 1u)));
     counters.shutterBlockDispatchX = g.x;
     counters.shutterBlockDispatchY = g.y;
     counters.shutterBlockDispatchZ = g.z;

@@ -161,7 +161,9 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
   const auto sizeDispatch = [&](uint32_t list, uint32_t groupsWanted) {
     frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, groupsWanted, walkSpeed, gpu::tileBlocks(blur.tileSize)}, {1, 1, 1});
+                   gpu::SizeListParams{list, groupsWanted, walkSpeed, gpu::tileBlocks(blur.tileSize),
+                                       context_.profile().loopBudget.value_or(0u)},
+                   {1, 1, 1});
   };
   // The whole mask's counters were cleared before its tile-max listed the moving tiles and the
   // candidates.

@@ -53,7 +53,8 @@ void ShutterRaysPass::recordList(vk::FrameRecorder& frame, const MotionBlurInput
   // velocity, clamped to maxSpeed, or its tile's fastest, clamped to the tile.
   const float walkSpeed = std::max(blur.maxSpeed, float(blur.tileSize));
   const uint32_t groups = groupsWanted.value_or(context_.profile().shutterListGroups);
-  const gpu::SizeListParams sizeParams{HMB_SIZE_LIST_SHUTTER_BLOCKS, groups, walkSpeed, gpu::tileBlocks(blur.tileSize)};
+  const gpu::SizeListParams sizeParams{HMB_SIZE_LIST_SHUTTER_BLOCKS, groups, walkSpeed, gpu::tileBlocks(blur.tileSize),
+                                       context_.profile().loopBudget.value_or(0u)};
   frame.dispatch(kList, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &rayMask.counters()}}, sizeParams, {1, 1, 1});
   const gpu::ShutterRayListParams listParams{blur, strata, 0u, 0u, 0u};
   frame.dispatchIndirect(kList, listKernel_,

@@ -130,6 +130,30 @@ TEST(KernelsSuite, SceneIsAnAliasOfScenes) {
   EXPECT_EQ(report.at("cases").at(0).at("frame_ms").at("samples").size(), 1u);
 }
 
+// The passes suite gives each method's frame shape beside its times, in the JSON and in the
+// table it prints, under the profile forced.
+TEST(KernelsSuite, PassesGivesEachMethodsFrameShape) {
+  const fs::path dir = tempDir("bench_passes_shape");
+  const std::string out = (dir / "passes.json").string();
+  const CliRun run = runProgram(HMB_BENCH_PATH, "--validation --device-profile gpu passes --scene temple --sizes 64x36 "
+                                               "--methods postprocess,hybrid-without-shutter-rays --warmup 0 --repeat 1 "
+                                               "--out " + out);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("| dispatches (indirect) | barriers | host waits | dependent chain |"), std::string::npos)
+      << run.output;
+  const nlohmann::json report = readJson(out);
+  EXPECT_EQ(report.at("device").at("profile").at("name"), "gpu");
+  ASSERT_EQ(report.at("cases").size(), 2u);
+  for (const nlohmann::json& c : report.at("cases")) {
+    const nlohmann::json& frame = c.at("frame");
+    EXPECT_GT(frame.at("dispatches").get<int>(), 5) << c.dump();
+    EXPECT_EQ(frame.at("host_waits"), 1) << c.dump();
+    EXPECT_LE(frame.at("dependent_chain").get<int>(), frame.at("dispatches").get<int>()) << c.dump();
+  }
+  EXPECT_GT(report.at("cases").at(1).at("frame").at("dispatches").get<int>(),
+            report.at("cases").at(0).at("frame").at("dispatches").get<int>());
+}
+
 // Without --out a suite writes under out/bench/ of the working folder, never into the
 // committed bench/results/.
 TEST(KernelsSuite, ResultsGoUnderOutBenchUnlessToldOtherwise) {

@@ -62,6 +62,38 @@ TEST(CliTest, RenderWritesPngExrAndAReportThatNamesEveryPass) {
   ASSERT_NE(image.find(""), nullptr);
 }
 
+// --device-profile forces whose choices the passes make; the report names the profile, and the
+// render prints its frame's shape. A bad profile, given or from HMB_DEVICE_PROFILE, is one line.
+TEST(CliTest, ADeviceProfileIsForcedReportedAndCheckedInOneLine) {
+  const fs::path dir = tempDir("device_profile");
+  for (const char* profile : {"cpu", "gpu"}) {
+    const CliRun run = hmblur(std::string("--device-profile ") + profile +
+                              " render --scene temple --method hybrid --shutter-rays 0 --width 48 --height 27 --out " +
+                              (dir / "frame.png").string() + " --report " + (dir / "report.json").string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("frame shape: "), std::string::npos) << run.output;
+    std::ifstream in(dir / "report.json");
+    const nlohmann::json report = nlohmann::json::parse(in);
+    EXPECT_EQ(report["device"]["profile"]["name"], profile);
+    EXPECT_EQ(report["device"]["profile"]["forced"], true);
+    EXPECT_EQ(report["device"]["profile"]["raster_tile_lists"], std::string(profile) == "cpu");
+    EXPECT_EQ(report["raster"]["visibility_scheme"] == "tile-lists", std::string(profile) == "cpu") << report["raster"];
+    EXPECT_EQ(report["frame"]["host_waits"], 1);
+    EXPECT_GT(report["frame"]["dispatches"].get<int>(), 20);
+  }
+  const CliRun bad = hmblur("--device-profile fast render --method sharp --width 8 --height 8 --out " +
+                            (dir / "bad.png").string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--device-profile"), std::string::npos) << bad.output;
+  const CliRun badEnvironment = runProgram("HMB_DEVICE_PROFILE=fast " HMB_CLI_PATH,
+                                           "render --method sharp --width 8 --height 8 --out " + (dir / "bad.png").string());
+  EXPECT_NE(badEnvironment.exitCode, 0) << badEnvironment.output;
+  EXPECT_NE(badEnvironment.output.find("HMB_DEVICE_PROFILE: device profile 'fast': expected auto, cpu or gpu"),
+            std::string::npos)
+      << badEnvironment.output;
+  EXPECT_FALSE(fs::exists(dir / "bad.png"));
+}
+
 TEST(CliTest, FramesRenderAnImageSequenceWithOneReport) {
   const fs::path dir = tempDir("frames");
   const CliRun run = hmblur("--quiet render --scene temple --method hybrid --width 48 --height 27 --frames 239:241 " +
