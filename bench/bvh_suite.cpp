@@ -19,6 +19,7 @@
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/trace_rays_pass.h"
+#include "runtime/report.h"
 #include "runtime/trace_scene.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -246,7 +247,9 @@ void measureTopLevel(const vk::Context& context, const scene::Scene& source, con
   std::vector<std::vector<double>> levels;
   for (int i = 0; i < options.warmup + options.repeats; ++i) {
     vk::FrameRecorder frame(context);
+    const vk::FrameRecorder::ShapeMark buildStart = frame.mark();
     const passes::BvhBuildStats& stats = tree.build(frame, boxes, c.instances, std::span(&root, 1));
+    c.topLevelFrame = frame.shapeSince(buildStart, vk::FrameRecorder::HostWaitsUntil::Now);
     if (i < options.warmup) continue;
     builds.push_back(stats.deviceMilliseconds);
     levels.push_back(stats.levelMilliseconds);
@@ -337,7 +340,9 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
       passes::BvhBuildPass tree(context, "bench refit", HMB_BVH_MAX_LEAF);
       vk::FrameRecorder frame(context);
       const glm::uvec2 root(0u, c.triangles);
+      const vk::FrameRecorder::ShapeMark buildStart = frame.mark();
       tree.build(frame, boxBuffer, c.triangles, std::span(&root, 1));
+      c.deviceBuildFrame = frame.shapeSince(buildStart, vk::FrameRecorder::HostWaitsUntil::Now);
       std::vector<double> refits;
       // The first refit also prepares the next ones (parents, depths, the nodes by depth).
       c.deviceFirstRefitMilliseconds = tree.refit(frame, boxBuffer);
@@ -400,6 +405,7 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
             {"device_mtris_per_s", mtris},
             {"device_levels", c.deviceLevels},
             {"device_build_shape", c.deviceBuildShape},
+            {"device_frame", frameShapeJson(c.deviceBuildFrame)},
             {"device_level_ms", c.deviceLevelMilliseconds},
             {"device_small_tasks", c.deviceSmallTasks},
             {"device_small_task_ms", c.deviceSmallTaskMilliseconds},
@@ -430,6 +436,7 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
                                             {"device_level_ms", c.topLevelLevelMilliseconds},
                                             {"device_small_tasks", c.topLevelSmallTasks},
                                             {"device_small_task_ms", c.topLevelSmallTaskMilliseconds},
+                                            {"device_frame", frameShapeJson(c.topLevelFrame)},
                                             {"inserted", c.topLevelInserted},
                                             {"insertion_ms", c.topLevelInserted == 0
                                                                  ? nlohmann::json()

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/raster_suite.h"
+#include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::vk {
 class Context;
@@ -79,6 +80,10 @@ struct BvhCase {
   Summary anchorBuildMilliseconds;              // its bottom and top level builds
   uint32_t deviceLevels = 0;
   std::string deviceBuildShape;  // the level kernel's workgroups (passes::BvhBuildShape::describe)
+  // What one build of the whole scene's tree asks of the device and the host: its dispatches,
+  // barriers, submissions and host waits (vk::FrameShape), where a GPU pays a launch and drain
+  // per dependent dispatch and a round trip per wait.
+  vk::FrameShape deviceBuildFrame;
   Summary embreeSceneBuildMilliseconds;  // rtcCommitScene
   Summary embreeBvhBuildMilliseconds;    // rtcBuildBVH into our layout
   double cpuReferenceBuildMilliseconds = 0;  // full sweep, one thread
@@ -92,6 +97,7 @@ struct BvhCase {
   Summary topLevelMilliseconds;
   std::vector<double> topLevelLevelMilliseconds;  // of the median build
   uint32_t topLevelSmallTasks = 0;
+  vk::FrameShape topLevelFrame;  // one build's (vk::FrameShape)
   double topLevelSmallTaskMilliseconds = 0;  // of the median build
   // Where the hybrid splits the top level (TraceScene::splitTopLevel): the moving instances
   // inserted into the still ones' kept tree, as each frame does (0 inserted: not split).

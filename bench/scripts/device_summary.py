@@ -88,14 +88,16 @@ def bvh_section(bvh):
     lines = ["## BVH (`bvh.json`)", ""]
     if not bvh:
         return lines + ["The bvh suite wrote no results (`bvh.err`).", ""]
-    lines += ["| scene | triangles | build shape | build ms | Mtris/s | SAH / full sweep | coherent Mrays/s | "
-              "incoherent Mrays/s | hit agreement |", "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
+    lines += ["| scene | triangles | build shape | build ms | Mtris/s | dispatches (host waits) | SAH / full sweep | "
+              "coherent Mrays/s | incoherent Mrays/s | hit agreement |", "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|"]
     for c in bvh["cases"]:
         build, sah = c.get("build", {}), c.get("sah", {})
         coherent, incoherent = c.get("coherent", {}), c.get("incoherent", {})
         agreement = min(x.get("hit_agreement", 0.0) for x in (coherent, incoherent))
+        shape = build.get("device_frame", {})
         lines.append(f"| {c['scene']} | {c['triangles']} | {build.get('device_build_shape', '-')} | "
                      f"{fmt(median(build.get('device_ms')))} | {fmt(build.get('device_mtris_per_s'))} | "
+                     f"{shape.get('dispatches', '-')} ({shape.get('host_waits', '-')}) | "
                      f"{fmt(sah.get('device_over_full_sweep'), 3)} | {fmt(coherent.get('device_mrays_per_s'), 1)} | "
                      f"{fmt(incoherent.get('device_mrays_per_s'), 1)} | {agreement:.4f} |")
     return lines + [""]

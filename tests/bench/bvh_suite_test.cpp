@@ -104,6 +104,13 @@ TEST(BvhSuite, TheTopLevelTreeOverTheScenesInstancesIsTimedByStage) {
     if (split) {
       EXPECT_GT(top.at("insertion_ms").at("median").get<double>(), 0.0);
     }
+    // Each build's shape: its dispatches and at least the wait at its end, for the top level and
+    // the scene's whole tree.
+    for (const nlohmann::json* shape : {&top.at("device_frame"), &c.at("build").at("device_frame")}) {
+      EXPECT_GE(shape->at("dispatches").get<int>(), 2) << shape->dump();
+      EXPECT_GE(shape->at("host_waits").get<int>(), 1) << shape->dump();
+      EXPECT_GE(shape->at("submissions").get<int>(), 1) << shape->dump();
+    }
   }
 }
 

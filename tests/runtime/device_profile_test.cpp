@@ -3,7 +3,6 @@
 // lavapipe. Each method renders the same image under either profile, within the bound below.
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -16,6 +15,7 @@
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/device_profile.h"
 #include "scenes/load_scene.h"
+#include "tests/support/display_psnr.h"
 
 namespace hmb {
 namespace {
@@ -46,19 +46,6 @@ class DeviceProfileTest : public ::testing::Test {
     return made;
   }
 };
-
-// PSNR of two RGBA8 images over R, G, B (peak 255), +infinity where they are equal.
-double psnr(const io::Rgba8Image& a, const io::Rgba8Image& b) {
-  double sum = 0.0;
-  size_t values = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = double(a.pixels[i]) - double(b.pixels[i]);
-    sum += d * d;
-    ++values;
-  }
-  return sum == 0.0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 / (sum / double(values)));
-}
 
 size_t differingPixels(const io::Rgba8Image& a, const io::Rgba8Image& b) {
   size_t n = 0;
@@ -190,7 +177,7 @@ TEST_F(DeviceProfileTest, EveryMethodRendersTheSameImageUnderEitherProfile) {
     }
     const size_t pixels = size_t(settings.width) * settings.height;
     EXPECT_LE(differingPixels(a.display, b.display), pixels / 1000) << what;
-    EXPECT_GE(psnr(a.display, b.display), 60.0) << what;
+    EXPECT_GE(test::displayPsnr(a.display, b.display), 60.0) << what;
   }
   EXPECT_EQ(cpu.validationErrors(), 0u);
   EXPECT_EQ(gpu.validationErrors(), 0u);

@@ -14,7 +14,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +27,7 @@
 #include "runtime/io/image_files.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
+#include "tests/support/display_psnr.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -157,19 +157,6 @@ std::filesystem::path goldenImagePath(const std::string& name) {
   return std::filesystem::path(HMB_GOLDEN_IMAGES_DIR) / (file + ".png");
 }
 
-// PSNR over R, G, B (peak 255); +infinity where the images are equal.
-double psnr(const io::Rgba8Image& a, const io::Rgba8Image& b) {
-  double sum = 0.0;
-  size_t values = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = double(a.pixels[i]) - double(b.pixels[i]);
-    sum += d * d;
-    ++values;
-  }
-  return sum == 0.0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 * double(values) / sum);
-}
-
 // Every case's display image within 60 dB of the stored one (see the header for the bound).
 void expectNearStoredImages(const GoldenRender& rendered) {
   for (const auto& [name, display] : rendered.displays) {
@@ -178,7 +165,7 @@ void expectNearStoredImages(const GoldenRender& rendered) {
     const io::Rgba8Image stored = io::readPng(path);
     ASSERT_EQ(stored.width, display.width) << name;
     ASSERT_EQ(stored.height, display.height) << name;
-    EXPECT_GE(psnr(stored, display), 60.0) << name << " moved from " << path.filename();
+    EXPECT_GE(displayPsnr(stored, display), 60.0) << name << " moved from " << path.filename();
   }
 }
 
