@@ -24,10 +24,12 @@ def slug(text):
 
 def folder_name(device):
     name = device.get("name", "unknown device")
+    profile = device.get("profile", {})
+    forced = f"-{profile.get('name')}-profile" if profile.get("forced") else ""
     if device.get("driver") == "llvmpipe":  # "llvmpipe (LLVM 15.0.6, 256 bits)": the Mesa release tells more
         mesa = re.match(r"Mesa (\d+\.\d+)", device.get("driver_info", ""))
-        return slug("lavapipe-mesa-" + (mesa.group(1) if mesa else "unknown"))
-    return slug(name.replace("NVIDIA", "nvidia"))
+        return slug("lavapipe-mesa-" + (mesa.group(1) if mesa else "unknown") + forced)
+    return slug(name + forced)
 
 
 def median(summary):
