@@ -18,6 +18,7 @@
 #include "runtime/error.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/bvh_build_pass.h"
+#include "runtime/passes/linear_bvh_pass.h"
 #include "runtime/passes/trace_rays_pass.h"
 #include "runtime/report.h"
 #include "runtime/trace_scene.h"
@@ -261,6 +262,20 @@ void measureTopLevel(const vk::Context& context, const scene::Scene& source, con
   c.topLevelLevelMilliseconds = levels.at(at);
   c.topLevelSmallTaskMilliseconds = smallTaskMs.at(at);
 
+  passes::LinearBvhPass linear(context, "bench linear top level");
+  std::vector<double> linearBuilds;
+  for (int i = 0; i < options.warmup + options.repeats; ++i) {
+    vk::FrameRecorder frame(context);
+    const vk::FrameRecorder::ShapeMark buildStart = frame.mark();
+    frame.begin();
+    linear.record(frame, "bench linear top level", boxes, c.instances);
+    const std::optional<double> ms = frame.submitAndWait().frameMilliseconds;
+    c.topLevelLinearFrame = frame.shapeSince(buildStart);
+    if (i >= options.warmup) linearBuilds.push_back(ms.value_or(0.0));
+  }
+  c.topLevelLinearMilliseconds = summarize(linearBuilds);
+  c.topLevelLinearSahOverBinned = bvh::sahCost(linear.download()) / bvh::sahCost(tree.download(0));
+
   if (!TraceScene::whyNotSplit(source, TraceScene::kStillInstancesToSplit).empty()) return;
   const auto [order, still] = TraceScene::stillFirstOrder(source);
   passes::BvhBuildPass kept(context, "bench kept top level", HMB_BVH_MAX_INSTANCE_LEAF,
@@ -437,6 +452,9 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
                                             {"device_small_tasks", c.topLevelSmallTasks},
                                             {"device_small_task_ms", c.topLevelSmallTaskMilliseconds},
                                             {"device_frame", frameShapeJson(c.topLevelFrame)},
+                                            {"linear_ms", summaryJson(c.topLevelLinearMilliseconds)},
+                                            {"linear_frame", frameShapeJson(c.topLevelLinearFrame)},
+                                            {"linear_sah_over_binned", c.topLevelLinearSahOverBinned},
                                             {"inserted", c.topLevelInserted},
                                             {"insertion_ms", c.topLevelInserted == 0
                                                                  ? nlohmann::json()
@@ -464,8 +482,9 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
   if (std::any_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.instances >= 2; })) {
     out << "\nThe top-level tree over each scene's instances (the same builder, a frame's top level):\n\n"
         << "| scene | instances | device build ms | levels (their ms) | small tasks (their ms) | the rest ms (begin, "
-           "dispatch sizing, gaps) | moving ones inserted into the still ones' kept tree ms |\n"
-        << "|---|---:|---:|---:|---:|---:|---:|\n";
+           "dispatch sizing, gaps) | moving ones inserted into the still ones' kept tree ms | dispatches | linear "
+           "builder ms (dispatches) | linear SAH / binned |\n"
+        << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const BvhCase& c : cases) {
       if (c.instances < 2) continue;
       double levelMs = 0.0;
@@ -475,9 +494,11 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
           << c.topLevelSmallTaskMilliseconds << ") | "
           << c.topLevelMilliseconds.median - levelMs - c.topLevelSmallTaskMilliseconds << " | ";
       if (c.topLevelInserted == 0)
-        out << "not split |\n";
+        out << "not split | ";
       else
-        out << c.topLevelInserted << " (" << c.topLevelInsertionMilliseconds.median << ") |\n";
+        out << c.topLevelInserted << " (" << c.topLevelInsertionMilliseconds.median << ") | ";
+      out << c.topLevelFrame.dispatches << " | " << c.topLevelLinearMilliseconds.median << " ("
+          << c.topLevelLinearFrame.dispatches << ") | " << std::setprecision(3) << c.topLevelLinearSahOverBinned << " |\n";
     }
   }
   if (std::none_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.anchorMeasured; })) return;

@@ -103,6 +103,11 @@ struct BvhCase {
   // inserted into the still ones' kept tree, as each frame does (0 inserted: not split).
   uint32_t topLevelInserted = 0;
   Summary topLevelInsertionMilliseconds;
+  // The same top level by the linear builder (passes::LinearBvhPass, the GPU profile's), recorded
+  // and submitted as a frame records it: its time, its shape and its SAH cost over the binned one.
+  Summary topLevelLinearMilliseconds;
+  vk::FrameShape topLevelLinearFrame;
+  double topLevelLinearSahOverBinned = 0.0;
 };
 
 // Why the suite leaves out the driver's ray queries on this context ("" when it runs them).

@@ -80,7 +80,8 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
       motionBoundsKernel_(context, "trace/instance_motion_bounds", sizeof(gpu::TraceParams)),
       deformedLeavesKernel_(context, "bvh/deformed_leaf_triangles", sizeof(glm::uvec2)),
       meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF),
-      instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF, passes::BvhBuildShape::forTopLevel(context)) {
+      instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF, passes::BvhBuildShape::forTopLevel(context)),
+      linearInstanceBvh_(context, "instance BVH (linear)") {
   std::vector<glm::vec4> positions;
   std::vector<glm::uvec4> triangles;
   std::vector<glm::uvec2> roots;
@@ -188,7 +189,8 @@ double TraceScene::buildStagedTree(vk::FrameRecorder& frame, std::string_view pa
   frame.begin();
   recordInstanceTree(frame, pass);
   const double milliseconds = frame.submitAndWait().frameMilliseconds.value_or(0.0);
-  instanceBvh_.readRecordedCounts(milliseconds);
+  if (!linearTopLevel_) instanceBvh_.readRecordedCounts(milliseconds);
+  instanceTreeMilliseconds_ = milliseconds;
   return milliseconds;
 }
 
@@ -301,10 +303,14 @@ void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view p
   };
   // The still instances' tree kept, the moving ones inserted into it again (on a CPU device one
   // invocation built bistro's 321 instances in about 1 ms).
+  linearTopLevel_ = false;
   if (keepsStillTree_) {
     instanceBvh_.recordInsertionsAgain(frame, pass, instanceBoxes_, motionBounds);
   } else if (!still_.order.empty()) {
     instanceBvh_.recordKeptWithInsertions(frame, pass, instanceBoxes_, still_.order, still_.count, motionBounds);
+  } else if (context_.profile().linearTopLevel && instanceCount_ <= HMB_LINEAR_BVH_MAX_PRIMITIVES) {
+    linearInstanceBvh_.record(frame, pass, instanceBoxes_, instanceCount_, motionBounds);
+    linearTopLevel_ = true;
   } else {
     const glm::uvec2 root(0u, instanceCount_);
     instanceBvh_.record(frame, pass, instanceBoxes_, instanceCount_, std::span(&root, 1), motionBounds);
@@ -316,9 +322,16 @@ void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view p
 void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
   static_assert(sizeof(gpu::TraceSceneTable) == HMB_TRACE_SCENE_BUFFERS * sizeof(uint64_t));
   // The order of kernels/trace/trace_scene_bindings.glsl and of gpu::TraceSceneTable.
-  const vk::Buffer* members[] = {&instanceBvh_.nodes(), &instanceBvh_.primitives(), &instances_,
-                                 &transforms_,          &meshBvh_.nodes(),        &meshBvh_.primitives(),
-                                 &leafTriangles_,       &instanceBvh_.frames(),   &meshBvh_.frames(),
+  const bool linear = linearTopLevel_;
+  const vk::Buffer* members[] = {linear ? &linearInstanceBvh_.nodes() : &instanceBvh_.nodes(),
+                                 linear ? &linearInstanceBvh_.primitives() : &instanceBvh_.primitives(),
+                                 &instances_,
+                                 &transforms_,
+                                 &meshBvh_.nodes(),
+                                 &meshBvh_.primitives(),
+                                 &leafTriangles_,
+                                 linear ? &linearInstanceBvh_.frames() : &instanceBvh_.frames(),
+                                 &meshBvh_.frames(),
                                  &status_};
   group_.bind(bindings, firstBinding, byAddress, members);
 }
@@ -363,6 +376,14 @@ std::optional<double> prepareKeptMeshTrees(std::unique_ptr<TraceScene>& kept, st
   kept.reset();
   kept = std::make_unique<TraceScene>(context, scene, frame);
   return kept->meshBvh().stats().deviceMilliseconds;
+}
+
+bvh::Bvh TraceScene::downloadInstanceTree() const {
+  return linearTopLevel_ ? linearInstanceBvh_.download() : instanceBvh_.download(0);
+}
+
+std::vector<gpu::BvhNode> TraceScene::downloadInstanceNodes() const {
+  return linearTopLevel_ ? linearInstanceBvh_.downloadNodes() : instanceBvh_.downloadNodes();
 }
 
 }  // namespace hmb

@@ -18,6 +18,7 @@
 
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/bvh_build_pass.h"
+#include "runtime/passes/linear_bvh_pass.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/buffer_group.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -116,7 +117,18 @@ class TraceScene {
   const std::vector<uint32_t>& meshFirstTriangle() const { return meshFirstTriangle_; }
 
   const passes::BvhBuildPass& meshBvh() const { return meshBvh_; }
+  // The binned builder of the top level (a split top level's insertions are its): the tree
+  // traversal reads unless the last build was the linear one (vk::DeviceProfile::linearTopLevel).
   const passes::BvhBuildPass& instanceBvh() const { return instanceBvh_; }
+  bool linearTopLevel() const { return linearTopLevel_; }
+  // The last top level was split: the moving instances inserted into the still ones' tree.
+  bool topLevelHasInsertions() const { return !linearTopLevel_ && instanceBvh_.hasInsertions(); }
+  // The top level as the last build left it, whichever builder made it: the tree (rooted at
+  // node 0, primitive indices the instances') and every node as indexed on the device (tests).
+  bvh::Bvh downloadInstanceTree() const;
+  std::vector<gpu::BvhNode> downloadInstanceNodes() const;
+  // The device time of the top level's last build by setShutterTimes.
+  double instanceTreeMilliseconds() const { return instanceTreeMilliseconds_; }
   // 3 vec4 per triangle in the leaves' order (BvhHit::entry): its vertices, their indices in w.
   const vk::Buffer& leafTriangles() const { return leafTriangles_; }
   const vk::Buffer& instances() const { return instances_; }
@@ -147,6 +159,9 @@ class TraceScene {
   vk::ComputeKernel deformedLeavesKernel_;
   passes::BvhBuildPass meshBvh_;
   passes::BvhBuildPass instanceBvh_;
+  passes::LinearBvhPass linearInstanceBvh_;
+  bool linearTopLevel_ = false;  // the last top level recorded was the linear builder's
+  double instanceTreeMilliseconds_ = 0.0;
   uint32_t meshCount_ = 0;
   uint32_t instanceCount_ = 0;
   uint32_t timeCount_ = 0;

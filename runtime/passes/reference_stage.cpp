@@ -305,7 +305,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
       const std::span<const float> batch(times.data() + first, count);
       if (gpuScene.deforms()) vk::appendTimings(total, traceScene.followDeformation(scene, batch[0], gpuScene, frame));
       traceScene.setShutterTimes(scene, batch, frame);
-      const double bvhMs = traceScene.instanceBvh().stats().deviceMilliseconds;
+      const double bvhMs = traceScene.instanceTreeMilliseconds();
       vk::appendTimings(total, {{{kBvhInstances, bvhMs}}, bvhMs});
       std::vector<gpu::PinholeCamera> cameras;
       for (const float t : batch) cameras.push_back(pinholeCamera(scene, t, width, height));

@@ -37,13 +37,16 @@ DeviceProfileChoice deviceProfileChoiceFromEnvironment() {
   }
 }
 
-std::optional<uint32_t> driverLoopBudget(const DeviceInfo& device) {
-  // driverInfo reads "Mesa 22.3.6 (LLVM 15.0.6)"; Mesa 23 lifted the limit.
-  if (device.driverName != "llvmpipe") return std::nullopt;
+bool isLavapipeBefore23(const DeviceInfo& device) {
+  // driverInfo reads "Mesa 22.3.6 (LLVM 15.0.6)"; an unknown release is taken as the older.
+  if (device.driverName != "llvmpipe") return false;
   int major = 0;
-  if (std::sscanf(device.driverInfo.c_str(), "Mesa %d", &major) != 1) return HMB_LOOP_BUDGET;  // unknown: keep within
-  if (major >= 23) return std::nullopt;
-  return HMB_LOOP_BUDGET;
+  return std::sscanf(device.driverInfo.c_str(), "Mesa %d", &major) != 1 || major < 23;
+}
+
+std::optional<uint32_t> driverLoopBudget(const DeviceInfo& device) {
+  // Mesa 23 lifted the limit.
+  return isLavapipeBefore23(device) ? std::optional<uint32_t>(HMB_LOOP_BUDGET) : std::nullopt;
 }
 
 DeviceProfile makeDeviceProfile(const DeviceInfo& device, uint32_t maxWorkGroupSizeX, uint32_t maxWorkGroupInvocations,
@@ -53,6 +56,7 @@ DeviceProfile makeDeviceProfile(const DeviceInfo& device, uint32_t maxWorkGroupS
   const bool cpu = choice == DeviceProfileChoice::Auto ? device.type == "cpu" : choice == DeviceProfileChoice::Cpu;
   profile.name = cpu ? "cpu" : "gpu";
   profile.loopBudget = driverLoopBudget(device);
+  profile.uniformAtomicRounds = isLavapipeBefore23(device);
   profile.rasterTileLists = cpu;
   if (cpu) {
     profile.bvhLevelGroup = HMB_BVH_LEVEL_GROUP;
@@ -65,6 +69,7 @@ DeviceProfile makeDeviceProfile(const DeviceInfo& device, uint32_t maxWorkGroupS
     profile.bvhLevelGroup = std::min({std::clamp(device.subgroupSize, 32u, 64u), maxWorkGroupSizeX, maxWorkGroupInvocations});
     profile.bvhLaneBins = false;
     profile.topLevelSmallTask = HMB_BVH_SMALL_TASK;
+    profile.linearTopLevel = true;
     profile.gatherSkipsRayMask = true;
     profile.edgeCandidatesInTileMax = true;
   }
@@ -75,10 +80,11 @@ std::string DeviceProfile::describe() const {
   std::string line = name + (forced ? " (forced)" : "") + ": raster " + (rasterTileLists ? "tile lists" : "atomics") +
                      ", bvh levels of " + std::to_string(bvhLevelGroup) + " lanes " +
                      (bvhLaneBins ? "with per-lane bins" : "with shared atomics") + ", top-level small tasks of " +
-                     std::to_string(topLevelSmallTask) + ", gather " +
+                     std::to_string(topLevelSmallTask) + (linearTopLevel ? ", a linear top level" : "") + ", gather " +
                      (gatherSkipsRayMask ? "skips the ray mask" : "over every pixel") + ", list walks in " +
                      (rangeCheckGroups == 0 ? std::string("a group per block") : std::to_string(rangeCheckGroups) + " groups");
   line += loopBudget ? ", loop budget " + std::to_string(*loopBudget) + " rounds an invocation" : ", no loop budget";
+  if (uniformAtomicRounds) line += ", atomic loops kept uniform";
   return line;
 }
 

@@ -35,6 +35,10 @@ struct DeviceProfile {
   // Mesa 22.3's lavapipe ends every loop of an invocation after 65535 rounds in all, silently;
   // kernels whose loops could pass it are sized to stay within this many (empty: no budget).
   std::optional<uint32_t> loopBudget;
+  // Mesa 22.3's lavapipe returned wrong values from atomics to the lanes of a vector some of
+  // whose lanes had left a loop: kernels that count arrivals with atomics in a loop keep every
+  // lane in it to the loop's last round (kernels/bvh/linear_bounds.comp), which a GPU need not.
+  bool uniformAtomicRounds = false;
 
   // The G-buffer rasterizer: per-tile triangle lists walked by one invocation a tile (a CPU
   // runs a tile's pixels as vector code and can skip per-pixel atomics), else a visibility
@@ -47,6 +51,11 @@ struct DeviceProfile {
   // The largest top-level tree one invocation builds whole, with no level (on a CPU the top
   // level over a few hundred instances is cheaper as one lane's work than as levels).
   uint32_t topLevelSmallTask = 0;
+  // The per-frame top level over the instances is built by the linear builder (Morton codes,
+  // one workgroup's sort, a Karras hierarchy: passes::LinearBvhPass), in a constant four
+  // dispatches, where the binned SAH builder records two a level (a GPU pays a launch and drain
+  // for each; a CPU device's lane builds a few hundred instances' tree whole in one).
+  bool linearTopLevel = false;
   // The hybrid's post-process gather leaves the ray mask's pixels out (a GPU's warp wholly in
   // the mask skips its samples; a CPU runs every lane of a vector and pays for the mask's load).
   bool gatherSkipsRayMask = false;
@@ -69,5 +78,7 @@ DeviceProfile makeDeviceProfile(const DeviceInfo& device, uint32_t maxWorkGroupS
 
 // The loop budget of a driver: lavapipe before Mesa 23 has one (DeviceProfile::loopBudget).
 std::optional<uint32_t> driverLoopBudget(const DeviceInfo& device);
+// Lavapipe of a Mesa release before 23 (or of an unknown one): its loop budget, its atomics.
+bool isLavapipeBefore23(const DeviceInfo& device);
 
 }  // namespace hmb::vk

@@ -106,6 +106,10 @@ TEST(BvhSuite, TheTopLevelTreeOverTheScenesInstancesIsTimedByStage) {
     }
     // Each build's shape: its dispatches and at least the wait at its end, for the top level and
     // the scene's whole tree.
+    // The linear builder beside it: four dispatches and a sound tree, whatever the count.
+    EXPECT_EQ(top.at("linear_frame").at("dispatches"), 4) << top.dump();
+    EXPECT_GT(top.at("linear_ms").at("median").get<double>(), 0.0);
+    EXPECT_GT(top.at("linear_sah_over_binned").get<double>(), 0.5) << top.dump();
     for (const nlohmann::json* shape : {&top.at("device_frame"), &c.at("build").at("device_frame")}) {
       EXPECT_GE(shape->at("dispatches").get<int>(), 2) << shape->dump();
       EXPECT_GE(shape->at("host_waits").get<int>(), 1) << shape->dump();

@@ -90,6 +90,8 @@ TEST_F(DeviceProfileTest, EachProfileMakesItsOwnChoices) {
   EXPECT_EQ(gpuAuto.bvhLevelGroup, 32u);
   EXPECT_TRUE(gpuAuto.gatherSkipsRayMask);
   EXPECT_TRUE(gpuAuto.edgeCandidatesInTileMax);
+  EXPECT_TRUE(gpuAuto.linearTopLevel);
+  EXPECT_FALSE(cpuAuto.linearTopLevel);
   EXPECT_EQ(gpuAuto.rangeCheckGroups, 0u);
   EXPECT_EQ(gpuAuto.shutterListGroups, 0u);
   // Forced, each device takes the other's choices.
@@ -108,7 +110,7 @@ TEST_F(DeviceProfileTest, EachProfileMakesItsOwnChoices) {
 }
 
 // The driver's loop budget is a fact of the driver: lavapipe before Mesa 23 has one, under any
-// profile; other drivers none.
+// profile; other drivers none. So is its atomics' defect in loops (uniformAtomicRounds).
 TEST_F(DeviceProfileTest, TheLoopBudgetFollowsTheDriverNotTheProfile) {
   vk::DeviceInfo lavapipe;
   lavapipe.type = "cpu";
@@ -116,8 +118,10 @@ TEST_F(DeviceProfileTest, TheLoopBudgetFollowsTheDriverNotTheProfile) {
   lavapipe.driverInfo = "Mesa 22.3.6 (LLVM 15.0.6)";
   for (const auto choice : {vk::DeviceProfileChoice::Auto, vk::DeviceProfileChoice::Cpu, vk::DeviceProfileChoice::Gpu})
     EXPECT_EQ(vk::makeDeviceProfile(lavapipe, 1024, 1024, choice).loopBudget, std::optional<uint32_t>(HMB_LOOP_BUDGET));
+  EXPECT_TRUE(vk::makeDeviceProfile(lavapipe, 1024, 1024, vk::DeviceProfileChoice::Gpu).uniformAtomicRounds);
   lavapipe.driverInfo = "Mesa 25.0.7-2~bpo12+1 (LLVM 19.1.7)";
   EXPECT_EQ(vk::driverLoopBudget(lavapipe), std::nullopt);
+  EXPECT_FALSE(vk::isLavapipeBefore23(lavapipe));
   lavapipe.driverInfo = "an unknown build";
   EXPECT_EQ(vk::driverLoopBudget(lavapipe), std::optional<uint32_t>(HMB_LOOP_BUDGET)) << "unknown: stay within";
   vk::DeviceInfo nvidia;

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "kernels/bvh/bvh_build_layout.h"
+#include "kernels/bvh/linear_bvh_layout.h"
 #include "kernels/debug/floor_pass.h"
 #include "kernels/debug/pack_layer.h"
 #include "kernels/debug/test_pattern.h"
@@ -54,6 +55,10 @@ const KernelLayout kLayouts[] = {
     {"bvh/build_small_tasks", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
     {"bvh/pack_deferred_nodes", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
     {"bvh/insert_primitives", HMB_INSERT_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
+    {"bvh/linear_sort_keys", HMB_LINEAR_SORT_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
+    {"bvh/linear_hierarchy", HMB_LINEAR_HIERARCHY_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
+    {"bvh/linear_bounds", HMB_LINEAR_BOUNDS_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
+    {"bvh/linear_pack", HMB_LINEAR_PACK_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
     {"bvh/refit_parents", HMB_REFIT_PARENTS_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"bvh/refit_places", HMB_REFIT_PLACES_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"bvh/refit_bounds", HMB_REFIT_BOUNDS_BINDINGS, sizeof(gpu::BvhRefitParams), false},

@@ -452,7 +452,7 @@ TEST_F(TwoLevelScene, MotionBoundsHoldEveryInstanceAtEveryShutterTime) {
   TraceScene traceScene(context(), scene_, frame);
   traceScene.setShutterTimes(scene_, times_, frame);
   const std::vector<gpu::BvhBox> boxes = traceScene.instanceBoxes().download<gpu::BvhBox>();
-  const std::vector<gpu::BvhNode> topNodes = traceScene.instanceBvh().downloadNodes();
+  const std::vector<gpu::BvhNode> topNodes = traceScene.downloadInstanceNodes();
   const Aabb root = bvh::boundsOf(topNodes.at(0));
   std::mt19937 rng(23);
   for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
@@ -467,7 +467,7 @@ TEST_F(TwoLevelScene, MotionBoundsHoldEveryInstanceAtEveryShutterTime) {
       }
     }
   }
-  const bvh::Bvh top = traceScene.instanceBvh().download(0);
+  const bvh::Bvh top = traceScene.downloadInstanceTree();
   std::vector<Aabb> instanceBoxes;
   for (const gpu::BvhBox& b : boxes) instanceBoxes.push_back({glm::vec3(b.min), glm::vec3(b.max)});
   instanceBoxes.resize(scene_.instances.size());
@@ -478,7 +478,7 @@ TEST_F(TwoLevelScene, RaysAtEachShutterTimeMatchBruteForceWithAndWithoutIgnoredO
   vk::FrameRecorder frame(context());
   TraceScene traceScene(context(), scene_, frame);
   traceScene.setShutterTimes(scene_, times_, frame);
-  EXPECT_FALSE(traceScene.instanceBvh().hasInsertions()) << "a trace scene splits its top level when asked";
+  EXPECT_FALSE(traceScene.topLevelHasInsertions()) << "a trace scene splits its top level when asked";
   expectRaysMatchBruteForce(traceScene, times_);
 }
 
@@ -493,7 +493,7 @@ TEST_F(TwoLevelScene, ASplitTopLevelKeepsTheStillInstancesTreeAndTracesTheSame) 
   traceScene.splitTopLevel(1);
   EXPECT_EQ(TraceScene::whyNotSplit(scene_, 1), "");
   traceScene.setShutterTimes(scene_, std::vector<float>{0.8f, 0.9f}, frame);
-  EXPECT_TRUE(traceScene.instanceBvh().hasInsertions()) << "a still instance and three moving ones";
+  EXPECT_TRUE(traceScene.topLevelHasInsertions()) << "a still instance and three moving ones";
   EXPECT_FALSE(traceScene.keepsStillInstanceTree());
   expectRaysMatchBruteForce(traceScene, std::vector<float>{0.8f, 0.9f});
   EXPECT_TRUE(traceScene.hasStillInstanceTreeOf(scene_));
@@ -504,12 +504,12 @@ TEST_F(TwoLevelScene, ASplitTopLevelKeepsTheStillInstancesTreeAndTracesTheSame) 
   EXPECT_FALSE(traceScene.hasStillInstanceTreeOf(scene_));
   traceScene.setShutterTimes(scene_, times_, frame);
   EXPECT_FALSE(traceScene.keepsStillInstanceTree());
-  EXPECT_TRUE(traceScene.instanceBvh().hasInsertions());
+  EXPECT_TRUE(traceScene.topLevelHasInsertions());
   expectRaysMatchBruteForce(traceScene, times_);
   traceScene.splitTopLevel(2);
   EXPECT_NE(TraceScene::whyNotSplit(scene_, 2), "");
   traceScene.setShutterTimes(scene_, times_, frame);
-  EXPECT_FALSE(traceScene.instanceBvh().hasInsertions());
+  EXPECT_FALSE(traceScene.topLevelHasInsertions());
   expectRaysMatchBruteForce(traceScene, times_);
 }
 
