@@ -55,11 +55,11 @@ struct BvhBuildShape {
   uint32_t levelGroup = HMB_BVH_LEVEL_GROUP;
   bool laneBins = true;
   uint32_t smallTask = HMB_BVH_SMALL_TASK;
-  // The shape for the device: CPU devices (lavapipe) get 8 lanes and per-lane bins; GPUs a
-  // warp or wave (the subgroup size, 32 to 64, within the device's workgroup limit) binning
-  // with shared atomics.
+  // The shape the device profile chooses (vk::DeviceProfile): the CPU profile's 8 lanes and
+  // per-lane bins, or the GPU profile's warp or wave (the subgroup size, 32 to 64, within the
+  // device's workgroup limit) binning with shared atomics.
   static BvhBuildShape forDevice(const vk::Context& context);
-  // The device's shape for a top level over instances: on a CPU device a tree of up to
+  // The profile's shape for a top level over instances: under the CPU profile a tree of up to
   // HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU instances is built by one invocation, with no level.
   static BvhBuildShape forTopLevel(const vk::Context& context);
   // Small tasks larger than HMB_BVH_SMALL_TASK (the CPU top level's) leave their nodes' bounds
