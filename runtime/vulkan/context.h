@@ -154,6 +154,8 @@ class Context {
   // (an engine's recorded frame).
   uint64_t hostWaits() const { return hostWaits_.load(); }
   uint64_t hostReadbacks() const { return hostReadbacks_.load(); }
+  // Both: every time the host waited on the device or read its memory (vk::FrameShape::hostWaits).
+  uint64_t hostRoundTrips() const { return hostWaits() + hostReadbacks(); }
   void countReadback() const { ++hostReadbacks_; }
 
   // Validation messages seen since creation (errors and warnings counted separately).

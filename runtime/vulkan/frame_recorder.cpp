@@ -42,14 +42,9 @@ namespace {
 
 constexpr uint32_t kMaxBindingsPerPass = 16;
 
-// Everything a pass may write becomes visible to everything the next pass may do.
-void passBarrier(VkCommandBuffer cmd, VkPipelineStageFlags dstStages, VkAccessFlags dstAccess) {
-  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.dstAccessMask = dstAccess;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, dstStages, 0, 1,
-                       &barrier, 0, nullptr, 0, nullptr);
-}
+// What a pass may write.
+constexpr VkPipelineStageFlags kPassStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+constexpr VkAccessFlags kPassWrites = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
 
 }  // namespace
 
@@ -100,14 +95,9 @@ void FrameRecorder::beginInto(VkCommandBuffer commandBuffer) {
   startFrame(commandBuffer, true);
   // What the command buffer's earlier commands (and earlier submissions on the queue) wrote,
   // the first pass reads.
-  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  barrier.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
-                          VK_ACCESS_TRANSFER_WRITE_BIT;
-  vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0,
-                       nullptr, 0, nullptr);
-  recordBarrier();
+  recordBarrier(VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, kPassStages,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                    VK_ACCESS_TRANSFER_WRITE_BIT);
 }
 
 void FrameRecorder::startFrame(VkCommandBuffer commandBuffer, bool external) {
@@ -123,12 +113,8 @@ void FrameRecorder::endInto() {
   if (!recording_ || !external_) throw Error("endInto() without beginInto()");
   recording_ = false;
   // The passes' writes, for every later command of the engine's.
-  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
-  vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-  recordBarrier();
+  recordBarrier(kPassStages, kPassWrites, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
 }
 
 uint32_t FrameRecorder::beginPass(std::string_view pass) {
@@ -144,15 +130,18 @@ uint32_t FrameRecorder::beginPass(std::string_view pass) {
 void FrameRecorder::endPass(uint32_t index) {
   if (queryPool_)
     vkCmdWriteTimestamp(commandBuffer_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 2 * index + 1);
-  passBarrier(commandBuffer_,
-              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-              VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
-                  VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-  recordBarrier();
+  // Everything a pass may write becomes visible to everything the next pass may do.
+  recordBarrier(kPassStages, kPassWrites, kPassStages | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                    VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
-void FrameRecorder::recordBarrier() {
+void FrameRecorder::recordBarrier(VkPipelineStageFlags srcStages, VkAccessFlags srcAccess,
+                                  VkPipelineStageFlags dstStages, VkAccessFlags dstAccess) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = srcAccess;
+  barrier.dstAccessMask = dstAccess;
+  vkCmdPipelineBarrier(commandBuffer_, srcStages, dstStages, 0, 1, &barrier, 0, nullptr, 0, nullptr);
   ++shape_.barriers;
   if (dispatchSinceBarrier_) ++shape_.dependentChain;
   dispatchSinceBarrier_ = false;
@@ -165,12 +154,12 @@ void FrameRecorder::recordDispatch(bool indirect) {
 }
 
 FrameRecorder::ShapeMark FrameRecorder::mark() const {
-  return {shape_, context_.hostWaits() + context_.hostReadbacks()};
+  return {shape_, context_.hostRoundTrips()};
 }
 
 FrameShape FrameRecorder::shapeSince(const ShapeMark& mark, HostWaitsUntil until) const {
   FrameShape shape = shape_ - mark.recorded;
-  const uint64_t roundTrips = until == HostWaitsUntil::Now ? context_.hostWaits() + context_.hostReadbacks()
+  const uint64_t roundTrips = until == HostWaitsUntil::Now ? context_.hostRoundTrips()
                               : shape.submissions > 0      ? roundTripsAtLastSubmit_
                                                            : mark.hostRoundTrips;
   shape.hostWaits = static_cast<uint32_t>(roundTrips - mark.hostRoundTrips);
@@ -306,12 +295,11 @@ FrameTimings FrameRecorder::submitAndWait() {
   if (!recording_ || external_) throw Error("submitAndWait() without begin()");
   recording_ = false;
   // The host reads results after the fence: make every write visible to it.
-  passBarrier(commandBuffer_, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-  recordBarrier();
+  recordBarrier(kPassStages, kPassWrites, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
   HMB_VK_CHECK(vkEndCommandBuffer(commandBuffer_));
   context_.submitAndWait(commandBuffer_);
   ++shape_.submissions;
-  roundTripsAtLastSubmit_ = context_.hostWaits() + context_.hostReadbacks();
+  roundTripsAtLastSubmit_ = context_.hostRoundTrips();
   return readTimings();
 }
 

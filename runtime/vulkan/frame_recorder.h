@@ -161,7 +161,9 @@ class FrameRecorder {
   void startFrame(VkCommandBuffer commandBuffer, bool external);
   uint32_t beginPass(std::string_view pass);
   void endPass(uint32_t index);
-  void recordBarrier();  // counts a barrier recorded into the frame
+  // Records a memory barrier into the frame and counts it (FrameShape).
+  void recordBarrier(VkPipelineStageFlags srcStages, VkAccessFlags srcAccess, VkPipelineStageFlags dstStages,
+                     VkAccessFlags dstAccess);
   void recordDispatch(bool indirect);
 
   const Context& context_;
