@@ -184,8 +184,7 @@ hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
   options.deviceIndex = global.device;
   options.validation = global.validation;
   options.bindByAddress = global.bindByAddress;
-  options.deviceProfile = global.deviceProfile.empty() ? hmb::vk::deviceProfileChoiceFromEnvironment()
-                                                       : hmb::vk::parseDeviceProfileChoice(global.deviceProfile);
+  options.deviceProfile = hmb::vk::deviceProfileChoiceOrEnvironment(global.deviceProfile);
   return options;
 }
 
@@ -228,7 +227,7 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
   deviceOptions.deviceIndex = static_cast<int>(context.info().index);
   const hmb::vk::Context graphicsContext(deviceOptions);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(hmb::deviceProgressLine(context));
   const std::vector<hmb::bench::RasterCase> cases =
       hmb::bench::runRasterSuite(context, graphicsContext, suite, progress);
 
@@ -281,7 +280,7 @@ int bvh(const GlobalOptions& global, const BvhOptions& options, const std::strin
   checkOutputDirectory(options.out);
   const hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(hmb::deviceProgressLine(context));
   const std::vector<hmb::bench::BvhCase> cases = hmb::bench::runBvhSuite(context, suite, progress);
   hmb::bench::printBvhTable(std::cout, cases);
   if (options.out.empty()) return validationVerdict({&context});
@@ -330,7 +329,7 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
     throw hmb::Error("--reference-dir '" + suite.referenceDir + "' is not a directory");
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(hmb::deviceProgressLine(context));
   const std::vector<hmb::bench::ErrorTimeScene> scenes = hmb::bench::runErrorTimeSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -373,7 +372,7 @@ int passes(const GlobalOptions& global, const PassesOptions& options, const std:
   checkOutputDirectory(options.out);
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(hmb::deviceProgressLine(context));
   const std::vector<hmb::bench::PassesCase> cases = hmb::bench::runPassesSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -410,7 +409,7 @@ int engine(const GlobalOptions& global, const EngineOptions& options, const std:
   checkOutputDirectory(options.out);
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(hmb::deviceProgressLine(context));
   const std::vector<hmb::bench::EngineCase> cases = hmb::bench::runEngineSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -449,7 +448,7 @@ int explain(const GlobalOptions& global, const ExplainOptions& options, const st
   }
   hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(hmb::deviceProgressLine(context));
   const std::vector<hmb::bench::ExplainCase> cases = hmb::bench::runExplainSuite(context, suite, progress);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();
@@ -548,7 +547,7 @@ int kernels(const GlobalOptions& global, const KernelsOptions& options, const st
   checkOutputDirectory(options.out);
   const hmb::vk::Context context = openContext(global);
   const auto progress = progressPrinter(global);
-  progress("device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(hmb::deviceProgressLine(context));
   const hmb::bench::CpuSample cpuBefore = hmb::bench::sampleCpu();
   const std::vector<hmb::bench::KernelCase> cases = hmb::bench::runKernelsSuite(context, suite, progress);
   const double otherCpuLoad = hmb::bench::otherLoad(cpuBefore, hmb::bench::sampleCpu());

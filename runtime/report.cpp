@@ -59,6 +59,10 @@ nlohmann::json frameShapeJson(const vk::FrameShape& shape) {
   };
 }
 
+std::string deviceProgressLine(const vk::Context& context) {
+  return "device: " + context.info().name + "; profile " + context.profile().describe();
+}
+
 nlohmann::json systemJson(const SystemInfo& system) {
   return {
       {"cpu", system.cpu},

@@ -21,6 +21,8 @@ nlohmann::json deviceJson(const vk::DeviceInfo& device);
 nlohmann::json deviceProfileJson(const vk::DeviceProfile& profile);
 // The device's facts and the profile its passes chose by ("profile").
 nlohmann::json deviceJson(const vk::Context& context);
+// "device: NAME; profile ..." for the tools' progress lines.
+std::string deviceProgressLine(const vk::Context& context);
 nlohmann::json systemJson(const SystemInfo& system);
 nlohmann::json sceneJson(const scene::Scene& scene);
 nlohmann::json passesJson(const FramePlan& plan);

@@ -108,8 +108,7 @@ hmb::vk::ContextOptions contextOptions(const GlobalOptions& global) {
   options.deviceIndex = global.device;
   options.validation = global.validation;
   options.bindByAddress = global.bindByAddress;
-  options.deviceProfile = global.deviceProfile.empty() ? hmb::vk::deviceProfileChoiceFromEnvironment()
-                                                       : hmb::vk::parseDeviceProfileChoice(global.deviceProfile);
+  options.deviceProfile = hmb::vk::deviceProfileChoiceOrEnvironment(global.deviceProfile);
   return options;
 }
 
@@ -285,7 +284,7 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
   const FrameRange range = parseFrames(options.frames);
   const hmb::scene::Scene scene = loadSceneSaying(global, options.scene, options.shutter);
   hmb::vk::Context context(contextOptions(global));
-  progress(global, "device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(global, hmb::deviceProgressLine(context));
   hmb::Renderer renderer(context);
   nlohmann::json report = {{"tool", "hmblur render --frames"},
                            {"date", hmb::utcTimestamp()},
@@ -448,7 +447,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
 
   const hmb::scene::Scene scene = loadSceneSaying(global, options.scene, options.shutter);
   hmb::vk::Context context(contextOptions(global));
-  progress(global, "device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(global, hmb::deviceProgressLine(context));
   hmb::Renderer renderer(context);
   progress(global, "rendering " + options.method + " at " + std::to_string(settings.width) + "x" +
                        std::to_string(settings.height));
@@ -573,7 +572,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
   const std::string sceneName = hmb::scene::referenceSceneNames().front();
   const hmb::scene::Scene scene = loadSceneSaying(global, sceneName);
   hmb::vk::Context context(contextOptions(global));
-  progress(global, "device: " + context.info().name + "; profile " + context.profile().describe());
+  progress(global, hmb::deviceProgressLine(context));
   hmb::Renderer renderer(context);
 
   const hmb::SystemInfo system = hmb::querySystemInfo();

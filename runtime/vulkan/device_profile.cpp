@@ -44,6 +44,10 @@ bool isLavapipeBefore23(const DeviceInfo& device) {
   return std::sscanf(device.driverInfo.c_str(), "Mesa %d", &major) != 1 || major < 23;
 }
 
+DeviceProfileChoice deviceProfileChoiceOrEnvironment(std::string_view given) {
+  return given.empty() ? deviceProfileChoiceFromEnvironment() : parseDeviceProfileChoice(given);
+}
+
 std::optional<uint32_t> driverLoopBudget(const DeviceInfo& device) {
   // Mesa 23 lifted the limit.
   return isLavapipeBefore23(device) ? std::optional<uint32_t>(HMB_LOOP_BUDGET) : std::nullopt;

@@ -26,6 +26,8 @@ DeviceProfileChoice parseDeviceProfileChoice(std::string_view text);
 // HMB_DEVICE_PROFILE from the environment (auto where unset): the default of the CLI, the
 // benchmarks and the test fixture, so a whole test run can force a profile.
 DeviceProfileChoice deviceProfileChoiceFromEnvironment();
+// A front end's --device-profile: the text given, or the environment's where none was given.
+DeviceProfileChoice deviceProfileChoiceOrEnvironment(std::string_view given);
 
 struct DeviceProfile {
   std::string name;     // "cpu" or "gpu": whose choices these are
