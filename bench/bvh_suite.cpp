@@ -294,6 +294,38 @@ void measureTopLevel(const vk::Context& context, const scene::Scene& source, con
   c.topLevelInserted = c.instances - still;
   c.topLevelInsertionMilliseconds = summarize(insertions);
 }
+void measureTreelets(const vk::Context& context, const scene::Scene& scene, const Flat& flat,
+                     const bvh::PrimitiveBounds& input, std::span<const bvh::Ray> coherent,
+                     std::span<const bvh::Ray> incoherent, const passes::TraceRaysPass& tracePass,
+                     const BvhSuiteOptions& options, bool embree, BvhCase& c) {
+  passes::BvhBuildShape shape = passes::BvhBuildShape::forDevice(context);
+  shape.treelets = true;
+  std::vector<double> builds;
+  std::unique_ptr<TraceScene> traceScene;
+  for (int i = 0; i < options.warmup + options.repeats; ++i) {
+    vk::FrameRecorder frame(context);
+    traceScene.reset();
+    traceScene = std::make_unique<TraceScene>(context, scene, frame, shape);
+    if (i >= options.warmup) builds.push_back(traceScene->meshBvh().stats().deviceMilliseconds);
+  }
+  c.treeletBuildMilliseconds = summarize(builds);
+  c.treeletLevels = traceScene->meshBvh().stats().levels;
+  c.sahTreelet = bvh::sahCost(traceScene->meshBvh().download(0));
+  {
+    const vk::Buffer boxes = vk::uploadedBuffer(context, passes::bvhBoxes(input.bounds), "bench boxes");
+    passes::BvhBuildPass tree(context, "bench treelets", HMB_BVH_MAX_LEAF, shape);
+    vk::FrameRecorder frame(context);
+    const glm::uvec2 root(0u, c.triangles);
+    const vk::FrameRecorder::ShapeMark start = frame.mark();
+    tree.build(frame, boxes, c.triangles, std::span(&root, 1));
+    c.treeletBuildFrame = frame.shapeSince(start, vk::FrameRecorder::HostWaitsUntil::Now);
+  }
+  vk::FrameRecorder frame(context);
+  const float time = scene.settings.frameTime;
+  traceScene->setShutterTimes(scene, std::span(&time, 1), frame);
+  c.treeletCoherent = traceCase(context, *traceScene, tracePass, flat, coherent, options, embree, nullptr);
+  c.treeletIncoherent = traceCase(context, *traceScene, tracePass, flat, incoherent, options, embree, nullptr);
+}
 }  // namespace
 
 std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptions& options, const Progress& progress) {
@@ -405,6 +437,9 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
     c.coherent = traceCase(context, *traceScene, tracePass, flat, coherent, options, embree, anchor.get());
     progress("  incoherent rays");
     c.incoherent = traceCase(context, *traceScene, tracePass, flat, incoherent, options, embree, anchor.get());
+    traceScene.reset();
+    progress("  treelet builds, and rays through their trees");
+    measureTreelets(context, scene, flat, input, coherent, incoherent, tracePass, options, embree, c);
     cases.push_back(std::move(c));
   }
   return cases;
@@ -444,6 +479,16 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
             {"embree_over_full_sweep", c.sahEmbree / c.sahReference}}},
           {"coherent", traceJson(c.coherent)},
           {"incoherent", traceJson(c.incoherent)},
+          {"treelet_build",
+           {{"device_ms", summaryJson(c.treeletBuildMilliseconds)},
+            {"device_mtris_per_s", c.triangles / (c.treeletBuildMilliseconds.median * 1e3)},
+            {"over_profile_builder_time", c.treeletBuildMilliseconds.median / c.deviceBuildMilliseconds.median},
+            {"device_frame", frameShapeJson(c.treeletBuildFrame)},
+            {"device_levels", c.treeletLevels},
+            {"sah", c.sahTreelet},
+            {"sah_over_full_sweep", c.sahTreelet / c.sahReference},
+            {"coherent", traceJson(c.treeletCoherent)},
+            {"incoherent", traceJson(c.treeletIncoherent)}}},
           {"top_level",
            c.instances < 2 ? nlohmann::json()
                            : nlohmann::json{{"instances", c.instances},
@@ -477,6 +522,21 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
     for (const TraceFigures* f : {&c.coherent, &c.incoherent})
       out << std::setprecision(2) << f->deviceMraysPerSecond << " / " << f->embreeMraysPerSecond << " ("
           << std::setprecision(3) << f->deviceMraysPerSecond / f->embreeMraysPerSecond << "x) | ";
+    out << "\n";
+  }
+  out << "\nThe treelet builder (the GPU profile's mesh builder) on the same triangles and rays:\n\n"
+      << "| scene | triangles | build ms (Mtris/s) | over the profile's build | dispatches | host waits | levels | SAH / "
+         "full sweep | coherent Mrays/s (agreement) | incoherent Mrays/s (agreement) |\n"
+      << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const BvhCase& c : cases) {
+    out << "| " << c.scene << " | " << c.triangles << " | " << std::setprecision(1) << c.treeletBuildMilliseconds.median
+        << " (" << std::setprecision(3) << c.triangles / (c.treeletBuildMilliseconds.median * 1e3) << ") | "
+        << std::setprecision(2) << c.treeletBuildMilliseconds.median / c.deviceBuildMilliseconds.median << "x | "
+        << c.treeletBuildFrame.dispatches << " | " << c.treeletBuildFrame.hostWaits << " | " << c.treeletLevels << " | "
+        << std::setprecision(3) << c.sahTreelet / c.sahReference << "x | ";
+    for (const TraceFigures* f : {&c.treeletCoherent, &c.treeletIncoherent})
+      out << std::setprecision(2) << f->deviceMraysPerSecond << " (" << std::setprecision(2) << 100.0 * f->hitAgreement
+          << "%) | ";
     out << "\n";
   }
   if (std::any_of(cases.begin(), cases.end(), [](const BvhCase& c) { return c.instances >= 2; })) {

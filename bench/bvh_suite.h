@@ -89,6 +89,15 @@ struct BvhCase {
   double cpuReferenceBuildMilliseconds = 0;  // full sweep, one thread
   double sahDevice = 0, sahReference = 0, sahEmbree = 0;
   TraceFigures coherent, incoherent;
+  // The treelet builder (passes::TreeletBuild, the GPU profile's mesh builder) on the same
+  // triangles, whatever the profile builds with: the whole setup's build (triangle boxes
+  // included, as above), one build's shape, its tree's depth and SAH cost, and the same rays
+  // traced through its tree, judged against Embree as the device's are.
+  Summary treeletBuildMilliseconds;
+  vk::FrameShape treeletBuildFrame;
+  uint32_t treeletLevels = 0;
+  double sahTreelet = 0;
+  TraceFigures treeletCoherent, treeletIncoherent;
   // The top-level tree over the scene's own instances (before it is flattened into one mesh),
   // built by the same builder with leaves of up to HMB_BVH_MAX_INSTANCE_LEAF instances, as the
   // hybrid and the reference build one each frame: where such a build's time goes. Not measured

@@ -37,6 +37,7 @@ nlohmann::json deviceProfileJson(const vk::DeviceProfile& profile) {
       {"bvh_lane_bins", profile.bvhLaneBins},
       {"top_level_small_task", profile.topLevelSmallTask},
       {"linear_top_level", profile.linearTopLevel},
+      {"treelet_mesh_builds", profile.treeletMeshBuilds},
       {"gather_skips_ray_mask", profile.gatherSkipsRayMask},
       {"edge_candidates_in_tile_max", profile.edgeCandidatesInTileMax},
       {"range_check_groups", profile.rangeCheckGroups},

@@ -75,11 +75,15 @@ gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t wi
 }
 
 TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame)
+    : TraceScene(context, scene, frame, passes::BvhBuildShape::forDevice(context)) {}
+
+TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame,
+                       const passes::BvhBuildShape& meshShape)
     : context_(context),
       triangleBoundsKernel_(context, "bvh/triangle_bounds", sizeof(uint32_t)),
       motionBoundsKernel_(context, "trace/instance_motion_bounds", sizeof(gpu::TraceParams)),
       deformedLeavesKernel_(context, "bvh/deformed_leaf_triangles", sizeof(glm::uvec2)),
-      meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF),
+      meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF, meshShape),
       instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF, passes::BvhBuildShape::forTopLevel(context)),
       linearInstanceBvh_(context, "instance BVH (linear)") {
   std::vector<glm::vec4> positions;

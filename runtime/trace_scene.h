@@ -65,8 +65,11 @@ class TraceScene {
   // Why `scene`'s top level is not split at that threshold (empty: it is).
   static std::string whyNotSplit(const scene::Scene& scene, uint32_t stillInstances);
 
-  // Uploads the meshes and builds their trees (submits on `frame`).
+  // Uploads the meshes and builds their trees (submits on `frame`), with the profile's mesh
+  // builder or, where given, in `meshShape` (benchmarks and tests compare the builders).
   TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame);
+  TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame,
+             const passes::BvhBuildShape& meshShape);
 
   // Transforms of every instance at each shutter time, and the top level over the instances'
   // boxes merged over those times (submits on `frame` and waits). Rays name a time by its

@@ -60,16 +60,19 @@ BvhBuildShape BvhBuildShape::forDevice(const vk::Context& context) {
   BvhBuildShape shape;
   shape.levelGroup = context.profile().bvhLevelGroup;
   shape.laneBins = context.profile().bvhLaneBins;
+  shape.treelets = context.profile().treeletMeshBuilds;
   return shape;
 }
 
 BvhBuildShape BvhBuildShape::forTopLevel(const vk::Context& context) {
   BvhBuildShape shape = forDevice(context);
   shape.smallTask = context.profile().topLevelSmallTask;
+  shape.treelets = false;  // the top level under the GPU profile: passes::LinearBvhPass
   return shape;
 }
 
 std::string BvhBuildShape::describe() const {
+  if (treelets) return "treelets";
   return std::to_string(levelGroup) + " lanes, " + (laneBins ? "per-lane bins" : "shared atomics") +
          (smallTask == HMB_BVH_SMALL_TASK ? "" : ", small tasks of up to " + std::to_string(smallTask));
 }
@@ -106,6 +109,7 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
                 std::to_string(HMB_BVH_SMALL_TASK) + " to " + std::to_string(HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU));
   if (maxLeaf_ > HMB_BVH_PACKED_MAX_COUNT)
     throw Error(name_ + ": a packed leaf holds at most " + std::to_string(HMB_BVH_PACKED_MAX_COUNT) + " primitives");
+  if (shape_.treelets) treelets_ = std::make_unique<TreeletBuild>(context, name_);
 }
 
 uint32_t BvhBuildPass::smallTaskDepthBound(uint32_t taskPrimitives, bool packsLater,
@@ -148,7 +152,11 @@ void BvhBuildPass::reserve(uint32_t primitiveCount, uint32_t treeCount) {
     packedNodes_ = vk::Buffer(context_, nodes * sizeof(gpu::BvhPackedNode), vk::MemoryUse::Device, name_ + " nodes");
   if (frames_.size() < treeCount * sizeof(gpu::BvhFrame))
     frames_ = vk::Buffer(context_, treeCount * sizeof(gpu::BvhFrame), vk::MemoryUse::Device, name_ + " frames");
-  if (tasks > taskCapacity_) {
+  if (shape_.treelets) {
+    // The treelet builder keeps only the counters here, and its own scratch.
+    if (tasks_.size() < sizeof(gpu::BvhBuildCounters))
+      tasks_ = vk::Buffer(context_, sizeof(gpu::BvhBuildCounters), vk::MemoryUse::Device, name_ + " counters");
+  } else if (tasks > taskCapacity_) {
     taskCapacity_ = static_cast<uint32_t>(tasks);
     // The counters at the head, then the two levels' tasks and the small tasks
     // (kernels/bvh/bvh_build_layout.h).
@@ -163,6 +171,9 @@ void BvhBuildPass::limitDepth(uint32_t levels) {
   if (levels == 0 || levels > HMB_BVH_MAX_DEPTH)
     throw Error(name_ + ": the depth bound must be 1 to " + std::to_string(HMB_BVH_MAX_DEPTH) +
                 " levels (traversal's stack holds no more)");
+  if (shape_.treelets && levels + 1 < HMB_TREELET_MAX_HEIGHT)
+    throw Error(name_ + ": the treelet builder's trees may be " + std::to_string(HMB_TREELET_MAX_HEIGHT - 1) +
+                " levels deep; it takes no tighter bound than that");
   maxDepth_ = levels;
 }
 
@@ -214,6 +225,14 @@ vk::Bindings BvhBuildPass::buildBindings(const vk::Buffer& boxes) const {
 const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buffer& boxes, uint32_t primitiveCount,
                                          std::span<const glm::uvec2> roots,
                                          const std::function<void(vk::FrameRecorder&)>& before) {
+  if (shape_.treelets) {
+    start(boxes, primitiveCount, roots, maxDepth_);
+    frame.begin();
+    recordTreelets(frame, kTreelets, boxes, before);
+    const vk::FrameTimings timings = frame.submitAndWait();
+    stats_.submissions = 1;
+    return readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
+  }
   Start s = start(boxes, primitiveCount, roots, depthBound(largestTreeOf(roots)));
   rootBuffer_.write(std::as_bytes(roots));
   tasks_.write(std::as_bytes(std::span(&s.counters, 1)));
@@ -271,10 +290,21 @@ uint32_t BvhBuildPass::recordedDepthBound(uint32_t largestTree) const {
 void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
                           uint32_t primitiveCount, std::span<const glm::uvec2> roots,
                           const std::function<void(vk::FrameRecorder&)>& before) {
+  if (shape_.treelets) {
+    start(boxes, primitiveCount, roots, maxDepth_);
+    recordTreelets(frame, pass, boxes, before);
+    return;
+  }
   Start s = start(boxes, primitiveCount, roots, recordedDepthBound(largestTreeOf(roots)));
   frame.write(pass, rootBuffer_, roots);
   recordTrees(frame, pass, s, before);
   recordDeferredPacking(frame, pass, s);
+}
+
+void BvhBuildPass::recordTreelets(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
+                                  const std::function<void(vk::FrameRecorder&)>& before) {
+  const TreeletBuildTargets targets{&nodes_, &packedNodes_, &frames_, &primitives_, &tasks_};
+  treelets_->record(frame, pass, boxes, primitiveCount_, roots_, maxLeaf_, targets, before);
 }
 
 void BvhBuildPass::recordTrees(vk::FrameRecorder& frame, std::string_view pass, Start& s,
@@ -308,6 +338,7 @@ void BvhBuildPass::recordKeptWithInsertions(vk::FrameRecorder& frame, std::strin
                                             std::span<const uint32_t> order, uint32_t kept,
                                             const std::function<void(vk::FrameRecorder&)>& before) {
   const auto count = static_cast<uint32_t>(order.size());
+  if (shape_.treelets) throw Error(name_ + ": a kept tree with insertions is built in levels, not by treelets");
   if (kept == 0 || kept > count) throw Error(name_ + ": a kept tree needs primitives of its own");
   if (count - kept > HMB_BVH_MAX_INSERTED)
     throw Error(name_ + ": " + std::to_string(count - kept) + " insertions, more than " +
@@ -463,6 +494,7 @@ void BvhBuildPass::compact(vk::FrameRecorder& frame) {
   tasks_ = {};
   rootBuffer_ = {};
   nodes_ = {};
+  if (treelets_) treelets_->release();
   taskCapacity_ = 0;
   const uint64_t nodeBytes = uint64_t(stats_.nodes) * sizeof(gpu::BvhPackedNode);
   const uint64_t primitiveBytes = uint64_t(std::max(primitiveCount_, 1u)) * sizeof(uint32_t);

@@ -25,6 +25,7 @@
 #include "runtime/vulkan/binding.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
+#include "runtime/passes/treelet_build.h"
 
 namespace hmb::vk {
 class FrameRecorder;
@@ -55,6 +56,11 @@ struct BvhBuildShape {
   uint32_t levelGroup = HMB_BVH_LEVEL_GROUP;
   bool laneBins = true;
   uint32_t smallTask = HMB_BVH_SMALL_TASK;
+  // Built by the treelet builder instead (passes::TreeletBuild): a constant number of dispatches
+  // whatever the size, nothing read back, where the levels record two dispatches each and a
+  // build waits on the host between batches of them. The mesh builds' choice under the GPU
+  // profile (vk::DeviceProfile::treeletMeshBuilds); the fields above then go unused.
+  bool treelets = false;
   // The shape the device profile chooses (vk::DeviceProfile): the CPU profile's 8 lanes and
   // per-lane bins, or the GPU profile's warp or wave (the subgroup size, 32 to 64, within the
   // device's workgroup limit) binning with shared atomics.
@@ -66,7 +72,7 @@ struct BvhBuildShape {
   // to be packed after them, a lane per node (HMB_SPEC_BVH_PACK_LATER).
   bool packsLater() const { return smallTask > HMB_BVH_SMALL_TASK; }
   // "8 lanes, per-lane bins" / "32 lanes, shared atomics" (and ", small tasks of up to N"
-  // where N is not HMB_BVH_SMALL_TASK): for reports.
+  // where N is not HMB_BVH_SMALL_TASK), or "treelets": for reports.
   std::string describe() const;
 };
 
@@ -82,6 +88,7 @@ class BvhBuildPass {
   static constexpr const char* kRefitPlaces = "bvh-refit-places";
   static constexpr const char* kRefitBounds = "bvh-refit-bounds";
   static constexpr const char* kRefitPack = "bvh-refit-pack";
+  static constexpr const char* kTreelets = "bvh-treelet-build";
   // Levels recorded in the first submission: what a tree of the largest root's size needs
   // when its splits are not too uneven (log2 of its primitives, plus a margin), at most
   // kMaxLevelsPerSubmission. A deeper tree takes more submissions of kLevelsPerLaterSubmission
@@ -100,6 +107,8 @@ class BvhBuildPass {
   BvhBuildPass(const vk::Context& context, std::string name, uint32_t maxLeaf, const BvhBuildShape& shape);
   const BvhBuildShape& shape() const { return shape_; }
   // Tests: bound the trees' depth tighter than HMB_BVH_MAX_DEPTH (what traversal's stack holds).
+  // The treelet shape's trees are as deep as their codes make them (at most
+  // HMB_TREELET_MAX_HEIGHT nodes): it takes no tighter bound.
   void limitDepth(uint32_t levels);
   // The deepest subtree one invocation of build_small_tasks may build over taskPrimitives
   // primitives: HMB_BVH_MAX_DEPTH, or less where it would loop past the driver's loop budget
@@ -197,6 +206,8 @@ class BvhBuildPass {
   std::vector<gpu::BvhNode> downloadNodes() const;
   // The exact float nodes the build kept before packing (tests); gone after compact().
   const vk::Buffer& exactNodes() const { return nodes_; }
+  // The treelet shape's builder (tests: its sorted codes), null for the binned shape.
+  const TreeletBuild* treeletBuild() const { return treelets_.get(); }
 
  private:
   // Every tree goes to build_small_tasks from begin_build (kernels/bvh/begin_build.comp).
@@ -217,6 +228,9 @@ class BvhBuildPass {
   // record()'s passes from begin_build to build_small_tasks.
   void recordTrees(vk::FrameRecorder& frame, std::string_view pass, Start& s,
                    const std::function<void(vk::FrameRecorder&)>& before);
+  // The treelet builder's passes into the build's buffers.
+  void recordTreelets(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
+                      const std::function<void(vk::FrameRecorder&)>& before);
   // insert_primitives over the kept tree.
   void recordInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes);
   void takeCounts(const gpu::BvhBuildCounters& counters);
@@ -265,6 +279,7 @@ class BvhBuildPass {
   vk::Buffer keptNodes_;  // the kept tree's exact nodes, as built (recordKeptWithInsertions)
   bool inserted_ = false;
   std::unique_ptr<vk::ComputeKernel> insertKernel_;  // made with the first insertions
+  std::unique_ptr<TreeletBuild> treelets_;           // the treelet shape's
 };
 
 }  // namespace hmb::passes

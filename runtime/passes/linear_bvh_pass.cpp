@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 
 #include "bvh/packed_node.h"
 #include "runtime/error.h"
@@ -82,36 +81,6 @@ bvh::Bvh LinearBvhPass::download() const {
   const std::vector<uint32_t> primitives = primitives_.download<uint32_t>();
   out.primitiveIndices.assign(primitives.begin(), primitives.begin() + primitiveCount_);
   return out;
-}
-
-std::vector<glm::uvec2> linearHierarchy(const std::vector<uint32_t>& codes) {
-  const int n = static_cast<int>(codes.size());
-  const auto sharedBits = [&](int i, int j) {
-    if (j < 0 || j >= n) return -1;
-    if (codes[i] != codes[j]) return std::countl_zero(codes[i] ^ codes[j]);
-    return 32 + std::countl_zero(uint32_t(i ^ j));
-  };
-  std::vector<glm::uvec2> children(n > 1 ? n - 1 : 0);
-  for (int i = 0; i + 1 < n; ++i) {
-    const int d = sharedBits(i, i + 1) > sharedBits(i, i - 1) ? 1 : -1;
-    const int least = sharedBits(i, i - d);
-    int reach = 2;
-    while (sharedBits(i, i + reach * d) > least) reach *= 2;
-    int length = 0;
-    for (int step = reach / 2; step >= 1; step /= 2)
-      if (sharedBits(i, i + (length + step) * d) > least) length += step;
-    const int j = i + length * d, rangeBits = sharedBits(i, j);
-    int split = 0;
-    for (int step = (length + 1) / 2;; step = (step + 1) / 2) {
-      if (sharedBits(i, i + (split + step) * d) > rangeBits) split += step;
-      if (step == 1) break;
-    }
-    const int gamma = i + split * d + std::min(d, 0);
-    const uint32_t leaves = uint32_t(n - 1);
-    children[i] = {std::min(i, j) == gamma ? leaves + gamma : uint32_t(gamma),
-                   std::max(i, j) == gamma + 1 ? leaves + gamma + 1 : uint32_t(gamma + 1)};
-  }
-  return children;
 }
 
 }  // namespace hmb::passes

@@ -59,8 +59,4 @@ class LinearBvhPass {
   vk::ComputeKernel sortKernel_, hierarchyKernel_, boundsKernel_, packKernel_;
 };
 
-// The Karras tree over sorted codes on the host (kernels/bvh/linear_hierarchy.comp's math): for
-// each interior node its (left, right) children, Karras-named (leaf k is n - 1 + k).
-std::vector<glm::uvec2> linearHierarchy(const std::vector<uint32_t>& sortedCodes);
-
 }  // namespace hmb::passes

@@ -74,6 +74,7 @@ DeviceProfile makeDeviceProfile(const DeviceInfo& device, uint32_t maxWorkGroupS
     profile.bvhLaneBins = false;
     profile.topLevelSmallTask = HMB_BVH_SMALL_TASK;
     profile.linearTopLevel = true;
+    profile.treeletMeshBuilds = true;
     profile.gatherSkipsRayMask = true;
     profile.edgeCandidatesInTileMax = true;
   }
@@ -84,7 +85,8 @@ std::string DeviceProfile::describe() const {
   std::string line = name + (forced ? " (forced)" : "") + ": raster " + (rasterTileLists ? "tile lists" : "atomics") +
                      ", bvh levels of " + std::to_string(bvhLevelGroup) + " lanes " +
                      (bvhLaneBins ? "with per-lane bins" : "with shared atomics") + ", top-level small tasks of " +
-                     std::to_string(topLevelSmallTask) + (linearTopLevel ? ", a linear top level" : "") + ", gather " +
+                     std::to_string(topLevelSmallTask) + (linearTopLevel ? ", a linear top level" : "") +
+                     (treeletMeshBuilds ? ", treelet mesh builds" : "") + ", gather " +
                      (gatherSkipsRayMask ? "skips the ray mask" : "over every pixel") + ", list walks in " +
                      (rangeCheckGroups == 0 ? std::string("a group per block") : std::to_string(rangeCheckGroups) + " groups");
   line += loopBudget ? ", loop budget " + std::to_string(*loopBudget) + " rounds an invocation" : ", no loop budget";

@@ -58,6 +58,11 @@ struct DeviceProfile {
   // dispatches, where the binned SAH builder records two a level (a GPU pays a launch and drain
   // for each; a CPU device's lane builds a few hundred instances' tree whole in one).
   bool linearTopLevel = false;
+  // Mesh trees are built by the treelet builder (Morton codes, a radix sort, a Karras tree
+  // improved by treelets on the way up: passes::TreeletBuild) in a constant nine dispatches with
+  // no host wait, where the binned SAH builder records two a level and waits between batches
+  // of levels; on a CPU device the binned builder is faster and its trees a little cheaper.
+  bool treeletMeshBuilds = false;
   // The hybrid's post-process gather leaves the ray mask's pixels out (a GPU's warp wholly in
   // the mask skips its samples; a CPU runs every lane of a vector and pays for the mask's load).
   bool gatherSkipsRayMask = false;

@@ -71,7 +71,7 @@ TEST(BvhSuite, NoRayQueryLeavesThemOutAndSaysSo) {
 // stage: the living room's 10 instances go straight to one small task (no level); bistro's 321
 // do so on a CPU device (HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU) and take levels first on a GPU; the
 // stages lie within the whole. Bistro's moving instances inserted into its still ones' kept tree
-// are timed beside.
+// are timed beside. The treelet builder's build of each scene's triangles stands beside.
 TEST(BvhSuite, TheTopLevelTreeOverTheScenesInstancesIsTimedByStage) {
   const fs::path dir = tempDir("bench_bvh_top_level");
   const std::string out = (dir / "bvh.json").string();
@@ -115,6 +115,15 @@ TEST(BvhSuite, TheTopLevelTreeOverTheScenesInstancesIsTimedByStage) {
       EXPECT_GE(shape->at("host_waits").get<int>(), 1) << shape->dump();
       EXPECT_GE(shape->at("submissions").get<int>(), 1) << shape->dump();
     }
+    // The treelet builder beside the profile's: nine dispatches in one submission whatever the
+    // scene, a sound tree, and its rays agreeing with Embree's.
+    const nlohmann::json& treelets = c.at("treelet_build");
+    EXPECT_EQ(treelets.at("device_frame").at("dispatches"), 9) << treelets.dump();
+    EXPECT_EQ(treelets.at("device_frame").at("submissions"), 1) << treelets.dump();
+    EXPECT_GT(treelets.at("device_ms").at("median").get<double>(), 0.0);
+    EXPECT_GT(treelets.at("sah_over_full_sweep").get<double>(), 0.5) << treelets.dump();
+    for (const char* rays : {"coherent", "incoherent"})
+      EXPECT_GE(treelets.at(rays).at("hit_agreement").get<double>(), 0.999) << rays << ": " << treelets.dump();
   }
 }
 

@@ -92,6 +92,8 @@ TEST_F(DeviceProfileTest, EachProfileMakesItsOwnChoices) {
   EXPECT_TRUE(gpuAuto.edgeCandidatesInTileMax);
   EXPECT_TRUE(gpuAuto.linearTopLevel);
   EXPECT_FALSE(cpuAuto.linearTopLevel);
+  EXPECT_TRUE(gpuAuto.treeletMeshBuilds);
+  EXPECT_FALSE(cpuAuto.treeletMeshBuilds);
   EXPECT_EQ(gpuAuto.rangeCheckGroups, 0u);
   EXPECT_EQ(gpuAuto.shutterListGroups, 0u);
   // Forced, each device takes the other's choices.

@@ -9,6 +9,7 @@
 
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/bvh/linear_bvh_layout.h"
+#include "kernels/bvh/treelet_build_layout.h"
 #include "kernels/debug/floor_pass.h"
 #include "kernels/debug/pack_layer.h"
 #include "kernels/debug/test_pattern.h"
@@ -59,6 +60,12 @@ const KernelLayout kLayouts[] = {
     {"bvh/linear_hierarchy", HMB_LINEAR_HIERARCHY_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
     {"bvh/linear_bounds", HMB_LINEAR_BOUNDS_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
     {"bvh/linear_pack", HMB_LINEAR_PACK_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
+    {"bvh/treelet_centroid_bounds", HMB_TREELET_BOUNDS_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
+    {"bvh/treelet_morton_codes", HMB_TREELET_CODES_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
+    {"bvh/treelet_sort_pass", HMB_TREELET_SORT_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
+    {"bvh/treelet_hierarchy", HMB_TREELET_HIERARCHY_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
+    {"bvh/treelet_optimize", HMB_TREELET_OPTIMIZE_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
+    {"bvh/treelet_pack", HMB_TREELET_PACK_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
     {"bvh/refit_parents", HMB_REFIT_PARENTS_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"bvh/refit_places", HMB_REFIT_PLACES_BINDINGS, sizeof(gpu::BvhRefitParams), false},
     {"bvh/refit_bounds", HMB_REFIT_BOUNDS_BINDINGS, sizeof(gpu::BvhRefitParams), false},

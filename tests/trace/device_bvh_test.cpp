@@ -1,6 +1,8 @@
 // The device BVH builder (kernels/bvh/) against the CPU yardsticks: every tree is well formed
 // (each primitive in exactly one leaf, every node bounding its children), no node deeper than
-// HMB_BVH_MAX_DEPTH, and its SAH cost within 1.15x of the full-sweep SAH build.
+// HMB_BVH_MAX_DEPTH, and its SAH cost within kMaxSahRatio of the full-sweep SAH build (scenes
+// build with the profile's builder: under the GPU profile the treelet builder, whose bound is
+// kMaxTreeletSahRatio; the tests of levels and small tasks take the binned shape).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,11 +27,25 @@ namespace {
 
 using bvh::test::TriangleMesh;
 
-// The largest SAH cost the device build may have, relative to the CPU full sweep.
+// The largest SAH cost the device build may have, relative to the CPU full sweep: the binned
+// builder's, and the treelet builder's (the mesh builder under the GPU profile).
 constexpr double kMaxSahRatio = 1.15;
+constexpr double kMaxTreeletSahRatio = 1.3;
 
 class DeviceBvh : public hmb::test::VulkanTest {
  protected:
+  // The binned builder's shape on this device, whatever the profile builds meshes with: the
+  // tests of its levels, small tasks and depth bounds (tests/trace/treelet_bvh_test.cpp tests
+  // the treelet builder).
+  static passes::BvhBuildShape binned() {
+    passes::BvhBuildShape shape = passes::BvhBuildShape::forDevice(context());
+    shape.treelets = false;
+    return shape;
+  }
+  // Scenes build their meshes with the profile's builder.
+  static bool scenesBuildTreelets() { return passes::BvhBuildShape::forDevice(context()).treelets; }
+  static double maxSahRatio() { return scenesBuildTreelets() ? kMaxTreeletSahRatio : kMaxSahRatio; }
+
   // Builds on the device and checks the tree against the mesh; returns its SAH ratio.
   double checkBuild(const TriangleMesh& mesh, const std::string& what) {
     const scene::Scene scene = sceneOf(mesh);
@@ -87,13 +103,16 @@ TEST_F(DeviceBvh, ATreeDeeperThanTheFirstBatchOfLevelsIsFinishedInLaterSubmissio
     spread.addTriangle({x, 0, 0}, {x, 1, 0}, {x, 0, 1}, 1);
   }
   checkBuild(spread, "exponentially spread");
-  const scene::Scene scene = sceneOf(spread);
+  const bvh::PrimitiveBounds input = bvh::triangleBounds(spread.view());
+  const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "spread boxes");
+  passes::BvhBuildPass builder(context(), "spread", HMB_BVH_MAX_LEAF, binned());
   vk::FrameRecorder frame(context());
-  const TraceScene traceScene(context(), scene, frame);
-  const passes::BvhBuildStats& stats = traceScene.meshBvh().stats();
+  const glm::uvec2 root(0u, spread.triangleCount());
+  const passes::BvhBuildStats& stats = builder.build(frame, buffer, spread.triangleCount(), std::span(&root, 1));
   EXPECT_GT(stats.levels, passes::BvhBuildPass::firstSubmissionLevels(spread.triangleCount()));
   EXPECT_GE(stats.submissions, 2u);
-  EXPECT_EQ(stats.leaves, traceScene.meshBvh().download(0).nodes.size() / 2 + 1);
+  EXPECT_EQ(stats.leaves, builder.download(0).nodes.size() / 2 + 1);
+  EXPECT_EQ(bvh::test::structuralProblem(builder.download(0), input.bounds, HMB_BVH_MAX_LEAF), "");
 }
 
 // Triangles along the x axis, each 1.6 times as far out and as large as the one before: the
@@ -124,11 +143,11 @@ TEST_F(DeviceBvh, TreesStayWithinTheDepthBound) {
     const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "chain boxes");
     const glm::uvec2 roots[] = {{0u, triangles}};
     vk::FrameRecorder frame(context());
-    passes::BvhBuildPass unbounded(context(), "chain", HMB_BVH_MAX_LEAF);
+    passes::BvhBuildPass unbounded(context(), "chain", HMB_BVH_MAX_LEAF, binned());
     unbounded.build(frame, buffer, triangles, roots);
     const uint32_t ownDepth = levelsBelowRoot(unbounded.download(0));
     ASSERT_GT(ownDepth, bound + 8) << triangles;
-    passes::BvhBuildPass bounded(context(), "bounded chain", HMB_BVH_MAX_LEAF);
+    passes::BvhBuildPass bounded(context(), "bounded chain", HMB_BVH_MAX_LEAF, binned());
     bounded.limitDepth(bound);
     bounded.build(frame, buffer, triangles, roots);
     const bvh::Bvh tree = bounded.download(0);
@@ -180,7 +199,7 @@ TEST_F(DeviceBvh, ARecordedBuildIsTheWaitedBuildUnderItsDepthBound) {
     uint32_t largest = 0;
     for (const glm::uvec2& root : roots) largest = std::max(largest, root.y);
     vk::FrameRecorder frame(context());
-    passes::BvhBuildPass recorded(context(), "recorded", HMB_BVH_MAX_LEAF);
+    passes::BvhBuildPass recorded(context(), "recorded", HMB_BVH_MAX_LEAF, binned());
     const uint32_t bound = recorded.recordedDepthBound(largest);
     const uint64_t waits = context().hostWaits(), readbacks = context().hostReadbacks();
     frame.begin();
@@ -192,7 +211,7 @@ TEST_F(DeviceBvh, ARecordedBuildIsTheWaitedBuildUnderItsDepthBound) {
     const passes::BvhBuildStats& stats = recorded.readRecordedCounts();
     EXPECT_LE(stats.levels, bound + 1);  // the root counts as a level
 
-    passes::BvhBuildPass waited(context(), "waited", HMB_BVH_MAX_LEAF);
+    passes::BvhBuildPass waited(context(), "waited", HMB_BVH_MAX_LEAF, binned());
     waited.limitDepth(bound);
     waited.build(frame, buffer, count, roots);
     // A level left out leaves a task unsplit: fewer nodes (and garbage below it, not walked).
@@ -217,7 +236,7 @@ TEST_F(DeviceBvh, LeavesHoldNoMorePrimitivesThanTheBuildAllows) {
   const std::vector<Aabb> bounds(boxes.size(), Aabb{glm::vec3(0.0f), glm::vec3(1.0f)});
   const vk::Buffer buffer = vk::uploadedBuffer(context(), boxes, "coincident boxes");
   for (const uint32_t maxLeaf : {HMB_BVH_MAX_INSTANCE_LEAF, HMB_BVH_MAX_LEAF}) {
-    passes::BvhBuildPass builder(context(), "limited leaves", maxLeaf);
+    passes::BvhBuildPass builder(context(), "limited leaves", maxLeaf, binned());
     vk::FrameRecorder frame(context());
     const glm::uvec2 root(0u, 6u);
     builder.build(frame, buffer, 6u, std::span(&root, 1));
@@ -434,6 +453,7 @@ TEST_F(DeviceBvh, NonFiniteTrianglesGetEmptyBoxes) {
 // sound and as cheap as the levels make others. Beside a larger tree in the same build, each
 // takes its own way.
 TEST_F(DeviceBvh, SmallTreesGoStraightToTheSmallTasks) {
+  if (scenesBuildTreelets()) GTEST_SKIP() << "scenes build their meshes by treelets under this profile: no small tasks";
   for (const uint32_t n : {2u, 17u, HMB_BVH_SMALL_TASK}) {
     const TriangleMesh mesh = bvh::test::randomSoup(n, 0.1f, 40 + n);
     vk::FrameRecorder frame(context());
@@ -441,7 +461,7 @@ TEST_F(DeviceBvh, SmallTreesGoStraightToTheSmallTasks) {
     const passes::BvhBuildStats& stats = traceScene.meshBvh().stats();
     EXPECT_TRUE(stats.levelMilliseconds.empty()) << n << " triangles: " << stats.levelMilliseconds.size() << " levels";
     EXPECT_EQ(stats.smallTasks, 1u) << n << " triangles";
-    EXPECT_LE(checkBuild(mesh, std::to_string(n) + " triangles, small"), kMaxSahRatio);
+    EXPECT_LE(checkBuild(mesh, std::to_string(n) + " triangles, small"), maxSahRatio());
   }
   scene::Scene scene;
   const std::vector<TriangleMesh> meshes = {bvh::test::randomSoup(HMB_BVH_SMALL_TASK, 0.1f, 3),
@@ -624,7 +644,7 @@ TEST_F(DeviceBvh, AOneInvocationTopLevelStaysWithinLavapipesLoopBudget) {
     ASSERT_EQ(input.bounds.size(), n);
     const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "boxes");
     const glm::uvec2 root(0u, n);
-    passes::BvhBuildPass levels(context(), "levels", HMB_BVH_MAX_INSTANCE_LEAF);
+    passes::BvhBuildPass levels(context(), "levels", HMB_BVH_MAX_INSTANCE_LEAF, binned());
     vk::FrameRecorder frame(context());
     levels.build(frame, buffer, n, std::span(&root, 1));
     if (driverBudget)
@@ -674,14 +694,14 @@ TEST_F(DeviceBvh, SahCostWithinBoundOfFullSweepOnReferenceScenes) {
   for (const std::string& name : scene::referenceSceneNames()) {
     const scene::Scene scene = scene::makeReferenceScene(name);
     const TriangleMesh mesh = bvh::test::sceneTriangles(scene, scene.settings.frameTime);
-    EXPECT_LE(checkBuild(mesh, name), kMaxSahRatio) << name;
+    EXPECT_LE(checkBuild(mesh, name), maxSahRatio()) << name;
   }
 }
 
 TEST_F(DeviceBvh, SahCostWithinBoundOfFullSweepOnAMillionTriangles) {
   const TriangleMesh mesh = bvh::test::cubeSphere(290);  // 6 * 290^2 * 2 = 1,009,200 triangles
   ASSERT_GE(mesh.triangleCount(), 1000000u);
-  EXPECT_LE(checkBuild(mesh, "cube sphere"), kMaxSahRatio);
+  EXPECT_LE(checkBuild(mesh, "cube sphere"), maxSahRatio());
 }
 
 

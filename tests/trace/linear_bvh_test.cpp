@@ -13,6 +13,7 @@
 
 
 #include "bvh/aabb.h"
+#include "bvh/radix_tree.h"
 #include "kernels/bvh/linear_bvh_layout.h"
 #include "runtime/error.h"
 #include "runtime/passes/bvh_build_pass.h"
@@ -128,7 +129,7 @@ void expectMatchesReference(const std::vector<Aabb>& boxes, const std::string& w
     EXPECT_TRUE(bvh::boundsOf(built.nodes[0]).empty()) << what << ": an empty tree's root has no box";
     return;
   }
-  const std::vector<glm::uvec2> children = passes::linearHierarchy(built.codes);
+  const std::vector<glm::uvec2> children = bvh::radixTree(built.codes);
   // Karras-named node -> where the kernels put it.
   std::vector<uint32_t> placeOf(2 * n - 1, 0u);
   for (uint32_t i = 0; i + 1 < n; ++i) {
