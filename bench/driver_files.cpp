@@ -102,7 +102,7 @@ void runOnDriverFiles(const std::string& path, char** argv) {
   setenv("VK_DRIVER_FILES", files.manifests.c_str(), 1);
   unsetenv("VK_ICD_FILENAMES");  // the variable's older name: one driver list only
   if (!libraries.empty()) setenv("LD_LIBRARY_PATH", libraries.c_str(), 1);
-  // llvmpipe's cache key leaves the vector width out (README, "A second driver").
+  // llvmpipe's cache key leaves the vector width out (docs/devices.md, "A second driver").
   if (!std::getenv("MESA_SHADER_CACHE_DIR")) {
     const char* width = std::getenv("LP_NATIVE_VECTOR_WIDTH");
     const std::string folder = files.shaderCache + "-width-" + (width && *width ? width : "default");

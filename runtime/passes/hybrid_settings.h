@@ -33,8 +33,8 @@ enum class HybridComposite {
 // over-darkens it, and the boost that does not falls with the blur's length in pixels (slow
 // motion's outer blur is read at a few whole pixels). Measured against references on every
 // scene at two sizes and several frame times and on a shrinking mesh at three sizes, k = 80 has
-// the smallest worst-case loss against each case's best boost (1.1 dB; the constant 3, the
-// default before, loses up to 2.1 dB, 30 up to 3.5 dB): bench/results/hybrid-foreground-boost.
+// the smallest worst-case loss against each case's best boost, smaller than the constants':
+// bench/results/hybrid-foreground-boost/.
 // --foreground-boost (a constant) or --foreground-boost-pixels overrides it.
 inline constexpr float kHybridForegroundBoostPixels = 80.0f;
 
@@ -59,8 +59,8 @@ struct HybridSettings {
   // strata (a power of two up to 16; 0 turns them off), and the moving pixels whose path crosses
   // another object or a colour step trace a ray at up to that many of them, one per 2 px of blur
   // around them. A gather of one frame cannot place an edge between pixel centres; where the
-  // camera moves, that is most of the error (bistro at 320x180: post-process 19.6 dB, hybrid
-  // without them 20.6, with 8 strata 23.7 over the blur region; see the README's "Shutter rays").
+  // camera moves, that is most of the error (docs/hybrid.md, "Shutter rays";
+  // bench/results/error-vs-time/).
   uint32_t shutterRays = 8;
 
   // The blur's exposure, fps and SOFT_Z_EXTENT and the edge threshold from a scene's settings,

@@ -82,9 +82,8 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
   postProcess_.planTiles(plan);
   const std::string shutterSkipped = shutterRaysSkipped(scene, settings);
   // With the shutter rays, the paper's reveal is left out: the rays re-render nearly every
-  // pixel it would (bistro at 1280x720: all but 11 of its 24,937 revealed pixels), and the
-  // image moved by no more than 0.03 dB against the reference where it ran (README, "The
-  // hybrid method").
+  // pixel it would, and the image hardly moved against the reference where it ran
+  // (docs/hybrid.md, "The hybrid method").
   const std::string revealSkipped = shutterSkipped.empty() ? kRevealLeftToShutterRaysReason : "";
   rayMask_.plan(plan, revealSkipped,
                 settings.composite == HybridComposite::Coverage

@@ -110,7 +110,7 @@ BlurRegionPsnr blurRegionPsnr(const scene::Scene& scene, const std::string& what
 // stretch): its blur is outer blur, which post-process spreads well (+6.5 dB). The hybrid's
 // constant foreground boost of 3, its default before, left a contracting silhouette's outer
 // blur too faint there (24.2 against post-process's 25.8 dB); its boost that falls with the
-// tile's speed, 80 / |v_N| (README, "The composite"), gives 26.1 dB.
+// tile's speed, 80 / |v_N| (docs/hybrid.md, "The composite"), gives 26.1 dB.
 TEST_F(DeformingScenesTest, PostProcessAndHybridBlurWhereTheMeshesDeform) {
   for (const char* name : kScenes) {
     const BlurRegionPsnr db = blurRegionPsnr(deformingScene(name), name, std::nullopt);

@@ -263,7 +263,7 @@ TEST_F(ReferenceTest, HybridIsCloserToTheReferenceThanAdaptedPostProcess) {
     const metrics::Comparison post = error("postprocess", std::nullopt);
     const metrics::Comparison hybrid = error("hybrid", std::nullopt);
     const metrics::Comparison weights = error("hybrid", passes::HybridComposite::Weights, std::nullopt, std::nullopt, 0u);
-    // Printed only (README): the paper's reveal stop, and the paper's foreground boost.
+    // Printed only (docs/hybrid.md): the paper's reveal stop, and the paper's foreground boost.
     const metrics::Comparison luminance =
         error("hybrid", std::nullopt, passes::RevealStop::Luminance, std::nullopt, 0u);
     const metrics::Comparison paperBoost = error("hybrid", std::nullopt, std::nullopt, 30.0f);

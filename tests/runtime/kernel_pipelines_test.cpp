@@ -291,7 +291,7 @@ TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersTakesAddressBuildsOr
 }
 
 // Mali and other GPUs allow 8 storage buffers per stage: every kernel fits there, through its
-// address build where it has one, save those still listed here (README, "Devices").
+// address build where it has one, save those still listed here (docs/devices.md).
 // Every kernel builds on a device with 8 storage buffers per stage (Mali's limit): plain builds
 // fit, and the kernels that bind groups of buffers switch to their address builds.
 TEST(KernelLimitsTest, EveryKernelBuildsOnADeviceWithEightStorageBuffers) {
