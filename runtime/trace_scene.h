@@ -53,12 +53,11 @@ class TraceScene {
   // 0 (the default) builds one tree over all in every frame.
   void splitTopLevel(uint32_t stillInstances) { splitFrom_ = stillInstances; }
   // The fewest still instances for which a renderer splits. On a CPU device one invocation
-  // builds the top level, in time growing as n log n (bistro's 321 instances about 1 ms of a
-  // frame's 1.5 ms top level; temple's 30 0.13 ms), where the insertions are one dispatch, which
-  // costs the traces a little (the moving ones sit where they were inserted, not where a build
-  // would put them: bistro's reveal about 3% slower). On a GPU an NVIDIA H200 spent 4.8 ms of
-  // bistro's frame on the build's levels (bench/results/nvidia-h200/), where the insertions are
-  // one workgroup's walks down some 15 levels each (not measured on a GPU).
+  // builds the top level, in time growing as n log n, where the insertions are one dispatch,
+  // which costs the traces a little (the moving ones sit where they were inserted, not where a
+  // build would put them): bench/results/top-level-insertion/. On a GPU the levels of a build
+  // cost most of bistro's top level (bench/results/nvidia-h200/), where the insertions are one
+  // workgroup's walks down some 15 levels each (not measured on a GPU).
   static constexpr uint32_t kStillInstancesToSplit = 128;
   // The instances in the split's order, the still ones first, and how many are still.
   static std::pair<std::vector<uint32_t>, uint32_t> stillFirstOrder(const scene::Scene& scene);

@@ -18,11 +18,12 @@
 #define HMB_BVH_BUILD_GROUP 64
 // build_level's workgroup, one task each, shaped per device (runtime/passes/bvh_build_pass.h,
 // BvhBuildShape) through two specialization constants:
-// - on CPU devices (lavapipe), 8 lanes, its SIMD width (64 lanes made small tasks 3x slower
+// - on CPU devices (lavapipe), 8 lanes, its SIMD width (64 lanes made small tasks slower
 //   there), and a task of at least HMB_BVH_LANE_BINS_MIN primitives bins into a copy of the
 //   bins per lane, without atomics: lavapipe runs each shared atomic lane by lane as a
-//   compare-exchange loop, which made binning of large tasks 2x slower; smaller ones bin with
-//   shared atomics, which costs less than clearing and merging the copies;
+//   compare-exchange loop, which made binning of large tasks slower; smaller ones bin with
+//   shared atomics, which costs less than clearing and merging the copies
+//   (bench/results/bvh-build-shape/);
 // - on GPUs, a warp or wave (the subgroup size, at least 32) binning with shared atomics, which
 //   GPUs run natively; per-lane copies would need 1.5 KiB of shared memory per lane.
 #define HMB_BVH_LEVEL_GROUP 8
@@ -41,10 +42,9 @@
 // A task of at most this many primitives is not split level by level: build_small_tasks, one
 // invocation per task after the levels, builds its whole subtree, binning each node's
 // primitives into HMB_BVH_SMALL_TASK_BINS bins per axis held in registers. The deep levels'
-// thousands of tiny tasks each cost build_level a workgroup and its bins' set-up (over 70% of
-// a million-triangle build's time went to tasks under 16 primitives). 64 measured faster than
-// 32 (bistro 109 against 122 ms, alternated runs) at the same SAH cost; 128 was no faster and
-// raised bistro's SAH cost from 1.098x to 1.122x the full sweep's.
+// thousands of tiny tasks each cost build_level a workgroup and its bins' set-up. 64 measured
+// faster than 32 at the same SAH cost; 128 was no faster and raised the SAH cost
+// (bench/results/bvh-build-shape/).
 #define HMB_BVH_SMALL_TASK 64u
 #define HMB_BVH_SMALL_TASK_GROUP 64
 #define HMB_BVH_SMALL_TASK_BINS 8
@@ -52,10 +52,8 @@
 // build_small_tasks (the size of the latter's arrays), HMB_BVH_SMALL_TASK unless the build asks
 // otherwise (BvhBuildShape::smallTask). A top level of up to HMB_BVH_TOP_LEVEL_SMALL_TASK_CPU
 // instances is one invocation's work on a CPU device: there a level costs its two dispatches,
-// about 0.15 ms, and bistro's 321 instances took 12 levels (3.68 ms built alone on Mesa 22.3,
-// 1.8 ms in a frame) where one lane builds the whole tree in 1.1 ms (1.24 alone, 1.5-1.6 in a
-// frame; on Mesa 25 2.19 where 2.32: bench/results/bvh-top-level/). A GPU keeps
-// HMB_BVH_SMALL_TASK, as its lanes run slowly alone.
+// and one lane builds bistro's 321 instances' whole tree faster than its levels do
+// (bench/results/bvh-top-level/). A GPU keeps HMB_BVH_SMALL_TASK, as its lanes run slowly alone.
 #define HMB_SPEC_BVH_SMALL_TASK 0        // begin_build's and build_small_tasks'
 #define HMB_SPEC_BVH_LEVEL_SMALL_TASK 2  // build_level's
 // bool, build_small_tasks': its nodes' bounds are packed after it, by pack_deferred_nodes,

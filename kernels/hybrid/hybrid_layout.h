@@ -63,7 +63,7 @@
 // and fewer where the driver has a loop budget its walks could pass (SizeListParams::loopBudget:
 // llvmpipe 22.3 ends every loop of an invocation past 65535 rounds in all, silently): a pixel's
 // walks take at most 4 s + 16 rounds for a walk speed s (SizeListParams::walkSpeed), so a run is
-// at most loopBudget / (4 s + 17) blocks (11 at 1280x720, where bistro lists about 4,200).
+// at most loopBudget / (4 s + 17) blocks.
 // list_range_blocks: a lane per 8 x 8 block of the moving tiles (a 64-lane group per tile
 // left most lanes of its vectors idle at the default tiles, 25 blocks of 40 px, and gave a
 // lane a quarter of a 1024-px tile's blocks, past the loop budget). list_shutter_rays: an 8 x 8 group per block of the moving tiles, a pixel a lane, on a
@@ -107,7 +107,7 @@
 // HMB_EDGE_BLOCK^2 block (HMB_EDGE_BLOCK_ENTRY: the range check's walks step from block to
 // block by adding 1 or a row), then a bit per block, each row of blocks starting a word
 // (HMB_EDGE_BLOCK_WORD: list_range_blocks reads a window of up to 16 blocks across in one or
-// two words a row, where it read each block's uint; bistro at 1280x720: 0.55 ms shorter,
+// two words a row, where it read each block's uint, which took longer:
 // bench/results/packed-masks/); this many entries in all.
 #define HMB_EDGE_MASK_WORDS(pixels) (((pixels) + 31u) / 32u)
 #define HMB_EDGE_BLOCKS_FIRST(width, height) HMB_EDGE_MASK_WORDS((width) * (height))
@@ -168,8 +168,8 @@
 // list_range_mask: with HMB_RANGE_CHECK_LIST_UNCOVERED, a lane per block the range check walked
 // (its list's order): the block's mask pixels, in row order, appended to mask_coverage's list
 // with one atomic. The range check appended each mask pixel itself before: one counter's
-// atomic per pixel from every thread of a CPU device (bistro at 1280x720: about 0.8 ms of its
-// 5.4, bench/results/range-mask-list/), and the list in whatever order the threads met them.
+// atomic per pixel from every thread of a CPU device (a good part of its time:
+// bench/results/range-mask-list/), and the list in whatever order the threads met them.
 #define HMB_RANGE_MASK_LIST_GROUP 64
 #define HMB_RANGE_MASK_LIST_BINDING_BLOCKS 0    // list_range_blocks' list (rangeBlockCount)
 #define HMB_RANGE_MASK_LIST_BINDING_MASK 1      // the ray mask, as the range check marked it
@@ -300,7 +300,7 @@
 // The curved path's code and the range, compiled into the background gather and the composite
 // only as the frame takes them (as mblur/gather.comp's): on a CPU device the code of a branch no
 // lane takes still runs, and the curved path's reads at every sample cost the background gather
-// 2.1-3.8 ms of 3.3-6.6 at 1280x720 (living room, temple, bistro).
+// most of its time (bench/results/hybrid-kernel-shapes/).
 #define HMB_SPEC_COMPOSITE_CURVED_PATH 0
 #define HMB_SPEC_COMPOSITE_ADAPTED_RANGE 1
 #define HMB_SPEC_COMPOSITE_COVERAGE 2  // true: the coverage form (the list's back); false: the weights form
@@ -340,13 +340,13 @@
 #define HMB_SHUTTER_TRACE_BINDING_COUNT (HMB_SHUTTER_TRACE_BINDING_SCENE + HMB_SCENE_BINDINGS)
 
 // A listed pixel takes a ray per this many pixels of the fastest blur around it (at least 2,
-// at most the strata): on bistro at 320x180, 1 px gained 0.4 dB over 2 px for 1.3x the rays,
-// 4 px lost 0.1 dB for 0.9x.
+// at most the strata): 1 px gained little over 2 px for many more rays, 4 px lost a little for a
+// few fewer (bench/results/hybrid-kernel-shapes/).
 #define HMB_SHUTTER_RAY_SPACING 2.0f
 // A colour step along a path that lists the pixel too (an edge of a texture or of shading on
 // one object sweeps over it as an object's edge does): a change of more than this in a channel
-// of shutterRayColorKey. On bistro at 320x180 colour steps of 0.05 / 0.1 / 0.15 listed 1.70x /
-// 1.53x / 1.30x the rays of object edges alone and gained 1.54 / 1.35 / 1.12 dB.
+// of shutterRayColorKey. Smaller steps list more rays and gain more; this one sits between
+// (bench/results/hybrid-kernel-shapes/).
 #define HMB_SHUTTER_RAY_COLOR_STEP 0.1f
 // The most shutter strata (and so rays per pixel) a frame can have.
 #define HMB_MAX_SHUTTER_STRATA 16u
@@ -356,7 +356,7 @@
 
 // reveal_background's stop, a specialization constant (the build has only its own mode's code:
 // on a CPU device the luminance mode's traces and shading ran, without a lane, for every ray of
-// the object-id mode, 0.9-1.7 ms of the reveal's 3.1-9.1 at 1280x720)
+// the object-id mode, a good part of the reveal: bench/results/hybrid-kernel-shapes/)
 #define HMB_SPEC_REVEAL_STOP HMB_SPEC_KERNEL_CONSTANTS_FIRST
 #define HMB_REVEAL_STOP_OBJECT_ID 0u  // the first surface of another object (one trace, the object skipped whole)
 #define HMB_REVEAL_STOP_LUMINANCE 1u  // the paper's mode: step past hits until the luminance differs

@@ -22,7 +22,7 @@ layout(push_constant) uniform Params { RayMaskParams params; };
 #include "ray_mask_common.glsl"
 
 // A row of the block (at most 8 pixels, within two of the mask's 16-pixel words): a bit per
-// marked pixel, at bit 2x for pixel x, read with two loads and a few bit operations, so that
+// marked pixel, at bit 2 * x for pixel x, read with two loads and a few bit operations, so that
 // the lane's loop runs over the row's marked pixels alone.
 struct BlockRow {
   uint first;   // the row's first pixel

@@ -94,7 +94,8 @@ void main() {
   }
 
   // The object-id stop traces one ray per listed pixel: the first lane counts them all (an
-  // atomic per ray on one counter, from every thread of a CPU device, cost bistro 0.3 ms).
+  // atomic per ray on one counter, from every thread of a CPU device, cost a CPU device time:
+  // bench/results/reveal-ray-count/).
   if (kStop != HMB_REVEAL_STOP_OBJECT_ID) atomicAdd(counters.rayCount, traces);
   else if (entry == 0u) atomicAdd(counters.rayCount, counters.maskCount);
   if (hit.triangle == HMB_NO_HIT) {

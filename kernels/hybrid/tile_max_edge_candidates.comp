@@ -4,15 +4,14 @@
 // first test (paper, eqs. 1, 2) at the pixels it reads: list the moving pixels whose
 // predicted end position lies on a different object deeper by more than SOFT_Z_EXTENT. Only
 // these can enter the edge mask, and they are few (bistro: 3% of its pixels), so edge_mask runs
-// its Sobel over this list with every lane busy. A pass of its own read the surfaces again
-// (bistro at 1280x720 on a CPU device: 12 ms). Where the test runs
+// its Sobel over this list with every lane busy. A pass of its own read the surfaces again, at a
+// cost (bench/results/ray-mask-tile-max/). Where the test runs
 // (HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP, chosen by the host):
 //  - inside the reduction's loop, on the surface and velocity it has in hand: a GPU skips it at
-//    still pixels, and where every tile moves (a moving camera) it is the cheapest on a CPU too
-//    (bistro: 6 ms over the gather's tile-max);
+//    still pixels, and where every tile moves (a moving camera) it is the cheapest on a CPU too;
 //  - after the reduction, in the tiles that move alone, reading the surfaces again: a CPU
 //    device runs the code of a branch no lane takes, so in the loop the test cost every pixel of
-//    a still tile as much as a moving one's (living room: 6-8 ms there, under 1 ms here).
+//    a still tile as much as a moving one's (bench/results/ray-mask-tile-max/).
 // Both list exactly the pixels where eqs. 1, 2 hold (kMinCandidateSpeed: the others end on
 // their own pixel).
 #extension GL_GOOGLE_include_directive : require
@@ -49,8 +48,7 @@ void listIfCandidate(uvec2 pixel, uint index, uvec4 surface, vec2 v) {
 
 // In the reduction's loop: tileSpeed is the pixel's speed clamped to the tile size, and the
 // velocity is clamped again to the image's side, as the ranges clamp it, from the same parts (a
-// second gatherVelocity here, under a branch that a CPU device runs at every pixel, cost bistro
-// 0.8 ms at 1280x720).
+// second gatherVelocity here, under a branch that a CPU device runs at every pixel, cost time).
 void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, GatherVelocityParts velocity, float tileSpeed) {
   if (!kTestInLoop || !(tileSpeed >= kMinCandidateSpeed)) return;
   float speed;

@@ -133,9 +133,9 @@ HMB_SHARED uvec2 gatherBlockPlace(uint entry) { return uvec2(entry & 0xFFFFu, en
 // The hybrid's ray mask buffer (kernels/hybrid/hybrid_layout.h: HMB_MASK_*) holds each pixel's
 // value in 2 bits, 16 pixels to a uint: pixel `pixel`'s value in its word (word pixel / 16), and
 // the bits that set it there (by atomicOr). The mask and the edge mask (a bit a pixel) are
-// cleared each frame: as a uint a pixel the two fills stored 7.4 MB at 1280x720 (0.45 ms of
-// bistro's hybrid frame on a CPU device, bench/results/packed-masks/), and a GPU's walks and
-// samples read a sixteenth and a thirty-second as many cache lines.
+// cleared each frame: as a uint a pixel the two fills stored sixteen and thirty-two times as
+// much (bench/results/packed-masks/), and a GPU's walks and samples read a sixteenth and a
+// thirty-second as many cache lines.
 #define HMB_RAY_MASK_WORDS(pixels) (((pixels) + 15u) / 16u)
 HMB_SHARED uint rayMaskValue(uint word, uint pixel) { return (word >> (2u * (pixel % 16u))) & 3u; }
 HMB_SHARED uint rayMaskBits(uint value, uint pixel) { return value << (2u * (pixel % 16u)); }

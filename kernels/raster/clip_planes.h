@@ -1,6 +1,6 @@
-// The clip volume of the rasterizer's setup: the near plane and a guard band of 4x the viewport
-// (so snapped screen coordinates stay exact in float). Shared by setup_triangles (which tests
-// against it), clip_triangles (which clips against it) and the C++ reference.
+// The clip volume of the rasterizer's setup: the near plane and a guard band four times the
+// viewport (so snapped screen coordinates stay exact in float). Shared by setup_triangles
+// (which tests against it), clip_triangles (which clips against it) and the C++ reference.
 #ifndef HMB_KERNELS_RASTER_CLIP_PLANES_H
 #define HMB_KERNELS_RASTER_CLIP_PLANES_H
 
@@ -9,7 +9,7 @@
 HMB_GPU_BEGIN
 
 // Clip planes as dot(plane, clip) >= 0: near (z <= w: depth is reversed, 1 at the near plane)
-// and a guard band of 4x the viewport. The far plane (z >= 0) is left to each pixel's depth.
+// and a guard band four times the viewport. The far plane (z >= 0) is left to each pixel's depth.
 const float kGuardBand = 4.0f;
 const int kPlaneCount = 5;
 const int kMaxPolygon = 3 + kPlaneCount;

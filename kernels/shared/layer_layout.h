@@ -10,7 +10,7 @@
 //                    tile-max, the ray mask, the composite's coverage test and the AOVs read. The
 //                    mask's tests of an object boundary (paper, eqs. 1, 2: another object,
 //                    deeper) take a pixel's id and depth in one load (with the depth only in the
-//                    sample, bistro's hybrid tile-max at 1280x720 took 1.1 ms more on a CPU device).
+//                    sample, the hybrid's tile-max took longer: bench/results/surface-depth/).
 // Velocity is pixels per frame, y down; a non-finite one is written as none (in halves, a step
 // of 1/32 pixel at 40 pixels, and the direction kept past the largest half). A
 // colour channel (alpha is 1 everywhere) is a float's top 21 bits: 13 mantissa bits, rounded, so

@@ -4,9 +4,9 @@
 // kernels read the same names: topPrimitives[i], ..., and topNode(i), meshNode(i),
 // leafTriangle(i), traceInstanceAt(i), objectFromWorldAt(i) and meshFrameAt(i) for the arrays
 // a ray reads at its own addresses.
-// Those six are uniform texel buffers in the plain build (shared/texel_records.glsl: 1.2-1.25x
-// the trace rate on lavapipe, bench/results/bvh-vs-embree.md; on GPUs the read-only cached
-// path that BVH traversal has long used for nodes and triangles).
+// Those six are uniform texel buffers in the plain build (shared/texel_records.glsl: a faster
+// trace on lavapipe, bench/results/texel-reads/; on GPUs the read-only cached path that BVH
+// traversal has long used for nodes and triangles).
 #ifndef HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
 #define HMB_KERNELS_TRACE_TRACE_SCENE_BINDINGS_GLSL
 

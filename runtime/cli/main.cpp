@@ -375,8 +375,8 @@ nlohmann::json timingJson(const TimedRender& timed, hmb::Method method) {
                                                           : "the same frame, kernels compiled on first use"}};
 }
 
-// "12.3 ms (median of 5, 12.1 ms to 12.9 ms; first frame 812 ms, compiling kernels)": the warm
-// time first, the cold one labelled.
+// "<median> ms (median of <n>, <lowest> ms to <highest> ms; first frame <cold> ms, compiling
+// kernels)": the warm time first, the cold one labelled.
 std::string timingText(const TimedRender& timed, hmb::Method method) {
   const size_t n = timed.frames.samples.size();
   std::string text = formatMs(timed.medianMs()) + " (";

@@ -11,7 +11,7 @@ namespace hmb::io {
 
 struct CaptionedImage {
   Rgba8Image image;
-  std::vector<std::string> caption;  // one entry per line, e.g. {"hybrid", "34.8 ms, 37.7 dB"}
+  std::vector<std::string> caption;  // one entry per line, e.g. the method, then its time and PSNR
 };
 
 struct LabelledStrip {

@@ -115,7 +115,7 @@ void RasterizePass::reserve(uint32_t triangleCount, uint32_t width, uint32_t hei
   const uint64_t range = context_.info().maxStorageBufferRange;
   const auto setupCapacity = static_cast<uint32_t>(std::min<uint64_t>(setupWanted, range / sizeof(gpu::SetupTriangle)));
   const auto pairCapacity = static_cast<uint32_t>(std::min<uint64_t>(pairsWanted, range / sizeof(glm::uvec2)));
-  // Few triangles cross the near plane or the 4x guard band.
+  // Few triangles cross the near plane or the guard band.
   const auto clipCapacity = static_cast<uint32_t>(std::min<uint64_t>(triangleCount / 8 + 1024, range / sizeof(uint32_t)));
   if (clipCapacity > clipCapacity_) allocateClipList(clipCapacity);
   if (setupCapacity > setupCapacity_ || pairCapacity > pairCapacity_)

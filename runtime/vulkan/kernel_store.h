@@ -1,8 +1,8 @@
 // The kernels a context has made, kept until the context ends: every pass that asks for the
 // same embedded kernel with the same push-constant size and specialization shares one
 // pipeline. A second trace scene, build pass or renderer on the same device then makes no
-// pipeline at all (on lavapipe the nine kernels of one BVH build pass take 110-150 ms to make,
-// and a trace scene has two such passes); a GPU driver's pipeline cache saves the compilation
+// pipeline at all (lavapipe compiles each kernel when it is made, and a trace scene has two
+// build passes of several kernels each); a GPU driver's pipeline cache saves the compilation
 // but not the objects.
 #pragma once
 
