@@ -189,6 +189,16 @@ std::vector<uint32_t> treeletMortonCodes(std::span<const Aabb> boxes) {
   return codes;
 }
 
+glm::uvec3 mortonCell(uint32_t code) {
+  glm::uvec3 cell(0u);
+  for (uint32_t bit = 0; bit < 10; ++bit) {
+    cell.x |= ((code >> (3 * bit + 2)) & 1u) << bit;
+    cell.y |= ((code >> (3 * bit + 1)) & 1u) << bit;
+    cell.z |= ((code >> (3 * bit)) & 1u) << bit;
+  }
+  return cell;
+}
+
 Bvh buildTreeletTree(std::span<const Aabb> boxes, std::span<const uint32_t> codes,
                      std::span<const uint32_t> primitives, uint32_t maxLeaf) {
   if (codes.size() != boxes.size() || primitives.size() != boxes.size())

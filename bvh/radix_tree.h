@@ -24,6 +24,8 @@ std::vector<glm::uvec2> radixTree(std::span<const uint32_t> sortedCodes);
 // box's centre is the origin). The kernel divides where this does, and Vulkan lets a division be
 // off by 2.5 ulp, so a code on a cell's edge may differ by a cell.
 std::vector<uint32_t> treeletMortonCodes(std::span<const Aabb> boxes);
+// The cell a Morton code names (gpu::mortonCode's inverse).
+glm::uvec3 mortonCell(uint32_t code);
 
 // The treelet builder's tree (kernels/bvh/treelet_optimize.comp, treelet_pack.comp) over boxes
 // in a sorted order: the radix tree over the sorted codes, each node finished after its children

@@ -31,6 +31,18 @@ Aabb TriangleMesh::bounds() const {
   return box;
 }
 
+std::vector<Aabb> randomBoxes(uint32_t count, uint32_t seed, bool someEmpty) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> place(-50.0f, 50.0f), size(0.01f, 3.0f);
+  std::vector<Aabb> boxes;
+  for (uint32_t i = 0; i < count; ++i) {
+    const glm::vec3 c = i % 10 == 3 ? glm::vec3(1.0f, 2.0f, 3.0f) : glm::vec3(place(rng), place(rng), place(rng) * 0.1f);
+    const glm::vec3 h(size(rng), size(rng), size(rng));
+    boxes.push_back(someEmpty && i % 97 == 50 ? Aabb{} : Aabb{c - h, c + h});
+  }
+  return boxes;
+}
+
 TriangleMesh randomSoup(uint32_t count, float size, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f), edge(-size, size);

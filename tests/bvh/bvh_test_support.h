@@ -34,6 +34,9 @@ struct TriangleMesh {
 // `count` triangles: a first vertex in the unit cube, the other two within +-size of it per axis;
 // object ids 1..7 in turn.
 TriangleMesh randomSoup(uint32_t count, float size, uint32_t seed);
+// Random boxes, a tenth of them stacked on one centre (equal Morton codes), and where asked a
+// few empty ones.
+std::vector<Aabb> randomBoxes(uint32_t count, uint32_t seed, bool someEmpty = false);
 // (cells x cells) unit quads in the z = 0 plane from (0, 0), integer vertices shared by index,
 // each quad split along a random diagonal.
 TriangleMesh grid(uint32_t cells, uint32_t seed);

@@ -30,51 +30,6 @@ using bvh::test::TriangleMesh;
 using hmb::test::VulkanTest;
 using LinearBvh = VulkanTest;
 
-// Random boxes, a tenth of them stacked on one centre (equal codes).
-std::vector<Aabb> randomBoxes(uint32_t count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> place(-50.0f, 50.0f), size(0.01f, 3.0f);
-  std::vector<Aabb> boxes;
-  for (uint32_t i = 0; i < count; ++i) {
-    const glm::vec3 c = i % 10 == 3 ? glm::vec3(1.0f, 2.0f, 3.0f) : glm::vec3(place(rng), place(rng), place(rng) * 0.1f);
-    const glm::vec3 h(size(rng), size(rng), size(rng));
-    boxes.push_back({c - h, c + h});
-  }
-  return boxes;
-}
-
-// The kernel's Morton cell of each box's centre (linear_sort_keys.comp), on the host.
-std::vector<glm::uvec3> hostCells(const std::vector<Aabb>& boxes) {
-  std::vector<glm::vec3> centres;
-  glm::vec3 low(3.4e38f), high(-3.4e38f);
-  for (const Aabb& b : boxes) {
-    const glm::vec3 c = 0.5f * (b.min + b.max);
-    const bool ok = glm::all(glm::lessThanEqual(b.min, b.max)) && !glm::any(glm::isinf(c)) && !glm::any(glm::isnan(c));
-    centres.push_back(ok ? c : glm::vec3(0.0f));
-    low = glm::min(low, centres.back());
-    high = glm::max(high, centres.back());
-  }
-  std::vector<glm::uvec3> cells;
-  const glm::vec3 extent = high - low;
-  for (const glm::vec3& c : centres) {
-    glm::uvec3 cell(0u);
-    for (int a = 0; a < 3; ++a)
-      if (extent[a] > 0.0f) cell[a] = uint32_t(std::clamp((c[a] - low[a]) * (1024.0f / extent[a]), 0.0f, 1023.0f));
-    cells.push_back(cell);
-  }
-  return cells;
-}
-
-glm::uvec3 cellOf(uint32_t code) {
-  glm::uvec3 cell(0u);
-  for (uint32_t bit = 0; bit < 10; ++bit) {
-    cell.x |= ((code >> (3 * bit + 2)) & 1u) << bit;
-    cell.y |= ((code >> (3 * bit + 1)) & 1u) << bit;
-    cell.z |= ((code >> (3 * bit)) & 1u) << bit;
-  }
-  return cell;
-}
-
 struct Built {
   std::vector<uint32_t> codes, order;
   std::vector<gpu::BvhNode> nodes;
@@ -115,9 +70,11 @@ void expectMatchesReference(const std::vector<Aabb>& boxes, const std::string& w
   for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(sortedOrder[i], i) << what << ": the order is no permutation";
   // Vulkan lets a driver's division (1024 / extent) be 2.5 ULP off, which may move a centre on a
   // cell's edge into the next cell: a cell within one of the host's on each axis.
-  const std::vector<glm::uvec3> cells = hostCells(boxes);
+  // (linear_sort_keys computes the codes as the treelet builder does.)
+  const std::vector<uint32_t> codes = bvh::treeletMortonCodes(boxes);
   for (uint32_t k = 0; k < n; ++k) {
-    const glm::ivec3 off = glm::abs(glm::ivec3(cellOf(built.codes[k])) - glm::ivec3(cells[built.order[k]]));
+    const glm::ivec3 off =
+        glm::abs(glm::ivec3(bvh::mortonCell(built.codes[k])) - glm::ivec3(bvh::mortonCell(codes[built.order[k]])));
     ASSERT_LE(std::max({off.x, off.y, off.z}), 1) << what << ": place " << k;
     if (k > 0) {
       ASSERT_LE(built.codes[k - 1], built.codes[k]) << what << ": unsorted at " << k;
@@ -151,11 +108,11 @@ void expectMatchesReference(const std::vector<Aabb>& boxes, const std::string& w
 
 TEST_F(LinearBvh, RandomAndAdversarialBoxesMatchTheReference) {
   expectMatchesReference({}, "no primitive");
-  expectMatchesReference(randomBoxes(1, 1), "one primitive");
-  expectMatchesReference(randomBoxes(2, 2), "two");
-  expectMatchesReference(randomBoxes(7, 3), "seven");
-  expectMatchesReference(randomBoxes(1000, 4), "a thousand");
-  expectMatchesReference(randomBoxes(20000, 5), "twenty thousand");
+  expectMatchesReference(bvh::test::randomBoxes(1, 1), "one primitive");
+  expectMatchesReference(bvh::test::randomBoxes(2, 2), "two");
+  expectMatchesReference(bvh::test::randomBoxes(7, 3), "seven");
+  expectMatchesReference(bvh::test::randomBoxes(1000, 4), "a thousand");
+  expectMatchesReference(bvh::test::randomBoxes(20000, 5), "twenty thousand");
   // Every centre the same: every code equal, the places split them.
   expectMatchesReference(std::vector<Aabb>(300, Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)}), "all alike");
   // A flat axis, and centres far apart in scale.
@@ -173,7 +130,7 @@ TEST_F(LinearBvh, RandomAndAdversarialBoxesMatchTheReference) {
 // traversal holds.
 TEST_F(LinearBvh, BuildsInFourDispatchesWhateverTheCount) {
   for (const uint32_t n : {1u, 64u, 5000u}) {
-    const Built built = buildOnDevice(randomBoxes(n, 40 + n));
+    const Built built = buildOnDevice(bvh::test::randomBoxes(n, 40 + n));
     EXPECT_EQ(built.shape.dispatches, 4u) << n;
     EXPECT_EQ(built.shape.dependentChain, 4u) << n;
   }

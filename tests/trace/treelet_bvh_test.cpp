@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -44,6 +43,12 @@ class TreeletBvh : public hmb::test::VulkanTest {
   static void TearDownTestSuite() { gpuContext().reset(); }
 
  protected:
+  // Builds one tree over all of `boxes` (BvhBox per primitive) in the builder's shape.
+  static void buildOne(passes::BvhBuildPass& builder, const vk::Buffer& boxes, uint32_t n) {
+    vk::FrameRecorder frame(context());
+    const glm::uvec2 root(0u, n);
+    builder.build(frame, boxes, n, std::span(&root, 1));
+  }
   static passes::BvhBuildShape shape(bool treelets) {
     passes::BvhBuildShape s = passes::BvhBuildShape::forDevice(context());
     s.treelets = treelets;
@@ -67,29 +72,6 @@ class TreeletBvh : public hmb::test::VulkanTest {
     return made;
   }
 };
-
-// Random boxes, a tenth stacked on one centre (equal codes), and where asked a few empty.
-std::vector<Aabb> randomBoxes(uint32_t count, uint32_t seed, bool someEmpty = false) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> place(-50.0f, 50.0f), size(0.01f, 3.0f);
-  std::vector<Aabb> boxes;
-  for (uint32_t i = 0; i < count; ++i) {
-    const glm::vec3 c = i % 10 == 3 ? glm::vec3(1.0f, 2.0f, 3.0f) : glm::vec3(place(rng), place(rng), place(rng) * 0.1f);
-    const glm::vec3 h(size(rng), size(rng), size(rng));
-    boxes.push_back(someEmpty && i % 97 == 50 ? Aabb{} : Aabb{c - h, c + h});
-  }
-  return boxes;
-}
-
-glm::uvec3 cellOf(uint32_t code) {
-  glm::uvec3 cell(0u);
-  for (uint32_t bit = 0; bit < 10; ++bit) {
-    cell.x |= ((code >> (3 * bit + 2)) & 1u) << bit;
-    cell.y |= ((code >> (3 * bit + 1)) & 1u) << bit;
-    cell.z |= ((code >> (3 * bit)) & 1u) << bit;
-  }
-  return cell;
-}
 
 // A tree breadth-first from `root` with its leaves' primitives relative to `first` (what
 // BvhBuildPass::download makes, here from any nodes: the exact ones or the reference's).
@@ -157,7 +139,7 @@ void expectTreesMatchTheReference(const vk::Context& context, const std::vector<
         }
       }
       // Vulkan lets the division that scales a centroid be off by 2.5 ulp: a cell at most.
-      const glm::ivec3 apart = glm::abs(glm::ivec3(cellOf(treeCodes[k])) - glm::ivec3(cellOf(hostCodes[primitive])));
+      const glm::ivec3 apart = glm::abs(glm::ivec3(bvh::mortonCell(treeCodes[k])) - glm::ivec3(bvh::mortonCell(hostCodes[primitive])));
       ASSERT_LE(std::max({apart.x, apart.y, apart.z}), 1) << tree << ": primitive " << primitive;
     }
     const bvh::Bvh reference = bvh::buildTreeletTree(own, treeCodes, order, maxLeaf);
@@ -173,7 +155,7 @@ void expectTreesMatchTheReference(const vk::Context& context, const std::vector<
 
 TEST_F(TreeletBvh, TreesAreTheHostReferencesBitForBit) {
   for (const uint32_t n : {1u, 2u, 3u, 5u, 9u, 64u, 1000u, 9000u}) {
-    const std::vector<Aabb> boxes = randomBoxes(n, n, true);
+    const std::vector<Aabb> boxes = bvh::test::randomBoxes(n, n, true);
     expectTreesMatchTheReference(context(), boxes, {{0u, n}}, HMB_BVH_MAX_LEAF, "random " + std::to_string(n));
   }
   // Every centre the same: every code equal, the tree split by places alone.
@@ -183,12 +165,12 @@ TEST_F(TreeletBvh, TreesAreTheHostReferencesBitForBit) {
   std::vector<Aabb> line;
   for (int i = 0; i < 300; ++i) line.push_back({{float(i), 0, 0}, {float(i) + 0.5f, 0, 0}});
   expectTreesMatchTheReference(context(), line, {{0u, 300u}}, HMB_BVH_MAX_LEAF, "collinear");
-  expectTreesMatchTheReference(context(), randomBoxes(700, 3), {{0u, 700u}}, 1u, "leaves of one");
+  expectTreesMatchTheReference(context(), bvh::test::randomBoxes(700, 3), {{0u, 700u}}, 1u, "leaves of one");
 }
 
 TEST_F(TreeletBvh, ManyTreesOfAnySizeBuildTogether) {
   // Empty trees, one-primitive trees, a tree across several tiles, and places outside every tree.
-  const std::vector<Aabb> boxes = randomBoxes(HMB_TREELET_TILE * 2 + 200, 17);
+  const std::vector<Aabb> boxes = bvh::test::randomBoxes(HMB_TREELET_TILE * 2 + 200, 17);
   const std::vector<glm::uvec2> roots = {{0u, 0u},  {0u, 1u},   {1u, 2u}, {3u, 0u},
                                          {3u, 3u},  {6u, HMB_TREELET_TILE * 2 + 20}, {HMB_TREELET_TILE * 2 + 40, 150u}};
   expectTreesMatchTheReference(context(), boxes, roots, HMB_BVH_MAX_LEAF, "many trees");
@@ -206,7 +188,7 @@ TEST_F(TreeletBvh, ManyTreesOfAnySizeBuildTogether) {
 
 TEST_F(TreeletBvh, ABuildIsNineDispatchesWhateverItsSizeAndWaitsForNothing) {
   for (const uint32_t n : {10u, 5000u, 120000u}) {
-    const std::vector<Aabb> boxes = randomBoxes(n, n + 1);
+    const std::vector<Aabb> boxes = bvh::test::randomBoxes(n, n + 1);
     const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(boxes), "treelet boxes");
     passes::BvhBuildPass builder(context(), "treelets", HMB_BVH_MAX_LEAF, shape(true));
     vk::FrameRecorder frame(context());
@@ -234,12 +216,11 @@ TEST_F(TreeletBvh, RefitsBoundTheMovedPrimitives) {
   const auto n = static_cast<uint32_t>(before.bounds.size());
   const vk::Buffer built = vk::uploadedBuffer(context(), passes::bvhBoxes(before.bounds), "treelet boxes");
   passes::BvhBuildPass builder(context(), "treelets", HMB_BVH_MAX_LEAF, shape(true));
-  vk::FrameRecorder frame(context());
-  const glm::uvec2 root(0u, n);
-  builder.build(frame, built, n, std::span(&root, 1));
+  buildOne(builder, built, n);
   for (glm::vec3& p : mesh.positions) p += glm::vec3(0.3f * std::sin(4.0f * p.y), 0.0f, 0.2f * p.x * p.x);
   const bvh::PrimitiveBounds after = bvh::triangleBounds(mesh.view());
   const vk::Buffer moved = vk::uploadedBuffer(context(), passes::bvhBoxes(after.bounds), "moved boxes");
+  vk::FrameRecorder frame(context());
   builder.refit(frame, moved);
   EXPECT_EQ(bvh::test::structuralProblem(builder.download(0), after.bounds, HMB_BVH_MAX_LEAF), "");
 }
@@ -283,9 +264,7 @@ TEST_F(TreeletBvh, SahCostWithinBoundOfFullSweep) {
     const auto n = static_cast<uint32_t>(input.bounds.size());
     const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(input.bounds), "treelet boxes");
     passes::BvhBuildPass builder(context(), "treelets", HMB_BVH_MAX_LEAF, shape(true));
-    vk::FrameRecorder frame(context());
-    const glm::uvec2 root(0u, n);
-    builder.build(frame, buffer, n, std::span(&root, 1));
+    buildOne(builder, buffer, n);
     const bvh::Bvh device = builder.download(0);
     EXPECT_EQ(bvh::test::structuralProblem(device, input.bounds, HMB_BVH_MAX_LEAF), "") << name;
     const double ratio = bvh::sahCost(device) / bvh::sahCost(bvh::buildReferenceSah(input.bounds, input.centroids));
@@ -300,7 +279,7 @@ TEST_F(TreeletBvh, OnlyMeshBuildsTakeTreelets) {
   EXPECT_TRUE(passes::BvhBuildShape::forDevice(forcedGpu()).treelets);
   passes::BvhBuildPass builder(context(), "treelets", HMB_BVH_MAX_LEAF, shape(true));
   EXPECT_THROW(builder.limitDepth(20), hmb::Error);
-  const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(randomBoxes(8, 1)), "boxes");
+  const vk::Buffer buffer = vk::uploadedBuffer(context(), passes::bvhBoxes(bvh::test::randomBoxes(8, 1)), "boxes");
   vk::FrameRecorder frame(context());
   frame.begin();
   const uint32_t order[] = {0, 1, 2, 3, 4, 5, 6, 7};
