@@ -35,18 +35,11 @@ TreeletBuild::TreeletBuild(const vk::Context& context, std::string name)
                       std::array<uint32_t, 1>{context.profile().uniformAtomicRounds ? 1u : 0u}),
       packKernel_(context, "bvh/treelet_pack", sizeof(gpu::TreeletBuildParams)) {}
 
-void TreeletBuild::release() {
-  tiles_ = {};
-  trees_ = {};
-  keys_ = {};
-  values_ = {};
-  digitCounts_ = {};
-  nodes_ = {};
-  capacity_ = tileCapacity_ = treeCapacity_ = 0;
-}
+void TreeletBuild::release() { scratch_ = {}; }
 
 uint64_t TreeletBuild::scratchBytes() const {
-  return tiles_.size() + trees_.size() + keys_.size() + values_.size() + digitCounts_.size() + nodes_.size();
+  const Scratch& s = scratch_;
+  return s.tiles.size() + s.trees.size() + s.keys.size() + s.values.size() + s.digitCounts.size() + s.nodes.size();
 }
 
 void TreeletBuild::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
@@ -68,22 +61,23 @@ void TreeletBuild::record(vk::FrameRecorder& frame, std::string_view pass, const
   }
 
   // Scratch grows to what the build needs.
+  Scratch& s = scratch_;
   const uint64_t n = std::max(primitiveCount, 1u);
-  if (n > capacity_) {
-    keys_ = vk::Buffer(context_, 2 * n * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " codes");
-    values_ = vk::Buffer(context_, 2 * n * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " sorted primitives");
-    nodes_ = vk::Buffer(context_, 2 * n * sizeof(gpu::TreeletNode), vk::MemoryUse::Device, name_ + " binary tree");
-    capacity_ = static_cast<uint32_t>(n);
+  if (n > s.capacity) {
+    s.keys = vk::Buffer(context_, 2 * n * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " codes");
+    s.values = vk::Buffer(context_, 2 * n * sizeof(uint32_t), vk::MemoryUse::Device, name_ + " sorted primitives");
+    s.nodes = vk::Buffer(context_, 2 * n * sizeof(gpu::TreeletNode), vk::MemoryUse::Device, name_ + " binary tree");
+    s.capacity = static_cast<uint32_t>(n);
   }
-  if (std::max(tileCount, 1u) > tileCapacity_) {
-    tileCapacity_ = std::max(tileCount, 1u);
-    tiles_ = vk::Buffer(context_, tileCapacity_ * sizeof(gpu::TreeletTile), vk::MemoryUse::Device, name_ + " tiles");
-    digitCounts_ = vk::Buffer(context_, uint64_t(HMB_TREELET_SORT_PASSES) * tileCapacity_ * HMB_TREELET_DIGITS * 4,
-                              vk::MemoryUse::Device, name_ + " digit counts");
+  if (std::max(tileCount, 1u) > s.tileCapacity) {
+    s.tileCapacity = std::max(tileCount, 1u);
+    s.tiles = vk::Buffer(context_, s.tileCapacity * sizeof(gpu::TreeletTile), vk::MemoryUse::Device, name_ + " tiles");
+    s.digitCounts = vk::Buffer(context_, uint64_t(HMB_TREELET_SORT_PASSES) * s.tileCapacity * HMB_TREELET_DIGITS * 4,
+                               vk::MemoryUse::Device, name_ + " digit counts");
   }
-  if (treeCount > treeCapacity_) {
-    treeCapacity_ = treeCount;
-    trees_ = vk::Buffer(context_, treeCapacity_ * sizeof(gpu::TreeletTree), vk::MemoryUse::Device, name_ + " trees");
+  if (treeCount > s.treeCapacity) {
+    s.treeCapacity = treeCount;
+    s.trees = vk::Buffer(context_, s.treeCapacity * sizeof(gpu::TreeletTree), vk::MemoryUse::Device, name_ + " trees");
   }
 
   const gpu::TreeletBuildParams params{primitiveCount, treeCount, tileCount, 0u, maxLeaf, 0u, 0u, 0u};
@@ -91,18 +85,18 @@ void TreeletBuild::record(vk::FrameRecorder& frame, std::string_view pass, const
   counters.nodeCount = treeCount;
   counters.levels = 1;
   frame.write(pass, *targets.counters, std::span<const gpu::BvhBuildCounters>(&counters, 1));
-  frame.write(pass, trees_, std::span<const gpu::TreeletTree>(trees));
-  if (tileCount > 0) frame.write(pass, tiles_, std::span<const gpu::TreeletTile>(tiles));
-  frame.fill(pass, digitCounts_, 0u);
-  frame.fill(pass, nodes_, 0u);
+  frame.write(pass, s.trees, std::span<const gpu::TreeletTree>(trees));
+  if (tileCount > 0) frame.write(pass, s.tiles, std::span<const gpu::TreeletTile>(tiles));
+  frame.fill(pass, s.digitCounts, 0u);
+  frame.fill(pass, s.nodes, 0u);
   if (before) before(frame);
 
   const glm::uvec3 tileGroups = vk::foldedGroups(tileCount);
-  const vk::Binding boxesBinding{HMB_TREELET_BINDING_BOXES, &boxes}, tilesBinding{HMB_TREELET_BINDING_TILES, &tiles_},
-      treesBinding{HMB_TREELET_BINDING_TREES, &trees_}, keysBinding{HMB_TREELET_BINDING_KEYS, &keys_},
-      valuesBinding{HMB_TREELET_BINDING_VALUES, &values_},
-      countsBinding{HMB_TREELET_BINDING_DIGIT_COUNTS, &digitCounts_},
-      nodesBinding{HMB_TREELET_BINDING_NODES, &nodes_},
+  const vk::Binding boxesBinding{HMB_TREELET_BINDING_BOXES, &boxes}, tilesBinding{HMB_TREELET_BINDING_TILES, &s.tiles},
+      treesBinding{HMB_TREELET_BINDING_TREES, &s.trees}, keysBinding{HMB_TREELET_BINDING_KEYS, &s.keys},
+      valuesBinding{HMB_TREELET_BINDING_VALUES, &s.values},
+      countsBinding{HMB_TREELET_BINDING_DIGIT_COUNTS, &s.digitCounts},
+      nodesBinding{HMB_TREELET_BINDING_NODES, &s.nodes},
       countersBinding{HMB_TREELET_BINDING_COUNTERS, targets.counters};
   frame.dispatch(pass, boundsKernel_, {boxesBinding, tilesBinding, treesBinding}, params, tileGroups);
   frame.dispatch(pass, codesKernel_, {boxesBinding, tilesBinding, treesBinding, keysBinding, valuesBinding, countsBinding},

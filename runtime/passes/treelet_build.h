@@ -52,14 +52,18 @@ class TreeletBuild {
   void release();
   uint64_t scratchBytes() const;
   // Tests: after a build, the sorted codes and their primitives (the first n entries of each).
-  const vk::Buffer& sortedCodes() const { return keys_; }
-  const vk::Buffer& sortedPrimitives() const { return values_; }
+  const vk::Buffer& sortedCodes() const { return scratch_.keys; }
+  const vk::Buffer& sortedPrimitives() const { return scratch_.values; }
 
  private:
   const vk::Context& context_;
   std::string name_;
-  uint32_t capacity_ = 0, tileCapacity_ = 0, treeCapacity_ = 0;
-  vk::Buffer tiles_, trees_, keys_, values_, digitCounts_, nodes_;
+  // What a build works in, kept for the next build until release().
+  struct Scratch {
+    uint32_t capacity = 0, tileCapacity = 0, treeCapacity = 0;
+    vk::Buffer tiles, trees, keys, values, digitCounts, nodes;
+  };
+  Scratch scratch_;
   vk::ComputeKernel boundsKernel_, codesKernel_, sortKernel_, hierarchyKernel_, optimizeKernel_, packKernel_;
 };
 
