@@ -301,14 +301,18 @@ void measureTreelets(const vk::Context& context, const scene::Scene& scene, cons
   passes::BvhBuildShape shape = passes::BvhBuildShape::forDevice(context);
   shape.treelets = true;
   std::vector<double> builds;
+  std::vector<std::vector<std::pair<std::string, double>>> stages;
   std::unique_ptr<TraceScene> traceScene;
   for (int i = 0; i < options.warmup + options.repeats; ++i) {
     vk::FrameRecorder frame(context);
     traceScene.reset();
     traceScene = std::make_unique<TraceScene>(context, scene, frame, shape);
-    if (i >= options.warmup) builds.push_back(traceScene->meshBvh().stats().deviceMilliseconds);
+    if (i < options.warmup) continue;
+    builds.push_back(traceScene->meshBvh().stats().deviceMilliseconds);
+    stages.push_back(traceScene->meshBvh().stats().stageMilliseconds);
   }
   c.treeletBuildMilliseconds = summarize(builds);
+  c.treeletStageMilliseconds = stages.at(medianBuild(builds, c.treeletBuildMilliseconds));
   c.treeletLevels = traceScene->meshBvh().stats().levels;
   c.sahTreelet = bvh::sahCost(traceScene->meshBvh().download(0));
   {
@@ -445,6 +449,26 @@ std::vector<BvhCase> runBvhSuite(const vk::Context& context, const BvhSuiteOptio
   return cases;
 }
 
+namespace {
+nlohmann::json stageJson(const std::vector<std::pair<std::string, double>>& stages) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const auto& [stage, ms] : stages) json[stage] = ms;
+  return json;
+}
+
+// "optimize 61%": the stage that took most of a build, and its share.
+std::string slowestStage(const std::vector<std::pair<std::string, double>>& stages) {
+  if (stages.empty()) return "-";
+  double total = 0.0;
+  const std::pair<std::string, double>* slowest = &stages.front();
+  for (const auto& stage : stages) {
+    total += stage.second;
+    if (stage.second > slowest->second) slowest = &stage;
+  }
+  return slowest->first + " " + std::to_string(int(std::lround(100.0 * slowest->second / std::max(total, 1e-9)))) + "%";
+}
+}  // namespace
+
 nlohmann::json bvhCaseJson(const BvhCase& c) {
   const double mtris = c.triangles / (c.deviceBuildMilliseconds.median * 1e3);
   const double embreeMtris = c.triangles / (c.embreeSceneBuildMilliseconds.median * 1e3);
@@ -483,6 +507,7 @@ nlohmann::json bvhCaseJson(const BvhCase& c) {
            {{"device_ms", summaryJson(c.treeletBuildMilliseconds)},
             {"device_mtris_per_s", c.triangles / (c.treeletBuildMilliseconds.median * 1e3)},
             {"over_profile_builder_time", c.treeletBuildMilliseconds.median / c.deviceBuildMilliseconds.median},
+            {"stage_ms", stageJson(c.treeletStageMilliseconds)},
             {"device_frame", frameShapeJson(c.treeletBuildFrame)},
             {"device_levels", c.treeletLevels},
             {"sah", c.sahTreelet},
@@ -525,14 +550,14 @@ void printBvhTable(std::ostream& out, const std::vector<BvhCase>& cases) {
     out << "\n";
   }
   out << "\nThe treelet builder (the GPU profile's mesh builder) on the same triangles and rays:\n\n"
-      << "| scene | triangles | build ms (Mtris/s) | over the profile's build | dispatches | host waits | levels | SAH / "
-         "full sweep | coherent Mrays/s (agreement) | incoherent Mrays/s (agreement) |\n"
-      << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      << "| scene | triangles | build ms (Mtris/s) | over the profile's build | slowest stage | dispatches | host waits | "
+         "levels | SAH / full sweep | coherent Mrays/s (agreement) | incoherent Mrays/s (agreement) |\n"
+      << "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|\n";
   for (const BvhCase& c : cases) {
     out << "| " << c.scene << " | " << c.triangles << " | " << std::setprecision(1) << c.treeletBuildMilliseconds.median
         << " (" << std::setprecision(3) << c.triangles / (c.treeletBuildMilliseconds.median * 1e3) << ") | "
         << std::setprecision(2) << c.treeletBuildMilliseconds.median / c.deviceBuildMilliseconds.median << "x | "
-        << c.treeletBuildFrame.dispatches << " | " << c.treeletBuildFrame.hostWaits << " | " << c.treeletLevels << " | "
+        << slowestStage(c.treeletStageMilliseconds) << " | " << c.treeletBuildFrame.dispatches << " | " << c.treeletBuildFrame.hostWaits << " | " << c.treeletLevels << " | "
         << std::setprecision(3) << c.sahTreelet / c.sahReference << "x | ";
     for (const TraceFigures* f : {&c.treeletCoherent, &c.treeletIncoherent})
       out << std::setprecision(2) << f->deviceMraysPerSecond << " (" << std::setprecision(2) << 100.0 * f->hitAgreement

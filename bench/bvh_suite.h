@@ -94,6 +94,7 @@ struct BvhCase {
   // included, as above), one build's shape, its tree's depth and SAH cost, and the same rays
   // traced through its tree, judged against Embree as the device's are.
   Summary treeletBuildMilliseconds;
+  std::vector<std::pair<std::string, double>> treeletStageMilliseconds;  // of the median build, by stage
   vk::FrameShape treeletBuildFrame;
   uint32_t treeletLevels = 0;
   double sahTreelet = 0;

@@ -228,10 +228,18 @@ const BvhBuildStats& BvhBuildPass::build(vk::FrameRecorder& frame, const vk::Buf
   if (shape_.treelets) {
     start(boxes, primitiveCount, roots, maxDepth_);
     frame.begin();
-    recordTreelets(frame, kTreelets, boxes, before);
+    recordTreelets(frame, kTreelets, boxes, before, true);
     const vk::FrameTimings timings = frame.submitAndWait();
+    readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
     stats_.submissions = 1;
-    return readRecordedCounts(timings.frameMilliseconds.value_or(0.0));
+    for (const char* stage : kTreeletStages) {
+      const std::string name = std::string(kTreelets) + "/" + stage;
+      std::optional<double> sum;
+      for (const vk::PassTiming& pass : timings.passes)
+        if (pass.name == name && pass.milliseconds) sum = sum.value_or(0.0) + *pass.milliseconds;
+      if (sum) stats_.stageMilliseconds.emplace_back(stage, *sum);
+    }
+    return stats_;
   }
   Start s = start(boxes, primitiveCount, roots, depthBound(largestTreeOf(roots)));
   rootBuffer_.write(std::as_bytes(roots));
@@ -302,9 +310,9 @@ void BvhBuildPass::record(vk::FrameRecorder& frame, std::string_view pass, const
 }
 
 void BvhBuildPass::recordTreelets(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
-                                  const std::function<void(vk::FrameRecorder&)>& before) {
+                                  const std::function<void(vk::FrameRecorder&)>& before, bool byKernel) {
   const TreeletBuildTargets targets{&nodes_, &packedNodes_, &frames_, &primitives_, &tasks_};
-  treelets_->record(frame, pass, boxes, primitiveCount_, roots_, maxLeaf_, targets, before);
+  treelets_->record(frame, pass, boxes, primitiveCount_, roots_, maxLeaf_, targets, before, byKernel);
 }
 
 void BvhBuildPass::recordTrees(vk::FrameRecorder& frame, std::string_view pass, Start& s,

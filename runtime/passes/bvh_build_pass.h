@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -47,6 +48,8 @@ struct BvhBuildStats {
   std::vector<double> levelMilliseconds;  // build_level's time at each level (empty without timestamps)
   uint32_t smallTasks = 0;                // subtrees build_small_tasks finished
   double smallTaskMilliseconds = 0.0;     // its time
+  // The treelet shape's build() by stage (kTreeletStages, in order; empty without timestamps).
+  std::vector<std::pair<std::string, double>> stageMilliseconds;
 };
 
 // How build_level's workgroups are shaped (kernels/bvh/bvh_build_layout.h): their size and
@@ -229,7 +232,7 @@ class BvhBuildPass {
                    const std::function<void(vk::FrameRecorder&)>& before);
   // The treelet builder's passes into the build's buffers.
   void recordTreelets(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
-                      const std::function<void(vk::FrameRecorder&)>& before);
+                      const std::function<void(vk::FrameRecorder&)>& before, bool byKernel = false);
   // insert_primitives over the kept tree.
   void recordInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes);
   void takeCounts(const gpu::BvhBuildCounters& counters);

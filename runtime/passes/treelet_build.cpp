@@ -44,7 +44,8 @@ uint64_t TreeletBuild::scratchBytes() const {
 
 void TreeletBuild::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
                           uint32_t primitiveCount, std::span<const glm::uvec2> roots, uint32_t maxLeaf,
-                          const TreeletBuildTargets& targets, const std::function<void(vk::FrameRecorder&)>& before) {
+                          const TreeletBuildTargets& targets, const std::function<void(vk::FrameRecorder&)>& before,
+                          bool byKernel) {
   const auto treeCount = static_cast<uint32_t>(roots.size());
   const std::vector<gpu::TreeletTile> tiles = treeletTiles(roots);
   const auto tileCount = static_cast<uint32_t>(tiles.size());
@@ -92,25 +93,28 @@ void TreeletBuild::record(vk::FrameRecorder& frame, std::string_view pass, const
   if (before) before(frame);
 
   const glm::uvec3 tileGroups = vk::foldedGroups(tileCount);
+  std::string stageNames[std::size(kTreeletStages)];
+  for (size_t k = 0; k < std::size(kTreeletStages); ++k)
+    stageNames[k] = byKernel ? std::string(pass) + "/" + kTreeletStages[k] : std::string(pass);
   const vk::Binding boxesBinding{HMB_TREELET_BINDING_BOXES, &boxes}, tilesBinding{HMB_TREELET_BINDING_TILES, &s.tiles},
       treesBinding{HMB_TREELET_BINDING_TREES, &s.trees}, keysBinding{HMB_TREELET_BINDING_KEYS, &s.keys},
       valuesBinding{HMB_TREELET_BINDING_VALUES, &s.values},
       countsBinding{HMB_TREELET_BINDING_DIGIT_COUNTS, &s.digitCounts},
       nodesBinding{HMB_TREELET_BINDING_NODES, &s.nodes},
       countersBinding{HMB_TREELET_BINDING_COUNTERS, targets.counters};
-  frame.dispatch(pass, boundsKernel_, {boxesBinding, tilesBinding, treesBinding}, params, tileGroups);
-  frame.dispatch(pass, codesKernel_, {boxesBinding, tilesBinding, treesBinding, keysBinding, valuesBinding, countsBinding},
+  frame.dispatch(stageNames[0], boundsKernel_, {boxesBinding, tilesBinding, treesBinding}, params, tileGroups);
+  frame.dispatch(stageNames[1], codesKernel_, {boxesBinding, tilesBinding, treesBinding, keysBinding, valuesBinding, countsBinding},
                  params, tileGroups);
   for (uint32_t sortPass = 0; sortPass < HMB_TREELET_SORT_PASSES; ++sortPass) {
     gpu::TreeletBuildParams p = params;
     p.pass = sortPass;
-    frame.dispatch(pass, sortKernel_, {tilesBinding, treesBinding, keysBinding, valuesBinding, countsBinding}, p,
+    frame.dispatch(stageNames[2], sortKernel_, {tilesBinding, treesBinding, keysBinding, valuesBinding, countsBinding}, p,
                    tileGroups);
   }
-  frame.dispatch(pass, hierarchyKernel_, {tilesBinding, treesBinding, keysBinding, nodesBinding}, params, tileGroups);
-  frame.dispatch(pass, optimizeKernel_, {boxesBinding, valuesBinding, nodesBinding, treesBinding, countersBinding},
+  frame.dispatch(stageNames[3], hierarchyKernel_, {tilesBinding, treesBinding, keysBinding, nodesBinding}, params, tileGroups);
+  frame.dispatch(stageNames[4], optimizeKernel_, {boxesBinding, valuesBinding, nodesBinding, treesBinding, countersBinding},
                  params, vk::foldedGroups(vk::groupsFor(primitiveCount, HMB_TREELET_GROUP)));
-  frame.dispatch(pass, packKernel_,
+  frame.dispatch(stageNames[5], packKernel_,
                  {nodesBinding,
                   treesBinding,
                   valuesBinding,

@@ -29,6 +29,9 @@ namespace hmb::passes {
 
 // Bounds, codes, four sort passes, hierarchy, treelets, packing.
 constexpr uint32_t kTreeletDispatches = 5 + HMB_TREELET_SORT_PASSES;
+// The build's stages, as its dispatches are named when timed by kernel (the sort's four passes
+// under one name).
+inline constexpr const char* kTreeletStages[] = {"bounds", "codes", "sort", "hierarchy", "optimize", "pack"};
 
 // Where a treelet build writes its trees: what BvhBuildPass keeps.
 struct TreeletBuildTargets {
@@ -44,10 +47,12 @@ class TreeletBuild {
   TreeletBuild(const vk::Context& context, std::string name);
 
   // Records the build of the trees `roots` (first primitive, count; ranges apart) over `boxes`
-  // into `frame`, every pass under the name `pass`; `before` records what writes the boxes.
+  // into `frame`, every pass under the name `pass`, or with byKernel each dispatch under
+  // "<pass>/<stage>" (kTreeletStages: where a build's time goes); `before` records what writes
+  // the boxes.
   void record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes, uint32_t primitiveCount,
               std::span<const glm::uvec2> roots, uint32_t maxLeaf, const TreeletBuildTargets& targets,
-              const std::function<void(vk::FrameRecorder&)>& before = {});
+              const std::function<void(vk::FrameRecorder&)>& before = {}, bool byKernel = false);
   // Frees the scratch (codes, the binary tree); the next build allocates it again.
   void release();
   uint64_t scratchBytes() const;

@@ -122,6 +122,7 @@ TEST(BvhSuite, TheTopLevelTreeOverTheScenesInstancesIsTimedByStage) {
     EXPECT_EQ(treelets.at("device_frame").at("submissions"), 1) << treelets.dump();
     EXPECT_GT(treelets.at("device_ms").at("median").get<double>(), 0.0);
     EXPECT_GT(treelets.at("sah_over_full_sweep").get<double>(), 0.5) << treelets.dump();
+    EXPECT_EQ(treelets.at("stage_ms").size(), 6u) << treelets.dump();
     for (const char* rays : {"coherent", "incoherent"})
       EXPECT_GE(treelets.at(rays).at("hit_agreement").get<double>(), 0.999) << rays << ": " << treelets.dump();
   }

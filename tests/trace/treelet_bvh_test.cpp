@@ -207,6 +207,17 @@ TEST_F(TreeletBvh, ABuildIsNineDispatchesWhateverItsSizeAndWaitsForNothing) {
     EXPECT_EQ(stats.levels, bvh::depthOf(tree)) << n;
     EXPECT_LE(stats.levels, HMB_TREELET_MAX_HEIGHT) << n;
     EXPECT_EQ(bvh::test::structuralProblem(tree, boxes, HMB_BVH_MAX_LEAF), "") << n;
+    // Built and waited for, the build is timed by stage, its stages within its frame.
+    const passes::BvhBuildStats waited = builder.build(frame, buffer, n, std::span(&root, 1));
+    if (!context().info().timestamps) continue;
+    ASSERT_EQ(waited.stageMilliseconds.size(), std::size(passes::kTreeletStages)) << n;
+    double stages = 0.0;
+    for (size_t k = 0; k < waited.stageMilliseconds.size(); ++k) {
+      EXPECT_EQ(waited.stageMilliseconds[k].first, passes::kTreeletStages[k]);
+      EXPECT_GE(waited.stageMilliseconds[k].second, 0.0);
+      stages += waited.stageMilliseconds[k].second;
+    }
+    EXPECT_LE(stages, waited.deviceMilliseconds * 1.0001) << n;
   }
 }
 
