@@ -28,6 +28,7 @@
 #include "runtime/sample_summary.h"
 #include "runtime/system_info.h"
 #include "runtime/vulkan/context.h"
+#include "runtime/vulkan/device_profile.h"
 #include "scenes/load_scene.h"
 #include "scenes/reference_scenes.h"
 
@@ -187,6 +188,11 @@ int listDevices() {
               << (d.preservesInfNan ? "" : ", cannot keep NaN and infinity in kernels (unusable)")
               << (d.int64BufferAtomics ? ", int64 atomics" : ", no int64 atomics")
               << (d.timestamps ? ", timestamps" : ", no timestamps") << '\n';
+    // The profile a render there takes (the environment's HMB_DEVICE_PROFILE, else the device's).
+    const hmb::vk::DeviceProfile profile =
+        hmb::vk::makeDeviceProfile(d, d.maxComputeWorkGroupSizeX, d.maxComputeWorkGroupInvocations,
+                                   hmb::vk::deviceProfileChoiceFromEnvironment());
+    std::cout << "   profile " << profile.describe() << '\n';
   }
   return kOk;
 }

@@ -115,6 +115,8 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
   info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
   std::copy(std::begin(props.limits.maxComputeWorkGroupCount), std::end(props.limits.maxComputeWorkGroupCount),
             std::begin(info.maxComputeWorkGroupCount));
+  info.maxComputeWorkGroupSizeX = props.limits.maxComputeWorkGroupSize[0];
+  info.maxComputeWorkGroupInvocations = props.limits.maxComputeWorkGroupInvocations;
 
   const bool vulkan12 = props.apiVersion >= VK_API_VERSION_1_2;
   const bool driverPropsExt = hasDeviceExtension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME);

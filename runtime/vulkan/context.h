@@ -39,6 +39,8 @@ struct DeviceInfo {
   uint64_t maxStorageBufferRange = 0;
   uint64_t deviceLocalBytes = 0;  // the largest device-local heap
   uint32_t maxComputeWorkGroupCount[3] = {0, 0, 0};
+  uint32_t maxComputeWorkGroupSizeX = 0;       // what the device profile shapes workgroups within
+  uint32_t maxComputeWorkGroupInvocations = 0;
   uint32_t subgroupSize = 0;
   // Kernels may declare SignedZeroInfNanPreserve for 32-bit floats (shaderSignedZeroInfNanPreserveFloat32,
   // Vulkan 1.2 or VK_KHR_shader_float_controls): every kernel does (kernels/shared/float_controls.glsl).

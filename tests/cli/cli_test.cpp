@@ -23,11 +23,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(CliTest, ListDevicesNamesAComputeDevice) {
+TEST(CliTest, ListDevicesNamesAComputeDeviceAndTheProfileARenderTakesThere) {
   const CliRun run = hmblur("list-devices");
   EXPECT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("0: "), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("no compute queue"), std::string::npos) << run.output;
+  // Each device with the profile a render there would take.
+  const bool profiled = run.output.find("   profile cpu") != std::string::npos ||
+                        run.output.find("   profile gpu") != std::string::npos;
+  EXPECT_TRUE(profiled) << run.output;
 }
 
 TEST(CliTest, ListScenesNamesTheReferenceScenes) {
