@@ -103,16 +103,19 @@ def bvh_section(bvh):
                      f"{fmt(sah.get('device_over_full_sweep'), 3)} | {fmt(coherent.get('device_mrays_per_s'), 1)} | "
                      f"{fmt(incoherent.get('device_mrays_per_s'), 1)} | {agreement:.4f} |")
     lines += ["", "The treelet builder (the GPU profile's mesh builder) on the same triangles:", "",
-              "| scene | build ms | Mtris/s | dispatches (host waits) | levels | SAH / full sweep | hit agreement |",
-              "|---|---:|---:|---:|---:|---:|---:|"]
+              "| scene | build ms | Mtris/s | slowest stage | dispatches (host waits) | levels | SAH / full sweep | "
+              "hit agreement |", "|---|---:|---:|---|---:|---:|---:|---:|"]
     for c in bvh["cases"]:
         treelets = c.get("treelet_build")
         if not treelets:
             continue
         shape = treelets.get("device_frame", {})
         agreement = min(treelets.get(rays, {}).get("hit_agreement", 0.0) for rays in ("coherent", "incoherent"))
+        stages = treelets.get("stage_ms") or {}
+        slowest = max(stages, key=stages.get) if stages else None
+        share = f"{slowest} {100 * stages[slowest] / max(sum(stages.values()), 1e-9):.0f}%" if slowest else "-"
         lines.append(f"| {c['scene']} | {fmt(median(treelets.get('device_ms')))} | "
-                     f"{fmt(treelets.get('device_mtris_per_s'))} | {shape.get('dispatches', '-')} "
+                     f"{fmt(treelets.get('device_mtris_per_s'))} | {share} | {shape.get('dispatches', '-')} "
                      f"({shape.get('host_waits', '-')}) | {treelets.get('device_levels', '-')} | "
                      f"{fmt(treelets.get('sah_over_full_sweep'), 3)} | {agreement:.4f} |")
     return lines + [""]
