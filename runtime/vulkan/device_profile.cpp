@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "kernels/bvh/bvh_build_layout.h"
+#include "kernels/bvh/treelet_build_layout.h"
 #include "kernels/hybrid/hybrid_layout.h"
 #include "kernels/shared/dispatch.h"
 #include "runtime/error.h"
@@ -74,7 +75,9 @@ DeviceProfile makeDeviceProfile(const DeviceInfo& device, uint32_t maxWorkGroupS
     profile.bvhLaneBins = false;
     profile.topLevelSmallTask = HMB_BVH_SMALL_TASK;
     profile.linearTopLevel = true;
-    profile.treeletMeshBuilds = true;
+    // Its sort's groups take a lane per digit; a device that allows fewer keeps the binned builder.
+    profile.treeletMeshBuilds = maxWorkGroupSizeX >= HMB_TREELET_SORT_GROUP &&
+                                maxWorkGroupInvocations >= HMB_TREELET_SORT_GROUP;
     profile.gatherSkipsRayMask = true;
     profile.edgeCandidatesInTileMax = true;
   }

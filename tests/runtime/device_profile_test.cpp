@@ -109,6 +109,10 @@ TEST_F(DeviceProfileTest, EachProfileMakesItsOwnChoices) {
   gpu.subgroupSize = 64;
   EXPECT_EQ(vk::makeDeviceProfile(gpu, 1024, 1024, vk::DeviceProfileChoice::Auto).bvhLevelGroup, 64u);
   EXPECT_EQ(vk::makeDeviceProfile(gpu, 1024, 48, vk::DeviceProfileChoice::Auto).bvhLevelGroup, 48u);
+  // The treelet builder's sort takes groups of HMB_TREELET_SORT_GROUP lanes, which Vulkan does not
+  // promise (its minimum is 128): a device that allows fewer builds its meshes in levels.
+  EXPECT_FALSE(vk::makeDeviceProfile(gpu, 128, 128, vk::DeviceProfileChoice::Auto).treeletMeshBuilds);
+  EXPECT_TRUE(vk::makeDeviceProfile(gpu, 256, 256, vk::DeviceProfileChoice::Auto).treeletMeshBuilds);
 }
 
 // The driver's loop budget is a fact of the driver: lavapipe before Mesa 23 has one, under any
