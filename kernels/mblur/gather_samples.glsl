@@ -37,7 +37,7 @@
 // Each sample then takes one more fixed-point step with its own terms (see gatherSamples).
 //
 // Shared by the post-process gather (mblur/gather.comp) and the hybrid's gathers
-// (hybrid/gather_background.comp, hybrid/composite.comp). The including kernel declares
+// (reveal/gather_background.comp, reveal/composite.comp). The including kernel declares
 // `params` (GatherParams) and defines, before including this file, what a sample reads:
 //   uvec4 blurSampleAt(uint i)  (pixel i's packed sample: colour, depth, velocity, one load;
 //                                shared/layer_layout.h),

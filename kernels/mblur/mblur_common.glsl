@@ -78,7 +78,7 @@ float behindShareOf(uint sampleObject, float sampleDepth, uint centreObject, flo
 
 // The coverage composite's sample i of `samples` along the pixel's own path X + u v + u^2 q
 // (q = 0: the straight displacement v; else the curved path's terms, inversePath): the same
-// positions in hybrid/composite.comp (which blends) and range_check.comp (which decides whether
+// positions in reveal/composite.comp (which blends) and range_check.comp (which decides whether
 // the pixel needs the revealed background at all). `precise`: the two kernels are compiled
 // apart, and a fused multiply-add in one but not the other could move a sample across a pixel
 // border, listing a pixel for the reveal whose composite then reads no background or the reverse.

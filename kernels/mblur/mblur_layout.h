@@ -130,7 +130,7 @@ struct GatherBlockCounters {
 HMB_SHARED uint gatherBlockEntry(uvec2 place) { return (place.y << 16u) | place.x; }
 HMB_SHARED uvec2 gatherBlockPlace(uint entry) { return uvec2(entry & 0xFFFFu, entry >> 16u); }
 
-// The hybrid's ray mask buffer (kernels/hybrid/hybrid_layout.h: HMB_MASK_*) holds each pixel's
+// The hybrid's ray mask buffer (kernels/ray_mask/ray_mask_layout.h: HMB_MASK_*) holds each pixel's
 // value in 2 bits, 16 pixels to a uint: pixel `pixel`'s value in its word (word pixel / 16), and
 // the bits that set it there (by atomicOr). The mask and the edge mask (a bit a pixel) are
 // cleared each frame: as a uint a pixel the two fills stored sixteen and thirty-two times as
@@ -178,7 +178,7 @@ struct NeighborMaxParams {
 };
 
 // The parameters of every McGuire gather: the post-process gather and the hybrid's background
-// gather and composite (kernels/hybrid/), which must blur alike.
+// gather and composite (kernels/reveal/), which must blur alike.
 struct GatherParams {
   uint width;
   uint height;

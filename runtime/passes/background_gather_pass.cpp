@@ -4,7 +4,8 @@
 #include <span>
 #include <vector>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/reveal/reveal_layout.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -12,7 +13,7 @@
 namespace hmb::passes {
 
 BackgroundGatherPass::BackgroundGatherPass(const vk::Context& context)
-    : kernels_(context, "hybrid/gather_background", sizeof(gpu::GatherParams)) {}
+    : kernels_(context, "reveal/gather_background", sizeof(gpu::GatherParams)) {}
 
 void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
                                   const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
@@ -22,7 +23,7 @@ void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& ra
   static_assert(HMB_GATHER_GROUP_X * HMB_GATHER_GROUP_Y == HMB_MASK_LIST_GROUP);
   if (coverage && (blur.flags & HMB_GATHER_FLAG_ADAPTED_RANGE) == 0u)
     throw Error("gather-background: the coverage composite needs the adapted range");
-  // Built for the frame's path, range and use alone (hybrid_layout.h).
+  // Built for the frame's path, range and use alone (kernels/reveal/reveal_layout.h).
   static_assert(HMB_SPEC_BACKGROUND_GATHER_CURVED_PATH == 0 && HMB_SPEC_BACKGROUND_GATHER_ADAPTED_RANGE == 1 &&
                 HMB_SPEC_BACKGROUND_GATHER_COVERAGE == 2);
   const vk::ComputeKernel& kernel =

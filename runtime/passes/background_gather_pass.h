@@ -1,4 +1,4 @@
-// Host side of kernels/hybrid/gather_background.comp: the hybrid's background layer (the raster
+// Host side of kernels/reveal/gather_background.comp: the hybrid's background layer (the raster
 // with the revealed surfaces in its place where the mask says so) blurred at the ray mask's
 // listed pixels (the list's front), dispatched indirectly from its length; with the coverage
 // composite, blended under the mask's foreground into the hybrid's image there.

@@ -4,14 +4,15 @@
 #include <span>
 #include <vector>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/reveal/reveal_layout.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
 CompositePass::CompositePass(const vk::Context& context)
-    : kernels_(context, "hybrid/composite", sizeof(gpu::GatherParams)) {}
+    : kernels_(context, "reveal/composite", sizeof(gpu::GatherParams)) {}
 
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
                            const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
@@ -23,7 +24,7 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
     throw Error("composite: the coverage form needs the adapted range");
   if (coverageForm && !coverage)
     throw Error("composite: the coverage form needs the mask's coverage (RayMaskStage::coverage)");
-  // Built for the frame's path, range and form alone (hybrid_layout.h).
+  // Built for the frame's path, range and form alone (kernels/reveal/reveal_layout.h).
   static_assert(HMB_SPEC_COMPOSITE_CURVED_PATH == 0 && HMB_SPEC_COMPOSITE_ADAPTED_RANGE == 1 &&
                 HMB_SPEC_COMPOSITE_COVERAGE == 2);
   const vk::ComputeKernel& kernel =

@@ -1,4 +1,4 @@
-// Host side of kernels/hybrid/composite.comp: the hybrid's final image at the ray mask's pixels
+// Host side of kernels/reveal/composite.comp: the hybrid's final image at the ray mask's pixels
 // over the post-process gather's image of the raster layer (every other pixel): with the weights
 // composite at every mask pixel, the blurred background composited in; with the coverage
 // composite at the pixels not revealed (BackgroundGatherPass blends the others).

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/error.h"
 #include "scenes/scene.h"
 

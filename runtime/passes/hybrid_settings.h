@@ -55,7 +55,7 @@ struct HybridSettings {
   // weights composite uses McGuire's weights there.
   float maskBackgroundBoost = 3.0f;
   float maskForegroundDivide = 3.0f;
-  // Shutter rays (kernels/hybrid/list_shutter_rays.comp): the shutter is cut into this many
+  // Shutter rays (kernels/shutter_rays/list_shutter_rays.comp): the shutter is cut into this many
   // strata (a power of two up to 16; 0 turns them off), and the moving pixels whose path crosses
   // another object or a colour step trace a ray at up to that many of them, one per 2 px of blur
   // around them. A gather of one frame cannot place an edge between pixel centres; where the

@@ -5,7 +5,7 @@
 //   -> ray reveal (RevealPass) at mask pixels -> gather of the background layer (the revealed
 //   surfaces over the raster) at mask pixels only (BackgroundGatherPass, indirect) -> the
 //   background composited in at mask pixels (CompositePass, indirect;
-//   kernels/hybrid/composite.comp says how). With shutter rays (settings' shutterRays, the
+//   kernels/reveal/composite.comp says how). With shutter rays (settings' shutterRays, the
 //   default) the mask's own passes, the reveal and the composite are left out: post-process's
 //   gather covers the image, and at the moving pixels whose path crosses an edge (object or
 //   colour) rays at stratified shutter times replace its colour (ShutterRaysPass), the mask's

@@ -10,8 +10,8 @@
 namespace hmb::passes {
 
 MaskCoveragePass::MaskCoveragePass(const vk::Context& context)
-    : kernels_(context, "hybrid/mask_coverage", sizeof(gpu::RayMaskParams)),
-      listKernel_(context, "hybrid/list_mask_blocks", sizeof(gpu::RayMaskParams)) {}
+    : kernels_(context, "ray_mask/mask_coverage", sizeof(gpu::RayMaskParams)),
+      listKernel_(context, "ray_mask/list_mask_blocks", sizeof(gpu::RayMaskParams)) {}
 
 uint64_t maskBlockBitsBytes(uint32_t width, uint32_t height) {
   return uint64_t(HMB_MASK_BLOCKS_ACROSS(width)) * HMB_MASK_BLOCKS_ACROSS(height) * 4 * sizeof(uint32_t);  // uvec4 each

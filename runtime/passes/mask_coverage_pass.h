@@ -1,4 +1,4 @@
-// Host side of kernels/hybrid/mask_coverage.comp and list_mask_blocks.comp: with the coverage
+// Host side of kernels/ray_mask/mask_coverage.comp and list_mask_blocks.comp: with the coverage
 // composite, the ray mask's last passes. At each pixel the range check listed, mask_coverage
 // finds the composite's alpha and foreground colour, writes the pixel's mask value and sets its
 // bit in its block's words (dispatched indirectly from the range check's count);
@@ -6,7 +6,7 @@
 // front) or for the composite alone (its back).
 #pragma once
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
 #include "runtime/passes/post_process_filter.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"

@@ -3,7 +3,8 @@
 #include <cstddef>
 #include <string>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
 #include "runtime/passes/tile_max_pass.h"
@@ -45,14 +46,14 @@ std::vector<uint32_t> unpackEdgeMask(std::span<const uint32_t> words, size_t pix
 
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
-      tilesKernel_(context, "hybrid/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
-      edgeKernel_(context, "hybrid/edge_mask", sizeof(gpu::RayMaskParams)),
-      sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
-      blocksKernel_(context, "hybrid/list_range_blocks", sizeof(gpu::RayMaskParams)),
+      tilesKernel_(context, "shutter_rays/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
+      edgeKernel_(context, "ray_mask/edge_mask", sizeof(gpu::RayMaskParams)),
+      sizeKernel_(context, "ray_mask/size_list_dispatch", sizeof(gpu::SizeListParams)),
+      blocksKernel_(context, "ray_mask/list_range_blocks", sizeof(gpu::RayMaskParams)),
       coveragePass_(context),
-      tileMaxKernels_(context, "hybrid/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
-      rangeKernels_(context, "hybrid/range_check", sizeof(gpu::RayMaskParams)),
-      rangeListKernel_(context, "hybrid/list_range_mask", sizeof(gpu::RayMaskParams)) {}
+      tileMaxKernels_(context, "ray_mask/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
+      rangeKernels_(context, "ray_mask/range_check", sizeof(gpu::RayMaskParams)),
+      rangeListKernel_(context, "ray_mask/list_range_mask", sizeof(gpu::RayMaskParams)) {}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause,
                         const std::string& coverageSkipped) const {
@@ -96,7 +97,7 @@ void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly
     blockBits_ = vk::Buffer(context_, maskBlockBitsBytes(width, height), vk::MemoryUse::Device, "mask block bits");
   }
   if (!resized && mask_.handle()) return;
-  // The edge mask, then the coarse edge mask (kernels/hybrid/hybrid_layout.h).
+  // The edge mask, then the coarse edge mask (kernels/ray_mask/ray_mask_layout.h).
   edges_ = vk::Buffer(context_, HMB_EDGE_BUFFER_ENTRIES(uint64_t(width), uint64_t(height)) * sizeof(uint32_t),
                       vk::MemoryUse::Device, "edge mask");
   mask_ = vk::Buffer(context_, HMB_RAY_MASK_WORDS(pixels) * sizeof(uint32_t), vk::MemoryUse::Device, "ray mask");
@@ -182,7 +183,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_RANGE_BLOCKS_BINDING_COUNTERS, &counters_},
                           {HMB_RANGE_BLOCKS_BINDING_LIST, &rangeBlocks_}},
                          params, counters_, offsetof(gpu::RayMaskCounters, tileBlockDispatchX));
-  // The range check's groups (hybrid_layout.h).
+  // The range check's groups (kernels/ray_mask/ray_mask_layout.h).
   sizeDispatch(HMB_SIZE_LIST_RANGE_BLOCKS,
                p.rangeCheckGroups.value_or(context_.profile().rangeCheckGroups));
   // Built with the curved paths' walks only where the frame takes them.

@@ -1,4 +1,4 @@
-// The hybrid method's ray mask (paper, section 3.2.1; kernels/hybrid/): tile_max_edge_candidates
+// The hybrid method's ray mask (paper, section 3.2.1; kernels/ray_mask/): tile_max_edge_candidates
 // (the gather's tile-max, and eqs. 1, 2 at each pixel it reads, listed) -> list_moving_tiles
 // -> edge_mask (eqs. 3, 4 over that list) -> list_range_blocks (the blocks with an edge within
 // reach) -> range_check (the mask as an image of HMB_MASK_* values and a compacted pixel list;
@@ -42,13 +42,13 @@ struct RayMaskParameters {
   // List the moving tiles alone (for the shutter rays' list) and leave the mask empty: the
   // frame traces its edges over the shutter instead of revealing them (HybridStage::plan).
   bool movingTilesOnly = false;
-  // Where the hybrid's tile-max runs eqs. 1, 2 (kernels/hybrid/tile_max_edge_candidates.comp):
+  // Where the hybrid's tile-max runs eqs. 1, 2 (kernels/ray_mask/tile_max_edge_candidates.comp):
   // inside its reduction's loop (a GPU, or a frame whose camera moves: every tile moves), or
   // after it in the tiles with a moving pixel alone (a CPU device runs the loop's test at still
   // pixels too). Either lists the same pixels.
   bool candidatesInTileMaxLoop = true;
   // The range check's groups wanted in all (gpu::SizeListParams::groupsWanted: 0 for one
-  // per listed 8 x 8 block); unset: the device's type decides (hybrid_layout.h).
+  // per listed 8 x 8 block); unset: the device's type decides (kernels/ray_mask/ray_mask_layout.h).
   std::optional<uint32_t> rangeCheckGroups;
 };
 

@@ -5,7 +5,8 @@
 
 #include <cstddef>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/reveal/reveal_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
 #include "runtime/gpu_scene.h"
@@ -17,7 +18,7 @@ namespace hmb::passes {
 
 namespace {
 
-constexpr const char* kKernel = "hybrid/reveal_background";
+constexpr const char* kKernel = "reveal/reveal_background";
 constexpr uint32_t kObjectIdStop[] = {HMB_REVEAL_STOP_OBJECT_ID};
 constexpr uint32_t kLuminanceStop[] = {HMB_REVEAL_STOP_LUMINANCE};
 

@@ -1,4 +1,4 @@
-// Host side of kernels/hybrid/reveal_background.comp: the ray reveal (paper, section 3.2.2)
+// Host side of kernels/reveal/reveal_background.comp: the ray reveal (paper, section 3.2.2)
 // of every pixel in the ray mask's list, dispatched indirectly from the list's length.
 #pragma once
 
@@ -38,7 +38,7 @@ class RevealPass {
  private:
   const vk::Context& context_;
   const HitShading* hits_;
-  // A build per stop (hybrid_layout.h's HMB_SPEC_REVEAL_STOP): the object-id one up front, the
+  // A build per stop (reveal_layout.h's HMB_SPEC_REVEAL_STOP): the object-id one up front, the
   // luminance one on first use.
   ShadingKernel objectIdStop_;
   mutable std::unique_ptr<ShadingKernel> luminanceStop_;

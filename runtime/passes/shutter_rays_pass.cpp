@@ -16,9 +16,9 @@ namespace hmb::passes {
 
 ShutterRaysPass::ShutterRaysPass(const vk::Context& context, const HitShading* hits)
     : context_(context),
-      sizeKernel_(context, "hybrid/size_list_dispatch", sizeof(gpu::SizeListParams)),
-      listKernel_(context, "hybrid/list_shutter_rays", sizeof(gpu::ShutterRayListParams)),
-      traceKernel_(context, "hybrid/trace_shutter_rays", sizeof(gpu::ShutterRayTraceParams), ShadingKernel::Rays::Traced,
+      sizeKernel_(context, "ray_mask/size_list_dispatch", sizeof(gpu::SizeListParams)),
+      listKernel_(context, "shutter_rays/list_shutter_rays", sizeof(gpu::ShutterRayListParams)),
+      traceKernel_(context, "shutter_rays/trace_shutter_rays", sizeof(gpu::ShutterRayTraceParams), ShadingKernel::Rays::Traced,
                    hits) {}
 
 void ShutterRaysPass::prepare(uint32_t width, uint32_t height) {
@@ -49,7 +49,7 @@ void ShutterRaysPass::recordList(vk::FrameRecorder& frame, const MotionBlurInput
     throw Error("shutter rays: the blur's parameters are for another size");
   if (blur.tileSize == 0) throw Error("shutter rays: the blur's tile size is 0");
   frame.fill(kList, counters_, 0u);
-  // The moving tiles' 8 x 8 blocks -> the list's groups (hybrid_layout.h). A pixel walks its own
+  // The moving tiles' 8 x 8 blocks -> the list's groups (kernels/shutter_rays/shutter_rays_layout.h). A pixel walks its own
   // velocity, clamped to maxSpeed, or its tile's fastest, clamped to the tile.
   const float walkSpeed = std::max(blur.maxSpeed, float(blur.tileSize));
   const uint32_t groups = groupsWanted.value_or(context_.profile().shutterListGroups);

@@ -1,4 +1,4 @@
-// Host side of kernels/hybrid/list_shutter_rays.comp and trace_shutter_rays.comp: the pixels
+// Host side of kernels/shutter_rays/list_shutter_rays.comp and trace_shutter_rays.comp: the pixels
 // whose path over the shutter crosses an edge (another object, a colour step), where a gather
 // of one frame misses the edge's sub-pixel sweep, take a few rays at stratified shutter times
 // (distributed ray tracing, as the reference does) and their mean replaces the composite's
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/shading_kernel.h"
 #include "runtime/vulkan/buffer.h"
@@ -46,7 +46,7 @@ class ShutterRaysPass {
   // blur: the frame's gather parameters (the mask's); tileMax: the gather's, at blur.tileSize;
   // strata: a power of two from 2 to HMB_MAX_SHUTTER_STRATA; groupsWanted: the list's groups in
   // all, each a run of the moving tiles' 8 x 8 blocks (0: one per block; unset: the device's type
-  // decides, hybrid_layout.h), more where a run would pass llvmpipe's loop budget.
+  // decides, kernels/shutter_rays/shutter_rays_layout.h), more where a run would pass llvmpipe's loop budget.
   void recordList(vk::FrameRecorder& frame, const MotionBlurInputs& raster, const gpu::GatherParams& blur,
                   const vk::Buffer& tileMax, const RayMaskStage& rayMask, uint32_t strata,
                   std::optional<uint32_t> groupsWanted = std::nullopt) const;

@@ -6,7 +6,8 @@
 
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/bvh/treelet_build_layout.h"
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "kernels/shared/dispatch.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/context.h"

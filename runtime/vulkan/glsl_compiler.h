@@ -13,7 +13,7 @@
 namespace hmb::vk {
 
 struct GlslCompileInput {
-  std::string kernel;                          // "hybrid/reveal_background" (its .comp under kernels/)
+  std::string kernel;                          // "reveal/reveal_background" (its .comp under kernels/)
   std::vector<std::string> defines;            // "NAME" or "NAME=VALUE"
   std::map<std::string, std::string> files;    // include name -> text, found before the tree's files
   std::string description;                     // what the error says was compiled, e.g. "the engine's shadeHit"

@@ -23,7 +23,7 @@ const EmbeddedKernel& findKernel(std::string_view name);
 const EmbeddedKernel* findKernelIfBuilt(std::string_view name);
 
 // The GLSL text of a kernel or of a file kernels include, by its path in the source tree
-// ("kernels/hybrid/reveal_background.comp", "bvh/bvh_layout.h"), for kernels compiled again at
+// ("kernels/reveal/reveal_background.comp", "bvh/bvh_layout.h"), for kernels compiled again at
 // run time (runtime/vulkan/glsl_compiler.h).
 struct KernelSource {
   std::string_view path;

@@ -1,7 +1,7 @@
 // The hybrid composites against the C++ reference on random and adversarial layers: the
 // coverage form (mask_coverage's alpha and foreground over the background that
-// hybrid/gather_background.comp gathers and blends at mask pixels) and the weights form
-// (hybrid/composite.comp); and the background gather over a pixel list alone: exactly the listed
+// reveal/gather_background.comp gathers and blends at mask pixels) and the weights form
+// (reveal/composite.comp); and the background gather over a pixel list alone: exactly the listed
 // pixels written, each as the full-frame gather writes it, also with more groups than one row of
 // a dispatch holds, and the revealed layer read where the mask says so.
 #include <algorithm>
@@ -206,7 +206,7 @@ TEST_F(HybridCompositeTest, CoverageMatchesReferenceOnRandomLayers) {
   EXPECT_GT(changed, 1000u) << "the composite should change most moving mask pixels";
 }
 
-// mask_coverage (hybrid/mask_coverage.comp) on its own against the reference on random and
+// mask_coverage (ray_mask/mask_coverage.comp) on its own against the reference on random and
 // adversarial layers, straight and curved: each mask pixel's foreground colour and alpha, and
 // its mask value (revealed where a sample lies behind it); pixels outside the mask untouched.
 TEST_F(HybridCompositeTest, MaskCoverageMatchesReferenceAndSplitsTheMask) {

@@ -10,7 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "kernels/shared/layer_layout.h"
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"

@@ -11,7 +11,8 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/hybrid_settings.h"

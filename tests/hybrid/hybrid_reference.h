@@ -1,6 +1,6 @@
-// Plain C++ of the hybrid method's kernel math (kernels/hybrid/ray_mask_common.glsl,
+// Plain C++ of the hybrid method's kernel math (kernels/ray_mask/ray_mask_common.glsl,
 // edge_mask.comp, range_check.comp, size_list_dispatch.comp, mask_coverage.comp and the
-// composites of kernels/hybrid/composite.comp), operation for operation, so the kernels can be compared with it
+// composites of kernels/reveal/composite.comp), operation for operation, so the kernels can be compared with it
 // on any input. The motion blur functions they share come from tests/mblur/mblur_reference.h.
 #pragma once
 
@@ -9,7 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
@@ -109,7 +110,7 @@ std::vector<MaskCoverage> maskCoverage(const mblur::Layer& layer, const std::vec
                                        const std::vector<uint32_t>& objectId,
                                        const passes::PostProcessSettings& settings);
 
-// The hybrid's image: hybrid/composite.comp at mask pixels with the background, the object ids
+// The hybrid's image: reveal/composite.comp at mask pixels with the background, the object ids
 // and the form, over the post-process gather (mblur/gather.comp) everywhere else.
 std::vector<glm::vec4> compositeGather(const mblur::Layer& layer, const std::vector<glm::vec4>& neighborMax,
                                        const std::vector<uint32_t>& mask, const std::vector<glm::vec4>& background,

@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
 #include "tests/hybrid/hybrid_harness.h"
 #include "tests/hybrid/hybrid_reference.h"
 #include "tests/mblur/mblur_harness.h"
@@ -71,7 +71,7 @@ void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std:
 
 // The longest run of blocks one range check group may take: its walks, at most 4 s + 16 loop
 // rounds a pixel for a walk speed s (the largest speed, twice it along curved paths), stay
-// within the driver's loop budget where it has one (hybrid_layout.h), written out here.
+// within the driver's loop budget where it has one (ray_mask_layout.h), written out here.
 uint64_t rangeRunLimit(const RayMaskParameters& p, std::optional<uint32_t> loopBudget) {
   if (!loopBudget) return HMB_RANGE_CHECK_MAX_RUN;
   const bool curved = (p.blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;

@@ -14,7 +14,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/renderer.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"

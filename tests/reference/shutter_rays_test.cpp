@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/frame_plan.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "scenes/load_scene.h"

@@ -120,7 +120,7 @@ TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
 // the mode comes with the kernel's own text (kernels/shared/float_controls.glsl).
 TEST(HitShadingBuildsTest, KernelsCompiledWithAUsersShadingKeepNanAndInfinity) {
   const passes::HitShading shading(kMagenta);
-  for (const char* kernel : {"hybrid/reveal_background", "reference/accumulate_sample"}) {
+  for (const char* kernel : {"reveal/reveal_background", "reference/accumulate_sample"}) {
     const vk::KernelBuilds& builds = shading.buildsFor(kernel);
     EXPECT_TRUE(keepsNanAndInfinity(builds.plain)) << kernel;
     if (!builds.byAddress.empty()) {

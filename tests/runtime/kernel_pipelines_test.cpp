@@ -14,7 +14,9 @@
 #include "kernels/debug/pack_layer.h"
 #include "kernels/debug/test_pattern.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
-#include "kernels/hybrid/hybrid_layout.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/reveal/reveal_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "kernels/output/encode_display.h"
 #include "kernels/raster/raster_layout.h"
@@ -103,28 +105,28 @@ const KernelLayout kLayouts[] = {
     {"mblur/copy_still_blocks", HMB_STILL_BLOCKS_BINDING_COUNT, sizeof(gpu::StillBlocksParams), false, false, 1},
     {"mblur/gather_jimenez", HMB_FILTER_BINDING_COUNT, sizeof(gpu::JimenezParams), false, false,
      HMB_FILTER_TEXEL_BUFFERS},
-    {"hybrid/composite", HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
+    {"reveal/composite", HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
      HMB_COMPOSITE_TEXEL_BUFFERS},
-    {"hybrid/gather_background", HMB_BACKGROUND_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
+    {"reveal/gather_background", HMB_BACKGROUND_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
      HMB_BACKGROUND_GATHER_TEXEL_BUFFERS},
-    {"hybrid/tile_max_edge_candidates", HMB_TILE_MAX_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
+    {"ray_mask/tile_max_edge_candidates", HMB_TILE_MAX_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
      HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS},
-    {"hybrid/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, HMB_EDGE_MASK_TEXEL_BUFFERS},
-    {"hybrid/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
+    {"ray_mask/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, HMB_EDGE_MASK_TEXEL_BUFFERS},
+    {"ray_mask/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
      HMB_RANGE_CHECK_TEXEL_BUFFERS},
-    {"hybrid/list_range_mask", HMB_RANGE_MASK_LIST_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, 0},
-    {"hybrid/mask_coverage", HMB_MASK_COVERAGE_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
+    {"ray_mask/list_range_mask", HMB_RANGE_MASK_LIST_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, 0},
+    {"ray_mask/mask_coverage", HMB_MASK_COVERAGE_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
      HMB_MASK_COVERAGE_TEXEL_BUFFERS},
-    {"hybrid/list_mask_blocks", HMB_LIST_MASK_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
+    {"ray_mask/list_mask_blocks", HMB_LIST_MASK_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
      HMB_LIST_MASK_BLOCKS_TEXEL_BUFFERS},
-    {"hybrid/list_range_blocks", HMB_RANGE_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
-    {"hybrid/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
-    {"hybrid/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
-    {"hybrid/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false, true,
+    {"ray_mask/list_range_blocks", HMB_RANGE_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
+    {"ray_mask/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
+    {"shutter_rays/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
+    {"reveal/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false, true,
      HMB_REVEAL_TEXEL_BUFFERS},
-    {"hybrid/list_shutter_rays", HMB_SHUTTER_LIST_BINDING_COUNT, sizeof(gpu::ShutterRayListParams), false, false,
+    {"shutter_rays/list_shutter_rays", HMB_SHUTTER_LIST_BINDING_COUNT, sizeof(gpu::ShutterRayListParams), false, false,
      HMB_SHUTTER_LIST_TEXEL_BUFFERS},
-    {"hybrid/trace_shutter_rays", HMB_SHUTTER_TRACE_BINDING_COUNT, sizeof(gpu::ShutterRayTraceParams), false, true,
+    {"shutter_rays/trace_shutter_rays", HMB_SHUTTER_TRACE_BINDING_COUNT, sizeof(gpu::ShutterRayTraceParams), false, true,
      HMB_TRACE_SCENE_TEXEL_BUFFERS + HMB_SCENE_TEXEL_BUFFERS},
 };
 

@@ -3,10 +3,10 @@
 // listed for mask_coverage. A lane per block the range check walked, in its list's order: the
 // block's marked pixels in row order, appended with one atomic. (The range check appended each
 // itself: an atomic on one counter per mask pixel from every thread of a CPU device, and a list
-// in whatever order the threads met them: hybrid_layout.h.)
+// in whatever order the threads met them: ray_mask_layout.h.)
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 

@@ -1,6 +1,6 @@
 // The ray mask's per-pixel tests (paper, section 3.2.1), shared by its kernels;
 // the C++ reference (tests/hybrid/hybrid_reference.cpp) mirrors each function. Include after
-// hybrid_layout.h and kernels/mblur/mblur_common.glsl (velocities are read as the gather reads
+// ray_mask_layout.h and kernels/mblur/mblur_common.glsl (velocities are read as the gather reads
 // them, so the mask covers exactly the range the gather blurs over).
 #ifndef HMB_KERNELS_HYBRID_RAY_MASK_COMMON_GLSL
 #define HMB_KERNELS_HYBRID_RAY_MASK_COMMON_GLSL
@@ -53,7 +53,7 @@ uvec2 rangeBlockSide(uint listed, uint tileSize) {
   return uvec2((listed & HMB_RANGE_BLOCK_LAST_ACROSS) != 0u ? lastSide.x : HMB_MASK_TILE_GROUP_X,
                (listed & HMB_RANGE_BLOCK_LAST_DOWN) != 0u ? lastSide.y : HMB_MASK_TILE_GROUP_Y);
 }
-// The first pixel of block `block` of `tile` (tileBlocks() in hybrid_layout.h).
+// The first pixel of block `block` of `tile` (tileBlocks() in ray_mask_layout.h).
 uvec2 tileBlockOrigin(uint tile, uint block, uint tilesX, uint tileSize) {
   const uint blocksX = tileBlocksAcross(tileSize);
   return tileOrigin(tile, tilesX, tileSize) +

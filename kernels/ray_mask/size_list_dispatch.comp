@@ -12,7 +12,7 @@
 // An empty list dispatches no group.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../shared/dispatch.h"
 
 layout(local_size_x = 1) in;

@@ -4,7 +4,7 @@
 // no pixel can pass eq. 1 or meet an edge along its range: the mask passes skip those tiles.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "shutter_rays_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 

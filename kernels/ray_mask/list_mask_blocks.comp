@@ -1,11 +1,11 @@
 #version 450
-// Ray mask, with the coverage composite: the mask's list, block by block (hybrid_layout.h). One
+// Ray mask, with the coverage composite: the mask's list, block by block (ray_mask_layout.h). One
 // lane per 8 x 8 block of the image: the bits mask_coverage set for the block's pixels, then
 // those needing the reveal at the list's front and the others at its back, each side with one
 // atomic, in row order.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../shared/indexing.glsl"
 #include "../shared/texel_records.glsl"
 

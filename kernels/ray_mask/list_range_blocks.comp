@@ -10,7 +10,7 @@
 // test within the range check's loop saved nothing; a GPU runs no group for the others.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../mblur/mblur_layout.h"
 
 layout(local_size_x = HMB_RANGE_BLOCKS_GROUP) in;

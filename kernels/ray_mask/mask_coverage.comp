@@ -13,7 +13,7 @@
 // that held one mask pixel.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 #include "../shared/layer_layout.h"

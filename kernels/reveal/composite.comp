@@ -17,7 +17,7 @@
 // The README gives the measured errors.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "reveal_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 #include "../shared/layer_bindings.glsl"
@@ -38,7 +38,7 @@ layout(std430, binding = HMB_COMPOSITE_BINDING_OUTPUT) writeonly buffer Output {
 HMB_LAYER_TEXELS(raster, HMB_COMPOSITE_BINDING_RASTER)
 layout(push_constant) uniform Params { GatherParams params; };
 
-// Built for the frame's path and range (hybrid_layout.h).
+// Built for the frame's path and range (reveal_layout.h).
 layout(constant_id = HMB_SPEC_COMPOSITE_CURVED_PATH) const bool kCurvedPath = false;
 #define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
 layout(constant_id = HMB_SPEC_COMPOSITE_ADAPTED_RANGE) const bool kAdaptedRange = true;

@@ -11,7 +11,7 @@
 // before.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 #include "../shared/layer_layout.h"

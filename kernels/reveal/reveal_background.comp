@@ -15,7 +15,7 @@
 // reads as the background colour at the far depth.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "reveal_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"
 #define HMB_TRACE_SCENE_BINDING HMB_REVEAL_BINDING_TRACE_SCENE

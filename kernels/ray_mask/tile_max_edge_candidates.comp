@@ -16,7 +16,7 @@
 // their own pixel).
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/layer_layout.h"
 

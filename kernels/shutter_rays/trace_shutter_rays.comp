@@ -6,7 +6,7 @@
 // the reference's samples are. Their mean replaces the colour the composite wrote there.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "shutter_rays_layout.h"
 #include "../shared/scene_layout.h"
 #include "../shared/indexing.glsl"
 #define HMB_TRACE_SCENE_BINDING HMB_SHUTTER_TRACE_BINDING_TRACE_SCENE

@@ -9,11 +9,11 @@
 // moves half a pixel or more, else its tile's fastest (a still pixel a moving neighbour may
 // sweep over). Its rays: shutterRaysFor the faster of its own and its tile's fastest blur.
 // A lane per pixel of the moving tiles' 8 x 8 blocks (list_moving_tiles), a block per group or
-// a run of blocks per group (size_list_dispatch, hybrid_layout.h); pixels of still tiles are
+// a run of blocks per group (size_list_dispatch, shutter_rays_layout.h); pixels of still tiles are
 // never listed.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "shutter_rays_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/layer_layout.h"
 
@@ -36,7 +36,7 @@ layout(std430, binding = HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS) readonly buffer
 layout(push_constant) uniform Params { ShutterRayListParams params; };
 
 #include "../mblur/mblur_common.glsl"
-#include "ray_mask_common.glsl"
+#include "../ray_mask/ray_mask_common.glsl"
 
 // Whether pixel p shows another object than `id`, or a colour a step away from `key`'s.
 bool differs(ivec2 p, uint id, vec3 key) {

@@ -18,7 +18,7 @@
 //  - background alone, at the list's front, for the weights form's composite (composite.comp).
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "reveal_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/indexing.glsl"
 #include "../shared/layer_bindings.glsl"
@@ -47,7 +47,7 @@ layout(binding = HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS) uniform utextureBu
 layout(binding = HMB_BACKGROUND_GATHER_BINDING_COVERAGE) uniform utextureBuffer coverageTexels;
 uvec2 shutterPathAt(uint i) { return overlaid(i) ? uvec2(HMB_NO_SHUTTER_PATH) : halfRecordAt(shutterPathTexels, i); }
 
-// Built for the frame's path and range (hybrid_layout.h).
+// Built for the frame's path and range (reveal_layout.h).
 layout(constant_id = HMB_SPEC_BACKGROUND_GATHER_CURVED_PATH) const bool kCurvedPath = false;
 #define HMB_GATHER_CURVED_PATH_CODE kCurvedPath
 layout(constant_id = HMB_SPEC_BACKGROUND_GATHER_ADAPTED_RANGE) const bool kAdaptedRange = true;

@@ -11,7 +11,7 @@
 // moving tiles with an edge within reach); the mask is 0 elsewhere.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
-#include "hybrid_layout.h"
+#include "ray_mask_layout.h"
 #include "../mblur/mblur_layout.h"
 #include "../shared/layer_layout.h"
 
@@ -171,7 +171,7 @@ void checkPixel(uvec2 pixel) {
 }
 
 // The listed blocks, a group each on a GPU; on a CPU device each group takes a run of the list
-// (hybrid_layout.h).
+// (ray_mask_layout.h).
 void main() {
   const uvec2 run = groupRun(counters.rangeBlockCount);
   for (uint entry = run.x; entry < run.y; ++entry) {
