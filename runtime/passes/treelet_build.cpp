@@ -16,14 +16,6 @@ constexpr uint32_t kOrderedNegativeInfinity = 0x007fffffu;
 
 }  // namespace
 
-std::vector<gpu::TreeletTile> treeletTiles(std::span<const glm::uvec2> roots) {
-  std::vector<gpu::TreeletTile> tiles;
-  for (uint32_t tree = 0; tree < roots.size(); ++tree)
-    for (uint32_t at = 0; at < roots[tree].y; at += HMB_TREELET_TILE)
-      tiles.push_back({tree, roots[tree].x + at, std::min(HMB_TREELET_TILE, roots[tree].y - at), 0u});
-  return tiles;
-}
-
 TreeletBuild::TreeletBuild(const vk::Context& context, std::string name)
     : context_(context),
       name_(std::move(name)),
@@ -37,29 +29,26 @@ TreeletBuild::TreeletBuild(const vk::Context& context, std::string name)
 
 void TreeletBuild::release() { scratch_ = {}; }
 
-uint64_t TreeletBuild::scratchBytes() const {
-  const Scratch& s = scratch_;
-  return s.tiles.size() + s.trees.size() + s.keys.size() + s.values.size() + s.digitCounts.size() + s.nodes.size();
-}
-
 void TreeletBuild::record(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes,
                           uint32_t primitiveCount, std::span<const glm::uvec2> roots, uint32_t maxLeaf,
                           const TreeletBuildTargets& targets, const std::function<void(vk::FrameRecorder&)>& before,
                           bool byKernel) {
+  // Each tree's range cut into tiles of at most HMB_TREELET_TILE places, in tree order.
   const auto treeCount = static_cast<uint32_t>(roots.size());
-  const std::vector<gpu::TreeletTile> tiles = treeletTiles(roots);
-  const auto tileCount = static_cast<uint32_t>(tiles.size());
+  std::vector<gpu::TreeletTile> tiles;
   std::vector<gpu::TreeletTree> trees(treeCount);
-  for (uint32_t tree = 0, tile = 0; tree < treeCount; ++tree) {
+  for (uint32_t tree = 0; tree < treeCount; ++tree) {
     trees[tree].first = roots[tree].x;
     trees[tree].count = roots[tree].y;
-    trees[tree].firstTile = tile;
+    trees[tree].firstTile = static_cast<uint32_t>(tiles.size());
     for (uint32_t a = 0; a < 4; ++a) {
       trees[tree].centroidLow[a] = kOrderedPositiveInfinity;
       trees[tree].centroidHigh[a] = kOrderedNegativeInfinity;
     }
-    tile += (roots[tree].y + HMB_TREELET_TILE - 1) / HMB_TREELET_TILE;
+    for (uint32_t at = 0; at < roots[tree].y; at += HMB_TREELET_TILE)
+      tiles.push_back({tree, roots[tree].x + at, std::min(HMB_TREELET_TILE, roots[tree].y - at), 0u});
   }
+  const auto tileCount = static_cast<uint32_t>(tiles.size());
 
   // Scratch grows to what the build needs.
   Scratch& s = scratch_;

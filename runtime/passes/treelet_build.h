@@ -55,7 +55,6 @@ class TreeletBuild {
               const std::function<void(vk::FrameRecorder&)>& before = {}, bool byKernel = false);
   // Frees the scratch (codes, the binary tree); the next build allocates it again.
   void release();
-  uint64_t scratchBytes() const;
   // Tests: after a build, the sorted codes and their primitives (the first n entries of each).
   const vk::Buffer& sortedCodes() const { return scratch_.keys; }
   const vk::Buffer& sortedPrimitives() const { return scratch_.values; }
@@ -71,9 +70,5 @@ class TreeletBuild {
   Scratch scratch_;
   vk::ComputeKernel boundsKernel_, codesKernel_, sortKernel_, hierarchyKernel_, optimizeKernel_, packKernel_;
 };
-
-// The treelet builder's tiles: each tree's range cut into runs of at most HMB_TREELET_TILE, in
-// tree order (what the host writes for the kernels).
-std::vector<gpu::TreeletTile> treeletTiles(std::span<const glm::uvec2> roots);
 
 }  // namespace hmb::passes
