@@ -91,8 +91,13 @@ run_suite kernels kernels --sizes "$kernel_sizes" --out "$results/kernels.json"
 elapsed=$(( $(date +%s) - started ))
 folder=$(/usr/bin/env python3 bench/scripts/device_summary.py "$results" --seconds "$elapsed" \
            --command "scripts/device-check.sh $*") || { log "summary failed"; exit 1; }
+if [ -n "${OUT:-}" ]; then mkdir -p "$OUT/$folder" && cp -r "$results"/. "$OUT/$folder/"; fi
+# What is committed stays small (bench/results has a size bar): the JUnit XML repeats
+# tests.log, a suite's stdout repeats its .md, and an empty stderr says nothing.
+rm -f "$results/tests.xml"
+for f in "$results"/*.err; do [ -s "$f" ] || rm -f "$f"; done
+for f in "$results"/*.out; do cmp -s "$f" "${f%.out}.md" && rm -f "$f"; done
 mkdir -p "bench/results/$folder"
 cp -r "$results"/. "bench/results/$folder/"
-if [ -n "${OUT:-}" ]; then mkdir -p "$OUT/$folder" && cp -r "$results"/. "$OUT/$folder/"; fi
 log "results in bench/results/$folder${OUT:+ and $OUT/$folder} after $elapsed s"
 cat "$results/summary.md"

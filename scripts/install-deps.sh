@@ -6,7 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev
-  libglm-dev libtinygltf-dev libopenexr-dev libstb-dev
+  libglm-dev libtinygltf-dev libopenexr-dev libstb-dev zlib1g-dev
   libfreetype-dev libfontconfig-dev fonts-dejavu-core  # captions on comparison strips
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev
   python3-matplotlib assimp-testmodels

@@ -58,7 +58,7 @@ def tests_section(results):
             passed += 1
     exit_code = (results / "tests.exit").read_text().strip() if (results / "tests.exit").exists() else "?"
     lines.append(f"{passed} passed, {len(failed)} failed, {skipped} skipped (ctest exit {exit_code}; "
-                 "`tests.log`, `tests.xml`).")
+                 "`tests.log`; the JUnit XML only in $OUT).")
     if failed:
         lines += ["", "Failed:", ""] + [f"- `{name}`" for name in failed]
     return lines + [""]

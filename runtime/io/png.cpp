@@ -3,6 +3,7 @@
 // vertical flip on load) cannot be changed by other code.
 #include <array>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -25,13 +26,29 @@
 #include <stb/stb_image.h>
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STBIW_ZLIB_COMPRESS hmbDeflate  // stb's own deflate packs pictures loosely; zlib's best level does not
+static unsigned char* hmbDeflate(unsigned char* data, int length, int* outLength, int /*quality*/);
 #include <stb/stb_image_write.h>
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
 
+#include <zlib.h>
+
 #include "runtime/error.h"
 #include "runtime/io/image_files.h"
+
+// stb frees what this returns with free(); a null return makes the write fail (and say so).
+static unsigned char* hmbDeflate(unsigned char* data, int length, int* outLength, int /*quality*/) {
+  uLongf size = compressBound(uLong(length));
+  auto* out = static_cast<unsigned char*>(std::malloc(size));
+  if (out == nullptr || compress2(out, &size, data, uLong(length), Z_BEST_COMPRESSION) != Z_OK) {
+    std::free(out);
+    return nullptr;
+  }
+  *outLength = int(size);
+  return out;
+}
 
 namespace hmb::io {
 
