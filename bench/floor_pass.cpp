@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include "kernels/manifest.h"
 #include "kernels/debug/floor_pass.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -11,7 +12,7 @@
 namespace hmb::bench {
 
 FloorPass::FloorPass(const vk::Context& context, uint32_t width, uint32_t height)
-    : kernel_(context, "debug/floor_pass", sizeof(gpu::FloorParams)),
+    : kernel_(context, kernels::kernel("debug/floor_pass")),
       input_(vk::uploadedBuffer(context, std::vector<glm::uvec4>(size_t(width) * height, glm::uvec4(7u)),
                                 "floor input")),
       output_(context, uint64_t(width) * height * sizeof(glm::uvec4), vk::MemoryUse::Device, "floor output"),

@@ -4,6 +4,7 @@
 #include <bit>
 #include <map>
 
+#include "kernels/manifest.h"
 #include "kernels/deform/deform_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
@@ -21,7 +22,7 @@ void planDeformation(FramePlan& plan, const scene::Scene& scene) {
 
 DeformedVertices::DeformedVertices(const vk::Context& context, const scene::Scene& scene,
                                    std::span<const uint32_t> meshVertexBase)
-    : context_(context), kernel_(context, "deform/deform_vertices", sizeof(gpu::DeformParams)) {
+    : context_(context), kernel_(context, kernels::kernel("deform/deform_vertices")) {
   std::vector<gpu::GpuRestVertex> rest;
   std::vector<gpu::GpuSkinInfluences> influences;
   std::vector<gpu::GpuMorphDisplacement> displacements;

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include "kernels/manifest.h"
 #include "kernels/engine/engine_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
@@ -56,7 +57,7 @@ gpu::EngineGBufferParams packParams(uint32_t width, uint32_t height, const Engin
 std::unique_ptr<vk::ComputeKernel> packKernel(const vk::Context& context, bool surfaces) {
   std::array<uint32_t, HMB_SPEC_ENGINE_SURFACES + 1> specialization{};
   specialization[HMB_SPEC_ENGINE_SURFACES] = surfaces ? 1u : 0u;  // VkBool32
-  return std::make_unique<vk::ComputeKernel>(context, "engine/pack_engine_gbuffer", sizeof(gpu::EngineGBufferParams),
+  return std::make_unique<vk::ComputeKernel>(context, kernels::kernel("engine/pack_engine_gbuffer"),
                                              specialization);
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
 #include "runtime/deformed_vertices.h"
@@ -80,9 +81,9 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
 TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame,
                        const passes::BvhBuildShape& meshShape)
     : context_(context),
-      triangleBoundsKernel_(context, "bvh/triangle_bounds", sizeof(uint32_t)),
-      motionBoundsKernel_(context, "trace/instance_motion_bounds", sizeof(gpu::TraceParams)),
-      deformedLeavesKernel_(context, "bvh/deformed_leaf_triangles", sizeof(glm::uvec2)),
+      triangleBoundsKernel_(context, kernels::kernel("bvh/triangle_bounds")),
+      motionBoundsKernel_(context, kernels::kernel("trace/instance_motion_bounds")),
+      deformedLeavesKernel_(context, kernels::kernel("bvh/deformed_leaf_triangles")),
       meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF, meshShape),
       instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF, passes::BvhBuildShape::forTopLevel(context)),
       linearInstanceBvh_(context, "instance BVH (linear)") {

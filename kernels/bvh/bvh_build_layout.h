@@ -116,7 +116,7 @@
 #define HMB_BUILD_BINDING_PACKED_NODES 5  // BvhPackedNode[]: the nodes as traversal reads them
 #define HMB_BUILD_BINDING_FRAMES 6        // BvhFrame per tree: what its packed bounds count steps in
 #define HMB_BUILD_BINDING_COUNT 7
-#define HMB_BUILD_TEXEL_BUFFERS 1  // the boxes, read as a uniform texel buffer (bvh_build_common.glsl)
+// The boxes are read as a uniform texel buffer (bvh_build_common.glsl), counted in kernels/manifest.h.
 
 // refit_parents and refit_places (once per build: the trees keep only the way down), then per
 // refit refit_bounds (once per depth, deepest first, over that depth's nodes) and refit_pack: a

@@ -21,8 +21,7 @@
 #define HMB_RESOLVE_BINDING_GBUFFER (HMB_RESOLVE_BINDING_SCENE + HMB_SCENE_BINDINGS)
 #define HMB_RESOLVE_BINDING_COUNT (HMB_RESOLVE_BINDING_GBUFFER + HMB_LAYER_BINDINGS)
 // Read as uniform texel buffers: visibility, triangles, both clip positions, shading, and the
-// scene's (scene_layout.h).
-#define HMB_RESOLVE_TEXEL_BUFFERS (5 + HMB_SCENE_TEXEL_BUFFERS)
+// scene's (scene_layout.h), counted in kernels/manifest.h.
 
 HMB_GPU_BEGIN
 struct ResolveParams {

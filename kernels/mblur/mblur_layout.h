@@ -20,7 +20,7 @@
 #define HMB_TILE_MAX_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces, velocity q in pixels per frame
 #define HMB_TILE_MAX_BINDING_TILES 1     // vec4 per tile (see above)
 #define HMB_TILE_MAX_BINDING_COUNT 2
-#define HMB_TILE_MAX_TEXEL_BUFFERS 1  // the surfaces, read as a uniform texel buffer
+// The surfaces are read as a uniform texel buffer (counted in kernels/manifest.h).
 
 // neighbor_max: one invocation per tile.
 #define HMB_NEIGHBOR_MAX_GROUP_X 8
@@ -38,7 +38,7 @@
 #define HMB_FILTER_BINDING_OUTPUT 2        // vec4 per pixel
 #define HMB_FILTER_BINDING_SHUTTER_PATHS 3 // uvec2 per pixel (gbuffer/gbuffer_layout.h)
 #define HMB_FILTER_BINDING_COUNT 4
-#define HMB_FILTER_TEXEL_BUFFERS 3  // samples, neighbour-max and paths, read as uniform texel buffers
+// Samples, neighbour-max and paths are read as uniform texel buffers (counted in kernels/manifest.h).
 // gather.comp beside those: the hybrid's ray mask (2 bits a pixel, 16 to a uint: rayMaskValue
 // below, 0 outside), read only with HMB_SPEC_GATHER_OUTSIDE_MASK: the gather then leaves the
 // mask's pixels to the hybrid's composite.

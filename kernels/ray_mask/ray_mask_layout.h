@@ -165,7 +165,7 @@
 // block at bit 8 y + x of xy where the pixel needs the reveal, of zw where it does not.
 #define HMB_MASK_COVERAGE_BINDING_BLOCK_BITS 7
 #define HMB_MASK_COVERAGE_BINDING_COUNT 8
-#define HMB_MASK_COVERAGE_TEXEL_BUFFERS 3  // the G-buffer's samples and surfaces, the shutter paths
+// Read through texel views (counted in kernels/manifest.h): the G-buffer's samples and surfaces, the shutter paths.
 #define HMB_SPEC_MASK_COVERAGE_CURVED_PATH 0  // the curved path's code, built only for frames that take it
 
 // list_mask_blocks: with the coverage composite, the mask's list, one lane per 8 x 8 block of
@@ -183,7 +183,7 @@
 #define HMB_LIST_MASK_BLOCKS_BINDING_COUNTERS 1    // RayMaskCounters: maskCount, unrevealedCount grow
 #define HMB_LIST_MASK_BLOCKS_BINDING_LIST 2        // the mask's list
 #define HMB_LIST_MASK_BLOCKS_BINDING_COUNT 3
-#define HMB_LIST_MASK_BLOCKS_TEXEL_BUFFERS 1  // the block bits
+// Read through a texel view (counted in kernels/manifest.h): the block bits.
 
 #define HMB_SIZE_LIST_BINDING_COUNTERS 0
 #define HMB_SIZE_LIST_BINDING_COUNT 1
@@ -210,10 +210,7 @@
 // a record: on lavapipe a storage-buffer load at per-lane addresses is a loop over the lanes
 // with a branch each, which was most of the tile-max test's cost and half the shutter rays'
 // list's (bench/results/texel-reads/). A single word (the edge mask, the ray mask) reads no
-// faster through a texel view.
-#define HMB_EDGE_MASK_TEXEL_BUFFERS 1
-#define HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS 1
-#define HMB_RANGE_CHECK_TEXEL_BUFFERS 2
+// faster through a texel view. kernels/manifest.h counts each kernel's texel views.
 // range_check's curved-path code, compiled in only where the blur takes the curved path
 // (HMB_GATHER_FLAG_CURVED_PATH): on a CPU device its walks ran, at least a round of each loop,
 // for every pixel of a straight frame.
@@ -222,46 +219,35 @@
 // tiles with a moving pixel (see the kernel: the host picks by device type and camera motion).
 #define HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP 0
 
+// RayMaskCounters::dispatches: the indirect dispatch of each pass over a list, sized by
+// size_list_dispatch from the list's count.
+#define HMB_RAY_MASK_DISPATCH_MASK 0            // the mask list's passes over its front (maskCount)
+#define HMB_RAY_MASK_DISPATCH_UNREVEALED 1      // the coverage composite over its back (unrevealedCount)
+#define HMB_RAY_MASK_DISPATCH_CANDIDATES 2      // edge_mask over the candidates (candidateCount)
+#define HMB_RAY_MASK_DISPATCH_TILE_BLOCKS 3     // list_range_blocks, a lane per block of the moving tiles
+#define HMB_RAY_MASK_DISPATCH_RANGE_CHECK 4     // range_check over the listed blocks (rangeBlockCount)
+#define HMB_RAY_MASK_DISPATCH_RANGE_LIST 5      // list_range_mask over the same blocks
+#define HMB_RAY_MASK_DISPATCH_COVERAGE 6        // mask_coverage over coverageCount pixels
+#define HMB_RAY_MASK_DISPATCH_SHUTTER_BLOCKS 7  // list_shutter_rays over the moving tiles' blocks
+#define HMB_RAY_MASK_DISPATCHES 8
+
 HMB_GPU_BEGIN
 
 // Cleared each frame. maskCount (the list's front: the pixels listed for the reveal) and
 // unrevealedCount (its back: the other mask pixels): range_check; maskPixels (their sum) and
-// the *Dispatch triples (VkDispatchIndirectCommands): size_list_dispatch; rayCount:
-// reveal_background; tileCount: list_moving_tiles or tile_max_edge_candidates; candidateCount:
-// tile_max_edge_candidates; rangeBlockCount: list_range_blocks.
+// the dispatches: size_list_dispatch; rayCount: reveal_background; tileCount:
+// list_moving_tiles or tile_max_edge_candidates; candidateCount: tile_max_edge_candidates;
+// rangeBlockCount: list_range_blocks; coverageCount: list_range_mask.
 struct RayMaskCounters {
   uint maskCount;
-  uint maskDispatchX;  // the mask list's passes
-  uint maskDispatchY;
-  uint maskDispatchZ;
-  uint rayCount;  // closest-hit traces the reveal made
-  uint tileCount;
-  uint rangeDispatchX;  // range_check over the listed blocks
-  uint rangeDispatchY;
-  uint rangeDispatchZ;
+  uint unrevealedCount;
   uint maskPixels;  // every pixel of the ray mask: maskCount + unrevealedCount
+  uint rayCount;    // closest-hit traces the reveal made
+  uint tileCount;
   uint candidateCount;
-  uint candidateDispatchX;  // edge_mask over the candidates
-  uint candidateDispatchY;
-  uint candidateDispatchZ;
-  uint tileBlockDispatchX;  // a lane per block of the moving tiles (list_range_blocks)
-  uint tileBlockDispatchY;
-  uint tileBlockDispatchZ;
-  uint unrevealedCount;     // mask pixels whose composite needs no reveal, listed from the list's back
-  uint unrevealedDispatchX;  // the coverage composite over the list's back (unrevealedCount)
-  uint unrevealedDispatchY;
-  uint unrevealedDispatchZ;
   uint rangeBlockCount;  // 8 x 8 blocks listed for the range check
   uint coverageCount;    // mask pixels the range check listed for mask_coverage
-  uint coverageDispatchX;  // mask_coverage over them
-  uint coverageDispatchY;
-  uint coverageDispatchZ;
-  uint shutterBlockDispatchX;  // list_shutter_rays over the moving tiles' blocks
-  uint shutterBlockDispatchY;
-  uint shutterBlockDispatchZ;
-  uint rangeListDispatchX;  // list_range_mask over the listed blocks (rangeBlockCount)
-  uint rangeListDispatchY;
-  uint rangeListDispatchZ;
+  IndirectDispatch dispatches[HMB_RAY_MASK_DISPATCHES];  // [HMB_RAY_MASK_DISPATCH_*]
 };
 
 struct SizeListParams {
@@ -318,6 +304,18 @@ HMB_SHARED uint tileBlocks(uint tileSize) { return tileBlocksAcross(tileSize) * 
 HMB_GPU_END
 
 HMB_CHECK_SIZE(RayMaskCounters, 128)
+
+#ifdef __cplusplus
+#include <cstddef>
+
+namespace hmb::gpu {
+// Where dispatch `dispatch` (HMB_RAY_MASK_DISPATCH_*) lies in the counters buffer, for
+// vkCmdDispatchIndirect.
+inline constexpr uint64_t rayMaskDispatchOffset(uint32_t dispatch) {
+  return offsetof(RayMaskCounters, dispatches) + dispatch * sizeof(IndirectDispatch);
+}
+}  // namespace hmb::gpu
+#endif
 HMB_CHECK_SIZE(SizeListParams, 20)
 HMB_CHECK_SIZE(RayMaskParams, 80)
 

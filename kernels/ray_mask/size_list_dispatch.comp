@@ -20,6 +20,10 @@ layout(local_size_x = 1) in;
 layout(std430, binding = HMB_SIZE_LIST_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
 layout(push_constant) uniform Params { SizeListParams params; };
 
+void setDispatch(uint dispatch, uvec3 groups) {
+  counters.dispatches[dispatch] = IndirectDispatch(groups.x, groups.y, groups.z);
+}
+
 uvec3 listGroups(uint count) { return foldedGroups((count + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP); }
 
 // How far a walk may reach, rounded up: a loop round per pixel it steps.
@@ -42,50 +46,34 @@ void main() {
     // At most a block per pixel: the product stays far below 2^32.
     const uint blocks = counters.tileCount * params.tileBlocks;
     const uvec3 g = foldedGroups((blocks + HMB_RANGE_BLOCKS_GROUP - 1u) / HMB_RANGE_BLOCKS_GROUP);
-    counters.tileBlockDispatchX = g.x;
-    counters.tileBlockDispatchY = g.y;
-    counters.tileBlockDispatchZ = g.z;
+    setDispatch(HMB_RAY_MASK_DISPATCH_TILE_BLOCKS, g);
     const uvec3 c = listGroups(counters.candidateCount);
-    counters.candidateDispatchX = c.x;
-    counters.candidateDispatchY = c.y;
-    counters.candidateDispatchZ = c.z;
+    setDispatch(HMB_RAY_MASK_DISPATCH_CANDIDATES, c);
     return;
   }
   if (params.list == HMB_SIZE_LIST_RANGE_BLOCKS) {
     const uint count = counters.rangeBlockCount;
     const uint maxRun = runWithinBudget(4u * walkRounds() + 17u, HMB_RANGE_CHECK_MAX_RUN);
     const uvec3 g = runGroups(count, maxRun);
-    counters.rangeDispatchX = g.x;
-    counters.rangeDispatchY = g.y;
-    counters.rangeDispatchZ = g.z;
+    setDispatch(HMB_RAY_MASK_DISPATCH_RANGE_CHECK, g);
     const uvec3 l = foldedGroups((count + HMB_RANGE_MASK_LIST_GROUP - 1u) / HMB_RANGE_MASK_LIST_GROUP);
-    counters.rangeListDispatchX = l.x;
-    counters.rangeListDispatchY = l.y;
-    counters.rangeListDispatchZ = l.z;
+    setDispatch(HMB_RAY_MASK_DISPATCH_RANGE_LIST, l);
     return;
   }
   if (params.list == HMB_SIZE_LIST_SHUTTER_BLOCKS) {
     const uint count = counters.tileCount * params.tileBlocks;
     const uvec3 g = runGroups(count, runWithinBudget(walkRounds() + 6u, max(count, 1u)));
-    counters.shutterBlockDispatchX = g.x;
-    counters.shutterBlockDispatchY = g.y;
-    counters.shutterBlockDispatchZ = g.z;
+    setDispatch(HMB_RAY_MASK_DISPATCH_SHUTTER_BLOCKS, g);
     return;
   }
   if (params.list == HMB_SIZE_LIST_COVERAGE) {
     const uvec3 g = listGroups(counters.coverageCount);
-    counters.coverageDispatchX = g.x;
-    counters.coverageDispatchY = g.y;
-    counters.coverageDispatchZ = g.z;
+    setDispatch(HMB_RAY_MASK_DISPATCH_COVERAGE, g);
     return;
   }
   const uvec3 g = listGroups(counters.maskCount);
-  counters.maskDispatchX = g.x;
-  counters.maskDispatchY = g.y;
-  counters.maskDispatchZ = g.z;
+  setDispatch(HMB_RAY_MASK_DISPATCH_MASK, g);
   counters.maskPixels = counters.maskCount + counters.unrevealedCount;
   const uvec3 back = listGroups(counters.unrevealedCount);
-  counters.unrevealedDispatchX = back.x;
-  counters.unrevealedDispatchY = back.y;
-  counters.unrevealedDispatchZ = back.z;
+  setDispatch(HMB_RAY_MASK_DISPATCH_UNREVEALED, back);
 }

@@ -29,7 +29,7 @@
 #define HMB_REVEAL_BINDING_SCENE (HMB_REVEAL_BINDING_TRACE_SCENE + HMB_TRACE_SCENE_BINDINGS)
 #define HMB_REVEAL_BINDING_REVEALED (HMB_REVEAL_BINDING_SCENE + HMB_SCENE_BINDINGS)
 #define HMB_REVEAL_BINDING_COUNT (HMB_REVEAL_BINDING_REVEALED + HMB_LAYER_BINDINGS)
-#define HMB_REVEAL_TEXEL_BUFFERS (HMB_LAYER_BINDINGS + HMB_TRACE_SCENE_TEXEL_BUFFERS + HMB_SCENE_TEXEL_BUFFERS)
+// Read through texel views (counted in kernels/manifest.h): the layer, the trace scene's and the scene's records.
 
 // gather_background: the background layer (the raster, the revealed layer where the mask says
 // HMB_MASK_REVEALED) blurred at the listed pixels; one invocation per list entry. With the
@@ -47,8 +47,7 @@
 // vec4 per pixel: mask_coverage's (mean colour, alpha), read with the coverage composite.
 #define HMB_BACKGROUND_GATHER_BINDING_COVERAGE (HMB_BACKGROUND_GATHER_BINDING_SHUTTER_PATHS + 1)
 #define HMB_BACKGROUND_GATHER_BINDING_COUNT (HMB_BACKGROUND_GATHER_BINDING_COVERAGE + 1)
-// Both layers, the paths and the coverage, read as uniform texel buffers.
-#define HMB_BACKGROUND_GATHER_TEXEL_BUFFERS 6
+// Both layers, the paths and the coverage, read as uniform texel buffers (counted in kernels/manifest.h).
 
 // composite: the weights form at every pixel of the ray mask (all at the list's front), one
 // invocation per entry; the coverage form at the list's back (the mask pixels not revealed, read
@@ -66,8 +65,7 @@
 #define HMB_COMPOSITE_BINDING_COVERAGE (HMB_COMPOSITE_BINDING_COUNTERS + 1)
 #define HMB_COMPOSITE_BINDING_COUNT (HMB_COMPOSITE_BINDING_COVERAGE + 1)
 // The G-buffer layer and its paths, the neighbour-max, the background and the coverage: read as
-// uniform texel buffers.
-#define HMB_COMPOSITE_TEXEL_BUFFERS 6
+// uniform texel buffers (counted in kernels/manifest.h).
 // The curved path's code and the range, compiled into the background gather and the composite
 // only as the frame takes them (as mblur/gather.comp's): on a CPU device the code of a branch no
 // lane takes still runs, and the curved path's reads at every sample cost the background gather

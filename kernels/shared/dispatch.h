@@ -14,10 +14,20 @@
 
 HMB_GPU_BEGIN
 
+// The group counts vkCmdDispatchIndirect reads (VkDispatchIndirectCommand), where a kernel
+// sizes another's dispatch.
+struct IndirectDispatch {
+  uint x;
+  uint y;
+  uint z;
+};
+
 HMB_SHARED uvec3 foldedGroups(uint groups) {
   return groups == 0u ? uvec3(0u, 0u, 1u) : uvec3(min(groups, 65535u), (groups + 65534u) / 65535u, 1u);
 }
 
 HMB_GPU_END
+
+HMB_CHECK_SIZE(IndirectDispatch, 12)
 
 #endif

@@ -41,7 +41,7 @@
 #define HMB_SHUTTER_LIST_BINDING_SAMPLES 5    // uvec4 per pixel: the G-buffer's samples (colour)
 #define HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS 6  // RayMaskCounters: the moving tiles' count
 #define HMB_SHUTTER_LIST_BINDING_COUNT 7
-#define HMB_SHUTTER_LIST_TEXEL_BUFFERS 2  // the surfaces and samples, read as uniform texel buffers
+// The surfaces and samples are read as uniform texel buffers (counted in kernels/manifest.h).
 
 // trace_shutter_rays: one invocation per list entry, HMB_MASK_LIST_GROUP to a group.
 #define HMB_SHUTTER_TRACE_BINDING_CAMERAS 0   // PinholeCamera per trace-scene time: the frame's, then each stratum's

@@ -4,6 +4,7 @@
 #include <span>
 #include <vector>
 
+#include "kernels/manifest.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/reveal/reveal_layout.h"
 #include "kernels/mblur/mblur_layout.h"
@@ -13,7 +14,7 @@
 namespace hmb::passes {
 
 BackgroundGatherPass::BackgroundGatherPass(const vk::Context& context)
-    : kernels_(context, "reveal/gather_background", sizeof(gpu::GatherParams)) {}
+    : kernels_(context, kernels::kernel("reveal/gather_background")) {}
 
 void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const ImageLayer& revealed,
                                   const vk::Buffer& neighborMax, const vk::Buffer& mask, const vk::Buffer& list,
@@ -40,7 +41,8 @@ void BackgroundGatherPass::record(vk::FrameRecorder& frame, const ImageLayer& ra
                            {HMB_BACKGROUND_GATHER_BINDING_COVERAGE, coverage ? coverage : &raster.samples()}};
   raster.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_RASTER, kernel.bindsByAddress());
   revealed.bind(bindings, HMB_BACKGROUND_GATHER_BINDING_REVEALED, kernel.bindsByAddress());
-  frame.dispatchIndirect(kName, kernel, bindings, blur, counters, offsetof(gpu::RayMaskCounters, maskDispatchX));
+  frame.dispatchIndirect(kName, kernel, bindings, blur, counters,
+                         gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_MASK));
 }
 
 }  // namespace hmb::passes

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "bvh/packed_node.h"
+#include "kernels/manifest.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/context.h"
@@ -85,15 +86,15 @@ BvhBuildPass::BvhBuildPass(const vk::Context& context, std::string name, uint32_
       name_(std::move(name)),
       maxLeaf_(maxLeaf),
       shape_(shape),
-      beginKernel_(context, "bvh/begin_build", sizeof(gpu::BvhBuildParams), beginSpecialization(shape)),
-      levelKernel_(context, "bvh/build_level", sizeof(gpu::BvhBuildParams), levelSpecialization(shape)),
-      sizeDispatchKernel_(context, "bvh/size_build_dispatch", sizeof(gpu::BvhBuildParams)),
-      smallTasksKernel_(context, "bvh/build_small_tasks", sizeof(gpu::BvhBuildParams), smallTaskSpecialization(shape)),
-      packDeferredKernel_(context, "bvh/pack_deferred_nodes", sizeof(gpu::BvhBuildParams)),
-      refitParentsKernel_(context, "bvh/refit_parents", sizeof(gpu::BvhRefitParams)),
-      refitPlacesKernel_(context, "bvh/refit_places", sizeof(gpu::BvhRefitParams)),
-      refitBoundsKernel_(context, "bvh/refit_bounds", sizeof(gpu::BvhRefitParams)),
-      refitPackKernel_(context, "bvh/refit_pack", sizeof(gpu::BvhRefitParams)) {
+      beginKernel_(context, kernels::kernel("bvh/begin_build"), beginSpecialization(shape)),
+      levelKernel_(context, kernels::kernel("bvh/build_level"), levelSpecialization(shape)),
+      sizeDispatchKernel_(context, kernels::kernel("bvh/size_build_dispatch")),
+      smallTasksKernel_(context, kernels::kernel("bvh/build_small_tasks"), smallTaskSpecialization(shape)),
+      packDeferredKernel_(context, kernels::kernel("bvh/pack_deferred_nodes")),
+      refitParentsKernel_(context, kernels::kernel("bvh/refit_parents")),
+      refitPlacesKernel_(context, kernels::kernel("bvh/refit_places")),
+      refitBoundsKernel_(context, kernels::kernel("bvh/refit_bounds")),
+      refitPackKernel_(context, kernels::kernel("bvh/refit_pack")) {
   if (maxLeaf_ == 0) throw Error(name_ + ": a leaf must be able to hold a primitive");
   // A root of HMB_BVH_MAX_TREE_PRIMITIVES must stay under lavapipe's 65535 loop iterations.
   if (shape_.levelGroup < HMB_BVH_LEVEL_GROUP || shape_.levelGroup > context.limits().maxComputeWorkGroupSize[0])
@@ -377,7 +378,7 @@ void BvhBuildPass::recordInsertionsAgain(vk::FrameRecorder& frame, std::string_v
 
 void BvhBuildPass::recordInsertions(vk::FrameRecorder& frame, std::string_view pass, const vk::Buffer& boxes) {
   if (!insertKernel_)
-    insertKernel_ = std::make_unique<vk::ComputeKernel>(context_, "bvh/insert_primitives", sizeof(gpu::BvhBuildParams));
+    insertKernel_ = std::make_unique<vk::ComputeKernel>(context_, kernels::kernel("bvh/insert_primitives"));
   vk::Bindings buffers = buildBindings(boxes);
   buffers.push_back({HMB_BUILD_BINDING_KEPT_NODES, &keptNodes_});
   const gpu::BvhBuildParams params{primitiveCount_, 1u, taskCapacity_, 0u, maxLeaf_, maxDepth_, 0u, HMB_BVH_BUILD_GIVEN_ORDER};

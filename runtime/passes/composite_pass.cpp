@@ -4,6 +4,7 @@
 #include <span>
 #include <vector>
 
+#include "kernels/manifest.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/reveal/reveal_layout.h"
 #include "kernels/mblur/mblur_layout.h"
@@ -12,7 +13,7 @@
 
 namespace hmb::passes {
 CompositePass::CompositePass(const vk::Context& context)
-    : kernels_(context, "reveal/composite", sizeof(gpu::GatherParams)) {}
+    : kernels_(context, kernels::kernel("reveal/composite")) {}
 
 void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, const vk::Buffer& neighborMax,
                            const vk::Buffer& list, const vk::Buffer& counters, const vk::Buffer& background,
@@ -42,8 +43,8 @@ void CompositePass::record(vk::FrameRecorder& frame, const ImageLayer& raster, c
   raster.bind(bindings, HMB_COMPOSITE_BINDING_RASTER, kernel.bindsByAddress());
   // The weights form's mask is all at the list's front; the coverage form takes its back.
   frame.dispatchIndirect(kName, kernel, bindings, blur, counters,
-                         coverageForm ? offsetof(gpu::RayMaskCounters, unrevealedDispatchX)
-                                      : offsetof(gpu::RayMaskCounters, maskDispatchX));
+                         coverageForm ? gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_UNREVEALED)
+                                      : gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_MASK));
 }
 
 }  // namespace hmb::passes

@@ -1,5 +1,6 @@
 #include "runtime/passes/encode_display_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/output/encode_display.h"
 #include "runtime/vulkan/frame_recorder.h"
 
@@ -10,8 +11,8 @@ constexpr uint32_t kFromSamples[] = {1u};  // HMB_SPEC_ENCODE_LAYER_SAMPLES
 }
 
 EncodeDisplayPass::EncodeDisplayPass(const vk::Context& context)
-    : linearKernel_(context, "output/encode_display", sizeof(gpu::EncodeDisplayParams)),
-      samplesKernel_(context, "output/encode_display", sizeof(gpu::EncodeDisplayParams), kFromSamples) {}
+    : linearKernel_(context, kernels::kernel("output/encode_display")),
+      samplesKernel_(context, kernels::kernel("output/encode_display"), kFromSamples) {}
 
 void EncodeDisplayPass::record(vk::FrameRecorder& frame, const vk::Buffer& input, const vk::Buffer& rgba8,
                                uint32_t width, uint32_t height, DisplaySource source) const {

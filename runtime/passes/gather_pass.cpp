@@ -5,6 +5,7 @@
 #include <string>
 #include <span>
 
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -46,9 +47,9 @@ constexpr VkDeviceSize listDispatchOffset(uint32_t list) {
 
 GatherPass::GatherPass(const vk::Context& context)
     : context_(context),
-      kernels_(context, "mblur/gather", sizeof(gpu::GatherParams)),
-      listBlocks_(context, "mblur/list_gather_blocks", sizeof(gpu::GatherBlocksParams)),
-      copyStillBlocks_(context, "mblur/copy_still_blocks", sizeof(gpu::StillBlocksParams)) {}
+      kernels_(context, kernels::kernel("mblur/gather")),
+      listBlocks_(context, kernels::kernel("mblur/list_gather_blocks")),
+      copyStillBlocks_(context, kernels::kernel("mblur/copy_still_blocks")) {}
 
 void GatherPass::plan(FramePlan& plan) const {
   plan.run(kClearBlocks);

@@ -1,12 +1,13 @@
 #include "runtime/passes/jimenez_gather_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
 
 JimenezGatherPass::JimenezGatherPass(const vk::Context& context)
-    : kernel_(context, "mblur/gather_jimenez", sizeof(gpu::JimenezParams)) {}
+    : kernel_(context, kernels::kernel("mblur/gather_jimenez")) {}
 
 std::unique_ptr<GatherFilter> makeJimenezGather(const vk::Context& context) {
   return std::make_unique<JimenezGatherPass>(context);

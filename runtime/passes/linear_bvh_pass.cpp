@@ -4,6 +4,7 @@
 #include <array>
 
 #include "bvh/packed_node.h"
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -13,11 +14,11 @@ namespace hmb::passes {
 LinearBvhPass::LinearBvhPass(const vk::Context& context, std::string name)
     : context_(context),
       name_(std::move(name)),
-      sortKernel_(context, "bvh/linear_sort_keys", sizeof(gpu::LinearBvhParams)),
-      hierarchyKernel_(context, "bvh/linear_hierarchy", sizeof(gpu::LinearBvhParams)),
-      boundsKernel_(context, "bvh/linear_bounds", sizeof(gpu::LinearBvhParams),
+      sortKernel_(context, kernels::kernel("bvh/linear_sort_keys")),
+      hierarchyKernel_(context, kernels::kernel("bvh/linear_hierarchy")),
+      boundsKernel_(context, kernels::kernel("bvh/linear_bounds"),
                     std::array<uint32_t, 1>{context.profile().uniformAtomicRounds ? 1u : 0u}),
-      packKernel_(context, "bvh/linear_pack", sizeof(gpu::LinearBvhParams)) {}
+      packKernel_(context, kernels::kernel("bvh/linear_pack")) {}
 
 void LinearBvhPass::reserve(uint32_t primitiveCount) {
   if (primitiveCount <= capacity_ && packedNodes_.handle()) return;

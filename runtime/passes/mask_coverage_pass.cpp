@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -10,8 +11,8 @@
 namespace hmb::passes {
 
 MaskCoveragePass::MaskCoveragePass(const vk::Context& context)
-    : kernels_(context, "ray_mask/mask_coverage", sizeof(gpu::RayMaskParams)),
-      listKernel_(context, "ray_mask/list_mask_blocks", sizeof(gpu::RayMaskParams)) {}
+    : kernels_(context, kernels::kernel("ray_mask/mask_coverage")),
+      listKernel_(context, kernels::kernel("ray_mask/list_mask_blocks")) {}
 
 uint64_t maskBlockBitsBytes(uint32_t width, uint32_t height) {
   return uint64_t(HMB_MASK_BLOCKS_ACROSS(width)) * HMB_MASK_BLOCKS_ACROSS(height) * 4 * sizeof(uint32_t);  // uvec4 each
@@ -38,7 +39,7 @@ void MaskCoveragePass::record(vk::FrameRecorder& frame, const MotionBlurInputs& 
                           {HMB_MASK_COVERAGE_BINDING_COVERAGE, &coverage},
                           {HMB_MASK_COVERAGE_BINDING_MASK, &mask},
                           {HMB_MASK_COVERAGE_BINDING_BLOCK_BITS, &blockBits}},
-                         params, counters, offsetof(gpu::RayMaskCounters, coverageDispatchX));
+                         params, counters, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_COVERAGE));
   // A lane per block of the image.
   const uint32_t blocks = HMB_MASK_BLOCKS_ACROSS(params.blur.width) * HMB_MASK_BLOCKS_ACROSS(params.blur.height);
   frame.dispatch(kListName, listKernel_,

@@ -1,12 +1,13 @@
 #include "runtime/passes/neighbor_max_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
 
 NeighborMaxPass::NeighborMaxPass(const vk::Context& context)
-    : kernel_(context, "mblur/neighbor_max", sizeof(gpu::NeighborMaxParams)) {}
+    : kernel_(context, kernels::kernel("mblur/neighbor_max")) {}
 
 void NeighborMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& tileMax, const vk::Buffer& neighborMax,
                              TileGrid grid, uint32_t neighborhood, std::string_view passName) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "kernels/manifest.h"
 #include "kernels/raster/raster_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
@@ -11,13 +12,13 @@
 namespace hmb::passes {
 namespace {
 
-const char* rasterizeKernelName(VisibilityScheme scheme) {
+const kernels::KernelFacts& rasterizeKernel(VisibilityScheme scheme) {
   switch (scheme) {
-    case VisibilityScheme::Int64Atomics: return "raster/rasterize_tiles";
-    case VisibilityScheme::Depth32TwoPass: return "raster/rasterize_tiles_depth32";
-    case VisibilityScheme::TileLists: return "raster/rasterize_tile_lists";
+    case VisibilityScheme::Int64Atomics: return kernels::kernel("raster/rasterize_tiles");
+    case VisibilityScheme::Depth32TwoPass: return kernels::kernel("raster/rasterize_tiles_depth32");
+    case VisibilityScheme::TileLists: break;
   }
-  return "";
+  return kernels::kernel("raster/rasterize_tile_lists");
 }
 
 uint32_t tilesAlong(uint32_t pixels) { return vk::groupsFor(pixels, HMB_RASTER_TILE); }
@@ -50,15 +51,15 @@ VisibilityScheme defaultVisibilityScheme(const vk::Context& context) {
 RasterizePass::RasterizePass(const vk::Context& context, VisibilityScheme scheme)
     : context_(context),
       scheme_(scheme),
-      setupKernel_(context, "raster/setup_triangles", sizeof(gpu::RasterParams)),
-      clipKernel_(context, "raster/clip_triangles", sizeof(gpu::RasterParams)),
-      sizeDispatchKernel_(context, "raster/size_dispatch", sizeof(gpu::RasterParams)),
-      binLargeKernel_(context, "raster/bin_large_triangles", sizeof(gpu::RasterParams)),
-      rasterizeKernel_(context, rasterizeKernelName(scheme), sizeof(gpu::RasterParams)) {
+      setupKernel_(context, kernels::kernel("raster/setup_triangles")),
+      clipKernel_(context, kernels::kernel("raster/clip_triangles")),
+      sizeDispatchKernel_(context, kernels::kernel("raster/size_dispatch")),
+      binLargeKernel_(context, kernels::kernel("raster/bin_large_triangles")),
+      rasterizeKernel_(context, rasterizeKernel(scheme)) {
   if (scheme == VisibilityScheme::Int64Atomics && !context.info().int64BufferAtomics)
     throw Error("device '" + context.info().name + "' lacks shaderBufferInt64Atomics; use the depth32-two-pass scheme");
   if (scheme == VisibilityScheme::TileLists)
-    linkKernel_.emplace(context, "raster/link_tile_pairs", sizeof(gpu::RasterParams));
+    linkKernel_.emplace(context, kernels::kernel("raster/link_tile_pairs"));
   counters_ = vk::Buffer(context, sizeof(gpu::RasterCounters), vk::MemoryUse::Device, "raster counters");
 }
 

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <string>
 
+#include "kernels/manifest.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/error.h"
@@ -46,14 +47,14 @@ std::vector<uint32_t> unpackEdgeMask(std::span<const uint32_t> words, size_t pix
 
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
-      tilesKernel_(context, "shutter_rays/list_moving_tiles", sizeof(gpu::MovingTilesParams)),
-      edgeKernel_(context, "ray_mask/edge_mask", sizeof(gpu::RayMaskParams)),
-      sizeKernel_(context, "ray_mask/size_list_dispatch", sizeof(gpu::SizeListParams)),
-      blocksKernel_(context, "ray_mask/list_range_blocks", sizeof(gpu::RayMaskParams)),
+      tilesKernel_(context, kernels::kernel("shutter_rays/list_moving_tiles")),
+      edgeKernel_(context, kernels::kernel("ray_mask/edge_mask")),
+      sizeKernel_(context, kernels::kernel("ray_mask/size_list_dispatch")),
+      blocksKernel_(context, kernels::kernel("ray_mask/list_range_blocks")),
       coveragePass_(context),
-      tileMaxKernels_(context, "ray_mask/tile_max_edge_candidates", sizeof(gpu::RayMaskParams)),
-      rangeKernels_(context, "ray_mask/range_check", sizeof(gpu::RayMaskParams)),
-      rangeListKernel_(context, "ray_mask/list_range_mask", sizeof(gpu::RayMaskParams)) {}
+      tileMaxKernels_(context, kernels::kernel("ray_mask/tile_max_edge_candidates")),
+      rangeKernels_(context, kernels::kernel("ray_mask/range_check")),
+      rangeListKernel_(context, kernels::kernel("ray_mask/list_range_mask")) {}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause,
                         const std::string& coverageSkipped) const {
@@ -175,14 +176,14 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_EDGE_MASK_BINDING_COUNTERS, &counters_},
                           {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
                           {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
-                         params, counters_, offsetof(gpu::RayMaskCounters, candidateDispatchX));
+                         params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_CANDIDATES));
   frame.dispatchIndirect(kRangeBlocks, blocksKernel_,
                          {{HMB_RANGE_BLOCKS_BINDING_TILES, &tiles_},
                           {HMB_RANGE_BLOCKS_BINDING_TILE_MAX, p.tileMax},
                           {HMB_RANGE_BLOCKS_BINDING_EDGES, &edges_},
                           {HMB_RANGE_BLOCKS_BINDING_COUNTERS, &counters_},
                           {HMB_RANGE_BLOCKS_BINDING_LIST, &rangeBlocks_}},
-                         params, counters_, offsetof(gpu::RayMaskCounters, tileBlockDispatchX));
+                         params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_TILE_BLOCKS));
   // The range check's groups (kernels/ray_mask/ray_mask_layout.h).
   sizeDispatch(HMB_SIZE_LIST_RANGE_BLOCKS,
                p.rangeCheckGroups.value_or(context_.profile().rangeCheckGroups));
@@ -198,7 +199,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                           {HMB_RANGE_CHECK_BINDING_LIST, &list_},
                           // Read only along curved paths; any buffer stands in otherwise.
                           {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
-                         params, counters_, offsetof(gpu::RayMaskCounters, rangeDispatchX));
+                         params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_RANGE_CHECK));
   if (p.listOnlyUncovered) {
     // The pixels it marked, listed block by block for the coverage test (timed with it).
     frame.dispatchIndirect(kRangeCheck, rangeListKernel_,
@@ -206,7 +207,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
                             {HMB_RANGE_MASK_LIST_BINDING_MASK, &mask_},
                             {HMB_RANGE_MASK_LIST_BINDING_COUNTERS, &counters_},
                             {HMB_RANGE_MASK_LIST_BINDING_LIST, &maskPixels_}},
-                           params, counters_, offsetof(gpu::RayMaskCounters, rangeListDispatchX));
+                           params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_RANGE_LIST));
     sizeDispatch(HMB_SIZE_LIST_COVERAGE, 0u);
     coveragePass_.record(frame, layer, maskPixels_, counters_, coverage_, mask_, blockBits_, list_, params);
   }

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "kernels/manifest.h"
 #include "kernels/reference/reference_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
@@ -185,10 +186,10 @@ std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32
 
 ReferenceStage::ReferenceStage(const vk::Context& context, const HitShading* hits)
     : context_(context),
-      findMovingPixels_(context, "reference/find_moving_pixels", sizeof(gpu::MovingPixelsParams)),
-      accumulate_(context, "reference/accumulate_sample", sizeof(gpu::ReferenceSampleParams), ShadingKernel::Rays::Traced,
+      findMovingPixels_(context, kernels::kernel("reference/find_moving_pixels")),
+      accumulate_(context, kernels::kernel("reference/accumulate_sample"), ShadingKernel::Rays::Traced,
                   hits),
-      average_(context, "reference/average_samples", sizeof(gpu::AverageParams)) {}
+      average_(context, kernels::kernel("reference/average_samples")) {}
 
 ReferenceStage::~ReferenceStage() = default;
 

@@ -3,6 +3,7 @@
 #include <span>
 #include <vector>
 
+#include "kernels/manifest.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/rasterize_pass.h"
@@ -12,7 +13,7 @@
 namespace hmb::passes {
 
 ResolveGBufferPass::ResolveGBufferPass(const vk::Context& context)
-    : kernel_(context, "gbuffer/resolve_gbuffer", sizeof(gpu::ResolveParams)) {}
+    : kernel_(context, kernels::kernel("gbuffer/resolve_gbuffer")) {}
 
 void ResolveGBufferPass::record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& visibility,
                                 const vk::Buffer& clipCurrent, const vk::Buffer& clipPrevious,

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 
+#include "kernels/manifest.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/reveal/reveal_layout.h"
 #include "kernels/trace/trace_layout.h"
@@ -18,7 +19,7 @@ namespace hmb::passes {
 
 namespace {
 
-constexpr const char* kKernel = "reveal/reveal_background";
+constexpr const kernels::KernelFacts& kKernel = kernels::kernel("reveal/reveal_background");
 constexpr uint32_t kObjectIdStop[] = {HMB_REVEAL_STOP_OBJECT_ID};
 constexpr uint32_t kLuminanceStop[] = {HMB_REVEAL_STOP_LUMINANCE};
 
@@ -27,7 +28,7 @@ constexpr uint32_t kLuminanceStop[] = {HMB_REVEAL_STOP_LUMINANCE};
 RevealPass::RevealPass(const vk::Context& context, const HitShading* hits)
     : context_(context),
       hits_(hits),
-      objectIdStop_(context, kKernel, sizeof(gpu::RevealParams), ShadingKernel::Rays::Traced, hits, kObjectIdStop) {}
+      objectIdStop_(context, kKernel, ShadingKernel::Rays::Traced, hits, kObjectIdStop) {}
 
 void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,
                         const vk::Buffer& cameraRays, const ImageLayer& raster, const vk::Buffer& list,
@@ -49,8 +50,8 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
                                  0u};
   const bool luminance = settings.stop == RevealStop::Luminance;
   if (luminance && !luminanceStop_)
-    luminanceStop_ = std::make_unique<ShadingKernel>(context_, kKernel, sizeof(gpu::RevealParams),
-                                                     ShadingKernel::Rays::Traced, hits_, kLuminanceStop);
+    luminanceStop_ =
+        std::make_unique<ShadingKernel>(context_, kKernel, ShadingKernel::Rays::Traced, hits_, kLuminanceStop);
   const vk::ComputeKernel& kernel = (luminance ? *luminanceStop_ : objectIdStop_).forScene(gpuScene, &ts);
   vk::Bindings bindings = {{HMB_REVEAL_BINDING_CAMERA_RAYS, &cameraRays},
                            {HMB_REVEAL_BINDING_LIST, &list},
@@ -60,7 +61,7 @@ void RevealPass::record(vk::FrameRecorder& frame, const TraceScene& ts, const Gp
   gpuScene.bind(bindings, HMB_REVEAL_BINDING_SCENE, kernel.bindsByAddress());
   output.bind(bindings, HMB_REVEAL_BINDING_REVEALED, kernel.bindsByAddress());
   frame.dispatchIndirect(kName, kernel, bindings, params, counters,
-                         offsetof(gpu::RayMaskCounters, maskDispatchX));
+                         gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_MASK));
 }
 
 }  // namespace hmb::passes

@@ -3,6 +3,7 @@
 #include <initializer_list>
 #include <string>
 
+#include "kernels/manifest.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/frame_plan.h"
@@ -22,12 +23,11 @@ const HitShading* customOnly(const HitShading* hits) { return hits && hits->cust
 
 }  // namespace
 
-ShadingKernel::ShadingKernel(const vk::Context& context, std::string_view kernelName,
-                             uint32_t pushConstantBytes, Rays rays, const HitShading* hits,
-                             std::span<const uint32_t> kernelConstants)
+ShadingKernel::ShadingKernel(const vk::Context& context, const kernels::KernelFacts& kernel, Rays rays,
+                             const HitShading* hits, std::span<const uint32_t> kernelConstants)
     : context_(context),
-      name_(kernelName),
-      pushConstantBytes_(pushConstantBytes),
+      name_(kernel.name),
+      pushConstantBytes_(kernel.pushBytes),
       traces_(rays == Rays::Traced),
       hits_(customOnly(hits)),
       kernelConstants_(kernelConstants.begin(), kernelConstants.end()) {

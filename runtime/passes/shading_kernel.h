@@ -33,9 +33,8 @@ class ShadingKernel {
   // ray hits are shaded, for the kernels that shade them (null: the library's way).
   // kernelConstants: the kernel's own specialization constants, ids from
   // HMB_SPEC_KERNEL_CONSTANTS_FIRST on, the same in every build.
-  ShadingKernel(const vk::Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
-                Rays rays = Rays::None, const HitShading* hits = nullptr,
-                std::span<const uint32_t> kernelConstants = {});
+  ShadingKernel(const vk::Context& context, const kernels::KernelFacts& kernel, Rays rays = Rays::None,
+                const HitShading* hits = nullptr, std::span<const uint32_t> kernelConstants = {});
   ~ShadingKernel();
 
   // The build for this scene: without the texture path where scene.texturePath() is false, and

@@ -1,5 +1,6 @@
 #include "runtime/passes/shutter_path_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
 #include "kernels/raster/raster_layout.h"
 #include "runtime/gpu_scene.h"
@@ -13,9 +14,9 @@ constexpr uint32_t kRigid[] = {0u}, kDeformed[] = {1u};  // HMB_SPEC_SHUTTER_PAT
 }
 
 ShutterPathPass::ShutterPathPass(const vk::Context& context)
-    : rigid_(context, "raster/transform_shutter_path", sizeof(gpu::ShutterPathParams), kRigid),
-      deformed_(context, "raster/transform_shutter_path", sizeof(gpu::ShutterPathParams), kDeformed),
-      resolve_(context, "gbuffer/resolve_shutter_path", sizeof(gpu::ResolveParams)) {}
+    : rigid_(context, kernels::kernel("raster/transform_shutter_path"), kRigid),
+      deformed_(context, kernels::kernel("raster/transform_shutter_path"), kDeformed),
+      resolve_(context, kernels::kernel("gbuffer/resolve_shutter_path")) {}
 
 void ShutterPathPass::recordTransform(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clips,
                                       float exposure, float fps, const vk::Buffer& clipMid,

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/passes/post_process_filter.h"
@@ -16,9 +17,9 @@ namespace hmb::passes {
 
 ShutterRaysPass::ShutterRaysPass(const vk::Context& context, const HitShading* hits)
     : context_(context),
-      sizeKernel_(context, "ray_mask/size_list_dispatch", sizeof(gpu::SizeListParams)),
-      listKernel_(context, "shutter_rays/list_shutter_rays", sizeof(gpu::ShutterRayListParams)),
-      traceKernel_(context, "shutter_rays/trace_shutter_rays", sizeof(gpu::ShutterRayTraceParams), ShadingKernel::Rays::Traced,
+      sizeKernel_(context, kernels::kernel("ray_mask/size_list_dispatch")),
+      listKernel_(context, kernels::kernel("shutter_rays/list_shutter_rays")),
+      traceKernel_(context, kernels::kernel("shutter_rays/trace_shutter_rays"), ShadingKernel::Rays::Traced,
                    hits) {}
 
 void ShutterRaysPass::prepare(uint32_t width, uint32_t height) {
@@ -65,7 +66,8 @@ void ShutterRaysPass::recordList(vk::FrameRecorder& frame, const MotionBlurInput
                           {HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS, &rayMask.counters()},
                           {HMB_SHUTTER_LIST_BINDING_COUNTERS, &counters_},
                           {HMB_SHUTTER_LIST_BINDING_LIST, &list_}},
-                         listParams, rayMask.counters(), offsetof(gpu::RayMaskCounters, shutterBlockDispatchX));
+                         listParams, rayMask.counters(),
+                         gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_SHUTTER_BLOCKS));
 }
 
 void ShutterRaysPass::recordTrace(vk::FrameRecorder& frame, const TraceScene& ts, const GpuScene& gpuScene,

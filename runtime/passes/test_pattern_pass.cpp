@@ -1,12 +1,13 @@
 #include "runtime/passes/test_pattern_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/debug/test_pattern.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {
 
 TestPatternPass::TestPatternPass(const vk::Context& context)
-    : kernel_(context, "debug/test_pattern", sizeof(gpu::TestPatternParams)) {}
+    : kernel_(context, kernels::kernel("debug/test_pattern")) {}
 
 void TestPatternPass::record(vk::FrameRecorder& frame, const vk::Buffer& linear, uint32_t width, uint32_t height,
                              float time) const {

@@ -1,5 +1,6 @@
 #include "runtime/passes/tile_max_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -7,7 +8,7 @@
 namespace hmb::passes {
 
 TileMaxPass::TileMaxPass(const vk::Context& context)
-    : kernel_(context, "mblur/tile_max", sizeof(gpu::TileMaxParams)) {}
+    : kernel_(context, kernels::kernel("mblur/tile_max")) {}
 
 void TileMaxPass::record(vk::FrameRecorder& frame, const vk::Buffer& surfaces, const vk::Buffer& tiles,
                          uint32_t width, uint32_t height, uint32_t tileSize, float velocityScale,

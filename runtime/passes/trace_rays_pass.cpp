@@ -1,5 +1,6 @@
 #include "runtime/passes/trace_rays_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
 #include "runtime/trace_scene.h"
@@ -18,7 +19,7 @@ void TraceRaysPass::record(vk::FrameRecorder& frame, const TraceScene& scene, co
   if (!kernel) {
     uint32_t specialization[HMB_SPEC_TRACE_TOP_LEVEL + 1] = {};
     specialization[HMB_SPEC_TRACE_TOP_LEVEL] = walksTopLevel ? 1u : 0u;  // VkBool32
-    kernel = std::make_unique<vk::ComputeKernel>(context_, "trace/trace_rays", sizeof(gpu::TraceParams),
+    kernel = std::make_unique<vk::ComputeKernel>(context_, kernels::kernel("trace/trace_rays"),
                                                  specialization);
   }
   const gpu::TraceParams params{rayCount, scene.instanceCount(), scene.timeCount(), flags};

@@ -1,5 +1,6 @@
 #include "runtime/passes/transform_vertices_pass.h"
 
+#include "kernels/manifest.h"
 #include "kernels/raster/raster_layout.h"
 #include "runtime/gpu_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -11,8 +12,8 @@ constexpr uint32_t kRigid[] = {0u}, kDeformed[] = {1u};  // HMB_SPEC_TRANSFORM_D
 }
 
 TransformVerticesPass::TransformVerticesPass(const vk::Context& context)
-    : rigid_(context, "raster/transform_vertices", sizeof(uint32_t), kRigid),
-      deformed_(context, "raster/transform_vertices", sizeof(uint32_t), kDeformed) {}
+    : rigid_(context, kernels::kernel("raster/transform_vertices"), kRigid),
+      deformed_(context, kernels::kernel("raster/transform_vertices"), kDeformed) {}
 
 void TransformVerticesPass::record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& clipCurrent,
                                    const vk::Buffer& clipPrevious, const vk::Buffer& shading) const {

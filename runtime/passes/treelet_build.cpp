@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -19,13 +20,13 @@ constexpr uint32_t kOrderedNegativeInfinity = 0x007fffffu;
 TreeletBuild::TreeletBuild(const vk::Context& context, std::string name)
     : context_(context),
       name_(std::move(name)),
-      boundsKernel_(context, "bvh/treelet_centroid_bounds", sizeof(gpu::TreeletBuildParams)),
-      codesKernel_(context, "bvh/treelet_morton_codes", sizeof(gpu::TreeletBuildParams)),
-      sortKernel_(context, "bvh/treelet_sort_pass", sizeof(gpu::TreeletBuildParams)),
-      hierarchyKernel_(context, "bvh/treelet_hierarchy", sizeof(gpu::TreeletBuildParams)),
-      optimizeKernel_(context, "bvh/treelet_optimize", sizeof(gpu::TreeletBuildParams),
+      boundsKernel_(context, kernels::kernel("bvh/treelet_centroid_bounds")),
+      codesKernel_(context, kernels::kernel("bvh/treelet_morton_codes")),
+      sortKernel_(context, kernels::kernel("bvh/treelet_sort_pass")),
+      hierarchyKernel_(context, kernels::kernel("bvh/treelet_hierarchy")),
+      optimizeKernel_(context, kernels::kernel("bvh/treelet_optimize"),
                       std::array<uint32_t, 1>{context.profile().uniformAtomicRounds ? 1u : 0u}),
-      packKernel_(context, "bvh/treelet_pack", sizeof(gpu::TreeletBuildParams)) {}
+      packKernel_(context, kernels::kernel("bvh/treelet_pack")) {}
 
 void TreeletBuild::release() { scratch_ = {}; }
 

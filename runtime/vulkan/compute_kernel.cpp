@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/vulkan/check.h"
 #include "runtime/vulkan/context.h"
@@ -11,6 +12,10 @@
 #include "runtime/vulkan/kernel_store.h"
 
 namespace hmb::vk {
+
+ComputeKernel::ComputeKernel(const Context& context, const kernels::KernelFacts& kernel,
+                             std::span<const uint32_t> specialization)
+    : ComputeKernel(context, kernel.name, kernel.pushBytes, specialization) {}
 
 ComputeKernel::ComputeKernel(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
                              std::span<const uint32_t> specialization)

@@ -18,6 +18,10 @@
 #include <string_view>
 #include <vector>
 
+namespace hmb::kernels {
+struct KernelFacts;
+}
+
 namespace hmb::vk {
 
 class Context;
@@ -32,7 +36,11 @@ struct KernelBuilds {
 
 class ComputeKernel {
  public:
+  // An embedded kernel, as kernels/manifest.h lists it: kernels::kernel("mblur/tile_max").
   // specialization[i] is the value of constant_id i; constants left out keep the kernel's default.
+  ComputeKernel(const Context& context, const kernels::KernelFacts& kernel,
+                std::span<const uint32_t> specialization = {});
+  // The same by name and push-constant size (a host that disagrees with the SPIR-V is an error).
   ComputeKernel(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes,
                 std::span<const uint32_t> specialization = {});
   // The same from SPIR-V compiled at run time, named kernelName in errors.

@@ -2,12 +2,13 @@
 
 #include <vector>
 
+#include "kernels/manifest.h"
 #include "runtime/error.h"
 
 namespace hmb::vk {
 
-KernelVariants::KernelVariants(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes)
-    : context_(context), name_(kernelName), pushConstantBytes_(pushConstantBytes) {}
+KernelVariants::KernelVariants(const Context& context, const kernels::KernelFacts& kernel)
+    : context_(context), name_(kernel.name), pushConstantBytes_(kernel.pushBytes) {}
 
 KernelVariants::~KernelVariants() = default;
 

@@ -17,7 +17,7 @@ namespace hmb::vk {
 
 class KernelVariants {
  public:
-  KernelVariants(const Context& context, std::string_view kernelName, uint32_t pushConstantBytes);
+  KernelVariants(const Context& context, const kernels::KernelFacts& kernel);
   ~KernelVariants();
 
   // The build whose constant i is switches[i] (at most 32 switches).

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "kernels/manifest.h"
 #include "kernels/debug/pack_layer.h"
 #include "kernels/shared/layer_layout.h"
 #include "runtime/vulkan/buffer.h"
@@ -87,7 +88,7 @@ TEST_F(LayerPackingTest, DeviceAndHostPackAndUnpackTheSameBits) {
   const vk::Buffer samples(context(), count * sizeof(glm::uvec4), vk::MemoryUse::Device, "test samples");
   const vk::Buffer surfaces(context(), count * sizeof(glm::uvec4), vk::MemoryUse::Device, "test surfaces");
   const vk::Buffer decoded(context(), count * sizeof(LayerPixel), vk::MemoryUse::Device, "test decoded");
-  const vk::ComputeKernel kernel(context(), "debug/pack_layer", sizeof(gpu::PackLayerParams));
+  const vk::ComputeKernel kernel(context(), kernels::kernel("debug/pack_layer"));
   vk::FrameRecorder frame(context());
   frame.begin();
   frame.dispatch("pack-layer", kernel,

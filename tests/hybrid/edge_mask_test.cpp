@@ -47,8 +47,9 @@ void expectCandidatesMatch(const RayMaskReadback& device, const std::vector<bool
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, expected) << what << ": edge candidates";
   const uint32_t groups = (device.counters.candidateCount + HMB_MASK_LIST_GROUP - 1) / HMB_MASK_LIST_GROUP;
-  EXPECT_EQ(device.counters.candidateDispatchX, std::min(groups, 65535u)) << what << ": candidate dispatch";
-  EXPECT_EQ(device.counters.candidateDispatchY, (groups + 65534) / 65535) << what << ": candidate dispatch";
+  const gpu::IndirectDispatch& dispatch = device.counters.dispatches[HMB_RAY_MASK_DISPATCH_CANDIDATES];
+  EXPECT_EQ(dispatch.x, std::min(groups, 65535u)) << what << ": candidate dispatch";
+  EXPECT_EQ(dispatch.y, (groups + 65534) / 65535) << what << ": candidate dispatch";
 }
 
 // The mask's tile-max, which also lists the candidates, is the gather's
@@ -71,8 +72,8 @@ void expectGatherTileMax(const MaskLayer& layer, const RayMaskParameters& p, con
   EXPECT_EQ(listed, moving) << what << ": moving tiles";
   const uint32_t blocks = device.counters.tileCount * ((p.blur.tileSize + 7) / 8) * ((p.blur.tileSize + 7) / 8);
   const uint32_t groups = (blocks + 63) / 64;
-  EXPECT_EQ(device.counters.tileBlockDispatchX, std::min(groups, 65535u)) << what;
-  EXPECT_EQ(device.counters.tileBlockDispatchY, (groups + 65534u) / 65535u) << what;
+  EXPECT_EQ(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_TILE_BLOCKS].x, std::min(groups, 65535u)) << what;
+  EXPECT_EQ(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_TILE_BLOCKS].y, (groups + 65534u) / 65535u) << what;
 }
 
 // The device's edge mask equals the reference's, except at pixels whose x_n lies within 1e-5

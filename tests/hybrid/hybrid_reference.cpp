@@ -373,19 +373,15 @@ gpu::RayMaskCounters dispatchFor(uint32_t maskCount) { return dispatchFor(maskCo
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount, uint32_t unrevealed) {
   const auto rows = [](uint32_t count) {
     const uint32_t groups = (count + HMB_MASK_LIST_GROUP - 1u) / HMB_MASK_LIST_GROUP;
-    return glm::uvec3(groups == 0u ? 0u : std::min(groups, 65535u), groups == 0u ? 0u : (groups + 65534u) / 65535u, 1u);
+    return gpu::IndirectDispatch{groups == 0u ? 0u : std::min(groups, 65535u),
+                                 groups == 0u ? 0u : (groups + 65534u) / 65535u, 1u};
   };
   gpu::RayMaskCounters c{};
   c.maskCount = maskCount;
   c.unrevealedCount = unrevealed;
   c.maskPixels = maskCount + unrevealed;
-  const glm::uvec3 front = rows(maskCount), back = rows(unrevealed);
-  c.maskDispatchX = front.x;
-  c.maskDispatchY = front.y;
-  c.maskDispatchZ = front.z;
-  c.unrevealedDispatchX = back.x;
-  c.unrevealedDispatchY = back.y;
-  c.unrevealedDispatchZ = back.z;
+  c.dispatches[HMB_RAY_MASK_DISPATCH_MASK] = rows(maskCount);
+  c.dispatches[HMB_RAY_MASK_DISPATCH_UNREVEALED] = rows(unrevealed);
   return c;
 }
 
@@ -394,9 +390,8 @@ gpu::RayMaskCounters coverageDispatchFor(uint32_t maskPixels) {
   // The range check's count; mask_coverage moves each pixel to the front or the back. Either
   // side may take them all: the passes over each are dispatched for all (they read the counts).
   c.coverageCount = maskPixels;
-  c.coverageDispatchX = c.unrevealedDispatchX = c.maskDispatchX;
-  c.coverageDispatchY = c.unrevealedDispatchY = c.maskDispatchY;
-  c.coverageDispatchZ = c.unrevealedDispatchZ = c.maskDispatchZ;
+  c.dispatches[HMB_RAY_MASK_DISPATCH_COVERAGE] = c.dispatches[HMB_RAY_MASK_DISPATCH_UNREVEALED] =
+      c.dispatches[HMB_RAY_MASK_DISPATCH_MASK];
   c.maskCount = 0u;
   return c;
 }

@@ -53,20 +53,22 @@ CoverageCase coverageCase(uint32_t seed, uint32_t width, uint32_t height) {
 void expectDispatchFor(const gpu::RayMaskCounters& c, uint64_t count, const std::string& what) {
   const uint64_t groups = (count + 63) / 64;
   EXPECT_EQ(c.maskCount, count) << what;
-  EXPECT_EQ(c.maskDispatchX, std::min<uint64_t>(groups, 65535)) << what;
-  EXPECT_EQ(c.maskDispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
-  EXPECT_EQ(c.maskDispatchZ, 1u) << what;
+  const gpu::IndirectDispatch& front = c.dispatches[HMB_RAY_MASK_DISPATCH_MASK];
+  EXPECT_EQ(front.x, std::min<uint64_t>(groups, 65535)) << what;
+  EXPECT_EQ(front.y, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
+  EXPECT_EQ(front.z, 1u) << what;
   EXPECT_EQ(c.rayCount, 0u) << what << ": no reveal ran";
   const gpu::RayMaskCounters mirror = dispatchFor(uint32_t(count), c.unrevealedCount);
-  EXPECT_EQ(c.maskDispatchX, mirror.maskDispatchX) << what;
-  EXPECT_EQ(c.maskDispatchY, mirror.maskDispatchY) << what;
+  EXPECT_EQ(front.x, mirror.dispatches[HMB_RAY_MASK_DISPATCH_MASK].x) << what;
+  EXPECT_EQ(front.y, mirror.dispatches[HMB_RAY_MASK_DISPATCH_MASK].y) << what;
   // The coverage composite runs over the unrevealed pixels at the list's back.
   EXPECT_EQ(c.maskPixels, count + c.unrevealedCount) << what;
   const uint64_t backGroups = (uint64_t(c.unrevealedCount) + 63) / 64;
-  EXPECT_EQ(c.unrevealedDispatchX, std::min<uint64_t>(backGroups, 65535)) << what;
-  EXPECT_EQ(c.unrevealedDispatchY, backGroups == 0 ? 0 : (backGroups + 65534) / 65535) << what;
-  EXPECT_EQ(c.unrevealedDispatchX, mirror.unrevealedDispatchX) << what;
-  EXPECT_EQ(c.unrevealedDispatchZ, 1u) << what;
+  const gpu::IndirectDispatch& back = c.dispatches[HMB_RAY_MASK_DISPATCH_UNREVEALED];
+  EXPECT_EQ(back.x, std::min<uint64_t>(backGroups, 65535)) << what;
+  EXPECT_EQ(back.y, backGroups == 0 ? 0 : (backGroups + 65534) / 65535) << what;
+  EXPECT_EQ(back.x, mirror.dispatches[HMB_RAY_MASK_DISPATCH_UNREVEALED].x) << what;
+  EXPECT_EQ(back.z, 1u) << what;
 }
 
 // The longest run of blocks one range check group may take: its walks, at most 4 s + 16 loop
@@ -88,9 +90,9 @@ void expectRangeDispatchFor(const RayMaskReadback& device, uint64_t blocks, cons
   const gpu::RayMaskCounters& c = device.counters;
   const uint64_t wanted = *p.rangeCheckGroups, run = rangeRunLimit(p, VulkanTest::context().profile().loopBudget);
   const uint64_t groups = wanted == 0 ? blocks : std::max(std::min(blocks, wanted), (blocks + run - 1) / run);
-  EXPECT_EQ(c.rangeDispatchX, std::min<uint64_t>(groups, 65535)) << what;
-  EXPECT_EQ(c.rangeDispatchY, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
-  EXPECT_EQ(c.rangeDispatchZ, 1u) << what;
+  EXPECT_EQ(c.dispatches[HMB_RAY_MASK_DISPATCH_RANGE_CHECK].x, std::min<uint64_t>(groups, 65535)) << what;
+  EXPECT_EQ(c.dispatches[HMB_RAY_MASK_DISPATCH_RANGE_CHECK].y, groups == 0 ? 0 : (groups + 65534) / 65535) << what;
+  EXPECT_EQ(c.dispatches[HMB_RAY_MASK_DISPATCH_RANGE_CHECK].z, 1u) << what;
 }
 
 // Mask equal to the reference's range check over the device's edges, every edge pixel in the
@@ -413,8 +415,8 @@ TEST_F(HybridRangeCheckTest, StillLayerMasksNothingAndDispatchesNothing) {
   }
   EXPECT_TRUE(device.list.empty());
   expectDispatchFor(device.counters, 0, "still");
-  EXPECT_EQ(device.counters.maskDispatchX, 0u);
-  EXPECT_EQ(device.counters.maskDispatchY, 0u);
+  EXPECT_EQ(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_MASK].x, 0u);
+  EXPECT_EQ(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_MASK].y, 0u);
 }
 
 // Long walks over many blocks: object 2 covers all but the last 20 columns of a 400 x 96
@@ -434,9 +436,9 @@ TEST_F(HybridRangeCheckTest, LongWalksCutTheRunsToTheLoopBudget) {
   const RayMaskReadback device = runRayMask(context(), layer, p);
   EXPECT_GT(device.counters.rangeBlockCount * 300u, 65535u) << "one run would pass the budget";
   if (context().profile().loopBudget)
-    EXPECT_GT(device.counters.rangeDispatchX, 1u);
+    EXPECT_GT(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_RANGE_CHECK].x, 1u);
   else
-    EXPECT_EQ(device.counters.rangeDispatchX, 1u);
+    EXPECT_EQ(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_RANGE_CHECK].x, 1u);
 }
 
 // One 1024-px tile over a 1024 x 1024 image: object 2 (depth 1) moving `speed` px right, and
@@ -488,7 +490,8 @@ TEST_F(HybridRangeCheckTest, DispatchIsTheCountInGroupsOf64) {
   for (const uint32_t n : {1u, 63u, 64u, 65u, 128u, 129u, 1000u}) {
     const MaskLayer layer = rampRow(n);
     EXPECT_EQ(expectRayMaskMatches(layer, parametersWith(0.0f), "n " + std::to_string(n)), n);
-    EXPECT_EQ(runRayMask(context(), layer, parametersWith(0.0f)).counters.maskDispatchX, (n + 63) / 64) << n;
+    const gpu::RayMaskCounters counters = runRayMask(context(), layer, parametersWith(0.0f)).counters;
+    EXPECT_EQ(counters.dispatches[HMB_RAY_MASK_DISPATCH_MASK].x, (n + 63) / 64) << n;
   }
 }
 
@@ -515,10 +518,10 @@ TEST_F(HybridRangeCheckTest, LongListFoldsIntoASecondRowOfGroups) {
   ASSERT_GT(expected, 65535u * 64u);
   ASSERT_GT(device.counters.rangeBlockCount, HMB_RANGE_CHECK_MAX_RUN);
   expectRangeDispatchFor(device, device.counters.rangeBlockCount, p, "folded");
-  EXPECT_GT(device.counters.rangeDispatchX, 1u);
+  EXPECT_GT(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_RANGE_CHECK].x, 1u);
   expectDispatchFor(device.counters, expected, "folded");
-  EXPECT_EQ(device.counters.maskDispatchX, 65535u);
-  EXPECT_EQ(device.counters.maskDispatchY, 2u);
+  EXPECT_EQ(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_MASK].x, 65535u);
+  EXPECT_EQ(device.counters.dispatches[HMB_RAY_MASK_DISPATCH_MASK].y, 2u);
   std::vector<uint32_t> list = device.list;
   std::sort(list.begin(), list.end());
   EXPECT_EQ(std::adjacent_find(list.begin(), list.end()), list.end()) << "a pixel listed twice";

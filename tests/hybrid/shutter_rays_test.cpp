@@ -203,8 +203,8 @@ TEST_F(HybridShutterRaysTest, LongWalksCutTheRunsToTheLoopBudget) {
   // and its tile 2 more.
   const std::optional<uint32_t> budget = context().profile().loopBudget;
   const uint32_t maxRun = budget ? *budget / (400 + 6) : blocks;
-  EXPECT_EQ(device.maskCounters.shutterBlockDispatchX, (blocks + maxRun - 1) / maxRun);
-  EXPECT_EQ(device.maskCounters.shutterBlockDispatchY, 1u);
+  EXPECT_EQ(device.maskCounters.dispatches[HMB_RAY_MASK_DISPATCH_SHUTTER_BLOCKS].x, (blocks + maxRun - 1) / maxRun);
+  EXPECT_EQ(device.maskCounters.dispatches[HMB_RAY_MASK_DISPATCH_SHUTTER_BLOCKS].y, 1u);
 }
 
 TEST(HybridShutterRaysRuleTest, RaysFollowTheBlurLength) {

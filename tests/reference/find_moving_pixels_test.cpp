@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "kernels/manifest.h"
 #include "kernels/reference/reference_layout.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -29,7 +30,7 @@ std::vector<uint32_t> movingPixels(vk::Context& context, const std::vector<glm::
   const vk::Buffer boxBuffer = vk::uploadedBuffer(context, boxes, "test boxes");
   const vk::Buffer counter = vk::uploadedBuffer(context, std::vector<uint32_t>{0u}, "test counter");
   const vk::Buffer list(context, kWidth * kHeight * sizeof(uint32_t), vk::MemoryUse::Device, "test list");
-  const vk::ComputeKernel kernel(context, "reference/find_moving_pixels", sizeof(gpu::MovingPixelsParams));
+  const vk::ComputeKernel kernel(context, kernels::kernel("reference/find_moving_pixels"));
   vk::FrameRecorder frame(context);
   frame.begin();
   frame.dispatch("find-moving-pixels", kernel,

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "kernels/manifest.h"
 #include "kernels/debug/test_pattern.h"
 #include "runtime/error.h"
 #include "runtime/passes/test_pattern_pass.h"
@@ -88,7 +89,7 @@ TEST_F(FrameRecorderTest, RecorderIsReusableAcrossFrames) {
 
 TEST_F(FrameRecorderTest, MisuseIsAClearError) {
   vk::FrameRecorder frame(context());
-  vk::ComputeKernel kernel(context(), "debug/test_pattern", sizeof(gpu::TestPatternParams));
+  vk::ComputeKernel kernel(context(), kernels::kernel("debug/test_pattern"));
   vk::Buffer image(context(), 64, vk::MemoryUse::Device, "image");
   const gpu::TestPatternParams params{1, 1, 0.0f, 0};
   const vk::Binding linear{HMB_TEST_PATTERN_BINDING_LINEAR, &image};

@@ -7,24 +7,8 @@
 #include <string>
 #include <string_view>
 
-#include "kernels/bvh/bvh_build_layout.h"
-#include "kernels/bvh/linear_bvh_layout.h"
-#include "kernels/bvh/treelet_build_layout.h"
-#include "kernels/debug/floor_pass.h"
-#include "kernels/debug/pack_layer.h"
-#include "kernels/debug/test_pattern.h"
-#include "kernels/gbuffer/gbuffer_layout.h"
-#include "kernels/ray_mask/ray_mask_layout.h"
-#include "kernels/reveal/reveal_layout.h"
-#include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "kernels/mblur/mblur_layout.h"
-#include "kernels/output/encode_display.h"
-#include "kernels/raster/raster_layout.h"
-#include "kernels/reference/reference_layout.h"
-#include "kernels/deform/deform_layout.h"
-#include "kernels/engine/engine_layout.h"
-#include "kernels/shared/scene_layout.h"
-#include "kernels/trace/trace_layout.h"
+#include "kernels/manifest.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -38,114 +22,44 @@
 namespace hmb::test {
 namespace {
 
-struct KernelLayout {
-  const char* name;
-  uint32_t bindings;
-  uint32_t pushBytes;
-  bool needsInt64Atomics;
-  bool shades = false;  // includes shared/shading.glsl: also built without the texture path
-  uint32_t texelBindings = 0;  // of `bindings`, those read as uniform texel buffers (plain build)
-  uint32_t storageBindings() const { return bindings - texelBindings; }
-};
-
-const KernelLayout kLayouts[] = {
-    {"bvh/triangle_bounds", HMB_TRIANGLE_BOUNDS_BINDING_COUNT, sizeof(uint32_t), false},
-    {"bvh/deformed_leaf_triangles", HMB_DEFORMED_LEAVES_BINDING_COUNT, sizeof(glm::uvec2), false},
-    {"deform/deform_vertices", HMB_DEFORM_BINDING_COUNT, sizeof(gpu::DeformParams), false},
-    {"bvh/begin_build", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
-    {"bvh/build_level", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
-    {"bvh/size_build_dispatch", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
-    {"bvh/build_small_tasks", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
-    {"bvh/pack_deferred_nodes", HMB_BUILD_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
-    {"bvh/insert_primitives", HMB_INSERT_BINDING_COUNT, sizeof(gpu::BvhBuildParams), false, false, HMB_BUILD_TEXEL_BUFFERS},
-    {"bvh/linear_sort_keys", HMB_LINEAR_SORT_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
-    {"bvh/linear_hierarchy", HMB_LINEAR_HIERARCHY_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
-    {"bvh/linear_bounds", HMB_LINEAR_BOUNDS_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
-    {"bvh/linear_pack", HMB_LINEAR_PACK_BINDING_COUNT, sizeof(gpu::LinearBvhParams), false},
-    {"bvh/treelet_centroid_bounds", HMB_TREELET_BOUNDS_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
-    {"bvh/treelet_morton_codes", HMB_TREELET_CODES_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
-    {"bvh/treelet_sort_pass", HMB_TREELET_SORT_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
-    {"bvh/treelet_hierarchy", HMB_TREELET_HIERARCHY_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
-    {"bvh/treelet_optimize", HMB_TREELET_OPTIMIZE_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
-    {"bvh/treelet_pack", HMB_TREELET_PACK_BINDINGS, sizeof(gpu::TreeletBuildParams), false},
-    {"bvh/refit_parents", HMB_REFIT_PARENTS_BINDINGS, sizeof(gpu::BvhRefitParams), false},
-    {"bvh/refit_places", HMB_REFIT_PLACES_BINDINGS, sizeof(gpu::BvhRefitParams), false},
-    {"bvh/refit_bounds", HMB_REFIT_BOUNDS_BINDINGS, sizeof(gpu::BvhRefitParams), false},
-    {"bvh/refit_pack", HMB_REFIT_PACK_BINDINGS, sizeof(gpu::BvhRefitParams), false},
-    {"trace/instance_motion_bounds", HMB_MOTION_BOUNDS_BINDING_COUNT, sizeof(gpu::TraceParams), false},
-    {"trace/trace_rays", HMB_TRACE_BINDING_COUNT, sizeof(gpu::TraceParams), false, false,
-     HMB_TRACE_SCENE_TEXEL_BUFFERS},
-    {"debug/floor_pass", HMB_FLOOR_BINDING_COUNT, sizeof(gpu::FloorParams), false},
-    {"debug/pack_layer", HMB_PACK_LAYER_BINDING_COUNT, sizeof(gpu::PackLayerParams), false},
-    {"debug/test_pattern", HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams), false},
-    {"output/encode_display", HMB_ENCODE_DISPLAY_BINDING_COUNT, sizeof(gpu::EncodeDisplayParams), false},
-    {"raster/transform_vertices", HMB_TRANSFORM_BINDING_COUNT, sizeof(uint32_t), false},
-    {"raster/transform_shutter_path", HMB_SHUTTER_PATH_BINDING_COUNT, sizeof(gpu::ShutterPathParams), false},
-    {"raster/setup_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"raster/clip_triangles", HMB_SETUP_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"raster/size_dispatch", HMB_SIZE_DISPATCH_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"raster/bin_large_triangles", HMB_BIN_LARGE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"raster/rasterize_tiles", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), true},
-    {"raster/rasterize_tiles_depth32", HMB_RASTERIZE_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"engine/pack_engine_gbuffer", HMB_ENGINE_BINDING_COUNT, sizeof(gpu::EngineGBufferParams), false},
-    {"raster/link_tile_pairs", HMB_LINK_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"raster/rasterize_tile_lists", HMB_TILE_LISTS_BINDING_COUNT, sizeof(gpu::RasterParams), false},
-    {"gbuffer/resolve_gbuffer", HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false, true,
-     HMB_RESOLVE_TEXEL_BUFFERS},
-    {"gbuffer/resolve_shutter_path", HMB_SHUTTER_PATH_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), false, false,
-     5},
-    {"reference/accumulate_sample", HMB_REFERENCE_BINDING_COUNT, sizeof(gpu::ReferenceSampleParams), false, true,
-     HMB_TRACE_SCENE_TEXEL_BUFFERS + HMB_SCENE_TEXEL_BUFFERS},
-    {"reference/average_samples", HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), false},
-    {"reference/find_moving_pixels", HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), false},
-    {"mblur/tile_max", HMB_TILE_MAX_BINDING_COUNT, sizeof(gpu::TileMaxParams), false, false, HMB_TILE_MAX_TEXEL_BUFFERS},
-    {"mblur/neighbor_max", HMB_NEIGHBOR_MAX_BINDING_COUNT, sizeof(gpu::NeighborMaxParams), false},
-    {"mblur/gather", HMB_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false, HMB_FILTER_TEXEL_BUFFERS},
-    {"mblur/list_gather_blocks", HMB_GATHER_BLOCKS_BINDING_COUNT, sizeof(gpu::GatherBlocksParams), false},
-    {"mblur/copy_still_blocks", HMB_STILL_BLOCKS_BINDING_COUNT, sizeof(gpu::StillBlocksParams), false, false, 1},
-    {"mblur/gather_jimenez", HMB_FILTER_BINDING_COUNT, sizeof(gpu::JimenezParams), false, false,
-     HMB_FILTER_TEXEL_BUFFERS},
-    {"reveal/composite", HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
-     HMB_COMPOSITE_TEXEL_BUFFERS},
-    {"reveal/gather_background", HMB_BACKGROUND_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), false, false,
-     HMB_BACKGROUND_GATHER_TEXEL_BUFFERS},
-    {"ray_mask/tile_max_edge_candidates", HMB_TILE_MAX_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
-     HMB_TILE_MAX_CANDIDATES_TEXEL_BUFFERS},
-    {"ray_mask/edge_mask", HMB_EDGE_MASK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, HMB_EDGE_MASK_TEXEL_BUFFERS},
-    {"ray_mask/range_check", HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
-     HMB_RANGE_CHECK_TEXEL_BUFFERS},
-    {"ray_mask/list_range_mask", HMB_RANGE_MASK_LIST_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false, 0},
-    {"ray_mask/mask_coverage", HMB_MASK_COVERAGE_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
-     HMB_MASK_COVERAGE_TEXEL_BUFFERS},
-    {"ray_mask/list_mask_blocks", HMB_LIST_MASK_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false, false,
-     HMB_LIST_MASK_BLOCKS_TEXEL_BUFFERS},
-    {"ray_mask/list_range_blocks", HMB_RANGE_BLOCKS_BINDING_COUNT, sizeof(gpu::RayMaskParams), false},
-    {"ray_mask/size_list_dispatch", HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), false},
-    {"shutter_rays/list_moving_tiles", HMB_MOVING_TILES_BINDING_COUNT, sizeof(gpu::MovingTilesParams), false},
-    {"reveal/reveal_background", HMB_REVEAL_BINDING_COUNT, sizeof(gpu::RevealParams), false, true,
-     HMB_REVEAL_TEXEL_BUFFERS},
-    {"shutter_rays/list_shutter_rays", HMB_SHUTTER_LIST_BINDING_COUNT, sizeof(gpu::ShutterRayListParams), false, false,
-     HMB_SHUTTER_LIST_TEXEL_BUFFERS},
-    {"shutter_rays/trace_shutter_rays", HMB_SHUTTER_TRACE_BINDING_COUNT, sizeof(gpu::ShutterRayTraceParams), false, true,
-     HMB_TRACE_SCENE_TEXEL_BUFFERS + HMB_SCENE_TEXEL_BUFFERS},
-};
-
 using KernelPipelinesTest = VulkanTest;
 
 bool isAddressBuild(std::string_view name) { return name.ends_with(vk::kByAddressSuffix); }
 
-const KernelLayout& layoutOf(std::string_view name) {
+// The manifest's entry of an embedded kernel (its address build's: its plain build's).
+const kernels::KernelFacts& layoutOf(std::string_view name) {
   if (isAddressBuild(name)) name.remove_suffix(vk::kByAddressSuffix.size());
-  for (const KernelLayout& l : kLayouts)
-    if (name == l.name) return l;
-  throw std::runtime_error("no layout declared in this test for kernel " + std::string(name));
+  if (const kernels::KernelFacts* facts = kernels::findKernelFacts(name)) return *facts;
+  throw std::runtime_error("kernel " + std::string(name) + " is not in kernels/manifest.h");
+}
+
+// The manifest and the embedded kernels are the same list: every entry is built, with an address
+// build exactly where the entry says so.
+TEST(KernelManifestTest, ListsEveryEmbeddedKernelAndItsAddressBuild) {
+  size_t plainBuilds = 0;
+  for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
+    const kernels::KernelFacts& facts = layoutOf(kernel.name);
+    if (isAddressBuild(kernel.name))
+      EXPECT_TRUE(facts.has(kernels::kAddressBuild)) << kernel.name << ": an address build the manifest leaves out";
+    else
+      ++plainBuilds;
+  }
+  EXPECT_EQ(plainBuilds, std::size(kernels::kManifest));
+  for (const kernels::KernelFacts& facts : kernels::kManifest) {
+    EXPECT_NE(vk::findKernelIfBuilt(facts.name), nullptr) << facts.name << " is listed but not built";
+    const std::string addressBuild = std::string(facts.name) + std::string(vk::kByAddressSuffix);
+    EXPECT_EQ(vk::findKernelIfBuilt(addressBuild) != nullptr, facts.has(kernels::kAddressBuild)) << facts.name;
+    EXPECT_LE(facts.texelBindings, facts.bindings) << facts.name;
+  }
+  EXPECT_EQ(kernels::findKernelFacts("mblur/no_such_kernel"), nullptr);
+  static_assert(kernels::kernel("mblur/tile_max").pushBytes == sizeof(gpu::TileMaxParams));
 }
 
 TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
     if (isAddressBuild(kernel.name)) continue;  // ComputeKernel picks it; see below
-    const KernelLayout& layout = layoutOf(kernel.name);
-    if (layout.needsInt64Atomics && !context().info().int64BufferAtomics) continue;
+    const kernels::KernelFacts& layout = layoutOf(kernel.name);
+    if (layout.has(kernels::kInt64Atomics) && !context().info().int64BufferAtomics) continue;
     const vk::ComputeKernel built(context(), kernel.name, layout.pushBytes);
     const bool fits = layout.storageBindings() <= context().limits().maxPerStageDescriptorStorageBuffers &&
                       layout.storageBindings() <= context().limits().maxDescriptorSetStorageBuffers;
@@ -155,7 +69,7 @@ TEST_F(KernelPipelinesTest, EveryKernelHasADeclaredLayoutAndBuilds) {
       EXPECT_EQ(built.texelBindings().size(), layout.texelBindings) << kernel.name;
       EXPECT_EQ(built.bindings().size(), layout.bindings) << kernel.name;
     }
-    if (layout.shades) {
+    if (layout.has(kernels::kShades)) {
       uint32_t untextured[HMB_SPEC_TEXTURE_PATH + 1] = {};
       EXPECT_NO_THROW(vk::ComputeKernel(context(), kernel.name, layout.pushBytes, untextured))
           << kernel.name << " without the texture path";
@@ -167,7 +81,7 @@ TEST_F(KernelPipelinesTest, ReflectionReadsWhatEachKernelDeclares) {
   uint32_t addressBuilds = 0;
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
     const vk::KernelInterface reflected = vk::reflectKernel(kernel);
-    const KernelLayout& layout = layoutOf(kernel.name);
+    const kernels::KernelFacts& layout = layoutOf(kernel.name);
     EXPECT_LE(reflected.pushConstantBytes, layout.pushBytes) << kernel.name;
     EXPECT_GE(reflected.localSize[0] * reflected.localSize[1] * reflected.localSize[2], 1u) << kernel.name;
     if (!isAddressBuild(kernel.name)) {
@@ -191,7 +105,7 @@ TEST_F(KernelPipelinesTest, ReflectionReadsWhatEachKernelDeclares) {
 }
 
 TEST_F(KernelPipelinesTest, HostsThatDisagreeWithTheKernelAreOneLineErrors) {
-  const KernelLayout& layout = layoutOf("output/encode_display");
+  const kernels::KernelFacts& layout = layoutOf("output/encode_display");
   expectError([&] { vk::ComputeKernel(context(), layout.name, layout.pushBytes - 4); },
               "bytes of push constants but its host passes");
   const vk::ComputeKernel kernel(context(), layout.name, layout.pushBytes);
@@ -216,7 +130,7 @@ TEST_F(KernelPipelinesTest, HostsThatDisagreeWithTheKernelAreOneLineErrors) {
 // and specialization shares the pipeline; another specialization, or another context, makes its
 // own; a failed build keeps nothing.
 TEST_F(KernelPipelinesTest, EachKernelIsMadeOncePerContextAndSpecialization) {
-  const KernelLayout& layout = layoutOf("bvh/build_level");
+  const kernels::KernelFacts& layout = layoutOf("bvh/build_level");
   // The GPU shape of the level kernel (shared atomics) at two workgroup sizes.
   const uint32_t eightLanes[] = {8u, 0u};
   const uint32_t sixteenLanes[] = {16u, 0u};
@@ -268,8 +182,8 @@ TEST(KernelLimitsTest, APretendDeviceWithFewerStorageBuffersTakesAddressBuildsOr
   uint32_t switched = 0, refused = 0;
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
     if (isAddressBuild(kernel.name)) continue;
-    const KernelLayout& layout = layoutOf(kernel.name);
-    if (layout.needsInt64Atomics && !small.info().int64BufferAtomics) continue;
+    const kernels::KernelFacts& layout = layoutOf(kernel.name);
+    if (layout.has(kernels::kInt64Atomics) && !small.info().int64BufferAtomics) continue;
     const vk::EmbeddedKernel* byAddress = vk::findKernelIfBuilt(std::string(kernel.name) + std::string(vk::kByAddressSuffix));
     if (layout.storageBindings() <= limit) {
       const vk::ComputeKernel built(small, kernel.name, layout.pushBytes);
@@ -304,8 +218,8 @@ TEST(KernelLimitsTest, EveryKernelBuildsOnADeviceWithEightStorageBuffers) {
   vk::Context small(options);
   for (const vk::EmbeddedKernel& kernel : vk::embeddedKernels()) {
     if (isAddressBuild(kernel.name)) continue;
-    const KernelLayout& layout = layoutOf(kernel.name);
-    if (layout.needsInt64Atomics && !small.info().int64BufferAtomics) continue;
+    const kernels::KernelFacts& layout = layoutOf(kernel.name);
+    if (layout.has(kernels::kInt64Atomics) && !small.info().int64BufferAtomics) continue;
     const bool hasAddressBuild =
         vk::findKernelIfBuilt(std::string(kernel.name) + std::string(vk::kByAddressSuffix)) != nullptr;
     if (!hasAddressBuild) {
@@ -326,7 +240,7 @@ TEST(KernelLimitsTest, EveryKernelBuildsOnADeviceWithEightStorageBuffers) {
 using KernelVariantsTest = VulkanTest;
 
 TEST_F(KernelVariantsTest, EachCombinationOfSwitchesIsBuiltOnce) {
-  const vk::KernelVariants gather(context(), "mblur/gather", sizeof(gpu::GatherParams));
+  const vk::KernelVariants gather(context(), kernels::kernel("mblur/gather"));
   const vk::ComputeKernel& straight = gather.with({false, false, true});
   EXPECT_EQ(&gather.with({false, false, true}), &straight);
   const vk::ComputeKernel& curved = gather.with({false, true, true});
