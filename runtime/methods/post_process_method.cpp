@@ -36,11 +36,11 @@ class PostProcessMethod final : public FrameMethod {
     const passes::GBufferStage& gbuffer = resources_.gbuffer;
     const Beauty beauty = still ? gbufferBeauty(gbuffer) : linearBeauty(blurred);
     const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
-      if (!still)
-        blur.record(frame,
-                    {&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), request.width, request.height,
-                     gbuffer.shutterPaths()},
-                    blurred);
+      // A still frame's plan skips every blur pass: none is recorded.
+      blur.record(frame, result.plan,
+                  {&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), request.width, request.height,
+                   gbuffer.shutterPaths()},
+                  blurred);
     });
     collectRasterFrame(resources_, request, beauty, result);
     return timings;

@@ -12,23 +12,45 @@
 namespace hmb::passes {
 
 GBufferStage::GBufferStage(const vk::Context& context, VisibilityScheme scheme)
-    : context_(context), transform_(context), rasterize_(context, scheme), resolve_(context) {}
-
-void GBufferStage::plan(FramePlan& plan, const GpuScene& scene) const {
-  if (scene.deforms())
-    plan.run(DeformedVertices::kName);
-  else
-    plan.skip(DeformedVertices::kName, kNoDeformationReason);
-  plan.run(TransformVerticesPass::kName);
-  rasterize_.plan(plan);
-  plan.run(ResolveGBufferPass::kName);
-  for (const char* name : {ShutterPathPass::kTransformName, ShutterPathPass::kResolveName}) {
-    if (shutterPaths_)
-      plan.run(name);
-    else
-      plan.skip(name, noPathsReason_);
-  }
+    : context_(context), passes_(context), transform_(context), rasterize_(context, scheme), resolve_(context) {
+  const auto withoutPaths = [this](const Frame&) { return shutterPaths_ ? std::string() : noPathsReason_; };
+  passes_
+      .pass(
+          DeformedVertices::kName,
+          [](vk::FrameRecorder& frame, const Frame& f) { f.scene->recordFrameDeformation(frame); },
+          [](const Frame& f) { return f.scene->deforms() ? std::string() : std::string(kNoDeformationReason); })
+      .pass(TransformVerticesPass::kName,
+            [this](vk::FrameRecorder& frame, const Frame& f) {
+              transform_.record(frame, *f.scene, clipCurrent_, clipPrevious_, vertexShading_);
+            })
+      .group([this](FramePlan& plan, const Frame&) { rasterize_.plan(plan); },
+             [this](vk::FrameRecorder& frame, const FramePlan&, const Frame& f) {
+               const RasterInputs inputs{&f.scene->triangles(), &f.scene->instances(), &clipCurrent_,
+                                         f.scene->triangleCount()};
+               rasterize_.record(frame, inputs, visibility_, size_.width(), size_.height());
+             })
+      .pass(ResolveGBufferPass::kName,
+            [this](vk::FrameRecorder& frame, const Frame& f) {
+              resolve_.record(frame, *f.scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_, layer_,
+                              size_.width(), size_.height());
+            })
+      .pass(
+          ShutterPathPass::kTransformName,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            shutterPath_->recordTransform(frame, *f.scene, shutterClips_, shutterPaths_->exposure,
+                                          shutterPaths_->fps, clipMid_, clipOpen_);
+          },
+          withoutPaths)
+      .pass(
+          ShutterPathPass::kResolveName,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            shutterPath_->recordResolve(frame, *f.scene, visibility_, clipCurrent_, clipMid_, clipOpen_, paths_,
+                                        size_.width(), size_.height());
+          },
+          withoutPaths);
 }
+
+void GBufferStage::plan(FramePlan& plan, const GpuScene& scene) const { passes_.plan(plan, {&scene}); }
 
 void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t height,
                            std::optional<ShutterPaths> shutterPaths, std::string_view noPathsReason) {
@@ -73,17 +95,9 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
 }
 
 void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const {
-  scene.recordFrameDeformation(frame);
-  transform_.record(frame, scene, clipCurrent_, clipPrevious_, vertexShading_);
-  const RasterInputs inputs{&scene.triangles(), &scene.instances(), &clipCurrent_, scene.triangleCount()};
-  rasterize_.record(frame, inputs, visibility_, size_.width(), size_.height());
-  resolve_.record(frame, scene, visibility_, clipCurrent_, clipPrevious_, vertexShading_, layer_, size_.width(), size_.height());
-  if (shutterPaths_) {
-    shutterPath_->recordTransform(frame, scene, shutterClips_, shutterPaths_->exposure, shutterPaths_->fps, clipMid_,
-                                  clipOpen_);
-    shutterPath_->recordResolve(frame, scene, visibility_, clipCurrent_, clipMid_, clipOpen_, paths_, size_.width(),
-                                size_.height());
-  }
+  FramePlan own;
+  plan(own, scene);
+  passes_.record(frame, own, {&scene});
 }
 
 }  // namespace hmb::passes

@@ -12,6 +12,7 @@
 
 #include "kernels/shared/scene_layout.h"
 #include "runtime/passes/image_size.h"
+#include "runtime/passes/pass_list.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/shutter_path_pass.h"
@@ -68,7 +69,12 @@ class GBufferStage {
   }
 
  private:
+  struct Frame {
+    const GpuScene* scene = nullptr;
+  };
+
   const vk::Context& context_;
+  PassList<Frame> passes_;
   TransformVerticesPass transform_;
   RasterizePass rasterize_;
   ResolveGBufferPass resolve_;

@@ -22,8 +22,22 @@ vk::Bindings filterBindings(const MotionBlurInputs& inputs, const vk::Buffer& ne
 void GatherFilter::plan(FramePlan& plan) const { plan.run(std::string(passName())); }
 
 PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcessSettings& settings)
-    : context_(context), tileMaxPass_(context), neighborMaxPass_(context) {
+    : context_(context), tilePasses_(context), passes_(context), tileMaxPass_(context), neighborMaxPass_(context) {
   configure(settings);
+  tilePasses_
+      .pass(TileMaxPass::kName,
+            [this](vk::FrameRecorder& frame, const Frame& f) {
+              requirePreparedSize(*f.inputs);
+              tileMaxPass_.record(frame, *f.inputs->surfaces, tileMax_, f.inputs->width, f.inputs->height,
+                                  settings_.effectiveTileSize(), settings_.velocityScale());
+            })
+      .pass(NeighborMaxPass::kName, [this](vk::FrameRecorder& frame, const Frame&) { recordNeighborMax(frame); });
+  passes_.include(tilePasses_)
+      // The chosen filter's gather and the passes it records beside it.
+      .group([this](FramePlan& plan, const Frame&) { filters_.at(settings_.filter)->plan(plan); },
+             [this](vk::FrameRecorder& frame, const FramePlan&, const Frame& f) {
+               filters_.at(settings_.filter)->record(frame, *f.inputs, neighborMax_, *f.output, settings_);
+             });
 }
 
 void PostProcessStage::configure(const PostProcessSettings& settings) {
@@ -35,15 +49,9 @@ void PostProcessStage::configure(const PostProcessSettings& settings) {
   size_.forget();  // the tile grid follows the tile size: prepare() sizes it again
 }
 
-void PostProcessStage::planTiles(FramePlan& plan) const {
-  plan.run(TileMaxPass::kName);
-  plan.run(NeighborMaxPass::kName);
-}
+void PostProcessStage::planTiles(FramePlan& plan) const { tilePasses_.plan(plan); }
 
-void PostProcessStage::plan(FramePlan& plan) const {
-  planTiles(plan);
-  filters_.at(settings_.filter)->plan(plan);
-}
+void PostProcessStage::plan(FramePlan& plan) const { passes_.plan(plan); }
 
 void PostProcessStage::prepare(uint32_t width, uint32_t height) {
   if (width == 0 || height == 0) throw Error("post-process: empty image");
@@ -64,10 +72,9 @@ void PostProcessStage::requirePreparedSize(const MotionBlurInputs& inputs) const
 }
 
 void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {
-  requirePreparedSize(inputs);
-  tileMaxPass_.record(frame, *inputs.surfaces, tileMax_, inputs.width, inputs.height, settings_.effectiveTileSize(),
-                      settings_.velocityScale());
-  recordNeighborMax(frame);
+  FramePlan own;
+  planTiles(own);
+  tilePasses_.record(frame, own, {&inputs, nullptr});
 }
 
 void PostProcessStage::recordNeighborMax(vk::FrameRecorder& frame) const {
@@ -75,10 +82,16 @@ void PostProcessStage::recordNeighborMax(vk::FrameRecorder& frame) const {
   neighborMaxPass_.record(frame, tileMax_, neighborMax_, grid_, settings_.neighborhood);
 }
 
+void PostProcessStage::record(vk::FrameRecorder& frame, const FramePlan& plan, const MotionBlurInputs& inputs,
+                              const vk::Buffer& output) const {
+  passes_.record(frame, plan, {&inputs, &output});
+}
+
 void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
                               const vk::Buffer& output) const {
-  recordTiles(frame, inputs);
-  filters_.at(settings_.filter)->record(frame, inputs, neighborMax_, output, settings_);
+  FramePlan own;
+  plan(own);
+  record(frame, own, inputs, output);
 }
 
 }  // namespace hmb::passes

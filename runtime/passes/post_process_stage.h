@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "runtime/passes/neighbor_max_pass.h"
+#include "runtime/passes/pass_list.h"
 #include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/tile_max_pass.h"
@@ -27,13 +28,17 @@ class PostProcessStage {
   // Validates and takes new settings (throws hmb::Error); call prepare() again after it.
   void configure(const PostProcessSettings& settings);
 
+  // Its passes (passes_) into the frame's plan.
   void plan(FramePlan& plan) const;
   // The tile passes alone (for stages that run their own gathers).
   void planTiles(FramePlan& plan) const;
 
   // Sizes the tile buffers for this resolution (reuses them when it is unchanged).
   void prepare(uint32_t width, uint32_t height);
-  // inputs: the layer to blur, at the prepared size. output: width * height vec4.
+  // inputs: the layer to blur, at the prepared size. output: width * height vec4. Records the
+  // passes `plan` runs; without a plan, every pass of plan().
+  void record(vk::FrameRecorder& frame, const FramePlan& plan, const MotionBlurInputs& inputs,
+              const vk::Buffer& output) const;
   void record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs, const vk::Buffer& output) const;
   // The tile passes alone over `inputs`' velocities, for stages that run their own gathers
   // on neighborMax() (the hybrid method).
@@ -51,7 +56,15 @@ class PostProcessStage {
   // Throws hmb::Error when the inputs are not the size prepare() was given.
   void requirePreparedSize(const MotionBlurInputs& inputs) const;
 
+  // What the stage's passes read this frame.
+  struct Frame {
+    const MotionBlurInputs* inputs = nullptr;
+    const vk::Buffer* output = nullptr;
+  };
+
   const vk::Context& context_;
+  PassList<Frame> tilePasses_;  // tile-max, neighbour-max
+  PassList<Frame> passes_;      // the tile passes, then the filter's
   PostProcessSettings settings_;
   TileMaxPass tileMaxPass_;
   NeighborMaxPass neighborMaxPass_;

@@ -1,0 +1,113 @@
+// A stage's passes, declared once in the order a frame records them. Each declaration names its
+// pass (the plan's and the timings' name), says why a frame leaves it out (asked when the frame
+// is planned; empty: it runs) and how it records. The stage's plan() and record() both walk the
+// list, so what a frame plans and what it records cannot drift apart. A declaration dispatches a
+// kernel of the manifest (kernels/manifest.h), built the first time a frame records it, or
+// records without one of its own (fills, a pass object's recording); a group stands for a pass
+// object that plans several named passes itself (docs/architecture.md, "Stages and passes").
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runtime/frame_plan.h"
+#include "runtime/vulkan/compute_kernel.h"
+
+namespace hmb::vk {
+class FrameRecorder;
+}
+
+namespace hmb::passes {
+
+// Inputs: what the stage's passes read this frame (a struct of pointers: default-constructed,
+// it stands for a frame whose inputs the plan does not need).
+template <class Inputs>
+class PassList {
+ public:
+  using SkipReason = std::function<std::string(const Inputs&)>;
+  using Dispatch = std::function<void(vk::FrameRecorder&, const vk::ComputeKernel&, const Inputs&)>;
+  using Record = std::function<void(vk::FrameRecorder&, const Inputs&)>;
+  using Plan = std::function<void(FramePlan&, const Inputs&)>;
+  using RecordPlanned = std::function<void(vk::FrameRecorder&, const FramePlan&, const Inputs&)>;
+
+  explicit PassList(const vk::Context& context) : context_(&context) {}
+
+  // A pass that dispatches `kernel` (kernels::kernel("stage/name")).
+  PassList& dispatch(std::string name, const kernels::KernelFacts& kernel, Dispatch record, SkipReason skipped = {}) {
+    declared_.push_back({std::move(name), std::move(skipped), {}, {}, &kernel, std::move(record), nullptr, {}});
+    return *this;
+  }
+  // A pass recorded without a kernel of its own.
+  PassList& pass(std::string name, Record record, SkipReason skipped = {}) {
+    declared_.push_back({std::move(name), std::move(skipped), std::move(record), {}, nullptr, {}, nullptr, {}});
+    return *this;
+  }
+  // A pass object that plans its own passes: recorded, with the frame's plan, when the frame runs
+  // any of them.
+  PassList& group(Plan plan, RecordPlanned record) {
+    declared_.push_back({{}, {}, {}, std::move(plan), nullptr, {}, nullptr, std::move(record)});
+    return *this;
+  }
+  // Another list's passes, planned and recorded in its place (`passes` outlives this list).
+  PassList& include(const PassList& passes) {
+    return group([&passes](FramePlan& plan, const Inputs& inputs) { passes.plan(plan, inputs); },
+                 [&passes](vk::FrameRecorder& frame, const FramePlan& plan, const Inputs& inputs) {
+                   passes.record(frame, plan, inputs);
+                 });
+  }
+
+  void plan(FramePlan& plan, const Inputs& inputs = {}) const {
+    for (const Declared& d : declared_) {
+      if (d.plan)
+        d.plan(plan, inputs);
+      else
+        plan.runUnless(d.name, d.skipped ? d.skipped(inputs) : std::string());
+    }
+  }
+
+  // Records, in order, the declared passes `plan` runs.
+  void record(vk::FrameRecorder& frame, const FramePlan& plan, const Inputs& inputs) const {
+    for (const Declared& d : declared_) {
+      if (!runs(d, plan, inputs)) continue;
+      if (d.plan) {
+        d.recordPlanned(frame, plan, inputs);
+        continue;
+      }
+      if (!d.kernel) {
+        d.record(frame, inputs);
+        continue;
+      }
+      if (!d.built) d.built = std::make_unique<vk::ComputeKernel>(*context_, *d.kernel);
+      d.dispatch(frame, *d.built, inputs);
+    }
+  }
+
+ private:
+  struct Declared {
+    std::string name;
+    SkipReason skipped;
+    Record record;
+    Plan plan;
+    const kernels::KernelFacts* kernel;
+    Dispatch dispatch;
+    mutable std::unique_ptr<vk::ComputeKernel> built;
+    RecordPlanned recordPlanned;  // a group's
+  };
+
+  static bool runs(const Declared& d, const FramePlan& plan, const Inputs& inputs) {
+    if (!d.plan) return plan.runs(d.name);
+    FramePlan own;
+    d.plan(own, inputs);
+    for (const PlannedPass& p : own.passes())
+      if (p.run && plan.runs(p.name)) return true;
+    return false;
+  }
+
+  const vk::Context* context_;
+  std::vector<Declared> declared_;
+};
+
+}  // namespace hmb::passes
