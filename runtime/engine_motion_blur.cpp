@@ -214,7 +214,7 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
   passes_->gpuScene->recordFrameInputs(passes_->frameInputs, frame);
   recordPack(frame, context_, *passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
   if (passes_->gpuScene->deforms()) passes_->gpuScene->recordFrameDeformation(frame);  // what the reveal shades
-  passes_->hybrid.record(frame, passes_->layer, *passes_->gpuScene, blurred);
+  passes_->hybrid.record(frame, passes_->plan, passes_->layer, *passes_->gpuScene, blurred);
   frame.endInto();
 }
 

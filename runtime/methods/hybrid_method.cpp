@@ -57,7 +57,8 @@ class HybridMethod final : public FrameMethod {
     const passes::GBufferStage& gbuffer = resources_.gbuffer;
     const Beauty beauty = still ? gbufferBeauty(gbuffer) : linearBeauty(blurred);
     vk::appendTimings(timings, recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
-                        if (!still) hybrid_.record(frame, gbuffer.layer(), scene, blurred, gbuffer.shutterPaths());
+                        if (!still)
+                          hybrid_.record(frame, result.plan, gbuffer.layer(), scene, blurred, gbuffer.shutterPaths());
                       }));
     if (const auto trees = still ? std::nullopt : hybrid_.meshTreeBytes()) {
       result.memory.bvhAllocatedBytesPerTriangle = trees->allocatedPerTriangle;

@@ -24,7 +24,8 @@ GBufferStage::GBufferStage(const vk::Context& context, VisibilityScheme scheme)
               transform_.record(frame, *f.scene, clipCurrent_, clipPrevious_, vertexShading_);
             })
       .group([this](FramePlan& plan, const Frame&) { rasterize_.plan(plan); },
-             [this](vk::FrameRecorder& frame, const FramePlan&, const Frame& f) {
+             [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame& f) {
+               if (!plan.runs(RasterizePass::kSetup)) return;
                const RasterInputs inputs{&f.scene->triangles(), &f.scene->instances(), &clipCurrent_,
                                          f.scene->triangleCount()};
                rasterize_.record(frame, inputs, visibility_, size_.width(), size_.height());

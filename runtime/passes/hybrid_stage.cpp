@@ -15,32 +15,6 @@
 
 namespace hmb::passes {
 
-HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProcess, const HitShading* hits)
-    : context_(context),
-      postProcess_(postProcess),
-      rayMask_(context),
-      reveal_(context, hits),
-      gather_(context),
-      backgroundGather_(context),
-      composite_(context),
-      shutterRays_(context, hits) {}
-
-HybridStage::~HybridStage() = default;
-
-std::optional<HybridStage::TreeBytes> HybridStage::meshTreeBytes() const {
-  if (!traceScene_ || traceScene_->triangleCount() == 0) return std::nullopt;
-  const double triangles = traceScene_->triangleCount();
-  const passes::BvhBuildPass& trees = traceScene_->meshBvh();
-  return TreeBytes{double(trees.allocatedTreeBytes()) / triangles, double(trees.usedTreeBytes()) / triangles};
-}
-
-uint32_t HybridStage::cutTraces() const { return traceScene_ ? traceScene_->cutTraces() : 0u; }
-
-void HybridStage::forgetTraceScene() {
-  traceScene_.reset();
-  buildsInstanceTree_ = false;
-}
-
 namespace {
 
 // Why a frame traces no shutter rays; empty when it does.
@@ -61,10 +35,140 @@ std::vector<float> traceTimes(const scene::Scene& scene, float frameTime, const 
   return times;
 }
 
+// Why a frame leaves the paper's reveal out: with the shutter rays it re-renders nearly every
+// pixel the reveal would, and the image hardly moved against the reference where it ran
+// (docs/hybrid.md, "The hybrid method").
+std::string revealSkipped(const scene::Scene& scene, const HybridSettings& settings) {
+  return shutterRaysSkipped(scene, settings).empty() ? kRevealLeftToShutterRaysReason : "";
+}
+
 }  // namespace
+
+HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProcess, const HitShading* hits)
+    : context_(context),
+      passes_(context),
+      postProcess_(postProcess),
+      rayMask_(context),
+      reveal_(context, hits),
+      gather_(context),
+      backgroundGather_(context),
+      composite_(context),
+      shutterRays_(context, hits) {
+  const auto withoutShutterRays = [](const Frame& f) { return shutterRaysSkipped(*f.scene, *f.settings); };
+  const auto withoutReveal = [](const Frame& f) { return revealSkipped(*f.scene, *f.settings); };
+  passes_
+      // The trace scene's trees: the meshes' (scene setup), the still instances' and the refits
+      // are built by prepare(), which reads the plan; the instances' tree at the frame's times
+      // is built in the frame.
+      .group([this](FramePlan& plan, const Frame& f) { planTrees(plan, *f.scene, f.frameTime, *f.settings); },
+             [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame&) {
+               if (plan.runs(kBvhInstances)) traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
+             })
+      // The gather's tiles; the whole mask's tile-max also lists its edge candidates.
+      .group([this](FramePlan& plan, const Frame&) { postProcess_.planTiles(plan); },
+             [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame& f) {
+               if (!plan.runs(TileMaxPass::kName)) return;
+               if (f.mask.movingTilesOnly) {
+                 postProcess_.recordTiles(frame, f.raster);
+               } else {
+                 rayMask_.recordTileMax(frame, f.raster, f.mask);
+                 postProcess_.recordNeighborMax(frame);
+               }
+             })
+      .group(
+          [this](FramePlan& plan, const Frame& f) {
+            rayMask_.plan(plan, revealSkipped(*f.scene, *f.settings),
+                          f.settings->composite == HybridComposite::Coverage
+                              ? ""
+                              : "composite weights: the composite takes its own samples, and every mask pixel is "
+                                "revealed");
+          },
+          [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame& f) {
+            if (plan.runs(RayMaskStage::kClear)) rayMask_.record(frame, f.raster, f.mask);
+          })
+      .pass(
+          kShutterRaysList,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            shutterRays_.recordList(frame, f.raster, f.blur, postProcess_.tileMax(), rayMask_, shutterStrata_);
+          },
+          withoutShutterRays)
+      // Post-process's image. Beside the reveal the composite writes the mask's pixels over it, so
+      // the gather may leave them out where the device profile says that pays
+      // (DeviceProfile::gatherSkipsRayMask).
+      .group([this](FramePlan& plan, const Frame&) { gather_.plan(plan); },
+             [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame& f) {
+               if (!plan.runs(GatherPass::kName)) return;
+               if (plan.runs(RevealPass::kName) && context_.profile().gatherSkipsRayMask)
+                 gather_.recordOutsideMask(frame, f.raster, postProcess_.neighborMax(), *f.output, settings_.blur,
+                                           rayMask_.mask());
+               else
+                 gather_.record(frame, f.raster, postProcess_.neighborMax(), *f.output, settings_.blur);
+             })
+      .pass(
+          RevealPass::kName,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            recordTraceStart(frame, RevealPass::kName);
+            reveal_.record(frame, *traceScene_, *f.gpuScene, cameraRays_, *f.layer, rayMask_.list(),
+                           rayMask_.counters(), revealed_, size_.width(), size_.height(), settings_);
+          },
+          withoutReveal)
+      // The background layer: the revealed surfaces over the raster, gathered at the revealed
+      // pixels only; with the coverage composite blended under the mask's foreground into the
+      // image there, the composite taking the mask's other pixels.
+      .pass(
+          kGatherBackground,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            const bool coverage = settings_.composite == HybridComposite::Coverage;
+            backgroundGather_.record(frame, *f.layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(),
+                                     rayMask_.list(), rayMask_.counters(), coverage ? *f.output : backgroundBlurred_,
+                                     f.blur, f.raster.shutterPaths, coverage ? &rayMask_.coverage() : nullptr);
+          },
+          withoutReveal)
+      // Beside the coverage composite there is no background buffer: the coverage stands in for
+      // its unread binding.
+      .pass(
+          kComposite,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            const bool coverage = settings_.composite == HybridComposite::Coverage;
+            composite_.record(frame, *f.layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(),
+                              coverage ? rayMask_.coverage() : backgroundBlurred_, *f.output, f.blur,
+                              settings_.composite, f.raster.shutterPaths,
+                              coverage ? &rayMask_.coverage() : nullptr);
+          },
+          withoutReveal)
+      .pass(
+          kShutterRaysTrace,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            recordTraceStart(frame, kShutterRaysTrace);
+            shutterRays_.recordTrace(frame, *traceScene_, *f.gpuScene, cameraRays_, shutterStrata_, *f.output);
+          },
+          withoutShutterRays);
+}
+
+HybridStage::~HybridStage() = default;
+
+std::optional<HybridStage::TreeBytes> HybridStage::meshTreeBytes() const {
+  if (!traceScene_ || traceScene_->triangleCount() == 0) return std::nullopt;
+  const double triangles = traceScene_->triangleCount();
+  const passes::BvhBuildPass& trees = traceScene_->meshBvh();
+  return TreeBytes{double(trees.allocatedTreeBytes()) / triangles, double(trees.usedTreeBytes()) / triangles};
+}
+
+uint32_t HybridStage::cutTraces() const { return traceScene_ ? traceScene_->cutTraces() : 0u; }
+
+void HybridStage::forgetTraceScene() { traceScene_.reset(); }
 
 void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime,
                        const HybridSettings& settings) const {
+  Frame f;
+  f.scene = &scene;
+  f.frameTime = frameTime;
+  f.settings = &settings;
+  passes_.plan(plan, f);
+}
+
+void HybridStage::planTrees(FramePlan& plan, const scene::Scene& scene, float frameTime,
+                            const HybridSettings& settings) const {
   const bool sameMeshes = planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
   planDeformedTrees(plan, scene);
   const std::vector<float> times = traceTimes(scene, frameTime, settings);
@@ -79,20 +183,6 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
     else
       plan.run(kBvhStillInstances);
   }
-  postProcess_.planTiles(plan);
-  const std::string shutterSkipped = shutterRaysSkipped(scene, settings);
-  // With the shutter rays, the paper's reveal is left out: the rays re-render nearly every
-  // pixel it would, and the image hardly moved against the reference where it ran
-  // (docs/hybrid.md, "The hybrid method").
-  const std::string revealSkipped = shutterSkipped.empty() ? kRevealLeftToShutterRaysReason : "";
-  rayMask_.plan(plan, revealSkipped,
-                settings.composite == HybridComposite::Coverage
-                    ? ""
-                    : "composite weights: the composite takes its own samples, and every mask pixel is revealed");
-  plan.runUnless(kShutterRaysList, shutterSkipped);
-  gather_.plan(plan);
-  for (const char* pass : {RevealPass::kName, kGatherBackground, kComposite}) plan.runUnless(pass, revealSkipped);
-  plan.runUnless(kShutterRaysTrace, shutterSkipped);
 }
 
 HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene,
@@ -115,10 +205,10 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
     throw Error("hybrid: the plan traces shutter rays that these settings leave out");
   if (plan.runs(TraceScene::kRefit))
     vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
-  buildsInstanceTree_ = plan.runs(kBvhInstances);
+  const bool buildsInstanceTree = plan.runs(kBvhInstances);
   traceScene_->splitTopLevel(TraceScene::kStillInstancesToSplit);
-  if (buildsInstanceTree_) traceScene_->stageShutterTimes(scene, times);
-  if (buildsInstanceTree_ && plan.runs(kBvhStillInstances) && !traceScene_->keepsStillInstanceTree()) {
+  if (buildsInstanceTree) traceScene_->stageShutterTimes(scene, times);
+  if (buildsInstanceTree && plan.runs(kBvhStillInstances) && !traceScene_->keepsStillInstanceTree()) {
     const vk::FrameRecorder::ShapeMark stillStart = frame.mark();
     const double ms = traceScene_->buildStillInstanceTree(frame);
     vk::appendTimings(timings.setup, {{{kBvhStillInstances, ms}}, ms});
@@ -155,71 +245,37 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   return timings;
 }
 
-void HybridStage::record(vk::FrameRecorder& frame, const ImageLayer& layer, const GpuScene& gpuScene,
-                         const vk::Buffer& output, const vk::Buffer* shutterPaths) {
+void HybridStage::record(vk::FrameRecorder& frame, const FramePlan& plan, const ImageLayer& layer,
+                         const GpuScene& gpuScene, const vk::Buffer& output, const vk::Buffer* shutterPaths) {
   if (!traceScene_) throw Error("hybrid: record() before prepare()");
   const bool curved = settings_.blur.motionPath == MotionPath::Curved;
   if (curved && !shutterPaths) throw Error("hybrid: the curved motion path needs the G-buffer's shutter paths");
-  // Every frame recorded from this prepare() builds the staged tree (a frame recorded again
-  // must not find it missing).
-  if (buildsInstanceTree_) traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
-  // The cameras' upload and the traces' status reset are timed with the first pass that traces.
-  const char* firstTrace = shutterStrata_ != 0 ? kShutterRaysTrace : RevealPass::kName;
-  frame.write(firstTrace, cameraRays_, std::span<const gpu::PinholeCamera>(cameras_));
-  traceScene_->recordResetStatus(frame, firstTrace);
-  const MotionBlurInputs raster{&layer.samples(), &layer.surfaces(), size_.width(), size_.height(),
-                                curved ? shutterPaths : nullptr};
+  Frame f;
+  f.layer = &layer;
+  f.gpuScene = &gpuScene;
+  f.output = &output;
+  f.raster = {&layer.samples(), &layer.surfaces(), size_.width(), size_.height(), curved ? shutterPaths : nullptr};
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
-  gpu::GatherParams blur = gatherParams(settings_.blur, size_.width(), size_.height(),
-                                        {settings_.maskBackgroundBoost, settings_.maskForegroundDivide});
-  if (curved) blur.flags |= HMB_GATHER_FLAG_CURVED_PATH;
-  RayMaskParameters maskParameters;
-  maskParameters.tileMax = &postProcess_.tileMax();
-  maskParameters.blur = blur;
-  maskParameters.edgeThreshold = settings_.edgeThreshold;
+  f.blur = gatherParams(settings_.blur, size_.width(), size_.height(),
+                        {settings_.maskBackgroundBoost, settings_.maskForegroundDivide});
+  if (curved) f.blur.flags |= HMB_GATHER_FLAG_CURVED_PATH;
+  f.mask.tileMax = &postProcess_.tileMax();
+  f.mask.blur = f.blur;
+  f.mask.edgeThreshold = settings_.edgeThreshold;
   // The coverage composite weights the revealed background by 1 - alpha: pixels whose samples
-  // all stay on their object (alpha exactly 1) need no reveal (38% of bistro's mask at 1280x720).
-  maskParameters.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
+  // all stay on their object (alpha exactly 1) need no reveal.
+  f.mask.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
   // The shutter rays stand in for the reveal (plan()): the mask's stage lists the moving tiles
   // their list walks, and post-process's image is theirs to correct.
-  maskParameters.movingTilesOnly = shutterStrata_ != 0;
-  maskParameters.candidatesInTileMaxLoop = candidatesInTileMaxLoop_;
-  // The whole mask's tile-max also lists its edge candidates.
-  if (maskParameters.movingTilesOnly) {
-    postProcess_.recordTiles(frame, raster);
-  } else {
-    rayMask_.recordTileMax(frame, raster, maskParameters);
-    postProcess_.recordNeighborMax(frame);
-  }
-  rayMask_.record(frame, raster, maskParameters);
-  if (shutterStrata_ != 0) {
-    shutterRays_.recordList(frame, raster, blur, postProcess_.tileMax(), rayMask_, shutterStrata_);
-    gather_.record(frame, raster, postProcess_.neighborMax(), output, settings_.blur);
-    shutterRays_.recordTrace(frame, *traceScene_, gpuScene, cameraRays_, shutterStrata_, output);
-    return;
-  }
-  // Post-process's image; the composite below writes the mask's pixels over it, so the gather
-  // may leave them out where the device profile says that pays (DeviceProfile::gatherSkipsRayMask).
-  if (context_.profile().gatherSkipsRayMask)
-    gather_.recordOutsideMask(frame, raster, postProcess_.neighborMax(), output, settings_.blur, rayMask_.mask());
-  else
-    gather_.record(frame, raster, postProcess_.neighborMax(), output, settings_.blur);
-  reveal_.record(frame, *traceScene_, gpuScene, cameraRays_, layer, rayMask_.list(), rayMask_.counters(),
-                 revealed_, size_.width(), size_.height(), settings_);
-  // The background layer: the revealed surfaces over the raster, gathered at the revealed pixels
-  // only; with the coverage composite blended under the mask's foreground into the image there,
-  // the composite taking the mask's other pixels.
-  const bool coverage = settings_.composite == HybridComposite::Coverage;
-  const vk::Buffer* coverageBuffer = coverage ? &rayMask_.coverage() : nullptr;
-  backgroundGather_.record(frame, layer, revealed_, postProcess_.neighborMax(), rayMask_.mask(), rayMask_.list(),
-                           rayMask_.counters(), coverage ? output : backgroundBlurred_, blur, raster.shutterPaths,
-                           coverageBuffer);
-  // Beside the coverage composite there is no background buffer: the coverage stands in for its
-  // unread binding.
-  composite_.record(frame, layer, postProcess_.neighborMax(), rayMask_.list(), rayMask_.counters(),
-                    coverage ? rayMask_.coverage() : backgroundBlurred_, output, blur, settings_.composite,
-                    raster.shutterPaths, coverageBuffer);
+  f.mask.movingTilesOnly = shutterStrata_ != 0;
+  f.mask.candidatesInTileMaxLoop = candidatesInTileMaxLoop_;
+  passes_.record(frame, plan, f);
+}
+
+void HybridStage::recordTraceStart(vk::FrameRecorder& frame, const char* pass) const {
+  frame.write(pass, cameraRays_, std::span<const gpu::PinholeCamera>(cameras_));
+  traceScene_->recordResetStatus(frame, pass);
 }
 
 }  // namespace hmb::passes

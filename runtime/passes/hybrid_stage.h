@@ -23,8 +23,9 @@
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"
 #include "runtime/passes/gather_pass.h"
-#include "runtime/passes/image_size.h"
 #include "runtime/passes/hybrid_settings.h"
+#include "runtime/passes/image_size.h"
+#include "runtime/passes/pass_list.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "runtime/passes/reveal_pass.h"
 #include "runtime/passes/shutter_rays_pass.h"
@@ -86,7 +87,8 @@ class HybridStage {
   // are built and written in the frame: nothing here submits or waits.
   // shutterPaths: the raster's paths over the shutter (GBufferStage::shutterPaths), which the
   // curved path (settings' blur.motionPath) needs; null otherwise.
-  void record(vk::FrameRecorder& frame, const ImageLayer& raster, const GpuScene& gpuScene,
+  // Records the passes `plan` (the frame's, planned by plan() and given to prepare()) runs.
+  void record(vk::FrameRecorder& frame, const FramePlan& plan, const ImageLayer& raster, const GpuScene& gpuScene,
               const vk::Buffer& output, const vk::Buffer* shutterPaths = nullptr);
 
   // The next frame builds its trees anew, whatever the last frame built.
@@ -109,7 +111,27 @@ class HybridStage {
   const ImageLayer& revealed() const { return revealed_; }
 
  private:
+  // What the hybrid's passes read: the plan's scene, time and settings, and the recording's
+  // layers, buffers and parameters.
+  struct Frame {
+    const scene::Scene* scene = nullptr;
+    float frameTime = 0.0f;
+    const HybridSettings* settings = nullptr;
+    const ImageLayer* layer = nullptr;
+    const GpuScene* gpuScene = nullptr;
+    const vk::Buffer* output = nullptr;
+    MotionBlurInputs raster;
+    gpu::GatherParams blur{};
+    RayMaskParameters mask;
+  };
+
+  // plan()'s trees: the meshes', the refits, the instances' and the still instances'.
+  void planTrees(FramePlan& plan, const scene::Scene& scene, float frameTime, const HybridSettings& settings) const;
+  // The cameras' upload and the traces' status reset, timed with the first pass that traces.
+  void recordTraceStart(vk::FrameRecorder& frame, const char* pass) const;
+
   const vk::Context& context_;
+  PassList<Frame> passes_;  // in frame order
   PostProcessStage& postProcess_;
   RayMaskStage rayMask_;
   RevealPass reveal_;
@@ -125,7 +147,6 @@ class HybridStage {
   // by record().
   uint32_t shutterStrata_ = 0;
   std::vector<gpu::PinholeCamera> cameras_;
-  bool buildsInstanceTree_ = false;  // prepare() staged the instances: record() builds their tree
   bool candidatesInTileMaxLoop_ = true;  // RayMaskParameters': a GPU, or the camera moves this frame
   vk::Buffer cameraRays_;
   ImageLayer revealed_;

@@ -4,12 +4,17 @@
 // list, so what a frame plans and what it records cannot drift apart. A declaration dispatches a
 // kernel of the manifest (kernels/manifest.h), built the first time a frame records it, or
 // records without one of its own (fills, a pass object's recording); a group stands for a pass
-// object that plans several named passes itself (docs/architecture.md, "Stages and passes").
+// object that plans several named passes itself and records, given the frame's plan, those the
+// plan runs. A pass recorded in several steps between others declares each step under its name:
+// the plan takes the first step's reason, and each step records when the plan runs the pass and
+// the step's own reason, asked again with the recording's inputs, is empty (docs/architecture.md).
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -22,13 +27,19 @@ class FrameRecorder;
 
 namespace hmb::passes {
 
+// What a declared dispatch records with: its name and its kernel.
+struct DeclaredPass {
+  std::string_view name;
+  const vk::ComputeKernel& kernel;
+};
+
 // Inputs: what the stage's passes read this frame (a struct of pointers: default-constructed,
 // it stands for a frame whose inputs the plan does not need).
 template <class Inputs>
 class PassList {
  public:
   using SkipReason = std::function<std::string(const Inputs&)>;
-  using Dispatch = std::function<void(vk::FrameRecorder&, const vk::ComputeKernel&, const Inputs&)>;
+  using Dispatch = std::function<void(vk::FrameRecorder&, const DeclaredPass&, const Inputs&)>;
   using Record = std::function<void(vk::FrameRecorder&, const Inputs&)>;
   using Plan = std::function<void(FramePlan&, const Inputs&)>;
   using RecordPlanned = std::function<void(vk::FrameRecorder&, const FramePlan&, const Inputs&)>;
@@ -45,8 +56,8 @@ class PassList {
     declared_.push_back({std::move(name), std::move(skipped), std::move(record), {}, nullptr, {}, nullptr, {}});
     return *this;
   }
-  // A pass object that plans its own passes: recorded, with the frame's plan, when the frame runs
-  // any of them.
+  // A pass object that plans its own passes: `record` is given the frame's plan and records those
+  // of its passes the plan runs.
   PassList& group(Plan plan, RecordPlanned record) {
     declared_.push_back({{}, {}, {}, std::move(plan), nullptr, {}, nullptr, std::move(record)});
     return *this;
@@ -60,11 +71,14 @@ class PassList {
   }
 
   void plan(FramePlan& plan, const Inputs& inputs = {}) const {
+    std::vector<std::string_view> planned;
     for (const Declared& d : declared_) {
-      if (d.plan)
+      if (d.plan) {
         d.plan(plan, inputs);
-      else
-        plan.runUnless(d.name, d.skipped ? d.skipped(inputs) : std::string());
+      } else if (std::find(planned.begin(), planned.end(), d.name) == planned.end()) {
+        plan.runUnless(d.name, skipReason(d, inputs));
+        planned.push_back(d.name);
+      }
     }
   }
 
@@ -81,7 +95,7 @@ class PassList {
         continue;
       }
       if (!d.built) d.built = std::make_unique<vk::ComputeKernel>(*context_, *d.kernel);
-      d.dispatch(frame, *d.built, inputs);
+      d.dispatch(frame, DeclaredPass{d.name, *d.built}, inputs);
     }
   }
 
@@ -97,13 +111,16 @@ class PassList {
     RecordPlanned recordPlanned;  // a group's
   };
 
-  static bool runs(const Declared& d, const FramePlan& plan, const Inputs& inputs) {
-    if (!d.plan) return plan.runs(d.name);
-    FramePlan own;
-    d.plan(own, inputs);
-    for (const PlannedPass& p : own.passes())
-      if (p.run && plan.runs(p.name)) return true;
-    return false;
+  static std::string skipReason(const Declared& d, const Inputs& inputs) {
+    return d.skipped ? d.skipped(inputs) : std::string();
+  }
+
+  bool runs(const Declared& d, const FramePlan& plan, const Inputs& inputs) const {
+    if (d.plan) return true;  // the group records what the plan runs of its own
+    if (!plan.runs(d.name)) return false;
+    const bool steps = std::count_if(declared_.begin(), declared_.end(),
+                                     [&](const Declared& other) { return other.name == d.name; }) > 1;
+    return !steps || skipReason(d, inputs).empty();
   }
 
   const vk::Context* context_;

@@ -35,8 +35,9 @@ PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcess
   passes_.include(tilePasses_)
       // The chosen filter's gather and the passes it records beside it.
       .group([this](FramePlan& plan, const Frame&) { filters_.at(settings_.filter)->plan(plan); },
-             [this](vk::FrameRecorder& frame, const FramePlan&, const Frame& f) {
-               filters_.at(settings_.filter)->record(frame, *f.inputs, neighborMax_, *f.output, settings_);
+             [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame& f) {
+               const GatherFilter& filter = *filters_.at(settings_.filter);
+               if (plan.runs(filter.passName())) filter.record(frame, *f.inputs, neighborMax_, *f.output, settings_);
              });
 }
 

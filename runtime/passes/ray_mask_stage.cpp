@@ -47,6 +47,7 @@ std::vector<uint32_t> unpackEdgeMask(std::span<const uint32_t> words, size_t pix
 
 RayMaskStage::RayMaskStage(const vk::Context& context)
     : context_(context),
+      passes_(context),
       tilesKernel_(context, kernels::kernel("shutter_rays/list_moving_tiles")),
       edgeKernel_(context, kernels::kernel("ray_mask/edge_mask")),
       sizeKernel_(context, kernels::kernel("ray_mask/size_list_dispatch")),
@@ -54,18 +55,129 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
       coveragePass_(context),
       tileMaxKernels_(context, kernels::kernel("ray_mask/tile_max_edge_candidates")),
       rangeKernels_(context, kernels::kernel("ray_mask/range_check")),
-      rangeListKernel_(context, kernels::kernel("ray_mask/list_range_mask")) {}
+      rangeListKernel_(context, kernels::kernel("ray_mask/list_range_mask")) {
+  const auto wholeMaskOnly = [](const Frame& f) { return f.movingTilesOnlyBecause; };
+  const auto coverageOnly = [](const Frame& f) {
+    return f.movingTilesOnlyBecause.empty() ? f.coverageSkipped : f.movingTilesOnlyBecause;
+  };
+  passes_
+      // The whole mask's tile-max clears its buffers before it lists (recordTileMax()); the moving
+      // tiles alone start from cleared counters here.
+      .pass(kClear,
+            [this](vk::FrameRecorder& frame, const Frame& f) {
+              if (f.parameters->movingTilesOnly) frame.fill(kClear, counters_, 0u);
+            })
+      // From the gather's tile-max: the moving tiles alone (the whole mask's tile-max lists them).
+      .pass(
+          kMovingTiles,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            const TileGrid grid{f.parameters->blur.tilesX, f.parameters->blur.tilesY};
+            const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
+            frame.dispatch(kMovingTiles, tilesKernel_,
+                           {{HMB_MOVING_TILES_BINDING_TILE_MAX, f.parameters->tileMax},
+                            {HMB_MOVING_TILES_BINDING_COUNTERS, &counters_},
+                            {HMB_MOVING_TILES_BINDING_LIST, &tiles_}},
+                           tileParams, vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
+          },
+          [](const Frame& f) {
+            return f.movingTilesOnlyBecause.empty() ? std::string("the ray mask's tile-max lists the moving tiles")
+                                                    : std::string();
+          })
+      // The whole mask's counters were cleared before its tile-max listed the moving tiles and the
+      // candidates.
+      .pass(
+          kSizeDispatch,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            recordSizeDispatch(frame, f, HMB_SIZE_LIST_TILES_AND_CANDIDATES, 0u);
+          },
+          wholeMaskOnly)
+      .pass(
+          kEdges,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            frame.dispatchIndirect(kEdges, edgeKernel_,
+                                   {{HMB_EDGE_MASK_BINDING_SURFACES, f.layer->surfaces},
+                                    {HMB_EDGE_MASK_BINDING_COUNTERS, &counters_},
+                                    {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
+                                    {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
+                                   maskParams(*f.parameters), counters_,
+                                   gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_CANDIDATES));
+          },
+          wholeMaskOnly)
+      .pass(
+          kRangeBlocks,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            frame.dispatchIndirect(kRangeBlocks, blocksKernel_,
+                                   {{HMB_RANGE_BLOCKS_BINDING_TILES, &tiles_},
+                                    {HMB_RANGE_BLOCKS_BINDING_TILE_MAX, f.parameters->tileMax},
+                                    {HMB_RANGE_BLOCKS_BINDING_EDGES, &edges_},
+                                    {HMB_RANGE_BLOCKS_BINDING_COUNTERS, &counters_},
+                                    {HMB_RANGE_BLOCKS_BINDING_LIST, &rangeBlocks_}},
+                                   maskParams(*f.parameters), counters_,
+                                   gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_TILE_BLOCKS));
+          },
+          wholeMaskOnly)
+      // The range check's groups (kernels/ray_mask/ray_mask_layout.h).
+      .pass(
+          kSizeDispatch,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            recordSizeDispatch(frame, f, HMB_SIZE_LIST_RANGE_BLOCKS,
+                               f.parameters->rangeCheckGroups.value_or(context_.profile().rangeCheckGroups));
+          },
+          wholeMaskOnly)
+      .pass(
+          kRangeCheck,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            const MotionBlurInputs& layer = *f.layer;
+            const gpu::RayMaskParams params = maskParams(*f.parameters);
+            // Built with the curved paths' walks only where the frame takes them.
+            static_assert(HMB_SPEC_RANGE_CHECK_CURVED_PATH == 0);
+            const bool curved = (f.parameters->blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u;
+            frame.dispatchIndirect(
+                kRangeCheck, rangeKernels_.with({curved}),
+                {{HMB_RANGE_CHECK_BINDING_SURFACES, layer.surfaces},
+                 {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},
+                 {HMB_RANGE_CHECK_BINDING_BLOCKS, &rangeBlocks_},
+                 {HMB_RANGE_CHECK_BINDING_MASK, &mask_},
+                 {HMB_RANGE_CHECK_BINDING_COUNTERS, &counters_},
+                 {HMB_RANGE_CHECK_BINDING_LIST, &list_},
+                 // Read only along curved paths; any buffer stands in otherwise.
+                 {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
+                params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_RANGE_CHECK));
+            if (!f.parameters->listOnlyUncovered) return;
+            // The pixels it marked, listed block by block for the coverage test (timed with it).
+            frame.dispatchIndirect(kRangeCheck, rangeListKernel_,
+                                   {{HMB_RANGE_MASK_LIST_BINDING_BLOCKS, &rangeBlocks_},
+                                    {HMB_RANGE_MASK_LIST_BINDING_MASK, &mask_},
+                                    {HMB_RANGE_MASK_LIST_BINDING_COUNTERS, &counters_},
+                                    {HMB_RANGE_MASK_LIST_BINDING_LIST, &maskPixels_}},
+                                   params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_RANGE_LIST));
+          },
+          wholeMaskOnly)
+      .pass(
+          kSizeDispatch,
+          [this](vk::FrameRecorder& frame, const Frame& f) {
+            recordSizeDispatch(frame, f, HMB_SIZE_LIST_COVERAGE, 0u);
+          },
+          coverageOnly)
+      // mask_coverage and the blocks' list after it.
+      .group(
+          [coverageOnly](FramePlan& plan, const Frame& f) {
+            for (const char* pass : {kCoverage, kListBlocks}) plan.runUnless(pass, coverageOnly(f));
+          },
+          [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame& f) {
+            if (!plan.runs(kCoverage)) return;
+            coveragePass_.record(frame, *f.layer, maskPixels_, counters_, coverage_, mask_, blockBits_, list_,
+                                 maskParams(*f.parameters));
+          })
+      .pass(
+          kSizeDispatch,
+          [this](vk::FrameRecorder& frame, const Frame& f) { recordSizeDispatch(frame, f, HMB_SIZE_LIST_MASK, 0u); },
+          wholeMaskOnly);
+}
 
 void RayMaskStage::plan(FramePlan& plan, const std::string& movingTilesOnlyBecause,
                         const std::string& coverageSkipped) const {
-  plan.run(kClear);
-  // The whole mask's tile-max lists the moving tiles.
-  plan.runUnless(kMovingTiles, movingTilesOnlyBecause.empty() ? "the ray mask's tile-max lists the moving tiles" : "");
-  for (const char* pass : {kEdges, kRangeBlocks, kRangeCheck})
-    plan.runUnless(pass, movingTilesOnlyBecause);
-  for (const char* pass : {kCoverage, kListBlocks})
-    plan.runUnless(pass, movingTilesOnlyBecause.empty() ? coverageSkipped : movingTilesOnlyBecause);
-  plan.runUnless(kSizeDispatch, movingTilesOnlyBecause);
+  passes_.plan(plan, {nullptr, nullptr, movingTilesOnlyBecause, coverageSkipped});
 }
 
 void RayMaskStage::prepare(uint32_t width, uint32_t height, bool movingTilesOnly, bool coverage) {
@@ -145,73 +257,22 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
 void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& layer,
                           const RayMaskParameters& p) const {
   requireFits(layer, p);
-  const gpu::GatherParams& blur = p.blur;
-  if (p.movingTilesOnly) {
-    // From the gather's tile-max: the moving tiles alone.
-    const TileGrid grid{blur.tilesX, blur.tilesY};
-    frame.fill(kClear, counters_, 0u);
-    const gpu::MovingTilesParams tileParams{grid.count(), 0u, 0u, 0u};
-    frame.dispatch(kMovingTiles, tilesKernel_,
-                   {{HMB_MOVING_TILES_BINDING_TILE_MAX, p.tileMax},
-                    {HMB_MOVING_TILES_BINDING_COUNTERS, &counters_},
-                    {HMB_MOVING_TILES_BINDING_LIST, &tiles_}},
-                   tileParams, vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
-    return;
-  }
-  // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
+  const Frame f{&layer, &p, p.movingTilesOnly ? "the moving tiles alone" : "",
+                p.listOnlyUncovered ? "" : "every mask pixel is listed"};
+  FramePlan own;
+  passes_.plan(own, f);
+  passes_.record(frame, own, f);
+}
+
+void RayMaskStage::recordSizeDispatch(vk::FrameRecorder& frame, const Frame& f, uint32_t list,
+                                      uint32_t groupsWanted) const {
+  const gpu::GatherParams& blur = f.parameters->blur;
   // How far a range check's walk may reach: the largest speed, twice it along curved paths.
   const float walkSpeed = ((blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u ? 2.0f : 1.0f) * blur.maxSpeed;
-  const auto sizeDispatch = [&](uint32_t list, uint32_t groupsWanted) {
-    frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
-                   gpu::SizeListParams{list, groupsWanted, walkSpeed, gpu::tileBlocks(blur.tileSize),
-                                       context_.profile().loopBudget.value_or(0u)},
-                   {1, 1, 1});
-  };
-  // The whole mask's counters were cleared before its tile-max listed the moving tiles and the
-  // candidates.
-  const gpu::RayMaskParams params = maskParams(p);
-  sizeDispatch(HMB_SIZE_LIST_TILES_AND_CANDIDATES, 0u);
-  frame.dispatchIndirect(kEdges, edgeKernel_,
-                         {{HMB_EDGE_MASK_BINDING_SURFACES, layer.surfaces},
-                          {HMB_EDGE_MASK_BINDING_COUNTERS, &counters_},
-                          {HMB_EDGE_MASK_BINDING_CANDIDATES, &candidates_},
-                          {HMB_EDGE_MASK_BINDING_EDGES, &edges_}},
-                         params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_CANDIDATES));
-  frame.dispatchIndirect(kRangeBlocks, blocksKernel_,
-                         {{HMB_RANGE_BLOCKS_BINDING_TILES, &tiles_},
-                          {HMB_RANGE_BLOCKS_BINDING_TILE_MAX, p.tileMax},
-                          {HMB_RANGE_BLOCKS_BINDING_EDGES, &edges_},
-                          {HMB_RANGE_BLOCKS_BINDING_COUNTERS, &counters_},
-                          {HMB_RANGE_BLOCKS_BINDING_LIST, &rangeBlocks_}},
-                         params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_TILE_BLOCKS));
-  // The range check's groups (kernels/ray_mask/ray_mask_layout.h).
-  sizeDispatch(HMB_SIZE_LIST_RANGE_BLOCKS,
-               p.rangeCheckGroups.value_or(context_.profile().rangeCheckGroups));
-  // Built with the curved paths' walks only where the frame takes them.
-  static_assert(HMB_SPEC_RANGE_CHECK_CURVED_PATH == 0);
-  const vk::ComputeKernel& rangeKernel = rangeKernels_.with({(blur.flags & HMB_GATHER_FLAG_CURVED_PATH) != 0u});
-  frame.dispatchIndirect(kRangeCheck, rangeKernel,
-                         {{HMB_RANGE_CHECK_BINDING_SURFACES, layer.surfaces},
-                          {HMB_RANGE_CHECK_BINDING_EDGES, &edges_},
-                          {HMB_RANGE_CHECK_BINDING_BLOCKS, &rangeBlocks_},
-                          {HMB_RANGE_CHECK_BINDING_MASK, &mask_},
-                          {HMB_RANGE_CHECK_BINDING_COUNTERS, &counters_},
-                          {HMB_RANGE_CHECK_BINDING_LIST, &list_},
-                          // Read only along curved paths; any buffer stands in otherwise.
-                          {HMB_RANGE_CHECK_BINDING_SHUTTER_PATHS, layer.shutterPaths ? layer.shutterPaths : layer.samples}},
-                         params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_RANGE_CHECK));
-  if (p.listOnlyUncovered) {
-    // The pixels it marked, listed block by block for the coverage test (timed with it).
-    frame.dispatchIndirect(kRangeCheck, rangeListKernel_,
-                           {{HMB_RANGE_MASK_LIST_BINDING_BLOCKS, &rangeBlocks_},
-                            {HMB_RANGE_MASK_LIST_BINDING_MASK, &mask_},
-                            {HMB_RANGE_MASK_LIST_BINDING_COUNTERS, &counters_},
-                            {HMB_RANGE_MASK_LIST_BINDING_LIST, &maskPixels_}},
-                           params, counters_, gpu::rayMaskDispatchOffset(HMB_RAY_MASK_DISPATCH_RANGE_LIST));
-    sizeDispatch(HMB_SIZE_LIST_COVERAGE, 0u);
-    coveragePass_.record(frame, layer, maskPixels_, counters_, coverage_, mask_, blockBits_, list_, params);
-  }
-  sizeDispatch(HMB_SIZE_LIST_MASK, 0u);
+  frame.dispatch(kSizeDispatch, sizeKernel_, {{HMB_SIZE_LIST_BINDING_COUNTERS, &counters_}},
+                 gpu::SizeListParams{list, groupsWanted, walkSpeed, gpu::tileBlocks(blur.tileSize),
+                                     context_.profile().loopBudget.value_or(0u)},
+                 {1, 1, 1});
 }
 
 RayMaskCounts RayMaskStage::counts() const {

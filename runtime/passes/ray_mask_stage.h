@@ -14,9 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "runtime/passes/image_size.h"
 #include "runtime/passes/gather_pass.h"
+#include "runtime/passes/image_size.h"
 #include "runtime/passes/mask_coverage_pass.h"
+#include "runtime/passes/pass_list.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"
@@ -118,9 +119,21 @@ class RayMaskStage {
   RayMaskCounts counts() const;
 
  private:
-  const vk::Context& context_;
+  // What the mask's passes read this frame, and why the frame leaves some out.
+  struct Frame {
+    const MotionBlurInputs* layer = nullptr;
+    const RayMaskParameters* parameters = nullptr;
+    std::string movingTilesOnlyBecause;  // empty: the whole mask
+    std::string coverageSkipped;         // empty: mask_coverage runs
+  };
+
   // Throws hmb::Error unless `parameters` fit the prepared size and tile grid.
   void requireFits(const MotionBlurInputs& layer, const RayMaskParameters& parameters) const;
+  // A list's length -> the indirect dispatch of the next pass over it (size_list_dispatch).
+  void recordSizeDispatch(vk::FrameRecorder& frame, const Frame& f, uint32_t list, uint32_t groupsWanted) const;
+
+  const vk::Context& context_;
+  PassList<Frame> passes_;  // record()'s, in frame order
 
   vk::ComputeKernel tilesKernel_, edgeKernel_, sizeKernel_, blocksKernel_;
   MaskCoveragePass coveragePass_;
