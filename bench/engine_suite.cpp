@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "bench/bench_scenes.h"
-#include "runtime/engine_motion_blur.h"
+#include "runtime/engine/engine_motion_blur.h"
 #include "runtime/error.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/renderer.h"

@@ -14,7 +14,7 @@
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/methods/method.h"
 #include "runtime/renderer.h"
-#include "runtime/screen_paths.h"
+#include "runtime/metrics/screen_paths.h"
 
 namespace fs = std::filesystem;
 

@@ -1,6 +1,6 @@
 // The `explain` suite: where each method's blur-region error against the reference comes from
 // (runtime/metrics/error_sources.h). Per scene it renders the sharp frame (its depth and object
-// ids give every pixel's path over the shutter, runtime/screen_paths.h), post-process and
+// ids give every pixel's path over the shutter, runtime/metrics/screen_paths.h), post-process and
 // hybrid at their defaults, and the reference as two independent halves (seeds 1 and 2),
 // whose mean is the judge and whose difference is the judge's own noise. Per method it writes
 // a labelled strip (reference, method, error, classes) and a table of each class's share of

@@ -19,7 +19,7 @@
 #include "kernels/raster/raster_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "runtime/error.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"

@@ -3,10 +3,10 @@
 // backend (post-process blur recorded into an engine's command buffer).
 #pragma once
 
-#include "runtime/engine_motion_blur.h"
-#include "runtime/engine_scene.h"
+#include "runtime/engine/engine_motion_blur.h"
+#include "runtime/engine/engine_scene.h"
 #include "runtime/error.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hit_shading.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"

@@ -1,7 +1,7 @@
 // Skinned and morphing meshes on the device (deform_vertices.comp): what the host uploads once
 // (rest vertices, joint influences, target displacements, one record per deforming instance)
 // and per shutter time (joint matrices, morph weights), laid out identically for GLSL (std430)
-// and C++ (runtime/deformed_vertices.h).
+// and C++ (runtime/device_scene/deformed_vertices.h).
 #ifndef HMB_KERNELS_DEFORM_DEFORM_LAYOUT_H
 #define HMB_KERNELS_DEFORM_DEFORM_LAYOUT_H
 

@@ -103,7 +103,7 @@ HMB_CHECK_SIZE(ShutterPathParams, 16)
 
 HMB_GPU_BEGIN
 
-// Depth is reversed (runtime/gpu_scene.cpp): z/w is 1 at the near plane and falls towards 0
+// Depth is reversed (runtime/device_scene/gpu_scene.cpp): z/w is 1 at the near plane and falls towards 0
 // at the far one, so float's fine steps near 0 fall where perspective needs them and a
 // near/far ratio of 1e9 still separates surfaces a part in 1e6 apart. The key of a depth in
 // [0, 1] is its bits inverted: nearer surfaces have smaller keys, so atomicMin keeps the

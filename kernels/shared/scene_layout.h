@@ -100,7 +100,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Gp
 HMB_GPU_BEGIN
 
 // The scene's shading buffers by device address, in the order of their bindings
-// (shared/scene_bindings.glsl; runtime/gpu_scene.h writes it).
+// (shared/scene_bindings.glsl; runtime/device_scene/gpu_scene.h writes it).
 struct SceneTable {
   HMB_REFERENCE(GpuVerticesRef) vertices;    // per mesh vertex (normals, uvs)
   HMB_REFERENCE(GpuInstancesRef) instances;  // material, transforms, object id

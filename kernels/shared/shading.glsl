@@ -9,7 +9,7 @@
 layout(constant_id = HMB_SPEC_TEXTURE_PATH) const bool kTexturePath = true;
 
 // Texel (x, y) of the texture at `offset` with rows of `width`, as linear RGBA (decoded from
-// sRGB on upload: runtime/gpu_scene.cpp).
+// sRGB on upload: runtime/device_scene/gpu_scene.cpp).
 vec4 texelLinear(uint offset, uint width, uint x, uint y) { return textureTexel(offset + y * width + x); }
 
 vec4 baseColor(uint material, vec2 uv) {

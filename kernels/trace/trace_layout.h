@@ -125,7 +125,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer TraceStatusR
 HMB_GPU_BEGIN
 
 // The trace scene's buffers by device address, in the order of their bindings
-// (runtime/trace_scene.h writes it).
+// (runtime/device_scene/trace_scene.h writes it).
 struct TraceSceneTable {
   HMB_REFERENCE(PackedNodesRef) topNodes;           // over instances
   HMB_REFERENCE(WordsRef) topPrimitives;            // instance per leaf entry

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/io/image.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/passes/encode_display_pass.h"

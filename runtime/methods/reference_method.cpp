@@ -1,7 +1,7 @@
 // reference: distributed ray tracing over the shutter (passes::ReferenceStage), the judge of
 // every other method.
 #include "runtime/frame_plan.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
 #include "runtime/passes/encode_display_pass.h"

@@ -48,7 +48,7 @@ struct ErrorSourceInputs {
   const DisplayImage* reference = nullptr;
   const DisplayImage* test = nullptr;
   const BlurRegion* region = nullptr;
-  std::span<const float> pathLength;  // per pixel, pixels (runtime/screen_paths.h)
+  std::span<const float> pathLength;  // per pixel, pixels (runtime/metrics/screen_paths.h)
   std::span<const float> pathBend;    // per pixel, pixels
   std::span<const uint32_t> rayMask;  // the hybrid's, non-zero where traced; empty: nothing traced
   // Per pixel, the expected squared error (mean over R, G, B) of the reference's own noise;

@@ -5,9 +5,9 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/scene_layout.h"
-#include "runtime/deformed_vertices.h"
+#include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/frame_plan.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 
 namespace hmb::passes {
 

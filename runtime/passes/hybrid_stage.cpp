@@ -8,9 +8,9 @@
 
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/post_process_stage.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/context.h"
 
 namespace hmb::passes {

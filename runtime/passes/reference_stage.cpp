@@ -14,11 +14,11 @@
 #include "kernels/reference/reference_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
-#include "runtime/deformed_vertices.h"
+#include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/frame_plan.h"
 #include "scenes/deformation.h"
-#include "runtime/gpu_scene.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 
 namespace hmb::passes {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "kernels/manifest.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"

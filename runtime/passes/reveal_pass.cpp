@@ -10,8 +10,8 @@
 #include "kernels/reveal/reveal_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
-#include "runtime/gpu_scene.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 

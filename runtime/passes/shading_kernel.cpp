@@ -7,13 +7,13 @@
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/frame_plan.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hit_shading.h"
 #include "runtime/passes/reference_stage.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/reveal_pass.h"
 #include "runtime/passes/shutter_rays_pass.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 
 namespace hmb::passes {
 

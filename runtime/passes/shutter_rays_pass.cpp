@@ -6,10 +6,10 @@
 
 #include "kernels/manifest.h"
 #include "runtime/error.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/ray_mask_stage.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 

@@ -3,7 +3,7 @@
 #include "kernels/manifest.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/error.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 

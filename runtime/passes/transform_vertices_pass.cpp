@@ -2,7 +2,7 @@
 
 #include "kernels/manifest.h"
 #include "kernels/raster/raster_layout.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "kernels/gbuffer/gbuffer_layout.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "scenes/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"

@@ -23,7 +23,7 @@
 #include "runtime/passes/reveal_pass.h"
 #include "runtime/passes/shutter_rays_pass.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"

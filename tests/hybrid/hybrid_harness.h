@@ -13,7 +13,7 @@
 
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"

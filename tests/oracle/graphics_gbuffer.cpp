@@ -8,7 +8,7 @@
 #include "gbuffer_vert.spv.h"
 #include "kernels/shared/layer_layout.h"
 #include "runtime/error.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/vulkan/check.h"
 #include "runtime/vulkan/context.h"
 #include "tests/oracle/shaders/gbuffer_oracle_layout.h"

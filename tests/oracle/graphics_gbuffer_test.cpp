@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/frame_recorder.h"

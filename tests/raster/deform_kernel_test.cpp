@@ -1,4 +1,4 @@
-// The deform kernel (kernels/deform/deform_vertices.comp, driven by runtime/deformed_vertices.h
+// The deform kernel (kernels/deform/deform_vertices.comp, driven by runtime/device_scene/deformed_vertices.h
 // through GpuScene) against its C++ twin scene::deformVertex, on random and adversarial inputs:
 // joint matrices with non-uniform scale, shear and mirroring (from the inverse bind matrices),
 // weights that do not sum to 1, zero weights, 1e-30 weights, 8 influences, negative and large
@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "kernels/shared/scene_layout.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"

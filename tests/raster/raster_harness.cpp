@@ -7,7 +7,7 @@
 
 #include "kernels/raster/raster_layout.h"
 #include "runtime/error.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/rasterize_pass.h"

@@ -13,9 +13,9 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/deformed_vertices.h"
+#include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/frame_plan.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/passes/reference_stage.h"

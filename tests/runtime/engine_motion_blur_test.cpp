@@ -10,8 +10,8 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "runtime/engine_motion_blur.h"
-#include "runtime/engine_scene.h"
+#include "runtime/engine/engine_motion_blur.h"
+#include "runtime/engine/engine_scene.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"

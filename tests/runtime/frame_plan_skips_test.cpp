@@ -10,8 +10,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "runtime/deformed_vertices.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/deformed_vertices.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/shutter_path_pass.h"
 #include "runtime/renderer.h"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "runtime/renderer.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "scenes/load_scene.h"
 #include "tests/support/vulkan_test.h"
 

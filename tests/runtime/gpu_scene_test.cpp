@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "scenes/load_scene.h"
 #include "tests/support/vulkan_test.h"
 

@@ -1,4 +1,4 @@
-// Each pixel's path over the shutter (runtime/screen_paths.h) on scenes made here, where the
+// Each pixel's path over the shutter (runtime/metrics/screen_paths.h) on scenes made here, where the
 // answer is known in closed form: a plane sliding across the view moves every pixel by the same
 // length along a straight line; spinning about the view axis, a pixel r pixels from the axis
 // bends r (1 - cos(a / 2)) off the chord of the angle a swept; a camera dollying in bends
@@ -11,7 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "runtime/error.h"
-#include "runtime/screen_paths.h"
+#include "runtime/metrics/screen_paths.h"
 
 namespace hmb {
 namespace {

@@ -18,7 +18,7 @@
 #include "runtime/error.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/linear_bvh_pass.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/bvh/bvh_test_support.h"
 #include "tests/support/vulkan_test.h"

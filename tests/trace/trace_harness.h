@@ -12,7 +12,7 @@
 #include "bvh/ray_intersection.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/trace_rays_pass.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/context.h"
 #include "tests/bvh/bvh_test_support.h"
 

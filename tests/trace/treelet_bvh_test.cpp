@@ -22,7 +22,7 @@
 #include "runtime/error.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/treelet_build.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/reference_scenes.h"
 #include "tests/bvh/bvh_test_support.h"

@@ -71,7 +71,7 @@ class GpuScene {
   void recordFrameInputs(const FrameInputs& inputs, vk::FrameRecorder& frame);
 
   // Whether the scene has skinned or morphing meshes: their vertices are then deformed on the
-  // device (runtime/deformed_vertices.h) before anything reads them.
+  // device (runtime/device_scene/deformed_vertices.h) before anything reads them.
   bool deforms() const { return deformation_ != nullptr; }
   // Records the deformation of the frame set by setFrame: the meshes' vertices at
   // t - 1/fps into previousVertices(), and at t into vertices() unless they already hold it

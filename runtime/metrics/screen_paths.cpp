@@ -1,4 +1,4 @@
-#include "runtime/screen_paths.h"
+#include "runtime/metrics/screen_paths.h"
 
 #include <cmath>
 #include <limits>
@@ -9,8 +9,8 @@
 #include <glm/glm.hpp>
 
 #include "runtime/error.h"
-#include "runtime/gpu_scene.h"
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 
 namespace hmb {
 namespace {
@@ -34,7 +34,7 @@ ScreenPaths screenPaths(const scene::Scene& scene, float frameTime, uint32_t wid
   const float times[3] = {frameTime - exposure, frameTime - 0.5f * exposure, frameTime};
   FrameCamera cameras[3];
   for (int k = 0; k < 3; ++k) cameras[k] = frameCamera(scene, times[k], width, height);
-  // The rays the raster's pixels stand for (runtime/trace_scene.h): a pixel's point lies at its
+  // The rays the raster's pixels stand for (runtime/device_scene/trace_scene.h): a pixel's point lies at its
   // camera-space depth along forward + sx right + sy down.
   const gpu::PinholeCamera rays = pinholeCamera(scene, frameTime, width, height);
   // An object id names a node (every instance of it moves with that node).

@@ -1,4 +1,4 @@
-#include "runtime/engine_scene.h"
+#include "runtime/engine/engine_scene.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "runtime/deformed_vertices.h"
+#include "runtime/device_scene/deformed_vertices.h"
 
 #include <algorithm>
 #include <bit>

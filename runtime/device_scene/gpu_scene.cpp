@@ -1,4 +1,4 @@
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 
-#include "runtime/deformed_vertices.h"
+#include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/error.h"
 #include "runtime/io/image.h"
 #include "runtime/vulkan/frame_recorder.h"

@@ -1,4 +1,4 @@
-#include "runtime/trace_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 
 #include <algorithm>
 #include <bit>
@@ -9,8 +9,8 @@
 #include "kernels/manifest.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
-#include "runtime/deformed_vertices.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/deformed_vertices.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/vulkan/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 

@@ -1,4 +1,4 @@
-#include "runtime/engine_motion_blur.h"
+#include "runtime/engine/engine_motion_blur.h"
 
 #include <array>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "kernels/engine/engine_layout.h"
 #include "runtime/error.h"
 #include "runtime/frame_plan.h"
-#include "runtime/gpu_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/post_process_stage.h"
