@@ -22,11 +22,41 @@ if(HMB_BUILD_TOOLS)
 endif()
 install(EXPORT hmblurTargets NAMESPACE hmblur:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/hmblur)
 
-# The headers the library's headers include, with their repository paths; the command line's
-# and the tests' stay out.
-install(DIRECTORY runtime scenes bvh kernels DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hmblur
-        FILES_MATCHING PATTERN "*.h"
-        PATTERN "cli" EXCLUDE)
+# The public API's headers: the umbrella and what it includes, followed file by file (a quoted
+# include is found beside its file, else from the repository root), installed with their
+# repository paths. No other header is installed; the package test builds a program outside the
+# tree against exactly these.
+function(hmb_public_headers root header out)
+  set(found ${header})
+  set(pending ${header})
+  while(pending)
+    list(POP_FRONT pending current)
+    get_filename_component(dir ${current} DIRECTORY)
+    file(STRINGS ${root}/${current} lines REGEX "^#include \"[^\"]+\"")
+    foreach(line IN LISTS lines)
+      string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" included "${line}")
+      cmake_path(APPEND dir ${included} OUTPUT_VARIABLE beside)
+      cmake_path(NORMAL_PATH beside)
+      if(EXISTS ${root}/${beside})
+        set(included ${beside})
+      elseif(NOT EXISTS ${root}/${included})
+        message(FATAL_ERROR "${current} includes \"${included}\", which is neither beside it nor in the repository")
+      endif()
+      if(NOT included IN_LIST found)
+        list(APPEND found ${included})
+        list(APPEND pending ${included})
+      endif()
+    endforeach()
+  endwhile()
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+hmb_public_headers(${PROJECT_SOURCE_DIR} runtime/hmblur.h HMB_PUBLIC_HEADERS)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${HMB_PUBLIC_HEADERS})
+list(REMOVE_ITEM HMB_PUBLIC_HEADERS runtime/hmblur.h)  # installed as <hmblur/hmblur.h>
+foreach(header IN LISTS HMB_PUBLIC_HEADERS)
+  get_filename_component(dir ${header} DIRECTORY)
+  install(FILES ${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hmblur/${dir})
+endforeach()
 install(FILES runtime/hmblur.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hmblur)
 
 configure_package_config_file(cmake/hmblurConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/hmblurConfig.cmake
