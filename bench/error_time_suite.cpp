@@ -9,6 +9,7 @@
 #include "runtime/io/image_files.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
+#include "runtime/passes/reference_stage.h"
 #include "runtime/vulkan/context.h"
 #include "scenes/load_scene.h"
 

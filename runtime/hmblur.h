@@ -3,13 +3,14 @@
 // backend (post-process blur recorded into an engine's command buffer).
 #pragma once
 
+#include "runtime/device_scene/frame_camera.h"
 #include "runtime/engine/engine_motion_blur.h"
 #include "runtime/engine/engine_scene.h"
 #include "runtime/error.h"
-#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hit_shading.h"
 #include "runtime/renderer.h"
 #include "runtime/report.h"
+#include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/context.h"
 #include "scenes/load_scene.h"
 #include "scenes/scene.h"

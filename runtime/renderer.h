@@ -14,9 +14,9 @@
 #include "runtime/methods/method.h"
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
-#include "runtime/passes/rasterize_pass.h"
-#include "runtime/passes/reference_stage.h"
-#include "runtime/vulkan/frame_recorder.h"
+#include "runtime/passes/raster_scheme.h"
+#include "runtime/passes/reference_settings.h"
+#include "runtime/vulkan/frame_timings.h"
 #include "scenes/scene.h"
 
 namespace hmb::vk {

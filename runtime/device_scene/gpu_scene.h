@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/scene_layout.h"
+#include "runtime/device_scene/frame_camera.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/buffer_group.h"
 #include "scenes/scene.h"
@@ -20,20 +21,6 @@ class FrameRecorder;
 namespace hmb {
 
 class DeformedVertices;
-
-// The camera of one frame on the host: what the kernels get, and what tests need to check them.
-struct FrameCamera {
-  glm::mat4 view{1.0f};
-  glm::mat4 projection{1.0f};  // Vulkan clip space: y down, depth z/w in [0, 1], reversed (1 at znear)
-  glm::mat4 viewProjCurrent{1.0f};
-  glm::mat4 viewProjPrevious{1.0f};
-  glm::vec3 eye{0.0f};
-  float znear = 0.1f;  // camera-space distances of the clip planes
-  float zfar = 100.0f;
-};
-
-// The camera at frame time t for an image of the given size; the previous frame is t - 1/fps.
-FrameCamera frameCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
 
 // Every instance's object-to-clip transforms at mid-shutter (t - exposure / 2) and shutter open
 // (t - exposure), camera motion included, for the curved path (passes::ShutterPathPass).

@@ -28,7 +28,7 @@
 
 #include "runtime/passes/hybrid_settings.h"
 #include "runtime/passes/post_process_settings.h"
-#include "runtime/vulkan/frame_recorder.h"
+#include "runtime/vulkan/frame_timings.h"
 
 namespace hmb {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/vulkan/compute_kernel.h"
+#include "runtime/vulkan/kernel_builds.h"
 
 namespace hmb::passes {
 

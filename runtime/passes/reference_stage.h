@@ -14,8 +14,8 @@
 #include <span>
 #include <string>
 
+#include "runtime/passes/reference_settings.h"
 #include "runtime/passes/shading_kernel.h"
-#include "runtime/setting.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -29,37 +29,10 @@ class TraceScene;
 
 namespace hmb::passes {
 
-struct ReferenceSettings {
-  uint32_t samplesPerPixel = 256;
-  uint32_t seed = 1;
-  bool pixelJitter = false;       // a random point in the pixel per sample instead of its centre
-  uint32_t timesPerBatch = 64;    // shutter times whose transforms are on the device at once
-  bool sampleStillPixelsOnce = true;  // with a still camera: pixels nothing moving crosses take one sample
-  std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten every timesPerBatch samples
-};
-
-// Every reference setting a user can choose, each described once (runtime/setting.h). None
-// derives from the scene: the choices are the settings themselves.
-const settings::Table<ReferenceSettings, ReferenceSettings>& referenceSettingTable();
-
-// Throws hmb::Error (one line) for settings that cannot render.
-void validateReferenceSettings(const ReferenceSettings& settings);
-
 // Shutter time of each stratum, in the order they are rendered: stratum s covers
 // [open + s E / N, open + (s + 1) E / N) and is sampled at a jitter drawn from the seed.
 std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32_t samples, uint32_t seed);
 
-struct ReferenceProgress {
-  uint32_t samplesDone = 0;
-  uint32_t samplesTotal = 0;
-  uint32_t samplesResumed = 0;  // taken from the checkpoint, not rendered by this call
-  // With a still camera, only pixels whose ray meets a moving instance's swept box take more
-  // than one sample (the rest see one surface all shutter long); absent when all pixels do.
-  std::optional<uint64_t> movingPixels;
-  // Samples taken by this call, over all pixels: the first sample takes every pixel, later
-  // ones only the moving pixels where they are listed (none on a still frame).
-  uint64_t pixelSamples = 0;
-};
 
 class ReferenceStage {
  public:

@@ -10,6 +10,7 @@
 #include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "runtime/vulkan/kernel_store.h"
+#include "runtime/vulkan/pipeline_cache.h"
 
 namespace hmb::vk {
 

@@ -18,6 +18,8 @@
 #include <string_view>
 #include <vector>
 
+#include "runtime/vulkan/kernel_builds.h"
+
 namespace hmb::kernels {
 struct KernelFacts;
 }
@@ -27,12 +29,6 @@ namespace hmb::vk {
 class Context;
 struct EmbeddedKernel;
 struct KernelPipeline;
-
-// A kernel's SPIR-V made at run time (glsl_compiler.h): its plain build and, where the kernel
-// has one, its address build (empty: none).
-struct KernelBuilds {
-  std::vector<uint32_t> plain, byAddress;
-};
 
 class ComputeKernel {
  public:

@@ -6,8 +6,12 @@
 
 #include "runtime/error.h"
 #include "runtime/vulkan/check.h"
+#include "runtime/vulkan/kernel_store.h"
+#include "runtime/vulkan/pipeline_cache.h"
 
 namespace hmb::vk {
+
+std::filesystem::path defaultPipelineCacheFolder() { return PipelineCache::defaultFolder(); }
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
@@ -247,7 +251,8 @@ void Context::createMessenger(const VkDebugUtilsMessengerCreateInfoEXT& info) {
   HMB_VK_CHECK(create(instance_, &info, nullptr, &messenger_));
 }
 
-Context::Context(const ContextOptions& options) : options_(options) {
+Context::Context(const ContextOptions& options)
+    : kernelStore_(std::make_unique<KernelStore>()), options_(options) {
   InstanceSetup setup = portableSetup();
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo = messengerCreateInfo();
 
@@ -377,7 +382,8 @@ Context::Context(const ContextOptions& options) : options_(options) {
   }
 }
 
-Context::Context(const AdoptedVulkan& adopted, const ContextOptions& options) : options_(options), adopted_(true) {
+Context::Context(const AdoptedVulkan& adopted, const ContextOptions& options)
+    : kernelStore_(std::make_unique<KernelStore>()), options_(options), adopted_(true) {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw Error("the adopted Vulkan device: " + what);
   };
@@ -481,7 +487,7 @@ void Context::releaseHandles() {
   if (device_) {
     if (adopted_ && queue_) vkQueueWaitIdle(queue_);
     if (!adopted_) vkDeviceWaitIdle(device_);
-    kernelStore_.clear();
+    if (kernelStore_) kernelStore_->clear();
     pipelineCache_.reset();
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
     if (!adopted_) vkDestroyDevice(device_, nullptr);

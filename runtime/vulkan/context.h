@@ -15,10 +15,15 @@
 #include <vulkan/vulkan.h>
 
 #include "runtime/vulkan/device_profile.h"
-#include "runtime/vulkan/kernel_store.h"
-#include "runtime/vulkan/pipeline_cache.h"
 
 namespace hmb::vk {
+
+class KernelStore;
+class PipelineCache;
+
+// Where compiled kernels are kept across runs unless the options say otherwise
+// (pipeline_cache.h).
+std::filesystem::path defaultPipelineCacheFolder();
 
 // What the report and `hmblur list-devices` say about a device.
 struct DeviceInfo {
@@ -65,7 +70,7 @@ struct ContextOptions {
   // Whose choices the passes make (device_profile.h): the device type's, or the one forced.
   DeviceProfileChoice deviceProfile = DeviceProfileChoice::Auto;
   // Where compiled kernels are kept across runs (pipeline_cache.h); empty: in memory only.
-  std::filesystem::path pipelineCacheFolder = PipelineCache::defaultFolder();
+  std::filesystem::path pipelineCacheFolder = defaultPipelineCacheFolder();
 };
 
 // An engine's own Vulkan objects, for a context that adopts them (an engine's fallback backend):
@@ -116,7 +121,7 @@ class Context {
   // Every kernel's pipeline is made through it (and kept on disk when the options say where).
   const PipelineCache& pipelineCache() const { return *pipelineCache_; }
   // The kernels made on this device so far, shared by every pass that uses them.
-  KernelStore& kernelStore() const { return kernelStore_; }
+  KernelStore& kernelStore() const { return *kernelStore_; }
   const DeviceInfo& info() const { return info_; }
   // Every choice that differs between CPU devices and GPUs (device_profile.h).
   const DeviceProfile& profile() const { return profile_; }
@@ -184,7 +189,7 @@ class Context {
   uint32_t queueFamily_ = 0;
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   std::unique_ptr<PipelineCache> pipelineCache_;
-  mutable KernelStore kernelStore_;
+  std::unique_ptr<KernelStore> kernelStore_;
   VkPhysicalDeviceLimits limits_{};
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
   std::array<uint32_t, VK_MAX_MEMORY_TYPES> allocationTypes_{};  // memoryProperties_ type -> the device's

@@ -30,9 +30,16 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
     EXPECT_TRUE(fs::exists(prefix / file)) << file;
   // Only the headers the umbrella includes are installed: not the command line's, nor the
   // passes', methods' or kernels' that the API never names.
-  for (const char* file : {"include/hmblur/runtime/cli", "include/hmblur/runtime/passes/gather_pass.h",
-                           "include/hmblur/runtime/methods/frame_method.h", "include/hmblur/kernels/trace/trace_layout.h",
-                           "include/hmblur/kernels/manifest.h", "include/hmblur/runtime/hmblur.h"})
+  for (const char* file : {"include/hmblur/runtime/cli",
+                           "include/hmblur/runtime/passes/gather_pass.h",
+                           "include/hmblur/runtime/passes/reference_stage.h",
+                           "include/hmblur/runtime/methods/frame_method.h",
+                           "include/hmblur/runtime/vulkan/frame_recorder.h",
+                           "include/hmblur/runtime/vulkan/compute_kernel.h",
+                           "include/hmblur/runtime/device_scene/gpu_scene.h",
+                           "include/hmblur/kernels/trace/trace_layout.h",
+                           "include/hmblur/kernels/manifest.h",
+                           "include/hmblur/runtime/hmblur.h"})
     EXPECT_FALSE(fs::exists(prefix / file)) << file << " is not the API's";
   // The library needs Vulkan and what the renderer truly uses: not the command line's parser,
   // nor the image files' and captions' libraries.

@@ -16,6 +16,7 @@
 #include "runtime/error.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
+#include "runtime/passes/reference_stage.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 #include "tests/reference/render_scene.h"

@@ -35,6 +35,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "runtime/error.h"
+#include "runtime/passes/reference_stage.h"
 #include "runtime/renderer.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"

@@ -10,6 +10,7 @@
 #include "runtime/error.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/context.h"
+#include "runtime/vulkan/pipeline_cache.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "tests/support/vulkan_test.h"
 

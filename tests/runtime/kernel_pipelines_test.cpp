@@ -14,6 +14,7 @@
 #include "runtime/vulkan/frame_recorder.h"
 #include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
+#include "runtime/vulkan/kernel_store.h"
 #include "runtime/vulkan/kernel_variants.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/spirv_modes.h"

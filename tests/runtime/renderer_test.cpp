@@ -7,6 +7,7 @@
 
 #include "runtime/error.h"
 #include "runtime/io/image.h"
+#include "runtime/passes/rasterize_pass.h"
 #include "runtime/renderer.h"
 #include "scenes/load_scene.h"
 #include "tests/support/vulkan_test.h"
