@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/passes/post_process_filter.h"
+#include "runtime/passes/gather_filter.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/vulkan/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "runtime/passes/post_process_filter.h"
+#include "runtime/passes/gather_filter.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/vulkan/compute_kernel.h"
 

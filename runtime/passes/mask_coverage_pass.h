@@ -7,7 +7,7 @@
 #pragma once
 
 #include "kernels/ray_mask/ray_mask_layout.h"
-#include "runtime/passes/post_process_filter.h"
+#include "runtime/passes/gather_filter.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"
 

@@ -7,12 +7,12 @@
 #include <map>
 #include <memory>
 
+#include "runtime/passes/gather_filter.h"
+#include "runtime/passes/image_size.h"
 #include "runtime/passes/neighbor_max_pass.h"
 #include "runtime/passes/pass_list.h"
-#include "runtime/passes/post_process_filter.h"
 #include "runtime/passes/post_process_settings.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "runtime/passes/image_size.h"
 #include "runtime/vulkan/buffer.h"
 
 namespace hmb {

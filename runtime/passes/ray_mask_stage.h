@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/passes/gather_filter.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/mask_coverage_pass.h"

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "kernels/shutter_rays/shutter_rays_layout.h"
+#include "runtime/passes/gather_filter.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/shading_kernel.h"
 #include "runtime/vulkan/buffer.h"
