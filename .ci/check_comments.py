@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """Comments in the library's code say why, not what was measured when: no commit hash and no
-measured figure (milliseconds, decibels, a ratio such as 1.5x) in a comment under runtime/,
+measured figure (milliseconds, decibels, a ratio such as 1.5x) in a comment under include/, runtime/,
 kernels/, bvh/, scenes/ or examples/. Numbers live in bench/results/<decision>/, history in git.
 Prints each offending line and exits 1 when there is one; run from anywhere."""
 import re
 import sys
 from pathlib import Path
 
-ROOTS = ("runtime", "kernels", "bvh", "scenes", "examples")
+ROOTS = ("include", "runtime", "kernels", "bvh", "scenes", "examples")
 SUFFIXES = {".h", ".cpp", ".comp", ".glsl"}
 # A hexadecimal word of 7 to 40 digits with both a letter and a digit: a commit.
 COMMIT = re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}\b")

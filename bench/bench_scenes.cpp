@@ -3,9 +3,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "scenes/assimp_test_models.h"
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::bench {
 

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::bench {
 namespace {

@@ -1,6 +1,6 @@
 #include "bench/embree_reference.h"
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 #ifndef HMB_HAVE_EMBREE
 

@@ -6,12 +6,12 @@
 #include <glm/glm.hpp>
 
 #include "bench/bench_scenes.h"
-#include "runtime/engine/engine_motion_blur.h"
-#include "runtime/error.h"
+#include "hmblur/engine_motion_blur.h"
+#include "hmblur/error.h"
 #include "runtime/passes/hybrid_stage.h"
-#include "runtime/renderer.h"
-#include "runtime/vulkan/buffer.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/renderer.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 
 namespace hmb::bench {
 namespace {

@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/raster_suite.h"
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 
 namespace hmb::vk {
 class Context;

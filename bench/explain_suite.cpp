@@ -7,13 +7,13 @@
 #include <string>
 
 #include "bench/bench_scenes.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/metrics.h"
-#include "runtime/passes/post_process_settings.h"
-#include "runtime/methods/method.h"
-#include "runtime/renderer.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/method.h"
+#include "hmblur/renderer.h"
 #include "runtime/metrics/screen_paths.h"
 
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 
 #include "kernels/manifest.h"
 #include "kernels/debug/floor_pass.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::bench {

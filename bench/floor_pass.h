@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

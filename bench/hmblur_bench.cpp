@@ -31,11 +31,11 @@
 #include "bench/raster_suite.h"
 #include "bench/side_by_side.h"
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/error.h"
-#include "runtime/passes/post_process_settings.h"
-#include "runtime/report.h"
-#include "runtime/system_info.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/error.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/report.h"
+#include "hmblur/system_info.h"
+#include "hmblur/context.h"
 #include "scenes/reference_scenes.h"
 
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 #include "kernels/shared/layer_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/post_process_stage.h"
@@ -24,10 +24,10 @@
 #include "runtime/passes/tile_max_pass.h"
 #include "runtime/passes/trace_rays_pass.h"
 #include "runtime/device_scene/trace_scene.h"
-#include "runtime/vulkan/buffer.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::bench {
 namespace {

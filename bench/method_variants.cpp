@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::bench {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 
 namespace hmb::bench {
 

@@ -7,9 +7,9 @@
 
 #include "bench/bench_scenes.h"
 #include "bench/floor_pass.h"
-#include "runtime/error.h"
-#include "runtime/renderer.h"
-#include "runtime/report.h"
+#include "hmblur/error.h"
+#include "hmblur/renderer.h"
+#include "hmblur/report.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::bench {

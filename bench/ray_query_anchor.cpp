@@ -9,9 +9,9 @@
 
 #include "bench/shaders/ray_query_layout.h"
 #include "ray_query_trace.spv.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb::bench {
 namespace {

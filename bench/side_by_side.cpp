@@ -5,8 +5,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "runtime/error.h"
-#include "runtime/report.h"
+#include "hmblur/error.h"
+#include "hmblur/report.h"
 
 namespace hmb::bench {
 namespace {

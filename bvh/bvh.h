@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 #include "bvh/bvh_layout.h"
 
 namespace hmb::bvh {

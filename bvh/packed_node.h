@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
 
 namespace hmb::bvh {

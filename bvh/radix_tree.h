@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
 
 namespace hmb::bvh {

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 
 namespace hmb::bvh {
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "runtime/io/image_files.h"
-#include "runtime/renderer.h"
-#include "runtime/vulkan/context.h"
-#include "scenes/load_scene.h"
+#include "hmblur/renderer.h"
+#include "hmblur/context.h"
+#include "hmblur/load_scene.h"
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <string>
 
-#include "runtime/error.h"
-#include "scenes/load_scene.h"
+#include "hmblur/error.h"
+#include "hmblur/load_scene.h"
 
 namespace {
 

@@ -1,8 +1,8 @@
-#include "runtime/frame_plan.h"
+#include "hmblur/frame_plan.h"
 
 #include <algorithm>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {

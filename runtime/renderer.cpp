@@ -1,4 +1,4 @@
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,15 +6,15 @@
 #include <cstring>
 #include <map>
 
-#include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "hmblur/error.h"
+#include "hmblur/image.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
-#include "runtime/passes/hit_shading.h"
+#include "hmblur/hit_shading.h"
 #include "runtime/passes/post_process_stage.h"
-#include "runtime/vulkan/buffer.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {

@@ -1,8 +1,8 @@
-#include "runtime/report.h"
+#include "hmblur/report.h"
 
 #include <fstream>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb {
 

@@ -1,4 +1,4 @@
-#include "runtime/system_info.h"
+#include "hmblur/system_info.h"
 
 #include <chrono>
 #include <cstdlib>

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "scenes/deformation.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene {
 namespace {

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::scene {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene {
 

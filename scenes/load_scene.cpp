@@ -1,4 +1,4 @@
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/reference_scenes.h"
 

@@ -2,7 +2,7 @@
 
 #include <span>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "scenes/procedural/procedural_scenes.h"
 
 namespace hmb::scene {

@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene {
 

@@ -1,4 +1,4 @@
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 #include <algorithm>
 #include <cmath>

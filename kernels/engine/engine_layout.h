@@ -1,4 +1,4 @@
-// Layout of the engine backend's kernels (runtime/engine/engine_motion_blur.h): an engine's own
+// Layout of the engine backend's kernels (include/hmblur/engine_motion_blur.h): an engine's own
 // G-buffer, in the formats the public header documents, read into the library's packed layer.
 #ifndef HMB_KERNELS_ENGINE_ENGINE_LAYOUT_H
 #define HMB_KERNELS_ENGINE_ENGINE_LAYOUT_H

@@ -278,7 +278,7 @@ struct RayMaskParams {
 };
 
 // A block list_range_blocks lists for range_check: its first pixel x | y << 14 (image sides are
-// at most 2^14: runtime/renderer.h), and whether it is its tile's last block across and down,
+// at most 2^14: include/hmblur/renderer.h), and whether it is its tile's last block across and down,
 // which a tile side that is no multiple of 8 cuts short. The range check finds its pixels with
 // no division (a CPU device divides lane by lane).
 #define HMB_RANGE_BLOCK_LAST_ACROSS (1u << 28u)

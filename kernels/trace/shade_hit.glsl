@@ -37,7 +37,7 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
   return s;
 }
 
-// What the shading of a ray hit is given; a user's shadeHit takes the same (runtime/renderer.h,
+// What the shading of a ray hit is given; a user's shadeHit takes the same (include/hmblur/renderer.h,
 // RendererOptions::shadeHit).
 struct HitRecord {
   uint objectId;      // the hit instance's object id (the scene's; 0 is the background)

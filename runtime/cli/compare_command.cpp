@@ -9,10 +9,10 @@
 #include <set>
 
 #include "runtime/cli/output_paths.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 #include "runtime/metrics/metrics.h"
-#include "runtime/report.h"
+#include "hmblur/report.h"
 
 namespace hmb::cli {
 

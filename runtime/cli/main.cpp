@@ -1,5 +1,5 @@
 // hmblur: the command-line front end. Everything it does goes through the library API
-// (runtime/renderer.h); errors are one line on stderr and a non-zero exit.
+// (include/hmblur/renderer.h); errors are one line on stderr and a non-zero exit.
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -17,19 +17,19 @@
 
 #include "runtime/cli/compare_command.h"
 #include "runtime/cli/output_paths.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/passes/hybrid_stage.h"
-#include "runtime/renderer.h"
-#include "runtime/report.h"
+#include "hmblur/renderer.h"
+#include "hmblur/report.h"
 #include "runtime/sample_summary.h"
-#include "runtime/system_info.h"
-#include "runtime/vulkan/context.h"
-#include "runtime/vulkan/device_profile.h"
-#include "scenes/load_scene.h"
+#include "hmblur/system_info.h"
+#include "hmblur/context.h"
+#include "hmblur/device_profile.h"
+#include "hmblur/load_scene.h"
 #include "scenes/reference_scenes.h"
 
 namespace fs = std::filesystem;

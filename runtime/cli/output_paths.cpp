@@ -6,7 +6,7 @@
 #include <cctype>
 #include <fstream>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::cli {
 namespace {

@@ -6,8 +6,8 @@
 
 #include "kernels/manifest.h"
 #include "kernels/deform/deform_layout.h"
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 

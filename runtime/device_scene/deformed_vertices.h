@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::vk {
 class FrameRecorder;

@@ -10,8 +10,8 @@
 #include <glm/gtc/packing.hpp>
 
 #include "runtime/device_scene/deformed_vertices.h"
-#include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "hmblur/error.h"
+#include "hmblur/image.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 

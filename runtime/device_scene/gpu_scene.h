@@ -9,10 +9,10 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/scene_layout.h"
-#include "runtime/device_scene/frame_camera.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/frame_camera.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/buffer_group.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::vk {
 class FrameRecorder;

@@ -7,11 +7,11 @@
 #include <tuple>
 
 #include "kernels/manifest.h"
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/device_scene/gpu_scene.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {

@@ -19,10 +19,10 @@
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/linear_bvh_pass.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/buffer_group.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::vk {
 class FrameRecorder;

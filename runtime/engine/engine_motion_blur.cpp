@@ -1,4 +1,4 @@
-#include "runtime/engine/engine_motion_blur.h"
+#include "hmblur/engine_motion_blur.h"
 
 #include <array>
 #include <cmath>
@@ -8,15 +8,15 @@
 
 #include "kernels/manifest.h"
 #include "kernels/engine/engine_layout.h"
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/post_process_stage.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb {
 namespace {

@@ -1,4 +1,4 @@
-#include "runtime/engine/engine_scene.h"
+#include "hmblur/engine_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb {
 namespace {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "hmblur/error.h"
+#include "hmblur/image.h"
 
 namespace hmb::io {
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 
 namespace hmb::io {

@@ -1,4 +1,4 @@
-#include "runtime/io/image.h"
+#include "hmblur/image.h"
 
 namespace hmb::io {
 

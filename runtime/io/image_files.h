@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "runtime/io/image.h"
+#include "hmblur/image.h"
 
 namespace hmb::io {
 

@@ -8,7 +8,7 @@
 #include <ft2build.h>
 #include FT_FREETYPE_H
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::io {
 namespace {

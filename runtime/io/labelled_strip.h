@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/io/image.h"
+#include "hmblur/image.h"
 
 namespace hmb::io {
 

@@ -35,7 +35,7 @@ static unsigned char* hmbDeflate(unsigned char* data, int length, int* outLength
 
 #include <zlib.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 
 // stb frees what this returns with free(); a null return makes the write fail (and say so).

@@ -3,8 +3,8 @@
 // and composited in.
 #include <algorithm>
 
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
 #include "runtime/passes/encode_display_pass.h"
@@ -12,8 +12,8 @@
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/shading_kernel.h"
-#include "runtime/renderer.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/renderer.h"
+#include "hmblur/buffer.h"
 
 namespace hmb {
 namespace {

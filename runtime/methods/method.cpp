@@ -1,6 +1,6 @@
-#include "runtime/methods/method.h"
+#include "hmblur/method.h"
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/methods/frame_method.h"
 
 namespace hmb {

@@ -4,14 +4,14 @@
 
 #include <glm/packing.hpp>
 
-#include "runtime/frame_plan.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/image_layer.h"
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/passes/rasterize_pass.h"
-#include "runtime/renderer.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/renderer.h"
+#include "hmblur/buffer.h"
 
 namespace hmb {
 

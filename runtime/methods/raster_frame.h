@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "runtime/device_scene/gpu_scene.h"
-#include "runtime/io/image.h"
+#include "hmblur/image.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/passes/encode_display_pass.h"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/metrics/metrics.h"
 
 namespace hmb::metrics {

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <cmath>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 
 namespace hmb::metrics {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::metrics {
 namespace {

@@ -23,7 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "runtime/io/image.h"
+#include "hmblur/image.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 

@@ -25,8 +25,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "hmblur/error.h"
+#include "hmblur/image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/metrics/separable_filter.h"
 

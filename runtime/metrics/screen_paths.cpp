@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/device_scene/trace_scene.h"
 

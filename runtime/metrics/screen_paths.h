@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb {
 

@@ -9,8 +9,8 @@
 #include "bvh/packed_node.h"
 #include "kernels/manifest.h"
 #include "kernels/bvh/bvh_build_layout.h"
-#include "runtime/error.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/error.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -24,7 +24,7 @@
 #include "bvh/bvh.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "runtime/vulkan/binding.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/passes/treelet_build.h"
 

@@ -8,7 +8,7 @@
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/reveal/reveal_layout.h"
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

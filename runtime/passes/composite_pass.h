@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "runtime/passes/hybrid_settings.h"
+#include "hmblur/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/vulkan/kernel_variants.h"

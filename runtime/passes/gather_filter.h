@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "runtime/passes/post_process_filter.h"
+#include "hmblur/post_process_filter.h"
 #include "runtime/vulkan/binding.h"
 
 namespace hmb {

@@ -6,8 +6,8 @@
 #include <span>
 
 #include "kernels/manifest.h"
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

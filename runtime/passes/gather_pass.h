@@ -7,8 +7,8 @@
 
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/passes/gather_filter.h"
-#include "runtime/passes/post_process_settings.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"
 

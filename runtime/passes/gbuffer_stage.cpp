@@ -6,7 +6,7 @@
 
 #include "kernels/shared/scene_layout.h"
 #include "runtime/device_scene/deformed_vertices.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/device_scene/gpu_scene.h"
 
 namespace hmb::passes {

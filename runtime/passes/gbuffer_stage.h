@@ -17,7 +17,7 @@
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/shutter_path_pass.h"
 #include "runtime/passes/transform_vertices_pass.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 
 namespace hmb {
 class FramePlan;

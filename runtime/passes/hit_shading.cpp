@@ -1,6 +1,6 @@
-#include "runtime/passes/hit_shading.h"
+#include "hmblur/hit_shading.h"
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/glsl_compiler.h"
 #include "runtime/vulkan/kernel_registry.h"
 

@@ -1,10 +1,10 @@
-#include "runtime/passes/hybrid_settings.h"
+#include "hmblur/hybrid_settings.h"
 
 #include <string>
 
 #include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "runtime/error.h"
-#include "scenes/scene.h"
+#include "hmblur/error.h"
+#include "hmblur/scene.h"
 
 namespace hmb::passes {
 namespace {

@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/layer_layout.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::passes {
 

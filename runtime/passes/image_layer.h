@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/buffer_group.h"
 
 namespace hmb::passes {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::passes {
 

@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "runtime/passes/gather_filter.h"
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

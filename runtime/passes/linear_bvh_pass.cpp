@@ -5,8 +5,8 @@
 
 #include "bvh/packed_node.h"
 #include "kernels/manifest.h"
-#include "runtime/error.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/error.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -14,7 +14,7 @@
 
 #include "bvh/bvh.h"
 #include "kernels/bvh/linear_bvh_layout.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

@@ -4,8 +4,8 @@
 #include <cstdint>
 
 #include "kernels/manifest.h"
-#include "runtime/error.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/error.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

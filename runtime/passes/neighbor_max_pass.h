@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

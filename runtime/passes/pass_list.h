@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "runtime/frame_plan.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

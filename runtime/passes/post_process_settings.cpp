@@ -1,10 +1,10 @@
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 
 #include <cmath>
 
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/error.h"
-#include "scenes/scene.h"
+#include "hmblur/error.h"
+#include "hmblur/scene.h"
 
 namespace hmb::passes {
 namespace {

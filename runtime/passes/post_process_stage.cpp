@@ -5,8 +5,8 @@
 #include <glm/glm.hpp>
 
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 
 namespace hmb::passes {
 

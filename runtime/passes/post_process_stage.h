@@ -11,9 +11,9 @@
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/neighbor_max_pass.h"
 #include "runtime/passes/pass_list.h"
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 
 namespace hmb {
 class FramePlan;

@@ -4,9 +4,9 @@
 
 #include "kernels/manifest.h"
 #include "kernels/raster/raster_layout.h"
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -15,8 +15,8 @@
 #include <optional>
 #include <string>
 
-#include "runtime/passes/raster_scheme.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/raster_scheme.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

@@ -6,10 +6,10 @@
 #include "kernels/manifest.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

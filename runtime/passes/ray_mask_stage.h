@@ -19,7 +19,7 @@
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/mask_coverage_pass.h"
 #include "runtime/passes/pass_list.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"
 

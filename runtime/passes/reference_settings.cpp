@@ -1,8 +1,8 @@
-#include "runtime/passes/reference_settings.h"
+#include "hmblur/reference_settings.h"
 
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::passes {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "runtime/passes/hybrid_settings.h"
+#include "hmblur/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/shading_kernel.h"
 

@@ -5,12 +5,12 @@
 #include <string>
 
 #include "kernels/manifest.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/device_scene/gpu_scene.h"
-#include "runtime/passes/post_process_filter.h"
+#include "hmblur/post_process_filter.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "runtime/device_scene/trace_scene.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

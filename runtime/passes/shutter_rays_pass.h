@@ -12,7 +12,7 @@
 #include "runtime/passes/gather_filter.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/shading_kernel.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb {

@@ -2,7 +2,7 @@
 
 #include "kernels/manifest.h"
 #include "kernels/mblur/mblur_layout.h"
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -2,7 +2,7 @@
 
 #include "kernels/manifest.h"
 #include "kernels/trace/trace_layout.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"

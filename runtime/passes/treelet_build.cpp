@@ -4,8 +4,8 @@
 #include <array>
 
 #include "kernels/manifest.h"
-#include "runtime/error.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/error.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

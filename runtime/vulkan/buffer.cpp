@@ -1,10 +1,10 @@
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 
 #include <utility>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb::vk {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <cstdint>
 
-#include "runtime/error.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/error.h"
+#include "hmblur/context.h"
 
 namespace hmb::vk {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "runtime/vulkan/binding.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 
 namespace hmb::vk {
 

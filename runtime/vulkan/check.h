@@ -5,7 +5,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::vk {
 

@@ -4,9 +4,9 @@
 #include <vector>
 
 #include "kernels/manifest.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "runtime/vulkan/kernel_store.h"

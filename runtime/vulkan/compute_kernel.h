@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-#include "runtime/vulkan/kernel_builds.h"
+#include "hmblur/kernel_builds.h"
 
 namespace hmb::kernels {
 struct KernelFacts;

@@ -1,10 +1,10 @@
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 #include <algorithm>
 #include <cstring>
 #include <memory>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
 #include "runtime/vulkan/kernel_store.h"
 #include "runtime/vulkan/pipeline_cache.h"

@@ -1,4 +1,4 @@
-#include "runtime/vulkan/device_profile.h"
+#include "hmblur/device_profile.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -9,8 +9,8 @@
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "kernels/shared/dispatch.h"
-#include "runtime/error.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/error.h"
+#include "hmblur/context.h"
 
 namespace hmb::vk {
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <vector>
 
-#include "runtime/error.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/error.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/check.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb::vk {
 

@@ -17,7 +17,7 @@
 
 #include "kernels/shared/dispatch.h"
 #include "runtime/vulkan/binding.h"
-#include "runtime/vulkan/frame_timings.h"
+#include "hmblur/frame_timings.h"
 
 namespace hmb::vk {
 

@@ -9,7 +9,7 @@
 #include <glslang/Include/glslang_c_interface.h>
 #include <glslang/Public/resource_limits_c.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/kernel_registry.h"
 
 namespace hmb::vk {

@@ -5,7 +5,7 @@
 
 #include <spirv_cross/spirv_cross_c.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/kernel_registry.h"
 
 namespace hmb::vk {

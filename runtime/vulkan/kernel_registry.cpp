@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::vk {
 

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "kernels/manifest.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::vk {
 

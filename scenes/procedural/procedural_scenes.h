@@ -2,7 +2,7 @@
 // motion studies (motion_studies.cpp).
 #pragma once
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene::procedural {
 

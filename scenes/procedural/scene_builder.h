@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene::procedural {
 

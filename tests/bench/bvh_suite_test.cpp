@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 #include "tests/bench/bench_harness.h"
 
 namespace hmb::test {

@@ -9,12 +9,12 @@
 
 #include <glm/glm.hpp>
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
 #include "bvh/ray_intersection.h"
 #include "bvh/reference_traversal.h"
 #include "bvh/triangle_list.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::bvh::test {
 

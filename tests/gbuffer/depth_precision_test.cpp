@@ -11,10 +11,10 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

@@ -17,7 +17,7 @@
 #include "kernels/manifest.h"
 #include "kernels/debug/pack_layer.h"
 #include "kernels/shared/layer_layout.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/vulkan_test.h"

@@ -24,8 +24,8 @@
 #include "runtime/passes/shutter_rays_pass.h"
 #include "runtime/passes/tile_max_pass.h"
 #include "runtime/device_scene/trace_scene.h"
-#include "runtime/vulkan/buffer.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test::hybrid {

@@ -11,8 +11,8 @@
 
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "runtime/passes/hybrid_settings.h"
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/hybrid_settings.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "tests/mblur/mblur_reference.h"
 

@@ -4,8 +4,8 @@
 #include <limits>
 #include <vector>
 
-#include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "hmblur/error.h"
+#include "hmblur/image.h"
 
 namespace hmb::io {
 namespace {

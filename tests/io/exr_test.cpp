@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 #include "tests/io/test_files.h"
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "runtime/io/image.h"
+#include "hmblur/image.h"
 
 namespace hmb::io {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 #include "tests/io/test_files.h"
 

@@ -9,7 +9,7 @@
 #include <random>
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "tests/support/expect_error.h"
 
 namespace hmb::io::testing {

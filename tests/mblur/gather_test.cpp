@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "tests/mblur/mblur_harness.h"
 #include "tests/mblur/mblur_reference.h"
 #include "tests/support/vulkan_test.h"

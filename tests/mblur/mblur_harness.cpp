@@ -14,7 +14,7 @@
 #include "runtime/passes/neighbor_max_pass.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test::mblur {

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 #include "tests/mblur/mblur_reference.h"
 
 namespace hmb::vk {

@@ -10,7 +10,7 @@
 
 #include "kernels/mblur/mblur_hash.h"
 #include "runtime/passes/gather_pass.h"
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/post_process_settings.h"
 
 namespace hmb::test::mblur {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/metrics/error_sources.h"
 
 namespace hmb::metrics {

@@ -10,7 +10,7 @@
 #include <random>
 #include <string>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "tests/support/expect_error.h"
 #include "runtime/metrics/display_image.h"
 

@@ -14,7 +14,7 @@
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::oracle {

@@ -7,9 +7,9 @@
 #include "oracle_frag.spv.h"
 #include "oracle_vert.spv.h"
 #include "kernels/raster/raster_layout.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb::oracle {
 namespace {

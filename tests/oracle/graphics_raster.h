@@ -32,7 +32,7 @@
 #include <vulkan/vulkan.h>
 
 #include "kernels/shared/scene_layout.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "tests/oracle/oracle_vulkan.h"
 
 namespace hmb::vk {

@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb::oracle {
 namespace {

@@ -15,7 +15,7 @@
 #include "kernels/shared/scene_layout.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 #include "tests/support/vulkan_test.h"

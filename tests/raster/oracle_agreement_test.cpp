@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "scenes/reference_scenes.h"
 #include "tests/raster/raster_harness.h"
 #include "tests/support/vulkan_test.h"

@@ -6,13 +6,13 @@
 #include <cstring>
 
 #include "kernels/raster/raster_layout.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/rasterize_pass.h"
-#include "runtime/vulkan/buffer.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test {

@@ -11,7 +11,7 @@
 #include "kernels/raster/raster_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "runtime/passes/rasterize_pass.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 #include "tests/oracle/graphics_raster.h"
 #include "tests/support/layer_readback.h"
 

@@ -13,8 +13,8 @@
 
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
-#include "runtime/renderer.h"
-#include "scenes/load_scene.h"
+#include "hmblur/renderer.h"
+#include "hmblur/load_scene.h"
 #include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 

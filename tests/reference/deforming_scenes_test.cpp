@@ -14,14 +14,14 @@
 #include <gtest/gtest.h>
 
 #include "runtime/device_scene/deformed_vertices.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/passes/reference_stage.h"
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 #include "scenes/assimp_test_models.h"
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 

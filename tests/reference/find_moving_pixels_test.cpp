@@ -12,7 +12,7 @@
 
 #include "kernels/manifest.h"
 #include "kernels/reference/reference_layout.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/vulkan_test.h"

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/passes/hybrid_stage.h"
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 

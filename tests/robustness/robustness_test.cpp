@@ -34,12 +34,12 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/passes/reference_stage.h"
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 #include "tests/support/method_names.h"
 #include "tests/support/vulkan_test.h"
 

@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
-#include "runtime/renderer.h"
-#include "runtime/vulkan/context.h"
-#include "scenes/load_scene.h"
+#include "hmblur/error.h"
+#include "hmblur/renderer.h"
+#include "hmblur/context.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/engine_device.h"
 #include "tests/support/vulkan_test.h"
 

@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "kernels/debug/test_pattern.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 #include "runtime/vulkan/pipeline_cache.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "tests/support/vulkan_test.h"

@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
-#include "runtime/renderer.h"
-#include "runtime/vulkan/buffer.h"
-#include "scenes/load_scene.h"
+#include "hmblur/error.h"
+#include "hmblur/renderer.h"
+#include "hmblur/buffer.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

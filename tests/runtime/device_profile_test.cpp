@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "kernels/shared/dispatch.h"
-#include "runtime/error.h"
-#include "runtime/renderer.h"
-#include "runtime/vulkan/context.h"
-#include "runtime/vulkan/device_profile.h"
-#include "scenes/load_scene.h"
+#include "hmblur/error.h"
+#include "hmblur/renderer.h"
+#include "hmblur/context.h"
+#include "hmblur/device_profile.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/display_psnr.h"
 
 namespace hmb {

@@ -10,11 +10,11 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "runtime/engine/engine_motion_blur.h"
-#include "runtime/engine/engine_scene.h"
-#include "runtime/vulkan/buffer.h"
-#include "runtime/renderer.h"
-#include "scenes/load_scene.h"
+#include "hmblur/engine_motion_blur.h"
+#include "hmblur/engine_scene.h"
+#include "hmblur/buffer.h"
+#include "hmblur/renderer.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/engine_device.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"

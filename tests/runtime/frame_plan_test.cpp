@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
-#include "runtime/frame_plan.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test {

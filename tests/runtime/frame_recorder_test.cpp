@@ -5,9 +5,9 @@
 
 #include "kernels/manifest.h"
 #include "kernels/debug/test_pattern.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/passes/test_pattern_pass.h"
-#include "runtime/vulkan/buffer.h"
+#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/vulkan_test.h"

@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "runtime/io/image_files.h"
-#include "runtime/renderer.h"
-#include "scenes/load_scene.h"
+#include "hmblur/renderer.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/display_psnr.h"
 #include "tests/support/vulkan_test.h"
 

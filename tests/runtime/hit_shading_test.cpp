@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/passes/hit_shading.h"
-#include "runtime/renderer.h"
-#include "scenes/load_scene.h"
+#include "hmblur/hit_shading.h"
+#include "hmblur/renderer.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/spirv_modes.h"
 #include "tests/support/vulkan_test.h"

@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
-#include "runtime/renderer.h"
+#include "hmblur/error.h"
+#include "hmblur/renderer.h"
 #include "scenes/assimp_test_models.h"
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

@@ -5,11 +5,11 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
-#include "runtime/io/image.h"
+#include "hmblur/error.h"
+#include "hmblur/image.h"
 #include "runtime/passes/rasterize_pass.h"
-#include "runtime/renderer.h"
-#include "scenes/load_scene.h"
+#include "hmblur/renderer.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

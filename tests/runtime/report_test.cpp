@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "runtime/error.h"
-#include "runtime/renderer.h"
-#include "runtime/report.h"
-#include "runtime/system_info.h"
+#include "hmblur/error.h"
+#include "hmblur/renderer.h"
+#include "hmblur/report.h"
+#include "hmblur/system_info.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

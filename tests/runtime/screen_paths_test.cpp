@@ -10,7 +10,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/metrics/screen_paths.h"
 
 namespace hmb {

@@ -1,4 +1,4 @@
-// The setting descriptions (runtime/setting.h): each table reads, applies, checks and shows its
+// The setting descriptions (include/hmblur/setting.h): each table reads, applies, checks and shows its
 // settings consistently; the render's descriptions (the command line's options) come from them;
 // the hybrid's settings contain the blur they extend; every filter in the registry builds.
 #include <set>
@@ -7,13 +7,13 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/passes/gather_pass.h"
-#include "runtime/passes/hybrid_settings.h"
-#include "runtime/passes/post_process_filter.h"
-#include "runtime/passes/post_process_settings.h"
+#include "hmblur/hybrid_settings.h"
+#include "hmblur/post_process_filter.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/passes/reference_stage.h"
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/renderer.h"
-#include "scenes/load_scene.h"
+#include "hmblur/renderer.h"
+#include "hmblur/load_scene.h"
 #include "scenes/reference_scenes.h"
 #include "tests/support/vulkan_test.h"
 

@@ -4,7 +4,7 @@
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
-#include "scenes/load_scene.h"
+#include "hmblur/error.h"
+#include "hmblur/load_scene.h"
 #include "tests/scenes/malformed_corpus.h"
 
 namespace hmb::scene {

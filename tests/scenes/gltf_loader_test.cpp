@@ -6,9 +6,9 @@
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "scenes/gltf_loader.h"
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "tests/scenes/gltf_writer.h"
 
 namespace hmb::scene {

@@ -3,7 +3,7 @@
 // not installed.
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "scenes/assimp_test_models.h"
 #include "scenes/gltf_loader.h"
 

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
-#include "scenes/load_scene.h"
+#include "hmblur/error.h"
+#include "hmblur/load_scene.h"
 #include "scenes/reference_scenes.h"
 
 namespace hmb::scene {

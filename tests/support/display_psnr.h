@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "runtime/io/image.h"
+#include "hmblur/image.h"
 
 namespace hmb::test {
 

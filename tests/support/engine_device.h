@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <vulkan/vulkan.h>
 
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb::test {
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.h"
+#include "hmblur/error.h"
 
 namespace hmb::test {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "runtime/renderer.h"
+#include "hmblur/renderer.h"
 
 namespace hmb::test {
 

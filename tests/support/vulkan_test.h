@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 
 namespace hmb::test {
 

@@ -12,10 +12,10 @@
 #include <vector>
 
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 #include "bvh/radix_tree.h"
 #include "kernels/bvh/linear_bvh_layout.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/linear_bvh_pass.h"
 #include "runtime/device_scene/trace_scene.h"

@@ -13,7 +13,7 @@
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/trace_rays_pass.h"
 #include "runtime/device_scene/trace_scene.h"
-#include "runtime/vulkan/context.h"
+#include "hmblur/context.h"
 #include "tests/bvh/bvh_test_support.h"
 
 namespace hmb::trace::test {

@@ -17,7 +17,7 @@
 #include "bvh/reference_traversal.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/assimp_test_models.h"
-#include "scenes/load_scene.h"
+#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 #include "tests/trace/trace_harness.h"
 

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 #include "bvh/radix_tree.h"
 #include "bvh/reference_builder.h"
 #include "bvh/reference_traversal.h"
-#include "runtime/error.h"
+#include "hmblur/error.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/treelet_build.h"
 #include "runtime/device_scene/trace_scene.h"

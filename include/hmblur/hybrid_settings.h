@@ -7,8 +7,8 @@
 #include <optional>
 #include <string_view>
 
-#include "runtime/passes/post_process_settings.h"
-#include "runtime/setting.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/setting.h"
 
 namespace hmb::scene {
 struct Settings;
@@ -81,7 +81,7 @@ struct HybridChoices {
   std::optional<uint32_t> shutterRays;
 };
 
-// Every hybrid setting a user can choose, each described once (runtime/setting.h).
+// Every hybrid setting a user can choose, each described once (include/hmblur/setting.h).
 const settings::Table<HybridChoices, HybridSettings>& hybridSettingTable();
 
 // Throws hmb::Error with a one-line message naming the first absurd value, the blur's included

@@ -14,7 +14,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "runtime/vulkan/device_profile.h"
+#include "hmblur/device_profile.h"
 
 namespace hmb::vk {
 

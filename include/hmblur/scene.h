@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "bvh/aabb.h"
+#include "hmblur/aabb.h"
 
 namespace hmb::scene {
 

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb {
 

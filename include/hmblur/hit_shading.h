@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/vulkan/kernel_builds.h"
+#include "hmblur/kernel_builds.h"
 
 namespace hmb::passes {
 

@@ -26,9 +26,9 @@
 
 #include <vulkan/vulkan.h>
 
-#include "runtime/passes/hybrid_settings.h"
-#include "runtime/passes/post_process_settings.h"
-#include "runtime/vulkan/frame_timings.h"
+#include "hmblur/hybrid_settings.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/frame_timings.h"
 
 namespace hmb {
 

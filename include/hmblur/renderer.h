@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "runtime/frame_plan.h"
-#include "runtime/io/image.h"
-#include "runtime/methods/method.h"
-#include "runtime/passes/hybrid_settings.h"
-#include "runtime/passes/post_process_settings.h"
-#include "runtime/passes/raster_scheme.h"
-#include "runtime/passes/reference_settings.h"
-#include "runtime/vulkan/frame_timings.h"
-#include "scenes/scene.h"
+#include "hmblur/frame_plan.h"
+#include "hmblur/image.h"
+#include "hmblur/method.h"
+#include "hmblur/hybrid_settings.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/raster_scheme.h"
+#include "hmblur/reference_settings.h"
+#include "hmblur/frame_timings.h"
+#include "hmblur/scene.h"
 
 namespace hmb::vk {
 class Context;
@@ -98,7 +98,7 @@ struct RenderResult {
   uint64_t cutTraces = 0;
 };
 
-// The names of the methods the demo renders, in its order (runtime/methods/method.h has them all).
+// The names of the methods the demo renders, in its order (include/hmblur/method.h has them all).
 std::vector<std::string> methodNames();
 
 // Every setting a user can choose for a render, for front ends: one per name across the

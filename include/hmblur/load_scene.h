@@ -4,7 +4,7 @@
 #include <optional>
 #include <string_view>
 
-#include "scenes/scene.h"
+#include "hmblur/scene.h"
 
 namespace hmb::scene {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/passes/post_process_filter.h"
-#include "runtime/setting.h"
+#include "hmblur/post_process_filter.h"
+#include "hmblur/setting.h"
 
 namespace hmb::scene {
 struct Settings;
@@ -97,7 +97,7 @@ struct PostProcessChoices {
   std::optional<MotionPath> motionPath;
 };
 
-// Every post-process setting a user can choose, each described once (runtime/setting.h).
+// Every post-process setting a user can choose, each described once (include/hmblur/setting.h).
 const settings::Table<PostProcessChoices, PostProcessSettings>& postProcessSettingTable();
 
 // Throws hmb::Error with a one-line message naming the first value outside what its setting

@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "runtime/renderer.h"
-#include "runtime/system_info.h"
-#include "runtime/vulkan/context.h"
-#include "scenes/scene.h"
+#include "hmblur/renderer.h"
+#include "hmblur/system_info.h"
+#include "hmblur/context.h"
+#include "hmblur/scene.h"
 
 namespace hmb {
 

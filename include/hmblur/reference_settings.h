@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "runtime/setting.h"
+#include "hmblur/setting.h"
 
 namespace hmb::passes {
 
@@ -19,7 +19,7 @@ struct ReferenceSettings {
   std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten every timesPerBatch samples
 };
 
-// Every reference setting a user can choose, each described once (runtime/setting.h). None
+// Every reference setting a user can choose, each described once (include/hmblur/setting.h). None
 // derives from the scene: the choices are the settings themselves.
 const settings::Table<ReferenceSettings, ReferenceSettings>& referenceSettingTable();
 
