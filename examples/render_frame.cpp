@@ -8,13 +8,15 @@
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "runtime/io/image_files.h"
-#include "hmblur/renderer.h"
-#include "hmblur/context.h"
-#include "hmblur/load_scene.h"
+#include <hmblur/hmblur.h>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb/stb_image_write.h>
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -39,7 +41,10 @@ int main(int argc, char** argv) {
       settings.height = static_cast<uint32_t>(std::stoul(args[4]));
     }
     const hmb::RenderResult frame = renderer.render(scene, settings);
-    hmb::io::writePng(args[2], frame.display);
+    const hmb::io::Rgba8Image& image = frame.display;
+    if (!stbi_write_png(args[2].c_str(), int(image.width), int(image.height), 4, image.pixels.data(),
+                        int(image.width) * 4))
+      throw std::runtime_error("cannot write " + args[2]);
 
     std::cout << hmb::methodName(frame.method) << " " << frame.width << "x" << frame.height << " on " << device.info().name << ": "
               << frame.frameMilliseconds.value_or(0.0) << " ms\n";
