@@ -96,9 +96,7 @@ void GBufferStage::prepare(const GpuScene& scene, uint32_t width, uint32_t heigh
 }
 
 void GBufferStage::record(vk::FrameRecorder& frame, const GpuScene& scene) const {
-  FramePlan own;
-  plan(own, scene);
-  passes_.record(frame, own, {&scene});
+  passes_.recordAll(frame, {&scene});
 }
 
 }  // namespace hmb::passes

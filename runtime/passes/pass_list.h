@@ -48,19 +48,16 @@ class PassList {
 
   // A pass that dispatches `kernel` (kernels::kernel("stage/name")).
   PassList& dispatch(std::string name, const kernels::KernelFacts& kernel, Dispatch record, SkipReason skipped = {}) {
-    declared_.push_back({std::move(name), std::move(skipped), {}, {}, &kernel, std::move(record), nullptr, {}});
-    return *this;
+    return add({std::move(name), std::move(skipped), {}, {}, &kernel, std::move(record), nullptr, {}});
   }
   // A pass recorded without a kernel of its own.
   PassList& pass(std::string name, Record record, SkipReason skipped = {}) {
-    declared_.push_back({std::move(name), std::move(skipped), std::move(record), {}, nullptr, {}, nullptr, {}});
-    return *this;
+    return add({std::move(name), std::move(skipped), std::move(record), {}, nullptr, {}, nullptr, {}});
   }
   // A pass object that plans its own passes: `record` is given the frame's plan and records those
   // of its passes the plan runs.
   PassList& group(Plan plan, RecordPlanned record) {
-    declared_.push_back({{}, {}, {}, std::move(plan), nullptr, {}, nullptr, std::move(record)});
-    return *this;
+    return add({{}, {}, {}, std::move(plan), nullptr, {}, nullptr, std::move(record)});
   }
   // Another list's passes, planned and recorded in its place (`passes` outlives this list).
   PassList& include(const PassList& passes) {
@@ -80,6 +77,14 @@ class PassList {
         planned.push_back(d.name);
       }
     }
+  }
+
+  // Records every pass the list's own plan for `inputs` runs: for a stage recorded on its own,
+  // outside a frame that planned it.
+  void recordAll(vk::FrameRecorder& frame, const Inputs& inputs) const {
+    FramePlan own;
+    plan(own, inputs);
+    record(frame, own, inputs);
   }
 
   // Records, in order, the declared passes `plan` runs.
@@ -109,18 +114,23 @@ class PassList {
     Dispatch dispatch;
     mutable std::unique_ptr<vk::ComputeKernel> built;
     RecordPlanned recordPlanned;  // a group's
+    bool step = false;            // one of several declarations of its pass
   };
+
+  PassList& add(Declared declared) {
+    for (Declared& other : declared_)
+      if (!declared.name.empty() && other.name == declared.name) other.step = declared.step = true;
+    declared_.push_back(std::move(declared));
+    return *this;
+  }
 
   static std::string skipReason(const Declared& d, const Inputs& inputs) {
     return d.skipped ? d.skipped(inputs) : std::string();
   }
 
-  bool runs(const Declared& d, const FramePlan& plan, const Inputs& inputs) const {
+  static bool runs(const Declared& d, const FramePlan& plan, const Inputs& inputs) {
     if (d.plan) return true;  // the group records what the plan runs of its own
-    if (!plan.runs(d.name)) return false;
-    const bool steps = std::count_if(declared_.begin(), declared_.end(),
-                                     [&](const Declared& other) { return other.name == d.name; }) > 1;
-    return !steps || skipReason(d, inputs).empty();
+    return plan.runs(d.name) && (!d.step || skipReason(d, inputs).empty());
   }
 
   const vk::Context* context_;

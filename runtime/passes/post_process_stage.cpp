@@ -73,9 +73,7 @@ void PostProcessStage::requirePreparedSize(const MotionBlurInputs& inputs) const
 }
 
 void PostProcessStage::recordTiles(vk::FrameRecorder& frame, const MotionBlurInputs& inputs) const {
-  FramePlan own;
-  planTiles(own);
-  tilePasses_.record(frame, own, {&inputs, nullptr});
+  tilePasses_.recordAll(frame, {&inputs, nullptr});
 }
 
 void PostProcessStage::recordNeighborMax(vk::FrameRecorder& frame) const {
@@ -90,9 +88,7 @@ void PostProcessStage::record(vk::FrameRecorder& frame, const FramePlan& plan, c
 
 void PostProcessStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& inputs,
                               const vk::Buffer& output) const {
-  FramePlan own;
-  plan(own);
-  record(frame, own, inputs, output);
+  passes_.recordAll(frame, {&inputs, &output});
 }
 
 }  // namespace hmb::passes

@@ -259,9 +259,7 @@ void RayMaskStage::record(vk::FrameRecorder& frame, const MotionBlurInputs& laye
   requireFits(layer, p);
   const Frame f{&layer, &p, p.movingTilesOnly ? "the moving tiles alone" : "",
                 p.listOnlyUncovered ? "" : "every mask pixel is listed"};
-  FramePlan own;
-  passes_.plan(own, f);
-  passes_.record(frame, own, f);
+  passes_.recordAll(frame, f);
 }
 
 void RayMaskStage::recordSizeDispatch(vk::FrameRecorder& frame, const Frame& f, uint32_t list,
