@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "hmblur/error.h"
-#include "scenes/assimp_test_models.h"
 #include "hmblur/load_scene.h"
+#include "scenes/assimp_test_models.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
 

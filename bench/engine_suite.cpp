@@ -6,12 +6,12 @@
 #include <glm/glm.hpp>
 
 #include "bench/bench_scenes.h"
-#include "hmblur/engine_motion_blur.h"
-#include "hmblur/error.h"
-#include "runtime/passes/hybrid_stage.h"
-#include "hmblur/renderer.h"
 #include "hmblur/buffer.h"
 #include "hmblur/context.h"
+#include "hmblur/engine_motion_blur.h"
+#include "hmblur/error.h"
+#include "hmblur/renderer.h"
+#include "runtime/passes/hybrid_stage.h"
 
 namespace hmb::bench {
 namespace {

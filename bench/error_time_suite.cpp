@@ -5,13 +5,13 @@
 #include <filesystem>
 
 #include "bench/bench_scenes.h"
+#include "hmblur/context.h"
 #include "hmblur/error.h"
+#include "hmblur/load_scene.h"
 #include "runtime/io/image_files.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/passes/reference_stage.h"
-#include "hmblur/context.h"
-#include "hmblur/load_scene.h"
 
 namespace fs = std::filesystem;
 

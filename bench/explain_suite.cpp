@@ -1,5 +1,5 @@
-#include "bench/method_variants.h"
 #include "bench/explain_suite.h"
+#include "bench/method_variants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +8,12 @@
 
 #include "bench/bench_scenes.h"
 #include "hmblur/error.h"
+#include "hmblur/method.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/renderer.h"
 #include "runtime/io/image_files.h"
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/metrics.h"
-#include "hmblur/post_process_settings.h"
-#include "hmblur/method.h"
-#include "hmblur/renderer.h"
 #include "runtime/metrics/screen_paths.h"
 
 namespace fs = std::filesystem;

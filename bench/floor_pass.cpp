@@ -4,9 +4,9 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/manifest.h"
-#include "kernels/debug/floor_pass.h"
 #include "hmblur/error.h"
+#include "kernels/debug/floor_pass.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::bench {

@@ -12,22 +12,22 @@
 #include <glm/glm.hpp>
 
 #include "bench/floor_pass.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "hmblur/scene.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/shared/layer_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
-#include "hmblur/error.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/tile_max_pass.h"
 #include "runtime/passes/trace_rays_pass.h"
-#include "runtime/device_scene/trace_scene.h"
-#include "hmblur/buffer.h"
-#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "hmblur/scene.h"
 
 namespace hmb::bench {
 namespace {

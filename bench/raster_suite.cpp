@@ -16,14 +16,14 @@
 #include <glm/glm.hpp>
 
 #include "bench/floor_pass.h"
+#include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "hmblur/load_scene.h"
 #include "kernels/raster/raster_layout.h"
 #include "kernels/shared/scene_layout.h"
-#include "hmblur/error.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
-#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "hmblur/load_scene.h"
 #include "tests/oracle/graphics_gbuffer.h"
 #include "tests/oracle/graphics_raster.h"
 

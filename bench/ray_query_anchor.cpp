@@ -8,10 +8,10 @@
 #include <vulkan/vulkan.h>
 
 #include "bench/shaders/ray_query_layout.h"
-#include "ray_query_trace.spv.h"
-#include "hmblur/error.h"
-#include "runtime/vulkan/check.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "ray_query_trace.spv.h"
+#include "runtime/vulkan/check.h"
 
 namespace hmb::bench {
 namespace {

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "hmblur/aabb.h"
 #include "bvh/bvh_layout.h"
+#include "hmblur/aabb.h"
 
 namespace hmb::bvh {
 

@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
+#include "hmblur/aabb.h"
 
 namespace hmb::bvh {
 

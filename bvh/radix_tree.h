@@ -10,8 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
+#include "hmblur/aabb.h"
 
 namespace hmb::bvh {
 

@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
-#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
+#include "hmblur/aabb.h"
 
 namespace hmb::bvh {
 

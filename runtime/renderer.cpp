@@ -6,15 +6,15 @@
 #include <cstring>
 #include <map>
 
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "hmblur/error.h"
+#include "hmblur/hit_shading.h"
 #include "hmblur/image.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
-#include "hmblur/hit_shading.h"
 #include "runtime/passes/post_process_stage.h"
-#include "hmblur/buffer.h"
-#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {

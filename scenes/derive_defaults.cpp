@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "scenes/deformation.h"
 #include "hmblur/scene.h"
+#include "scenes/deformation.h"
 
 namespace hmb::scene {
 namespace {

@@ -26,9 +26,9 @@
 
 #include <vulkan/vulkan.h>
 
+#include "hmblur/frame_timings.h"
 #include "hmblur/hybrid_settings.h"
 #include "hmblur/post_process_settings.h"
-#include "hmblur/frame_timings.h"
 
 namespace hmb {
 

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "hmblur/frame_plan.h"
+#include "hmblur/frame_timings.h"
+#include "hmblur/hybrid_settings.h"
 #include "hmblur/image.h"
 #include "hmblur/method.h"
-#include "hmblur/hybrid_settings.h"
 #include "hmblur/post_process_settings.h"
 #include "hmblur/raster_scheme.h"
 #include "hmblur/reference_settings.h"
-#include "hmblur/frame_timings.h"
 #include "hmblur/scene.h"
 
 namespace hmb::vk {

@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hmblur/renderer.h"
-#include "hmblur/system_info.h"
 #include "hmblur/context.h"
+#include "hmblur/renderer.h"
 #include "hmblur/scene.h"
+#include "hmblur/system_info.h"
 
 namespace hmb {
 

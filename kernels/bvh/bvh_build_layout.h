@@ -12,8 +12,8 @@
 #ifndef HMB_KERNELS_BVH_BVH_BUILD_LAYOUT_H
 #define HMB_KERNELS_BVH_BVH_BUILD_LAYOUT_H
 
-#include "../shared/glsl_cpp.h"
 #include "../../bvh/bvh_layout.h"
+#include "../shared/glsl_cpp.h"
 
 #define HMB_BVH_BUILD_GROUP 64
 // build_level's workgroup, one task each, shaped per device (runtime/passes/bvh_build_pass.h,

@@ -3,8 +3,8 @@
 #define HMB_KERNELS_GBUFFER_GBUFFER_LAYOUT_H
 
 #include "../shared/glsl_cpp.h"
-#include "../shared/scene_layout.h"
 #include "../shared/layer_layout.h"
+#include "../shared/scene_layout.h"
 
 #define HMB_RESOLVE_GROUP_X 8
 #define HMB_RESOLVE_GROUP_Y 8

@@ -20,10 +20,10 @@
 #ifndef HMB_KERNELS_RAY_MASK_RAY_MASK_LAYOUT_H
 #define HMB_KERNELS_RAY_MASK_RAY_MASK_LAYOUT_H
 
-#include "../shared/dispatch.h"
-#include "../shared/glsl_cpp.h"
 #include "../mblur/mblur_hash.h"
 #include "../mblur/mblur_layout.h"
+#include "../shared/dispatch.h"
+#include "../shared/glsl_cpp.h"
 #include "../shared/layer_layout.h"
 
 // range_check: one invocation per pixel of the listed blocks, an 8 x 8 group per block: one

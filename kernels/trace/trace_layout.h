@@ -6,8 +6,8 @@
 #ifndef HMB_KERNELS_TRACE_TRACE_LAYOUT_H
 #define HMB_KERNELS_TRACE_TRACE_LAYOUT_H
 
-#include "../shared/glsl_cpp.h"
 #include "../bvh/bvh_build_layout.h"
+#include "../shared/glsl_cpp.h"
 
 #define HMB_TRACE_GROUP 64
 

@@ -8,11 +8,11 @@
 #include <optional>
 #include <set>
 
-#include "runtime/cli/output_paths.h"
 #include "hmblur/error.h"
+#include "hmblur/report.h"
+#include "runtime/cli/output_paths.h"
 #include "runtime/io/image_files.h"
 #include "runtime/metrics/metrics.h"
-#include "hmblur/report.h"
 
 namespace hmb::cli {
 

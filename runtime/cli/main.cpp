@@ -15,21 +15,21 @@
 
 #include <CLI/CLI.hpp>
 
+#include "hmblur/context.h"
+#include "hmblur/device_profile.h"
+#include "hmblur/error.h"
+#include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
+#include "hmblur/report.h"
+#include "hmblur/system_info.h"
 #include "runtime/cli/compare_command.h"
 #include "runtime/cli/output_paths.h"
-#include "hmblur/error.h"
 #include "runtime/io/image_files.h"
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/passes/hybrid_stage.h"
-#include "hmblur/renderer.h"
-#include "hmblur/report.h"
 #include "runtime/sample_summary.h"
-#include "hmblur/system_info.h"
-#include "hmblur/context.h"
-#include "hmblur/device_profile.h"
-#include "hmblur/load_scene.h"
 #include "scenes/reference_scenes.h"
 
 namespace fs = std::filesystem;

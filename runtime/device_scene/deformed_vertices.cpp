@@ -4,10 +4,10 @@
 #include <bit>
 #include <map>
 
-#include "kernels/manifest.h"
-#include "kernels/deform/deform_layout.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "kernels/deform/deform_layout.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "hmblur/buffer.h"
-#include "runtime/vulkan/compute_kernel.h"
 #include "hmblur/scene.h"
+#include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {
 class FrameRecorder;

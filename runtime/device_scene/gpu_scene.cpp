@@ -9,9 +9,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 
-#include "runtime/device_scene/deformed_vertices.h"
 #include "hmblur/error.h"
 #include "hmblur/image.h"
+#include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 

@@ -8,11 +8,11 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/shared/scene_layout.h"
-#include "hmblur/frame_camera.h"
 #include "hmblur/buffer.h"
-#include "runtime/vulkan/buffer_group.h"
+#include "hmblur/frame_camera.h"
 #include "hmblur/scene.h"
+#include "kernels/shared/scene_layout.h"
+#include "runtime/vulkan/buffer_group.h"
 
 namespace hmb::vk {
 class FrameRecorder;

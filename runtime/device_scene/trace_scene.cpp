@@ -6,12 +6,12 @@
 #include <string>
 #include <tuple>
 
-#include "kernels/manifest.h"
+#include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "kernels/manifest.h"
 #include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/device_scene/gpu_scene.h"
-#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {

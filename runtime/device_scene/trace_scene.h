@@ -16,13 +16,13 @@
 #include <utility>
 #include <vector>
 
+#include "hmblur/buffer.h"
+#include "hmblur/scene.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/linear_bvh_pass.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/buffer_group.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "hmblur/scene.h"
 
 namespace hmb::vk {
 class FrameRecorder;

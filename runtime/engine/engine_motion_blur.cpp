@@ -6,17 +6,17 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/manifest.h"
-#include "kernels/engine/engine_layout.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "kernels/engine/engine_layout.h"
+#include "kernels/manifest.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/post_process_stage.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "hmblur/context.h"
 
 namespace hmb {
 namespace {

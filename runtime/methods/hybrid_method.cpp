@@ -3,8 +3,10 @@
 // and composited in.
 #include <algorithm>
 
+#include "hmblur/buffer.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/renderer.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
 #include "runtime/passes/encode_display_pass.h"
@@ -12,8 +14,6 @@
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/shading_kernel.h"
-#include "hmblur/renderer.h"
-#include "hmblur/buffer.h"
 
 namespace hmb {
 namespace {

@@ -1,14 +1,14 @@
 // postprocess: the G-buffer's colour blurred along its velocities (tile-max, neighbour-max,
 // then the chosen filter's gather).
+#include "hmblur/buffer.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/renderer.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/shading_kernel.h"
-#include "hmblur/renderer.h"
-#include "hmblur/buffer.h"
 
 namespace hmb {
 namespace {

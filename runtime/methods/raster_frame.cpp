@@ -4,14 +4,14 @@
 
 #include <glm/packing.hpp>
 
+#include "hmblur/buffer.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/renderer.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/image_layer.h"
-#include "hmblur/post_process_settings.h"
 #include "runtime/passes/rasterize_pass.h"
-#include "hmblur/renderer.h"
-#include "hmblur/buffer.h"
 
 namespace hmb {
 

@@ -10,8 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "runtime/device_scene/gpu_scene.h"
 #include "hmblur/image.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/passes/encode_display_pass.h"
 

@@ -1,14 +1,14 @@
 // reference: distributed ray tracing over the shutter (passes::ReferenceStage), the judge of
 // every other method.
+#include "hmblur/buffer.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/renderer.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/reference_stage.h"
 #include "runtime/passes/shading_kernel.h"
-#include "hmblur/renderer.h"
-#include "hmblur/buffer.h"
 
 namespace hmb {
 namespace {

@@ -1,11 +1,11 @@
 // sharp: the G-buffer's shaded colour, the shutter-close instant without blur.
 #include "hmblur/frame_plan.h"
+#include "hmblur/renderer.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/shading_kernel.h"
-#include "hmblur/renderer.h"
 
 namespace hmb {
 namespace {

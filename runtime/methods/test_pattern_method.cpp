@@ -1,11 +1,11 @@
 // test-pattern: proves the runtime (a kernel, a buffer, the display encoding) without a scene.
+#include "hmblur/buffer.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/renderer.h"
 #include "runtime/methods/frame_method.h"
 #include "runtime/methods/raster_frame.h"
 #include "runtime/passes/encode_display_pass.h"
 #include "runtime/passes/test_pattern_pass.h"
-#include "hmblur/renderer.h"
-#include "hmblur/buffer.h"
 
 namespace hmb {
 namespace {

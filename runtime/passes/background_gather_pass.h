@@ -4,8 +4,8 @@
 // composite, blended under the mask's foreground into the hybrid's image there.
 #pragma once
 
-#include "runtime/passes/image_layer.h"
 #include "kernels/mblur/mblur_layout.h"
+#include "runtime/passes/image_layer.h"
 #include "runtime/vulkan/kernel_variants.h"
 
 namespace hmb::vk {

@@ -7,10 +7,10 @@
 #include <cstring>
 
 #include "bvh/packed_node.h"
-#include "kernels/manifest.h"
-#include "kernels/bvh/bvh_build_layout.h"
-#include "hmblur/error.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "kernels/bvh/bvh_build_layout.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

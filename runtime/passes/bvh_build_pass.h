@@ -22,11 +22,11 @@
 #include <glm/glm.hpp>
 
 #include "bvh/bvh.h"
-#include "kernels/bvh/bvh_build_layout.h"
-#include "runtime/vulkan/binding.h"
 #include "hmblur/buffer.h"
-#include "runtime/vulkan/compute_kernel.h"
+#include "kernels/bvh/bvh_build_layout.h"
 #include "runtime/passes/treelet_build.h"
+#include "runtime/vulkan/binding.h"
+#include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {
 class FrameRecorder;

@@ -4,11 +4,11 @@
 #include <span>
 #include <vector>
 
+#include "hmblur/error.h"
 #include "kernels/manifest.h"
+#include "kernels/mblur/mblur_layout.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/reveal/reveal_layout.h"
-#include "kernels/mblur/mblur_layout.h"
-#include "hmblur/error.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -7,8 +7,8 @@
 #include <cstdint>
 
 #include "hmblur/hybrid_settings.h"
-#include "runtime/passes/image_layer.h"
 #include "kernels/mblur/mblur_layout.h"
+#include "runtime/passes/image_layer.h"
 #include "runtime/vulkan/kernel_variants.h"
 
 namespace hmb::vk {

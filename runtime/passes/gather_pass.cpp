@@ -5,9 +5,9 @@
 #include <string>
 #include <span>
 
-#include "kernels/manifest.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string_view>
 
+#include "hmblur/buffer.h"
+#include "hmblur/post_process_settings.h"
 #include "kernels/mblur/mblur_layout.h"
 #include "runtime/passes/gather_filter.h"
-#include "hmblur/post_process_settings.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"
 

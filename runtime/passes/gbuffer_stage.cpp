@@ -4,9 +4,9 @@
 
 #include <glm/glm.hpp>
 
+#include "hmblur/frame_plan.h"
 #include "kernels/shared/scene_layout.h"
 #include "runtime/device_scene/deformed_vertices.h"
-#include "hmblur/frame_plan.h"
 #include "runtime/device_scene/gpu_scene.h"
 
 namespace hmb::passes {

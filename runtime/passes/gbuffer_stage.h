@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hmblur/buffer.h"
 #include "kernels/shared/scene_layout.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/pass_list.h"
@@ -17,7 +18,6 @@
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/shutter_path_pass.h"
 #include "runtime/passes/transform_vertices_pass.h"
-#include "hmblur/buffer.h"
 
 namespace hmb {
 class FramePlan;

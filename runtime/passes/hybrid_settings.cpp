@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "hmblur/error.h"
 #include "hmblur/scene.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 
 namespace hmb::passes {
 namespace {

@@ -6,12 +6,12 @@
 
 #include <glm/glm.hpp>
 
+#include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
 #include "runtime/device_scene/gpu_scene.h"
-#include "runtime/passes/post_process_stage.h"
 #include "runtime/device_scene/trace_scene.h"
-#include "hmblur/context.h"
+#include "runtime/passes/post_process_stage.h"
 
 namespace hmb::passes {
 

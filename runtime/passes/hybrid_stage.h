@@ -19,19 +19,19 @@
 #include <optional>
 #include <vector>
 
+#include "hmblur/buffer.h"
+#include "hmblur/hybrid_settings.h"
+#include "hmblur/scene.h"
 #include "kernels/trace/trace_layout.h"
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"
 #include "runtime/passes/gather_pass.h"
-#include "hmblur/hybrid_settings.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/pass_list.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "runtime/passes/reveal_pass.h"
 #include "runtime/passes/shutter_rays_pass.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "hmblur/scene.h"
 
 namespace hmb {
 class FramePlan;

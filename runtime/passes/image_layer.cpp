@@ -6,8 +6,8 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/shared/layer_layout.h"
 #include "hmblur/error.h"
+#include "kernels/shared/layer_layout.h"
 
 namespace hmb::passes {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "runtime/passes/gather_filter.h"
 #include "hmblur/post_process_settings.h"
+#include "runtime/passes/gather_filter.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

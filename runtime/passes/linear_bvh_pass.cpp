@@ -4,9 +4,9 @@
 #include <array>
 
 #include "bvh/packed_node.h"
-#include "kernels/manifest.h"
-#include "hmblur/error.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

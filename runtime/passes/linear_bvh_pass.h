@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "bvh/bvh.h"
-#include "kernels/bvh/linear_bvh_layout.h"
 #include "hmblur/buffer.h"
+#include "kernels/bvh/linear_bvh_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

@@ -3,9 +3,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "kernels/manifest.h"
-#include "hmblur/error.h"
 #include "hmblur/buffer.h"
+#include "hmblur/error.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "kernels/mblur/mblur_layout.h"
 #include "hmblur/error.h"
 #include "hmblur/scene.h"
+#include "kernels/mblur/mblur_layout.h"
 
 namespace hmb::passes {
 namespace {

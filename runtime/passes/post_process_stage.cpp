@@ -4,9 +4,9 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/mblur/mblur_layout.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "kernels/mblur/mblur_layout.h"
 
 namespace hmb::passes {
 

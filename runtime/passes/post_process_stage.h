@@ -7,13 +7,13 @@
 #include <map>
 #include <memory>
 
+#include "hmblur/buffer.h"
+#include "hmblur/post_process_settings.h"
 #include "runtime/passes/gather_filter.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/neighbor_max_pass.h"
 #include "runtime/passes/pass_list.h"
-#include "hmblur/post_process_settings.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "hmblur/buffer.h"
 
 namespace hmb {
 class FramePlan;

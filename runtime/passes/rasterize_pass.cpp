@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
-#include "kernels/manifest.h"
-#include "kernels/raster/raster_layout.h"
+#include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
-#include "hmblur/context.h"
+#include "kernels/manifest.h"
+#include "kernels/raster/raster_layout.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

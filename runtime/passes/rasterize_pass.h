@@ -15,8 +15,8 @@
 #include <optional>
 #include <string>
 
-#include "hmblur/raster_scheme.h"
 #include "hmblur/buffer.h"
+#include "hmblur/raster_scheme.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

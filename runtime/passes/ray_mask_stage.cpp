@@ -3,13 +3,13 @@
 #include <cstddef>
 #include <string>
 
+#include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "kernels/manifest.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "hmblur/error.h"
-#include "hmblur/frame_plan.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

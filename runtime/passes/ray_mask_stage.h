@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "hmblur/buffer.h"
 #include "runtime/passes/gather_filter.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/mask_coverage_pass.h"
 #include "runtime/passes/pass_list.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_variants.h"
 

@@ -10,15 +10,15 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "hmblur/error.h"
+#include "hmblur/frame_plan.h"
 #include "kernels/manifest.h"
 #include "kernels/reference/reference_layout.h"
 #include "kernels/trace/trace_layout.h"
-#include "hmblur/error.h"
 #include "runtime/device_scene/deformed_vertices.h"
-#include "hmblur/frame_plan.h"
-#include "scenes/deformation.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/device_scene/trace_scene.h"
+#include "scenes/deformation.h"
 
 namespace hmb::passes {
 namespace {

@@ -14,12 +14,12 @@
 #include <span>
 #include <string>
 
-#include "hmblur/reference_settings.h"
-#include "runtime/passes/shading_kernel.h"
 #include "hmblur/buffer.h"
+#include "hmblur/reference_settings.h"
+#include "hmblur/scene.h"
+#include "runtime/passes/shading_kernel.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "hmblur/scene.h"
 
 namespace hmb {
 class FramePlan;

@@ -3,8 +3,8 @@
 #include <span>
 #include <vector>
 
-#include "kernels/manifest.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
+#include "kernels/manifest.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/compute_kernel.h"

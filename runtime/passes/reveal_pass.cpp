@@ -5,11 +5,11 @@
 
 #include <cstddef>
 
+#include "hmblur/error.h"
 #include "kernels/manifest.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/reveal/reveal_layout.h"
 #include "kernels/trace/trace_layout.h"
-#include "hmblur/error.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/compute_kernel.h"

@@ -3,17 +3,17 @@
 #include <initializer_list>
 #include <string>
 
+#include "hmblur/frame_plan.h"
+#include "hmblur/hit_shading.h"
 #include "kernels/manifest.h"
 #include "kernels/shared/scene_layout.h"
 #include "kernels/trace/trace_layout.h"
-#include "hmblur/frame_plan.h"
 #include "runtime/device_scene/gpu_scene.h"
-#include "hmblur/hit_shading.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/passes/reference_stage.h"
 #include "runtime/passes/resolve_gbuffer_pass.h"
 #include "runtime/passes/reveal_pass.h"
 #include "runtime/passes/shutter_rays_pass.h"
-#include "runtime/device_scene/trace_scene.h"
 
 namespace hmb::passes {
 

@@ -1,7 +1,7 @@
 #include "runtime/passes/shutter_path_pass.h"
 
-#include "kernels/manifest.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
+#include "kernels/manifest.h"
 #include "kernels/raster/raster_layout.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/rasterize_pass.h"

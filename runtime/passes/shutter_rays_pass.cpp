@@ -4,13 +4,13 @@
 #include <cstddef>
 #include <string>
 
-#include "kernels/manifest.h"
-#include "hmblur/error.h"
-#include "runtime/device_scene/gpu_scene.h"
-#include "hmblur/post_process_filter.h"
-#include "runtime/passes/ray_mask_stage.h"
-#include "runtime/device_scene/trace_scene.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "hmblur/post_process_filter.h"
+#include "kernels/manifest.h"
+#include "runtime/device_scene/gpu_scene.h"
+#include "runtime/device_scene/trace_scene.h"
+#include "runtime/passes/ray_mask_stage.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <optional>
 
+#include "hmblur/buffer.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/passes/gather_filter.h"
 #include "runtime/passes/image_size.h"
 #include "runtime/passes/shading_kernel.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb {

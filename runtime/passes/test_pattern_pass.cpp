@@ -1,7 +1,7 @@
 #include "runtime/passes/test_pattern_pass.h"
 
-#include "kernels/manifest.h"
 #include "kernels/debug/test_pattern.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -1,8 +1,8 @@
 #include "runtime/passes/tile_max_pass.h"
 
+#include "hmblur/post_process_settings.h"
 #include "kernels/manifest.h"
 #include "kernels/mblur/mblur_layout.h"
-#include "hmblur/post_process_settings.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -1,8 +1,8 @@
 #include "runtime/passes/trace_rays_pass.h"
 
+#include "hmblur/error.h"
 #include "kernels/manifest.h"
 #include "kernels/trace/trace_layout.h"
-#include "hmblur/error.h"
 #include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"

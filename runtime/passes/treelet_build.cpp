@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 
-#include "kernels/manifest.h"
-#include "hmblur/error.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::passes {

@@ -15,10 +15,10 @@
 
 #include <glm/glm.hpp>
 
-#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
-#include "kernels/bvh/treelet_build_layout.h"
+#include "hmblur/aabb.h"
 #include "hmblur/buffer.h"
+#include "kernels/bvh/treelet_build_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 
 namespace hmb::vk {

@@ -2,9 +2,9 @@
 
 #include <utility>
 
+#include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "hmblur/context.h"
 
 namespace hmb::vk {
 namespace {

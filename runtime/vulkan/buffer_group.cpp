@@ -2,8 +2,8 @@
 
 #include <cstdint>
 
-#include "hmblur/error.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
 
 namespace hmb::vk {
 

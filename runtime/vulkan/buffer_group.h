@@ -11,8 +11,8 @@
 #include <span>
 #include <vector>
 
-#include "runtime/vulkan/binding.h"
 #include "hmblur/buffer.h"
+#include "runtime/vulkan/binding.h"
 
 namespace hmb::vk {
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <vector>
 
-#include "kernels/manifest.h"
-#include "hmblur/error.h"
-#include "runtime/vulkan/check.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "kernels/manifest.h"
+#include "runtime/vulkan/check.h"
 #include "runtime/vulkan/kernel_interface.h"
 #include "runtime/vulkan/kernel_registry.h"
 #include "runtime/vulkan/kernel_store.h"

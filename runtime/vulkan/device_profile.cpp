@@ -4,13 +4,13 @@
 #include <cstdlib>
 #include <cstdio>
 
+#include "hmblur/context.h"
+#include "hmblur/error.h"
 #include "kernels/bvh/bvh_build_layout.h"
 #include "kernels/bvh/treelet_build_layout.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
-#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "kernels/shared/dispatch.h"
-#include "hmblur/error.h"
-#include "hmblur/context.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 
 namespace hmb::vk {
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <vector>
 
-#include "hmblur/error.h"
 #include "hmblur/buffer.h"
+#include "hmblur/context.h"
+#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
 #include "runtime/vulkan/compute_kernel.h"
-#include "hmblur/context.h"
 
 namespace hmb::vk {
 

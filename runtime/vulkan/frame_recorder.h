@@ -15,9 +15,9 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
+#include "hmblur/frame_timings.h"
 #include "kernels/shared/dispatch.h"
 #include "runtime/vulkan/binding.h"
-#include "hmblur/frame_timings.h"
 
 namespace hmb::vk {
 

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "kernels/manifest.h"
 #include "hmblur/error.h"
+#include "kernels/manifest.h"
 
 namespace hmb::vk {
 

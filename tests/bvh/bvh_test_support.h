@@ -9,11 +9,11 @@
 
 #include <glm/glm.hpp>
 
-#include "hmblur/aabb.h"
 #include "bvh/bvh.h"
 #include "bvh/ray_intersection.h"
 #include "bvh/reference_traversal.h"
 #include "bvh/triangle_list.h"
+#include "hmblur/aabb.h"
 #include "hmblur/scene.h"
 
 namespace hmb::bvh::test {

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 
 #include "hmblur/renderer.h"
+#include "hmblur/scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "hmblur/scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

@@ -11,9 +11,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "hmblur/load_scene.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
 #include "runtime/device_scene/gpu_scene.h"
-#include "hmblur/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
 #include "tests/raster/raster_harness.h"

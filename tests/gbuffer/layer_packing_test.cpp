@@ -14,10 +14,10 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "kernels/manifest.h"
-#include "kernels/debug/pack_layer.h"
-#include "kernels/shared/layer_layout.h"
 #include "hmblur/buffer.h"
+#include "kernels/debug/pack_layer.h"
+#include "kernels/manifest.h"
+#include "kernels/shared/layer_layout.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/vulkan_test.h"

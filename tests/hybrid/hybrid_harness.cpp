@@ -10,22 +10,22 @@
 
 #include <gtest/gtest.h>
 
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
-#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "kernels/shared/layer_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/passes/background_gather_pass.h"
 #include "runtime/passes/composite_pass.h"
-#include "runtime/passes/mask_coverage_pass.h"
 #include "runtime/passes/gather_pass.h"
-#include "runtime/passes/image_layer.h"
 #include "runtime/passes/gbuffer_stage.h"
+#include "runtime/passes/image_layer.h"
+#include "runtime/passes/mask_coverage_pass.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/passes/reveal_pass.h"
 #include "runtime/passes/shutter_rays_pass.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "runtime/device_scene/trace_scene.h"
-#include "hmblur/buffer.h"
-#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test::hybrid {

@@ -11,15 +11,15 @@
 
 #include <glm/glm.hpp>
 
+#include "hmblur/hybrid_settings.h"
+#include "hmblur/post_process_settings.h"
+#include "hmblur/scene.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gather_pass.h"
-#include "hmblur/hybrid_settings.h"
 #include "runtime/passes/image_layer.h"
-#include "hmblur/post_process_settings.h"
 #include "runtime/passes/ray_mask_stage.h"
-#include "hmblur/scene.h"
 #include "tests/hybrid/hybrid_reference.h"
 #include "tests/mblur/mblur_reference.h"
 #include "tests/support/layer_readback.h"

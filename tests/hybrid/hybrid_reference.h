@@ -9,10 +9,10 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/ray_mask/ray_mask_layout.h"
-#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "hmblur/hybrid_settings.h"
 #include "hmblur/post_process_settings.h"
+#include "kernels/ray_mask/ray_mask_layout.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "runtime/passes/ray_mask_stage.h"
 #include "tests/mblur/mblur_reference.h"
 

@@ -14,9 +14,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "hmblur/renderer.h"
 #include "kernels/ray_mask/ray_mask_layout.h"
 #include "kernels/shutter_rays/shutter_rays_layout.h"
-#include "hmblur/renderer.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
 #include "tests/hybrid/hybrid_harness.h"

@@ -8,13 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include "hmblur/buffer.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
 #include "runtime/passes/gather_pass.h"
 #include "runtime/passes/jimenez_gather_pass.h"
 #include "runtime/passes/neighbor_max_pass.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/passes/tile_max_pass.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test::mblur {

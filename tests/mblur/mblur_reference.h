@@ -8,9 +8,9 @@
 
 #include <glm/glm.hpp>
 
+#include "hmblur/post_process_settings.h"
 #include "kernels/mblur/mblur_hash.h"
 #include "runtime/passes/gather_pass.h"
-#include "hmblur/post_process_settings.h"
 
 namespace hmb::test::mblur {
 

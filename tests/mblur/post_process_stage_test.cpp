@@ -9,9 +9,9 @@
 
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/scene.h"
 #include "runtime/passes/post_process_stage.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "hmblur/scene.h"
 #include "tests/mblur/mblur_harness.h"
 #include "tests/mblur/mblur_reference.h"
 #include "tests/support/vulkan_test.h"

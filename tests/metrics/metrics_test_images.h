@@ -11,8 +11,8 @@
 #include <string>
 
 #include "hmblur/error.h"
-#include "tests/support/expect_error.h"
 #include "runtime/metrics/display_image.h"
+#include "tests/support/expect_error.h"
 
 namespace hmb::metrics::testing {
 

@@ -6,11 +6,11 @@
 
 #include "gbuffer_frag.spv.h"
 #include "gbuffer_vert.spv.h"
-#include "kernels/shared/layer_layout.h"
+#include "hmblur/context.h"
 #include "hmblur/error.h"
+#include "kernels/shared/layer_layout.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/vulkan/check.h"
-#include "hmblur/context.h"
 #include "tests/oracle/shaders/gbuffer_oracle_layout.h"
 
 namespace hmb::oracle {

@@ -15,8 +15,8 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
-#include "kernels/shared/scene_layout.h"
 #include "hmblur/buffer.h"
+#include "kernels/shared/scene_layout.h"
 #include "tests/oracle/oracle_vulkan.h"
 
 namespace hmb {

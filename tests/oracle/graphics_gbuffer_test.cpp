@@ -10,11 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include "hmblur/load_scene.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/frame_recorder.h"
-#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::oracle {

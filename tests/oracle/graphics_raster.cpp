@@ -4,12 +4,12 @@
 #include <cstring>
 #include <string>
 
+#include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "kernels/raster/raster_layout.h"
 #include "oracle_frag.spv.h"
 #include "oracle_vert.spv.h"
-#include "kernels/raster/raster_layout.h"
-#include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "hmblur/context.h"
 
 namespace hmb::oracle {
 namespace {

@@ -31,8 +31,8 @@
 #include <glm/vec4.hpp>
 #include <vulkan/vulkan.h>
 
-#include "kernels/shared/scene_layout.h"
 #include "hmblur/buffer.h"
+#include "kernels/shared/scene_layout.h"
 #include "tests/oracle/oracle_vulkan.h"
 
 namespace hmb::vk {

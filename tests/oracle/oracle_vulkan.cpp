@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
-#include "hmblur/context.h"
 
 namespace hmb::oracle {
 namespace {

@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/raster/raster_layout.h"
-#include "hmblur/error.h"
-#include "runtime/passes/rasterize_pass.h"
 #include "hmblur/buffer.h"
+#include "hmblur/error.h"
+#include "kernels/raster/raster_layout.h"
+#include "runtime/passes/rasterize_pass.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/raster/raster_harness.h"
 #include "tests/raster/raster_reference.h"

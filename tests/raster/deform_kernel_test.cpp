@@ -12,10 +12,10 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "hmblur/buffer.h"
 #include "kernels/shared/scene_layout.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/deformation.h"
 #include "tests/support/vulkan_test.h"

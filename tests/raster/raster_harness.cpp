@@ -5,14 +5,14 @@
 #include <algorithm>
 #include <cstring>
 
-#include "kernels/raster/raster_layout.h"
+#include "hmblur/buffer.h"
+#include "hmblur/context.h"
 #include "hmblur/error.h"
+#include "kernels/raster/raster_layout.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/gbuffer_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/rasterize_pass.h"
-#include "hmblur/buffer.h"
-#include "hmblur/context.h"
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb::test {

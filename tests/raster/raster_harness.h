@@ -8,10 +8,10 @@
 
 #include <glm/glm.hpp>
 
+#include "hmblur/scene.h"
 #include "kernels/raster/raster_layout.h"
 #include "kernels/shared/scene_layout.h"
 #include "runtime/passes/rasterize_pass.h"
-#include "hmblur/scene.h"
 #include "tests/oracle/graphics_raster.h"
 #include "tests/support/layer_readback.h"
 

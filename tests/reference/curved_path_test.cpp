@@ -11,10 +11,10 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
-#include "hmblur/renderer.h"
-#include "hmblur/load_scene.h"
 #include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 

@@ -13,15 +13,15 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/device_scene/deformed_vertices.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
+#include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/passes/reference_stage.h"
-#include "hmblur/renderer.h"
 #include "scenes/assimp_test_models.h"
-#include "hmblur/load_scene.h"
 #include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 

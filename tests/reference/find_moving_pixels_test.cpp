@@ -10,9 +10,9 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "hmblur/buffer.h"
 #include "kernels/manifest.h"
 #include "kernels/reference/reference_layout.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/vulkan_test.h"

@@ -14,11 +14,11 @@
 #include <gtest/gtest.h>
 
 #include "hmblur/error.h"
+#include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "runtime/metrics/display_image.h"
 #include "runtime/metrics/metrics.h"
 #include "runtime/passes/reference_stage.h"
-#include "hmblur/renderer.h"
-#include "hmblur/load_scene.h"
 #include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 

@@ -9,10 +9,10 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/shutter_rays/shutter_rays_layout.h"
 #include "hmblur/frame_plan.h"
-#include "runtime/passes/hybrid_stage.h"
 #include "hmblur/load_scene.h"
+#include "kernels/shutter_rays/shutter_rays_layout.h"
+#include "runtime/passes/hybrid_stage.h"
 #include "tests/reference/render_scene.h"
 #include "tests/support/vulkan_test.h"
 

@@ -35,11 +35,11 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "hmblur/error.h"
-#include "runtime/passes/reference_stage.h"
 #include "hmblur/renderer.h"
+#include "hmblur/scene.h"
+#include "runtime/passes/reference_stage.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "hmblur/scene.h"
 #include "tests/support/method_names.h"
 #include "tests/support/vulkan_test.h"
 

@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "hmblur/error.h"
-#include "hmblur/renderer.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "tests/support/engine_device.h"
 #include "tests/support/vulkan_test.h"
 

@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "hmblur/error.h"
 #include "hmblur/buffer.h"
-#include "runtime/vulkan/buffer_group.h"
 #include "hmblur/context.h"
+#include "hmblur/error.h"
+#include "runtime/vulkan/buffer_group.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"
 

@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/debug/test_pattern.h"
-#include "hmblur/error.h"
-#include "runtime/vulkan/compute_kernel.h"
 #include "hmblur/context.h"
-#include "runtime/vulkan/pipeline_cache.h"
+#include "hmblur/error.h"
+#include "kernels/debug/test_pattern.h"
+#include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/kernel_registry.h"
+#include "runtime/vulkan/pipeline_cache.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

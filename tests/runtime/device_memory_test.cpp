@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "hmblur/error.h"
-#include "hmblur/renderer.h"
 #include "hmblur/buffer.h"
+#include "hmblur/error.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

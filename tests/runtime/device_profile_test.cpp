@@ -9,12 +9,12 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/shared/dispatch.h"
-#include "hmblur/error.h"
-#include "hmblur/renderer.h"
 #include "hmblur/context.h"
 #include "hmblur/device_profile.h"
+#include "hmblur/error.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
+#include "kernels/shared/dispatch.h"
 #include "tests/support/display_psnr.h"
 
 namespace hmb {

@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "hmblur/buffer.h"
 #include "hmblur/image.h"
 #include "runtime/passes/encode_display_pass.h"
-#include "hmblur/buffer.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/vulkan_test.h"
 

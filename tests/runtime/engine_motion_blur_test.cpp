@@ -10,11 +10,11 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "hmblur/buffer.h"
 #include "hmblur/engine_motion_blur.h"
 #include "hmblur/engine_scene.h"
-#include "hmblur/buffer.h"
-#include "hmblur/renderer.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "tests/support/engine_device.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"

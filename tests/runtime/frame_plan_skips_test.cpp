@@ -10,12 +10,12 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "runtime/device_scene/deformed_vertices.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/shutter_path_pass.h"
-#include "hmblur/renderer.h"
-#include "hmblur/load_scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
 #include "tests/support/method_names.h"

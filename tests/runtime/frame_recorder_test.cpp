@@ -3,11 +3,11 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/manifest.h"
-#include "kernels/debug/test_pattern.h"
-#include "hmblur/error.h"
-#include "runtime/passes/test_pattern_pass.h"
 #include "hmblur/buffer.h"
+#include "hmblur/error.h"
+#include "kernels/debug/test_pattern.h"
+#include "kernels/manifest.h"
+#include "runtime/passes/test_pattern_pass.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/vulkan_test.h"

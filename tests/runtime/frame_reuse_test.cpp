@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <string>
 
+#include "hmblur/load_scene.h"
 #include "hmblur/renderer.h"
 #include "runtime/device_scene/trace_scene.h"
-#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

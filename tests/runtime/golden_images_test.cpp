@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "runtime/io/image_files.h"
-#include "hmblur/renderer.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
+#include "runtime/io/image_files.h"
 #include "tests/support/display_psnr.h"
 #include "tests/support/vulkan_test.h"
 

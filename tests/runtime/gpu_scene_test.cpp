@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "runtime/device_scene/gpu_scene.h"
 #include "hmblur/load_scene.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "hmblur/hit_shading.h"
-#include "hmblur/renderer.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/spirv_modes.h"
 #include "tests/support/vulkan_test.h"

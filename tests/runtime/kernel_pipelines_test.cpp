@@ -7,9 +7,9 @@
 #include <string>
 #include <string_view>
 
-#include "kernels/manifest.h"
-#include "kernels/manifest.h"
 #include "hmblur/buffer.h"
+#include "kernels/manifest.h"
+#include "kernels/manifest.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "runtime/vulkan/kernel_interface.h"

@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "hmblur/error.h"
+#include "hmblur/load_scene.h"
 #include "hmblur/renderer.h"
 #include "scenes/assimp_test_models.h"
-#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

@@ -7,9 +7,9 @@
 
 #include "hmblur/error.h"
 #include "hmblur/image.h"
-#include "runtime/passes/rasterize_pass.h"
-#include "hmblur/renderer.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
+#include "runtime/passes/rasterize_pass.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

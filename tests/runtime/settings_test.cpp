@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "hmblur/error.h"
-#include "runtime/passes/gather_pass.h"
 #include "hmblur/hybrid_settings.h"
 #include "hmblur/post_process_filter.h"
 #include "hmblur/post_process_settings.h"
-#include "runtime/passes/reference_stage.h"
 #include "hmblur/renderer.h"
+#include "runtime/passes/gather_pass.h"
+#include "runtime/passes/reference_stage.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {

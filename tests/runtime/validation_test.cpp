@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "hmblur/renderer.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/renderer.h"
 #include "scenes/reference_scenes.h"
 #include "tests/support/vulkan_test.h"
 

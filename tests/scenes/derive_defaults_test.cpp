@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include "hmblur/scene.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "hmblur/scene.h"
 
 namespace hmb::scene {
 namespace {

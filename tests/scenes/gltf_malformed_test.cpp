@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "hmblur/error.h"
-#include "scenes/gltf_loader.h"
 #include "hmblur/load_scene.h"
+#include "scenes/gltf_loader.h"
 #include "tests/scenes/gltf_writer.h"
 
 namespace hmb::scene {

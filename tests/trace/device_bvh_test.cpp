@@ -15,8 +15,8 @@
 
 #include "bvh/packed_node.h"
 #include "bvh/reference_builder.h"
-#include "kernels/shared/dispatch.h"
 #include "hmblur/error.h"
+#include "kernels/shared/dispatch.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/reference_scenes.h"
 #include "tests/support/vulkan_test.h"

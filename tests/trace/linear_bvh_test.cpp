@@ -12,13 +12,13 @@
 #include <vector>
 
 
-#include "hmblur/aabb.h"
 #include "bvh/radix_tree.h"
-#include "kernels/bvh/linear_bvh_layout.h"
+#include "hmblur/aabb.h"
 #include "hmblur/error.h"
+#include "kernels/bvh/linear_bvh_layout.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/linear_bvh_pass.h"
-#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/bvh/bvh_test_support.h"
 #include "tests/support/vulkan_test.h"

@@ -10,10 +10,10 @@
 #include "bvh/bvh.h"
 #include "bvh/bvh_layout.h"
 #include "bvh/ray_intersection.h"
-#include "kernels/trace/trace_layout.h"
-#include "runtime/passes/trace_rays_pass.h"
-#include "runtime/device_scene/trace_scene.h"
 #include "hmblur/context.h"
+#include "kernels/trace/trace_layout.h"
+#include "runtime/device_scene/trace_scene.h"
+#include "runtime/passes/trace_rays_pass.h"
 #include "tests/bvh/bvh_test_support.h"
 
 namespace hmb::trace::test {

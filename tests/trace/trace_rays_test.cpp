@@ -15,9 +15,9 @@
 #include <gtest/gtest.h>
 
 #include "bvh/reference_traversal.h"
+#include "hmblur/load_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/assimp_test_models.h"
-#include "hmblur/load_scene.h"
 #include "tests/support/vulkan_test.h"
 #include "tests/trace/trace_harness.h"
 

@@ -15,14 +15,14 @@
 #include <string>
 #include <vector>
 
-#include "hmblur/aabb.h"
 #include "bvh/radix_tree.h"
 #include "bvh/reference_builder.h"
 #include "bvh/reference_traversal.h"
+#include "hmblur/aabb.h"
 #include "hmblur/error.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/passes/bvh_build_pass.h"
 #include "runtime/passes/treelet_build.h"
-#include "runtime/device_scene/trace_scene.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "scenes/reference_scenes.h"
 #include "tests/bvh/bvh_test_support.h"
