@@ -52,22 +52,24 @@ std::vector<Config> configurations(const ErrorTimeSuiteOptions& o) {
     settings->postprocess.samples = s;
   }
   for (const uint32_t s : o.samples) add("hybrid S" + std::to_string(s), "hybrid", s, "hybrid")->postprocess.samples = s;
-  // The reveal's settings act on the paper's hybrid alone (with shutter rays the mask is left
-  // out): hybrid-paper is the hybrid without them.
+  for (const uint32_t s : o.samples)
+    add("hybrid-rays S" + std::to_string(s), "hybrid-rays", s, "hybrid-rays")->postprocess.samples = s;
+  // The reveal's settings act on the paper's hybrid (hybrid-rays leaves the mask to its rays).
   for (const uint32_t r : o.recursionLimits) {
-    RenderSettings* settings =
-        add("hybrid-paper luminance stop R" + std::to_string(r), "hybrid-paper luminance stop", r, "hybrid");
-    settings->hybrid.shutterRays = 0;
+    RenderSettings* settings = add("hybrid luminance stop R" + std::to_string(r), "hybrid luminance stop", r, "hybrid");
     settings->hybrid.stop = passes::RevealStop::Luminance;
     settings->hybrid.maxRecursion = r;
   }
-  for (const float e : o.edgeThresholds) {
-    RenderSettings* settings = add("hybrid-paper e" + fixed(e, 2), "hybrid-paper edge threshold", e, "hybrid");
-    settings->hybrid.shutterRays = 0;
-    settings->hybrid.edgeThreshold = e;
-  }
+  for (const float e : o.edgeThresholds)
+    add("hybrid e" + fixed(e, 2), "hybrid edge threshold", e, "hybrid")->hybrid.edgeThreshold = e;
   for (const uint32_t n : o.shutterRays)
-    add("hybrid shutter rays " + std::to_string(n), "hybrid shutter rays", n, "hybrid")->hybrid.shutterRays = n;
+    add("hybrid-rays strata " + std::to_string(n), "hybrid-rays strata", n, "hybrid-rays")->hybrid.shutterRays = n;
+  const double pixels = double(o.size.width) * o.size.height;
+  for (const double perPixel : o.rayBudgets) {
+    const uint32_t budget = uint32_t(std::clamp(std::round(perPixel * pixels), 2.0, 4294967295.0));
+    add("hybrid-rays budget " + fixed(perPixel, 3) + "/px", "hybrid-rays ray budget", perPixel, "hybrid-rays")
+        ->hybrid.rayBudget = budget;
+  }
   for (const uint32_t k : o.timeSlices) {
     add("postprocess adapted K" + std::to_string(k), "postprocess adapted time slices", k, "postprocess")
         ->postprocess.timeSlices = k;
@@ -154,18 +156,21 @@ ErrorTimeScene runScene(Renderer& renderer, const std::string& name, const Error
     if (last.hybrid) {
       c.maskPixels = last.hybrid->maskPixels;
       c.revealRays = last.hybrid->revealRays;
+      c.shutterRays = last.hybrid->shutterRays;
     }
     result.cases.push_back(std::move(c));
   }
   result.regionPixels = region ? region->pixelCount : 0;
 
-  // Hybrid at its defaults: the samples series' case at the default sample count.
+  // Each hybrid at its defaults: its samples series' case at the default sample count.
   const uint32_t defaultSamples = passes::PostProcessSettings{}.samples;
-  const auto hybrid = std::find_if(result.cases.begin(), result.cases.end(), [&](const ErrorTimeCase& c) {
-    return c.series == "hybrid" && c.parameter == defaultSamples;
-  });
-  if (hybrid != result.cases.end() && hybrid->regionPsnr) {
+  for (const char* method : {"hybrid", "hybrid-rays"}) {
+    const auto hybrid = std::find_if(result.cases.begin(), result.cases.end(), [&](const ErrorTimeCase& c) {
+      return c.series == method && c.parameter == defaultSamples;
+    });
+    if (hybrid == result.cases.end() || !hybrid->regionPsnr) continue;
     ErrorTimeScene::Match m;
+    m.method = method;
     m.hybridRegionPsnr = *hybrid->regionPsnr;
     m.hybridMilliseconds = hybrid->frameMilliseconds.median;
     for (const ErrorTimeCase& c : result.cases) {
@@ -177,7 +182,26 @@ ErrorTimeScene runScene(Renderer& renderer, const std::string& name, const Error
       }
     }
     m.timeRatio = m.hybridMilliseconds > 0 ? m.referenceMilliseconds / m.hybridMilliseconds : NAN;
-    result.match = m;
+    result.matches.push_back(m);
+  }
+  // The front against the reference at frontSpp.
+  const auto reference = std::find_if(result.cases.begin(), result.cases.end(), [&](const ErrorTimeCase& c) {
+    return c.series == "reference" && c.parameter == o.frontSpp && c.regionPsnr;
+  });
+  if (reference != result.cases.end()) {
+    ErrorTimeScene::Front f;
+    f.spp = o.frontSpp;
+    f.referenceRegionPsnr = *reference->regionPsnr;
+    f.referenceMilliseconds = reference->frameMilliseconds.median;
+    for (const ErrorTimeCase& c : result.cases) {
+      if (c.method != "hybrid-rays" || !c.regionPsnr || *c.regionPsnr < f.referenceRegionPsnr) continue;
+      if (f.label && c.frameMilliseconds.median >= f.milliseconds) continue;
+      f.label = c.label;
+      f.regionPsnr = *c.regionPsnr;
+      f.milliseconds = c.frameMilliseconds.median;
+    }
+    f.timeRatio = f.label && f.milliseconds > 0 ? f.referenceMilliseconds / f.milliseconds : NAN;
+    result.front = f;
   }
   return result;
 }
@@ -204,7 +228,8 @@ std::vector<ErrorTimeScene> runErrorTimeSuite(vk::Context& context, const ErrorT
 
 nlohmann::json errorTimeSceneJson(const ErrorTimeScene& s) {
   nlohmann::json j = {{"scene", s.scene}, {"judge", s.judge}, {"region_pixels", s.regionPixels},
-                      {"cases", nlohmann::json::array()}, {"hybrid_vs_reference", nullptr}};
+                      {"cases", nlohmann::json::array()}, {"hybrid_vs_reference", nlohmann::json::array()},
+                      {"front", nullptr}};
   for (const ErrorTimeCase& c : s.cases) {
     nlohmann::json entry = {{"method", c.method},
                             {"label", c.label},
@@ -217,14 +242,24 @@ nlohmann::json errorTimeSceneJson(const ErrorTimeScene& s) {
       entry["mask_pixels"] = c.maskPixels;
       entry["reveal_rays"] = c.revealRays;
     }
+    if (c.method == "hybrid-rays") entry["shutter_rays_traced"] = c.shutterRays;
     j["cases"].push_back(std::move(entry));
   }
-  if (s.match)
-    j["hybrid_vs_reference"] = {{"hybrid_region_psnr_db", s.match->hybridRegionPsnr},
-                                {"hybrid_ms", s.match->hybridMilliseconds},
-                                {"matching_spp", s.match->spp ? nlohmann::json(*s.match->spp) : nlohmann::json(nullptr)},
-                                {"reference_ms", s.match->referenceMilliseconds},
-                                {"time_ratio", optionalJson(s.match->timeRatio)}};
+  for (const ErrorTimeScene::Match& m : s.matches)
+    j["hybrid_vs_reference"].push_back({{"method", m.method},
+                                        {"hybrid_region_psnr_db", m.hybridRegionPsnr},
+                                        {"hybrid_ms", m.hybridMilliseconds},
+                                        {"matching_spp", m.spp ? nlohmann::json(*m.spp) : nlohmann::json(nullptr)},
+                                        {"reference_ms", m.referenceMilliseconds},
+                                        {"time_ratio", optionalJson(m.timeRatio)}});
+  if (s.front)
+    j["front"] = {{"reference_spp", s.front->spp},
+                  {"reference_region_psnr_db", s.front->referenceRegionPsnr},
+                  {"reference_ms", s.front->referenceMilliseconds},
+                  {"label", s.front->label ? nlohmann::json(*s.front->label) : nlohmann::json(nullptr)},
+                  {"region_psnr_db", s.front->label ? nlohmann::json(s.front->regionPsnr) : nlohmann::json(nullptr)},
+                  {"ms", s.front->label ? nlohmann::json(s.front->milliseconds) : nlohmann::json(nullptr)},
+                  {"time_ratio", optionalJson(s.front->timeRatio)}};
   return j;
 }
 
@@ -242,16 +277,25 @@ void writeErrorTimeMarkdown(std::ostream& out, const std::vector<ErrorTimeScene>
   out << "# Error against run time\n\n" << context << "\n";
   for (const ErrorTimeScene& s : scenes) {
     out << "\n## " << s.scene << "\n\nJudge: " << s.judge << "; blur region " << s.regionPixels << " pixels.\n\n";
-    if (s.match) {
-      const auto& m = *s.match;
-      out << "Hybrid (defaults) reaches " << fixed(m.hybridRegionPsnr, 2) << " dB over the blur region in "
+    for (const ErrorTimeScene::Match& m : s.matches) {
+      out << m.method << " (defaults) reaches " << fixed(m.hybridRegionPsnr, 2) << " dB over the blur region in "
           << fixed(m.hybridMilliseconds, 1) << " ms. ";
       if (m.spp)
         out << "The reference first matches it at " << *m.spp << " spp, in " << fixed(m.referenceMilliseconds, 1)
-            << " ms: **" << fixed(m.timeRatio, 1) << "x** hybrid's time.\n\n";
+            << " ms: **" << fixed(m.timeRatio, 1) << "x** its time.\n\n";
       else
         out << "No reference tried matches it; the largest took " << fixed(m.referenceMilliseconds, 1)
-            << " ms: more than **" << fixed(m.timeRatio, 1) << "x** hybrid's time.\n\n";
+            << " ms: more than **" << fixed(m.timeRatio, 1) << "x** its time.\n\n";
+    }
+    if (s.front) {
+      const auto& f = *s.front;
+      out << "Front: the reference at " << f.spp << " spp reaches " << fixed(f.referenceRegionPsnr, 2)
+          << " dB over the blur region in " << fixed(f.referenceMilliseconds, 1) << " ms; ";
+      if (f.label)
+        out << "the fastest hybrid-rays case as close, " << *f.label << " (" << fixed(f.regionPsnr, 2) << " dB), in "
+            << fixed(f.milliseconds, 1) << " ms: **" << fixed(f.timeRatio, 2) << "x** faster.\n\n";
+      else
+        out << "no hybrid-rays case is as close.\n\n";
     }
     out << "| case | median ms | frame PSNR dB | frame SSIM | region PSNR dB | region SSIM |\n"
         << "|---|---:|---:|---:|---:|---:|\n";

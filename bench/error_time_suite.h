@@ -34,10 +34,16 @@ struct ErrorTimeSuiteOptions {
   std::string referenceDir;
   uint32_t judgeSpp = 1024;
   std::vector<uint32_t> samples = {5, 9, 15, 23, 31};  // post-process and hybrid gather samples
-  std::vector<uint32_t> recursionLimits = {1, 5};      // hybrid without shutter rays, luminance stop
-  std::vector<float> edgeThresholds = {0.5f, 0.8f, 0.95f};  // hybrid without shutter rays (the scene's own: shutter rays 0)
+  std::vector<uint32_t> recursionLimits = {1, 5};      // the paper's hybrid, luminance stop
+  std::vector<float> edgeThresholds = {0.5f, 0.8f, 0.95f};  // the paper's hybrid (the scene's own: its samples series)
   std::vector<uint32_t> timeSlices = {2, 3, 4};              // adapted post-process and hybrid, the shutter cut in K
-  std::vector<uint32_t> shutterRays = {0, 2, 4, 16};         // hybrid's shutter strata (its default, 8, is in the samples series)
+  std::vector<uint32_t> shutterRays = {2, 4, 16};            // hybrid-rays' strata (its default, 8, is in its samples series)
+  // hybrid-rays' ray budgets, in rays per pixel of the image (--ray-budget of that many times
+  // width x height): its curve from post-process towards every listed pixel's rays.
+  std::vector<double> rayBudgets = {0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5};
+  // The reference the front is held against: the fastest hybrid-rays case whose blur-region
+  // error is the reference's at this many spp, and its time over the reference's.
+  uint32_t frontSpp = 4;
   std::vector<uint32_t> referenceSpp = {1, 2, 4, 8, 16, 32, 64, 128, 256};  // seed 2: not the judge's strata
   int warmup = 1;
   int repeats = 3;
@@ -54,6 +60,7 @@ struct ErrorTimeCase {
   double framePsnr = 0, frameSsim = 0;
   std::optional<double> regionPsnr, regionSsim;
   uint64_t maskPixels = 0, revealRays = 0;  // hybrid
+  uint64_t shutterRays = 0;                 // hybrid-rays: rays traced
 };
 
 struct ErrorTimeScene {
@@ -61,14 +68,25 @@ struct ErrorTimeScene {
   std::string judge;  // where the judge came from
   size_t regionPixels = 0;
   std::vector<ErrorTimeCase> cases;
-  // Hybrid at its defaults against the reference's spp curve.
+  // Each hybrid method at its defaults against the reference's spp curve.
   struct Match {
+    std::string method;  // hybrid | hybrid-rays
     double hybridRegionPsnr = 0, hybridMilliseconds = 0;
     std::optional<uint32_t> spp;  // fewest spp reaching hybrid's blur-region PSNR; absent: none tried
     double referenceMilliseconds = 0;  // that render's time (or the largest spp's, when none)
     double timeRatio = 0;              // referenceMilliseconds / hybridMilliseconds
   };
-  std::optional<Match> match;
+  std::vector<Match> matches;
+  // The front: the reference at frontSpp, and the fastest hybrid-rays case (any series) at
+  // least as close to the judge over the blur region.
+  struct Front {
+    uint32_t spp = 0;
+    double referenceRegionPsnr = 0, referenceMilliseconds = 0;
+    std::optional<std::string> label;  // absent: no hybrid-rays case reaches it
+    double regionPsnr = 0, milliseconds = 0;
+    double timeRatio = 0;  // referenceMilliseconds / milliseconds
+  };
+  std::optional<Front> front;
 };
 
 std::vector<ErrorTimeScene> runErrorTimeSuite(vk::Context& context, const ErrorTimeSuiteOptions& options,

@@ -26,7 +26,8 @@ class Context;
 namespace hmb::bench {
 
 // The methods it explains (bench/method_variants.h: the -curved ones along curved paths).
-inline const std::vector<std::string> kExplainMethods = {"postprocess", "postprocess-curved", "hybrid", "hybrid-curved"};
+inline const std::vector<std::string> kExplainMethods = {"postprocess", "postprocess-curved", "hybrid", "hybrid-curved",
+                                                         "hybrid-rays", "hybrid-rays-curved"};
 
 struct ExplainSuiteOptions {
   std::vector<std::string> scenes;  // reference scene names or glTF paths

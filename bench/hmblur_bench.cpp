@@ -82,6 +82,8 @@ struct ErrorTimeOptions {
   std::string referenceDir;
   uint32_t judgeSpp = 1024;
   std::vector<uint32_t> referenceSpp = {1, 2, 4, 8, 16, 32, 64, 128, 256};
+  std::vector<double> rayBudgets = hmb::bench::ErrorTimeSuiteOptions{}.rayBudgets;
+  uint32_t frontSpp = hmb::bench::ErrorTimeSuiteOptions{}.frontSpp;
   int warmup = 1;
   int repeats = 3;
   int referenceRepeats = 1;
@@ -91,7 +93,7 @@ struct PassesOptions {
   std::string out = "out/bench/passes/passes.json";
   std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
   std::vector<std::string> sizes = {"640x360", "1280x720", "1920x1080"};
-  std::vector<std::string> methods = {"sharp", "postprocess", "hybrid"};
+  std::vector<std::string> methods = {"sharp", "postprocess", "hybrid", "hybrid-rays"};
   int warmup = 1;
   int repeats = 3;
 };
@@ -109,7 +111,7 @@ struct ExplainOptions {
   std::vector<std::string> scenes = hmb::scene::referenceSceneNames();
   std::string size = "320x180";
   uint32_t referenceSpp = 256;
-  std::vector<std::string> methods = {"postprocess", "hybrid"};
+  std::vector<std::string> methods = {"postprocess", "hybrid", "hybrid-rays"};
   uint32_t timeSlices = 1;
   std::optional<uint32_t> tileSize;
 };
@@ -321,6 +323,8 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
   suite.referenceDir = options.referenceDir;
   suite.judgeSpp = options.judgeSpp;
   suite.referenceSpp = options.referenceSpp;
+  suite.rayBudgets = options.rayBudgets;
+  suite.frontSpp = options.frontSpp;
   suite.warmup = options.warmup;
   suite.repeats = options.repeats;
   suite.referenceRepeats = options.referenceRepeats;
@@ -350,7 +354,9 @@ int errorTime(const GlobalOptions& global, const ErrorTimeOptions& options, cons
       {"repeats", suite.repeats},
       {"reference_repeats", suite.referenceRepeats},
       {"judge_spp", suite.referenceDir.empty() ? nlohmann::json(suite.judgeSpp) : nlohmann::json(nullptr)},
-      {"reference_spp", suite.referenceSpp}};
+      {"reference_spp", suite.referenceSpp},
+      {"ray_budgets_per_pixel", suite.rayBudgets},
+      {"front_spp", suite.frontSpp}};
   report["scenes"] = nlohmann::json::array();
   for (const auto& s : scenes) report["scenes"].push_back(hmb::bench::errorTimeSceneJson(s));
   hmb::writeJson(options.out, report);
@@ -691,6 +697,17 @@ int main(int argc, char** argv) {
   errorTimeCmd->add_option("--reference-repeats", errorTimeOptions.referenceRepeats, "Timed renders per reference spp")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  errorTimeCmd
+      ->add_option("--ray-budgets", errorTimeOptions.rayBudgets,
+                   "hybrid-rays' ray budgets in rays per image pixel, comma separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-6, 16.0))
+      ->capture_default_str();
+  errorTimeCmd
+      ->add_option("--front-spp", errorTimeOptions.frontSpp,
+                   "The reference spp whose blur-region error the front's hybrid-rays case must reach")
+      ->check(CLI::Range(1u, 65536u))
+      ->capture_default_str();
 
   PassesOptions passesOptions;
   CLI::App* passesCmd = app.add_subcommand(
@@ -702,7 +719,7 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->capture_default_str();
   passesCmd->add_option("--methods", passesOptions.methods,
-                        "Methods (sharp, postprocess, hybrid; -curved: along curved paths), comma separated")
+                        "Methods (sharp, postprocess, hybrid, hybrid-rays; -curved: along curved paths), comma separated")
       ->delimiter(',')
       ->check(CLI::IsMember(hmb::bench::kPassesMethods))
       ->capture_default_str();
@@ -727,7 +744,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2u, 65536u))
       ->capture_default_str();
   explainCmd->add_option("--methods", explainOptions.methods,
-                         "Methods (postprocess, hybrid; -curved: along curved paths), comma separated")
+                         "Methods (postprocess, hybrid, hybrid-rays; -curved: along curved paths), comma separated")
       ->delimiter(',')
       ->check(CLI::IsMember(hmb::bench::kExplainMethods))
       ->capture_default_str();

@@ -1,6 +1,5 @@
-// The method names the benchmark suites take: the renderer's methods; postprocess-curved
-// and hybrid-curved, the same along curved paths (--motion-path curved), so that both paths are
-// measured in one run; and hybrid-without-shutter-rays (--shutter-rays 0).
+// The method names the benchmark suites take: the renderer's methods; and NAME-curved, the
+// same along curved paths (--motion-path curved), so that both paths are measured in one run.
 #pragma once
 
 #include <string>

@@ -23,16 +23,15 @@ class Context;
 
 namespace hmb::bench {
 
-// The methods it times (bench/method_variants.h: the -curved ones along curved paths, the
-// hybrid without its shutter rays).
-inline const std::vector<std::string> kPassesMethods = {"sharp",         "postprocess",
-                                                        "postprocess-curved", "hybrid",
-                                                        "hybrid-curved", "hybrid-without-shutter-rays"};
+// The methods it times (bench/method_variants.h: the -curved ones along curved paths).
+inline const std::vector<std::string> kPassesMethods = {"sharp",       "postprocess", "postprocess-curved",
+                                                        "hybrid",      "hybrid-curved", "hybrid-rays",
+                                                        "hybrid-rays-curved"};
 
 struct PassesSuiteOptions {
   std::vector<std::string> scenes;  // reference scene names or glTF paths
   std::vector<ImageSize> sizes = {{640, 360}, {1280, 720}, {1920, 1080}};
-  std::vector<std::string> methods = {"sharp", "postprocess", "hybrid"};
+  std::vector<std::string> methods = {"sharp", "postprocess", "hybrid", "hybrid-rays"};
   int warmup = 1;
   int repeats = 3;
 };

@@ -57,9 +57,12 @@ passes::PostProcessSettings validated(passes::PostProcessSettings s) {
 // One table's settings as a render's: `choices` picks the table's choices out of RenderSettings.
 template <class Choices, class Settings>
 void addDescriptions(std::vector<RenderSettingDescription>& out, const settings::Table<Choices, Settings>& table,
-                     Choices RenderSettings::*choices, const Settings& defaults, std::vector<Method> methods,
+                     Choices RenderSettings::*choices, const Settings& defaults,
                      const Settings* hybridDefaults = nullptr) {
   for (const auto& setting : table) {
+    std::vector<Method> methods;
+    for (const MethodDescription& d : methodDescriptions())
+      if (settings::readBy(setting.methods, d.name)) methods.push_back(d.method);
     std::string defaultText = setting.defaultText;
     if (hybridDefaults && setting.show(*hybridDefaults) != setting.show(defaults))
       defaultText += "; hybrid " + setting.show(*hybridDefaults);
@@ -85,10 +88,18 @@ void addDescriptions(std::vector<RenderSettingDescription>& out, const settings:
 }
 
 // `s` (the scene's) with the user's hybrid choices and post-process choices for its blur,
-// validated, its blur included.
+// validated, its blur included. Each hybrid method reads its own settings: hybrid-rays traces
+// kHybridRaysStrata unless told otherwise, and takes no choice that only the paper's reveal reads.
 passes::HybridSettings hybridWithChoices(passes::HybridSettings s, const RenderSettings& settings) {
+  const std::string_view method = methodName(settings.method);
+  settings::requireChoicesReadBy(passes::postProcessSettingTable(), settings.postprocess, method);
+  settings::requireChoicesReadBy(passes::hybridSettingTable(), settings.hybrid, method);
   s.blur = withChoices(s.blur, settings);
+  s.shutterRays = settings.method == Method::HybridRays ? passes::kHybridRaysStrata : 0u;
   settings::applyAll(passes::hybridSettingTable(), settings.hybrid, s);
+  if (settings.method == Method::HybridRays && s.shutterRays == 0)
+    throw Error("hybrid-rays settings: shutter-rays must be 2, 4, 8 or 16 (the paper's method, without them, is "
+                "--method hybrid)");
   passes::validate(s);
   return s;
 }
@@ -99,11 +110,9 @@ std::vector<RenderSettingDescription> renderSettingDescriptions() {
   std::vector<RenderSettingDescription> out;
   const passes::PostProcessSettings hybridBlur = passes::HybridSettings{}.blur;
   addDescriptions(out, passes::postProcessSettingTable(), &RenderSettings::postprocess, passes::PostProcessSettings{},
-                  {Method::PostProcess, Method::Hybrid}, &hybridBlur);
-  addDescriptions(out, passes::hybridSettingTable(), &RenderSettings::hybrid, passes::HybridSettings{},
-                  {Method::Hybrid});
-  addDescriptions(out, passes::referenceSettingTable(), &RenderSettings::reference, passes::ReferenceSettings{},
-                  {Method::Reference});
+                  &hybridBlur);
+  addDescriptions(out, passes::hybridSettingTable(), &RenderSettings::hybrid, passes::HybridSettings{});
+  addDescriptions(out, passes::referenceSettingTable(), &RenderSettings::reference, passes::ReferenceSettings{});
   return out;
 }
 
@@ -173,7 +182,8 @@ FrameMethod& Renderer::methodFor(Method method) {
 
 RenderResult Renderer::render(const scene::Scene& scene, const RenderSettings& settings) {
   validateRenderSettings(settings);
-  const bool blurs = settings.method == Method::PostProcess || settings.method == Method::Hybrid;
+  const bool blurs = settings.method == Method::PostProcess || settings.method == Method::Hybrid ||
+                     settings.method == Method::HybridRays;
   const uint32_t slices = blurs ? settings.postprocess.timeSlices.value_or(1) : 1;
   return slices > 1 ? renderTimeSlices(scene, settings, slices) : renderFrame(scene, settings);
 }

@@ -178,7 +178,9 @@ nlohmann::json methodSettingsJson(const RenderResult& result) {
       json["revealed_pixels"] = result.hybrid->revealedPixels;
       json["reveal_rays"] = result.hybrid->revealRays;
       json["shutter_rays"] = h.shutterRays;
+      json["ray_budget"] = h.rayBudget;
       json["shutter_ray_pixels"] = result.hybrid->shutterRayPixels;
+      json["shutter_ray_pixels_traced"] = result.hybrid->shutterRayPixelsTraced;
       json["shutter_rays_traced"] = result.hybrid->shutterRays;
       // The trace scene's mesh trees: built once per scene, so not in the frame time.
       json["scene_setup_ms"] = optionalNumber(result.hybrid->setupMilliseconds);

@@ -83,7 +83,7 @@ run_suite() {  # name, then the suite's arguments
   fi
 }
 run_suite passes passes --sizes "$passes_sizes" --repeats "$passes_repeats" \
-  --methods sharp,postprocess,hybrid-without-shutter-rays,hybrid --out "$results/passes.json"
+  --methods sharp,postprocess,hybrid,hybrid-rays --out "$results/passes.json"
 run_suite bvh bvh --scenes "$bvh_scenes" --repeats 3 --out "$results/bvh.json"
 run_suite raster raster --sizes "$raster_sizes" --repeats 7 --out "$results/raster.json"
 run_suite kernels kernels --sizes "$kernel_sizes" --out "$results/kernels.json"

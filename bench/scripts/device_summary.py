@@ -77,10 +77,10 @@ def passes_section(passes):
                      f"{fmt(ratio, 3)} | {shape.get('dispatches', '-')} ({shape.get('indirect_dispatches', '-')}) | "
                      f"{shape.get('barriers', '-')} | {shape.get('host_waits', '-')} | "
                      f"{shape.get('dependent_chain', '-')} |")
-    paper = [c for c in passes["cases"] if c["method"] == "hybrid-without-shutter-rays" and c["width"] == 1280]
+    paper = [c for c in passes["cases"] if c["method"] == "hybrid" and c["width"] == 1280]
     if paper:
         worst = max(paper, key=lambda c: median(c.get("frame_over_postprocess")) or 0)
-        lines += ["", "The paper's hybrid (`hybrid-without-shutter-rays`) over post-process's frame at 1280x720: " +
+        lines += ["", "The paper's hybrid (`hybrid`) over post-process's frame at 1280x720: " +
                   ", ".join(f"{c['scene']} {fmt(median(c.get('frame_over_postprocess')), 2)}x" for c in paper) +
                   f" (the most: {worst['scene']})."]
     return lines + [""]

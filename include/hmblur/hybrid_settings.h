@@ -38,6 +38,10 @@ enum class HybridComposite {
 // --foreground-boost (a constant) or --foreground-boost-pixels overrides it.
 inline constexpr float kHybridForegroundBoostPixels = 80.0f;
 
+// hybrid-rays' shutter strata unless chosen (HybridSettings::shutterRays): 4 keep most of 8's
+// gain for less time, 16 add little (bench/results/error-vs-time/).
+inline constexpr uint32_t kHybridRaysStrata = 8;
+
 struct HybridSettings {
   // The blur of both layers: the McGuire filter, the adapted range (the coverage composite needs
   // it) and the hybrid's foreground boost.
@@ -55,13 +59,17 @@ struct HybridSettings {
   // weights composite uses McGuire's weights there.
   float maskBackgroundBoost = 3.0f;
   float maskForegroundDivide = 3.0f;
-  // Shutter rays (kernels/shutter_rays/list_shutter_rays.comp): the shutter is cut into this many
-  // strata (a power of two up to 16; 0 turns them off), and the moving pixels whose path crosses
-  // another object or a colour step trace a ray at up to that many of them, one per 2 px of blur
-  // around them. A gather of one frame cannot place an edge between pixel centres; where the
-  // camera moves, that is most of the error (docs/hybrid.md, "Shutter rays";
-  // bench/results/error-vs-time/).
-  uint32_t shutterRays = 8;
+  // Shutter rays, the hybrid-rays method (kernels/shutter_rays/list_shutter_rays.comp): the
+  // shutter is cut into this many strata (a power of two up to 16; 0, the paper's hybrid, traces
+  // none), and the moving pixels whose path crosses another object or a colour step trace a ray
+  // at up to that many of them, one per 2 px of blur around them, in place of the ray mask's
+  // reveal. A gather of one frame cannot place an edge between pixel centres; where the camera
+  // moves, that is most of the error (docs/hybrid.md, "Shutter rays").
+  uint32_t shutterRays = 0;
+  // The rays a frame traces at most (0: every listed pixel's): the listed pixels are taken in
+  // order of the error each is expected to remove per ray (shutterRayPriority), the others keep
+  // the blur's colour.
+  uint32_t rayBudget = 0;
 
   // The blur's exposure, fps and SOFT_Z_EXTENT and the edge threshold from a scene's settings,
   // the rest at their defaults.
@@ -79,9 +87,11 @@ struct HybridChoices {
   std::optional<float> maskBackgroundBoost;
   std::optional<float> maskForegroundDivide;
   std::optional<uint32_t> shutterRays;
+  std::optional<uint32_t> rayBudget;
 };
 
-// Every hybrid setting a user can choose, each described once (include/hmblur/setting.h).
+// Every hybrid setting a user can choose, each described once (include/hmblur/setting.h), with
+// the methods that read it: the reveal's belong to hybrid, the shutter rays' to hybrid-rays.
 const settings::Table<HybridChoices, HybridSettings>& hybridSettingTable();
 
 // Throws hmb::Error with a one-line message naming the first absurd value, the blur's included

@@ -21,6 +21,7 @@ enum class Method {
   Sharp,        // the G-buffer's shaded colour, no blur
   PostProcess,  // McGuire 2012 (or Jimenez 2014) over the G-buffer
   Hybrid,       // the paper's method: post-process with ray-traced reveal in the ray mask
+  HybridRays,   // this project's extension: the hybrid's blur with stratified shutter rays at edges
   Reference,    // distributed ray tracing over the shutter: the judge
   TestPattern,  // proves the runtime without a scene
 };

@@ -78,7 +78,8 @@ struct RenderResult {
   passes::RasterStats raster;
   // The post-process methods: the settings they ran with.
   std::optional<passes::PostProcessSettings> postprocess;
-  // The hybrid method: its settings, the ray mask's size and the reveal's rays.
+  // The hybrid methods: their settings, the ray mask's size and the reveal's rays (hybrid), the
+  // shutter rays' pixels and rays (hybrid-rays).
   struct Hybrid {
     passes::HybridSettings settings;
     uint64_t edgeCandidates = 0;  // pixels whose end lies on a deeper object (eqs. 1-2)
@@ -86,8 +87,9 @@ struct RenderResult {
     uint64_t maskPixels = 0;
     uint64_t revealedPixels = 0;  // mask pixels whose composite needs the background, traced
     uint64_t revealRays = 0;
-    uint64_t shutterRayPixels = 0;  // pixels whose path crosses an edge, traced over the shutter
-    uint64_t shutterRays = 0;
+    uint64_t shutterRayPixels = 0;        // pixels whose path crosses an edge, listed for shutter rays
+    uint64_t shutterRayPixelsTraced = 0;  // those traced: every one, or under a ray budget the ones kept
+    uint64_t shutterRays = 0;             // rays traced
     std::optional<double> setupMilliseconds;  // the trace scene's mesh trees: per scene, not per frame
   };
   std::optional<Hybrid> hybrid;

@@ -25,7 +25,7 @@ namespace hmb::settings {
 template <class Choices, class Settings>
 struct Setting {
   std::string_view name;
-  std::string_view methods;  // the methods that read it, for help texts: "postprocess, hybrid"
+  std::string_view methods;  // the methods that read it, by name: "postprocess, hybrid"
   std::string_view help;
   std::string defaultText;  // "15", "the scene's", ...: show() of the defaults unless a builder names it
   std::string accepts;      // "1..255", "mcguire|jimenez", ...
@@ -39,6 +39,8 @@ struct Setting {
   std::function<std::string(const Settings&)> problem;
   // The value in the settings as text ("none" where unset).
   std::function<std::string(const Settings&)> show;
+  // Whether the user made this choice (always false where the choices are the settings themselves).
+  std::function<bool(const Choices&)> chosen = [](const Choices&) { return false; };
 };
 
 template <class Choices, class Settings>
@@ -56,6 +58,27 @@ void checkAll(const Table<Choices, Settings>& table, const Settings& settings, s
 template <class Choices, class Settings>
 void applyAll(const Table<Choices, Settings>& table, const Choices& choices, Settings& settings) {
   for (const auto& setting : table) setting.apply(choices, settings);
+}
+
+// Whether `method` is one of a setting's methods ("postprocess, hybrid").
+inline bool readBy(std::string_view methods, std::string_view method) {
+  while (!methods.empty()) {
+    const size_t comma = methods.find(',');
+    std::string_view name = methods.substr(0, comma);
+    while (!name.empty() && name.front() == ' ') name.remove_prefix(1);
+    if (name == method) return true;
+    methods = comma == std::string_view::npos ? std::string_view() : methods.substr(comma + 1);
+  }
+  return false;
+}
+
+// Throws hmb::Error naming the first choice made that `method` does not read.
+template <class Choices, class Settings>
+void requireChoicesReadBy(const Table<Choices, Settings>& table, const Choices& choices, std::string_view method) {
+  for (const auto& setting : table)
+    if (setting.chosen(choices) && !readBy(setting.methods, method))
+      throw Error(std::string(setting.name) + " is a setting of " + std::string(setting.methods) + ", not of " +
+                  std::string(method));
 }
 
 template <class T>
@@ -161,6 +184,7 @@ Setting<Choices, Settings> number(std::string_view name, std::string_view method
   s.apply = [=](const Choices& c, Settings& settings) {
     if (const auto chosen = valueOf(c.*choice)) settings.*field = *chosen;
   };
+  if constexpr (IsOptional<ChoiceMember>::value) s.chosen = [=](const Choices& c) { return (c.*choice).has_value(); };
   s.problem = [=](const Settings& settings) -> std::string {
     const auto value = valueOf(settings.*field);
     if (!value || range.contains(*value)) return {};
@@ -196,6 +220,7 @@ Setting<Choices, Settings> named(std::string_view name, std::string_view methods
   s.apply = [=](const Choices& c, Settings& settings) {
     if (const auto chosen = valueOf(c.*choice)) settings.*field = *chosen;
   };
+  if constexpr (IsOptional<ChoiceMember>::value) s.chosen = [=](const Choices& c) { return (c.*choice).has_value(); };
   s.problem = [=](const Settings& settings) -> std::string {
     for (const auto& entry : names)
       if (entry.first == settings.*field) return {};

@@ -8,6 +8,9 @@
 // the path X + u v for u in [-1, 1] and a pixel on at each end, v its own displacement when it
 // moves half a pixel or more, else its tile's fastest (a still pixel a moving neighbour may
 // sweep over). Its rays: shutterRaysFor the faster of its own and its tile's fastest blur.
+// With a ray budget (params.ranks) the path is walked whole for the pixel's priority
+// (shutterRayPriority), whose bucket is written beside its entry and whose rays are counted into
+// the budget's histogram (select_ray_budget reads it).
 // A lane per pixel of the moving tiles' 8 x 8 blocks (list_moving_tiles), a block per group or
 // a run of blocks per group (size_list_dispatch, shutter_rays_layout.h); pixels of still tiles are
 // never listed.
@@ -33,20 +36,30 @@ layout(std430, binding = HMB_SHUTTER_LIST_BINDING_LIST) writeonly buffer List { 
 layout(std430, binding = HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS) readonly buffer MaskCounters {
   RayMaskCounters maskCounters;
 };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_PRIORITIES) writeonly buffer Priorities { uint priorities[]; };
+layout(std430, binding = HMB_SHUTTER_LIST_BINDING_BUDGET) buffer Budget { ShutterRayBudget budget; };
 layout(push_constant) uniform Params { ShutterRayListParams params; };
 
 #include "../mblur/mblur_common.glsl"
 #include "../ray_mask/ray_mask_common.glsl"
 
-// Whether pixel p shows another object than `id`, or a colour a step away from `key`'s.
-bool differs(ivec2 p, uint id, vec3 key) {
+// How far pixel p's look is from a pixel of object `id` and colour key `key`: -1 when it shows
+// the same object within a colour step, else the largest step of the keys' channels.
+float difference(ivec2 p, uint id, vec3 key) {
   const uint index = uint(p.y) * params.blur.width + uint(p.x);
-  return surfaceObjectId(surfaceAt(index)) != id ||
-         shutterRayColorsDiffer(shutterRayColorKey(sampleColor(sampleAt(index))), key);
+  const vec3 there = shutterRayColorKey(sampleColor(sampleAt(index)));
+  const vec3 step = abs(there - key);
+  const float contrast = max(step.x, max(step.y, step.z));
+  return surfaceObjectId(surfaceAt(index)) != id || shutterRayColorsDiffer(there, key) ? contrast : -1.0;
 }
 
-// The rays pixel `pixel` takes, 0 when it is not listed. fastest: its tile's (velocity, speed).
-uint shutterRaysAt(ivec2 pixel, vec3 fastest) {
+struct Listing {
+  uint rays;      // 0: not listed
+  uint priority;  // its bucket (ranked lists only)
+};
+
+// The rays pixel `pixel` takes, and their priority. fastest: its tile's (velocity, speed).
+Listing shutterRaysAt(ivec2 pixel, vec3 fastest) {
   const uint index = uint(pixel.y) * params.blur.width + uint(pixel.x);
   const uvec4 here = surfaceAt(index);
   const uint id = surfaceObjectId(here);
@@ -56,24 +69,37 @@ uint shutterRaysAt(ivec2 pixel, vec3 fastest) {
   const bool moves = speed >= 0.5;
   const vec2 v = moves ? own : fastest.xy;
   const float length = moves ? speed : fastest.z;
-  // Steps of at most a pixel over the path and a pixel past either end.
+  // Steps of at most a pixel over the path and a pixel past either end; without a budget the
+  // walk ends at the first sample that differs.
   const vec2 reach = v * (1.0 + 1.0 / length);
   const int steps = int(ceil(length + 1.0));
   const vec2 centre = vec2(pixel) + 0.5;
-  bool crosses = false;
-  for (int k = 1; k <= steps && !crosses; ++k) {
+  const bool whole = params.ranks != 0u;
+  uint differing = 0u;
+  float contrast = 0.0;
+  for (int k = 1; k <= steps && (whole || differing == 0u); ++k) {
     const vec2 along = reach * (float(k) / float(steps));
-    crosses = differs(nearestPixel(centre + along, params.blur.width, params.blur.height), id, key) ||
-              differs(nearestPixel(centre - along, params.blur.width, params.blur.height), id, key);
+    const float ahead = difference(nearestPixel(centre + along, params.blur.width, params.blur.height), id, key);
+    const float behind = difference(nearestPixel(centre - along, params.blur.width, params.blur.height), id, key);
+    differing += uint(ahead >= 0.0) + uint(behind >= 0.0);
+    contrast = max(contrast, max(ahead, behind));
   }
-  return crosses ? shutterRaysFor(max(speed, fastest.z), params.strata) : 0u;
+  Listing listing;
+  listing.rays = differing != 0u ? shutterRaysFor(max(speed, fastest.z), params.strata) : 0u;
+  listing.priority =
+      shutterRayPriorityBucket(shutterRayPriority(contrast, differing, 2u * uint(steps), listing.rays));
+  return listing;
 }
 
 // Lists `pixel` with its rays; the list's dispatch grows with it, a group per
 // HMB_MASK_LIST_GROUP entries.
-void listPixel(uvec2 pixel, uint rays) {
+void listPixel(uvec2 pixel, Listing listing) {
   const uint slot = atomicAdd(counters.count, 1u);
-  list[slot] = shutterRayEntry(pixel.y * params.blur.width + pixel.x, rays);
+  list[slot] = shutterRayEntry(pixel.y * params.blur.width + pixel.x, listing.rays);
+  if (params.ranks != 0u) {
+    priorities[slot] = listing.priority;
+    atomicAdd(budget.histogram[listing.priority], listing.rays / 2u);
+  }
   if (slot % HMB_MASK_LIST_GROUP != 0u) return;
   const uint group = slot / HMB_MASK_LIST_GROUP;
   atomicMax(counters.dispatchX, min(group + 1u, HMB_SHUTTER_RAY_GROUPS_PER_ROW));
@@ -104,8 +130,8 @@ void main() {
       at = at.x + 1u == blocksX ? uvec2(0u, at.y + 1u) : uvec2(at.x + 1u, at.y);
       // Lanes past the tile's or the image's edge have no pixel.
       if (any(greaterThanEqual(pixel, tileEnd))) continue;
-      const uint rays = shutterRaysAt(ivec2(pixel), fastest);
-      if (rays != 0u) listPixel(pixel, rays);
+      const Listing listing = shutterRaysAt(ivec2(pixel), fastest);
+      if (listing.rays != 0u) listPixel(pixel, listing);
     }
   }
 }

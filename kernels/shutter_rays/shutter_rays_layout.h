@@ -7,8 +7,14 @@
 //                  pixel's displacement end on another pixel
 //   list_shutter_rays     pixels of the moving tiles whose path crosses another object or a
 //                  colour step, listed with the rays each takes (a power of two)
-//   trace_shutter_rays    per listed pixel, camera rays at that many shutter times, each
-//                  through the scene at its own time; their mean replaces the composite's colour
+//   select_ray_budget     with a ray budget: where it runs out, first among the listed rays per
+//                  priority bucket (the threshold bucket), then among that bucket's rays per range
+//                  of pixel indices (ties go to the lower pixel indices: the same pixels every run)
+//   tally_budget_ties     with a ray budget: the threshold bucket's rays per range of pixels
+//   keep_budgeted_rays    with a ray budget: the listed pixels above the threshold bucket, and
+//                  those of it in the ranges that fit, in a list of their own
+//   trace_shutter_rays    per listed (or kept) pixel, camera rays at that many shutter times,
+//                  each through the scene at its own time; their mean replaces the composite's colour
 // Shared by the GLSL kernels and the C++ passes and reference.
 #ifndef HMB_KERNELS_SHUTTER_RAYS_SHUTTER_RAYS_LAYOUT_H
 #define HMB_KERNELS_SHUTTER_RAYS_SHUTTER_RAYS_LAYOUT_H
@@ -40,8 +46,30 @@
 #define HMB_SHUTTER_LIST_BINDING_LIST 4      // uint per listed pixel: shutterRayEntry(pixel index, rays)
 #define HMB_SHUTTER_LIST_BINDING_SAMPLES 5    // uvec4 per pixel: the G-buffer's samples (colour)
 #define HMB_SHUTTER_LIST_BINDING_MASK_COUNTERS 6  // RayMaskCounters: the moving tiles' count
-#define HMB_SHUTTER_LIST_BINDING_COUNT 7
+#define HMB_SHUTTER_LIST_BINDING_PRIORITIES 7  // uint per list entry: its priority bucket (ranked lists only)
+#define HMB_SHUTTER_LIST_BINDING_BUDGET 8      // ShutterRayBudget: the histogram grows here (ranked lists only)
+#define HMB_SHUTTER_LIST_BINDING_COUNT 9
 // The surfaces and samples are read as uniform texel buffers (counted in kernels/manifest.h).
+
+// select_ray_budget: one invocation (a walk over HMB_RAY_BUDGET_BUCKETS counts), twice a frame:
+// over the priority buckets (threshold, allowance), then over the ties' ranges (tieRange).
+#define HMB_RAY_BUDGET_SELECT_BINDING_BUDGET 0  // ShutterRayBudget
+#define HMB_RAY_BUDGET_SELECT_BINDING_COUNT 1
+
+// tally_budget_ties and keep_budgeted_rays: one invocation per list entry, HMB_MASK_LIST_GROUP to
+// a group, dispatched by the list's counters.
+#define HMB_RAY_BUDGET_TALLY_BINDING_LIST 0        // list_shutter_rays' list
+#define HMB_RAY_BUDGET_TALLY_BINDING_PRIORITIES 1  // its entries' priority buckets
+#define HMB_RAY_BUDGET_TALLY_BINDING_COUNTERS 2    // ShutterRayCounters of the list
+#define HMB_RAY_BUDGET_TALLY_BINDING_BUDGET 3      // ShutterRayBudget: the ties' histogram grows here
+#define HMB_RAY_BUDGET_TALLY_BINDING_COUNT 4
+#define HMB_RAY_BUDGET_KEEP_BINDING_LIST 0          // list_shutter_rays' list
+#define HMB_RAY_BUDGET_KEEP_BINDING_PRIORITIES 1    // its entries' priority buckets
+#define HMB_RAY_BUDGET_KEEP_BINDING_COUNTERS 2      // ShutterRayCounters of the list
+#define HMB_RAY_BUDGET_KEEP_BINDING_BUDGET 3        // ShutterRayBudget (select_ray_budget's)
+#define HMB_RAY_BUDGET_KEEP_BINDING_KEPT 4          // uint per kept entry, as the list's
+#define HMB_RAY_BUDGET_KEEP_BINDING_KEPT_COUNTERS 5  // ShutterRayCounters of the kept list (cleared each frame)
+#define HMB_RAY_BUDGET_KEEP_BINDING_COUNT 6
 
 // trace_shutter_rays: one invocation per list entry, HMB_MASK_LIST_GROUP to a group.
 #define HMB_SHUTTER_TRACE_BINDING_CAMERAS 0   // PinholeCamera per trace-scene time: the frame's, then each stratum's
@@ -67,6 +95,10 @@
 // A list entry: the pixel index in the low 28 bits, log2 of its rays in the high 4 (images are
 // at most 16384 x 16384 pixels, 2^28: hmb::kMaxImageSide).
 #define HMB_SHUTTER_ENTRY_PIXEL_BITS 28u
+// A ray budget ranks the listed pixels in this many buckets of their priority, an eighth of an
+// octave each (shutterRayPriorityBucket); bucket 0 holds the pixels expected to remove nothing.
+// The threshold bucket's ties are split as many ways by pixel index.
+#define HMB_RAY_BUDGET_BUCKETS 256u
 
 HMB_GPU_BEGIN
 
@@ -94,6 +126,33 @@ struct ShutterRayCounters {
 struct ShutterRayListParams {
   GatherParams blur;  // the frame's blur: its velocities are read as the gathers read them
   uint strata;        // shutter strata of the frame (a power of two, at least 2)
+  uint ranks;         // 1: walk each path whole and write its priority bucket (a ray budget is set)
+  uint pad1;
+  uint pad2;
+};
+
+// A ray budget's working state, written by the host each frame (the budget, the ranges) and
+// cleared but for them. histogram: pairs of rays listed per priority bucket (every pixel takes
+// an even number: pairs keep a 16384^2 image's sum within 32 bits). select_ray_budget writes
+// the bucket where the budget runs out (threshold: the pixels above it are kept whole) and the
+// pairs its own pixels may still take (allowance); tally_budget_ties counts that bucket's pairs
+// per range of rangePixels pixel indices (ties), and select_ray_budget again the first range
+// that no longer fits (tieRange: the threshold bucket's pixels below it are kept).
+struct ShutterRayBudget {
+  uint budgetPairs;
+  uint rangePixels;
+  uint threshold;
+  uint allowance;
+  uint tieRange;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+  uint histogram[HMB_RAY_BUDGET_BUCKETS];
+  uint ties[HMB_RAY_BUDGET_BUCKETS];
+};
+
+struct RayBudgetSelectParams {
+  uint ties;  // 0: over the priority buckets, from the highest; 1: over the ties' ranges, from the lowest
   uint pad0;
   uint pad1;
   uint pad2;
@@ -135,6 +194,27 @@ HMB_SHARED uint shutterRaysFor(float fastestSpeed, uint strata) {
   return min(rays, strata);
 }
 
+// The error a listed pixel's rays are expected to remove, per ray: the contrast across the edge
+// (the largest step of shutterRayColorKey's channels between the pixel and what its path meets),
+// times the share of its path over something else (the share of the shutter the edge covers
+// it), over its rays. differing of samples: the path's samples that meet something else.
+HMB_SHARED float shutterRayPriority(float contrast, uint differing, uint samples, uint rays) {
+  return contrast * (float(differing) / float(max(samples, 1u))) / float(max(rays, 1u));
+}
+
+// A priority's bucket: its float's exponent and top three mantissa bits (an eighth of an octave,
+// exact on every device), from 1 for about 2^-32 and less to 255 for 1 and more; 0 for nothing.
+HMB_SHARED uint shutterRayPriorityBucket(float priority) {
+  if (!(priority > 0.0f)) return 0u;
+  const uint eighths = floatBitsToUint(min(priority, 1.0f)) >> 20u;  // 8 * (exponent + 127) + 3 mantissa bits
+  return uint(clamp(int(eighths) - int(127u * 8u - HMB_RAY_BUDGET_BUCKETS + 1u), 1, int(HMB_RAY_BUDGET_BUCKETS - 1u)));
+}
+
+// The range of pixel indices a tie in the threshold bucket is counted in (ShutterRayBudget).
+HMB_SHARED uint rayBudgetTieRange(uint pixelIndex, uint rangePixels) {
+  return min(pixelIndex / max(rangePixels, 1u), HMB_RAY_BUDGET_BUCKETS - 1u);
+}
+
 // A pixel's rays take every (strata / rays)-th stratum from this one on: neighbours start at
 // different strata, so their few times do not line up into copies of an edge.
 HMB_SHARED uint shutterRayFirstStratum(uint pixelIndex, uint rays, uint strata) {
@@ -149,5 +229,7 @@ HMB_CHECK_SIZE(ShutterRayCounters, 32)
 HMB_CHECK_SIZE(ShutterRayListParams, 80)
 HMB_CHECK_SIZE(ShutterRayTraceParams, 32)
 HMB_CHECK_SIZE(MovingTilesParams, 16)
+HMB_CHECK_SIZE(ShutterRayBudget, 32 + 8 * HMB_RAY_BUDGET_BUCKETS)
+HMB_CHECK_SIZE(RayBudgetSelectParams, 16)
 
 #endif

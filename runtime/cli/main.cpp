@@ -248,33 +248,6 @@ fs::path framePath(const fs::path& out, uint32_t frame, uint32_t lastFrame) {
   return out.parent_path() / (out.stem().string() + "." + number + out.extension().string());
 }
 
-// The reveal's settings given for a frame whose shutter rays left the ray mask out
-// (passes::HybridStage::plan): said on stderr, as anything ignored is. Returns whether it was.
-bool warnRevealSettingsUnused(const GlobalOptions& global, const hmb::RenderSettings& settings,
-                              const hmb::RenderResult& result) {
-  if (global.quiet || !result.hybrid) return false;
-  const hmb::passes::HybridChoices& c = settings.hybrid;
-  const std::pair<bool, const char*> given[] = {{c.edgeThreshold.has_value(), "--edge-threshold"},
-                                                {c.stop.has_value(), "--reveal-stop"},
-                                                {c.maxRecursion.has_value(), "--max-recursion"},
-                                                {c.luminanceThreshold.has_value(), "--luminance-threshold"},
-                                                {c.composite.has_value(), "--composite"},
-                                                {c.maskBackgroundBoost.has_value(), "--mask-background-boost"},
-                                                {c.maskForegroundDivide.has_value(), "--mask-foreground-divide"}};
-  std::string names;
-  for (const auto& [set, name] : given)
-    if (set) names += (names.empty() ? "" : ", ") + std::string(name);
-  if (names.empty()) return false;
-  for (const hmb::PlannedPass& pass : result.plan.passes())
-    if (!pass.run && pass.reason == hmb::passes::kRevealLeftToShutterRaysReason) {
-      std::cerr << "hmblur: warning: " << names
-                << " ignored: they set the ray mask's reveal, which the shutter rays replace (--shutter-rays 0 "
-                   "reveals the mask)\n";
-      return true;
-    }
-  return false;
-}
-
 // Traces the device's loop limit cut short (RenderResult::cutTraces): said on stderr, as their
 // pixels may be wrong.
 void warnCutTraces(const GlobalOptions& global, const hmb::RenderResult& result) {
@@ -301,11 +274,9 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
                            {"resolution", {settings.width, settings.height}},
                            {"fps", scene.settings.fps},
                            {"frames", nlohmann::json::array()}};
-  bool warned = false;  // once for the sequence
   for (uint32_t frame = range.first; frame <= range.last; ++frame) {
     settings.frameTime = static_cast<float>(frame / double(scene.settings.fps));
     const hmb::RenderResult result = renderer.render(scene, settings);
-    warned = warned || warnRevealSettingsUnused(global, settings, result);
     warnCutTraces(global, result);
     nlohmann::json entry = {{"frame", frame},
                             {"time_s", *settings.frameTime},
@@ -459,7 +430,6 @@ int render(const GlobalOptions& global, RenderOptions options) {
                        std::to_string(settings.height));
   const TimedRender timed = renderTimed(renderer, scene, settings, options.repeat);
   const hmb::RenderResult& result = timed.result;
-  warnRevealSettingsUnused(global, settings, result);
   warnCutTraces(global, result);
 
   writeImage(options.out, result);
@@ -516,15 +486,15 @@ CostAndGain costAndGain(const TimedRender& timed, const hmb::metrics::Comparison
   return c;
 }
 
-struct HybridSettingsReport {
+struct HybridMethodsReport {
   nlohmann::json json;
   std::string line;  // one line for stdout
 };
 
-// The hybrid with and without its shutter rays, each frame over post-process's and its
-// blur-region PSNR over post-process's, from `measured` (postprocess, hybrid,
-// hybrid-without-shutter-rays).
-HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGain>& measured) {
+// The paper's hybrid and this project's extension, each frame over post-process's and its
+// blur-region PSNR over post-process's, and what the extension buys over the paper's method,
+// from `measured` (postprocess, hybrid, hybrid-rays).
+HybridMethodsReport hybridMethodsReport(const std::map<std::string, CostAndGain>& measured) {
   const CostAndGain& post = measured.at("postprocess");
   using Number = std::optional<double>;
   const auto ratio = [](const Number& a, const Number& b) { return a && b && *b > 0.0 ? Number(*a / *b) : Number(); };
@@ -536,36 +506,33 @@ HybridSettingsReport hybridSettingsReport(const std::map<std::string, CostAndGai
     std::snprintf(text, sizeof(text), format, *value);
     return std::string(text);
   };
-  HybridSettingsReport out;
-  out.json = {{"what", "the hybrid's shutter rays, its higher setting, beside the paper's method: each frame over "
-                       "post-process's and its blur-region PSNR against the reference over post-process's, "
-                       "measured in this run"},
+  HybridMethodsReport out;
+  out.json = {{"what", "the paper's hybrid and the shutter-ray extension: each frame over post-process's and its "
+                       "blur-region PSNR against the reference over post-process's, measured in this run"},
               {"postprocess", {{"frame_ms", hmb::optionalNumber(post.frameMs)},
                                {"blur_region_psnr_db", hmb::optionalNumber(post.regionPsnr)}}},
-              {"settings", nlohmann::json::array()}};
-  const uint32_t defaultRays = hmb::passes::HybridSettings{}.shutterRays;
-  out.line = "hybrid settings:";
-  for (const auto& [method, setting] :
-       {std::pair<const char*, std::string>{"hybrid-without-shutter-rays", "--shutter-rays 0 (the paper's method)"},
-        {"hybrid", "--shutter-rays " + std::to_string(defaultRays) + " (the default)"}}) {
+              {"methods", nlohmann::json::array()}};
+  out.line = "hybrid methods:";
+  for (const auto& [method, what] : {std::pair<const char*, const char*>{"hybrid", "the paper's method"},
+                                     {"hybrid-rays", "the shutter-ray extension"}}) {
     const CostAndGain& m = measured.at(method);
     const Number times = ratio(m.frameMs, post.frameMs);
     const Number gain = difference(m.regionPsnr, post.regionPsnr);
-    out.json["settings"].push_back({{"setting", setting},
-                                    {"frame_ms", hmb::optionalNumber(m.frameMs)},
-                                    {"x_postprocess", hmb::optionalNumber(times)},
-                                    {"blur_region_psnr_db", hmb::optionalNumber(m.regionPsnr)},
-                                    {"over_postprocess_db", hmb::optionalNumber(gain)}});
-    out.line += " " + setting + " " + printed(times, "%.2fx", "untimed against") + " post-process's frame, " +
-                printed(gain, "%+.1f dB", "no blur region") + " over it in the blur region;";
+    out.json["methods"].push_back({{"method", method},
+                                   {"what", what},
+                                   {"frame_ms", hmb::optionalNumber(m.frameMs)},
+                                   {"x_postprocess", hmb::optionalNumber(times)},
+                                   {"blur_region_psnr_db", hmb::optionalNumber(m.regionPsnr)},
+                                   {"over_postprocess_db", hmb::optionalNumber(gain)}});
+    out.line += " " + std::string(method) + " (" + what + ") " + printed(times, "%.2fx", "untimed against") +
+                " post-process's frame, " + printed(gain, "%+.1f dB", "no blur region") + " over it in the blur region;";
   }
-  // What the rays buy over the paper's method, and for how much more time.
-  const CostAndGain& paper = measured.at("hybrid-without-shutter-rays");
-  const CostAndGain& rays = measured.at("hybrid");
+  const CostAndGain& paper = measured.at("hybrid");
+  const CostAndGain& rays = measured.at("hybrid-rays");
   const Number buys = difference(rays.regionPsnr, paper.regionPsnr);
   const Number costs = ratio(rays.frameMs, paper.frameMs);
-  out.json["shutter_rays_buy"] = {{"blur_region_db", hmb::optionalNumber(buys)},
-                                  {"x_paper_frame", hmb::optionalNumber(costs)}};
+  out.json["extension_buys"] = {{"blur_region_db", hmb::optionalNumber(buys)},
+                                {"x_paper_frame", hmb::optionalNumber(costs)}};
   out.line.back() = ':';
   out.line += " the rays buy " + printed(buys, "%+.1f dB", "an unmeasured gain") + " for " +
               printed(costs, "%.2fx", "an untimed share of") + " the paper's frame";
@@ -594,7 +561,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
                         [](const std::string& m) { return hmb::parseMethod(m) == hmb::Method::Reference; });
   std::optional<hmb::metrics::DisplayImage> judge, sharp;
   std::map<std::string, hmb::io::CaptionedImage> stripPanels;
-  std::map<std::string, CostAndGain> measured;  // postprocess and hybrid, for the hybrid's settings
+  std::map<std::string, CostAndGain> measured;  // each method's cost and gain, for the hybrid methods' report
   for (const std::string& method : methods) {
     hmb::RenderSettings settings;
     settings.method = hmb::parseMethod(method);
@@ -644,22 +611,11 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     report["methods"].push_back(entry);
     if (!global.quiet) std::cout << line << " -> " << stem.string() << ".png\n";
   }
-  // The hybrid's shutter rays are its higher setting: the paper's method beside it, so the
-  // report says what they cost and what they buy, measured in this run.
-  if (judge && sharp && measured.count("postprocess") && measured.count("hybrid")) {
-    hmb::RenderSettings paper;
-    paper.method = hmb::Method::Hybrid;
-    paper.width = options.width;
-    paper.height = options.height;
-    paper.hybrid.shutterRays = 0u;
-    progress(global, "rendering hybrid --shutter-rays 0 (the paper's method)");
-    const TimedRender timed = renderTimed(renderer, scene, paper, kDemoTimedFrames);
-    const hmb::metrics::DisplayImage display = hmb::metrics::displayImageFromLayered(timed.result.image);
-    const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*judge, *sharp);
-    measured["hybrid-without-shutter-rays"] = costAndGain(timed, hmb::metrics::compareImages(*judge, display, &region));
-    const HybridSettingsReport settingsReport = hybridSettingsReport(measured);
-    report["hybrid_settings"] = settingsReport.json;
-    if (!global.quiet) std::cout << settingsReport.line << '\n';
+  // The paper's method and the extension side by side: what the rays cost and buy, in this run.
+  if (measured.count("postprocess") && measured.count("hybrid") && measured.count("hybrid-rays")) {
+    const HybridMethodsReport methodsReport = hybridMethodsReport(measured);
+    report["hybrid_methods"] = methodsReport.json;
+    if (!global.quiet) std::cout << methodsReport.line << '\n';
   }
   // Side by side, sharp to reference, each captioned with its method, warm time and PSNR
   // against the reference: what a newcomer looks at first.

@@ -1,6 +1,8 @@
 // hybrid: the paper's method (passes::HybridStage): the post-process blur of the raster layer,
 // with the background hidden behind moving objects ray traced inside the ray mask, blurred,
-// and composited in.
+// and composited in. hybrid-rays, this project's extension, runs on the same stage: the same
+// blur, with rays at stratified shutter times where a path crosses an edge in place of the
+// mask's reveal (the settings hybridSettingsFor derives for each method say which).
 #include <algorithm>
 
 #include "hmblur/buffer.h"
@@ -105,13 +107,16 @@ class HybridMethod final : public FrameMethod {
       if (hybrid_.tracesShutterRays()) {
         const passes::ShutterRayCounts shutter = hybrid_.shutterRays().counts();
         result.hybrid->shutterRayPixels = shutter.pixels;
+        result.hybrid->shutterRayPixelsTraced = shutter.tracedPixels;
         result.hybrid->shutterRays = shutter.rays;
-        std::vector<uint32_t> entries = hybrid_.shutterRays().list().download<uint32_t>();
-        entries.resize(std::min<size_t>(entries.size(), shutter.pixels));
+        std::vector<uint32_t> entries = hybrid_.shutterRays().tracedList().download<uint32_t>();
+        entries.resize(std::min<size_t>(entries.size(), shutter.tracedPixels));
         for (const uint32_t entry : entries)
           if (const uint32_t i = gpu::shutterRayEntryPixel(entry); i < pixels) shutterRays[i] = gpu::shutterRayEntryRays(entry);
         if (shutter.pixels == 0)
           result.plan.noteNoWork(passes::HybridStage::kShutterRaysTrace, "no pixel's path crosses an edge (another object, a colour step)");
+        else if (shutter.tracedPixels == 0)
+          result.plan.noteNoWork(passes::HybridStage::kShutterRaysTrace, "the ray budget holds no listed pixel's rays");
       }
       if (masks && result.hybrid->edgeCandidates == 0)
         result.plan.noteNoWork(passes::RayMaskStage::kEdges, "no pixel ends on a deeper object (eqs. 1-2): no Sobel");

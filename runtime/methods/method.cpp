@@ -16,6 +16,10 @@ const MethodDescription kMethods[] = {
      validatePostProcessMethod, makePostProcessMethod},
     {Method::Hybrid, "hybrid", "post-process blur with the hidden background ray traced in the ray mask (the paper)",
      true, validateHybridMethod, makeHybridMethod},
+    {Method::HybridRays, "hybrid-rays",
+     "the hybrid's blur with rays at stratified shutter times where a path crosses an edge (this project's "
+     "extension)",
+     true, validateHybridMethod, makeHybridMethod},
     {Method::Reference, "reference", "distributed ray tracing over the shutter (the ground truth)", true,
      validateReferenceMethod, makeReferenceMethod},
     {Method::TestPattern, "test-pattern", "a test pattern that proves the runtime without a scene", false,

@@ -1,5 +1,6 @@
 #include "hmblur/hybrid_settings.h"
 
+#include <limits>
 #include <string>
 
 #include "hmblur/error.h"
@@ -36,10 +37,15 @@ settings::Table<Choices, Settings> makeTable() {
              &Choices::maskBackgroundBoost, &Settings::maskBackgroundBoost, factor),
       number("mask-foreground-divide", "hybrid", "weights composite: foreground weight divisor in the mask",
              &Choices::maskForegroundDivide, &Settings::maskForegroundDivide, factor),
-      number("shutter-rays", "hybrid",
-             "shutter strata for the rays of pixels whose path crosses an edge: another object, a colour step; they "
-             "replace the ray mask's reveal (0: no rays, the paper's reveal; 2, 4, 8 or 16)",
-             &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA}),
+      number("shutter-rays", "hybrid-rays",
+             "shutter strata for the rays of pixels whose path crosses an edge (another object, a colour step), "
+             "traced in place of the ray mask's reveal",
+             &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA},
+             "8; 2, 4, 8 or 16"),
+      number("ray-budget", "hybrid-rays",
+             "shutter rays a frame traces at most, spent on the listed pixels in order of the error each is expected "
+             "to remove per ray (0: every listed pixel's)",
+             &Choices::rayBudget, &Settings::rayBudget, Range<uint32_t>{0, std::numeric_limits<uint32_t>::max()}),
   };
 }
 
@@ -68,7 +74,9 @@ void validate(const HybridSettings& s) {
   if (s.composite == HybridComposite::Coverage && s.blur.effectiveRange() != GatherRange::Adapted)
     throw Error("hybrid settings: the coverage composite needs the adapted range (range adapted)");
   if (s.shutterRays != 0 && (s.shutterRays < 2 || (s.shutterRays & (s.shutterRays - 1)) != 0))
-    throw Error("hybrid settings: shutter-rays must be 0, 2, 4, 8 or 16, not " + std::to_string(s.shutterRays));
+    throw Error("hybrid settings: shutter-rays must be 2, 4, 8 or 16, not " + std::to_string(s.shutterRays));
+  if (s.rayBudget != 0 && s.shutterRays == 0)
+    throw Error("hybrid settings: a ray budget needs shutter rays (the hybrid-rays method)");
   // The weights form's gather would follow the paths but its mask weights assume straight ones.
   if (s.composite == HybridComposite::Weights && s.blur.motionPath == MotionPath::Curved)
     throw Error("hybrid settings: the weights composite follows straight paths only (motion-path linear)");

@@ -19,7 +19,7 @@ namespace {
 
 // Why a frame traces no shutter rays; empty when it does.
 std::string shutterRaysSkipped(const scene::Scene& scene, const HybridSettings& settings) {
-  if (settings.shutterRays == 0) return "shutter-rays 0: turned off";
+  if (settings.shutterRays == 0) return kShutterRaysOffReason;
   if (scene.hasDeformation())
     return "deforming meshes are traced at the frame time only: shutter rays would see them in the wrong pose";
   return {};
@@ -35,11 +35,13 @@ std::vector<float> traceTimes(const scene::Scene& scene, float frameTime, const 
   return times;
 }
 
-// Why a frame leaves the paper's reveal out: with the shutter rays it re-renders nearly every
-// pixel the reveal would, and the image hardly moved against the reference where it ran
-// (docs/hybrid.md, "The hybrid method").
+// Why a frame leaves the paper's reveal out: with every listed pixel's shutter rays it re-renders
+// nearly every pixel the reveal would, and the image hardly moved against the reference where it
+// ran (docs/hybrid.md, "The hybrid method"). Under a ray budget the pixels left untraced keep
+// the reveal's composite.
 std::string revealSkipped(const scene::Scene& scene, const HybridSettings& settings) {
-  return shutterRaysSkipped(scene, settings).empty() ? kRevealLeftToShutterRaysReason : "";
+  return shutterRaysSkipped(scene, settings).empty() && settings.rayBudget == 0 ? kRevealLeftToShutterRaysReason
+                                                                                 : "";
 }
 
 }  // namespace
@@ -55,6 +57,11 @@ HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProce
       composite_(context),
       shutterRays_(context, hits) {
   const auto withoutShutterRays = [](const Frame& f) { return shutterRaysSkipped(*f.scene, *f.settings); };
+  const auto withoutBudget = [](const Frame& f) {
+    const std::string skipped = shutterRaysSkipped(*f.scene, *f.settings);
+    if (!skipped.empty()) return skipped;
+    return f.settings->rayBudget == 0 ? std::string(kNoRayBudgetReason) : std::string();
+  };
   const auto withoutReveal = [](const Frame& f) { return revealSkipped(*f.scene, *f.settings); };
   passes_
       // The trace scene's trees: the meshes' (scene setup), the still instances' and the refits
@@ -92,6 +99,9 @@ HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProce
             shutterRays_.recordList(frame, f.raster, f.blur, postProcess_.tileMax(), rayMask_, shutterStrata_);
           },
           withoutShutterRays)
+      .pass(
+          kShutterRaysBudget, [this](vk::FrameRecorder& frame, const Frame&) { shutterRays_.recordBudget(frame); },
+          withoutBudget)
       // Post-process's image. Beside the reveal the composite writes the mask's pixels over it, so
       // the gather may leave them out where the device profile says that pays
       // (DeviceProfile::gatherSkipsRayMask).
@@ -219,11 +229,12 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   const uint64_t cameraBytes = cameras_.size() * sizeof(gpu::PinholeCamera);
   if (!cameraRays_.handle() || cameraRays_.size() < cameraBytes)
     cameraRays_ = vk::Buffer(context_, cameraBytes, vk::MemoryUse::Device, "camera rays (frame, shutter strata)");
-  if (shutterStrata_ != 0) shutterRays_.prepare(width, height);
+  if (shutterStrata_ != 0) shutterRays_.prepare(width, height, settings.rayBudget);
 
   // Beside the shutter rays the mask's own buffers and the reveal's layers are not made (64
   // bytes a pixel): the frame lists the moving tiles alone.
   const bool reveals = plan.runs(RevealPass::kName);
+  reveals_ = reveals;
   rayMask_.prepare(width, height, !reveals, settings.composite == HybridComposite::Coverage);
   const bool resized = size_.changesTo(width, height);
   size_.madeFor(width, height);
@@ -266,9 +277,9 @@ void HybridStage::record(vk::FrameRecorder& frame, const FramePlan& plan, const 
   // The coverage composite weights the revealed background by 1 - alpha: pixels whose samples
   // all stay on their object (alpha exactly 1) need no reveal.
   f.mask.listOnlyUncovered = settings_.composite == HybridComposite::Coverage;
-  // The shutter rays stand in for the reveal (plan()): the mask's stage lists the moving tiles
-  // their list walks, and post-process's image is theirs to correct.
-  f.mask.movingTilesOnly = shutterStrata_ != 0;
+  // Where the shutter rays stand in for the reveal (plan()), the mask's stage lists the moving
+  // tiles their list walks, and post-process's image is theirs to correct.
+  f.mask.movingTilesOnly = !reveals_;
   f.mask.candidatesInTileMaxLoop = candidatesInTileMaxLoop_;
   passes_.record(frame, plan, f);
 }

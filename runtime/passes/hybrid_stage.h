@@ -43,10 +43,14 @@ namespace hmb::passes {
 
 class PostProcessStage;
 
-// Why a frame with shutter rays skips the ray mask's own passes, the reveal and the composite.
+// Why a hybrid-rays frame skips the ray mask's own passes, the reveal and the composite.
 inline constexpr const char* kRevealLeftToShutterRaysReason =
-    "the shutter rays trace every pixel whose path crosses another object over the shutter "
-    "(--shutter-rays 0 reveals the ray mask instead, as the paper does)";
+    "hybrid-rays traces shutter rays at every pixel whose path crosses an edge in place of the ray mask's reveal "
+    "(--method hybrid reveals the mask, as the paper does; under --ray-budget the pixels left untraced keep it)";
+// Why a hybrid-rays frame without a ray budget skips the budget's pass.
+inline constexpr const char* kNoRayBudgetReason = "no ray budget: every listed pixel traces its rays";
+// Why the paper's hybrid skips the shutter rays' passes.
+inline constexpr const char* kShutterRaysOffReason = "the paper's method traces no shutter rays (hybrid-rays does)";
 
 class HybridStage {
  public:
@@ -58,6 +62,7 @@ class HybridStage {
   static constexpr const char* kGatherBackground = BackgroundGatherPass::kName;
   static constexpr const char* kComposite = CompositePass::kName;
   static constexpr const char* kShutterRaysList = ShutterRaysPass::kList;
+  static constexpr const char* kShutterRaysBudget = ShutterRaysPass::kBudget;
   static constexpr const char* kShutterRaysTrace = ShutterRaysPass::kTrace;
 
   // postProcess: the stage whose tiles and gather both layers use (configured for the
@@ -147,6 +152,7 @@ class HybridStage {
   // by record().
   uint32_t shutterStrata_ = 0;
   std::vector<gpu::PinholeCamera> cameras_;
+  bool reveals_ = true;  // the frame reveals the ray mask (else its shutter rays stand in)
   bool candidatesInTileMaxLoop_ = true;  // RayMaskParameters': a GPU, or the camera moves this frame
   vk::Buffer cameraRays_;
   ImageLayer revealed_;

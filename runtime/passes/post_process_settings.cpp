@@ -38,7 +38,7 @@ std::string defaultForegroundBoosts() {
 
 using Choices = PostProcessChoices;
 using Settings = PostProcessSettings;
-constexpr std::string_view kReaders = "postprocess, hybrid";
+constexpr std::string_view kReaders = "postprocess, hybrid, hybrid-rays";
 
 settings::Table<Choices, Settings> makeTable() {
   using namespace settings;

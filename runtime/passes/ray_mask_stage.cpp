@@ -80,7 +80,7 @@ RayMaskStage::RayMaskStage(const vk::Context& context)
                            tileParams, vk::foldedGroups(vk::groupsFor(grid.count(), HMB_MOVING_TILES_GROUP)));
           },
           [](const Frame& f) {
-            return f.movingTilesOnlyBecause.empty() ? std::string("the ray mask's tile-max lists the moving tiles")
+            return f.movingTilesOnlyBecause.empty() ? std::string(kMovingTilesListedByTileMaxReason)
                                                     : std::string();
           })
       // The whole mask's counters were cleared before its tile-max listed the moving tiles and the

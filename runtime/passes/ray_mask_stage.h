@@ -69,6 +69,9 @@ struct RayMaskCounts {
   uint64_t revealRays = 0;
 };
 
+// Why a frame that reveals the ray mask skips the listing of its moving tiles alone.
+inline constexpr const char* kMovingTilesListedByTileMaxReason = "the ray mask's tile-max lists the moving tiles";
+
 class RayMaskStage {
  public:
   static constexpr const char* kClear = "ray-mask-clear";

@@ -136,7 +136,7 @@ TEST(KernelsSuite, PassesGivesEachMethodsFrameShape) {
   const fs::path dir = tempDir("bench_passes_shape");
   const std::string out = (dir / "passes.json").string();
   const CliRun run = runProgram(HMB_BENCH_PATH, "--validation --device-profile gpu passes --scene temple --sizes 64x36 "
-                                               "--methods postprocess,hybrid-without-shutter-rays --warmup 0 --repeat 1 "
+                                               "--methods postprocess,hybrid --warmup 0 --repeat 1 "
                                                "--out " + out);
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("| dispatches (indirect) | barriers | host waits | dependent chain |"), std::string::npos)

@@ -72,7 +72,7 @@ TEST(CliTest, ADeviceProfileIsForcedReportedAndCheckedInOneLine) {
   const fs::path dir = tempDir("device_profile");
   for (const char* profile : {"cpu", "gpu"}) {
     const CliRun run = hmblur(std::string("--device-profile ") + profile +
-                              " render --scene temple --method hybrid --shutter-rays 0 --width 48 --height 27 --out " +
+                              " render --scene temple --method hybrid --width 48 --height 27 --out " +
                               (dir / "frame.png").string() + " --report " + (dir / "report.json").string());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("frame shape: "), std::string::npos) << run.output;
@@ -264,17 +264,17 @@ TEST(CliTest, DemoWritesImagesAndAReport) {
     EXPECT_TRUE(method["timing"]["median_ms"].is_number()) << method.dump();
     EXPECT_TRUE(method["timing"]["cold_ms"].is_number()) << method.dump();
   }
-  // The hybrid's higher setting (its shutter rays) beside the paper's method, each frame over
+  // The paper's hybrid and the shutter-ray extension side by side, each frame over
   // post-process's of the same run.
-  const nlohmann::json& settings = report["hybrid_settings"]["settings"];
-  ASSERT_EQ(settings.size(), 2u) << report.dump();
-  EXPECT_EQ(settings[0]["setting"], "--shutter-rays 0 (the paper's method)");
-  EXPECT_EQ(settings[1]["setting"], "--shutter-rays 8 (the default)");
-  for (const auto& setting : settings) {
-    EXPECT_GT(setting["x_postprocess"].get<double>(), 0.0) << setting.dump();
-    EXPECT_GT(setting["frame_ms"].get<double>(), 0.0) << setting.dump();
+  const nlohmann::json& methods = report["hybrid_methods"]["methods"];
+  ASSERT_EQ(methods.size(), 2u) << report.dump();
+  EXPECT_EQ(methods[0]["method"], "hybrid");
+  EXPECT_EQ(methods[1]["method"], "hybrid-rays");
+  for (const auto& method : methods) {
+    EXPECT_GT(method["x_postprocess"].get<double>(), 0.0) << method.dump();
+    EXPECT_GT(method["frame_ms"].get<double>(), 0.0) << method.dump();
   }
-  EXPECT_GT(report["hybrid_settings"]["shutter_rays_buy"]["x_paper_frame"].get<double>(), 0.0) << report.dump();
+  EXPECT_GT(report["hybrid_methods"]["extension_buys"]["x_paper_frame"].get<double>(), 0.0) << report.dump();
 }
 
 // The reference with its settings in the report, and another method measured against it.
@@ -392,26 +392,32 @@ TEST(CliTest, TheForegroundBoostIsAConstantOrFallsWithTheSpeed) {
                      "foreground-boost-pixels");
 }
 
-// The reveal's settings act on the ray mask, which the default hybrid leaves to its shutter
-// rays: given there, they are said to be ignored on stderr; with --shutter-rays 0 they act.
-TEST(CliTest, RevealSettingsBesideShutterRaysAreSaidToBeIgnored) {
-  const fs::path dir = tempDir("reveal-settings");
-  const std::string common = "render --scene living-room --method hybrid --width 32 --height 18 --out " +
-                             (dir / "hybrid.png").string();
-  const CliRun rays = hmblur(common + " --edge-threshold 0.5 --reveal-stop luminance");
-  ASSERT_EQ(rays.exitCode, 0) << rays.output;
-  EXPECT_NE(rays.output.find("warning: --edge-threshold, --reveal-stop ignored"), std::string::npos) << rays.output;
-  const CliRun paper = hmblur(common + " --edge-threshold 0.5 --reveal-stop luminance --shutter-rays 0");
+// Each hybrid method takes the settings it reads: the reveal's belong to the paper's hybrid,
+// the shutter rays' to hybrid-rays; one given to the other is a one-line usage error.
+TEST(CliTest, EachHybridMethodTakesItsOwnSettings) {
+  const fs::path dir = tempDir("hybrid-methods");
+  const std::string out = " --width 32 --height 18 --out " + (dir / "hybrid.png").string();
+  const CliRun paper = hmblur("render --scene living-room --method hybrid --edge-threshold 0.5 --reveal-stop luminance" + out);
   ASSERT_EQ(paper.exitCode, 0) << paper.output;
   EXPECT_EQ(paper.output.find("warning"), std::string::npos) << paper.output;
-  const CliRun plain = hmblur(common);
-  ASSERT_EQ(plain.exitCode, 0) << plain.output;
-  EXPECT_EQ(plain.output.find("warning"), std::string::npos) << plain.output;
+  const CliRun rays = hmblur("render --scene living-room --method hybrid-rays --shutter-rays 4 --ray-budget 100" + out);
+  ASSERT_EQ(rays.exitCode, 0) << rays.output;
+  EXPECT_EQ(rays.output.find("warning"), std::string::npos) << rays.output;
+  for (const auto& [args, needle] : std::vector<std::pair<std::string, std::string>>{
+           {"--method hybrid-rays --edge-threshold 0.5", "--edge-threshold is a setting of --method hybrid, not of --method hybrid-rays"},
+           {"--method hybrid --shutter-rays 8", "--shutter-rays is a setting of --method hybrid-rays, not of --method hybrid"},
+           {"--method hybrid --ray-budget 8", "--ray-budget is a setting of --method hybrid-rays"},
+           {"--method hybrid-rays --shutter-rays 0", "--method hybrid"},
+           {"--method hybrid-rays --shutter-rays 3", "shutter-rays must be 2, 4, 8 or 16"}}) {
+    const CliRun run = hmblur("--quiet render --scene living-room" + out + " " + args);
+    EXPECT_NE(run.exitCode, 0) << args;
+    expectOneLineError(run, needle);
+  }
 }
 
 TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
   const fs::path dir = tempDir("hybrid");
-  const CliRun run = hmblur("--quiet render --scene living-room --method hybrid --shutter-rays 0 --edge-threshold 0.5 "
+  const CliRun run = hmblur("--quiet render --scene living-room --method hybrid --edge-threshold 0.5 "
                             "--reveal-stop luminance --max-recursion 3 --composite weights --width 64 --height 36 "
                             "--out " + (dir / "hybrid.exr").string() + " --report " + (dir / "report.json").string());
   ASSERT_EQ(run.exitCode, 0) << run.output;
@@ -434,7 +440,8 @@ TEST(CliTest, HybridSettingsAndCountsReachTheReportAndBadOnesFailInOneLine) {
   expectOneLineError(hmblur("--quiet render --method hybrid --edge-threshold 1.5 --width 8 --height 8"),
                      "edge-threshold must be");
   expectOneLineError(hmblur("--quiet render --method hybrid --max-recursion 0 --width 8 --height 8"), "recursion");
-  expectOneLineError(hmblur("--quiet render --method hybrid --filter jimenez --width 8 --height 8"), "McGuire");
+  expectOneLineError(hmblur("--quiet render --method hybrid --filter jimenez --width 8 --height 8"),
+                     "--filter is a setting of --method postprocess");
   expectOneLineError(hmblur("--quiet render --method hybrid --range centered --width 8 --height 8"), "adapted");
   expectOneLineError(hmblur("--quiet render --method hybrid --composite weights --motion-path curved --width 8 "
                             "--height 8"),
@@ -483,7 +490,8 @@ TEST(CliTest, VersionAndUsageErrorsExitTwo) {
            {"--method magic", "unknown method"},
            {"--method sharp --spp 4", "--spp is a setting of --method reference, not of --method sharp"},
            {"--method postprocess --edge-threshold 0.5", "--method hybrid"},
-           {"--method sharp --time-slices 2", "--time-slices is a setting of --method postprocess or hybrid"},
+           {"--method sharp --time-slices 2",
+            "--time-slices is a setting of --method postprocess or hybrid or hybrid-rays"},
            {"--method hybrid --time-slices 0", "time-slices"},
            {"--method test-pattern --repeat 0", "--repeat"},
            {"--method test-pattern --fps 0", "fps"},

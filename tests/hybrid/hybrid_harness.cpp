@@ -144,21 +144,28 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
 
 ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& layer,
                                          const passes::RayMaskParameters& parameters, uint32_t strata,
-                                         std::optional<uint32_t> groupsWanted) {
+                                         std::optional<uint32_t> groupsWanted, uint32_t rayBudget) {
   passes::ShutterRaysPass pass(context);
-  pass.prepare(layer.width, layer.height);
+  pass.prepare(layer.width, layer.height, rayBudget);
   const RayMaskReadback mask = recordRayMask(
       context, layer, parameters,
       [&](vk::FrameRecorder& frame, const passes::MotionBlurInputs& inputs, const passes::RayMaskStage& stage,
           const passes::RayMaskParameters& p) {
         pass.recordList(frame, inputs, p.blur, *p.tileMax, stage, strata, groupsWanted);
+        if (rayBudget != 0) pass.recordBudget(frame);
       });
   ShutterRayListReadback out;
   out.maskCounters = mask.counters;
   out.counters = pass.counters().download<gpu::ShutterRayCounters>().at(0);
   const size_t pixels = size_t(layer.width) * layer.height;
   out.rays.assign(pixels, 0u);
-  for (const uint32_t entry : downloadFirst<uint32_t>(pass.list(), std::min<size_t>(out.counters.count, pixels))) {
+  const size_t listed = std::min<size_t>(out.counters.count, pixels);
+  const std::vector<uint32_t> entries = downloadFirst<uint32_t>(pass.list(), listed);
+  const std::vector<uint32_t> priorities =
+      rayBudget != 0 ? downloadFirst<uint32_t>(pass.priorities(), listed) : std::vector<uint32_t>();
+  if (rayBudget != 0) out.priorities.assign(pixels, 0u);
+  for (size_t slot = 0; slot < entries.size(); ++slot) {
+    const uint32_t entry = entries[slot];
     const uint32_t pixel = gpu::shutterRayEntryPixel(entry);
     if (pixel >= pixels) {
       ADD_FAILURE() << "shutter ray list entry " << entry << " names no pixel";
@@ -166,6 +173,19 @@ ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& 
     }
     EXPECT_EQ(out.rays[pixel], 0u) << "pixel " << pixel << " listed twice";
     out.rays[pixel] = gpu::shutterRayEntryRays(entry);
+    if (rayBudget != 0) out.priorities[pixel] = priorities[slot];
+  }
+  if (rayBudget == 0) return out;
+  out.budget = pass.budgetState().download<gpu::ShutterRayBudget>().at(0);
+  out.keptCounters = downloadFirst<gpu::ShutterRayCounters>(pass.keptCounters(), 1).at(0);
+  out.kept.assign(pixels, false);
+  for (const uint32_t entry : downloadFirst<uint32_t>(pass.tracedList(), std::min<size_t>(out.keptCounters.count, pixels))) {
+    const uint32_t pixel = gpu::shutterRayEntryPixel(entry);
+    if (pixel >= pixels || out.rays[pixel] != gpu::shutterRayEntryRays(entry) || out.kept[pixel]) {
+      ADD_FAILURE() << "kept entry " << entry << " is not a listed pixel's, or is kept twice";
+      continue;
+    }
+    out.kept[pixel] = true;
   }
   return out;
 }

@@ -50,15 +50,22 @@ RayMaskReadback runRayMask(vk::Context& context, const MaskLayer& layer, const p
 // ShutterRaysPass's list (list_shutter_rays) of `layer` at `strata`, after the ray mask's
 // moving tiles (RayMaskStage): the rays per pixel the list holds (0 where it lists none; a
 // pixel listed twice fails the test), its counters and the ray mask's (the list's dispatch).
-// groupsWanted: ShutterRaysPass::recordList's.
+// groupsWanted: ShutterRaysPass::recordList's. rayBudget: when not 0, the list ranks its pixels
+// and the budget's pass (select_ray_budget, keep_budgeted_rays) runs after it.
 struct ShutterRayListReadback {
   std::vector<uint32_t> rays;
   gpu::ShutterRayCounters counters{};
   gpu::RayMaskCounters maskCounters{};
+  // Under a budget: each listed pixel's priority bucket, the pixels kept, the budget's state and
+  // the kept list's counters.
+  std::vector<uint32_t> priorities;
+  std::vector<bool> kept;
+  gpu::ShutterRayBudget budget{};
+  gpu::ShutterRayCounters keptCounters{};
 };
 ShutterRayListReadback runShutterRayList(vk::Context& context, const MaskLayer& layer,
                                          const passes::RayMaskParameters& parameters, uint32_t strata,
-                                         std::optional<uint32_t> groupsWanted = std::nullopt);
+                                         std::optional<uint32_t> groupsWanted = std::nullopt, uint32_t rayBudget = 0);
 
 // One gather of `layer`: the composite (CompositePass, after MaskCoveragePass over the mask's
 // pixels for the coverage form) with `background`, which needs the mask and the object ids;

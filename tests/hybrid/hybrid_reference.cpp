@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "kernels/mblur/mblur_layout.h"
@@ -171,12 +172,14 @@ std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskPara
 
 }  // namespace
 
-std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskParameters& p, uint32_t strata) {
+std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskParameters& p, uint32_t strata,
+                                  std::vector<uint32_t>* priorities) {
   const MaskLayer layer = stored(input);
   const uint32_t width = layer.width, height = layer.height, tileSize = p.blur.tileSize;
   const uint32_t tilesX = (width + tileSize - 1) / tileSize;
   const std::vector<glm::vec4> tiles = mblur::tileMax(layer.velocity, width, height, tileSize, p.blur.velocityScale);
   std::vector<uint32_t> out(size_t(width) * height, 0u);
+  if (priorities) priorities->assign(out.size(), 0u);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
       const glm::vec4 fastest = tiles[size_t(y / tileSize) * tilesX + x / tileSize];
@@ -184,10 +187,14 @@ std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskP
       const size_t index = size_t(y) * width + x;
       const uint32_t id = layer.objectId[index];
       const glm::vec3 key = gpu::shutterRayColorKey(layer.color[index]);
-      // Another object, or a colour a step away.
-      const auto differs = [&](glm::ivec2 q) {
+      // Another object, or a colour a step away: the largest step of the colour keys' channels;
+      // -1 for neither.
+      const auto difference = [&](glm::ivec2 q) {
         const size_t i = indexOf(width, q);
-        return layer.objectId[i] != id || gpu::shutterRayColorsDiffer(gpu::shutterRayColorKey(layer.color[i]), key);
+        const glm::vec3 there = gpu::shutterRayColorKey(layer.color[i]);
+        const glm::vec3 step = glm::abs(there - key);
+        const float contrast = std::max(step.x, std::max(step.y, step.z));
+        return layer.objectId[i] != id || gpu::shutterRayColorsDiffer(there, key) ? contrast : -1.0f;
       };
       float speed;
       const glm::vec2 own = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
@@ -198,15 +205,61 @@ std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskP
       const glm::vec2 reach = v * (1.0f + 1.0f / length);
       const int steps = int(std::ceil(length + 1.0f));
       const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
-      bool crosses = false;
-      for (int k = 1; k <= steps && !crosses; ++k) {
+      // Walked whole for the priority, else to the first sample that differs.
+      uint32_t differing = 0;
+      float contrast = 0.0f;
+      for (int k = 1; k <= steps && (priorities || differing == 0); ++k) {
         const glm::vec2 along = reach * (float(k) / float(steps));
-        crosses = differs(nearestPixel(centre + along, width, height)) ||
-                  differs(nearestPixel(centre - along, width, height));
+        const float ahead = difference(nearestPixel(centre + along, width, height));
+        const float behind = difference(nearestPixel(centre - along, width, height));
+        differing += uint32_t(ahead >= 0.0f) + uint32_t(behind >= 0.0f);
+        contrast = std::max(contrast, std::max(ahead, behind));
       }
-      if (crosses) out[index] = gpu::shutterRaysFor(std::max(speed, fastest.z), strata);
+      if (differing == 0) continue;
+      out[index] = gpu::shutterRaysFor(std::max(speed, fastest.z), strata);
+      if (priorities)
+        (*priorities)[index] = gpu::shutterRayPriorityBucket(
+            gpu::shutterRayPriority(contrast, differing, 2u * uint32_t(steps), out[index]));
     }
   return out;
+}
+
+std::vector<bool> keptByBudget(const std::vector<uint32_t>& rays, const std::vector<uint32_t>& priorities,
+                               uint32_t budgetRays) {
+  // Pairs of rays per bucket, and the bucket where the budget runs out.
+  std::vector<uint64_t> pairs(HMB_RAY_BUDGET_BUCKETS, 0);
+  for (size_t i = 0; i < rays.size(); ++i)
+    if (rays[i] != 0) pairs.at(priorities[i]) += rays[i] / 2;
+  const uint64_t budgetPairs = budgetRays / 2;
+  uint64_t spent = 0, allowance = std::numeric_limits<uint64_t>::max();
+  uint32_t threshold = 0;
+  for (uint32_t b = HMB_RAY_BUDGET_BUCKETS; b-- > 0;) {
+    if (pairs[b] > budgetPairs - spent) {
+      threshold = b;
+      allowance = budgetPairs - spent;
+      break;
+    }
+    spent += pairs[b];
+  }
+  // The threshold bucket's pairs per range of pixel indices, and the first range that does not fit.
+  const uint32_t rangePixels = uint32_t((rays.size() + HMB_RAY_BUDGET_BUCKETS - 1) / HMB_RAY_BUDGET_BUCKETS);
+  std::vector<uint64_t> ties(HMB_RAY_BUDGET_BUCKETS, 0);
+  for (size_t i = 0; i < rays.size(); ++i)
+    if (rays[i] != 0 && priorities[i] == threshold) ties[gpu::rayBudgetTieRange(uint32_t(i), rangePixels)] += rays[i] / 2;
+  uint32_t tieRange = HMB_RAY_BUDGET_BUCKETS;
+  spent = 0;
+  for (uint32_t r = 0; r < HMB_RAY_BUDGET_BUCKETS; ++r) {
+    if (ties[r] > allowance - spent) {
+      tieRange = r;
+      break;
+    }
+    spent += ties[r];
+  }
+  std::vector<bool> kept(rays.size(), false);
+  for (size_t i = 0; i < rays.size(); ++i)
+    kept[i] = rays[i] != 0 && (priorities[i] > threshold ||
+                               (priorities[i] == threshold && gpu::rayBudgetTieRange(uint32_t(i), rangePixels) < tieRange));
+  return kept;
 }
 
 std::vector<uint32_t> edgeMask(const MaskLayer& input, const passes::RayMaskParameters& p) {

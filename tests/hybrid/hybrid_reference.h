@@ -85,7 +85,15 @@ std::vector<bool> revealedPixels(const MaskLayer& layer, const std::vector<uint3
 // frame of `strata` strata, from the gather's tile-max at parameters.blur.tileSize and the
 // layer's object ids and colours. Only pixels of tiles whose fastest pixel moves
 // kMinBlurPixels or more (list_moving_tiles) are listed.
-std::vector<uint32_t> shutterRays(const MaskLayer& layer, const passes::RayMaskParameters& parameters, uint32_t strata);
+// priorities: when given, each listed pixel's priority bucket as a ray budget ranks it
+// (shutterRayPriorityBucket), 0 elsewhere.
+std::vector<uint32_t> shutterRays(const MaskLayer& layer, const passes::RayMaskParameters& parameters, uint32_t strata,
+                                  std::vector<uint32_t>* priorities = nullptr);
+
+// select_ray_budget, tally_budget_ties and keep_budgeted_rays: which listed pixels a budget of
+// `budgetRays` keeps, given each pixel's rays and priority bucket (0 rays: not listed).
+std::vector<bool> keptByBudget(const std::vector<uint32_t>& rays, const std::vector<uint32_t>& priorities,
+                               uint32_t budgetRays);
 
 // size_list_dispatch.comp: the counters after it ran on a mask of `maskCount` pixels (rayCount 0).
 gpu::RayMaskCounters dispatchFor(uint32_t maskCount);

@@ -389,7 +389,6 @@ TEST_F(HybridRevealTest, HybridRenderRevealsThePlaneAtMaskPixels) {
   Renderer renderer(context());
   RenderSettings settings;
   settings.method = Method::Hybrid;
-  settings.hybrid.shutterRays = 0;  // the paper's: with shutter rays the mask is left out
   settings.width = kWidth;
   settings.height = kHeight;
   const RenderResult hybrid = renderer.render(s.scene, settings);

@@ -9,6 +9,7 @@
 #include <utility>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -119,6 +120,64 @@ TEST_F(HybridShutterRaysTest, ListMatchesReferenceOnAdversarialLayers) {
                                   "round " + std::to_string(round) + " scale " + std::to_string(velocityScale));
   }
   EXPECT_GT(listed, 100u);
+}
+
+// Under a ray budget: every listed pixel's priority bucket is the reference's, and the pixels
+// kept are the reference's, whatever order the device listed them in (the threshold bucket's
+// ties go to the lower pixel indices); they hold at most the budget's rays, and every kept pixel
+// ranks at least as high as every pixel left out. Budgets from one ray (nothing fits) to more
+// than the list holds, on random and adversarial layers.
+void expectBudgetMatches(const MaskLayer& layer, const RayMaskParameters& p, uint32_t strata, const std::string& what,
+                         size_t& keptPixels, size_t& cutCases) {
+  std::vector<uint32_t> priorities;
+  const std::vector<uint32_t> rays = shutterRays(layer, p, strata, &priorities);
+  uint64_t listedRays = 0;
+  for (const uint32_t n : rays) listedRays += n;
+  for (const double share : {0.0, 0.1, 0.5, 0.9, 2.0}) {
+    const uint32_t budget = std::max<uint32_t>(1, uint32_t(share * double(listedRays)));
+    const std::string with = what + ", budget " + std::to_string(budget) + " of " + std::to_string(listedRays);
+    const ShutterRayListReadback device = runShutterRayList(VulkanTest::context(), layer, p, strata, std::nullopt, budget);
+    ASSERT_EQ(device.rays, rays) << with;
+    size_t wrongPriorities = 0;
+    for (size_t i = 0; i < rays.size(); ++i)
+      if (rays[i] != 0 && device.priorities[i] != priorities[i] && ++wrongPriorities <= 5)
+        ADD_FAILURE() << with << ": pixel " << i << " priority " << device.priorities[i] << ", reference "
+                      << priorities[i];
+    EXPECT_EQ(wrongPriorities, 0u) << with;
+    const std::vector<bool> kept = keptByBudget(rays, priorities, budget);
+    EXPECT_EQ(device.kept, kept) << with;
+    uint64_t keptRays = 0;
+    size_t keptCount = 0;
+    for (size_t i = 0; i < rays.size(); ++i)
+      if (device.kept[i]) {
+        keptRays += rays[i];
+        ++keptCount;
+      }
+    EXPECT_EQ(device.keptCounters.count, keptCount) << with;
+    EXPECT_EQ(device.keptCounters.rayCount, 0u) << with << ": nothing traced yet";
+    const uint32_t groups = (device.keptCounters.count + HMB_MASK_LIST_GROUP - 1) / HMB_MASK_LIST_GROUP;
+    EXPECT_EQ(device.keptCounters.dispatchX, std::min(groups, HMB_SHUTTER_RAY_GROUPS_PER_ROW)) << with;
+    EXPECT_EQ(device.keptCounters.dispatchZ, groups == 0 ? 0u : 1u) << with;
+    EXPECT_LE(keptRays, budget) << with;
+    if (listedRays > budget) {
+      // Every kept pixel ranks at least as high as every pixel left out.
+      uint32_t lowestKept = HMB_RAY_BUDGET_BUCKETS, highestLeft = 0;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        if (rays[i] == 0) continue;
+        if (device.kept[i])
+          lowestKept = std::min(lowestKept, priorities[i]);
+        else
+          highestLeft = std::max(highestLeft, priorities[i]);
+      }
+      if (keptCount != 0) {
+        EXPECT_GE(lowestKept, highestLeft) << with;
+      }
+      ++cutCases;
+    } else {
+      EXPECT_EQ(keptRays, listedRays) << with << ": the whole list fits";
+    }
+    keptPixels += keptCount;
+  }
 }
 
 // A still frame lists nothing and dispatches no ray.
@@ -241,6 +300,47 @@ TEST(HybridShutterRaysRuleTest, FirstStrataSpreadOverPixels) {
     ++seen[first];
   }
   for (const int n : seen) EXPECT_NEAR(n, 1000, 150);
+}
+
+TEST_F(HybridShutterRaysTest, RayBudgetKeepsThePixelsTheReferenceKeeps) {
+  std::mt19937 rng(37);
+  size_t kept = 0, cut = 0;
+  for (const auto& [width, height, strata] : {std::tuple{61u, 47u, 8u}, std::tuple{129u, 71u, 16u}, std::tuple{1u, 41u, 4u}})
+    expectBudgetMatches(withColors(randomMaskLayer(width, height, rng), rng), parametersWith(40.0f, 1.0f), strata,
+                        "random " + std::to_string(width) + "x" + std::to_string(height), kept, cut);
+  for (int round = 0; round < 3; ++round)
+    expectBudgetMatches(withColors(adversarialMaskLayer(43, 37, rng), rng), parametersWith(40.0f, 2.0f), 8,
+                        "adversarial round " + std::to_string(round), kept, cut);
+  // One colour and one object edge: every listed pixel in few buckets, ties decided by order.
+  MaskLayer strip = movingStrip();
+  for (uint32_t y = 0; y < strip.height; ++y)
+    for (uint32_t x = 10; x < 20; ++x) strip.objectId[y * strip.width + x] = 2u;
+  strip.color.assign(strip.objectId.size(), glm::vec3(0.5f));
+  expectBudgetMatches(strip, parametersWith(40.0f, 1.0f, 30), 8, "ties", kept, cut);
+  EXPECT_GT(kept, 100u);
+  EXPECT_GT(cut, 5u);
+}
+
+// The priority's pieces by hand: the contrast times the share of the path over something else,
+// per ray; buckets an eighth of an octave, 0 for nothing, capped at both ends.
+TEST(HybridShutterRaysRuleTest, PriorityRanksTheErrorPerRay) {
+  EXPECT_FLOAT_EQ(gpu::shutterRayPriority(0.5f, 3, 12, 2), 0.5f * 0.25f / 2.0f);
+  EXPECT_EQ(gpu::shutterRayPriority(0.5f, 0, 12, 2), 0.0f);
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(0.0f), 0u);
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(-1.0f), 0u);
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(std::numeric_limits<float>::quiet_NaN()), 0u);
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(1.0f), HMB_RAY_BUDGET_BUCKETS - 1);
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(std::numeric_limits<float>::infinity()), HMB_RAY_BUDGET_BUCKETS - 1);
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(0.5f), HMB_RAY_BUDGET_BUCKETS - 1 - 8);  // an octave: 8 buckets
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(1e-30f), 1u);
+  EXPECT_EQ(gpu::shutterRayPriorityBucket(std::numeric_limits<float>::denorm_min()), 1u);
+  // Monotonic: a larger priority never takes a lower bucket.
+  uint32_t last = 0;
+  for (float p = 1e-12f; p < 2.0f; p *= 1.01f) {
+    const uint32_t b = gpu::shutterRayPriorityBucket(p);
+    EXPECT_GE(b, last) << p;
+    last = b;
+  }
 }
 
 }  // namespace

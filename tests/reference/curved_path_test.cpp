@@ -30,13 +30,9 @@ constexpr uint32_t kTileSize = 32;
 
 metrics::DisplayImage displayOf(const RenderResult& result) { return metrics::displayImageFromRgba8(result.display); }
 
-// shutterRays: the hybrid's strata (nullopt: its default); 0 leaves every pixel to the gathers,
-// the part of the hybrid the path changes.
-metrics::DisplayImage blurred(const scene::Scene& scene, Method method, passes::MotionPath path, uint32_t slices = 1,
-                              std::optional<uint32_t> shutterRays = std::nullopt) {
+metrics::DisplayImage blurred(const scene::Scene& scene, Method method, passes::MotionPath path, uint32_t slices = 1) {
   static Renderer renderer(VulkanTest::context());
   RenderSettings settings;
-  settings.hybrid.shutterRays = shutterRays;
   settings.method = method;
   settings.postprocess.timeSlices = slices;
   settings.width = kWidth;
@@ -48,8 +44,8 @@ metrics::DisplayImage blurred(const scene::Scene& scene, Method method, passes::
 
 struct PathErrors {
   metrics::Comparison linear, curved;              // post-process
-  metrics::Comparison hybridLinear, hybridCurved;  // hybrid
-  metrics::Comparison gathersLinear, gathersCurved;  // hybrid without shutter rays
+  metrics::Comparison hybridLinear, hybridCurved;  // hybrid-rays
+  metrics::Comparison gathersLinear, gathersCurved;  // the paper's hybrid: gathers, and the reveal in the mask
 };
 
 // Both paths against a 256-spp reference, over the blur region and the frame.
@@ -58,15 +54,15 @@ PathErrors pathErrors(const scene::Scene& scene) {
   const metrics::DisplayImage sharp = displayOf(renderScene(scene, "sharp", 1, 1, std::nullopt, kWidth, kHeight));
   const metrics::BlurRegion region = metrics::blurRegion(judge, sharp);
   EXPECT_GT(region.pixelCount, 1000u) << scene.name;
-  const auto error = [&](Method method, passes::MotionPath path, std::optional<uint32_t> shutterRays = std::nullopt) {
-    return metrics::compareImages(judge, blurred(scene, method, path, 1, shutterRays), &region);
+  const auto error = [&](Method method, passes::MotionPath path) {
+    return metrics::compareImages(judge, blurred(scene, method, path), &region);
   };
   PathErrors e{error(Method::PostProcess, passes::MotionPath::Linear),
                error(Method::PostProcess, passes::MotionPath::Curved),
+               error(Method::HybridRays, passes::MotionPath::Linear),
+               error(Method::HybridRays, passes::MotionPath::Curved),
                error(Method::Hybrid, passes::MotionPath::Linear),
-               error(Method::Hybrid, passes::MotionPath::Curved),
-               error(Method::Hybrid, passes::MotionPath::Linear, 0u),
-               error(Method::Hybrid, passes::MotionPath::Curved, 0u)};
+               error(Method::Hybrid, passes::MotionPath::Curved)};
   const metrics::Comparison still = metrics::compareImages(judge, sharp, &region);
   EXPECT_TRUE(e.linear.region && e.curved.region && still.region) << scene.name;
   EXPECT_TRUE(e.hybridLinear.region && e.hybridCurved.region && e.gathersLinear.region && e.gathersCurved.region)
@@ -75,17 +71,16 @@ PathErrors pathErrors(const scene::Scene& scene) {
       e.gathersLinear.region && e.gathersCurved.region)
     std::cout << "[ curved ] " << scene.name << ": blur region (" << region.pixelCount << " px) PSNR sharp "
               << still.region->psnr << " dB; post-process linear " << e.linear.region->psnr << " dB, curved "
-              << e.curved.region->psnr << " dB; hybrid linear " << e.hybridLinear.region->psnr << " dB, curved "
-              << e.hybridCurved.region->psnr << " dB (without shutter rays " << e.gathersLinear.region->psnr << " / "
+              << e.curved.region->psnr << " dB; hybrid-rays linear " << e.hybridLinear.region->psnr << " dB, curved "
+              << e.hybridCurved.region->psnr << " dB (hybrid " << e.gathersLinear.region->psnr << " / "
               << e.gathersCurved.region->psnr << " dB); frame " << e.linear.frame.psnr << " / " << e.curved.frame.psnr
               << " / " << e.hybridLinear.frame.psnr << " / " << e.hybridCurved.frame.psnr << " dB\n";
   return e;
 }
 
 // Where the surface stays in view, the curved path beats the straight one by at least 1 dB over
-// the blur region, and is not worse over the frame, in post-process and in hybrid (whose range
-// check, coverage composite and gathers follow the same paths), with its shutter rays and
-// without.
+// the blur region, and is not worse over the frame, in post-process, in the paper's hybrid (whose
+// range check, coverage composite and gathers follow the same paths) and in hybrid-rays.
 void expectCurvedBeatsLinear(const scene::Scene& scene) {
   const PathErrors e = pathErrors(scene);
   ASSERT_TRUE(e.linear.region && e.curved.region && e.hybridLinear.region && e.hybridCurved.region &&
@@ -105,9 +100,8 @@ TEST_F(CurvedPathTest, APlateSpinningInTheImagePlaneBlursCloserAlongItsCurvedPat
 // A box's faces turn out of view and others into it within the shutter: points the sharp frame
 // does not hold, which no gather of one G-buffer finds along any path (time slices or rays
 // do). The curved path is only asked not to make the gathers worse there (+0.4 dB measured in
-// post-process and in the hybrid without shutter rays). With them the rays take the box's
-// edges, where the path would have helped, and the two paths measure within 0.05 dB of each
-// other (printed).
+// post-process and in the paper's hybrid). In hybrid-rays the rays take the box's edges, where
+// the path would have helped, and the two paths measure within 0.05 dB of each other (printed).
 TEST_F(CurvedPathTest, ABoxSpinningInDepthIsNoWorseAlongItsCurvedPath) {
   const PathErrors e = pathErrors(scene::loadScene("spinning-box"));
   ASSERT_TRUE(e.linear.region && e.curved.region && e.gathersLinear.region && e.gathersCurved.region);
@@ -115,6 +109,39 @@ TEST_F(CurvedPathTest, ABoxSpinningInDepthIsNoWorseAlongItsCurvedPath) {
   EXPECT_GE(e.curved.frame.psnr, e.linear.frame.psnr);
   EXPECT_GE(e.gathersCurved.region->psnr, e.gathersLinear.region->psnr);
   EXPECT_GE(e.gathersCurved.frame.psnr, e.gathersLinear.frame.psnr);
+}
+
+// A ray budget spends rays where they remove the most error: on each motion study, given as many
+// rays as the paper's method traced in its reveal, hybrid-rays traces at most that many and is
+// at least as close to the reference over the blur region as the paper's method.
+TEST_F(CurvedPathTest, AtThePapersRayCountHybridRaysIsAtLeastAsClose) {
+  static Renderer renderer(VulkanTest::context());
+  for (const char* name : {"spinning-plate", "spinning-box", "turntable"}) {
+    const scene::Scene scene = scene::loadScene(name);
+    const metrics::DisplayImage judge = displayOf(renderScene(scene, "reference", 256, 11, std::nullopt, kWidth, kHeight));
+    const metrics::BlurRegion region =
+        metrics::blurRegion(judge, displayOf(renderScene(scene, "sharp", 1, 1, std::nullopt, kWidth, kHeight)));
+    RenderSettings settings;
+    settings.method = Method::Hybrid;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.postprocess.tileSize = kTileSize;
+    const RenderResult paper = renderer.render(scene, settings);
+    ASSERT_TRUE(paper.hybrid && paper.hybrid->revealRays > 0) << name;
+    settings.method = Method::HybridRays;
+    settings.hybrid.rayBudget = uint32_t(paper.hybrid->revealRays);
+    const RenderResult budgeted = renderer.render(scene, settings);
+    const metrics::Comparison paperError = metrics::compareImages(judge, displayOf(paper), &region);
+    const metrics::Comparison raysError = metrics::compareImages(judge, displayOf(budgeted), &region);
+    ASSERT_TRUE(paperError.region && raysError.region && budgeted.hybrid) << name;
+    EXPECT_LE(budgeted.hybrid->shutterRays, *settings.hybrid.rayBudget) << name;
+    EXPECT_GE(raysError.region->psnr, paperError.region->psnr) << name;
+    std::cout << "[ budget ] " << name << ": " << *settings.hybrid.rayBudget << " rays (the paper's reveal): hybrid "
+              << paperError.region->psnr << " dB, hybrid-rays " << raysError.region->psnr
+              << " dB over the blur region (" << budgeted.hybrid->shutterRays << " rays at "
+              << budgeted.hybrid->shutterRayPixelsTraced << " of " << budgeted.hybrid->shutterRayPixels
+              << " listed pixels)\n";
+  }
 }
 
 TEST_F(CurvedPathTest, ATurntableBlursCloserAlongItsCurvedPath) {
@@ -156,31 +183,27 @@ TEST_F(CurvedPathTest, ATimeSlicesPathsSpanItsOwnPartOfTheShutter) {
 
 // With time slices each slice's paths span its own part of the shutter: on the turntable, two
 // slices along curved paths beat two along straight ones by 1 dB over the blur region, and one
-// slice along curved paths, in post-process and in the hybrid's gathers (without its shutter
-// rays, which take the edges where the paths differ most; with them, printed).
+// slice along curved paths, in post-process and in the paper's hybrid (hybrid-rays, whose rays
+// take the edges where the paths differ most, printed).
 TEST_F(CurvedPathTest, EachTimeSliceFollowsThePathsOfItsOwnSpan) {
   const scene::Scene scene = scene::loadScene("turntable");
   const metrics::DisplayImage judge = displayOf(renderScene(scene, "reference", 256, 11, std::nullopt, kWidth, kHeight));
   const metrics::BlurRegion region =
       metrics::blurRegion(judge, displayOf(renderScene(scene, "sharp", 1, 1, std::nullopt, kWidth, kHeight)));
   for (const Method method : {Method::PostProcess, Method::Hybrid}) {
-    const std::optional<uint32_t> gathersOnly = method == Method::Hybrid ? std::optional<uint32_t>(0u) : std::nullopt;
-    const auto psnr = [&](passes::MotionPath path, uint32_t slices, std::optional<uint32_t> shutterRays) {
-      return metrics::compareImages(judge, blurred(scene, method, path, slices, shutterRays), &region)
-          .region.value()
-          .psnr;
+    const auto psnr = [&](Method m, passes::MotionPath path, uint32_t slices) {
+      return metrics::compareImages(judge, blurred(scene, m, path, slices), &region).region.value().psnr;
     };
-    const double curvedOne = psnr(passes::MotionPath::Curved, 1, gathersOnly),
-                 linearTwo = psnr(passes::MotionPath::Linear, 2, gathersOnly),
-                 curvedTwo = psnr(passes::MotionPath::Curved, 2, gathersOnly);
+    const double curvedOne = psnr(method, passes::MotionPath::Curved, 1),
+                 linearTwo = psnr(method, passes::MotionPath::Linear, 2),
+                 curvedTwo = psnr(method, passes::MotionPath::Curved, 2);
     EXPECT_GT(curvedTwo, linearTwo + 1.0) << methodName(method);
     EXPECT_GT(curvedTwo, curvedOne) << methodName(method);
-    std::cout << "[ curved ] turntable, " << methodName(method) << (gathersOnly ? " without shutter rays" : "")
-              << ": blur region PSNR curved " << curvedOne << " dB; two slices linear " << linearTwo << " dB, curved "
-              << curvedTwo << " dB";
+    std::cout << "[ curved ] turntable, " << methodName(method) << ": blur region PSNR curved " << curvedOne
+              << " dB; two slices linear " << linearTwo << " dB, curved " << curvedTwo << " dB";
     if (method == Method::Hybrid)
-      std::cout << "; with shutter rays two slices linear " << psnr(passes::MotionPath::Linear, 2, std::nullopt)
-                << " dB, curved " << psnr(passes::MotionPath::Curved, 2, std::nullopt) << " dB";
+      std::cout << "; hybrid-rays two slices linear " << psnr(Method::HybridRays, passes::MotionPath::Linear, 2)
+                << " dB, curved " << psnr(Method::HybridRays, passes::MotionPath::Curved, 2) << " dB";
     std::cout << "\n";
   }
 }

@@ -21,13 +21,16 @@ namespace {
 
 using ShutterRaysTest = VulkanTest;
 
-RenderResult renderHybrid(const scene::Scene& scene, uint32_t width, uint32_t height, uint32_t shutterRays) {
+// shutterRays 0: the paper's hybrid; else hybrid-rays with that many strata.
+RenderResult renderHybrid(const scene::Scene& scene, uint32_t width, uint32_t height, uint32_t shutterRays,
+                          std::optional<uint32_t> rayBudget = std::nullopt) {
   static Renderer renderer(VulkanTest::context());
   RenderSettings settings;
-  settings.method = Method::Hybrid;
+  settings.method = shutterRays == 0 ? Method::Hybrid : Method::HybridRays;
   settings.width = width;
   settings.height = height;
-  settings.hybrid.shutterRays = shutterRays;
+  if (shutterRays != 0) settings.hybrid.shutterRays = shutterRays;
+  settings.hybrid.rayBudget = rayBudget;
   return renderer.render(scene, settings);
 }
 
@@ -90,8 +93,8 @@ TEST_F(ShutterRaysTest, ListedPixelsAreTheMeanOfTheSharpFramesAtTheirStrata) {
   }
 }
 
-// Turned off, or on a scene whose meshes deform (the trace scene holds them at the frame time
-// only), the plan skips both passes and says why.
+// In the paper's method, or on a scene whose meshes deform (the trace scene holds them at the
+// frame time only), the plan skips both passes and says why.
 TEST_F(ShutterRaysTest, PlanSaysWhyTheyAreSkipped) {
   const RenderResult off = renderHybrid(scene::loadScene("bistro"), 64, 36, 0);
   for (const char* pass : {passes::HybridStage::kShutterRaysList, passes::HybridStage::kShutterRaysTrace}) {
@@ -99,7 +102,7 @@ TEST_F(ShutterRaysTest, PlanSaysWhyTheyAreSkipped) {
                                       [&](const PlannedPass& p) { return p.name == pass; });
     ASSERT_NE(planned, off.plan.passes().end()) << pass;
     EXPECT_FALSE(planned->run) << pass;
-    EXPECT_NE(planned->reason.find("shutter-rays 0"), std::string::npos) << planned->reason;
+    EXPECT_EQ(planned->reason, passes::kShutterRaysOffReason);
   }
   EXPECT_EQ(off.hybrid->shutterRayPixels, 0u);
   const io::ImageLayer* rays = off.image.find("shutterRays");

@@ -40,7 +40,6 @@
 #include "runtime/passes/reference_stage.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "tests/support/method_names.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -67,7 +66,7 @@ Renderer& renderer() {
 RenderResult render(const scene::Scene& scene, const std::string& method, uint32_t width, uint32_t height,
                     uint32_t spp = kReferenceSpp, std::optional<float> frameTime = std::nullopt, bool skip = true) {
   RenderSettings settings;
-  setMethod(settings, method);
+  settings.method = parseMethod(method);
   settings.width = width;
   settings.height = height;
   settings.frameTime = frameTime;
@@ -587,7 +586,7 @@ void checkZeroVelocity(const Case& c, const scene::Scene& scene, const std::stri
     return;
   }
   const RenderResult sharp = render(scene, "sharp", c.width, c.height);
-  if (method == "postprocess" || method == "hybrid" || method == kHybridReveal) {
+  if (method == "postprocess" || method == "hybrid" || method == "hybrid-rays") {
     EXPECT_EQ(result.image.find("")->values, sharp.image.find("")->values);
     const RenderResult everyPass = render(scene, method, c.width, c.height, 1, std::nullopt, false);
     EXPECT_EQ(everyPass.image.find("")->values, sharp.image.find("")->values) << "with every pass run";
@@ -717,7 +716,7 @@ void checkMovingCamera(const Case& c, const scene::Scene& scene, const std::stri
                        const RenderResult& result) {
   if (method == "sharp" || method == "reference") return;
   const double error = meanErrorAgainstJudge(c, scene, result);
-  const bool hybrid = method == "hybrid" || method == kHybridReveal;
+  const bool hybrid = method == "hybrid" || method == "hybrid-rays";
   const std::string baseline = hybrid ? "postprocess" : "sharp";
   const double baselineError = meanErrorAgainstJudge(c, scene, render(scene, baseline, c.width, c.height));
   std::cout << "[ camera    ] mean |error| vs reference: " << method << " " << error << ", " << baseline << " "
@@ -832,7 +831,7 @@ TEST_P(RobustnessTest, FiniteWellFormedAndWithinBounds) {
     std::cout << "[ hybrid    ] " << name << ": mask " << result.hybrid->maskPixels << " px, reveal rays "
               << result.hybrid->revealRays << ", shutter rays " << result.hybrid->shutterRays << "\n";
     if (c.hybridTraces) {
-      if (method == kHybridReveal)
+      if (method == "hybrid")
         EXPECT_GT(result.hybrid->revealRays, 0u);
       else
         EXPECT_GT(result.hybrid->shutterRays, 0u);
@@ -850,12 +849,8 @@ TEST_P(RobustnessTest, FiniteWellFormedAndWithinBounds) {
   if (c.check != nullptr) c.check(c, scene, method, result);
 }
 
-// Every method, and the hybrid without its shutter rays.
-std::vector<std::string> robustnessMethods() {
-  std::vector<std::string> methods = methodNames();
-  methods.emplace_back(kHybridReveal);
-  return methods;
-}
+// Every method.
+std::vector<std::string> robustnessMethods() { return methodNames(); }
 
 std::string testName(const ::testing::TestParamInfo<CaseAndMethod>& info) {
   std::string method = std::get<1>(info.param);

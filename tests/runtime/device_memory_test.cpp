@@ -136,8 +136,7 @@ TEST(DeviceMemoryLimitTest, HybridAt1080pRendersOnADeviceWithA256MiBHostVisibleH
 
   const scene::Scene scene = scene::loadScene("living-room");
   RenderSettings settings;
-  settings.method = Method::Hybrid;
-  settings.hybrid.shutterRays = 0;  // the paper's: the ray mask's and the reveal's buffers too
+  settings.method = Method::Hybrid;  // the paper's: the ray mask's and the reveal's buffers too
   settings.width = 1920;
   settings.height = 1080;
   Renderer renderer(discrete);

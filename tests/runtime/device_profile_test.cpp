@@ -148,7 +148,7 @@ TEST_F(DeviceProfileTest, ForcedProfilesReachTheContext) {
 struct ProfileCase {
   const char* scene;
   Method method;
-  std::optional<uint32_t> shutterRays;  // hybrid: the extension's rays, or 0 for the paper's method
+  std::optional<uint32_t> rayBudget;  // hybrid-rays: rays a frame traces at most
 };
 
 // Every method under both profiles, forced, on the three reference scenes at 160x90: the
@@ -160,11 +160,11 @@ struct ProfileCase {
 TEST_F(DeviceProfileTest, EveryMethodRendersTheSameImageUnderEitherProfile) {
   const ProfileCase cases[] = {
       {"living-room", Method::Sharp, std::nullopt},    {"living-room", Method::PostProcess, std::nullopt},
-      {"living-room", Method::Hybrid, 0u},             {"living-room", Method::Hybrid, std::nullopt},
-      {"living-room", Method::Reference, std::nullopt}, {"temple", Method::Hybrid, 0u},
-      {"temple", Method::Hybrid, std::nullopt},        {"temple", Method::Reference, std::nullopt},
-      {"bistro", Method::Hybrid, 0u},                  {"bistro", Method::Hybrid, std::nullopt},
-      {"bistro", Method::PostProcess, std::nullopt},
+      {"living-room", Method::Hybrid, std::nullopt},   {"living-room", Method::HybridRays, std::nullopt},
+      {"living-room", Method::Reference, std::nullopt}, {"temple", Method::Hybrid, std::nullopt},
+      {"temple", Method::HybridRays, std::nullopt},    {"temple", Method::Reference, std::nullopt},
+      {"bistro", Method::Hybrid, std::nullopt},        {"bistro", Method::HybridRays, std::nullopt},
+      {"bistro", Method::HybridRays, 1000u},           {"bistro", Method::PostProcess, std::nullopt},
   };
   vk::Context& cpu = forcedContext(vk::DeviceProfileChoice::Cpu);
   vk::Context& gpu = forcedContext(vk::DeviceProfileChoice::Gpu);
@@ -176,9 +176,9 @@ TEST_F(DeviceProfileTest, EveryMethodRendersTheSameImageUnderEitherProfile) {
     settings.width = 160;
     settings.height = 90;
     settings.reference.samplesPerPixel = 16;
-    settings.hybrid.shutterRays = c.shutterRays;
+    settings.hybrid.rayBudget = c.rayBudget;
     const std::string what = std::string(c.scene) + " " + std::string(methodName(c.method)) +
-                             (c.shutterRays ? " --shutter-rays " + std::to_string(*c.shutterRays) : "");
+                             (c.rayBudget ? " --ray-budget " + std::to_string(*c.rayBudget) : "");
     const RenderResult a = onCpu.render(scene, settings);
     const RenderResult b = onGpu.render(scene, settings);
     if (c.method != Method::Reference) {
@@ -208,7 +208,6 @@ TEST_F(DeviceProfileTest, UnderTheGpuProfileThePapersHybridAddsFewDispatchesAndN
     settings.method = Method::PostProcess;
     const RenderResult postprocess = renderer.render(scene, settings);
     settings.method = Method::Hybrid;
-    settings.hybrid.shutterRays = 0u;
     const RenderResult hybrid = renderer.render(scene, settings);
     EXPECT_EQ(postprocess.frameShape.hostWaits, 1u) << name;
     EXPECT_EQ(hybrid.frameShape.submissions, 1u) << name;

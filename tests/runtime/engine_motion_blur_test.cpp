@@ -166,7 +166,7 @@ TEST(EngineMotionBlurTest, ZOverWDepthBuffersBlurAsCameraSpaceDepth) {
 // anything back.
 TEST(EngineMotionBlurTest, TheHybridOnTheEnginesFrameIsTheRenderersHybrid) {
   const scene::Scene scene = scene::loadScene("living-room");
-  const Frames f = renderedFrames(scene, Method::Hybrid);
+  const Frames f = renderedFrames(scene, Method::HybridRays);
   ASSERT_TRUE(f.hybrid);
   Engine engine(/*enableFeatures=*/true);
   std::vector<glm::vec4> out(f.color.size());
@@ -236,8 +236,8 @@ void expectTheRenderersFrame(const Engine& engine, const Engine::OwnBuffer& outp
 // frame is still the renderer's, bit for bit.
 TEST(EngineMotionBlurTest, AFrameWhoseInstancesMovedNeitherWaitsNorReadsBack) {
   const scene::Scene scene = scene::loadScene("living-room");
-  const Frames first = renderedFrames(scene, Method::Hybrid);
-  const Frames later = renderedFrames(scene, Method::Hybrid, first.frameTime + 2.0f / scene.settings.fps);
+  const Frames first = renderedFrames(scene, Method::HybridRays);
+  const Frames later = renderedFrames(scene, Method::HybridRays, first.frameTime + 2.0f / scene.settings.fps);
   ASSERT_TRUE(first.hybrid && later.hybrid);
   ASSERT_NE(first.blurred, later.blurred);
   Engine engine(/*enableFeatures=*/true);
@@ -281,7 +281,7 @@ TEST(EngineMotionBlurTest, AFrameWhoseInstancesMovedNeitherWaitsNorReadsBack) {
 TEST(EngineMotionBlurTest, RecordingADeformingFrameNeitherWaitsNorReadsBack) {
   const scene::Scene scene =
       scene::loadScene((std::filesystem::path(HMB_DEFORMING_SCENES_DIR) / "skinned-arm.gltf").string());
-  const Frames f = renderedFrames(scene, Method::Hybrid);
+  const Frames f = renderedFrames(scene, Method::HybridRays);
   ASSERT_TRUE(f.hybrid);
   Engine engine(/*enableFeatures=*/true);
   vk::ContextOptions options = countingOptions();
@@ -308,7 +308,7 @@ TEST(EngineMotionBlurTest, RecordingADeformingFrameNeitherWaitsNorReadsBack) {
 // transforms go through translation, rotation and scale, so to rounding.
 TEST(EngineMotionBlurTest, AnEngineSceneOfMatricesTracesAsTheSceneItCameFrom) {
   const scene::Scene original = scene::loadScene("living-room");
-  const Frames f = renderedFrames(original, Method::Hybrid);
+  const Frames f = renderedFrames(original, Method::HybridRays);
   const float t = f.frameTime, before = t - 1.0f / original.settings.fps;
   EngineScene engineScene(original.settings.fps, original.settings.exposure, original.settings.softZExtent);
   for (const scene::Mesh& mesh : original.meshes) {

@@ -18,7 +18,6 @@
 #include "runtime/passes/shutter_path_pass.h"
 #include "scenes/procedural/mesh_builders.h"
 #include "scenes/procedural/scene_builder.h"
-#include "tests/support/method_names.h"
 #include "tests/support/vulkan_test.h"
 
 namespace hmb::test {
@@ -34,7 +33,7 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
                       bool skip, passes::MotionPath path = passes::MotionPath::Linear) {
   RenderSettings settings;
   settings.postprocess.motionPath = path;
-  setMethod(settings, method);
+  settings.method = parseMethod(method);
   settings.width = 64;
   settings.height = 36;
   settings.frameTime = time;
@@ -44,13 +43,14 @@ RenderResult renderAt(Renderer& renderer, const scene::Scene& scene, const std::
 }
 
 // The passes a frame skipped, beside those of what the scene does not have (skinned or
-// morphing meshes) or the settings do not ask for (curved paths, the reveal beside shutter
-// rays): those are skipped even when every pass is asked to run.
+// morphing meshes) or the method does not run (curved paths, the reveal beside shutter rays,
+// the shutter rays in the paper's hybrid): those are skipped even when every pass is asked to run.
 std::vector<std::string> skippedPasses(const RenderResult& result) {
   std::vector<std::string> names;
   for (const PlannedPass& pass : result.plan.passes())
     if (!pass.run && pass.reason != kNoDeformationReason && pass.reason != passes::kStraightPathsReason &&
-        pass.reason != passes::kRevealLeftToShutterRaysReason &&
+        pass.reason != passes::kRevealLeftToShutterRaysReason && pass.reason != passes::kShutterRaysOffReason &&
+        pass.reason != passes::kMovingTilesListedByTileMaxReason && pass.reason != passes::kNoRayBudgetReason &&
         !pass.reason.starts_with(passes::kVisibilitySchemeReason))
       names.push_back(pass.name);
   return names;
@@ -68,14 +68,14 @@ TEST(AnythingMovesOnScreenTest, FollowsTheSceneAnimation) {
 TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
   Renderer renderer(context());
   const scene::Scene room = scene::loadScene("living-room");
-  for (const char* method : {"postprocess", "hybrid"}) {
+  for (const char* method : {"postprocess", "hybrid", "hybrid-rays"}) {
     const RenderResult skipped = renderAt(renderer, room, method, kStillTime, true);
     const RenderResult everything = renderAt(renderer, room, method, kStillTime, false);
     EXPECT_TRUE(skippedPasses(everything).empty()) << method;
     const std::vector<std::string> names = skippedPasses(skipped);
     for (const char* pass : {"tile-max", "neighbor-max"})
       EXPECT_NE(std::find(names.begin(), names.end(), pass), names.end()) << method << " " << pass;
-    const std::vector<std::string> blur = std::string(method) == "hybrid"
+    const std::vector<std::string> blur = std::string(method).starts_with("hybrid")
                                               ? std::vector<std::string>{"hybrid-bvh-meshes", "ray-reveal", "gather", "composite"}
                                               : std::vector<std::string>{"gather"};
     for (const std::string& pass : blur)
@@ -111,7 +111,7 @@ TEST_F(FramePlanSkipsTest, AStillFrameSkipsTheBlurAndTheImageIsUnchanged) {
 TEST_F(FramePlanSkipsTest, AMovingFrameRunsTheBlur) {
   Renderer renderer(context());
   const scene::Scene room = scene::loadScene("living-room");
-  for (const char* method : {"postprocess", "hybrid"}) {
+  for (const char* method : {"postprocess", "hybrid", "hybrid-rays"}) {
     const RenderResult result = renderAt(renderer, room, method, kMovingTime, true);
     EXPECT_TRUE(skippedPasses(result).empty()) << method;
     EXPECT_TRUE(result.plan.runs("tile-max")) << method;
@@ -132,7 +132,7 @@ TEST_F(FramePlanSkipsTest, ASceneWithoutTexturesSkipsTheTexturePathAndTheImageIs
   for (scene::Material& material : plain.materials) material.baseColorTexture = -1;
   plain.textures.clear();
   const float time = plain.settings.frameTime;
-  for (const char* method : {"sharp", "postprocess", "hybrid", "reference"}) {
+  for (const char* method : {"sharp", "postprocess", "hybrid", "hybrid-rays", "reference"}) {
     const RenderResult textured = renderAt(renderer, temple, method, time, true);
     const PlannedPass* path = passNamed(textured, "texture-path");
     ASSERT_NE(path, nullptr) << method;
@@ -148,7 +148,7 @@ TEST_F(FramePlanSkipsTest, ASceneWithoutTexturesSkipsTheTexturePathAndTheImageIs
     EXPECT_FALSE(path->run) << method;
     EXPECT_FALSE(path->reason.empty()) << method;
     EXPECT_TRUE(passNamed(everything, "texture-path")->run) << method;
-    if (std::string(method) == "hybrid") {
+    if (std::string(method) == "hybrid-rays") {
       ASSERT_GT(skipped.hybrid->shutterRays, 0u);
     }
     ASSERT_EQ(skipped.image.layers.size(), everything.image.layers.size()) << method;
@@ -181,7 +181,7 @@ TEST_F(FramePlanSkipsTest, ASceneOfOneInstanceSkipsTheTopLevelWalkAndTheImageIsU
   Renderer renderer(context());
   const scene::Scene wall = slidingWall();
   ASSERT_EQ(wall.instances.size(), 1u);
-  for (const char* method : {"hybrid", "reference"}) {
+  for (const char* method : {"hybrid", "hybrid-rays", "reference"}) {
     const RenderResult skipped = renderAt(renderer, wall, method, 1.0f, true);
     const RenderResult everything = renderAt(renderer, wall, method, 1.0f, false);
     const PlannedPass* walk = passNamed(skipped, "top-level-walk");
@@ -205,7 +205,7 @@ TEST_F(FramePlanSkipsTest, ASceneOfOneInstanceSkipsTheTopLevelWalkAndTheImageIsU
 TEST_F(FramePlanSkipsTest, AStillFrameLeavesTheCurvedPathsOutAndSaysWhy) {
   Renderer renderer(context());
   const scene::Scene room = scene::loadScene("living-room");
-  for (const char* method : {"postprocess", "hybrid"})
+  for (const char* method : {"postprocess", "hybrid", "hybrid-rays"})
     for (const bool skip : {true, false}) {
       const RenderResult result = renderAt(renderer, room, method, kStillTime, skip, passes::MotionPath::Curved);
       for (const char* name : {passes::ShutterPathPass::kTransformName, passes::ShutterPathPass::kResolveName}) {
@@ -227,11 +227,10 @@ TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
   Renderer renderer(context());
   const scene::Scene wall = slidingWall();
   ASSERT_TRUE(anythingMovesOnScreen(wall, 1.0f));
-  const RenderResult result = renderAt(renderer, wall, kHybridReveal, 1.0f, true);
-  // The shutter rays are turned off; the mask's tile-max lists the moving tiles; the wall has no
-  // texture, and is the scene's one instance.
-  EXPECT_EQ(skippedPasses(result), (std::vector<std::string>{"ray-mask-moving-tiles", "shutter-rays-list",
-                                                              "shutter-rays-trace", "texture-path", "top-level-walk"}));
+  const RenderResult result = renderAt(renderer, wall, "hybrid", 1.0f, true);
+  // The wall has no texture, and is the scene's one instance (the shutter rays' passes, which the
+  // paper's method never runs, are left out of skippedPasses).
+  EXPECT_EQ(skippedPasses(result), (std::vector<std::string>{"texture-path", "top-level-walk"}));
   EXPECT_EQ(result.hybrid->edgeCandidates, 0u);
   EXPECT_EQ(result.hybrid->maskPixels, 0u);
   EXPECT_EQ(result.hybrid->revealRays, 0u);
@@ -242,18 +241,18 @@ TEST_F(FramePlanSkipsTest, AnEmptyRayMaskTracesNothingAndTheReportSaysSo) {
   // A frame with silhouettes has work in every pass; the coverage composite's pass takes the
   // mask pixels left unrevealed (the background gather blends the others), and says so when
   // there are none.
-  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), kHybridReveal, kMovingTime, true);
+  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid", kMovingTime, true);
   ASSERT_GT(room.hybrid->revealRays, 0u);
   const bool allRevealed = room.hybrid->maskPixels == room.hybrid->revealedPixels;
   for (const PlannedPass& pass : room.plan.passes())
     EXPECT_EQ(pass.noWork.empty(), !(pass.name == "composite" && allRevealed)) << pass.name;
 }
 
-// With shutter rays (the default), the ray mask's own passes, the reveal and the composite are
+// With shutter rays (hybrid-rays), the ray mask's own passes, the reveal and the composite are
 // skipped and say why; the moving tiles are still listed for the rays, which trace.
 TEST_F(FramePlanSkipsTest, ShutterRaysLeaveTheRevealOutAndSayWhy) {
   Renderer renderer(context());
-  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid", kMovingTime, true);
+  const RenderResult room = renderAt(renderer, scene::loadScene("living-room"), "hybrid-rays", kMovingTime, true);
   for (const char* name :
        {"ray-mask-edges", "ray-mask-range-blocks", "ray-mask-range-check", "ray-reveal",
         "gather-background", "composite"}) {
@@ -271,12 +270,12 @@ TEST_F(FramePlanSkipsTest, ShutterRaysLeaveTheRevealOutAndSayWhy) {
   // and the revealed layer and its blur (48), less the rays' own list (4); at 640x360 the
   // per-pixel buffers outweigh the trace scene's.
   RenderSettings settings;
-  settings.method = Method::Hybrid;
+  settings.method = Method::HybridRays;
   settings.width = 640;
   settings.height = 360;
   settings.frameTime = kMovingTime;
   const RenderResult rays = renderer.render(scene::loadScene("living-room"), settings);
-  settings.hybrid.shutterRays = 0;
+  settings.method = Method::Hybrid;
   const RenderResult paper = renderer.render(scene::loadScene("living-room"), settings);
   const uint64_t pixels = uint64_t(settings.width) * settings.height;
   EXPECT_LE(rays.memory.peakBytes + 56 * pixels, paper.memory.peakBytes)

@@ -32,7 +32,7 @@ RenderResult renderWith(const std::string& method, Renderer& renderer, const sce
 }
 
 RenderResult renderHybrid(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
-  return renderWith("hybrid", renderer, scene, time, reuse);
+  return renderWith("hybrid-rays", renderer, scene, time, reuse);
 }
 RenderResult renderReference(Renderer& renderer, const scene::Scene& scene, float time, bool reuse = true) {
   return renderWith("reference", renderer, scene, time, reuse);

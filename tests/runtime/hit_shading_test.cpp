@@ -63,9 +63,8 @@ TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
   RendererOptions magenta;
   magenta.shadeHit = kMagenta;
   Renderer custom(context(), magenta);
-  // The paper's hybrid: rays reveal the ray mask (the default's shutter rays: below).
-  RenderSettings paper = frameOf(Method::Hybrid);
-  paper.hybrid.shutterRays = 0;
+  // The paper's hybrid: rays reveal the ray mask (hybrid-rays' shutter rays: below).
+  const RenderSettings paper = frameOf(Method::Hybrid);
   const RenderResult a = builtIn.render(scene, paper);
   const RenderResult b = custom.render(scene, paper);
   // The raster's G-buffer is the same: its shading is the library's.
@@ -98,8 +97,8 @@ TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
 
   // With shutter rays every pixel that took them is the shading's colour (each ray's is
   // magenta), and no other pixel changes.
-  const RenderResult c = builtIn.render(scene, frameOf(Method::Hybrid));
-  const RenderResult d = custom.render(scene, frameOf(Method::Hybrid));
+  const RenderResult c = builtIn.render(scene, frameOf(Method::HybridRays));
+  const RenderResult d = custom.render(scene, frameOf(Method::HybridRays));
   const std::vector<uint32_t>& rays = d.image.find("shutterRays")->ids;
   ASSERT_EQ(rays, c.image.find("shutterRays")->ids);
   size_t traced = 0, wrong = 0;

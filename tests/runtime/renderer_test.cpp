@@ -47,7 +47,7 @@ TEST(RenderSettingsTest, EveryMethodIsRegisteredOnceAndNamesRoundTrip) {
     EXPECT_NE(m.make, nullptr) << m.name;
     EXPECT_NE(m.validate, nullptr) << m.name;
   }
-  EXPECT_EQ(methodNames(), (std::vector<std::string>{"sharp", "postprocess", "hybrid", "reference"}));
+  EXPECT_EQ(methodNames(), (std::vector<std::string>{"sharp", "postprocess", "hybrid", "hybrid-rays", "reference"}));
 }
 
 TEST(RenderSettingsTest, EmptyAndAbsurdSizesAreRejected) {
@@ -270,9 +270,9 @@ TEST_F(RendererTest, TheHybridEqualsPostProcessOutsideItsRayMask) {
     settings.width = 96;
     settings.height = 54;
     settings.postprocess.motionPath = path;
-    settings.method = Method::Hybrid;
+    settings.method = Method::HybridRays;
     const RenderResult hybrid = renderer.render(scene, settings);
-    settings.hybrid.shutterRays = 0;  // the paper's: ray mask, reveal, composite
+    settings.method = Method::Hybrid;  // the paper's: ray mask, reveal, composite
     const RenderResult composited = renderer.render(scene, settings);
     ASSERT_TRUE(hybrid.hybrid && composited.hybrid);
     settings.method = Method::PostProcess;
