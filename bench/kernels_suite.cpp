@@ -255,7 +255,7 @@ KernelCase traceCase(const vk::Context& context, const TraceScene& scene, const 
 // A G-buffer layer of random colours and depths, with velocities uniform in
 // +-kMaxVelocityPixels, so every tile moves and the gather takes all its samples.
 struct RandomLayer {
-  vk::Buffer samples, surfaces;
+  vk::Buffer samples, surfaces, velocities;
   passes::MotionBlurInputs inputs;
 };
 
@@ -264,16 +264,19 @@ RandomLayer randomLayer(const vk::Context& context, ImageSize size) {
   std::uniform_real_distribution<float> unit(0.0f, 1.0f), motion(-kMaxVelocityPixels, kMaxVelocityPixels);
   const size_t pixels = size_t(size.width) * size.height;
   std::vector<glm::uvec4> samples(pixels), surfaces(pixels);
+  std::vector<glm::vec2> velocities(HMB_LAYER_VELOCITY_ENTRIES(pixels), glm::vec2(0.0f));
   for (size_t i = 0; i < pixels; ++i) {
     const glm::vec3 color(unit(rng), unit(rng), unit(rng));
     const float depth = 1.0f + 9.0f * unit(rng);
     const glm::vec2 velocity(motion(rng), motion(rng));
     samples[i] = gpu::packLayerSample(color, depth, velocity);
     surfaces[i] = gpu::packLayerSurface(glm::vec3(0.0f, 0.0f, 1.0f), 1u, depth, velocity);
+    velocities[i] = gpu::layerVelocityEntry(velocity);
   }
   RandomLayer layer{vk::uploadedBuffer(context, samples, "bench samples"),
-                    vk::uploadedBuffer(context, surfaces, "bench surfaces"), {}};
-  layer.inputs = {&layer.samples, &layer.surfaces, size.width, size.height};
+                    vk::uploadedBuffer(context, surfaces, "bench surfaces"),
+                    vk::uploadedBuffer(context, velocities, "bench velocities"), {}};
+  layer.inputs = {&layer.samples, &layer.surfaces, &layer.velocities, size.width, size.height};
   return layer;
 }
 
@@ -309,7 +312,7 @@ KernelCase tileMaxCase(const vk::Context& context, ImageSize size, const Kernels
   KernelCase c = pixelCase(kTileMax, size);
   timeCase(c, options, [&] {
     frame.begin();
-    pass.record(frame, layer.surfaces, tiles, size.width, size.height, tileSize, settings.velocityScale());
+    pass.record(frame, layer.velocities, tiles, size.width, size.height, tileSize, settings.velocityScale());
     return passSum(frame.submitAndWait());
   });
   c.details = {{"tile_size", tileSize}, {"tiles", grid.count()}};

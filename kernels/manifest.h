@@ -112,7 +112,7 @@ inline constexpr KernelFacts kManifest[] = {
     {"ray_mask/mask_coverage", kPlain, HMB_MASK_COVERAGE_BINDING_COUNT, sizeof(gpu::RayMaskParams), 3},
     {"ray_mask/range_check", kPlain, HMB_RANGE_CHECK_BINDING_COUNT, sizeof(gpu::RayMaskParams), 2},
     {"ray_mask/size_list_dispatch", kPlain, HMB_SIZE_LIST_BINDING_COUNT, sizeof(gpu::SizeListParams), 0},
-    {"ray_mask/tile_max_edge_candidates", kPlain, HMB_TILE_MAX_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), 1},
+    {"ray_mask/tile_max_edge_candidates", kPlain, HMB_TILE_MAX_CANDIDATES_BINDING_COUNT, sizeof(gpu::RayMaskParams), 2},
     {"reference/accumulate_sample", kShades | kAddressBuild, HMB_REFERENCE_BINDING_COUNT,
      sizeof(gpu::ReferenceSampleParams), kTracedSceneTexels},
     {"reference/average_samples", kPlain, HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), 0},

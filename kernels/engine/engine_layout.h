@@ -16,7 +16,8 @@
 #define HMB_ENGINE_BINDING_SURFACES 4  // the packed layer's surfaces (uvec4), written
 #define HMB_ENGINE_BINDING_NORMAL 5     // vec4 per pixel: world normal (xyz); read with HMB_SPEC_ENGINE_SURFACES
 #define HMB_ENGINE_BINDING_OBJECT_ID 6  // uint per pixel: object id (0: background); likewise
-#define HMB_ENGINE_BINDING_COUNT 7
+#define HMB_ENGINE_BINDING_VELOCITIES 7  // the G-buffer's velocities (vec2 per pixel: shared/layer_layout.h), written
+#define HMB_ENGINE_BINDING_COUNT 8
 // Specialization constant: true when the engine gives normals and object ids (the hybrid
 // needs them), false for +z and 1 (0 where background). A constant, not a parameter: on CPU
 // devices both sides of a branch run under a mask, so the build without them reads nothing.

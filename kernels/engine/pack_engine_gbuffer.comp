@@ -1,7 +1,7 @@
 #version 450
 // An engine's G-buffer (colour, depth, screen velocity, and for the hybrid world normal and
-// object id, in its own buffers) packed into the library's image layer (shared/layer_layout.h),
-// which the post-process and hybrid passes read. Depth
+// object id, in its own buffers) packed into the library's image layer and its velocities
+// (shared/layer_layout.h), which the post-process and hybrid passes read. Depth
 // becomes camera-space depth; a pixel at or past the far plane is background (object 0) at the
 // largest depth the gathers know, as the library's own G-buffer writes the background.
 #extension GL_GOOGLE_include_directive : require
@@ -20,6 +20,7 @@ layout(std430, binding = HMB_ENGINE_BINDING_SAMPLES) writeonly buffer Samples { 
 layout(std430, binding = HMB_ENGINE_BINDING_SURFACES) writeonly buffer Surfaces { uvec4 surfaces[]; };
 layout(std430, binding = HMB_ENGINE_BINDING_NORMAL) readonly buffer Normal { vec4 normal[]; };
 layout(std430, binding = HMB_ENGINE_BINDING_OBJECT_ID) readonly buffer ObjectId { uint objectId[]; };
+layout(std430, binding = HMB_ENGINE_BINDING_VELOCITIES) writeonly buffer Velocities { vec2 velocities[]; };
 layout(push_constant) uniform Params { EngineGBufferParams params; };
 
 // Camera-space depth of the engine's value; HMB_MBLUR_MAX_DEPTH where it is the far plane or
@@ -47,6 +48,7 @@ void main() {
   const bool background = z >= HMB_MBLUR_MAX_DEPTH;
   const vec2 v = velocity[i];  // the background's too: a turning camera moves the sky
   samples[i] = packLayerSample(color[i].rgb, z, v);
+  velocities[i] = layerVelocityEntry(v);  // what tile-max ranks
   // The post-process needs neither normals nor object ids; the hybrid's ray mask, reveal and
   // composite read the engine's.
   if (kEngineSurfaces) surfaces[i] = packLayerSurface(normal[i].xyz, objectId[i], z, v);

@@ -19,7 +19,9 @@
 // velocity in pixels per frame (y down), object id (0 for the background).
 #define HMB_RESOLVE_BINDING_SCENE 5
 #define HMB_RESOLVE_BINDING_GBUFFER (HMB_RESOLVE_BINDING_SCENE + HMB_SCENE_BINDINGS)
-#define HMB_RESOLVE_BINDING_COUNT (HMB_RESOLVE_BINDING_GBUFFER + HMB_LAYER_BINDINGS)
+// The G-buffer's velocities (vec2 per pixel, written: shared/layer_layout.h).
+#define HMB_RESOLVE_BINDING_VELOCITIES (HMB_RESOLVE_BINDING_GBUFFER + HMB_LAYER_BINDINGS)
+#define HMB_RESOLVE_BINDING_COUNT (HMB_RESOLVE_BINDING_VELOCITIES + 1)
 // Read as uniform texel buffers: visibility, triangles, both clip positions, shading, and the
 // scene's (scene_layout.h), counted in kernels/manifest.h.
 

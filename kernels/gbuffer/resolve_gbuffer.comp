@@ -3,7 +3,7 @@
 // correct barycentrics from its clip-space vertices (valid for vertices behind the camera
 // too, so near-clipped triangles need nothing special), then camera-space depth, world
 // normal, object id, screen velocity (the same surface point at t and t - 1/fps) and the
-// shaded colour.
+// shaded colour, into the layer, and the velocity as floats beside it.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "gbuffer_layout.h"
@@ -23,6 +23,7 @@ layout(binding = HMB_RESOLVE_BINDING_SHADING) uniform utextureBuffer shadingTexe
 #include "../shared/scene_bindings.glsl"
 #include "../shared/layer_bindings.glsl"
 HMB_LAYER(gbuffer, HMB_RESOLVE_BINDING_GBUFFER, writeonly)
+layout(std430, binding = HMB_RESOLVE_BINDING_VELOCITIES) writeonly buffer Velocities { vec2 velocities[]; };
 layout(push_constant) uniform Params { ResolveParams params; };
 
 vec3 clipCurrentXYW(uint v) { return floatRecordAt(clipCurrentTexels, v).xyw; }
@@ -43,6 +44,7 @@ void main() {
   if (triangleId == HMB_VIS_EMPTY) {
     const vec3 background = camera.background.rgb;  // not inside the macro: `camera` is one
     WRITE_LAYER(gbuffer, index, background, vec3(0.0), 0u, params.backgroundDepth, vec2(0.0));
+    velocities[index] = vec2(0.0);
     return;
   }
 
@@ -74,4 +76,5 @@ void main() {
   const vec3 color = shadeSurface(instanceMaterial(tri.instance), uv, n);
   const uint objectId = instanceObjectId(tri.instance);
   WRITE_LAYER(gbuffer, index, color, n, objectId, depth, motion);  // non-finite motion packs as none
+  velocities[index] = layerVelocityEntry(motion);
 }

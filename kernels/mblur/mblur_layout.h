@@ -17,10 +17,11 @@
 // allows an invocation), then one lane reduces the 64 lane results.
 #define HMB_TILE_MAX_GROUP_X 8
 #define HMB_TILE_MAX_GROUP_Y 8
-#define HMB_TILE_MAX_BINDING_SURFACES 0  // uvec4 per pixel: the G-buffer's surfaces, velocity q in pixels per frame
-#define HMB_TILE_MAX_BINDING_TILES 1     // vec4 per tile (see above)
+// vec2 per pixel: the G-buffer's velocities q in pixels per frame (shared/layer_layout.h)
+#define HMB_TILE_MAX_BINDING_VELOCITIES 0
+#define HMB_TILE_MAX_BINDING_TILES 1  // vec4 per tile (see above)
 #define HMB_TILE_MAX_BINDING_COUNT 2
-// The surfaces are read as a uniform texel buffer (counted in kernels/manifest.h).
+// The velocities are read as a uniform texel buffer (counted in kernels/manifest.h).
 
 // neighbor_max: one invocation per tile.
 #define HMB_NEIGHBOR_MAX_GROUP_X 8

@@ -2,8 +2,8 @@
 // hybrid's tile_max_edge_candidates.comp, which also tests the tile's pixels.
 // The including kernel declares `tiles[]` (vec4 per tile, mblur_layout.h), and defines, before
 // this file,
-//   uvec4 tileSurfaceAt(uint index)  // the G-buffer's surface at a pixel (shared/layer_layout.h)
-//   void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, GatherVelocityParts velocity, float speed)
+//   vec2 tileVelocityAt(uint index)  // the G-buffer's velocity at a pixel (its velocities: shared/layer_layout.h)
+//   void visitTilePixel(uvec2 pixel, uint index, GatherVelocityParts velocity, float speed)
 // the latter called once per pixel of the tile with its gather velocity's parts and its speed
 // clamped to the tile size.
 // Include after mblur_common.glsl; the group is HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y.
@@ -37,11 +37,10 @@ float reduceTileMax(uvec2 tile, uint width, uint height, uint m, uint tilesX, fl
   for (uint y = begin.y + lane.y; y < end.y; y += HMB_TILE_MAX_GROUP_Y) {
     for (uint x = begin.x + lane.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
       const uint index = y * width + x;
-      const uvec4 surface = tileSurfaceAt(index);
-      const GatherVelocityParts parts = gatherVelocityParts(surfaceVelocity(surface), velocityScale);
+      const GatherVelocityParts parts = gatherVelocityParts(tileVelocityAt(index), velocityScale);
       float speed;
       const vec2 v = clampedGatherVelocity(parts, float(m), speed);
-      visitTilePixel(uvec2(x, y), index, surface, parts, speed);
+      visitTilePixel(uvec2(x, y), index, parts, speed);
       if (better(speed, index, bestSpeed, bestIndex)) {
         bestVelocity = v;
         bestSpeed = speed;

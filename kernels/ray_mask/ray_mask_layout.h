@@ -48,14 +48,16 @@
 
 // tile_max_edge_candidates: one HMB_TILE_MAX_GROUP_X x HMB_TILE_MAX_GROUP_Y group per tile, as
 // the gather's tile_max.
-// uvec4 per pixel: the G-buffer's surfaces (velocity, object id, depth: shared/layer_layout.h)
+// uvec4 per pixel: the G-buffer's surfaces (object id, depth: shared/layer_layout.h)
 #define HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES 0
 #define HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX 1  // vec4 per tile: written as tile_max writes it
 #define HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS 2  // RayMaskCounters: candidateCount, tileCount
 #define HMB_TILE_MAX_CANDIDATES_BINDING_LIST 3      // uint pixel index per candidate, in no order
 // uint tile index per moving tile (as list_moving_tiles lists them), in no order
 #define HMB_TILE_MAX_CANDIDATES_BINDING_MOVING_TILES 4
-#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNT 5
+// vec2 per pixel: the G-buffer's velocities (shared/layer_layout.h), as tile_max reads them
+#define HMB_TILE_MAX_CANDIDATES_BINDING_VELOCITIES 5
+#define HMB_TILE_MAX_CANDIDATES_BINDING_COUNT 6
 
 #define HMB_EDGE_MASK_BINDING_SURFACES 0      // uvec4 per pixel: the G-buffer's surfaces (normal, depth)
 #define HMB_EDGE_MASK_BINDING_COUNTERS 1      // RayMaskCounters: candidateCount

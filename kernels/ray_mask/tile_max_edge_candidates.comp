@@ -7,13 +7,14 @@
 // its Sobel over this list with every lane busy. A pass of its own read the surfaces again, at a
 // cost (bench/results/ray-mask-tile-max/). Where the test runs
 // (HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP, chosen by the host):
-//  - inside the reduction's loop, on the surface and velocity it has in hand: a GPU skips it at
-//    still pixels, and where every tile moves (a moving camera) it is the cheapest on a CPU too;
-//  - after the reduction, in the tiles that move alone, reading the surfaces again: a CPU
+//  - inside the reduction's loop, on the velocity it has in hand: a GPU skips it at still
+//    pixels, and where every tile moves (a moving camera) it is the cheapest on a CPU too;
+//  - after the reduction, in the tiles that move alone, reading the velocities again: a CPU
 //    device runs the code of a branch no lane takes, so in the loop the test cost every pixel of
 //    a still tile as much as a moving one's (bench/results/ray-mask-tile-max/).
 // Both list exactly the pixels where eqs. 1, 2 hold (kMinCandidateSpeed: the others end on
-// their own pixel).
+// their own pixel), each pixel moving by its velocity as the reduction ranks it (the G-buffer's
+// velocities, floats).
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "ray_mask_layout.h"
@@ -22,10 +23,13 @@
 
 layout(local_size_x = HMB_TILE_MAX_GROUP_X, local_size_y = HMB_TILE_MAX_GROUP_Y) in;
 
-// The G-buffer's surfaces (velocity, object id, depth): shared/layer_layout.h, read as a uniform
-// texel buffer (shared/texel_records.glsl). Eqs. 1, 2 take the end's id and depth in one load.
+// The G-buffer's velocities, which the reduction ranks and eqs. 1, 2 follow, and its surfaces
+// (object id, depth): shared/layer_layout.h, read as uniform texel buffers
+// (shared/texel_records.glsl). Eqs. 1, 2 take the end's id and depth in one load.
 #include "../shared/texel_records.glsl"
+layout(binding = HMB_TILE_MAX_CANDIDATES_BINDING_VELOCITIES) uniform utextureBuffer velocityTexels;
 layout(binding = HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES) uniform utextureBuffer surfaceTexels;
+vec2 velocityAt(uint index) { return uintBitsToFloat(halfRecordAt(velocityTexels, index)); }
 uvec4 surfaceAt(uint index) { return recordAt(surfaceTexels, index); }
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX) writeonly buffer Tiles { vec4 tiles[]; };
 layout(std430, binding = HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS) buffer Counters { RayMaskCounters counters; };
@@ -38,8 +42,9 @@ layout(constant_id = HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP) const bool kTestInLoo
 #include "ray_mask_common.glsl"
 
 // Eqs. 1 and 2 at a pixel moving by v (clamped to params.blur.maxSpeed, the image's side).
-void listIfCandidate(uvec2 pixel, uint index, uvec4 surface, vec2 v) {
+void listIfCandidate(uvec2 pixel, uint index, vec2 v) {
   const ivec2 end = nearestPixel(vec2(pixel) + 0.5 + v, params.blur.width, params.blur.height);
+  const uvec4 surface = surfaceAt(index);
   const uvec4 endSurface = surfaceAt(uint(end.y) * params.blur.width + uint(end.x));
   if (endsOnDeeperObject(surfaceObjectId(surface), sanitizeDepth(surfaceDepth(surface)), surfaceObjectId(endSurface),
                          surfaceDepth(endSurface), params.blur.softZExtent))
@@ -49,13 +54,13 @@ void listIfCandidate(uvec2 pixel, uint index, uvec4 surface, vec2 v) {
 // In the reduction's loop: tileSpeed is the pixel's speed clamped to the tile size, and the
 // velocity is clamped again to the image's side, as the ranges clamp it, from the same parts (a
 // second gatherVelocity here, under a branch that a CPU device runs at every pixel, cost time).
-void visitTilePixel(uvec2 pixel, uint index, uvec4 surface, GatherVelocityParts velocity, float tileSpeed) {
+void visitTilePixel(uvec2 pixel, uint index, GatherVelocityParts velocity, float tileSpeed) {
   if (!kTestInLoop || !(tileSpeed >= kMinCandidateSpeed)) return;
   float speed;
-  listIfCandidate(pixel, index, surface, clampedGatherVelocity(velocity, params.blur.maxSpeed, speed));
+  listIfCandidate(pixel, index, clampedGatherVelocity(velocity, params.blur.maxSpeed, speed));
 }
 
-uvec4 tileSurfaceAt(uint index) { return surfaceAt(index); }
+vec2 tileVelocityAt(uint index) { return velocityAt(index); }
 
 #include "../mblur/tile_max_reduction.glsl"
 
@@ -73,10 +78,9 @@ void main() {
   for (uint y = begin.y + gl_LocalInvocationID.y; y < end.y; y += HMB_TILE_MAX_GROUP_Y) {
     for (uint x = begin.x + gl_LocalInvocationID.x; x < end.x; x += HMB_TILE_MAX_GROUP_X) {
       const uint index = y * params.blur.width + x;
-      const uvec4 surface = surfaceAt(index);
       float speed;
-      const vec2 v = gatherVelocity(surfaceVelocity(surface), params.blur.velocityScale, params.blur.maxSpeed, speed);
-      if (speed >= kMinCandidateSpeed) listIfCandidate(uvec2(x, y), index, surface, v);
+      const vec2 v = gatherVelocity(velocityAt(index), params.blur.velocityScale, params.blur.maxSpeed, speed);
+      if (speed >= kMinCandidateSpeed) listIfCandidate(uvec2(x, y), index, v);
     }
   }
 }

@@ -7,10 +7,16 @@
 //   surface (uvec4): x = world normal (octahedral, snorm16 x 2), y = object id (0: the
 //                    background, whose normal is 0), z = velocity in half floats (as the
 //                    sample's), w = camera-space depth (float bits, as the sample's): what
-//                    tile-max, the ray mask, the composite's coverage test and the AOVs read. The
-//                    mask's tests of an object boundary (paper, eqs. 1, 2: another object,
-//                    deeper) take a pixel's id and depth in one load (with the depth only in the
-//                    sample, the hybrid's tile-max took longer: bench/results/surface-depth/).
+//                    the ray mask, the composite's coverage test and the AOVs (but the
+//                    velocity's) read. The mask's tests of an object boundary (paper, eqs. 1,
+//                    2: another object, deeper) take a pixel's id and depth in one load (with
+//                    the depth only in the sample, the hybrid's tile-max took longer:
+//                    bench/results/surface-depth/).
+// Beside a G-buffer's records, its velocities (vec2 per pixel: the velocity as floats, a
+// non-finite one written as none; whole 16-byte records, an entry past an odd pixel count
+// unused): what tile-max ranks, so that each tile takes the direction of its fastest pixel where
+// the half floats would make near-equal speeds tie or swap (bench/results/tile-max-ranking/),
+// and the velocity AOV. The hybrid's revealed layer, which no tile-max reads, has none.
 // Velocity is pixels per frame, y down; a non-finite one is written as none (in halves, a step
 // of 1/32 pixel at 40 pixels, and the direction kept past the largest half). A
 // colour channel (alpha is 1 everywhere) is a float's top 21 bits: 13 mantissa bits, rounded, so
@@ -46,6 +52,8 @@ HMB_CHECK_SIZE(LayerTable, 16)
 #endif
 
 #define HMB_LAYER_BINDINGS 2
+// A G-buffer's velocities for `pixels` pixels: entries, rounded up to whole 16-byte records.
+#define HMB_LAYER_VELOCITY_ENTRIES(pixels) (((pixels) + 1u) / 2u * 2u)
 
 HMB_GPU_BEGIN
 
@@ -102,6 +110,11 @@ HMB_SHARED uvec4 packLayerSample(vec3 color, float depth, vec2 velocity) {
 
 HMB_SHARED uvec4 packLayerSurface(vec3 normal, uint objectId, float depth, vec2 velocity) {
   return uvec4(packOctahedral(normal), objectId, packLayerVelocity(velocity), floatBitsToUint(depth));
+}
+
+// A G-buffer's velocities entry.
+HMB_SHARED vec2 layerVelocityEntry(vec2 v) {
+  return (isnan(v.x) || isnan(v.y) || isinf(v.x) || isinf(v.y)) ? vec2(0.0f) : v;
 }
 
 // Of a sample.

@@ -84,7 +84,8 @@ void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::
                   {HMB_ENGINE_BINDING_SAMPLES, &layer.samples()},
                   {HMB_ENGINE_BINDING_SURFACES, &layer.surfaces()},
                   {HMB_ENGINE_BINDING_NORMAL, &normal},
-                  {HMB_ENGINE_BINDING_OBJECT_ID, &objectId}},
+                  {HMB_ENGINE_BINDING_OBJECT_ID, &objectId},
+                  {HMB_ENGINE_BINDING_VELOCITIES, &layer.velocities()}},
                  packParams(width, height, depth),
                  {vk::groupsFor(width, HMB_ENGINE_GROUP_X), vk::groupsFor(height, HMB_ENGINE_GROUP_Y), 1});
 }
@@ -129,7 +130,7 @@ void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer
   frame.beginInto(commandBuffer);
   recordPack(frame, context_, surfaces ? *passes_->packWithSurfaces : *passes_->pack, gbuffer, width_, height_, depth_,
              layer);
-  passes_->blur.record(frame, {&layer.samples(), &layer.surfaces(), width_, height_}, blurred);
+  passes_->blur.record(frame, {&layer.samples(), &layer.surfaces(), &layer.velocities(), width_, height_}, blurred);
   frame.endInto();
 }
 

@@ -38,8 +38,8 @@ class PostProcessMethod final : public FrameMethod {
     const vk::FrameTimings timings = recordRasterFrame(resources_, request, scene, beauty, [&](vk::FrameRecorder& frame) {
       // A still frame's plan skips every blur pass: none is recorded.
       blur.record(frame, result.plan,
-                  {&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), request.width, request.height,
-                   gbuffer.shutterPaths()},
+                  {&gbuffer.layer().samples(), &gbuffer.layer().surfaces(), &gbuffer.layer().velocities(),
+                   request.width, request.height, gbuffer.shutterPaths()},
                   blurred);
     });
     collectRasterFrame(resources_, request, beauty, result);

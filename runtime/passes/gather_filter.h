@@ -21,11 +21,12 @@ namespace hmb::passes {
 struct PostProcessSettings;
 
 // One layer to blur (kernels/shared/layer_layout.h), width * height pixels, row 0 at the top: its
-// samples (colour, depth, velocity: what the gathers read) and surfaces (the exact velocity,
-// which tile-max ranks).
+// samples (colour, depth, velocity: what the gathers read), surfaces (normal, object id, depth:
+// what the hybrid's ray mask reads) and velocities (floats, which tile-max ranks).
 struct MotionBlurInputs {
   const vk::Buffer* samples = nullptr;
   const vk::Buffer* surfaces = nullptr;
+  const vk::Buffer* velocities = nullptr;
   uint32_t width = 0;
   uint32_t height = 0;
   // Each pixel's path over the shutter (kernels/gbuffer/gbuffer_layout.h), for the curved

@@ -246,7 +246,7 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
     revealed_ = {};
   } else if (resized || !revealed_.samples().handle()) {
     revealed_ = {};  // the old layer goes first: the two never take memory at once
-    revealed_ = ImageLayer::allocate(context_, pixels, "revealed");
+    revealed_ = ImageLayer::allocate(context_, pixels, "revealed", ImageLayer::Velocities::None);
   }
   if (!reveals || !weights)
     backgroundBlurred_ = {};
@@ -265,7 +265,8 @@ void HybridStage::record(vk::FrameRecorder& frame, const FramePlan& plan, const 
   f.layer = &layer;
   f.gpuScene = &gpuScene;
   f.output = &output;
-  f.raster = {&layer.samples(), &layer.surfaces(), size_.width(), size_.height(), curved ? shutterPaths : nullptr};
+  f.raster = {&layer.samples(), &layer.surfaces(), &layer.velocities(), size_.width(), size_.height(),
+              curved ? shutterPaths : nullptr};
   // One set of gather parameters for the frame: the mask must find the pixels the two gathers
   // blur, as they blur them.
   f.blur = gatherParams(settings_.blur, size_.width(), size_.height(),

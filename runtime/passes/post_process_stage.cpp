@@ -28,7 +28,7 @@ PostProcessStage::PostProcessStage(const vk::Context& context, const PostProcess
       .pass(TileMaxPass::kName,
             [this](vk::FrameRecorder& frame, const Frame& f) {
               requirePreparedSize(*f.inputs);
-              tileMaxPass_.record(frame, *f.inputs->surfaces, tileMax_, f.inputs->width, f.inputs->height,
+              tileMaxPass_.record(frame, *f.inputs->velocities, tileMax_, f.inputs->width, f.inputs->height,
                                   settings_.effectiveTileSize(), settings_.velocityScale());
             })
       .pass(NeighborMaxPass::kName, [this](vk::FrameRecorder& frame, const Frame&) { recordNeighborMax(frame); });

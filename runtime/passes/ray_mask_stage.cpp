@@ -247,6 +247,7 @@ void RayMaskStage::recordTileMax(vk::FrameRecorder& frame, const MotionBlurInput
   static_assert(HMB_SPEC_TILE_MAX_CANDIDATES_IN_LOOP == 0);
   frame.dispatch(TileMaxPass::kName, tileMaxKernels_.with({p.candidatesInTileMaxLoop}),
                  {{HMB_TILE_MAX_CANDIDATES_BINDING_SURFACES, layer.surfaces},
+                  {HMB_TILE_MAX_CANDIDATES_BINDING_VELOCITIES, layer.velocities},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_TILE_MAX, p.tileMax},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_COUNTERS, &counters_},
                   {HMB_TILE_MAX_CANDIDATES_BINDING_LIST, &candidates_},

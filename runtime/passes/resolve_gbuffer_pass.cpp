@@ -1,8 +1,10 @@
 #include "runtime/passes/resolve_gbuffer_pass.h"
 
 #include <span>
+#include <string>
 #include <vector>
 
+#include "hmblur/error.h"
 #include "kernels/gbuffer/gbuffer_layout.h"
 #include "kernels/manifest.h"
 #include "runtime/device_scene/gpu_scene.h"
@@ -31,6 +33,8 @@ void ResolveGBufferPass::record(vk::FrameRecorder& frame, const GpuScene& scene,
                            {HMB_RESOLVE_BINDING_SHADING, &vertexShading}};
   scene.bind(bindings, HMB_RESOLVE_BINDING_SCENE, kernel.bindsByAddress());
   target.bind(bindings, HMB_RESOLVE_BINDING_GBUFFER, kernel.bindsByAddress());
+  if (!target.velocities().handle()) throw Error(std::string(kName) + ": the G-buffer keeps no velocities");
+  bindings.push_back({HMB_RESOLVE_BINDING_VELOCITIES, &target.velocities()});
   frame.dispatch(kName, kernel, bindings, params,
                  {vk::groupsFor(width, HMB_RESOLVE_GROUP_X), vk::groupsFor(height, HMB_RESOLVE_GROUP_Y), 1});
 }

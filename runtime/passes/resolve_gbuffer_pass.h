@@ -23,7 +23,7 @@ class ResolveGBufferPass {
   explicit ResolveGBufferPass(const vk::Context& context);
   void record(vk::FrameRecorder& frame, const GpuScene& scene, const vk::Buffer& visibility,
               const vk::Buffer& clipCurrent, const vk::Buffer& clipPrevious, const vk::Buffer& vertexShading,
-              const ImageLayer& target, uint32_t width, uint32_t height) const;
+              const ImageLayer& target, uint32_t width, uint32_t height) const;  // target keeps its velocities
 
  private:
   ShadingKernel kernel_;

@@ -17,10 +17,10 @@ class TileMaxPass {
  public:
   static constexpr const char* kName = "tile-max";
   explicit TileMaxPass(const vk::Context& context);
-  // surfaces: a layer's surfaces (kernels/shared/layer_layout.h), width * height of them; their
-  // velocity is read, in pixels per frame. tiles: tileGridFor(...).count() vec4
+  // velocities: a G-buffer's velocities (kernels/shared/layer_layout.h), pixels per frame, for
+  // width * height pixels. tiles: tileGridFor(...).count() vec4
   // (layout: kernels/mblur/mblur_layout.h). velocityScale: PostProcessSettings::velocityScale().
-  void record(vk::FrameRecorder& frame, const vk::Buffer& surfaces, const vk::Buffer& tiles, uint32_t width,
+  void record(vk::FrameRecorder& frame, const vk::Buffer& velocities, const vk::Buffer& tiles, uint32_t width,
               uint32_t height, uint32_t tileSize, float velocityScale, std::string_view passName = kName) const;
 
  private:

@@ -89,11 +89,13 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   const passes::PackedLayer packed = passes::packLayer(contentsOf(layer));
   const vk::Buffer samples = vk::uploadedBuffer(context, packed.samples, "test samples");
   const vk::Buffer surfaces = vk::uploadedBuffer(context, packed.surfaces, "test surfaces");
+  const vk::Buffer velocities = vk::uploadedBuffer(context, packed.velocities, "test velocities");
   passes::RayMaskStage stage(context);
   stage.prepare(layer.width, layer.height, false, parameters.listOnlyUncovered);
   std::optional<vk::Buffer> paths;
   if (!layer.shutterPaths.empty()) paths = pathsBuffer(context, layer.shutterPaths);
-  const passes::MotionBlurInputs inputs{&samples, &surfaces, layer.width, layer.height, paths ? &*paths : nullptr};
+  const passes::MotionBlurInputs inputs{&samples, &surfaces, &velocities, layer.width, layer.height,
+                                        paths ? &*paths : nullptr};
   // The mask passes start from a tile-max at the parameters' tile size, as HybridStage records
   // it: the mask's own (which lists the edge candidates) for the whole mask, the gather's for
   // the moving tiles alone.
@@ -109,7 +111,7 @@ RayMaskReadback recordRayMask(vk::Context& context, const MaskLayer& layer, cons
   vk::FrameRecorder frame(context);
   frame.begin();
   if (parameters.movingTilesOnly)
-    tileMax.record(frame, surfaces, tiles, layer.width, layer.height, parameters.blur.tileSize,
+    tileMax.record(frame, velocities, tiles, layer.width, layer.height, parameters.blur.tileSize,
                    parameters.blur.velocityScale);
   else
     stage.recordTileMax(frame, inputs, withTiles);
@@ -197,7 +199,8 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
   auto imageLayer = [&](const mblur::Layer& l, const std::vector<uint32_t>* ids, const char* name) {
     const passes::PackedLayer packed = passes::packLayer(contentsOf(l, ids));
     return passes::ImageLayer(vk::uploadedBuffer(context, packed.samples, std::string(name) + " samples"),
-                              vk::uploadedBuffer(context, packed.surfaces, std::string(name) + " surfaces"));
+                              vk::uploadedBuffer(context, packed.surfaces, std::string(name) + " surfaces"),
+                              vk::uploadedBuffer(context, packed.velocities, std::string(name) + " velocities"));
   };
   const passes::ImageLayer raster = imageLayer(layer, run.objectId, "test raster");
   const vk::Buffer tiles = vk::uploadedBuffer(context, neighborMax, "test neighbor max");
@@ -223,7 +226,8 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     if (!run.mask || run.list) throw std::runtime_error("the composite needs the mask and no list");
     if (coverage ? !run.revealed : !run.background)
       throw std::runtime_error("the coverage composite needs a revealed layer, the weights one a background");
-    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull};
+    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), &raster.velocities(), layer.width,
+                                          layer.height, pathsOrNull};
     // As HybridStage records it: with the coverage form, mask_coverage over the mask's pixels
     // and list_mask_blocks (which split the list between its front, the pixels to reveal, and
     // its back); the post-process gather outside the mask; then the background gather, which
@@ -288,7 +292,8 @@ std::vector<glm::vec4> runGather(vk::Context& context, const mblur::Layer& layer
     frame.submitAndWait();
   } else {
     const passes::GatherPass pass(context);
-    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), layer.width, layer.height, pathsOrNull};
+    const passes::MotionBlurInputs inputs{&raster.samples(), &raster.surfaces(), &raster.velocities(), layer.width,
+                                          layer.height, pathsOrNull};
     if (run.mask)
       pass.recordOutsideMask(frame, inputs, tiles, output, settings, mask);
     else

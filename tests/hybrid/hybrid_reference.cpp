@@ -114,8 +114,10 @@ float strengthOf(const MaskLayer& layer, int x, int y, float depthHere) {
   return deltaD + deltaN;
 }
 
-// Eqs. 1 and 2 on a layer already as stored.
-std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskParameters& p);
+// Eqs. 1 and 2 on a layer already as stored, each pixel moving by its velocity as the G-buffer's
+// velocities hold it (the input's floats), as the hybrid's tile-max reads it.
+std::vector<bool> candidatesOf(const MaskLayer& layer, const std::vector<glm::vec2>& velocity,
+                               const passes::RayMaskParameters& p);
 
 }  // namespace
 
@@ -149,18 +151,19 @@ std::vector<float> normalizedEdges(const MaskLayer& input) {
 }
 
 std::vector<bool> edgeCandidates(const MaskLayer& layer, const passes::RayMaskParameters& p) {
-  return candidatesOf(stored(layer), p);
+  return candidatesOf(stored(layer), layer.velocity, p);
 }
 
 namespace {
 
-std::vector<bool> candidatesOf(const MaskLayer& layer, const passes::RayMaskParameters& p) {
+std::vector<bool> candidatesOf(const MaskLayer& layer, const std::vector<glm::vec2>& velocity,
+                               const passes::RayMaskParameters& p) {
   std::vector<bool> out(size_t(layer.width) * layer.height, false);
   for (uint32_t y = 0; y < layer.height; ++y)
     for (uint32_t x = 0; x < layer.width; ++x) {
       const size_t index = size_t(y) * layer.width + x;
       float speed;
-      const glm::vec2 v = gatherVelocity(layer.velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
+      const glm::vec2 v = gatherVelocity(velocity[index], p.blur.velocityScale, p.blur.maxSpeed, speed);
       if (!(speed > 0.0f)) continue;
       const glm::ivec2 end = nearestPixel({float(x) + 0.5f + v.x, float(y) + 0.5f + v.y}, layer.width, layer.height);
       const size_t endIndex = indexOf(layer.width, end);
@@ -177,7 +180,7 @@ std::vector<uint32_t> shutterRays(const MaskLayer& input, const passes::RayMaskP
   const MaskLayer layer = stored(input);
   const uint32_t width = layer.width, height = layer.height, tileSize = p.blur.tileSize;
   const uint32_t tilesX = (width + tileSize - 1) / tileSize;
-  const std::vector<glm::vec4> tiles = mblur::tileMax(layer.velocity, width, height, tileSize, p.blur.velocityScale);
+  const std::vector<glm::vec4> tiles = mblur::tileMax(input.velocity, width, height, tileSize, p.blur.velocityScale);
   std::vector<uint32_t> out(size_t(width) * height, 0u);
   if (priorities) priorities->assign(out.size(), 0u);
   for (uint32_t y = 0; y < height; ++y)
@@ -264,7 +267,7 @@ std::vector<bool> keptByBudget(const std::vector<uint32_t>& rays, const std::vec
 
 std::vector<uint32_t> edgeMask(const MaskLayer& input, const passes::RayMaskParameters& p) {
   const MaskLayer layer = stored(input);
-  const std::vector<bool> candidates = candidatesOf(layer, p);
+  const std::vector<bool> candidates = candidatesOf(layer, input.velocity, p);
   std::vector<uint32_t> out(candidates.size(), 0u);
   for (uint32_t y = 0; y < layer.height; ++y)
     for (uint32_t x = 0; x < layer.width; ++x) {
@@ -299,7 +302,7 @@ std::vector<uint32_t> rangeBlocks(const MaskLayer& input, const std::vector<uint
   const MaskLayer layer = stored(input);
   const uint32_t width = layer.width, height = layer.height, tileSize = p.blur.tileSize;
   const uint32_t tilesX = (width + tileSize - 1) / tileSize, tilesY = (height + tileSize - 1) / tileSize;
-  const std::vector<glm::vec4> tiles = mblur::tileMax(layer.velocity, width, height, tileSize, p.blur.velocityScale);
+  const std::vector<glm::vec4> tiles = mblur::tileMax(input.velocity, width, height, tileSize, p.blur.velocityScale);
   // edge_mask's coarse image: a block is flagged when an edge pixel lies within a pixel of it.
   const uint32_t coarseX = HMB_EDGE_BLOCKS_ACROSS(width), coarseY = HMB_EDGE_BLOCKS_ACROSS(height);
   std::vector<bool> coarse(size_t(coarseX) * coarseY, false);

@@ -43,16 +43,18 @@ std::vector<T> downloadFirst(const vk::Buffer& buffer, size_t count) {
 
 // The layer packed as the resolve packs it (kernels/shared/layer_layout.h).
 struct LayerBuffers {
-  vk::Buffer samples, surfaces, shutterPaths;
+  vk::Buffer samples, surfaces, velocities, shutterPaths;
   passes::MotionBlurInputs inputs() const {
-    return {&samples, &surfaces, width, height, shutterPaths.handle() ? &shutterPaths : nullptr};
+    return {&samples, &surfaces, &velocities, width, height, shutterPaths.handle() ? &shutterPaths : nullptr};
   }
   uint32_t width = 0, height = 0;
 };
 
 LayerBuffers upload(vk::Context& context, const Layer& layer) {
   LayerBuffers buffers{deviceBuffer(context, packedSamples(layer), "test samples"),
-                       deviceBuffer(context, packedSurfaces(layer), "test surfaces"), {}, layer.width, layer.height};
+                       deviceBuffer(context, packedSurfaces(layer), "test surfaces"),
+                       deviceBuffer(context, packedVelocities(layer), "test velocities"), {}, layer.width,
+                       layer.height};
   if (!layer.shutterPaths.empty()) {
     std::vector<glm::uvec2> paths = layer.shutterPaths;
     paths.resize((paths.size() + 1) / 2 * 2);  // whole 16-byte records for the texel view
@@ -88,10 +90,8 @@ std::vector<glm::vec4> runTileMax(vk::Context& context, const std::vector<glm::v
                                   uint32_t height, uint32_t tileSize, float velocityScale) {
   const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
   Layer layer;
-  layer.color.assign(velocity.size(), glm::vec4(0.0f));
-  layer.normalDepth.assign(velocity.size(), glm::vec4(0.0f));
   layer.velocity = velocity;
-  const vk::Buffer in = deviceBuffer(context, packedSurfaces(layer), "test surfaces");
+  const vk::Buffer in = deviceBuffer(context, packedVelocities(layer), "test velocities");
   const vk::Buffer out = outputBuffer(context, grid.count(), "test tile max");
   const passes::TileMaxPass pass(context);
   vk::FrameRecorder frame(context);

@@ -89,6 +89,12 @@ std::vector<glm::uvec4> packedSurfaces(const Layer& layer) {
   return surfaces;
 }
 
+std::vector<glm::vec2> packedVelocities(const Layer& layer) {
+  std::vector<glm::vec2> velocities(HMB_LAYER_VELOCITY_ENTRIES(layer.velocity.size()), glm::vec2(0.0f));
+  for (size_t i = 0; i < layer.velocity.size(); ++i) velocities[i] = gpu::layerVelocityEntry(layer.velocity[i]);
+  return velocities;
+}
+
 std::vector<glm::vec2> storedVelocity(const std::vector<glm::vec2>& velocity) {
   std::vector<glm::vec2> out(velocity.size());
   for (size_t i = 0; i < out.size(); ++i)
@@ -155,9 +161,8 @@ AppendixWeights appendixWeights(float targetDepth, float sampleDepth, float targ
           cylinder(sampleSpeed, ds) * cylinder(targetSpeed, ds) * 2.0f};
 }
 
-std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& input, uint32_t width, uint32_t height,
+std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& velocity, uint32_t width, uint32_t height,
                                uint32_t tileSize, float velocityScale) {
-  const std::vector<glm::vec2> velocity = storedVelocity(input);
   const passes::TileGrid grid = passes::tileGridFor(width, height, tileSize);
   std::vector<glm::vec4> tiles(grid.count());
   for (uint32_t ty = 0; ty < grid.y; ++ty)

@@ -34,9 +34,13 @@ glm::uvec2 packShutterPath(glm::vec2 fromMid, glm::vec2 fromOpen);
 // The gathers' references read their input through it; the harness uploads the same packing.
 Layer stored(const Layer& layer);
 std::vector<glm::uvec4> packedSamples(const Layer& layer);
-// Velocities as tile-max reads them, through the packed surface: exact, non-finite ones none.
+// Velocities as the packed surface holds them (half floats, non-finite ones none): what the
+// hybrid's ray mask reads.
 std::vector<glm::vec2> storedVelocity(const std::vector<glm::vec2>& velocity);
 std::vector<glm::uvec4> packedSurfaces(const Layer& layer);
+// The G-buffer's velocities (kernels/shared/layer_layout.h), which tile-max reads: the layer's
+// own floats (non-finite ones none), in whole 16-byte records.
+std::vector<glm::vec2> packedVelocities(const Layer& layer);
 
 // mblur_common.glsl
 glm::vec2 gatherVelocity(glm::vec2 q, float velocityScale, float maxSpeed, float& speed);
@@ -65,7 +69,8 @@ struct AppendixWeights {
 AppendixWeights appendixWeights(float targetDepth, float sampleDepth, float targetSpeed, float sampleSpeed, float ds,
                                 float softZExtent);
 
-// tile_max.comp: vec4 (velocity, speed, 0) per tile.
+// tile_max.comp: vec4 (velocity, speed, 0) per tile, ranking `velocity` as given (the
+// G-buffer's velocities: floats).
 std::vector<glm::vec4> tileMax(const std::vector<glm::vec2>& velocity, uint32_t width, uint32_t height,
                                uint32_t tileSize, float velocityScale);
 // neighbor_max.comp

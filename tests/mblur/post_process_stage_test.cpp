@@ -127,10 +127,11 @@ TEST_F(MblurStageTest, PlansItsPassesAndChecksSizes) {
   const Layer layer = stillLayer(80, 41);
   vk::Buffer samples = vk::uploadedBuffer(context(), packedSamples(layer), "s");
   vk::Buffer surfaces = vk::uploadedBuffer(context(), packedSurfaces(layer), "f");
+  vk::Buffer velocities = vk::uploadedBuffer(context(), packedVelocities(layer), "v");
   vk::Buffer out(context(), layer.color.size() * sizeof(glm::vec4), vk::MemoryUse::Device, "o");
   vk::FrameRecorder frame(context());
   frame.begin();
-  EXPECT_THROW(mcguire.record(frame, {&samples, &surfaces, 80, 41}, out), Error);
+  EXPECT_THROW(mcguire.record(frame, {&samples, &surfaces, &velocities, 80, 41}, out), Error);
 
   PostProcessSettings bad;
   bad.samples = 0;

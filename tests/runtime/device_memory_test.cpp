@@ -47,9 +47,9 @@ TEST_F(DeviceMemoryTest, RenderReportsItsPeakAndPerPixelAndPerTriangleBytes) {
   for (const char* method : {"postprocess", "hybrid"}) {
     settings.method = parseMethod(method);
     const RenderResult result = renderer.render(scene, settings);
-    // Visibility (8), the layer's samples (16) and surfaces (16).
-    EXPECT_EQ(result.memory.gbufferBytesPerPixel, 40.0) << method;
-    EXPECT_GE(result.memory.peakBytes, uint64_t(40 * 96 * 54)) << method;
+    // Visibility (8), the layer's samples (16) and surfaces (16), its velocities (8).
+    EXPECT_EQ(result.memory.gbufferBytesPerPixel, 48.0) << method;
+    EXPECT_GE(result.memory.peakBytes, uint64_t(48 * 96 * 54)) << method;
     EXPECT_GE(result.memory.peakBytes, context().memoryInUse()) << method;
     EXPECT_EQ(result.memory.bvhAllocatedBytesPerTriangle.has_value(), std::string(method) == "hybrid") << method;
     if (result.memory.bvhBuiltBytesPerTriangle) {
