@@ -22,7 +22,7 @@ settings::Table<Choices, Settings> makeTable() {
   using namespace settings;
   constexpr float kMaxFactor = 1e6f;
   const Range<float> factor{0.0f, kMaxFactor, true};
-  return {
+  settings::Table<Choices, Settings> table = {
       number("edge-threshold", "hybrid", "ray-mask edge threshold e (eq. 4)", &Choices::edgeThreshold,
              &Settings::edgeThreshold, Range<float>{0.0f, 1.0f, false, true}, "the scene's"),
       named("reveal-stop", "hybrid", "reveal rays stop on another object, or on a luminance change (the paper)",
@@ -39,14 +39,17 @@ settings::Table<Choices, Settings> makeTable() {
              &Choices::maskForegroundDivide, &Settings::maskForegroundDivide, factor),
       number("shutter-rays", "hybrid-rays",
              "shutter strata for the rays of pixels whose path crosses an edge (another object, a colour step), "
-             "traced in place of the ray mask's reveal",
-             &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA},
-             "8; 2, 4, 8 or 16"),
+             "traced in place of the ray mask's reveal (under a ray budget, over it)",
+             &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA}, "8"),
       number("ray-budget", "hybrid-rays",
              "shutter rays a frame traces at most, spent on the listed pixels in order of the error each is expected "
-             "to remove per ray (0: every listed pixel's)",
+             "to remove per ray, over the paper's composite (0: every listed pixel's, in place of it)",
              &Choices::rayBudget, &Settings::rayBudget, Range<uint32_t>{0, std::numeric_limits<uint32_t>::max()}),
   };
+  // The paper's hybrid holds 0 (no rays); what a user may choose is a power of two (validate()).
+  for (auto& setting : table)
+    if (setting.name == "shutter-rays") setting.accepts = "2, 4, 8 or 16";
+  return table;
 }
 
 }  // namespace
