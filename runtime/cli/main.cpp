@@ -10,6 +10,7 @@
 #include <memory>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,7 @@
 #include "hmblur/system_info.h"
 #include "runtime/cli/compare_command.h"
 #include "runtime/cli/output_paths.h"
+#include "runtime/device_scene/gpu_scene.h"
 #include "runtime/io/image_files.h"
 #include "runtime/io/labelled_strip.h"
 #include "runtime/metrics/display_image.h"
@@ -40,6 +42,7 @@ enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kValidationFailed = 3 };
 
 struct GlobalOptions {
   bool quiet = false;
+  bool verbose = false;  // every pass of a render listed on stdout
   bool strict = false;  // what the loader leaves out is an error, not a warning
   int device = -1;
   bool validation = false;
@@ -62,6 +65,8 @@ struct RenderOptions {
 };
 
 struct DemoOptions {
+  std::string scene;  // empty: the first reference scene
+  std::optional<float> frameTime;
   std::string outDir = "out";
   uint32_t width = 640;
   uint32_t height = 360;
@@ -248,6 +253,47 @@ fs::path framePath(const fs::path& out, uint32_t frame, uint32_t lastFrame) {
   return out.parent_path() / (out.stem().string() + "." + number + out.extension().string());
 }
 
+// Every pass of a frame with --verbose; else one line counting them.
+void printPasses(const GlobalOptions& global, const hmb::FramePlan& plan) {
+  if (!global.verbose) {
+    size_t run = 0, skipped = 0;
+    for (const auto& pass : plan.passes()) (pass.run ? run : skipped) += 1;
+    std::cout << "  passes: " << run << " run, " << skipped << " left out (--verbose lists them)\n";
+    return;
+  }
+  for (const auto& pass : plan.passes())
+    std::cout << "  " << pass.name << ": "
+              << (!pass.run ? "skipped (" + pass.reason + ")"
+                  : !pass.within.empty()
+                      ? "runs inside " + pass.within
+                      : formatMs(pass.milliseconds) + (pass.noWork.empty() ? "" : " (no work: " + pass.noWork + ")"))
+              << '\n';
+}
+
+// A frame where nothing moves on screen renders the sharp frame in every method: said on
+// stderr, with the span of the scene's animation keys, where something may move.
+void warnStillFrame(const GlobalOptions& global, const hmb::scene::Scene& scene, float frameTime) {
+  if (global.quiet || hmb::anythingMovesOnScreen(scene, frameTime)) return;
+  char text[160];
+  std::snprintf(text, sizeof(text), "hmblur: warning: nothing moves on screen at t = %g s: every method gives the sharp frame",
+                double(frameTime));
+  std::cerr << text;
+  float first = std::numeric_limits<float>::infinity(), last = -first;
+  for (const hmb::scene::AnimationChannel& channel : scene.channels)
+    for (const float t : channel.times) {
+      first = std::min(first, t);
+      last = std::max(last, t);
+    }
+  if (first < last) {
+    std::snprintf(text, sizeof(text), "; the animation's keys span %g to %g s (--frame-time)", double(first),
+                  double(last));
+    std::cerr << text;
+  } else {
+    std::cerr << "; the scene has no animation";
+  }
+  std::cerr << '\n';
+}
+
 // Traces the device's loop limit cut short (RenderResult::cutTraces): said on stderr, as their
 // pixels may be wrong.
 void warnCutTraces(const GlobalOptions& global, const hmb::RenderResult& result) {
@@ -274,9 +320,16 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
                            {"resolution", {settings.width, settings.height}},
                            {"fps", scene.settings.fps},
                            {"frames", nlohmann::json::array()}};
+  // Each frame's time is its own (frames[].time_s), not the scene's default.
+  report["scene"]["settings"].erase("frame_time_s");
+  bool warnedStill = false;  // once for the sequence
   for (uint32_t frame = range.first; frame <= range.last; ++frame) {
     settings.frameTime = static_cast<float>(frame / double(scene.settings.fps));
     const hmb::RenderResult result = renderer.render(scene, settings);
+    if (!warnedStill && !hmb::anythingMovesOnScreen(scene, *settings.frameTime)) {
+      warnStillFrame(global, scene, *settings.frameTime);
+      warnedStill = true;
+    }
     warnCutTraces(global, result);
     nlohmann::json entry = {{"frame", frame},
                             {"time_s", *settings.frameTime},
@@ -430,6 +483,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
                        std::to_string(settings.height));
   const TimedRender timed = renderTimed(renderer, scene, settings, options.repeat);
   const hmb::RenderResult& result = timed.result;
+  warnStillFrame(global, scene, result.frameTime);
   warnCutTraces(global, result);
 
   writeImage(options.out, result);
@@ -459,13 +513,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
     std::cout << "  frame shape: " << shape.dispatches << " dispatches (" << shape.indirectDispatches
               << " indirect), " << shape.barriers << " barriers, " << shape.hostWaits << " host waits, "
               << shape.dependentChain << " dependent dispatches in a chain\n";
-    for (const auto& pass : result.plan.passes())
-      std::cout << "  " << pass.name << ": "
-                << (!pass.run ? "skipped (" + pass.reason + ")"
-                    : !pass.within.empty()
-                        ? "runs inside " + pass.within
-                        : formatMs(pass.milliseconds) + (pass.noWork.empty() ? "" : " (no work: " + pass.noWork + ")"))
-                << '\n';
+    printPasses(global, result.plan);
   }
   return validationVerdict(context);
 }
@@ -542,8 +590,12 @@ HybridMethodsReport hybridMethodsReport(const std::map<std::string, CostAndGain>
 // The main job: the default scene with every method this build has, images and one report.
 int demo(const GlobalOptions& global, const DemoOptions& options) {
   hmb::cli::prepareOutputFolder(options.outDir, "--out-dir");
-  const std::string sceneName = hmb::scene::referenceSceneNames().front();
-  const hmb::scene::Scene scene = loadSceneSaying(global, sceneName);
+  const std::string sceneArgument = options.scene.empty() ? hmb::scene::referenceSceneNames().front() : options.scene;
+  // A glTF file's outputs are named after its stem.
+  const std::string sceneName = fs::path(sceneArgument).extension().empty() ? sceneArgument
+                                                                             : fs::path(sceneArgument).stem().string();
+  const hmb::scene::Scene scene = loadSceneSaying(global, sceneArgument);
+  warnStillFrame(global, scene, options.frameTime.value_or(scene.settings.frameTime));
   hmb::vk::Context context(contextOptions(global));
   progress(global, hmb::deviceProgressLine(context));
   hmb::Renderer renderer(context);
@@ -567,6 +619,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     settings.method = hmb::parseMethod(method);
     settings.width = options.width;
     settings.height = options.height;
+    settings.frameTime = options.frameTime;
     settings.reference.samplesPerPixel = options.referenceSpp;
     if (!global.quiet) settings.onProgress = referenceProgressPrinter(options.width, options.height);
     progress(global, "rendering " + method);
@@ -588,6 +641,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
     if (settings.method == hmb::Method::Reference) judge = display;
     if (settings.method == hmb::Method::Sharp) sharp = display;
     nlohmann::json entry = {{"method", method},
+                            {"frame_time_s", result.frameTime},
                             {"frame_ms", hmb::optionalNumber(result.frameMilliseconds)},
                             {"cut_traces", result.cutTraces},
                             {"timing", timingJson(timed, settings.method)},
@@ -648,6 +702,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("hmblur ") + HMB_VERSION);
   GlobalOptions global;
   app.add_flag("-q,--quiet", global.quiet, "Print nothing but errors and results (no progress, no warnings)");
+  app.add_flag("-v,--verbose", global.verbose, "List every pass of a render on stdout: run or left out, why, its time");
   app.add_flag("--strict", global.strict,
                "Refuse a scene the loader cannot draw whole: every warning (a skipped primitive, an ignored "
                "extension or material property) is an error");
@@ -713,6 +768,9 @@ int main(int argc, char** argv) {
 
   DemoOptions demoOptions;
   CLI::App* demoCmd = app.add_subcommand("demo", "Render the default scene with every method and write a report");
+  demoCmd->add_option("--scene", demoOptions.scene,
+                      "Reference scene name or glTF file (default: " + hmb::scene::referenceSceneNames().front() + ")");
+  demoCmd->add_option("--frame-time", demoOptions.frameTime, "Frame time in seconds (default: the scene's)");
   demoCmd->add_option("--out-dir", demoOptions.outDir, "Output folder")->capture_default_str();
   demoCmd->add_option("--width", demoOptions.width, "Image width in pixels")->capture_default_str();
   demoCmd->add_option("--height", demoOptions.height, "Image height in pixels")->capture_default_str();

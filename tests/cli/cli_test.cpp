@@ -122,6 +122,8 @@ TEST(CliTest, FramesRenderAnImageSequenceWithOneReport) {
       if (pass["name"] == "hybrid-bvh-meshes") return pass;
     return nlohmann::json();
   };
+  // Each frame's time is its own: the scene's default frame time is not reported.
+  EXPECT_FALSE(report["scene"]["settings"].contains("frame_time_s")) << report["scene"].dump();
   EXPECT_EQ(meshTrees(0)["status"], "run");
   EXPECT_EQ(meshTrees(2)["status"], "skipped");
   EXPECT_FALSE(meshTrees(2)["reason"].get<std::string>().empty());
@@ -232,6 +234,74 @@ TEST(CliTest, SharpRenderWritesAovLayersAndTheVisibilityScheme) {
   EXPECT_EQ(report["method"], "sharp");
   EXPECT_TRUE(report["raster"]["visibility_scheme"].is_string()) << report.dump();
   EXPECT_GT(report["raster"]["setup_triangles"].get<int>(), 0);
+}
+
+// What `args` writes on stderr alone.
+std::string stderrOf(const std::string& args) {
+  return runProgram("sh", "-c '" + std::string(HMB_CLI_PATH) + " --validation " + args + " 2>&1 1>/dev/null'").output;
+}
+
+// A frame where nothing moves on screen gives every method the sharp frame: said on stderr,
+// with the span of the animation's keys; not said for a frame that moves, nor under --quiet.
+TEST(CliTest, AStillFrameSaysSoOnStderr) {
+  const fs::path dir = tempDir("still");
+  const std::string render = "render --scene living-room --method postprocess --width 32 --height 18 --out " +
+                             (dir / "frame.png").string();
+  const std::string still = stderrOf(render + " --frame-time 0.45");
+  EXPECT_NE(still.find("warning: nothing moves on screen at t = 0.45 s: every method gives the sharp frame; the "
+                       "animation's keys span 0 to 0.4 s"),
+            std::string::npos)
+      << still;
+  EXPECT_EQ(stderrOf(render + " --frame-time 0.2").find("nothing moves"), std::string::npos);
+  EXPECT_EQ(stderrOf("--quiet " + render + " --frame-time 0.45"), "");
+  // The living room at 120 fps: frames 54-56 are 0.45-0.467 s, after the vase stopped.
+  const std::string frames = stderrOf("render --scene living-room --method sharp --width 16 --height 9 --frames 54:56 --out " +
+                                      (dir / "seq.png").string());
+  EXPECT_NE(frames.find("nothing moves on screen at t = "), std::string::npos) << frames;
+  EXPECT_EQ(frames.find("nothing moves", frames.find("nothing moves") + 1), std::string::npos)
+      << "once for the sequence: " << frames;
+}
+
+// A render lists its passes with --verbose; else one line counts them.
+TEST(CliTest, PassesAreListedWithVerbose) {
+  const fs::path dir = tempDir("verbose");
+  const std::string render = "render --scene temple --method postprocess --width 32 --height 18 --out " +
+                             (dir / "frame.png").string();
+  const CliRun plain = hmblur(render);
+  ASSERT_EQ(plain.exitCode, 0) << plain.output;
+  EXPECT_NE(plain.output.find("  passes: "), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("(--verbose lists them)"), std::string::npos) << plain.output;
+  EXPECT_EQ(plain.output.find("  tile-max: "), std::string::npos) << plain.output;
+  const CliRun verbose = hmblur("--verbose " + render);
+  ASSERT_EQ(verbose.exitCode, 0) << verbose.output;
+  EXPECT_NE(verbose.output.find("  tile-max: "), std::string::npos) << verbose.output;
+  EXPECT_NE(verbose.output.find("  encode-display: "), std::string::npos) << verbose.output;
+}
+
+// demo --scene renders a scene of the user's (a reference scene or a glTF file) at its frame
+// time, its outputs named after the file's stem.
+TEST(CliTest, DemoTakesTheUsersScene) {
+  const fs::path dir = tempDir("demo_scene");
+  const CliRun run = hmblur("--quiet demo --scene temple --frame-time 1.5 --width 32 --height 18 --spp 4 --out-dir " +
+                            dir.string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "temple-strip.png"));
+  EXPECT_TRUE(fs::exists(dir / "temple-hybrid-rays.png"));
+  std::ifstream in(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["scene"]["name"], "temple") << report["scene"].dump();
+  for (const auto& method : report["methods"]) EXPECT_FLOAT_EQ(method["frame_time_s"].get<float>(), 1.5f) << method.dump();
+
+  scene::test::GltfWriter w;
+  w.setSceneRoots({w.addNode({{"mesh", w.addMesh({scene::test::addQuadPrimitive(w)})}})});
+  const std::string file = w.writeGltf(dir / "quad.gltf").string();
+  const CliRun quad = hmblur("--quiet demo --scene " + file + " --width 16 --height 9 --spp 2 --out-dir " +
+                             (dir / "quad").string());
+  ASSERT_EQ(quad.exitCode, 0) << quad.output;
+  EXPECT_TRUE(fs::exists(dir / "quad" / "quad-strip.png"));
+  expectOneLineError(hmblur("--quiet demo --scene " + (dir / "missing.gltf").string() + " --out-dir " +
+                            (dir / "missing").string()),
+                     "missing.gltf");
 }
 
 TEST(CliTest, DeviceOutOfRangeIsAOneLineError) {
@@ -468,7 +538,9 @@ TEST(CliTest, LoaderWarningsReachStderrAndStrictRefusesThem) {
     for (size_t at = run.output.find(text); at != std::string::npos; at = run.output.find(text, at + 1)) ++n;
     return n;
   };
-  EXPECT_EQ(count("hmblur: warning: "), 2u) << run.output;  // the points primitive is one warning, used twice
+  // The points primitive is one warning, used twice (the scene's stillness is said apart).
+  EXPECT_EQ(count("hmblur: warning: " + scene + ": "), 2u) << run.output;
+  EXPECT_EQ(count("hmblur: warning: nothing moves on screen"), 1u) << run.output;
   EXPECT_EQ(count("KHR_materials_clearcoat is not implemented"), 1u) << run.output;
   EXPECT_EQ(count("points skipped"), 1u) << run.output;
 
