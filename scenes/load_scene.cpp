@@ -78,6 +78,10 @@ Scene loadScene(std::string_view nameOrPath, const ShutterChoice& shutter) {
   const bool gltf = endsWithNoCase(nameOrPath, ".gltf") || endsWithNoCase(nameOrPath, ".glb") ||
                     (!named && std::filesystem::exists(path, ec) && loadableAsGltf(path));
   Scene scene = gltf ? loadGltf(path) : makeReferenceScene(nameOrPath);
+  if (gltf) {
+    scene.settings.fps = kGltfFps;
+    scene.settings.exposure = kGltfShutterAngleDegrees / 360.0f / kGltfFps;
+  }
   applyShutterChoice(shutter, scene.settings);
   deriveDefaults(scene);
   return scene;

@@ -8,9 +8,14 @@
 
 namespace hmb::scene {
 
-// The shutter a render asks for where the scene's own is not wanted (a glTF file has none:
-// Settings' defaults apply). The exposure is given in seconds or as a shutter angle (360
-// degrees: the whole frame interval), not both.
+// A glTF file says nothing of a shutter: it is played as film and games are, at kGltfFps with a
+// shutter of kGltfShutterAngleDegrees (the reference scenes keep the paper's settings).
+inline constexpr float kGltfFps = 24.0f;
+inline constexpr float kGltfShutterAngleDegrees = 180.0f;
+
+// The shutter a render asks for where the scene's own is not wanted. The exposure is given in
+// seconds or as a shutter angle (360 degrees: the whole frame interval), not both; an angle
+// alone applies at the scene's frame rate (or the one chosen with it).
 struct ShutterChoice {
   std::optional<float> fps;
   std::optional<float> exposureSeconds;

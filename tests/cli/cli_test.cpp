@@ -598,6 +598,18 @@ TEST(CliTest, ShutterChoicesReachTheImageAndTheReport) {
   EXPECT_FLOAT_EQ(angle["scene"]["settings"]["exposure_s"].get<float>(), 1.0f / 120.0f);
   EXPECT_FLOAT_EQ(angle["scene"]["settings"]["shutter_angle_deg"].get<float>(), 180.0f);
   EXPECT_NE(io::readPng(dir / "scenes.png").pixels, io::readPng(dir / "chosen.png").pixels);
+
+  // A glTF file, which has no shutter of its own, plays at 24 fps under a 180-degree shutter.
+  scene::test::GltfWriter w;
+  w.setSceneRoots({w.addNode({{"mesh", w.addMesh({scene::test::addQuadPrimitive(w)})}})});
+  const std::string file = w.writeGltf(dir / "quad.gltf").string();
+  const CliRun quad = hmblur("--quiet render --scene " + file + " --width 8 --height 8 --out " +
+                             (dir / "quad.png").string() + " --report " + (dir / "quad.json").string());
+  ASSERT_EQ(quad.exitCode, 0) << quad.output;
+  nlohmann::json report;
+  std::ifstream(dir / "quad.json") >> report;
+  EXPECT_FLOAT_EQ(report["scene"]["settings"]["fps"].get<float>(), 24.0f) << report["scene"].dump();
+  EXPECT_FLOAT_EQ(report["scene"]["settings"]["shutter_angle_deg"].get<float>(), 180.0f) << report["scene"].dump();
 }
 
 // `render` times a frame after an untimed first one (kernels compile on first use); --repeat

@@ -455,8 +455,12 @@ TEST(LoadSceneTest, ShutterChoiceReplacesTheScenesOwn) {
   EXPECT_FLOAT_EQ(scene.settings.exposure, 0.01f);
   const Scene angle = loadScene(path, ShutterChoice{.fps = 60.0f, .shutterAngleDegrees = 180.0f});
   EXPECT_FLOAT_EQ(angle.settings.exposure, 1.0f / 120.0f);
+  // Without a choice a glTF file plays at 24 fps under a 180-degree shutter.
   const Scene defaults = loadScene(path);
-  EXPECT_FLOAT_EQ(defaults.settings.fps, Settings{}.fps);
+  EXPECT_FLOAT_EQ(defaults.settings.fps, 24.0f);
+  EXPECT_FLOAT_EQ(defaults.settings.exposure, 1.0f / 48.0f);
+  EXPECT_FLOAT_EQ(loadScene(path, ShutterChoice{.shutterAngleDegrees = 360.0f}).settings.exposure, 1.0f / 24.0f);
+  EXPECT_FLOAT_EQ(loadScene("living-room").settings.fps, 120.0f) << "the reference scenes keep the paper's";
   EXPECT_THROW(loadScene(path, ShutterChoice{.fps = 0.0f}), Error);
   EXPECT_THROW(loadScene(path, ShutterChoice{.exposureSeconds = -1.0f}), Error);
   EXPECT_THROW(loadScene(path, ShutterChoice{.exposureSeconds = std::nanf("")}), Error);
