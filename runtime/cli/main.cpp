@@ -294,6 +294,20 @@ void warnStillFrame(const GlobalOptions& global, const hmb::scene::Scene& scene,
   std::cerr << '\n';
 }
 
+// The blur region of a frame: where the reference differs from the sharp frame of the same
+// instant. A still frame has none: there the two differ only where the raster and the ray
+// trace break a silhouette's tie the other way, which is not blur.
+hmb::metrics::BlurRegion blurRegionOf(const hmb::scene::Scene& scene, float frameTime,
+                                      const hmb::metrics::DisplayImage& reference,
+                                      const hmb::metrics::DisplayImage& sharp) {
+  hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(reference, sharp);
+  if (!hmb::anythingMovesOnScreen(scene, frameTime)) {
+    std::fill(region.inside.begin(), region.inside.end(), uint8_t(0));
+    region.pixelCount = 0;
+  }
+  return region;
+}
+
 // Traces the device's loop limit cut short (RenderResult::cutTraces): said on stderr, as their
 // pixels may be wrong.
 void warnCutTraces(const GlobalOptions& global, const hmb::RenderResult& result) {
@@ -497,7 +511,7 @@ int render(const GlobalOptions& global, RenderOptions options) {
     sharpSettings.onProgress = nullptr;
     const hmb::metrics::DisplayImage sharp =
         hmb::metrics::displayImageFromRgba8(renderer.render(scene, sharpSettings).display);
-    const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*referenceImage, sharp);
+    const hmb::metrics::BlurRegion region = blurRegionOf(scene, result.frameTime, *referenceImage, sharp);
     const hmb::metrics::Comparison comparison = hmb::metrics::compareImages(
         *referenceImage, hmb::metrics::displayImageFromLayered(result.image), &region);
     report["metrics"] = hmb::metrics::metricsJson(comparison);
@@ -651,7 +665,7 @@ int demo(const GlobalOptions& global, const DemoOptions& options) {
                             {"images", {stem.string() + ".png", stem.string() + ".exr"}}};
     std::string line = method + ": " + timingText(timed, settings.method);
     if (judge && method != "reference") {
-      const hmb::metrics::BlurRegion region = hmb::metrics::blurRegion(*judge, sharp.value_or(display));
+      const hmb::metrics::BlurRegion region = blurRegionOf(scene, result.frameTime, *judge, sharp.value_or(display));
       const hmb::metrics::Comparison comparison = hmb::metrics::compareImages(*judge, display, &region);
       measured[method] = costAndGain(timed, comparison);
       entry["metrics"] = hmb::metrics::metricsJson(comparison);
