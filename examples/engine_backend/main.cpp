@@ -503,6 +503,9 @@ std::vector<Placement> placementsAt(float t) {
           {{-1.6f, 0, -1.2f}, {1, 1, 1}, 0.0f, {0.3f, 0.8f, 0.3f}, 4}};
 }
 
+// The engine's sky, linear: its clear colour, and what the library's rays that hit nothing see.
+constexpr glm::vec3 kSky{0.62f, 0.74f, 0.9f};
+
 // The boxes' geometry for the library's rays (hmb::EngineScene): a box mesh per colour once,
 // then per frame each box's world transform now and one frame earlier, and the still camera.
 struct Boxes {
@@ -519,6 +522,7 @@ struct Boxes {
     light.color = glm::vec3(0.75f);
     light.ambient = glm::vec3(0.25f);
     scene.setLight(light);
+    scene.setBackground(kSky);
     setFrame(1.0f / 3.0f + 1.0f / kFps);
   }
   void setFrame(float t) {
@@ -594,12 +598,13 @@ void writePng(const std::filesystem::path& path, const float* rgba, uint32_t wid
 }  // namespace
 
 constexpr const char* kUsage =
-    "usage: engine_backend [--validation] [--method hybrid|postprocess] [--scene SCENE] [--frames N]\n"
+    "usage: engine_backend [--validation] [--method hybrid|hybrid-rays|postprocess] [--scene SCENE] [--frames N]\n"
     "                      [--size WIDTHxHEIGHT] OUT_DIR\n";
 
 int main(int argc, char** argv) {
   bool validation = false;
   bool hybrid = true;
+  bool shutterRays = false;  // hybrid-rays: the paper's blur with shutter rays at edges
   int frames = 4;
   uint32_t width = 640, height = 360;
   std::string sceneName;  // empty: the boxes
@@ -611,11 +616,12 @@ int main(int argc, char** argv) {
     else if (arg == "--scene" && a + 1 < argc) sceneName = argv[++a];
     else if (arg == "--method" && a + 1 < argc) {
       const std::string method = argv[++a];
-      if (method != "hybrid" && method != "postprocess") {
-        std::fprintf(stderr, "engine_backend: --method takes hybrid or postprocess\n");
+      if (method != "hybrid" && method != "hybrid-rays" && method != "postprocess") {
+        std::fprintf(stderr, "engine_backend: --method takes hybrid, hybrid-rays or postprocess\n");
         return 2;
       }
-      hybrid = method == "hybrid";
+      hybrid = method != "postprocess";
+      shutterRays = method == "hybrid-rays";
     } else if (arg == "--size" && a + 1 < argc) {
       if (std::sscanf(argv[++a], "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 ||
           height > 8192) {
@@ -684,7 +690,7 @@ int main(int argc, char** argv) {
       hmb::RenderSettings derive;
       derive.width = width;
       derive.height = height;
-      derive.method = hybrid ? hmb::Method::Hybrid : hmb::Method::PostProcess;
+      derive.method = !hybrid ? hmb::Method::PostProcess : shutterRays ? hmb::Method::HybridRays : hmb::Method::Hybrid;
       const hmb::passes::HybridSettings settings = hmb::hybridSettingsFor(scene, derive);
       const hmb::passes::HitShading shading(boxes ? kBoxesShadeHit : "");  // a loaded scene: the library's
       std::unique_ptr<hmb::EngineMotionBlur> postProcess;
@@ -720,8 +726,8 @@ int main(int argc, char** argv) {
         check(vkBeginCommandBuffer(commands, &begin), "vkBeginCommandBuffer");
         // The engine's own frame: the G-buffer pass ...
         VkClearValue clears[kColorTargets + 1] = {};
-        clears[0].color = boxes ? VkClearColorValue{{0.62f, 0.74f, 0.9f, 1.0f}}  // sky
-                                : VkClearColorValue{{0.0f, 0.0f, 0.0f, 1.0f}};   // the library's background
+        clears[0].color = boxes ? VkClearColorValue{{kSky.r, kSky.g, kSky.b, 1.0f}}
+                                : VkClearColorValue{{0.0f, 0.0f, 0.0f, 1.0f}};  // a loaded scene's background
         clears[1].color = {{0.0f, 0, 0, 0}};  // depth 0: nothing there (the background)
         clears[2].color = {{0.0f, 0, 0, 0}};  // the background does not move on screen: the camera is still
         clears[3].color = {{0.0f, 0, 0, 0}};  // no normal

@@ -46,6 +46,9 @@ class EngineScene {
 
   // The light the library's shading uses (an engine with its own shadeHit can ignore it).
   void setLight(const scene::DirectionalLight& light) { scene_.light = light; }
+  // The engine's sky: what the hybrid's rays that hit nothing see (linear colour, black unless
+  // set), where the engine's own G-buffer shows its sky.
+  void setBackground(glm::vec3 linear) { scene_.background = linear; }
 
   const scene::Scene& scene() const { return scene_; }
 

@@ -166,6 +166,8 @@ struct Scene {
   std::vector<Instance> instances;
   std::optional<Camera> camera;  // none: deriveDefaults places one
   DirectionalLight light;
+  // What a ray that hits nothing sees, and the raster where no surface is: linear colour.
+  glm::vec3 background{0.0f};
   Settings settings;
   LoadStats stats;
 

@@ -223,7 +223,7 @@ GpuScene::FrameInputs GpuScene::frameInputs(const scene::Scene& scene, float t, 
   c.lightDirection = glm::vec4(glm::normalize(scene.light.direction), 0.0f);
   c.lightColor = glm::vec4(scene.light.color, 0.0f);
   c.ambient = glm::vec4(scene.light.ambient, 0.0f);
-  c.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  c.background = glm::vec4(scene.background, 1.0f);
   return inputs;
 }
 

@@ -92,6 +92,28 @@ TEST(EngineExampleTest, BlursItsOwnGBufferWithoutAValidationMessage) {
   EXPECT_EQ(method.exitCode, 2) << method.output;
 }
 
+// The engine's sky is the library's background (EngineScene::setBackground): hybrid-rays'
+// rays that hit nothing, along the floor's far edge past the turning box, see it, where they
+// saw black (17 to 33 black pixels a frame over the sky at this size before).
+TEST(EngineExampleTest, RaysThatHitNothingSeeTheEnginesSky) {
+  const fs::path out = tempDir("engine-example-sky");
+  const CliRun run = runProgram(HMB_ENGINE_EXAMPLE_PATH, "--validation --method hybrid-rays --frames 4 --size 320x180 " +
+                                                             out.string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  for (const char* frame : {"frame-00", "frame-01", "frame-02", "frame-03"}) {
+    const io::Rgba8Image blurred = io::readPng(out / (std::string(frame) + ".png"));
+    const io::Rgba8Image sharp = io::readPng(out / (std::string(frame) + "-sharp.png"));
+    size_t sky = 0, blackOverSky = 0;
+    for (size_t i = 0; i < blurred.pixels.size(); i += 4) {
+      const bool skyThere = sharp.pixels[i + 2] > 200 && sharp.pixels[i] < sharp.pixels[i + 2];  // blue over red
+      sky += skyThere;
+      blackOverSky += skyThere && blurred.pixels[i] + blurred.pixels[i + 1] + blurred.pixels[i + 2] < 30;
+    }
+    EXPECT_GT(sky, 1000u) << frame;
+    EXPECT_EQ(blackOverSky, 0u) << frame;
+  }
+}
+
 // The example engine drawing a scene the library loads (its own graphics pipeline, the library's
 // camera, base colours only: it draws no textures) against the command line's frames of the
 // same scene: wherever the two sharp G-buffers agree, so do the two hybrid frames; they differ
