@@ -10,7 +10,6 @@ add_library(hmblur_library INTERFACE)
 target_include_directories(hmblur_library INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
                                                     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 target_link_libraries(hmblur_library INTERFACE $<LINK_ONLY:hmb> Vulkan::Vulkan glm::glm nlohmann_json::nlohmann_json)
-target_compile_definitions(hmblur_library INTERFACE GLM_FORCE_RADIANS GLM_ENABLE_EXPERIMENTAL)
 set_target_properties(hmblur_library PROPERTIES EXPORT_NAME hmblur)
 add_library(hmblur::hmblur ALIAS hmblur_library)
 

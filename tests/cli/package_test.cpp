@@ -58,14 +58,18 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("consumer: rendered 32x18"), std::string::npos) << run.output;
 
-  // The same program built by a plain compiler line from pkg-config's flags (static: the layers'
-  // own dependencies too).
+  // The same program built by a plain compiler line from pkg-config's flags, without --static
+  // (the layers are static libraries: Libs names what they link), whose Cflags are the install's
+  // include folder alone: no define, no path into the library's own folders.
   const std::string pkgConfig = "PKG_CONFIG_PATH=" + quoted(prefix / "lib/pkgconfig") + " pkg-config";
-  const CliRun flags = runProgram(pkgConfig, "--cflags --libs --static hmblur");
-  ASSERT_EQ(flags.exitCode, 0) << flags.output;
+  const CliRun cflags = runProgram(pkgConfig, "--cflags hmblur");
+  ASSERT_EQ(cflags.exitCode, 0) << cflags.output;
+  EXPECT_EQ(cflags.output.find("-D"), std::string::npos) << cflags.output;
+  EXPECT_EQ(cflags.output.find("include/hmblur"), std::string::npos) << cflags.output;
+  EXPECT_EQ(cflags.output.find("spirv_cross"), std::string::npos) << cflags.output;
   const fs::path program = dir / "consumer-pkg-config";
   const CliRun plain = runProgram("c++", "-std=c++20 " + quoted(fs::path(HMB_CONSUMER_DIR) / "main.cpp") + " -o " +
-                                             quoted(program) + " $(" + pkgConfig + " --cflags --libs --static hmblur)");
+                                             quoted(program) + " $(" + pkgConfig + " --cflags --libs hmblur)");
   ASSERT_EQ(plain.exitCode, 0) << plain.output;
   const CliRun again = runProgram(quoted(program), "");
   ASSERT_EQ(again.exitCode, 0) << again.output;
