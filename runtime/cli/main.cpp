@@ -271,9 +271,11 @@ void printPasses(const GlobalOptions& global, const hmb::FramePlan& plan) {
 }
 
 // A frame where nothing moves on screen renders the sharp frame in every method: said on
-// stderr, with the span of the scene's animation keys, where something may move.
-void warnStillFrame(const GlobalOptions& global, const hmb::scene::Scene& scene, float frameTime) {
-  if (global.quiet || hmb::anythingMovesOnScreen(scene, frameTime)) return;
+// stderr, with the span of the scene's animation keys, where something may move. Returns
+// whether the frame is still.
+bool warnStillFrame(const GlobalOptions& global, const hmb::scene::Scene& scene, float frameTime) {
+  if (hmb::anythingMovesOnScreen(scene, frameTime)) return false;
+  if (global.quiet) return true;
   char text[160];
   std::snprintf(text, sizeof(text), "hmblur: warning: nothing moves on screen at t = %g s: every method gives the sharp frame",
                 double(frameTime));
@@ -292,6 +294,7 @@ void warnStillFrame(const GlobalOptions& global, const hmb::scene::Scene& scene,
     std::cerr << "; the scene has no animation";
   }
   std::cerr << '\n';
+  return true;
 }
 
 // The blur region of a frame: where the reference differs from the sharp frame of the same
@@ -340,10 +343,7 @@ int renderFrames(const GlobalOptions& global, const RenderOptions& options, hmb:
   for (uint32_t frame = range.first; frame <= range.last; ++frame) {
     settings.frameTime = static_cast<float>(frame / double(scene.settings.fps));
     const hmb::RenderResult result = renderer.render(scene, settings);
-    if (!warnedStill && !hmb::anythingMovesOnScreen(scene, *settings.frameTime)) {
-      warnStillFrame(global, scene, *settings.frameTime);
-      warnedStill = true;
-    }
+    if (!warnedStill) warnedStill = warnStillFrame(global, scene, *settings.frameTime);
     warnCutTraces(global, result);
     nlohmann::json entry = {{"frame", frame},
                             {"time_s", *settings.frameTime},

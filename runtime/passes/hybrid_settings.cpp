@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "hmblur/error.h"
 #include "hmblur/scene.h"
@@ -22,7 +23,14 @@ settings::Table<Choices, Settings> makeTable() {
   using namespace settings;
   constexpr float kMaxFactor = 1e6f;
   const Range<float> factor{0.0f, kMaxFactor, true};
-  settings::Table<Choices, Settings> table = {
+  // The paper's hybrid holds 0 strata (no rays); what a user may choose is a power of two
+  // (validate()).
+  auto strata = number("shutter-rays", "hybrid-rays",
+                       "shutter strata for the rays of pixels whose path crosses an edge (another object, a colour "
+                       "step), traced in place of the ray mask's reveal (under a ray budget, over it)",
+                       &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA}, "8");
+  strata.accepts = "2, 4, 8 or 16";
+  return {
       number("edge-threshold", "hybrid", "ray-mask edge threshold e (eq. 4)", &Choices::edgeThreshold,
              &Settings::edgeThreshold, Range<float>{0.0f, 1.0f, false, true}, "the scene's"),
       named("reveal-stop", "hybrid", "reveal rays stop on another object, or on a luminance change (the paper)",
@@ -37,19 +45,12 @@ settings::Table<Choices, Settings> makeTable() {
              &Choices::maskBackgroundBoost, &Settings::maskBackgroundBoost, factor),
       number("mask-foreground-divide", "hybrid", "weights composite: foreground weight divisor in the mask",
              &Choices::maskForegroundDivide, &Settings::maskForegroundDivide, factor),
-      number("shutter-rays", "hybrid-rays",
-             "shutter strata for the rays of pixels whose path crosses an edge (another object, a colour step), "
-             "traced in place of the ray mask's reveal (under a ray budget, over it)",
-             &Choices::shutterRays, &Settings::shutterRays, Range<uint32_t>{0, HMB_MAX_SHUTTER_STRATA}, "8"),
+      std::move(strata),
       number("ray-budget", "hybrid-rays",
              "shutter rays a frame traces at most, spent on the listed pixels in order of the error each is expected "
              "to remove per ray, over the paper's composite (0: every listed pixel's, in place of it)",
              &Choices::rayBudget, &Settings::rayBudget, Range<uint32_t>{0, std::numeric_limits<uint32_t>::max()}),
   };
-  // The paper's hybrid holds 0 (no rays); what a user may choose is a power of two (validate()).
-  for (auto& setting : table)
-    if (setting.name == "shutter-rays") setting.accepts = "2, 4, 8 or 16";
-  return table;
 }
 
 }  // namespace
