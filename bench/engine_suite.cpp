@@ -76,8 +76,8 @@ EngineCase runCase(vk::Context& context, const scene::Scene& scene, const std::s
   hybrid.prepare(firstHybrid.frameTime);
   recordHybrid();
   double topLevel = 0;
-  for (const vk::PassTiming& pass : hybrid.timings().passes)
-    if (pass.name == passes::HybridStage::kBvhInstances) topLevel += pass.milliseconds.value_or(0.0);
+  for (const EnginePassTime& pass : hybrid.timings().passes)
+    if (pass.name == passes::HybridStage::kBvhInstances) topLevel += pass.milliseconds;
 
   std::vector<double> engineFrame, enginePack, engineBlur, cliFrame, cliBlur, engineHybridFrame, cliHybridFrame;
   bool same = true, sameHybrid = true;
@@ -86,15 +86,14 @@ EngineCase runCase(vk::Context& context, const scene::Scene& scene, const std::s
     context.submitAndWait([&](VkCommandBuffer commands) {
       blur.record(commands, {colorBuffer.handle(), depthBuffer.handle(), velocityBuffer.handle()}, output.handle());
     });
-    const vk::FrameTimings engine = blur.timings();
+    const EngineFrameTimes engine = blur.timings();
     const RenderResult cli = renderer.render(scene, settings);
-    if (!engine.frameMilliseconds || !cli.frameMilliseconds)
+    if (!engine.available() || !cli.frameMilliseconds)
       throw Error("engine: the device gives no timestamps: frame times cannot be measured");
     if (i < o.warmup) continue;
-    engineFrame.push_back(*engine.frameMilliseconds);
+    engineFrame.push_back(engine.frameMilliseconds);
     double pack = 0, blurMs = 0, cliBlurMs = 0;
-    for (const vk::PassTiming& pass : engine.passes)
-      (isBlurPass(pass.name) ? blurMs : pack) += pass.milliseconds.value_or(0.0);
+    for (const EnginePassTime& pass : engine.passes) (isBlurPass(pass.name) ? blurMs : pack) += pass.milliseconds;
     for (const PlannedPass& pass : cli.plan.passes())
       if (pass.run && isBlurPass(pass.name)) cliBlurMs += pass.milliseconds.value_or(0.0);
     enginePack.push_back(pack);
@@ -107,9 +106,9 @@ EngineCase runCase(vk::Context& context, const scene::Scene& scene, const std::s
 
     hybrid.prepare(firstHybrid.frameTime);  // the first frame's trees serve: nothing moved since
     recordHybrid();
-    const vk::FrameTimings engineHybrid = hybrid.timings();
+    const EngineFrameTimes engineHybrid = hybrid.timings();
     const RenderResult cliHybrid = renderer.render(scene, hybridSettings);
-    engineHybridFrame.push_back(engineHybrid.frameMilliseconds.value_or(0.0));
+    engineHybridFrame.push_back(engineHybrid.frameMilliseconds);
     cliHybridFrame.push_back(cliHybrid.frameMilliseconds.value_or(0.0));
     const std::vector<glm::vec4> engineHybridImage = output.download<glm::vec4>();
     sameHybrid = sameHybrid && std::memcmp(engineHybridImage.data(), cliHybrid.image.find("")->values.data(),

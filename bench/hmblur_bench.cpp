@@ -235,11 +235,6 @@ int raster(const GlobalOptions& global, const RasterOptions& options, const std:
 
   hmb::bench::printRasterTable(std::cout, cases);
   for (const auto& c : cases)
-    if (!(c.passCoverage.median >= hmb::bench::kMinPassCoverage))  // also catches NaN
-      std::cerr << "hmblur-bench: warning: " << c.scene << " " << c.size.width << "x" << c.size.height
-                << ": pass timestamps cover only " << int(100.0 * c.passCoverage.median)
-                << "% of the frame; per-pass times are suspect\n";
-  for (const auto& c : cases)
     if (c.otherCpuLoad > hmb::bench::kMaxOtherCpuLoad)
       std::cerr << "hmblur-bench: warning: " << c.scene << " " << c.size.width << "x" << c.size.height
                 << ": other processes kept " << c.otherCpuLoad << " cores busy; its times are disturbed\n";

@@ -141,7 +141,7 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   result.visibilityScheme = passes::visibilitySchemeName(stage.rasterizer().scheme());
   result.triangles = gpuScene.triangleCount();
 
-  std::vector<double> visibility, transform, resolve, computeFrame, graphicsDraw, ratio, coverage, floorMs;
+  std::vector<double> visibility, transform, resolve, computeFrame, graphicsDraw, ratio, floorMs;
   std::vector<double> computeGBuffer, graphicsGBufferMs, gbufferRatio;
   std::map<std::string, std::vector<double>> passSamples;
   progress(label + ": " + std::to_string(options.warmup) + " warm-up + " + std::to_string(options.repeats) +
@@ -189,11 +189,10 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
     if (i < options.warmup) continue;
     floorMs.push_back(floorTime);
 
-    double vis = 0, resolveMs = 0, allPasses = 0;
+    double vis = 0, resolveMs = 0;
     for (const vk::PassTiming& pass : compute.passes) {
       const double ms = required(pass.milliseconds, label);
       passSamples[pass.name].push_back(ms);
-      allPasses += ms;
       if (pass.name == passes::TransformVerticesPass::kName)
         transform.push_back(ms);
       else if (pass.name == passes::ResolveGBufferPass::kName)
@@ -206,7 +205,6 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
     graphicsGBufferMs.push_back(gbufferMs);
     gbufferRatio.push_back(gbufferMs > 0 ? computeGBuffer.back() / gbufferMs : NAN);
     computeFrame.push_back(required(compute.frameMilliseconds, label));
-    coverage.push_back(computeFrame.back() > 0 ? allPasses / computeFrame.back() : NAN);
     graphicsDraw.push_back(drawMs);
     ratio.push_back(drawMs > 0 ? vis / drawMs : NAN);
   }
@@ -227,7 +225,6 @@ RasterCase runCase(const vk::Context& context, const vk::Context& graphicsContex
   result.graphicsGBuffer = summarize(graphicsGBufferMs);
   result.gbufferRatio = summarize(gbufferRatio);
   result.ratio = summarize(ratio);
-  result.passCoverage = summarize(coverage);
   for (auto& [name, samples] : passSamples) result.passes[name] = summarize(samples);
   progress(label + ": visibility " + fixed(result.computeVisibility.median, 2) + " ms, graphics " +
            fixed(result.graphicsDraw.median, 2) + " ms, ratio " + fixed(result.ratio.median, 2) + "; G-buffer " +
@@ -297,7 +294,6 @@ nlohmann::json rasterCaseJson(const RasterCase& c) {
       {"ratio_visibility_to_graphics", summaryJson(c.ratio)},
       {"ratio_gbuffer_to_graphics_gbuffer", summaryJson(c.gbufferRatio)},
       {"gbuffer_oracle_agreement", {{"min_object_ids", c.minObjectAgreement}, {"min_attributes", c.minAttributeAgreement}}},
-      {"compute_pass_coverage", summaryJson(c.passCoverage)},
   };
 }
 

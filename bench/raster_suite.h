@@ -35,10 +35,6 @@ namespace hmb::bench {
 // that disagrees with the oracle would compare different work.
 constexpr double kMinIdAgreement = 0.995;
 
-// Below this fraction of the frame covered by the per-pass timestamps, the pass times are not
-// bracketing the work (the driver defers stamps); the driver warns.
-constexpr double kMinPassCoverage = 0.9;
-
 // Above this many cores busy with other processes during a case, the driver warns.
 constexpr double kMaxOtherCpuLoad = 0.1;
 
@@ -92,7 +88,6 @@ struct RasterCase {
   Summary computeGBuffer, graphicsGBuffer, gbufferRatio;
   double minObjectAgreement = 1.0, minAttributeAgreement = 1.0;  // worst iteration
   Summary ratio;              // computeVisibility / graphicsDraw, paired per iteration
-  Summary passCoverage;       // sum of pass times / frame time: near 1 when per-pass stamps are sound
   std::map<std::string, Summary> passes;  // every compute pass by name
   double minIdAgreement = 1.0;            // worst iteration
   // Cores busy with other processes, averaged over the case (Linux /proc; NaN elsewhere). On a

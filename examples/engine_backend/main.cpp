@@ -17,11 +17,8 @@
 //                       [--size WIDTHxHEIGHT] OUT_DIR
 //   --validation: the Khronos validation layer with synchronization validation on the engine's
 //   instance; any message it reports makes the exit code 3.
-// Each frame prints the library's device times (EngineMotionBlur::timings). On lavapipe a
-// timestamp written while the command buffer's draws are still unrasterized is taken when they
-// are, so after draws in one command buffer its pass times there are not the passes' own (the
-// frame total still spans them); `hmblur-bench engine` times the passes in a command buffer
-// of their own.
+// Each frame prints the library's device times (EngineMotionBlur::timings): its passes, each
+// named once with how often it ran, adding up to the frame, from the end of the engine's draws.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -792,10 +789,18 @@ int main(int argc, char** argv) {
         std::snprintf(name, sizeof(name), "frame-%02d", f);
         writePng(outDir / (std::string(name) + ".png"), static_cast<const float*>(blurred.mapped), width, height);
         writePng(outDir / (std::string(name) + "-sharp.png"), static_cast<const float*>(sharp.mapped), width, height);
-        const hmb::vk::FrameTimings timings = hybridBlur ? hybridBlur->timings() : postProcess->timings();
-        std::printf("%s: blurred in %.2f ms (", name, timings.frameMilliseconds.value_or(0.0));
-        for (size_t p = 0; p < timings.passes.size(); ++p)
-          std::printf("%s%s %.2f", p ? ", " : "", timings.passes[p].name.c_str(), timings.passes[p].milliseconds.value_or(0.0));
+        const hmb::EngineFrameTimes timings = hybridBlur ? hybridBlur->timings() : postProcess->timings();
+        if (!timings.available()) {
+          std::printf("%s: blurred (no device times: %s)\n", name, timings.unavailable.c_str());
+          continue;
+        }
+        std::printf("%s: blurred in %.2f ms (", name, timings.frameMilliseconds);
+        for (size_t p = 0; p < timings.passes.size(); ++p) {
+          const hmb::EnginePassTime& pass = timings.passes[p];
+          std::printf("%s%s", p ? ", " : "", pass.name.c_str());
+          if (pass.runs > 1) std::printf(" x%u", pass.runs);
+          std::printf(" %.2f", pass.milliseconds);
+        }
         std::printf(")\n");
       }
       vkDestroyFence(engine.device, fence, nullptr);

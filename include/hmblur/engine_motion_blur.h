@@ -23,10 +23,11 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
-#include "hmblur/frame_timings.h"
 #include "hmblur/hybrid_settings.h"
 #include "hmblur/post_process_settings.h"
 
@@ -56,6 +57,22 @@ struct EngineDepth {
   float far = std::numeric_limits<float>::infinity();
 };
 
+// The device time of a frame's passes, each pass named once. A pass's time runs from the end of
+// the pass before (the frame's start for the first: once the engine's earlier commands
+// finished) to its own end, so the passes add up to the frame.
+struct EnginePassTime {
+  std::string name;
+  uint32_t runs = 1;          // how often it ran in the frame (one tree level, one bounce, ...)
+  double milliseconds = 0.0;  // all its runs together
+};
+struct EngineFrameTimes {
+  std::vector<EnginePassTime> passes;  // in the order each first ran
+  double frameMilliseconds = 0.0;
+  // Why there are no times (the queue writes no timestamps); empty when there are.
+  std::string unavailable;
+  bool available() const { return unavailable.empty(); }
+};
+
 struct EngineGBuffer {
   VkBuffer color = VK_NULL_HANDLE;
   VkBuffer depth = VK_NULL_HANDLE;
@@ -79,9 +96,9 @@ class EngineMotionBlur {
   // (keep one EngineMotionBlur per frame in flight).
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
 
-  // The device time of each pass of the last recorded frame, once the engine's submission of it
-  // completed (empty times when the queue has no timestamps).
-  vk::FrameTimings timings() const;
+  // The device time of the last recorded frame's passes, once the engine's submission of it
+  // completed.
+  EngineFrameTimes timings() const;
 
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
@@ -116,13 +133,13 @@ class EngineHybridMotionBlur {
   // are new (the first frame, or an EngineScene given other meshes), it builds their trees
   // and waits for them, as it does for deforming meshes' refits; it returns the device time of
   // that work. A frame whose instances moved needs no wait: record() builds their tree.
-  vk::FrameTimings prepare(float frameTime);
+  EngineFrameTimes prepare(float frameTime);
   // Records the frame prepare() was last given into `commandBuffer`, as EngineMotionBlur
   // records (the G-buffer's normal and objectId are required here): the frame's transforms
   // and camera (written through the command buffer), the instances' tree where they moved,
   // then the hybrid's passes.
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
-  vk::FrameTimings timings() const;
+  EngineFrameTimes timings() const;
 
   // After the frame completed, read back on request: the ray mask's pixels (none beside
   // shutter rays: settings' shutterRays), the pixels that took shutter rays, and the traces the

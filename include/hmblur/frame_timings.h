@@ -11,7 +11,9 @@ namespace hmb::vk {
 
 struct PassTiming {
   std::string name;
-  std::optional<double> milliseconds;  // empty when the queue has no timestamps
+  // From the end of the pass before (or the frame's start) to this pass's end, the barrier
+  // between them included; empty when the queue has no timestamps.
+  std::optional<double> milliseconds;
 };
 
 // What a frame asks of the device and the host, counted as it is recorded: on a GPU every
@@ -40,7 +42,7 @@ struct FrameShape {
 
 struct FrameTimings {
   std::vector<PassTiming> passes;
-  std::optional<double> frameMilliseconds;  // first pass start to last pass end
+  std::optional<double> frameMilliseconds;  // the frame's start to its last pass's end: the passes' sum
 };
 
 // Adds the passes and device time of a later submission to those of a frame made of several.

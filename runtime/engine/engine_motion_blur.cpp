@@ -1,5 +1,6 @@
 #include "hmblur/engine_motion_blur.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -10,6 +11,7 @@
 #include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/frame_timings.h"
 #include "kernels/engine/engine_layout.h"
 #include "kernels/manifest.h"
 #include "runtime/device_scene/gpu_scene.h"
@@ -90,6 +92,27 @@ void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::
                  {vk::groupsFor(width, HMB_ENGINE_GROUP_X), vk::groupsFor(height, HMB_ENGINE_GROUP_Y), 1});
 }
 
+// The recorder's per-run times, each pass named once.
+EngineFrameTimes engineTimes(const vk::FrameTimings& timings) {
+  EngineFrameTimes times;
+  if (!timings.frameMilliseconds && !timings.passes.empty()) {
+    times.unavailable = "the device's queue writes no timestamps";
+    return times;
+  }
+  times.frameMilliseconds = timings.frameMilliseconds.value_or(0.0);
+  for (const vk::PassTiming& pass : timings.passes) {
+    auto same = std::find_if(times.passes.begin(), times.passes.end(),
+                             [&](const EnginePassTime& p) { return p.name == pass.name; });
+    if (same == times.passes.end()) {
+      times.passes.push_back({pass.name, 1, pass.milliseconds.value_or(0.0)});
+    } else {
+      ++same->runs;
+      same->milliseconds += pass.milliseconds.value_or(0.0);
+    }
+  }
+  return times;
+}
+
 }  // namespace
 
 struct EngineMotionBlur::Passes {
@@ -134,7 +157,7 @@ void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer
   frame.endInto();
 }
 
-vk::FrameTimings EngineMotionBlur::timings() const { return passes_->recorder.readTimings(); }
+EngineFrameTimes EngineMotionBlur::timings() const { return engineTimes(passes_->recorder.readTimings()); }
 
 struct EngineHybridMotionBlur::Passes {
   Passes(const vk::Context& context, uint32_t width, uint32_t height, const passes::HybridSettings& settings,
@@ -176,7 +199,7 @@ EngineHybridMotionBlur::EngineHybridMotionBlur(const vk::Context& context, uint3
 
 EngineHybridMotionBlur::~EngineHybridMotionBlur() = default;
 
-vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
+EngineFrameTimes EngineHybridMotionBlur::prepare(float frameTime) {
   if (!std::isfinite(frameTime)) throw Error("engine hybrid motion blur: the frame time must be finite");
   std::vector<glm::uvec2> instances;
   for (const scene::Instance& instance : scene_.instances) instances.emplace_back(instance.mesh, instance.objectId);
@@ -201,7 +224,7 @@ vk::FrameTimings EngineHybridMotionBlur::prepare(float frameTime) {
   prepared_ = true;
   vk::FrameTimings all = timings.setup;
   vk::appendTimings(all, timings.frame);
-  return all;
+  return engineTimes(all);
 }
 
 void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output) {
@@ -219,7 +242,7 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
   frame.endInto();
 }
 
-vk::FrameTimings EngineHybridMotionBlur::timings() const { return passes_->recorder.readTimings(); }
+EngineFrameTimes EngineHybridMotionBlur::timings() const { return engineTimes(passes_->recorder.readTimings()); }
 
 uint32_t EngineHybridMotionBlur::maskPixels() const { return passes_->hybrid.rayMask().counts().maskPixels; }
 

@@ -69,7 +69,7 @@ FrameRecorder::FrameRecorder(const Context& context, uint32_t maxPasses)
   if (context.info().timestamps) {
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = 2 * maxPasses;
+    queryInfo.queryCount = maxPasses + 1;  // the frame's start, then each pass's end
     HMB_VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
   }
 }
@@ -88,11 +88,15 @@ void FrameRecorder::begin() {
   beginInfo.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   HMB_VK_CHECK(vkBeginCommandBuffer(ownCommandBuffer_, &beginInfo));
   startFrame(ownCommandBuffer_, false);
+  writeStamp(0);
 }
 
 void FrameRecorder::beginInto(VkCommandBuffer commandBuffer) {
   if (!commandBuffer) throw Error("beginInto() a VK_NULL_HANDLE command buffer");
   startFrame(commandBuffer, true);
+  // The frame starts once the engine's earlier commands have finished (a bottom-of-pipe stamp),
+  // so the first pass is not charged for the engine's draws.
+  writeStamp(0);
   // What the command buffer's earlier commands (and earlier submissions on the queue) wrote,
   // the first pass reads.
   recordBarrier(VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, kPassStages,
@@ -104,7 +108,7 @@ void FrameRecorder::startFrame(VkCommandBuffer commandBuffer, bool external) {
   HMB_VK_CHECK(vkResetDescriptorPool(context_.device(), descriptorPool_, 0));
   commandBuffer_ = commandBuffer;
   external_ = external;
-  if (queryPool_) vkCmdResetQueryPool(commandBuffer_, queryPool_, 0, 2 * maxPasses_);
+  if (queryPool_) vkCmdResetQueryPool(commandBuffer_, queryPool_, 0, maxPasses_ + 1);
   passNames_.clear();
   recording_ = true;
 }
@@ -123,13 +127,18 @@ uint32_t FrameRecorder::beginPass(std::string_view pass) {
     throw Error("frame has more than " + std::to_string(maxPasses_) + " passes");
   const auto index = static_cast<uint32_t>(passNames_.size());
   passNames_.emplace_back(pass);
-  if (queryPool_) vkCmdWriteTimestamp(commandBuffer_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queryPool_, 2 * index);
   return index;
 }
 
+void FrameRecorder::writeStamp(uint32_t query) {
+  if (queryPool_) vkCmdWriteTimestamp(commandBuffer_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, query);
+}
+
 void FrameRecorder::endPass(uint32_t index) {
-  if (queryPool_)
-    vkCmdWriteTimestamp(commandBuffer_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 2 * index + 1);
+  // The barrier right after the stamp matters on lavapipe: in a command buffer where the engine
+  // drew, it takes a stamp only when it next flushes its rasterizer, which a barrier does; a
+  // stamp with no barrier after it would read the time of some later pass.
+  writeStamp(index + 1);
   // Everything a pass may write becomes visible to everything the next pass may do.
   recordBarrier(kPassStages, kPassWrites, kPassStages | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
@@ -307,9 +316,9 @@ FrameTimings FrameRecorder::readTimings() const {
   if (recording_) throw Error("readTimings() while the frame is being recorded");
   FrameTimings timings;
   const auto passCount = static_cast<uint32_t>(passNames_.size());
-  std::vector<uint64_t> stamps(2 * passCount);
+  std::vector<uint64_t> stamps(passCount + 1);
   if (queryPool_ && passCount > 0)
-    HMB_VK_CHECK(vkGetQueryPoolResults(context_.device(), queryPool_, 0, 2 * passCount,
+    HMB_VK_CHECK(vkGetQueryPoolResults(context_.device(), queryPool_, 0, passCount + 1,
                                        stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
                                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   const double nsPerTick = context_.info().timestampPeriodNs;
@@ -317,10 +326,10 @@ FrameTimings FrameRecorder::readTimings() const {
   auto ticksToMs = [&](uint64_t from, uint64_t to) { return double((to - from) & mask) * nsPerTick * 1e-6; };
   for (uint32_t i = 0; i < passCount; ++i) {
     PassTiming timing{passNames_[i], std::nullopt};
-    if (queryPool_) timing.milliseconds = ticksToMs(stamps[2 * i], stamps[2 * i + 1]);
+    if (queryPool_) timing.milliseconds = ticksToMs(stamps[i], stamps[i + 1]);
     timings.passes.push_back(std::move(timing));
   }
-  if (queryPool_ && passCount > 0) timings.frameMilliseconds = ticksToMs(stamps[0], stamps[2 * passCount - 1]);
+  if (queryPool_ && passCount > 0) timings.frameMilliseconds = ticksToMs(stamps[0], stamps[passCount]);
   return timings;
 }
 

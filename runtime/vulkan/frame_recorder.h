@@ -1,6 +1,8 @@
-// One command buffer per frame: each pass is a dispatch (or a fill) between two timestamp
-// queries, followed by a barrier so the next pass sees its writes. submitAndWait() returns
-// the time of every pass as the device measured it.
+// One command buffer per frame: each pass is a dispatch (or a fill, copy or write) followed by a
+// timestamp and a barrier, so the next pass sees its writes. A pass's time runs from the stamp
+// before it (the frame's start, or the end of the pass before) to its own: the drain and launch
+// between two passes count to the pass that waited, and the passes add up to the frame.
+// submitAndWait() returns the time of every pass as the device measured it.
 #pragma once
 
 #include <cstddef>
@@ -125,6 +127,8 @@ class FrameRecorder {
   void startFrame(VkCommandBuffer commandBuffer, bool external);
   uint32_t beginPass(std::string_view pass);
   void endPass(uint32_t index);
+  // A bottom-of-pipe timestamp into query `query`: 0 the frame's start, i + 1 pass i's end.
+  void writeStamp(uint32_t query);
   // Records a memory barrier into the frame and counts it (FrameShape).
   void recordBarrier(VkPipelineStageFlags srcStages, VkAccessFlags srcAccess, VkPipelineStageFlags dstStages,
                      VkAccessFlags dstAccess);

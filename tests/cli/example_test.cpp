@@ -3,8 +3,10 @@
 // G-buffer on its own device and has the library blur it in its own command buffer.
 #include <filesystem>
 #include <map>
-#include <vector>
+#include <set>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +19,37 @@ namespace {
 namespace fs = std::filesystem;
 
 CliRun example(const std::string& args) { return runProgram(HMB_EXAMPLE_PATH, "--validation " + args); }
+
+// The engine example's line per frame, "frame-NN: blurred in F ms (pass T, pass xN T, ...)":
+// each pass named once, and the passes (printed to 0.01 ms) adding up to the frame.
+void expectFrameLinesNameEachPassOnceAddingUp(const std::string& output, size_t frames) {
+  std::istringstream lines(output);
+  std::string line;
+  size_t seen = 0;
+  while (std::getline(lines, line)) {
+    const size_t at = line.find(": blurred in ");
+    if (at == std::string::npos) continue;
+    ++seen;
+    const double frame = std::stod(line.substr(at + 13));
+    const size_t open = line.find('('), close = line.rfind(')');
+    ASSERT_TRUE(open != std::string::npos && close > open) << line;
+    std::istringstream entries(line.substr(open + 1, close - open - 1));
+    std::set<std::string> names;
+    double sum = 0.0;
+    size_t passes = 0;
+    for (std::string entry; std::getline(entries, entry, ',');) {
+      std::istringstream words(entry);
+      std::string name, word, last;
+      words >> name;
+      while (words >> word) last = word;
+      EXPECT_TRUE(names.insert(name).second) << name << " twice in: " << line;
+      sum += std::stod(last);
+      ++passes;
+    }
+    EXPECT_NEAR(sum, frame, 0.005 * passes + 0.1 * frame) << line;
+  }
+  EXPECT_EQ(seen, frames) << output;
+}
 
 TEST(LibraryExampleTest, RendersEachMethodAndReportsItsPasses) {
   const fs::path dir = tempDir("example");
@@ -59,6 +92,7 @@ TEST(EngineExampleTest, BlursItsOwnGBufferWithoutAValidationMessage) {
                                   std::string("--validation --method ") + method + " --frames 2 --size 96x54 " + out.string());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("frame-01: blurred in"), std::string::npos) << run.output;
+    expectFrameLinesNameEachPassOnceAddingUp(run.output, 2);
     for (const char* frame : {"frame-00", "frame-01"}) {
       const io::Rgba8Image blurred = io::readPng(out / (std::string(frame) + ".png"));
       const io::Rgba8Image sharp = io::readPng(out / (std::string(frame) + "-sharp.png"));

@@ -2,9 +2,12 @@
 // commands recorded into its own command buffer, equals what the renderer's post-process method
 // makes of its G-buffer.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <optional>
+#include <set>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -80,7 +83,7 @@ std::span<const std::byte> bytesOf(const std::vector<T>& values) {
 
 // Runs the backend on the engine's device over `depth` (in `convention`) and returns the output.
 std::vector<glm::vec4> blurOnTheEngine(Engine& engine, const Frames& f, const std::vector<float>& depth,
-                                       EngineDepth convention, vk::FrameTimings* timings = nullptr) {
+                                       EngineDepth convention, EngineFrameTimes* timings = nullptr) {
   std::vector<glm::vec4> result(f.color.size());
   {
     vk::Context context(engine.adopted(), countingOptions());
@@ -115,7 +118,7 @@ TEST_P(EngineMotionBlurScenes, BlursTheEnginesGBufferAsThePostProcessMethodBlurs
   for (const glm::vec2 v : f.velocity) moving += glm::length(v) > 1.0f;
   ASSERT_GT(moving, 50u) << "the frame must move for the comparison to mean anything";
   Engine engine(/*enableFeatures=*/true);
-  vk::FrameTimings timings;
+  EngineFrameTimes timings;
   const std::vector<glm::vec4> out = blurOnTheEngine(engine, f, f.depth, {}, &timings);
   size_t differ = 0, blurredPixels = 0;
   for (size_t i = 0; i < out.size(); ++i) {
@@ -125,7 +128,7 @@ TEST_P(EngineMotionBlurScenes, BlursTheEnginesGBufferAsThePostProcessMethodBlurs
   EXPECT_EQ(differ, 0u) << "of " << out.size() << " pixels";
   EXPECT_GT(blurredPixels, 50u);
   std::vector<std::string> names;
-  for (const vk::PassTiming& pass : timings.passes) names.push_back(pass.name);
+  for (const EnginePassTime& pass : timings.passes) names.push_back(pass.name);
   EXPECT_EQ(names, (std::vector<std::string>{"pack-engine-gbuffer", "tile-max", "neighbor-max", "clear-gather-blocks",
                                              "list-gather-blocks", "gather", "copy-still-blocks"}));
 }
@@ -191,7 +194,7 @@ TEST(EngineMotionBlurTest, TheHybridOnTheEnginesFrameIsTheRenderersHybrid) {
     EXPECT_GT(blur.shutterRayPixels(), 20u);
     EXPECT_EQ(blur.maskPixels(), 0u);  // beside the shutter rays the mask is left out
     std::vector<std::string> names;
-    for (const vk::PassTiming& pass : blur.timings().passes) names.push_back(pass.name);
+    for (const EnginePassTime& pass : blur.timings().passes) names.push_back(pass.name);
     EXPECT_NE(std::find(names.begin(), names.end(), "shutter-rays-trace"), names.end());
     EXPECT_EQ(context.validationErrors(), 0u);
     for (Engine::OwnBuffer* b : {&color, &z, &velocity, &normal, &ids, &output}) engine.destroy(*b);
@@ -207,6 +210,20 @@ TEST(EngineMotionBlurTest, TheHybridOnTheEnginesFrameIsTheRenderersHybrid) {
 
 // A G-buffer in the engine's own buffers (colour, depth, velocity, normal, object id) and an
 // output buffer, last.
+// The engine's view of a frame's times: each pass once, with its runs, adding up to the frame.
+void expectEachPassOnceAddingUpToTheFrame(const EngineFrameTimes& times) {
+  ASSERT_TRUE(times.available()) << times.unavailable;
+  std::set<std::string> names;
+  double sum = 0.0;
+  for (const EnginePassTime& pass : times.passes) {
+    EXPECT_TRUE(names.insert(pass.name).second) << pass.name << " is named twice";
+    EXPECT_GE(pass.runs, 1u) << pass.name;
+    EXPECT_TRUE(std::isfinite(pass.milliseconds) && pass.milliseconds >= 0.0) << pass.name;
+    sum += pass.milliseconds;
+  }
+  EXPECT_NEAR(sum, times.frameMilliseconds, 1e-6 * (1.0 + times.frameMilliseconds));
+}
+
 std::vector<Engine::OwnBuffer> engineBuffers(Engine& engine, const Frames& f) {
   return {engine.makeBuffer(f.color.size() * sizeof(glm::vec4), bytesOf(f.color)),
           engine.makeBuffer(f.depth.size() * sizeof(float), bytesOf(f.depth)),
@@ -267,9 +284,12 @@ TEST(EngineMotionBlurTest, AFrameWhoseInstancesMovedNeitherWaitsNorReadsBack) {
   expectTheRenderersFrame(engine, owned.back(), later);
   EXPECT_GT(blur.shutterRayPixels(), 20u);
   EXPECT_EQ(blur.cutTraces(), 0u);  // the living room's rays are short
-  std::vector<std::string> names;
-  for (const vk::PassTiming& pass : blur.timings().passes) names.push_back(pass.name);
-  EXPECT_NE(std::find(names.begin(), names.end(), "hybrid-bvh-instances"), names.end());
+  const EngineFrameTimes times = blur.timings();
+  expectEachPassOnceAddingUpToTheFrame(times);
+  const auto topLevel = std::find_if(times.passes.begin(), times.passes.end(),
+                                     [](const EnginePassTime& p) { return p.name == "hybrid-bvh-instances"; });
+  ASSERT_NE(topLevel, times.passes.end());
+  EXPECT_GT(topLevel->runs, 1u);  // the instances' tree is built in several passes of one name
   EXPECT_EQ(context.validationErrors(), 0u);
   for (Engine::OwnBuffer& b : owned) engine.destroy(b);
   EXPECT_TRUE(engine.errors.empty());
