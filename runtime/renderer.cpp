@@ -155,8 +155,8 @@ std::vector<std::string> methodNames() {
 }
 
 struct Renderer::Shared {
-  Shared(vk::Context& context, passes::VisibilityScheme visibilityScheme, std::string shadeHit)
-      : hitShading(std::move(shadeHit)),
+  Shared(vk::Context& context, passes::VisibilityScheme visibilityScheme, std::string shadeHit, std::string shadeMiss)
+      : hitShading(std::move(shadeHit), std::move(shadeMiss)),
         encodeDisplay(context),
         gbuffer(context, visibilityScheme),
         postProcess(context, passes::PostProcessSettings{}),
@@ -241,7 +241,7 @@ RenderResult Renderer::renderFrame(const scene::Scene& scene, const RenderSettin
   if (!shared_)
     shared_ = std::make_unique<Shared>(
         context_, options_.visibilityScheme.value_or(passes::defaultVisibilityScheme(context_)),
-        options_.shadeHit);
+        options_.shadeHit, options_.shadeMiss);
   FrameMethod& method = methodFor(settings.method);
 
   context_.resetMemoryPeak();

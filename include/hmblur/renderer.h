@@ -143,11 +143,13 @@ struct RendererOptions {
   // The G-buffer rasterizer's visibility scheme; default: passes::defaultVisibilityScheme
   // (tile lists on CPU devices, 64-bit atomics on GPUs that have them, else 32-bit two-pass).
   std::optional<passes::VisibilityScheme> visibilityScheme;
-  // The shading of ray hits in the hybrid's reveal and the reference's samples: empty, the
-  // library's; else the GLSL of `vec3 shadeHit(HitRecord hit)` (passes::HitShading,
-  // kernels/trace/shade_hit.glsl), compiled into those kernels at the first render that needs
-  // them (a compile error is a one-line hmb::Error). The raster's G-buffer keeps the library's.
+  // The shading of rays in the hybrid's reveal and shutter rays and the reference's samples:
+  // empty, the library's; else the GLSL of `vec3 shadeHit(HitRecord hit)` and of
+  // `vec3 shadeMiss(vec3 direction)` for rays that hit nothing (passes::HitShading,
+  // hmblur/hit_shading.glsl), compiled into those kernels at the first render that needs them
+  // (a compile error is a one-line hmb::Error). The raster's G-buffer keeps the library's.
   std::string shadeHit;
+  std::string shadeMiss;
 };
 
 class Renderer {

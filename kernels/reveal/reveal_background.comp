@@ -99,7 +99,8 @@ void main() {
   if (kStop != HMB_REVEAL_STOP_OBJECT_ID) atomicAdd(counters.rayCount, traces);
   else if (entry == 0u) atomicAdd(counters.rayCount, counters.maskCount);
   if (hit.triangle == HMB_NO_HIT) {
-    const vec3 background = camera.background.rgb;  // not inside the macro: `camera` is one
+    const vec3 missed = shadeMiss(normalize(direction));
+    const vec3 background = finite3(missed) ? missed : vec3(0.0);  // a user's shading too
     WRITE_LAYER(revealed, index, background, vec3(0.0), 0u, params.backgroundDepth, vec2(0.0));
     return;
   }

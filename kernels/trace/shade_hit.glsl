@@ -2,10 +2,12 @@
 // the ray reveal and the shutter rays): normal and uv interpolated from the mesh's vertices, the normal carried
 // to world space with the instance's transform at the ray's time and turned to the viewer
 // when a (double-sided) back face is seen, as the G-buffer resolve does, gathered in a
-// HitRecord, then shadeHit(HitRecord): the shading function every method shares, or a user's
-// (passes::HitShading compiles these kernels again with HMB_CUSTOM_SHADE_HIT and the user's
-// function as the include "custom_shade_hit.glsl"). Needs closest_hit.glsl and
-// shared/shading.glsl included first and the scene's vertices and instances
+// HitRecord (include/hmblur/hit_shading.glsl, installed with the API), then shadeHit(HitRecord):
+// the shading function every method shares, or a user's; and shadeMiss(direction) for a ray
+// that hits nothing: the scene's background, or a user's (passes::HitShading compiles these
+// kernels again with HMB_CUSTOM_SHADE_HIT / HMB_CUSTOM_SHADE_MISS and the user's functions as
+// the includes "custom_shade_hit.glsl" / "custom_shade_miss.glsl"). Needs closest_hit.glsl and
+// shared/shading.glsl included first and the scene's vertices, instances and camera
 // (shared/scene_bindings.glsl).
 #ifndef HMB_KERNELS_TRACE_SHADE_HIT_GLSL
 #define HMB_KERNELS_TRACE_SHADE_HIT_GLSL
@@ -37,22 +39,21 @@ HitSurface hitSurface(BvhHit hit, vec3 direction, uint transformIndex) {
   return s;
 }
 
-// What the shading of a ray hit is given; a user's shadeHit takes the same (include/hmblur/renderer.h,
-// RendererOptions::shadeHit).
-struct HitRecord {
-  uint objectId;      // the hit instance's object id (the scene's; 0 is the background)
-  uint instance;      // the hit instance
-  vec2 barycentrics;  // (u, v): the weights of the hit triangle's second and third vertices
-  vec3 position;      // world space
-  vec3 normal;        // world space, unit, facing the ray's origin
-  vec2 uv;            // texture coordinates (0 in scenes without textures)
-  uint material;      // the instance's material
-};
+// What the shading of a ray hit is given; a user's shadeHit takes the same.
+#include "../../include/hmblur/hit_shading.glsl"
+
+vec3 sceneBackground() { return camera.background.rgb; }
 
 #ifdef HMB_CUSTOM_SHADE_HIT
 #include "custom_shade_hit.glsl"
 #else
 vec3 shadeHit(HitRecord hit) { return shadeSurface(hit.material, hit.uv, hit.normal); }
+#endif
+
+#ifdef HMB_CUSTOM_SHADE_MISS
+#include "custom_shade_miss.glsl"
+#else
+vec3 shadeMiss(vec3 direction) { return sceneBackground(); }
 #endif
 
 // transformIndex: as hitSurface's.

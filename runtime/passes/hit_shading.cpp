@@ -5,6 +5,12 @@
 #include "runtime/vulkan/kernel_registry.h"
 
 namespace hmb::passes {
+namespace {
+
+constexpr const char* kPublicInclude = "hmblur/hit_shading.glsl";
+constexpr const char* kPublicIncludeInTree = "include/hmblur/hit_shading.glsl";
+
+}  // namespace
 
 const vk::KernelBuilds& HitShading::buildsFor(std::string_view kernelName) const {
   if (!custom()) throw Error("HitShading::buildsFor: the library's shading has its kernels built in");
@@ -12,9 +18,17 @@ const vk::KernelBuilds& HitShading::buildsFor(std::string_view kernelName) const
   if (const auto found = builds_.find(kernelName); found != builds_.end()) return found->second;
   vk::GlslCompileInput input;
   input.kernel = std::string(kernelName);
-  input.defines = {"HMB_CUSTOM_SHADE_HIT"};
-  input.files = {{"custom_shade_hit.glsl", "#line 1 \"shadeHit\"\n" + glsl_ + "\n"}};
-  input.description = "the user's shadeHit";
+  // The user's text may include the API's GLSL as an engine's shaders do.
+  input.files = {{kPublicInclude, std::string(vk::findKernelSource(kPublicIncludeInTree)->text)}};
+  // Both includes are there whichever is used: the includes are expanded before the
+  // preprocessor drops the library's default's branch.
+  input.files.emplace("custom_shade_hit.glsl", "#line 1 \"shadeHit\"\n" + shadeHit_ + "\n");
+  input.files.emplace("custom_shade_miss.glsl", "#line 1 \"shadeMiss\"\n" + shadeMiss_ + "\n");
+  if (!shadeHit_.empty()) input.defines.push_back("HMB_CUSTOM_SHADE_HIT");
+  if (!shadeMiss_.empty()) input.defines.push_back("HMB_CUSTOM_SHADE_MISS");
+  input.description = shadeMiss_.empty()   ? "the user's shadeHit"
+                      : shadeHit_.empty()  ? "the user's shadeMiss"
+                                           : "the user's shadeHit and shadeMiss";
   vk::KernelBuilds builds;
   builds.plain = vk::compileKernelGlsl(input);
   // The address build too where the kernel has one (cmake/EmbedKernels.cmake, ADDRESS_VARIANTS).

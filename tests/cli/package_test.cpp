@@ -1,6 +1,8 @@
 // The installed package as an engine's build uses it: `cmake --install`, then a project outside
 // the tree finds it (find_package(hmblur CONFIG), hmblur::hmblur, <hmblur/hmblur.h>), builds
-// and renders a frame; pkg-config describes the same library.
+// and renders a frame, traces one with its own shadeHit and shadeMiss written against the
+// installed hmblur/hit_shading.glsl (which its own shader compiles with too); pkg-config
+// describes the same library.
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -24,7 +26,7 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
 
   const CliRun install = runProgram(cmake, "--install " + quoted(HMB_BUILD_DIR) + " --prefix " + quoted(prefix));
   ASSERT_EQ(install.exitCode, 0) << install.output;
-  for (const char* file : {"include/hmblur/hmblur.h", "include/hmblur/renderer.h",
+  for (const char* file : {"include/hmblur/hmblur.h", "include/hmblur/renderer.h", "include/hmblur/hit_shading.glsl",
                            "include/hmblur/engine_motion_blur.h", "lib/cmake/hmblur/hmblurConfig.cmake",
                            "lib/pkgconfig/hmblur.pc", "bin/hmblur"})
     EXPECT_TRUE(fs::exists(prefix / file)) << file;
@@ -54,6 +56,8 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
   ASSERT_EQ(configure.exitCode, 0) << configure.output;
   const CliRun compile = runProgram(cmake, "--build " + quoted(build));
   ASSERT_EQ(compile.exitCode, 0) << compile.output;
+  // Its own shader, compiled with the installed GLSL include alone, shares its shadeHit and shadeMiss.
+  EXPECT_TRUE(fs::exists(build / "shading_check.spv"));
   const CliRun run = runProgram(quoted(build / "consumer"), "");
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("consumer: rendered 32x18"), std::string::npos) << run.output;
@@ -68,7 +72,8 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
   EXPECT_EQ(cflags.output.find("include/hmblur"), std::string::npos) << cflags.output;
   EXPECT_EQ(cflags.output.find("spirv_cross"), std::string::npos) << cflags.output;
   const fs::path program = dir / "consumer-pkg-config";
-  const CliRun plain = runProgram("c++", "-std=c++20 " + quoted(fs::path(HMB_CONSUMER_DIR) / "main.cpp") + " -o " +
+  const CliRun plain = runProgram("c++", "-std=c++20 " + quoted(fs::path(HMB_CONSUMER_DIR) / "main.cpp") +
+                                             " -DCONSUMER_SOURCE_DIR='\"" + std::string(HMB_CONSUMER_DIR) + "\"' -o " +
                                              quoted(program) + " $(" + pkgConfig + " --cflags --libs hmblur)");
   ASSERT_EQ(plain.exitCode, 0) << plain.output;
   const CliRun again = runProgram(quoted(program), "");

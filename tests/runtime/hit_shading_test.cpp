@@ -22,6 +22,14 @@ using HitShadingTest = VulkanTest;
 
 constexpr const char* kLibraryShading =
     "vec3 shadeHit(HitRecord hit) { return shadeSurface(hit.material, hit.uv, hit.normal); }";
+// The same, as a user writes it with the installed GLSL include, and the library's miss.
+constexpr const char* kLibraryShadingIncluded =
+    "#include \"hmblur/hit_shading.glsl\"\n"
+    "vec3 shadeHit(HitRecord hit) { return shadeSurface(hit.material, hit.uv, hit.normal); }";
+constexpr const char* kLibraryMiss = "vec3 shadeMiss(vec3 direction) { return sceneBackground(); }";
+// Every ray that hits nothing sees green, given a unit direction (else dark green).
+constexpr const char* kGreenMiss =
+    "vec3 shadeMiss(vec3 direction) { return vec3(0.0, abs(length(direction) - 1.0) < 1e-4 ? 1.0 : 0.5, 0.0); }";
 // Every revealed surface magenta, whatever it is.
 constexpr const char* kMagenta = "vec3 shadeHit(HitRecord hit) { return vec3(1.0, 0.0, 1.0); }";
 
@@ -48,10 +56,14 @@ TEST_F(HitShadingTest, TheLibrarysShadingThroughTheHookRendersTheBuiltInFrames) 
     RendererOptions hooked;
     hooked.shadeHit = kLibraryShading;
     Renderer compiled(context, hooked);
-    for (const Method method : {Method::Hybrid, Method::Reference}) {
+    RendererOptions both;  // shadeHit through the installed include, and shadeMiss
+    both.shadeHit = kLibraryShadingIncluded;
+    both.shadeMiss = kLibraryMiss;
+    Renderer compiledBoth(context, both);
+    for (const Method method : {Method::Hybrid, Method::HybridRays, Method::Reference}) {
       const RenderResult a = builtIn.render(scene, frameOf(method));
-      const RenderResult b = compiled.render(scene, frameOf(method));
-      EXPECT_EQ(beauty(a), beauty(b)) << methodName(method);
+      EXPECT_EQ(beauty(a), beauty(compiled.render(scene, frameOf(method)))) << methodName(method);
+      EXPECT_EQ(beauty(a), beauty(compiledBoth.render(scene, frameOf(method)))) << methodName(method) << " with shadeMiss";
     }
     EXPECT_EQ(context.validationErrors(), 0u);
   }
@@ -115,6 +127,30 @@ TEST_F(HitShadingTest, AnotherShadingChangesOnlyWhatRaysReveal) {
   EXPECT_EQ(wrong, 0u) << "of " << rays.size() << " pixels";
 }
 
+// A user's shadeMiss is what every ray that hits nothing sees, given its unit direction: the
+// reference's pixels whose every sample missed are its colour, and the raster's sky is not.
+TEST_F(HitShadingTest, RaysThatHitNothingSeeTheUsersMiss) {
+  const scene::Scene scene = scene::loadScene("temple");
+  RendererOptions green;
+  green.shadeMiss = kGreenMiss;
+  Renderer custom(context(), green);
+  const RenderResult reference = custom.render(scene, frameOf(Method::Reference));
+  const RenderResult sharp = custom.render(scene, frameOf(Method::Sharp));
+  const std::vector<uint32_t>& ids = sharp.image.find("objectId")->ids;
+  size_t greenPixels = 0, dark = 0, greenInSharp = 0;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const float* r = &beauty(reference)[4 * i];
+    greenPixels += r[0] == 0.0f && r[1] == 1.0f && r[2] == 0.0f;
+    dark += r[0] == 0.0f && r[1] == 0.5f && r[2] == 0.0f;
+    const float* s = &beauty(sharp)[4 * i];
+    greenInSharp += s[0] == 0.0f && s[1] == 1.0f && s[2] == 0.0f;
+  }
+  EXPECT_GT(greenPixels, 100u);
+  EXPECT_EQ(dark, 0u);          // every direction it was given was unit
+  EXPECT_EQ(greenInSharp, 0u);  // the raster keeps the scene's background
+  EXPECT_EQ(context().validationErrors(), 0u);
+}
+
 // The kernels compiled with a user's shading keep NaN and infinity as the embedded ones do:
 // the mode comes with the kernel's own text (kernels/shared/float_controls.glsl).
 TEST(HitShadingBuildsTest, KernelsCompiledWithAUsersShadingKeepNanAndInfinity) {
@@ -139,6 +175,10 @@ TEST_F(HitShadingTest, AShadeHitThatDoesNotCompileIsAOneLineErrorNamingIt) {
     Renderer renderer(context(), options);
     expectError([&] { renderer.render(scene, frameOf(Method::Hybrid)); }, "shadeHit");
   }
+  RendererOptions options;
+  options.shadeMiss = "vec3 shadeMiss(vec3 direction) { return direction.w; }";  // no such component
+  Renderer renderer(context(), options);
+  expectError([&] { renderer.render(scene, frameOf(Method::Hybrid)); }, "shadeMiss");
 }
 
 }  // namespace
