@@ -129,15 +129,17 @@ class EngineHybridMotionBlur {
 
   // Before recording the frame at frameTime (seconds, the scene's clock): plans the frame
   // (which trees to build or keep) and computes all its transforms and its camera on the host,
-  // from the scene as it is now (record() reads the scene no more). Where the meshes
-  // are new (the first frame, or an EngineScene given other meshes), it builds their trees
-  // and waits for them, as it does for deforming meshes' refits; it returns the device time of
-  // that work. A frame whose instances moved needs no wait: record() builds their tree.
+  // from the scene as it is now (record() reads the scene no more). Only setup waits, and
+  // prepare() returns its device time: where the meshes are new (the first frame, or an
+  // EngineScene given other meshes) it builds their trees; the first frame after that which
+  // refits deforming meshes prepares the refit; a split top level's still instances' tree is
+  // built when those instances change. Any other frame waits for nothing.
   EngineFrameTimes prepare(float frameTime);
   // Records the frame prepare() was last given into `commandBuffer`, as EngineMotionBlur
-  // records (the G-buffer's normal and objectId are required here): the frame's transforms
-  // and camera (written through the command buffer), the instances' tree where they moved,
-  // then the hybrid's passes.
+  // records (the G-buffer's normal and objectId are required here), never submitting or
+  // waiting: the frame's transforms, camera and joints (written through the command buffer),
+  // the deforming meshes' vertices and their trees' refit, the instances' tree where they
+  // moved, then the hybrid's passes.
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
   EngineFrameTimes timings() const;
 

@@ -119,13 +119,20 @@ void DeformedVertices::setTime(const scene::Scene& scene, uint32_t slot, float t
   }
   if (joints.size() != jointsPerSlot_ || weights.size() != weightsPerSlot_)
     throw Error("deform-vertices: the scene's skins or targets changed since its upload");
-  if (!joints.empty())
-    joints_.write(std::as_bytes(std::span<const glm::mat4>(joints)), VkDeviceSize(slot) * jointsPerSlot_ * sizeof(glm::mat4));
-  if (!weights.empty())
-    weights_.write(std::as_bytes(std::span<const float>(weights)), VkDeviceSize(slot) * weightsPerSlot_ * sizeof(float));
+  slotJoints_[slot] = std::move(joints);
+  slotWeights_[slot] = std::move(weights);
 }
 
 void DeformedVertices::record(vk::FrameRecorder& frame, uint32_t slot, const vk::Buffer& vertices) const {
+  if (slot >= kSlots) throw Error("deform-vertices: no time slot " + std::to_string(slot));
+  if (slotJoints_[slot].size() != jointsPerSlot_ || slotWeights_[slot].size() != weightsPerSlot_)
+    throw Error("deform-vertices: record() of a time slot setTime() did not set");
+  if (jointsPerSlot_ > 0)
+    frame.write(kName, joints_, std::as_bytes(std::span<const glm::mat4>(slotJoints_[slot])),
+                VkDeviceSize(slot) * jointsPerSlot_ * sizeof(glm::mat4));
+  if (weightsPerSlot_ > 0)
+    frame.write(kName, weights_, std::as_bytes(std::span<const float>(slotWeights_[slot])),
+                VkDeviceSize(slot) * weightsPerSlot_ * sizeof(float));
   const gpu::DeformParams params{vertexCount_, slot * jointsPerSlot_, slot * weightsPerSlot_, 0u};
   frame.dispatch(kName, kernel_,
                  {{HMB_DEFORM_BINDING_REST, &rest_},

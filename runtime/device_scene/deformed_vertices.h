@@ -9,6 +9,8 @@
 #include <span>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "hmblur/buffer.h"
 #include "hmblur/scene.h"
 #include "runtime/vulkan/compute_kernel.h"
@@ -40,9 +42,11 @@ class DeformedVertices {
   DeformedVertices(const vk::Context& context, const scene::Scene& scene, std::span<const uint32_t> meshVertexBase);
 
   uint32_t vertexCount() const { return vertexCount_; }
-  // The joint matrices and weights of slot `slot` at time t.
+  // The joint matrices and weights of slot `slot` at time t, computed on the host; record()
+  // carries them to the device in the command buffer, so nothing is staged or waited for.
   void setTime(const scene::Scene& scene, uint32_t slot, float t);
-  // Writes every deformed vertex's position and normal at the slot's time into `vertices`.
+  // Writes the slot's joint matrices and weights, then every deformed vertex's position and
+  // normal at the slot's time into `vertices`.
   void record(vk::FrameRecorder& frame, uint32_t slot, const vk::Buffer& vertices) const;
 
  private:
@@ -53,6 +57,8 @@ class DeformedVertices {
   uint32_t weightsPerSlot_ = 0;
   std::vector<uint32_t> deformingInstances_;  // scene instance of each deformer
   std::vector<uint32_t> paletteSkins_;        // per skin in the joint matrices, an instance it deforms
+  std::vector<glm::mat4> slotJoints_[kSlots];  // setTime's, written by record()
+  std::vector<float> slotWeights_[kSlots];
   vk::Buffer rest_, influences_, displacements_, deformers_, joints_, weights_;
 };
 

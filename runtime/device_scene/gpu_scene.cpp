@@ -232,6 +232,10 @@ void GpuScene::setFrame(const scene::Scene& scene, float t, uint32_t width, uint
   if (!inputs.instances.empty()) instances_.upload(std::span<const gpu::GpuInstance>(inputs.instances));
   cameraBuffer_.upload(std::span<const gpu::GpuCamera>(&inputs.gpuCamera, 1));
   camera_ = inputs.camera;
+  setDeformationFrame(scene, t);
+}
+
+void GpuScene::setDeformationFrame(const scene::Scene& scene, float t) {
   if (deformation_) {
     deformation_->setTime(scene, DeformedVertices::kFrameSlot, t);
     deformation_->setTime(scene, DeformedVertices::kPreviousSlot, t - 1.0f / scene.settings.fps);

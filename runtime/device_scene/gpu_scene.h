@@ -48,7 +48,7 @@ class GpuScene {
   void setFrame(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
   // The same transforms and camera, computed on the host, for recordFrameInputs to write when a
   // frame runs (kFrameInputs): nothing staged or waited for, passes recorded after it see
-  // them. A deforming scene's deformation is still setFrame's.
+  // them. A deforming scene's deformation at both times is setDeformationFrame's.
   struct FrameInputs {
     std::vector<gpu::GpuInstance> instances;
     gpu::GpuCamera gpuCamera{};
@@ -56,6 +56,9 @@ class GpuScene {
   };
   static FrameInputs frameInputs(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
   void recordFrameInputs(const FrameInputs& inputs, vk::FrameRecorder& frame);
+  // The deformation at t and t - 1/fps alone, computed on the host for
+  // recordFrameDeformation: nothing written until the frame runs.
+  void setDeformationFrame(const scene::Scene& scene, float t);
 
   // Whether the scene has skinned or morphing meshes: their vertices are then deformed on the
   // device (runtime/device_scene/deformed_vertices.h) before anything reads them.

@@ -142,19 +142,36 @@ vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float 
                                               vk::FrameRecorder& frame) {
   vk::FrameTimings timings;
   if (!gpuScene.deforms() || triangleCount_ == 0) return timings;
+  const double preparedMs = prepareRefit(scene, frame);
+  if (preparedMs > 0.0) timings = {{{kRefit, preparedMs}}, preparedMs};
+  frame.begin();
+  gpuScene.recordDeformationAt(scene, t, frame);
+  recordRefit(gpuScene, frame);
+  vk::appendTimings(timings, frame.submitAndWait());
+  return timings;
+}
+
+double TraceScene::prepareRefit(const scene::Scene& scene, vk::FrameRecorder& setup) {
+  if (triangleCount_ == 0) return 0.0;
   if (deformedBoxes_.size() < uint64_t(triangleCount_) * sizeof(gpu::BvhBox))
     deformedBoxes_ = vk::Buffer(context_, uint64_t(triangleCount_) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
                                 "deformed triangle boxes");
   // Only the deforming meshes' trees: a static mesh keeps its triangles and its bounds.
-  std::vector<uint32_t> trees;
+  deformedMeshes_.clear();
   for (const scene::Instance& instance : scene.instances)
-    if (instance.deforms()) trees.push_back(instance.mesh);
-  std::sort(trees.begin(), trees.end());
-  trees.erase(std::unique(trees.begin(), trees.end()), trees.end());
-  frame.begin();
-  gpuScene.recordDeformationAt(scene, t, frame);
-  for (const uint32_t mesh : trees) {
-    const glm::uvec2 entries(meshFirstTriangle_.at(mesh), scene.meshes.at(mesh).triangleCount());
+    if (instance.deforms()) deformedMeshes_.push_back({instance.mesh, meshFirstTriangle_.at(instance.mesh), 0u});
+  for (glm::uvec3& mesh : deformedMeshes_) mesh.z = scene.meshes.at(mesh.x).triangleCount();
+  std::sort(deformedMeshes_.begin(), deformedMeshes_.end(), [](glm::uvec3 a, glm::uvec3 b) { return a.x < b.x; });
+  deformedMeshes_.erase(std::unique(deformedMeshes_.begin(), deformedMeshes_.end()), deformedMeshes_.end());
+  std::vector<uint32_t> trees;
+  for (const glm::uvec3 mesh : deformedMeshes_) trees.push_back(mesh.x);
+  return meshBvh_.prepareRefit(setup, trees);
+}
+
+void TraceScene::recordRefit(const GpuScene& gpuScene, vk::FrameRecorder& frame) {
+  if (triangleCount_ == 0) return;
+  for (const glm::uvec3 mesh : deformedMeshes_) {
+    const glm::uvec2 entries(mesh.y, mesh.z);
     frame.dispatch(kDeformedLeaves, deformedLeavesKernel_,
                    {{HMB_DEFORMED_LEAVES_BINDING_VERTICES, &gpuScene.vertices()},
                     {HMB_DEFORMED_LEAVES_BINDING_PRIMITIVES, &meshBvh_.primitives()},
@@ -162,11 +179,10 @@ vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float 
                     {HMB_DEFORMED_LEAVES_BINDING_BOXES, &deformedBoxes_}},
                    entries, vk::foldedGroups(vk::groupsFor(entries.y, HMB_BVH_BUILD_GROUP)));
   }
-  timings = frame.submitAndWait();
-  const double refitMs = meshBvh_.refit(frame, deformedBoxes_, trees);
-  vk::appendTimings(timings, {{{kRefit, refitMs}}, refitMs});
-  builtTransforms_.clear();  // the instances' boxes moved: the top level must be built again
-  return timings;
+  meshBvh_.recordRefit(frame, deformedBoxes_, kRefit);
+  // The instances' boxes moved: the top level must be built again. (The staged transforms stay:
+  // a frame records the refit before the top level's build from them.)
+  treeRecorded_ = false;
 }
 
 bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }

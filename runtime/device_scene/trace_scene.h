@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "hmblur/buffer.h"
 #include "hmblur/scene.h"
 #include "kernels/trace/trace_layout.h"
@@ -91,6 +93,14 @@ class TraceScene {
   // changed. Returns the device times of the three steps (DeformedVertices::kName,
   // kDeformedLeaves, kRefit).
   vk::FrameTimings followDeformation(const scene::Scene& scene, float t, GpuScene& gpuScene, vk::FrameRecorder& frame);
+  // The same in two steps, for a frame that must not wait (an engine's): prepareRefit does the
+  // host's part (which meshes deform; the first refit's round trip, on `setup`, waited for)
+  // and returns the device milliseconds it waited for; recordRefit records, into a begun
+  // frame whose earlier passes put `gpuScene`'s vertices at the time wanted
+  // (GpuScene::recordFrameDeformation), the deforming meshes' new leaves and their trees'
+  // refit. The top level is then built again.
+  double prepareRefit(const scene::Scene& scene, vk::FrameRecorder& setup);
+  void recordRefit(const GpuScene& gpuScene, vk::FrameRecorder& frame);
 
   // Whether this trace scene was built from meshes with the same positions and triangles as
   // `scene`'s (a 64-bit fingerprint of them), so its mesh trees serve that scene.
@@ -196,6 +206,7 @@ class TraceScene {
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
   vk::Buffer deformedBoxes_;  // BvhBox per triangle, for refits (deforming scenes only)
+  std::vector<glm::uvec3> deformedMeshes_;  // prepareRefit's: (mesh, first triangle, triangles)
   vk::Buffer status_;         // HMB_TRACE_STATUS_WORDS uint, written by the traces
   vk::BufferGroup group_;     // the buffers above, as tracing kernels bind them
 };

@@ -209,22 +209,19 @@ EngineFrameTimes EngineHybridMotionBlur::prepare(float frameTime) {
     passes_->gpuSceneInstances = std::move(instances);
     passes_->gpuSceneMeshes = scene_.meshes.size();
   }
-  // A deforming scene's meshes are deformed to the frame time here, for the refit. The
-  // transforms and the camera, for shading what the rays find, are computed here and written
-  // by record().
-  if (passes_->gpuScene->deforms()) passes_->gpuScene->setFrame(scene_, frameTime, width_, height_);
+  // A deforming scene's joints and weights at the frame time and the one before, and the
+  // transforms and the camera for shading what the rays find, are computed here on the host;
+  // record() writes them, deforms the meshes and refits their trees in the frame.
+  if (passes_->gpuScene->deforms()) passes_->gpuScene->setDeformationFrame(scene_, frameTime);
   passes_->frameInputs = GpuScene::frameInputs(scene_, frameTime, width_, height_);
   FramePlan plan;
   plan.run(GpuScene::kFrameInputs);
   plan.run(kPackPass);
   passes_->hybrid.plan(plan, scene_, frameTime, settings_);
-  const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, *passes_->gpuScene, frameTime, width_, height_,
-                                               settings_, plan);
+  const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, frameTime, width_, height_, settings_, plan);
   passes_->plan = plan;
   prepared_ = true;
-  vk::FrameTimings all = timings.setup;
-  vk::appendTimings(all, timings.frame);
-  return engineTimes(all);
+  return engineTimes(timings.setup);
 }
 
 void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output) {

@@ -47,13 +47,12 @@ class HybridMethod final : public FrameMethod {
       blurred = linearImageBuffer(resources_, request, "post-process colour");
       // The trace scene's mesh trees (setup, reported apart) and its instance tree at the frame
       // time (part of the frame) are built where the plan runs them, kept where it skips them.
-      const auto prepared = hybrid_.prepare(resources_.recorder, request.scene, scene, request.frameTime,
-                                            request.width, request.height, result.hybrid->settings, result.plan);
+      const auto prepared = hybrid_.prepare(resources_.recorder, request.scene, request.frameTime, request.width,
+                                            request.height, result.hybrid->settings, result.plan);
       result.hybrid->setupMilliseconds = prepared.setup.frameMilliseconds;
       if (prepared.setupShape != vk::FrameShape{}) result.setupShape = prepared.setupShape;
-      timings = prepared.frame;
       // The setup passes are listed with their times, but not added to the frame's.
-      timings.passes.insert(timings.passes.begin(), prepared.setup.passes.begin(), prepared.setup.passes.end());
+      timings.passes = prepared.setup.passes;
     }
     result.plan.run(passes::EncodeDisplayPass::kName);
     const passes::GBufferStage& gbuffer = resources_.gbuffer;

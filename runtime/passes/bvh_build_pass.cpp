@@ -457,10 +457,15 @@ void BvhBuildPass::sortRefitNodes(std::span<const uint32_t> trees) {
 }
 
 double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::span<const uint32_t> trees) {
+  const double milliseconds = prepareRefit(frame, trees);
+  frame.begin();
+  recordRefit(frame, boxes);
+  return milliseconds + frame.submitAndWait().frameMilliseconds.value_or(0.0);
+}
+
+double BvhBuildPass::prepareRefit(vk::FrameRecorder& frame, std::span<const uint32_t> trees) {
   if (stats_.nodes == 0) throw Error(name_ + ": refit() before a build");
   if (inserted_) throw Error(name_ + ": a tree with insertions is built again, not refitted");
-  if (boxes.size() < uint64_t(primitiveCount_) * sizeof(gpu::BvhBox))
-    throw Error(name_ + ": refit() needs a box for each of the " + std::to_string(primitiveCount_) + " primitives");
   double milliseconds = 0.0;
   if (refits_.hostPlaces.empty()) {
     prepareRefits(frame);
@@ -468,12 +473,18 @@ double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, st
   }
   if (refits_.depthStart.empty() || !std::equal(trees.begin(), trees.end(), refits_.trees.begin(), refits_.trees.end()))
     sortRefitNodes(trees);
+  return milliseconds;
+}
+
+void BvhBuildPass::recordRefit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::string_view pass) const {
+  if (refits_.depthStart.empty()) throw Error(name_ + ": recordRefit() before prepareRefit()");
+  if (boxes.size() < uint64_t(primitiveCount_) * sizeof(gpu::BvhBox))
+    throw Error(name_ + ": refit() needs a box for each of the " + std::to_string(primitiveCount_) + " primitives");
   gpu::BvhRefitParams params{stats_.nodes, static_cast<uint32_t>(roots_.size()), 0, 0};
-  frame.begin();
   for (size_t depth = refits_.depthStart.size() - 1; depth-- > 0;) {
     params.first = refits_.depthStart[depth];
     params.count = refits_.depthStart[depth + 1] - params.first;
-    frame.dispatch(kRefitBounds, refitBoundsKernel_,
+    frame.dispatch(pass.empty() ? kRefitBounds : pass, refitBoundsKernel_,
                    {{HMB_REFIT_BINDING_BOXES, &boxes},
                     {HMB_REFIT_BINDING_ROOTS, &refits_.roots},
                     {HMB_REFIT_BINDING_PRIMITIVES, &primitives_},
@@ -484,7 +495,7 @@ double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, st
   }
   params.first = 0;
   params.count = refits_.depthStart.back();
-  frame.dispatch(kRefitPack, refitPackKernel_,
+  frame.dispatch(pass.empty() ? kRefitPack : pass, refitPackKernel_,
                  {{HMB_REFIT_BINDING_ROOTS, &refits_.roots},
                   {HMB_REFIT_BINDING_PACKED_NODES, &packedNodes_},
                   {HMB_REFIT_BINDING_FRAMES, &frames_},
@@ -492,7 +503,6 @@ double BvhBuildPass::refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, st
                   {HMB_REFIT_BINDING_PLACES, &refits_.places},
                   {HMB_REFIT_BINDING_ORDER, &refits_.order}},
                  params, vk::foldedGroups(vk::groupsFor(params.count, HMB_REFIT_GROUP)));
-  return milliseconds + frame.submitAndWait().frameMilliseconds.value_or(0.0);
 }
 
 void BvhBuildPass::compact(vk::FrameRecorder& frame) {

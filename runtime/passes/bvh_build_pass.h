@@ -182,6 +182,13 @@ class BvhBuildPass {
   // again only when the trees asked for change. Each refit then bounds every node of its trees
   // once, a dispatch per depth, and packs them.
   double refit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::span<const uint32_t> trees = {});
+  // The same in two steps, for a frame that must not wait (an engine's): prepareRefit does what
+  // the host does (the first refit's round trip, submitted on `frame` and waited for; the
+  // sorting) and returns the device milliseconds it waited for, 0 once prepared;
+  // recordRefit records the refit's dispatches into a begun frame, with no submission, under
+  // the name `pass` (empty: kRefitBounds and kRefitPack).
+  double prepareRefit(vk::FrameRecorder& frame, std::span<const uint32_t> trees = {});
+  void recordRefit(vk::FrameRecorder& frame, const vk::Buffer& boxes, std::string_view pass = {}) const;
 
   const BvhBuildStats& stats() const { return stats_; }
   // The trees' buffers on the device: exact and packed nodes, primitive indices and

@@ -64,11 +64,13 @@ HybridStage::HybridStage(const vk::Context& context, PostProcessStage& postProce
   };
   const auto withoutReveal = [](const Frame& f) { return revealSkipped(*f.scene, *f.settings); };
   passes_
-      // The trace scene's trees: the meshes' (scene setup), the still instances' and the refits
-      // are built by prepare(), which reads the plan; the instances' tree at the frame's times
-      // is built in the frame.
+      // The trace scene's trees: the meshes' (scene setup) and the still instances' are built
+      // by prepare(), which reads the plan; the deforming meshes' refit (over the vertices the
+      // frame's deformation wrote) and the instances' tree at the frame's times are built in
+      // the frame.
       .group([this](FramePlan& plan, const Frame& f) { planTrees(plan, *f.scene, f.frameTime, *f.settings); },
-             [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame&) {
+             [this](vk::FrameRecorder& frame, const FramePlan& plan, const Frame& f) {
+               if (plan.runs(TraceScene::kRefit)) traceScene_->recordRefit(*f.gpuScene, frame);
                if (plan.runs(kBvhInstances)) traceScene_->recordStagedShutterTimes(frame, kBvhInstances);
              })
       // The gather's tiles; the whole mask's tile-max also lists its edge candidates.
@@ -195,9 +197,9 @@ void HybridStage::planTrees(FramePlan& plan, const scene::Scene& scene, float fr
   }
 }
 
-HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene,
-                                                 GpuScene& gpuScene, float frameTime, uint32_t width, uint32_t height,
-                                                 const HybridSettings& settings, const FramePlan& plan) {
+HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const scene::Scene& scene, float frameTime,
+                                                 uint32_t width, uint32_t height, const HybridSettings& settings,
+                                                 const FramePlan& plan) {
   validate(settings);
   if (postProcess_.settings() != settings.blur)
     throw Error("hybrid: the post-process stage must be configured with the hybrid's blur settings");
@@ -213,8 +215,14 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   candidatesInTileMaxLoop_ = context_.profile().edgeCandidatesInTileMax || cameraMovesOnScreen(scene, frameTime);
   if (shutterStrata_ != 0 && times.size() != shutterStrata_ + 1)
     throw Error("hybrid: the plan traces shutter rays that these settings leave out");
-  if (plan.runs(TraceScene::kRefit))
-    vk::appendTimings(timings.frame, traceScene_->followDeformation(scene, frameTime, gpuScene, frame));
+  // The refit is recorded in the frame (record()); its host part, which waits only the first
+  // time after a build, is setup.
+  if (plan.runs(TraceScene::kRefit)) {
+    const vk::FrameRecorder::ShapeMark refitStart = frame.mark();
+    if (const double ms = traceScene_->prepareRefit(scene, frame); ms > 0.0)
+      vk::appendTimings(timings.setup, {{{TraceScene::kRefit, ms}}, ms});
+    timings.setupShape += frame.shapeSince(refitStart, vk::FrameRecorder::HostWaitsUntil::Now);
+  }
   const bool buildsInstanceTree = plan.runs(kBvhInstances);
   traceScene_->splitTopLevel(TraceScene::kStillInstancesToSplit);
   if (buildsInstanceTree) traceScene_->stageShutterTimes(scene, times);

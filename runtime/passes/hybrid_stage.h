@@ -78,18 +78,19 @@ class HybridStage {
   // Builds the trace scene of `scene` (its mesh trees: returned as setup time, waited for)
   // where `plan` (this stage's plan() for the same frame) runs it, keeping the last frame's
   // where it skips it; stages the instances at the frame time for record(), which builds their
-  // tree in the frame where the plan runs kBvhInstances; sizes the buffers.
+  // tree in the frame where the plan runs kBvhInstances, and refits the deforming meshes'
+  // trees there (the first refit after a build has a setup part, waited for here); sizes the
+  // buffers. Nothing else waits: the frame's own work is all record()'s.
   struct PrepareTimings {
     vk::FrameTimings setup;
     vk::FrameShape setupShape;  // what the setup recorded and waited for (vk::FrameShape)
-    vk::FrameTimings frame;
   };
-  // `gpuScene`'s deforming meshes are deformed to the frame time for the refit.
-  PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, GpuScene& gpuScene, float frameTime,
-                         uint32_t width, uint32_t height, const HybridSettings& settings, const FramePlan& plan);
-  // After the G-buffer (`raster`: the renderer's, or an engine's packed) in the same frame:
-  // writes the blurred, composited colour to `output`. The instance tree and the camera rays
-  // are built and written in the frame: nothing here submits or waits.
+  PrepareTimings prepare(vk::FrameRecorder& frame, const scene::Scene& scene, float frameTime, uint32_t width,
+                         uint32_t height, const HybridSettings& settings, const FramePlan& plan);
+  // After the G-buffer (`raster`: the renderer's, or an engine's packed) and the frame's
+  // deformation (GpuScene::recordFrameDeformation) in the same frame: writes the blurred,
+  // composited colour to `output`. The refits, the instance tree and the camera rays are built
+  // and written in the frame: nothing here submits or waits.
   // shutterPaths: the raster's paths over the shutter (GBufferStage::shutterPaths), which the
   // curved path (settings' blur.motionPath) needs; null otherwise.
   // Records the passes `plan` (the frame's, planned by plan() and given to prepare()) runs.
