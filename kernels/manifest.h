@@ -45,9 +45,10 @@ struct KernelFacts {
   uint32_t bindings;       // the binding numbers its layout header declares (*_BINDING_COUNT)
   uint32_t pushBytes;      // its push-constant block
   uint32_t texelBindings;  // of `bindings`, those its plain build reads as uniform texel buffers
+  uint32_t imageBindings = 0;  // of `bindings`, an engine's images (sampled or storage)
 
   constexpr bool has(KernelTraits trait) const { return (traits & trait) != 0; }
-  constexpr uint32_t storageBindings() const { return bindings - texelBindings; }
+  constexpr uint32_t storageBindings() const { return bindings - texelBindings - imageBindings; }
 };
 
 // What a kernel that traces and shades reads through texel views: the trace scene's and the
@@ -84,7 +85,11 @@ inline constexpr KernelFacts kManifest[] = {
     {"debug/pack_layer", kPlain, HMB_PACK_LAYER_BINDING_COUNT, sizeof(gpu::PackLayerParams), 0},
     {"debug/test_pattern", kPlain, HMB_TEST_PATTERN_BINDING_COUNT, sizeof(gpu::TestPatternParams), 0},
     {"deform/deform_vertices", kPlain, HMB_DEFORM_BINDING_COUNT, sizeof(gpu::DeformParams), 0},
+    {"engine/pack_engine_colour_images", kPlain, HMB_ENGINE_COLOUR_IMAGES_BINDING_COUNT, sizeof(gpu::EngineGBufferParams), 0, 3},
     {"engine/pack_engine_gbuffer", kPlain, HMB_ENGINE_BINDING_COUNT, sizeof(gpu::EngineGBufferParams), 0},
+    {"engine/pack_engine_images", kPlain, HMB_ENGINE_BINDING_COUNT, sizeof(gpu::EngineGBufferParams), 0, 5},
+    {"engine/write_output_rgba16f", kPlain, HMB_ENGINE_OUTPUT_BINDING_COUNT, sizeof(gpu::EngineOutputParams), 0, 1},
+    {"engine/write_output_rgba32f", kPlain, HMB_ENGINE_OUTPUT_BINDING_COUNT, sizeof(gpu::EngineOutputParams), 0, 1},
     {"gbuffer/resolve_gbuffer", kShades | kAddressBuild, HMB_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams),
      5 + HMB_SCENE_TEXEL_BUFFERS},
     {"gbuffer/resolve_shutter_path", kPlain, HMB_SHUTTER_PATH_RESOLVE_BINDING_COUNT, sizeof(gpu::ResolveParams), 5},

@@ -73,6 +73,7 @@ struct EngineFrameTimes {
   bool available() const { return unavailable.empty(); }
 };
 
+// The G-buffer as buffers (for compute-only devices, or an engine that keeps them so).
 struct EngineGBuffer {
   VkBuffer color = VK_NULL_HANDLE;
   VkBuffer depth = VK_NULL_HANDLE;
@@ -80,6 +81,40 @@ struct EngineGBuffer {
   VkBuffer normal = VK_NULL_HANDLE;    // the hybrid's; the post-process reads it when given
   VkBuffer objectId = VK_NULL_HANDLE;  // likewise
 };
+
+// One of the engine's images: a 2D view of one mip level and one layer, its format, and the
+// layout the image is in when the recorded frame runs (the engine's transitions put it there;
+// the library changes no layout). The G-buffer's views need sampled usage and a layout a
+// shader may read (SHADER_READ_ONLY_OPTIMAL, GENERAL, or for depth DEPTH_READ_ONLY_OPTIMAL or
+// DEPTH_STENCIL_READ_ONLY_OPTIMAL); the output's storage usage and GENERAL.
+struct EngineImage {
+  VkImageView view = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+};
+
+// The G-buffer as the engine's own images, read in place (no copies), each pixel at (x, y) with
+// row 0 at the top, in the formats engines draw them:
+//   color     any float, UNORM or SNORM format (RGBA16F, B10G11R11 UFLOAT, RGBA8 UNORM, ...): linear RGB
+//   depth     a depth format's depth view (D32, D24, D16): as EngineDepth says
+//   velocity  a two-channel float format (RG16F, RG32F): the screen motion over the last frame
+//             as `velocityUnits` says, position now minus one frame earlier, +x right, +y down
+//   normal    world-space normal as `normalEncoding` says: xyz in RGBA16F/RGBA32F, xyz * 0.5 + 0.5
+//             in A2B10G10R10 UNORM, or octahedral in RG16 SNORM (or RG16F), or octahedral * 0.5
+//             + 0.5 in RG16 UNORM; the hybrid's (the post-process reads it when given)
+//   objectId  an unsigned-integer format (R32_UINT, R16_UINT): 0 for the background; likewise
+struct EngineGBufferImages {
+  EngineImage color, depth, velocity, normal, objectId;
+  enum class VelocityUnits {
+    Pixels,  // pixels per frame
+    Ndc,     // Vulkan normalized device coordinates per frame: [-1, 1] across the image, +y down
+  };
+  VelocityUnits velocityUnits = VelocityUnits::Pixels;
+  enum class NormalEncoding { Xyz, XyzUnorm, Octahedral, OctahedralUnorm };
+  NormalEncoding normalEncoding = NormalEncoding::Xyz;
+};
+// The output image's formats: R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT (a storage image's
+// format is its shader's), linear RGB, alpha 1.
 
 class EngineMotionBlur {
  public:
@@ -95,6 +130,8 @@ class EngineMotionBlur {
   // before its later commands. The frame recorded before must have completed on the device
   // (keep one EngineMotionBlur per frame in flight).
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
+  // The same from the engine's images into its output image.
+  void record(VkCommandBuffer commandBuffer, const EngineGBufferImages& gbuffer, const EngineImage& output);
 
   // The device time of the last recorded frame's passes, once the engine's submission of it
   // completed.
@@ -141,6 +178,7 @@ class EngineHybridMotionBlur {
   // the deforming meshes' vertices and their trees' refit, the instances' tree where they
   // moved, then the hybrid's passes.
   void record(VkCommandBuffer commandBuffer, const EngineGBuffer& gbuffer, VkBuffer output);
+  void record(VkCommandBuffer commandBuffer, const EngineGBufferImages& gbuffer, const EngineImage& output);
   EngineFrameTimes timings() const;
 
   // After the frame completed, read back on request: the ray mask's pixels (none beside

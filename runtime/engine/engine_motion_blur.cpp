@@ -24,6 +24,7 @@ namespace hmb {
 namespace {
 
 constexpr const char* kPackPass = "pack-engine-gbuffer";
+constexpr const char* kWriteOutputPass = "write-engine-output";
 
 uint32_t conventionCode(EngineDepth::Convention convention) {
   switch (convention) {
@@ -92,6 +93,148 @@ void recordPack(vk::FrameRecorder& frame, const vk::Context& context, const vk::
                  {vk::groupsFor(width, HMB_ENGINE_GROUP_X), vk::groupsFor(height, HMB_ENGINE_GROUP_Y), 1});
 }
 
+// What a format's texels read as in a shader.
+enum class FormatKind { Undefined, Float, UnsignedInt, SignedInt, Depth };
+
+FormatKind formatKind(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_UNDEFINED: return FormatKind::Undefined;
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D16_UNORM_S8_UINT:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return FormatKind::Depth;
+    case VK_FORMAT_R8_UINT:
+    case VK_FORMAT_R8G8_UINT:
+    case VK_FORMAT_R8G8B8A8_UINT:
+    case VK_FORMAT_B8G8R8A8_UINT:
+    case VK_FORMAT_A2B10G10R10_UINT_PACK32:
+    case VK_FORMAT_A2R10G10B10_UINT_PACK32:
+    case VK_FORMAT_R16_UINT:
+    case VK_FORMAT_R16G16_UINT:
+    case VK_FORMAT_R16G16B16A16_UINT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32G32_UINT:
+    case VK_FORMAT_R32G32B32_UINT:
+    case VK_FORMAT_R32G32B32A32_UINT:
+    case VK_FORMAT_S8_UINT: return FormatKind::UnsignedInt;
+    case VK_FORMAT_R8_SINT:
+    case VK_FORMAT_R8G8_SINT:
+    case VK_FORMAT_R8G8B8A8_SINT:
+    case VK_FORMAT_R16_SINT:
+    case VK_FORMAT_R16G16_SINT:
+    case VK_FORMAT_R16G16B16A16_SINT:
+    case VK_FORMAT_R32_SINT:
+    case VK_FORMAT_R32G32_SINT:
+    case VK_FORMAT_R32G32B32_SINT:
+    case VK_FORMAT_R32G32B32A32_SINT: return FormatKind::SignedInt;
+    default: return FormatKind::Float;
+  }
+}
+
+// One line naming the image and what is wrong, or nothing.
+void checkImage(const EngineImage& image, const char* what, FormatKind wanted, const char* wantedText, bool output) {
+  const std::string name = std::string("engine image '") + what + "'";
+  if (!image.view) throw Error(name + ": no image view");
+  if (formatKind(image.format) != wanted)
+    throw Error(name + ": its format (VkFormat " + std::to_string(int(image.format)) + ") is not " + wantedText);
+  const VkImageLayout l = image.layout;
+  if (output) {
+    if (l != VK_IMAGE_LAYOUT_GENERAL) throw Error(name + ": a storage image is written in VK_IMAGE_LAYOUT_GENERAL");
+    return;
+  }
+  const bool readable = l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL || l == VK_IMAGE_LAYOUT_GENERAL ||
+                        (wanted == FormatKind::Depth && (l == VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL ||
+                                                         l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL));
+  if (!readable) throw Error(name + ": its layout is not one a shader reads (SHADER_READ_ONLY_OPTIMAL, GENERAL"
+                                     ", or a depth read-only layout)");
+}
+
+// The images path: pack-engine-gbuffer reading the engine's images, the frame's colour in a
+// buffer of its own, and write-engine-output carrying it into the engine's output image.
+class EngineImageIo {
+ public:
+  explicit EngineImageIo(const vk::Context& context) : context_(context) {}
+
+  // Checks the images, one line for the first wrong one, before anything is recorded.
+  static void check(const EngineGBufferImages& g, bool surfaces, const EngineImage& output) {
+    checkImage(g.color, "color", FormatKind::Float, "a float, UNORM or SNORM format", false);
+    checkImage(g.depth, "depth", FormatKind::Depth, "a depth format", false);
+    checkImage(g.velocity, "velocity", FormatKind::Float, "a float format", false);
+    if (surfaces) {
+      checkImage(g.normal, "normal", FormatKind::Float, "a float, UNORM or SNORM format", false);
+      checkImage(g.objectId, "objectId", FormatKind::UnsignedInt, "an unsigned-integer format", false);
+    }
+    checkImage(output, "output", FormatKind::Float, "R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT", true);
+    if (output.format != VK_FORMAT_R16G16B16A16_SFLOAT && output.format != VK_FORMAT_R32G32B32A32_SFLOAT)
+      throw Error("engine image 'output': its format (VkFormat " + std::to_string(int(output.format)) +
+                  ") is not R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT");
+  }
+
+  // Records the pack of images check() accepted.
+  void recordPack(vk::FrameRecorder& frame, const EngineGBufferImages& g, bool surfaces, uint32_t width,
+                  uint32_t height, const EngineDepth& depth, const passes::ImageLayer& layer) {
+    std::unique_ptr<vk::ComputeKernel>& kernel = surfaces ? packWithSurfaces_ : pack_;
+    if (!kernel)
+      kernel = std::make_unique<vk::ComputeKernel>(
+          context_, surfaces ? kernels::kernel("engine/pack_engine_images")
+                             : kernels::kernel("engine/pack_engine_colour_images"));
+    gpu::EngineGBufferParams params = packParams(width, height, depth);
+    params.velocityUnits = g.velocityUnits == EngineGBufferImages::VelocityUnits::Ndc ? HMB_ENGINE_VELOCITY_NDC
+                                                                                      : HMB_ENGINE_VELOCITY_PIXELS;
+    params.normalEncoding = normalCode(g.normalEncoding);
+    vk::Bindings bindings = {{HMB_ENGINE_BINDING_COLOR, nullptr, g.color.view, g.color.layout},
+                             {HMB_ENGINE_BINDING_DEPTH, nullptr, g.depth.view, g.depth.layout},
+                             {HMB_ENGINE_BINDING_VELOCITY, nullptr, g.velocity.view, g.velocity.layout},
+                             {HMB_ENGINE_BINDING_SAMPLES, &layer.samples()},
+                             {HMB_ENGINE_BINDING_SURFACES, &layer.surfaces()},
+                             {HMB_ENGINE_BINDING_VELOCITIES, &layer.velocities()}};
+    if (surfaces) {
+      bindings.push_back({HMB_ENGINE_BINDING_NORMAL, nullptr, g.normal.view, g.normal.layout});
+      bindings.push_back({HMB_ENGINE_BINDING_OBJECT_ID, nullptr, g.objectId.view, g.objectId.layout});
+    }
+    frame.dispatch(kPackPass, *kernel, bindings, params,
+                   {vk::groupsFor(width, HMB_ENGINE_GROUP_X), vk::groupsFor(height, HMB_ENGINE_GROUP_Y), 1});
+  }
+
+  // The frame's colour before it goes into the output image (made on first use).
+  const vk::Buffer& colour(uint32_t width, uint32_t height) {
+    if (!colour_.handle())
+      colour_ = vk::Buffer(context_, uint64_t(width) * height * sizeof(glm::vec4), vk::MemoryUse::Device,
+                           "engine output colour");
+    return colour_;
+  }
+
+  void recordOutput(vk::FrameRecorder& frame, const EngineImage& output, uint32_t width, uint32_t height) {
+    const bool half = output.format == VK_FORMAT_R16G16B16A16_SFLOAT;
+    std::unique_ptr<vk::ComputeKernel>& kernel = half ? writeHalf_ : writeFloat_;
+    if (!kernel)
+      kernel = std::make_unique<vk::ComputeKernel>(
+          context_, half ? kernels::kernel("engine/write_output_rgba16f") : kernels::kernel("engine/write_output_rgba32f"));
+    const gpu::EngineOutputParams params{width, height, 0u, 0u};
+    frame.dispatch(kWriteOutputPass, *kernel,
+                   {{HMB_ENGINE_OUTPUT_BINDING_COLOR, &colour_},
+                    {HMB_ENGINE_OUTPUT_BINDING_IMAGE, nullptr, output.view, output.layout}},
+                   params, {vk::groupsFor(width, HMB_ENGINE_GROUP_X), vk::groupsFor(height, HMB_ENGINE_GROUP_Y), 1});
+  }
+
+ private:
+  static uint32_t normalCode(EngineGBufferImages::NormalEncoding encoding) {
+    switch (encoding) {
+      case EngineGBufferImages::NormalEncoding::XyzUnorm: return HMB_ENGINE_NORMAL_XYZ_UNORM;
+      case EngineGBufferImages::NormalEncoding::Octahedral: return HMB_ENGINE_NORMAL_OCTAHEDRAL;
+      case EngineGBufferImages::NormalEncoding::OctahedralUnorm: return HMB_ENGINE_NORMAL_OCTAHEDRAL_UNORM;
+      case EngineGBufferImages::NormalEncoding::Xyz: break;
+    }
+    return HMB_ENGINE_NORMAL_XYZ;
+  }
+
+  const vk::Context& context_;
+  std::unique_ptr<vk::ComputeKernel> pack_, packWithSurfaces_, writeHalf_, writeFloat_;
+  vk::Buffer colour_;
+};
+
 // The recorder's per-run times, each pass named once.
 EngineFrameTimes engineTimes(const vk::FrameTimings& timings) {
   EngineFrameTimes times;
@@ -120,7 +263,8 @@ struct EngineMotionBlur::Passes {
       : pack(packKernel(context, false)),
         blur(context, settings),
         layer(passes::ImageLayer::allocate(context, uint64_t(width) * height, "engine G-buffer")),
-        recorder(context) {
+        recorder(context),
+        images(context) {
     blur.prepare(width, height);
   }
   std::unique_ptr<vk::ComputeKernel> pack;              // without normals and ids
@@ -128,6 +272,7 @@ struct EngineMotionBlur::Passes {
   passes::PostProcessStage blur;
   passes::ImageLayer layer;
   vk::FrameRecorder recorder;
+  EngineImageIo images;
 };
 
 EngineMotionBlur::EngineMotionBlur(const vk::Context& context, uint32_t width, uint32_t height,
@@ -157,6 +302,21 @@ void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer
   frame.endInto();
 }
 
+void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBufferImages& gbuffer,
+                              const EngineImage& output) {
+  EngineImageIo& images = passes_->images;
+  const bool surfaces = gbuffer.normal.view && gbuffer.objectId.view;
+  EngineImageIo::check(gbuffer, surfaces, output);
+  const vk::Buffer& colour = images.colour(width_, height_);
+  const passes::ImageLayer& layer = passes_->layer;
+  vk::FrameRecorder& frame = passes_->recorder;
+  frame.beginInto(commandBuffer);
+  images.recordPack(frame, gbuffer, surfaces, width_, height_, depth_, layer);
+  passes_->blur.record(frame, {&layer.samples(), &layer.surfaces(), &layer.velocities(), width_, height_}, colour);
+  images.recordOutput(frame, output, width_, height_);
+  frame.endInto();
+}
+
 EngineFrameTimes EngineMotionBlur::timings() const { return engineTimes(passes_->recorder.readTimings()); }
 
 struct EngineHybridMotionBlur::Passes {
@@ -167,7 +327,8 @@ struct EngineHybridMotionBlur::Passes {
         hybrid(context, blur, hits),
         layer(passes::ImageLayer::allocate(context, uint64_t(width) * height, "engine G-buffer")),
         setup(context),
-        recorder(context) {
+        recorder(context),
+        images(context) {
     blur.prepare(width, height);
   }
   std::unique_ptr<vk::ComputeKernel> pack;  // with normals and ids: the hybrid needs them
@@ -183,6 +344,7 @@ struct EngineHybridMotionBlur::Passes {
   vk::FrameRecorder setup;     // prepare()'s own submissions
   vk::FrameRecorder recorder;  // the engine's command buffer
   FramePlan plan;              // the last prepare()'s
+  EngineImageIo images;
 };
 
 EngineHybridMotionBlur::EngineHybridMotionBlur(const vk::Context& context, uint32_t width, uint32_t height,
@@ -236,6 +398,24 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
   recordPack(frame, context_, *passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
   if (passes_->gpuScene->deforms()) passes_->gpuScene->recordFrameDeformation(frame);  // what the reveal shades
   passes_->hybrid.record(frame, passes_->plan, passes_->layer, *passes_->gpuScene, blurred);
+  frame.endInto();
+}
+
+void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBufferImages& gbuffer,
+                                    const EngineImage& output) {
+  if (!prepared_) throw Error("engine hybrid motion blur: record() before prepare()");
+  if (!gbuffer.normal.view || !gbuffer.objectId.view)
+    throw Error("engine hybrid motion blur: the G-buffer's normal and objectId images are required");
+  EngineImageIo& images = passes_->images;
+  EngineImageIo::check(gbuffer, true, output);
+  const vk::Buffer& colour = images.colour(width_, height_);
+  vk::FrameRecorder& frame = passes_->recorder;
+  frame.beginInto(commandBuffer);
+  passes_->gpuScene->recordFrameInputs(passes_->frameInputs, frame);
+  images.recordPack(frame, gbuffer, true, width_, height_, depth_, passes_->layer);
+  if (passes_->gpuScene->deforms()) passes_->gpuScene->recordFrameDeformation(frame);  // what the reveal shades
+  passes_->hybrid.record(frame, passes_->plan, passes_->layer, *passes_->gpuScene, colour);
+  images.recordOutput(frame, output, width_, height_);
   frame.endInto();
 }
 

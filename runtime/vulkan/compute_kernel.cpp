@@ -13,6 +13,17 @@
 #include "runtime/vulkan/pipeline_cache.h"
 
 namespace hmb::vk {
+namespace {
+
+VkDescriptorType descriptorTypeIn(const KernelPipeline& pipeline, uint32_t index) {
+  const auto in = [&](const std::vector<uint32_t>& list) { return std::binary_search(list.begin(), list.end(), index); };
+  if (in(pipeline.texelBindings)) return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  if (in(pipeline.sampledImageBindings)) return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+  if (in(pipeline.storageImageBindings)) return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+}  // namespace
 
 ComputeKernel::ComputeKernel(const Context& context, const kernels::KernelFacts& kernel,
                              std::span<const uint32_t> specialization)
@@ -72,10 +83,15 @@ std::shared_ptr<const KernelPipeline> ComputeKernel::build(const EmbeddedKernel&
   std::vector<uint32_t>& declaredBindings = made->bindings;
   declaredBindings = declared.storageBufferBindings;
   made->texelBindings = declared.texelBufferBindings;
-  declaredBindings.insert(declaredBindings.end(), made->texelBindings.begin(), made->texelBindings.end());
+  made->sampledImageBindings = declared.sampledImageBindings;
+  made->storageImageBindings = declared.storageImageBindings;
+  for (const std::vector<uint32_t>* list :
+       {&made->texelBindings, &made->sampledImageBindings, &made->storageImageBindings})
+    declaredBindings.insert(declaredBindings.end(), list->begin(), list->end());
   std::sort(declaredBindings.begin(), declaredBindings.end());
   if (declared.uniformBuffers != 0 || declared.otherDescriptors != 0 || declared.highestDescriptorSet != 0)
-    throw Error("kernel '" + name_ + "' declares descriptors other than storage and uniform texel buffers in set 0");
+    throw Error("kernel '" + name_ + "' declares descriptors other than storage and uniform texel buffers and 2D "
+                "images in set 0");
   if (declared.pushConstantBytes > pushConstantBytes)
     throw Error("kernel '" + name_ + "' declares " + std::to_string(declared.pushConstantBytes) +
                 " bytes of push constants but its host passes " + std::to_string(pushConstantBytes));
@@ -89,10 +105,7 @@ std::shared_ptr<const KernelPipeline> ComputeKernel::build(const EmbeddedKernel&
     std::vector<VkDescriptorSetLayoutBinding> bindings(declaredBindings.size());
     for (size_t i = 0; i < declaredBindings.size(); ++i) {
       bindings[i].binding = declaredBindings[i];
-      bindings[i].descriptorType =
-          std::binary_search(made->texelBindings.begin(), made->texelBindings.end(), declaredBindings[i])
-              ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
-              : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      bindings[i].descriptorType = descriptorTypeIn(*made, declaredBindings[i]);
       bindings[i].descriptorCount = 1;
       bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
@@ -138,7 +151,8 @@ std::shared_ptr<const KernelPipeline> ComputeKernel::build(const EmbeddedKernel&
 ComputeKernel::~ComputeKernel() = default;
 
 uint32_t ComputeKernel::storageBufferCount() const {
-  return uint32_t(pipeline_->bindings.size() - pipeline_->texelBindings.size());
+  return uint32_t(pipeline_->bindings.size() - pipeline_->texelBindings.size() -
+                  pipeline_->sampledImageBindings.size() - pipeline_->storageImageBindings.size());
 }
 const std::vector<uint32_t>& ComputeKernel::bindings() const { return pipeline_->bindings; }
 const std::vector<uint32_t>& ComputeKernel::texelBindings() const { return pipeline_->texelBindings; }
@@ -150,5 +164,7 @@ VkDescriptorSetLayout ComputeKernel::setLayout() const { return pipeline_->setLa
 bool ComputeKernel::isTexelBinding(uint32_t index) const {
   return std::binary_search(pipeline_->texelBindings.begin(), pipeline_->texelBindings.end(), index);
 }
+
+VkDescriptorType ComputeKernel::descriptorType(uint32_t index) const { return descriptorTypeIn(*pipeline_, index); }
 
 }  // namespace hmb::vk

@@ -1,6 +1,7 @@
 // One compute pipeline built from an embedded kernel. Its bindings are buffers in set 0 (storage
 // buffers, and uniform texel buffers where a kernel reads 16-byte records through the texture
-// path), and its parameters one push-constant block: every kernel follows that shape. The kernel's
+// path; 2D images only where an engine's images are read or written), and its parameters one
+// push-constant block: every kernel follows that shape. The kernel's
 // SPIR-V says which binding numbers it declares. A kernel with an address build (its
 // groups of buffers bound as tables of device addresses) uses that build where its plain one
 // has more bindings than the device allows, or always with ContextOptions::bindByAddress.
@@ -54,6 +55,9 @@ class ComputeKernel {
   // Those of bindings() that it reads through a texel view (RGBA32UI), ascending.
   const std::vector<uint32_t>& texelBindings() const;
   bool isTexelBinding(uint32_t index) const;
+  // What binding `index` is: a storage buffer, a uniform texel buffer, a sampled image or a
+  // storage image.
+  VkDescriptorType descriptorType(uint32_t index) const;
   // Whether the address build runs: the passes then bind each group's table, not its buffers.
   bool bindsByAddress() const;
   uint32_t pushConstantBytes() const { return pushConstantBytes_; }

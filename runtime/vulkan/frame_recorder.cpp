@@ -1,6 +1,7 @@
 #include "runtime/vulkan/frame_recorder.h"
 
 #include <algorithm>
+#include <iterator>
 #include <vector>
 
 #include "hmblur/buffer.h"
@@ -41,6 +42,8 @@ void appendTimings(FrameTimings& total, const FrameTimings& part) {
 namespace {
 
 constexpr uint32_t kMaxBindingsPerPass = 16;
+// Passes of a frame that bind an engine's images: its G-buffer's reading and its output's writing.
+constexpr uint32_t kMaxImagePasses = 4;
 
 // What a pass may write.
 constexpr VkPipelineStageFlags kPassStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
@@ -59,10 +62,12 @@ FrameRecorder::FrameRecorder(const Context& context, uint32_t maxPasses)
 
   const VkDescriptorPoolSize poolSizes[] = {
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, maxPasses * kMaxBindingsPerPass},
-      {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, maxPasses * kMaxBindingsPerPass}};
+      {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, maxPasses * kMaxBindingsPerPass},
+      {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, kMaxImagePasses * kMaxBindingsPerPass},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kMaxImagePasses}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = maxPasses;
-  poolInfo.poolSizeCount = 2;
+  poolInfo.poolSizeCount = uint32_t(std::size(poolSizes));
   poolInfo.pPoolSizes = poolSizes;
   HMB_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool_));
 
@@ -205,17 +210,27 @@ uint32_t FrameRecorder::bindAndBeginPass(std::string_view pass, const ComputeKer
     HMB_VK_CHECK(vkAllocateDescriptorSets(context_.device(), &allocInfo, &set));
 
     std::vector<VkDescriptorBufferInfo> infos(bindings.size());
+    std::vector<VkDescriptorImageInfo> images(bindings.size());
     std::vector<VkBufferView> views(bindings.size());
     std::vector<VkWriteDescriptorSet> writes(bindings.size());
     for (size_t i = 0; i < bindings.size(); ++i) {
-      const Buffer* buffer = bindings[i].buffer;
-      if (!buffer || !buffer->handle())
-        throw Error(passAndKernel() + " binds an empty buffer at binding " + std::to_string(bindings[i].index));
-      infos[i] = {buffer->handle(), 0, VK_WHOLE_SIZE};
       writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
       writes[i].dstSet = set;
       writes[i].dstBinding = bindings[i].index;
       writes[i].descriptorCount = 1;
+      const VkDescriptorType type = kernel.descriptorType(bindings[i].index);
+      if (type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE || type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
+        if (!bindings[i].image)
+          throw Error(passAndKernel() + " binds no image view at image binding " + std::to_string(bindings[i].index));
+        images[i] = {VK_NULL_HANDLE, bindings[i].image, bindings[i].imageLayout};
+        writes[i].descriptorType = type;
+        writes[i].pImageInfo = &images[i];
+        continue;
+      }
+      const Buffer* buffer = bindings[i].buffer;
+      if (!buffer || !buffer->handle())
+        throw Error(passAndKernel() + " binds an empty buffer at binding " + std::to_string(bindings[i].index));
+      infos[i] = {buffer->handle(), 0, VK_WHOLE_SIZE};
       if (kernel.isTexelBinding(bindings[i].index)) {
         views[i] = buffer->texelView();
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;

@@ -63,19 +63,33 @@ KernelInterface reflectKernel(const EmbeddedKernel& kernel) {
     setOf(r);
     ++result.uniformBuffers;
   }
-  // A buffer texture (textureBuffer, read with texelFetch) is a uniform texel buffer; any other
-  // image is not a descriptor this project binds.
+  // A buffer texture (textureBuffer, read with texelFetch) is a uniform texel buffer, a 2D
+  // texture read without a sampler a sampled image; any other image is not a descriptor this
+  // project binds.
   for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, raw, kernel)) {
     const spvc_type type = spvc_compiler_get_type_handle(compiler, r.type_id);
-    if (setOf(r) == 0 && spvc_type_get_image_dimension(type) == SpvDimBuffer &&
-        !spvc_type_get_image_is_storage(type))
-      result.texelBufferBindings.push_back(spvc_compiler_get_decoration(compiler, r.id, SpvDecorationBinding));
+    const bool inSetZero = setOf(r) == 0, storage = spvc_type_get_image_is_storage(type);
+    const SpvDim dimension = spvc_type_get_image_dimension(type);
+    const uint32_t binding = spvc_compiler_get_decoration(compiler, r.id, SpvDecorationBinding);
+    if (inSetZero && dimension == SpvDimBuffer && !storage)
+      result.texelBufferBindings.push_back(binding);
+    else if (inSetZero && dimension == SpvDim2D && !storage && !spvc_type_get_image_arrayed(type))
+      result.sampledImageBindings.push_back(binding);
     else
       ++result.otherDescriptors;
   }
-  std::sort(result.texelBufferBindings.begin(), result.texelBufferBindings.end());
-  for (spvc_resource_type type : {SPVC_RESOURCE_TYPE_STORAGE_IMAGE, SPVC_RESOURCE_TYPE_SAMPLED_IMAGE,
-                                  SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS, SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE})
+  for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_STORAGE_IMAGE, raw, kernel)) {
+    const spvc_type type = spvc_compiler_get_type_handle(compiler, r.type_id);
+    if (setOf(r) == 0 && spvc_type_get_image_dimension(type) == SpvDim2D && !spvc_type_get_image_arrayed(type))
+      result.storageImageBindings.push_back(spvc_compiler_get_decoration(compiler, r.id, SpvDecorationBinding));
+    else
+      ++result.otherDescriptors;
+  }
+  for (std::vector<uint32_t>* list :
+       {&result.texelBufferBindings, &result.sampledImageBindings, &result.storageImageBindings})
+    std::sort(list->begin(), list->end());
+  for (spvc_resource_type type : {SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS,
+                                  SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE})
     result.otherDescriptors += uint32_t(resourcesOf(resources, type, raw, kernel).size());
 
   for (const spvc_reflected_resource& r : resourcesOf(resources, SPVC_RESOURCE_TYPE_PUSH_CONSTANT, raw, kernel)) {
@@ -105,11 +119,14 @@ std::string whyKernelDoesNotFit(const std::string& kernelName, const KernelInter
   fitsUnder(why, kernelName, "storage buffers in one set", storageBuffers, "maxDescriptorSetStorageBuffers",
             limits.maxDescriptorSetStorageBuffers);
   // Uniform texel buffers count against the sampled-image limits.
-  const auto texelBuffers = uint64_t(kernel.texelBufferBindings.size());
-  fitsUnder(why, kernelName, "texel buffers in one stage", texelBuffers, "maxPerStageDescriptorSampledImages",
-            limits.maxPerStageDescriptorSampledImages);
-  fitsUnder(why, kernelName, "texel buffers in one set", texelBuffers, "maxDescriptorSetSampledImages",
+  const auto sampled = uint64_t(kernel.texelBufferBindings.size() + kernel.sampledImageBindings.size());
+  fitsUnder(why, kernelName, "texel buffers and sampled images in one stage", sampled,
+            "maxPerStageDescriptorSampledImages", limits.maxPerStageDescriptorSampledImages);
+  fitsUnder(why, kernelName, "texel buffers and sampled images in one set", sampled, "maxDescriptorSetSampledImages",
             limits.maxDescriptorSetSampledImages);
+  const auto storageImages = uint64_t(kernel.storageImageBindings.size());
+  fitsUnder(why, kernelName, "storage images in one stage", storageImages, "maxPerStageDescriptorStorageImages",
+            limits.maxPerStageDescriptorStorageImages);
   fitsUnder(why, kernelName, "bytes of push constants", kernel.pushConstantBytes, "maxPushConstantsSize",
             limits.maxPushConstantsSize);
   const char* axes[] = {"maxComputeWorkGroupSize[0]", "maxComputeWorkGroupSize[1]", "maxComputeWorkGroupSize[2]"};

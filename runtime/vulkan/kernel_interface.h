@@ -19,8 +19,12 @@ struct KernelInterface {
   // Buffers read through a texel view (uniform texel buffers), binding numbers in set 0,
   // ascending: 16-byte records fetched as RGBA32UI texels.
   std::vector<uint32_t> texelBufferBindings;
+  // 2D images read with texelFetch and no sampler (GL_EXT_samplerless_texture_functions), and
+  // 2D storage images written: an engine's own images (the engine backend's kernels).
+  std::vector<uint32_t> sampledImageBindings;
+  std::vector<uint32_t> storageImageBindings;
   uint32_t uniformBuffers = 0;
-  uint32_t otherDescriptors = 0;     // images, samplers, acceleration structures (none expected)
+  uint32_t otherDescriptors = 0;     // samplers, other images, acceleration structures (none expected)
   uint32_t highestDescriptorSet = 0;
   uint32_t pushConstantBytes = 0;    // the declared size of the push-constant block, 0 without one
   uint32_t localSize[3] = {1, 1, 1};

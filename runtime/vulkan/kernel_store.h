@@ -28,6 +28,8 @@ struct KernelPipeline {
   VkDevice device;
   std::vector<uint32_t> bindings;       // ascending
   std::vector<uint32_t> texelBindings;  // those of bindings read through a texel view, ascending
+  std::vector<uint32_t> sampledImageBindings;  // those that are 2D images read without a sampler
+  std::vector<uint32_t> storageImageBindings;  // those that are 2D storage images
   bool bindsByAddress = false;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;

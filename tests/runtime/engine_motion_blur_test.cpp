@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
 #include "hmblur/buffer.h"
@@ -407,6 +408,219 @@ TEST(EngineMotionBlurTest, AnEngineSceneOfMatricesTracesAsTheSceneItCameFrom) {
   shear[1][0] = 0.5f;
   expectError([&] { engineScene.setFrame(t, std::vector<EngineScene::Instance>{{0, 1, shear, shear}}, {}); }, "shear");
   expectError([&] { engineScene.setFrame(t, std::vector<EngineScene::Instance>{{0, 0}}, {}); }, "object id 0");
+}
+
+// The G-buffer as the engine's images. The host's reference of what the images path decodes
+// (kernels/engine/engine_pixel.glsl): octahedral normals, NDC velocities; and the encodings.
+glm::vec2 octahedralEncode(glm::vec3 n) {
+  n /= std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+  glm::vec2 e(n.x, n.y);
+  if (n.z < 0.0f)
+    e = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+  return e;
+}
+glm::vec3 octahedralDecode(glm::vec2 e) {
+  glm::vec3 n(e, 1.0f - std::abs(e.x) - std::abs(e.y));
+  const float fold = std::max(-n.z, 0.0f);
+  n.x += n.x >= 0.0f ? -fold : fold;
+  n.y += n.y >= 0.0f ? -fold : fold;
+  return glm::normalize(n);
+}
+int16_t snorm16(float x) { return int16_t(std::lround(std::clamp(x, -1.0f, 1.0f) * 32767.0f)); }
+float fromSnorm16(int16_t c) { return std::max(float(c) / 32767.0f, -1.0f); }
+
+// The frame's G-buffer in images of the given formats, its depth as standard z/w over
+// [near, far], and what the buffers path must be given to blur the same values.
+struct ImageFrame {
+  std::vector<Engine::OwnImage> images;  // colour, depth, velocity, normal, object id, output
+  EngineGBufferImages gbuffer;
+  EngineImage output;
+  Frames decoded;                 // the values the images hold, as the buffers path takes them
+  std::vector<float> depthValues;  // standard z/w
+};
+constexpr float kNear = 0.05f, kFar = 200.0f;
+
+ImageFrame imageFrame(Engine& engine, const Frames& f, bool engineFormats) {
+  ImageFrame r;
+  r.decoded = f;
+  const size_t n = f.color.size();
+  constexpr VkImageUsageFlags kSampled = VK_IMAGE_USAGE_SAMPLED_BIT;
+  constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  // Colour: RGBA16F or RGBA32F.
+  std::vector<uint16_t> halfColor(4 * n);
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 4; ++c) {
+      halfColor[4 * i + c] = glm::packHalf1x16(f.color[i][c]);
+      if (engineFormats) r.decoded.color[i][c] = glm::unpackHalf1x16(halfColor[4 * i + c]);
+    }
+  r.images.push_back(engineFormats ? engine.makeImage(kWidth, kHeight, VK_FORMAT_R16G16B16A16_SFLOAT, 8, kSampled,
+                                                      bytesOf(halfColor), kRead)
+                                   : engine.makeImage(kWidth, kHeight, VK_FORMAT_R32G32B32A32_SFLOAT, 16, kSampled,
+                                                      bytesOf(f.color), kRead));
+  // Depth: D32 holding standard z/w (the far plane where the renderer's is background).
+  r.depthValues.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const float d = f.depth[i];
+    r.depthValues[i] = d >= kFar ? 1.0f : kFar * (d - kNear) / (d * (kFar - kNear));
+  }
+  r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_D32_SFLOAT, 4,
+                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                      bytesOf(r.depthValues), VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL));
+  // Velocity: RG16F in NDC, or RG32F in pixels.
+  if (engineFormats) {
+    std::vector<uint16_t> ndc(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+      const glm::vec2 size(kWidth, kHeight);
+      for (int c = 0; c < 2; ++c) {
+        ndc[2 * i + c] = glm::packHalf1x16(f.velocity[i][c] / (0.5f * size[c]));
+        r.decoded.velocity[i][c] = glm::unpackHalf1x16(ndc[2 * i + c]) * 0.5f * size[c];
+      }
+    }
+    r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_R16G16_SFLOAT, 4, kSampled, bytesOf(ndc), kRead));
+  } else {
+    r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_R32G32_SFLOAT, 8, kSampled, bytesOf(f.velocity), kRead));
+  }
+  // Normal: octahedral RG16 SNORM, or xyz in RGBA32F.
+  if (engineFormats) {
+    std::vector<int16_t> octahedral(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+      const glm::vec3 normal(f.normal[i]);
+      const glm::vec2 e = glm::length(normal) > 0.0f ? octahedralEncode(normal) : glm::vec2(0.0f);
+      octahedral[2 * i] = snorm16(e.x);
+      octahedral[2 * i + 1] = snorm16(e.y);
+      r.decoded.normal[i] =
+          glm::vec4(octahedralDecode({fromSnorm16(octahedral[2 * i]), fromSnorm16(octahedral[2 * i + 1])}), 0.0f);
+    }
+    r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_R16G16_SNORM, 4, kSampled, bytesOf(octahedral), kRead));
+  } else {
+    r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_R32G32B32A32_SFLOAT, 16, kSampled, bytesOf(f.normal), kRead));
+  }
+  r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_R32_UINT, 4, kSampled, bytesOf(f.objectId), kRead));
+  const VkFormat outputFormat = engineFormats ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+  r.images.push_back(engine.makeImage(kWidth, kHeight, outputFormat, engineFormats ? 8 : 16, VK_IMAGE_USAGE_STORAGE_BIT,
+                                      {}, VK_IMAGE_LAYOUT_GENERAL));
+  const auto view = [&](size_t k, VkImageLayout layout) { return EngineImage{r.images[k].view, r.images[k].format, layout}; };
+  r.gbuffer.color = view(0, kRead);
+  r.gbuffer.depth = view(1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+  r.gbuffer.velocity = view(2, kRead);
+  r.gbuffer.normal = view(3, kRead);
+  r.gbuffer.objectId = view(4, kRead);
+  r.output = view(5, VK_IMAGE_LAYOUT_GENERAL);
+  if (engineFormats) {
+    r.gbuffer.velocityUnits = EngineGBufferImages::VelocityUnits::Ndc;
+    r.gbuffer.normalEncoding = EngineGBufferImages::NormalEncoding::Octahedral;
+  }
+  return r;
+}
+
+// The output image's pixels as linear RGBA floats.
+std::vector<glm::vec4> outputPixels(Engine& engine, const ImageFrame& frame) {
+  const Engine::OwnImage& image = frame.images.back();
+  const std::vector<std::byte> bytes = engine.read(image, VK_IMAGE_LAYOUT_GENERAL);
+  std::vector<glm::vec4> pixels(size_t(image.width) * image.height);
+  for (size_t i = 0; i < pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c) {
+      if (image.format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+        uint16_t h;
+        std::memcpy(&h, bytes.data() + 8 * i + 2 * c, 2);
+        pixels[i][c] = glm::unpackHalf1x16(h);
+      } else {
+        std::memcpy(&pixels[i][c], bytes.data() + 16 * i + 4 * c, 4);
+      }
+    }
+  return pixels;
+}
+
+// Pixels of `images` (an image output) that are not `buffers` (the buffers path's output,
+// given the values the images hold): exactly, or within the half-float output's rounding.
+size_t differingPixels(const std::vector<glm::vec4>& images, const std::vector<glm::vec4>& buffers, bool halfOutput) {
+  size_t differ = 0;
+  for (size_t i = 0; i < images.size(); ++i) {
+    bool same = images[i].a == 1.0f;
+    for (int c = 0; c < 3; ++c) {
+      const float a = images[i][c], b = buffers[i][c];
+      same = same && std::isfinite(a) && (halfOutput ? std::abs(a - b) <= std::abs(b) * 0x1p-10f + 0x1p-24f : a == b);
+    }
+    differ += !same;
+  }
+  return differ;
+}
+
+// The engine's own images, read in place: in full-precision formats the images path blurs as
+// the buffers path does, bit for bit; in the formats engines draw (RGBA16F colour and output,
+// D32 depth as z/w, RG16F velocity in NDC, octahedral RG16 SNORM normals, R32UI ids) it blurs
+// the values they hold (the host's decoding, given to the buffers path) to the output's
+// rounding; post-process and hybrid alike, under validation, recording without a wait.
+TEST(EngineMotionBlurTest, TheEnginesImagesBlurAsTheValuesTheyHold) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  const Frames f = renderedFrames(scene, Method::Hybrid);
+  ASSERT_TRUE(f.hybrid);
+  const EngineDepth depth{EngineDepth::Convention::StandardZ, kNear, kFar};
+  for (const bool engineFormats : {false, true}) {
+    SCOPED_TRACE(engineFormats ? "the engine's formats" : "full precision");
+    Engine engine(/*enableFeatures=*/true);
+    {
+      vk::Context context(engine.adopted(), countingOptions());
+      ImageFrame frame = imageFrame(engine, f, engineFormats);
+      std::vector<Engine::OwnBuffer> buffers = engineBuffers(engine, frame.decoded);
+      engine.destroy(buffers[1]);
+      buffers[1] = engine.makeBuffer(frame.depthValues.size() * sizeof(float), bytesOf(frame.depthValues));
+      const auto bufferOutput = [&] {
+        const std::vector<std::byte> bytes = engine.read(buffers.back());
+        std::vector<glm::vec4> out(f.color.size());
+        std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
+        return out;
+      };
+      // Post-process, without and with the surfaces' images.
+      EngineMotionBlur blur(context, kWidth, kHeight, f.settings, depth);
+      for (const bool surfaces : {false, true}) {
+        EngineGBufferImages gbuffer = frame.gbuffer;
+        if (!surfaces) gbuffer.normal = gbuffer.objectId = {};
+        VkCommandBuffer commands = engine.beginCommands();
+        const uint64_t waits = context.hostWaits(), readbacks = context.hostReadbacks();
+        blur.record(commands, gbuffer, frame.output);
+        EXPECT_EQ(context.hostWaits(), waits);
+        EXPECT_EQ(context.hostReadbacks(), readbacks);
+        engine.submitAndWait(commands);
+        const std::vector<glm::vec4> fromImages = outputPixels(engine, frame);
+        commands = engine.beginCommands();
+        EngineGBuffer g = gbufferOf(buffers);
+        if (!surfaces) g.normal = g.objectId = VK_NULL_HANDLE;
+        blur.record(commands, g, buffers.back().buffer);
+        engine.submitAndWait(commands);
+        EXPECT_EQ(differingPixels(fromImages, bufferOutput(), engineFormats), 0u) << "post-process, surfaces " << surfaces;
+      }
+      // The hybrid.
+      EngineHybridMotionBlur hybrid(context, kWidth, kHeight, scene, *f.hybrid, depth);
+      hybrid.prepare(f.frameTime);
+      VkCommandBuffer commands = engine.beginCommands();
+      hybrid.record(commands, frame.gbuffer, frame.output);
+      engine.submitAndWait(commands);
+      EXPECT_GT(hybrid.maskPixels(), 20u);
+      const std::vector<glm::vec4> fromImages = outputPixels(engine, frame);
+      commands = engine.beginCommands();
+      hybrid.record(commands, gbufferOf(buffers), buffers.back().buffer);
+      engine.submitAndWait(commands);
+      EXPECT_EQ(differingPixels(fromImages, bufferOutput(), engineFormats), 0u) << "hybrid";
+      // Wrong images are one line each.
+      EngineGBufferImages wrong = frame.gbuffer;
+      wrong.objectId = wrong.color;
+      expectError([&] { hybrid.record(VK_NULL_HANDLE, wrong, frame.output); }, "'objectId'");
+      wrong = frame.gbuffer;
+      wrong.depth.format = VK_FORMAT_R32_SFLOAT;
+      expectError([&] { blur.record(VK_NULL_HANDLE, wrong, frame.output); }, "a depth format");
+      EngineImage output = frame.output;
+      output.format = VK_FORMAT_R8G8B8A8_UNORM;
+      expectError([&] { blur.record(VK_NULL_HANDLE, frame.gbuffer, output); }, "R16G16B16A16_SFLOAT");
+      output = frame.output;
+      output.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+      expectError([&] { blur.record(VK_NULL_HANDLE, frame.gbuffer, output); }, "GENERAL");
+      EXPECT_EQ(context.validationErrors(), 0u);
+      for (Engine::OwnImage& image : frame.images) engine.destroy(image);
+      for (Engine::OwnBuffer& b : buffers) engine.destroy(b);
+    }
+    EXPECT_TRUE(engine.errors.empty()) << engine.errors.front();
+  }
 }
 
 TEST(EngineMotionBlurTest, DepthConventionsWithoutTheirPlanesAreOneLineErrors) {

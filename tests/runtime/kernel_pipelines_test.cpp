@@ -88,6 +88,8 @@ TEST_F(KernelPipelinesTest, ReflectionReadsWhatEachKernelDeclares) {
     if (!isAddressBuild(kernel.name)) {
       EXPECT_EQ(reflected.storageBufferBindings.size(), layout.storageBindings()) << kernel.name;
       EXPECT_EQ(reflected.texelBufferBindings.size(), layout.texelBindings) << kernel.name;
+      EXPECT_EQ(reflected.sampledImageBindings.size() + reflected.storageImageBindings.size(), layout.imageBindings)
+          << kernel.name;
       EXPECT_EQ(reflected.otherDescriptors, 0u) << kernel.name;
       EXPECT_FALSE(reflected.usesDeviceAddresses) << kernel.name << ": plain builds run without device addresses";
       continue;

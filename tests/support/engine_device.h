@@ -131,6 +131,20 @@ class Engine {
   OwnBuffer makeBuffer(VkDeviceSize size, std::span<const std::byte> bytes = {});
   std::vector<std::byte> read(const OwnBuffer& buffer) const;
   void destroy(OwnBuffer& buffer);
+  // A 2D image of the engine's (optimal tiling, device memory) holding `texels` (tightly packed
+  // rows, row 0 at the top), with a view of its colour or depth aspect, in `layout`.
+  struct OwnImage {
+    VkImage image = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t width = 0, height = 0, texelBytes = 0;
+  };
+  OwnImage makeImage(uint32_t width, uint32_t height, VkFormat format, uint32_t texelBytes, VkImageUsageFlags usage,
+                     std::span<const std::byte> texels, VkImageLayout layout);
+  // Its texels, read back through a buffer; the image is in `layout`, and stays there.
+  std::vector<std::byte> read(const OwnImage& image, VkImageLayout layout);
+  void destroy(OwnImage& image);
   // A primary command buffer of the engine's pool, recording; submitAndWait ends and runs it.
   VkCommandBuffer beginCommands();
   void submitAndWait(VkCommandBuffer commands);
