@@ -2,8 +2,12 @@
 // graphics pipeline, and hands the G-buffer to hybrid-mblur to blur, frame by frame, through
 // the public API alone (<hmblur/hmblur.h>): an adopted context, and hmb::EngineHybridMotionBlur
 // (or hmb::EngineMotionBlur with --method postprocess) recorded into the engine's own command
-// buffer. Each frame is written as OUT_DIR/frame-NN.png, with the sharp G-buffer colour beside
-// it as OUT_DIR/frame-NN-sharp.png.
+// buffer, reading the G-buffer's attachments in place and writing the blurred frame into the
+// engine's output image (no copies). Its attachments are 32-bit (camera-space depth in an R32F
+// target), so that its frames compare with the command line's; the library reads the formats
+// engines draw as well (RGBA16F, D32 depth as z/w, RG16F, octahedral normals: EngineGBufferImages).
+// Each frame is written as OUT_DIR/frame-NN.png, with the sharp G-buffer colour beside it as
+// OUT_DIR/frame-NN-sharp.png.
 //  - By default it draws boxes (one sliding fast over a floor, one turning, one still under a
 //    still camera), gives their geometry to the library as an hmb::EngineScene (the box mesh
 //    once, each frame's world transforms now and one frame earlier), and shades what the rays
@@ -290,8 +294,9 @@ VkShaderModule shaderModule(const Engine& e, const uint32_t* code, size_t words)
   return module;
 }
 
-// The G-buffer pass: three colour attachments (colour, camera-space depth, velocity) and a depth
-// buffer; the colour attachments end ready to be copied into the buffers the library reads.
+// The G-buffer pass: five colour attachments (colour, camera-space depth, velocity, normal,
+// object id) and a depth buffer; the colour attachments end ready for the library's compute
+// passes to read them in place (the colour one also for the copy the example keeps of it).
 struct GBufferPass {
   VkRenderPass renderPass = VK_NULL_HANDLE;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
@@ -304,7 +309,8 @@ struct GBufferPass {
   Image color, depthOut, velocity, normal, objectId, depth;
 
   GBufferPass(const Engine& e, uint32_t width, uint32_t height, VkBuffer objects) {
-    const VkImageUsageFlags target = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const VkImageUsageFlags target = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                     VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     color = makeImage(e, width, height, kColorFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
     depthOut = makeImage(e, width, height, kDepthOutFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
     velocity = makeImage(e, width, height, kVelocityFormat, target, VK_IMAGE_ASPECT_COLOR_BIT);
@@ -324,8 +330,8 @@ struct GBufferPass {
       attachments[a].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
       attachments[a].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
       attachments[a].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      attachments[a].finalLayout =
-          a < kColorTargets ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+      attachments[a].finalLayout = a < kColorTargets ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+                                                     : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     }
     VkAttachmentReference colorRefs[kColorTargets];
     for (uint32_t a = 0; a < kColorTargets; ++a) colorRefs[a] = {a, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
@@ -335,12 +341,13 @@ struct GBufferPass {
     subpass.colorAttachmentCount = kColorTargets;
     subpass.pColorAttachments = colorRefs;
     subpass.pDepthStencilAttachment = &depthRef;
-    // Before: the last frame's copies out of the attachments and its depth tests. After: this
-    // frame's copies out of them.
+    // Before: the last frame's reads of the attachments (the library's, the colour's copy) and
+    // its depth tests. After: this frame's reads of them.
     std::array<VkSubpassDependency, 2> dependencies{};
     dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[0].dstSubpass = 0;
-    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                                   VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
     dependencies[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
     dependencies[0].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     dependencies[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
@@ -348,9 +355,9 @@ struct GBufferPass {
     dependencies[1].srcSubpass = 0;
     dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
     dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
     VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
     passInfo.attachmentCount = kColorTargets + 1;
     passInfo.pAttachments = attachments.data();
@@ -659,14 +666,11 @@ int main(int argc, char** argv) {
 
     Engine engine(validation);
     const size_t pixels = size_t(width) * height;
-    // The engine's buffers: the G-buffer copied out of its attachments, and the blurred output.
-    const VkBufferUsageFlags gbufferUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    Buffer color = makeBuffer(engine, pixels * 16, gbufferUsage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    Buffer depth = makeBuffer(engine, pixels * 4, gbufferUsage, false);
-    Buffer velocity = makeBuffer(engine, pixels * 8, gbufferUsage, false);
-    Buffer normal = makeBuffer(engine, pixels * 16, gbufferUsage, false);
-    Buffer objectIds = makeBuffer(engine, pixels * 4, gbufferUsage, false);
-    Buffer blurred = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    // The library writes the blurred frame into the engine's output image; the example copies it
+    // and the sharp colour into buffers the host reads, to write its PNGs.
+    Image output = makeImage(engine, width, height, kColorFormat,
+                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    Buffer blurred = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     Buffer sharp = makeBuffer(engine, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     const SceneGeometry geometry(scene);
     Buffer vertices =
@@ -749,29 +753,45 @@ int main(int argc, char** argv) {
           vkCmdDrawIndexed(commands, range.indexCount, 1, range.firstIndex, range.vertexOffset, o);
         }
         vkCmdEndRenderPass(commands);
-        // ... copied into the buffers the library reads (after the last frame's reads of them) ...
-        VkMemoryBarrier afterLastFrame{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        afterLastFrame.srcAccessMask = 0;  // write after read: ordering alone
-        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &afterLastFrame, 0, nullptr, 0, nullptr);
+        // ... the output image made writable (after the last frame's copy out of it; its old
+        // contents go) ...
+        VkImageMemoryBarrier toGeneral{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+        toGeneral.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        toGeneral.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        toGeneral.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        toGeneral.srcQueueFamilyIndex = toGeneral.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        toGeneral.image = output.image;
+        toGeneral.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
+                             nullptr, 0, nullptr, 1, &toGeneral);
+        // ... the G-buffer's attachments blurred by the library where they are, in this command
+        // buffer, into the output image ...
+        const hmb::EngineGBufferImages gbufferImages{
+            {gbuffer.color.view, kColorFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {gbuffer.depthOut.view, kDepthOutFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {gbuffer.velocity.view, kVelocityFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {gbuffer.normal.view, kNormalFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {gbuffer.objectId.view, kObjectIdFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+        const hmb::EngineImage outputImage{output.view, kColorFormat, VK_IMAGE_LAYOUT_GENERAL};
+        if (hybridBlur) hybridBlur->record(commands, gbufferImages, outputImage);
+        else postProcess->record(commands, gbufferImages, outputImage);
+        // ... and the blurred and the sharp colour copied for the host, which reads them after the fence.
+        VkImageMemoryBarrier toCopy[2] = {toGeneral, toGeneral};
+        toCopy[0].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        toCopy[0].oldLayout = VK_IMAGE_LAYOUT_GENERAL;
+        toCopy[1].srcAccessMask = 0;  // read after read: the library's reads, then the copy's
+        toCopy[1].oldLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        toCopy[1].image = gbuffer.color.image;
+        for (VkImageMemoryBarrier& b : toCopy) {
+          b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+          b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        }
+        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
+                             nullptr, 0, nullptr, 2, toCopy);
         const VkBufferImageCopy region{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {width, height, 1}};
-        vkCmdCopyImageToBuffer(commands, gbuffer.color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color.buffer, 1, &region);
-        vkCmdCopyImageToBuffer(commands, gbuffer.depthOut.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth.buffer, 1,
+        vkCmdCopyImageToBuffer(commands, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, blurred.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(commands, gbuffer.color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sharp.buffer, 1,
                                &region);
-        vkCmdCopyImageToBuffer(commands, gbuffer.velocity.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, velocity.buffer,
-                               1, &region);
-        vkCmdCopyImageToBuffer(commands, gbuffer.normal.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, normal.buffer, 1,
-                               &region);
-        vkCmdCopyImageToBuffer(commands, gbuffer.objectId.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               objectIds.buffer, 1, &region);
-        // ... blurred by the library, in this command buffer ...
-        const hmb::EngineGBuffer gbufferBuffers{color.buffer, depth.buffer, velocity.buffer, normal.buffer,
-                                                objectIds.buffer};
-        if (hybridBlur) hybridBlur->record(commands, gbufferBuffers, blurred.buffer);
-        else postProcess->record(commands, gbufferBuffers, blurred.buffer);
-        // ... and the sharp colour kept to compare; the host reads both after the fence.
-        const VkBufferCopy whole{0, 0, pixels * 16};
-        vkCmdCopyBuffer(commands, color.buffer, sharp.buffer, 1, &whole);
         VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         toHost.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
         toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
@@ -807,8 +827,8 @@ int main(int argc, char** argv) {
       vkFreeCommandBuffers(engine.device, engine.pool, 1, &commands);
     }
     gbuffer.destroyWith(engine);
-    for (Buffer* b : {&color, &depth, &velocity, &normal, &objectIds, &blurred, &sharp, &vertices, &indices, &objects})
-      destroy(engine, *b);
+    destroy(engine, output);
+    for (Buffer* b : {&blurred, &sharp, &vertices, &indices, &objects}) destroy(engine, *b);
     std::printf("wrote %d frames to %s\n", frames, outDir.string().c_str());
     if (validation && engine.messages > 0) {
       std::fprintf(stderr, "engine_backend: %u validation messages\n", engine.messages);

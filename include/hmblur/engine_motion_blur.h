@@ -96,7 +96,8 @@ struct EngineImage {
 // The G-buffer as the engine's own images, read in place (no copies), each pixel at (x, y) with
 // row 0 at the top, in the formats engines draw them:
 //   color     any float, UNORM or SNORM format (RGBA16F, B10G11R11 UFLOAT, RGBA8 UNORM, ...): linear RGB
-//   depth     a depth format's depth view (D32, D24, D16): as EngineDepth says
+//   depth     a depth format's depth view (D32, D24, D16), or a float format (R32F): as
+//             EngineDepth says
 //   velocity  a two-channel float format (RG16F, RG32F): the screen motion over the last frame
 //             as `velocityUnits` says, position now minus one frame earlier, +x right, +y down
 //   normal    world-space normal as `normalEncoding` says: xyz in RGBA16F/RGBA32F, xyz * 0.5 + 0.5

@@ -146,7 +146,8 @@ void checkImage(const EngineImage& image, const char* what, FormatKind wanted, c
   }
   const bool readable = l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL || l == VK_IMAGE_LAYOUT_GENERAL ||
                         (wanted == FormatKind::Depth && (l == VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL ||
-                                                         l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL));
+                                                         l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL ||
+                                                         l == VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL));
   if (!readable) throw Error(name + ": its layout is not one a shader reads (SHADER_READ_ONLY_OPTIMAL, GENERAL"
                                      ", or a depth read-only layout)");
 }
@@ -160,7 +161,11 @@ class EngineImageIo {
   // Checks the images, one line for the first wrong one, before anything is recorded.
   static void check(const EngineGBufferImages& g, bool surfaces, const EngineImage& output) {
     checkImage(g.color, "color", FormatKind::Float, "a float, UNORM or SNORM format", false);
-    checkImage(g.depth, "depth", FormatKind::Depth, "a depth format", false);
+    // A depth attachment's depth view, or a float target holding (camera-space) depth.
+    if (formatKind(g.depth.format) != FormatKind::Float)
+      checkImage(g.depth, "depth", FormatKind::Depth, "a depth format or a float format", false);
+    else
+      checkImage(g.depth, "depth", FormatKind::Float, "a depth format or a float format", false);
     checkImage(g.velocity, "velocity", FormatKind::Float, "a float format", false);
     if (surfaces) {
       checkImage(g.normal, "normal", FormatKind::Float, "a float, UNORM or SNORM format", false);

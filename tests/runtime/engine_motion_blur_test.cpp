@@ -607,7 +607,7 @@ TEST(EngineMotionBlurTest, TheEnginesImagesBlurAsTheValuesTheyHold) {
       wrong.objectId = wrong.color;
       expectError([&] { hybrid.record(VK_NULL_HANDLE, wrong, frame.output); }, "'objectId'");
       wrong = frame.gbuffer;
-      wrong.depth.format = VK_FORMAT_R32_SFLOAT;
+      wrong.depth.format = VK_FORMAT_R32_UINT;
       expectError([&] { blur.record(VK_NULL_HANDLE, wrong, frame.output); }, "a depth format");
       EngineImage output = frame.output;
       output.format = VK_FORMAT_R8G8B8A8_UNORM;
