@@ -192,8 +192,8 @@ struct Engine {
   }
 
   // The library works on this device, using none of the optional features (none enabled).
-  hmb::vk::AdoptedVulkan adopted() const {
-    hmb::vk::AdoptedVulkan a;
+  hmb::EngineVulkan adopted() const {
+    hmb::EngineVulkan a;
     a.instance = instance;
     a.apiVersion = VK_API_VERSION_1_2;
     a.debugUtils = validation;
@@ -684,16 +684,12 @@ int main(int argc, char** argv) {
     GBufferPass gbuffer(engine, width, height, objects.buffer);
 
     {
-      hmb::vk::ContextOptions options;
+      hmb::EngineContextOptions options;
       options.validation = validation;  // the library's messages are counted too
-      hmb::vk::Context context(engine.adopted(), options);
+      hmb::EngineContext context(engine.adopted(), options);
       // The blur's settings as the renderer derives them for this scene and image.
-      hmb::RenderSettings derive;
-      derive.width = width;
-      derive.height = height;
-      derive.method = !hybrid ? hmb::Method::PostProcess : shutterRays ? hmb::Method::HybridRays : hmb::Method::Hybrid;
-      const hmb::passes::HybridSettings settings = hmb::hybridSettingsFor(scene, derive);
-      const hmb::passes::HitShading shading(boxes ? kBoxesShadeHit : "");  // a loaded scene: the library's
+      const hmb::EngineHybridSettings settings = hmb::engineHybridSettingsFor(scene, width, height, shutterRays);
+      const hmb::EngineShading shading(boxes ? kBoxesShadeHit : "");  // a loaded scene: the library's
       std::unique_ptr<hmb::EngineMotionBlur> postProcess;
       std::unique_ptr<hmb::EngineHybridMotionBlur> hybridBlur;
       if (hybrid)
@@ -701,7 +697,7 @@ int main(int argc, char** argv) {
                                                                    hmb::EngineDepth{}, &shading);
       else
         postProcess = std::make_unique<hmb::EngineMotionBlur>(context, width, height,
-                                                              hmb::postProcessSettingsFor(scene, derive));
+                                                              hmb::engineBlurSettingsFor(scene, width, height));
 
       VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
       allocation.commandPool = engine.pool;

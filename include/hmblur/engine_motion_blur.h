@@ -1,8 +1,28 @@
 // The library as an engine's motion-blur backend: post-process (EngineMotionBlur) or hybrid
 // (EngineHybridMotionBlur) motion blur recorded into a command buffer the engine owns and
-// submits, from the engine's own G-buffer to an output buffer the engine gives, on the engine's
-// device (vk::Context(const AdoptedVulkan&, ...)). Recording reads nothing back and waits for
-// nothing; the device times of the passes are there once the engine's submission completed.
+// submits, from the engine's own G-buffer (its images, EngineGBufferImages, or buffers) to an
+// output image or buffer the engine gives, on the engine's device (an EngineContext made from
+// an EngineVulkan: the engine's instance, device and queue). Recording reads nothing back and
+// waits for nothing; the device times of the passes are there once the engine's submission
+// completed.
+//
+// Lifetimes, queues and threads:
+//   - An engine object borrows its EngineContext, and the hybrid its scene::Scene (an
+//     EngineScene's scene() too): both must outlive it. The hybrid reads the scene in prepare()
+//     only; the engine may change it between frames, never during prepare(). Each object owns
+//     everything else it made (kernels, buffers, trees) and frees it when destroyed, after
+//     waiting for the device to be idle.
+//   - record() only records into the engine's command buffer; the engine submits it, to a
+//     queue of the context's queue family, and keeps the images and buffers it named alive
+//     until that submission completed. The frame an object recorded before must have
+//     completed before it records the next (keep one object per frame in flight).
+//   - prepare() (the hybrid's setup: new trees) and construction may submit on the queue the
+//     context adopted and wait on a fence of their own for that work alone. Vulkan asks a
+//     queue's submissions to be externally synchronized: no other thread may submit to that
+//     queue meanwhile.
+//   - A context and the objects made on it share its command pool: use them from one thread at
+//     a time (a context per thread records in parallel). Compiled kernels are shared through a
+//     locked cache.
 //
 // The engine's buffers (storage-buffer usage; one entry per pixel, index y * width + x, row 0 at
 // the top of the image):
@@ -15,7 +35,7 @@
 //   objectId  uint: the object each pixel sees, 0 for the background; the hybrid's objects are
 //             its scene's (scene::Instance::objectId)
 //   output    vec4: the blurred linear colour, alpha 1
-// The blur spreads each pixel along its velocity over the exposure (PostProcessSettings:
+// The blur spreads each pixel along its velocity over the exposure (EngineBlurSettings:
 // exposure and fps give the share of a frame the shutter is open; softZExtent is in the
 // engine's camera-space depth units).
 #pragma once
@@ -37,6 +57,8 @@ class FramePlan;
 
 namespace vk {
 class Context;
+struct AdoptedVulkan;
+struct ContextOptions;
 }
 namespace passes {
 class HitShading;
@@ -44,6 +66,23 @@ class HitShading;
 namespace scene {
 struct Scene;
 }
+
+// The engine API's names for the library's types it takes (include hmblur/context.h and
+// hmblur/hit_shading.h to make them; <hmblur/hmblur.h> has all).
+using EngineVulkan = vk::AdoptedVulkan;           // the engine's instance, device, queue and features
+using EngineContext = vk::Context;                // EngineContext(EngineVulkan, EngineContextOptions)
+using EngineContextOptions = vk::ContextOptions;  // validation and limits to pretend (tests)
+using EngineBlurSettings = passes::PostProcessSettings;
+using EngineHybridSettings = passes::HybridSettings;
+using EngineShading = passes::HitShading;  // the engine's shadeHit and shadeMiss
+
+// The settings the renderer derives for `scene` drawn at width x height: its shutter (fps and
+// exposure), SOFT_Z_EXTENT, the tile size for the image's height; the hybrid's also its ray
+// mask's and reveal's. shutterRays: the project's extension (hybrid-rays) in place of the
+// paper's reveal. Throws hmb::Error in one line for a size of 0.
+EngineBlurSettings engineBlurSettingsFor(const scene::Scene& scene, uint32_t width, uint32_t height);
+EngineHybridSettings engineHybridSettingsFor(const scene::Scene& scene, uint32_t width, uint32_t height,
+                                             bool shutterRays = false);
 
 // How the engine's depth buffer holds depth.
 struct EngineDepth {
@@ -120,8 +159,8 @@ struct EngineGBufferImages {
 class EngineMotionBlur {
  public:
   // Validates the settings and the depth convention (hmb::Error, one line) and builds the kernels.
-  EngineMotionBlur(const vk::Context& context, uint32_t width, uint32_t height,
-                   const passes::PostProcessSettings& settings, EngineDepth depth = {});
+  EngineMotionBlur(const EngineContext& context, uint32_t width, uint32_t height, const EngineBlurSettings& settings,
+                   EngineDepth depth = {});
   ~EngineMotionBlur();
   EngineMotionBlur(const EngineMotionBlur&) = delete;
   EngineMotionBlur& operator=(const EngineMotionBlur&) = delete;
@@ -158,9 +197,9 @@ class EngineMotionBlur {
 class EngineHybridMotionBlur {
  public:
   // hits: how revealed surfaces are shaded (null or the library's: the scene's materials).
-  EngineHybridMotionBlur(const vk::Context& context, uint32_t width, uint32_t height, const scene::Scene& scene,
-                         const passes::HybridSettings& settings, EngineDepth depth = {},
-                         const passes::HitShading* hits = nullptr);
+  EngineHybridMotionBlur(const EngineContext& context, uint32_t width, uint32_t height, const scene::Scene& scene,
+                         const EngineHybridSettings& settings, EngineDepth depth = {},
+                         const EngineShading* hits = nullptr);
   ~EngineHybridMotionBlur();
   EngineHybridMotionBlur(const EngineHybridMotionBlur&) = delete;
   EngineHybridMotionBlur& operator=(const EngineHybridMotionBlur&) = delete;

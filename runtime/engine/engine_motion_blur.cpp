@@ -12,6 +12,7 @@
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
 #include "hmblur/frame_timings.h"
+#include "hmblur/renderer.h"
 #include "kernels/engine/engine_layout.h"
 #include "kernels/manifest.h"
 #include "runtime/device_scene/gpu_scene.h"
@@ -261,7 +262,27 @@ EngineFrameTimes engineTimes(const vk::FrameTimings& timings) {
   return times;
 }
 
+// The render settings the engine's settings are derived from.
+RenderSettings renderSettingsAt(uint32_t width, uint32_t height, Method method) {
+  if (width == 0 || height == 0) throw Error("engine settings: an empty image");
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.method = method;
+  return settings;
+}
+
 }  // namespace
+
+EngineBlurSettings engineBlurSettingsFor(const scene::Scene& scene, uint32_t width, uint32_t height) {
+  return postProcessSettingsFor(scene, renderSettingsAt(width, height, Method::PostProcess));
+}
+
+EngineHybridSettings engineHybridSettingsFor(const scene::Scene& scene, uint32_t width, uint32_t height,
+                                             bool shutterRays) {
+  return hybridSettingsFor(scene,
+                           renderSettingsAt(width, height, shutterRays ? Method::HybridRays : Method::Hybrid));
+}
 
 struct EngineMotionBlur::Passes {
   Passes(const vk::Context& context, uint32_t width, uint32_t height, const passes::PostProcessSettings& settings)

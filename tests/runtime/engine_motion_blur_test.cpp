@@ -623,6 +623,26 @@ TEST(EngineMotionBlurTest, TheEnginesImagesBlurAsTheValuesTheyHold) {
   }
 }
 
+// The engine's settings are the renderer's for the scene at the engine's image size, under the
+// engine API's own names; an empty image is a one-line error.
+TEST(EngineMotionBlurTest, TheEnginesSettingsAreTheRenderersForItsScene) {
+  const scene::Scene scene = scene::loadScene("temple");
+  RenderSettings render;
+  render.width = 640;
+  render.height = 360;
+  render.method = Method::PostProcess;
+  EXPECT_TRUE(engineBlurSettingsFor(scene, 640, 360) == postProcessSettingsFor(scene, render));
+  EXPECT_FALSE(engineBlurSettingsFor(scene, 640, 360) == engineBlurSettingsFor(scene, 1280, 720));  // the tiles
+  render.method = Method::Hybrid;
+  const EngineHybridSettings paper = engineHybridSettingsFor(scene, 640, 360);
+  EXPECT_TRUE(paper.blur == hybridSettingsFor(scene, render).blur);
+  EXPECT_EQ(paper.shutterRays, hybridSettingsFor(scene, render).shutterRays);
+  render.method = Method::HybridRays;
+  EXPECT_EQ(engineHybridSettingsFor(scene, 640, 360, true).shutterRays, hybridSettingsFor(scene, render).shutterRays);
+  EXPECT_NE(engineHybridSettingsFor(scene, 640, 360, true).shutterRays, paper.shutterRays);
+  expectError([&] { engineBlurSettingsFor(scene, 0, 360); }, "an empty image");
+}
+
 TEST(EngineMotionBlurTest, DepthConventionsWithoutTheirPlanesAreOneLineErrors) {
   const passes::PostProcessSettings settings;
   const vk::Context& context = VulkanTest::context();

@@ -64,7 +64,7 @@ int main() {
     const hmb::vk::Buffer depthBuffer = hmb::vk::uploadedBuffer(context, depth, "depth");
     const hmb::vk::Buffer velocityBuffer = hmb::vk::uploadedBuffer(context, velocity, "velocity");
     const hmb::vk::Buffer output(context, kPixels * 16, hmb::vk::MemoryUse::Readback, "blurred");
-    hmb::passes::PostProcessSettings blur;
+    hmb::EngineBlurSettings blur;
     blur.exposure = 1.0f / 60.0f;
     blur.fps = 60.0f;
     hmb::EngineMotionBlur motionBlur(context, kWidth, kHeight, blur);
