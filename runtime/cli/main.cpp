@@ -12,6 +12,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -37,6 +38,13 @@
 namespace fs = std::filesystem;
 
 namespace {
+
+// A number as a user writes it: 24, 0.5, 1e-05.
+std::string shortNumber(float value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kValidationFailed = 3 };
 
@@ -746,10 +754,13 @@ int main(int argc, char** argv) {
                         "Time of the frame in seconds (shutter closes then); default: the scene's");
   renderCmd->add_option("--fps", renderOptions.shutter.fps,
                         "Frame rate: the previous frame, whose positions give the post-process methods their "
-                        "velocities, is 1/fps before; default: the scene's (a glTF file: 120)");
+                        "velocities, is 1/fps before; default: the scene's (a glTF file: " +
+                            shortNumber(hmb::scene::kGltfFps) + ")");
   renderCmd->add_option("--exposure", renderOptions.shutter.exposureSeconds,
                         "Shutter open time in seconds, ending at the frame time: the span every method blurs "
-                        "over; default: the scene's (a glTF file: 1/60 s)")
+                        "over; default: the scene's (a glTF file: a " + shortNumber(hmb::scene::kGltfShutterAngleDegrees) +
+                            "-degree shutter, 1/" +
+                            shortNumber(hmb::scene::kGltfFps * 360.0f / hmb::scene::kGltfShutterAngleDegrees) + " s)")
       ->type_name("SECONDS");
   renderCmd->add_option("--shutter-angle", renderOptions.shutter.shutterAngleDegrees,
                         "The exposure as a shutter angle: 360 degrees is the whole frame interval (1/fps)")
