@@ -14,8 +14,10 @@
 //     waiting for the device to be idle.
 //   - record() only records into the engine's command buffer; the engine submits it, to a
 //     queue of the context's queue family, and keeps the images and buffers it named alive
-//     until that submission completed. The frame an object recorded before must have
-//     completed before it records the next (keep one object per frame in flight).
+//     until that submission completed. EngineMotionBlur holds per-frame buffers alone: keep one
+//     per frame in flight. EngineHybridMotionBlur takes the number of frames in flight and
+//     cycles through that many sets of per-frame buffers, sharing the meshes' trees: the frame
+//     recorded framesInFlight frames earlier must have completed before the next record().
 //   - prepare() (the hybrid's setup: new trees) and construction may submit on the queue the
 //     context adopted and wait on a fence of their own for that work alone. Vulkan asks a
 //     queue's submissions to be externally synchronized: no other thread may submit to that
@@ -199,7 +201,13 @@ class EngineHybridMotionBlur {
   // hits: how revealed surfaces are shaded (null or the library's: the scene's materials).
   EngineHybridMotionBlur(const EngineContext& context, uint32_t width, uint32_t height, const scene::Scene& scene,
                          const EngineHybridSettings& settings, EngineDepth depth = {},
-                         const EngineShading* hits = nullptr);
+                         const EngineShading* hits = nullptr, uint32_t framesInFlight = 1);
+  // framesInFlight (1 to kMaxFramesInFlight): how many recorded frames may be on the device at
+  // once. Each prepare()/record() pair takes the next of that many sets of per-frame buffers;
+  // the meshes' trees are built once and shared by all (a deforming scene's are per frame: its
+  // refits change them). The scene's vertices, materials and textures are held per frame too.
+  static constexpr uint32_t kMaxFramesInFlight = 8;
+  uint32_t framesInFlight() const;
   ~EngineHybridMotionBlur();
   EngineHybridMotionBlur(const EngineHybridMotionBlur&) = delete;
   EngineHybridMotionBlur& operator=(const EngineHybridMotionBlur&) = delete;
@@ -233,6 +241,7 @@ class EngineHybridMotionBlur {
 
  private:
   struct Passes;
+  void recorded();  // the prepared frame was recorded: the next prepare() takes the next set
   const vk::Context& context_;
   uint32_t width_, height_;
   const scene::Scene& scene_;

@@ -80,13 +80,22 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
 
 TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame,
                        const passes::BvhBuildShape& meshShape)
+    : TraceScene(context, std::make_shared<MeshTrees>(context, scene, frame, meshShape)) {}
+
+TraceScene::TraceScene(const vk::Context& context, std::shared_ptr<MeshTrees> meshes)
     : context_(context),
-      triangleBoundsKernel_(context, kernels::kernel("bvh/triangle_bounds")),
       motionBoundsKernel_(context, kernels::kernel("trace/instance_motion_bounds")),
       deformedLeavesKernel_(context, kernels::kernel("bvh/deformed_leaf_triangles")),
-      meshBvh_(context, "mesh BVH", HMB_BVH_MAX_LEAF, meshShape),
+      meshes_(std::move(meshes)),
       instanceBvh_(context, "instance BVH", HMB_BVH_MAX_INSTANCE_LEAF, passes::BvhBuildShape::forTopLevel(context)),
       linearInstanceBvh_(context, "instance BVH (linear)") {
+  status_ = vk::uploadedBuffer(context, std::vector<uint32_t>(HMB_TRACE_STATUS_WORDS, 0u), "trace status");
+}
+
+TraceScene::MeshTrees::MeshTrees(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame,
+                                 const passes::BvhBuildShape& meshShape)
+    : bvh(context, "mesh BVH", HMB_BVH_MAX_LEAF, meshShape) {
+  const vk::ComputeKernel triangleBoundsKernel(context, kernels::kernel("bvh/triangle_bounds"));
   std::vector<glm::vec4> positions;
   std::vector<glm::uvec4> triangles;
   std::vector<glm::uvec2> roots;
@@ -94,40 +103,39 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
     const scene::Mesh& mesh = scene.meshes[m];
     const auto base = static_cast<uint32_t>(positions.size());
     for (const glm::vec3& p : mesh.positions) positions.emplace_back(p, 1.0f);
-    meshFirstTriangle_.push_back(static_cast<uint32_t>(triangles.size()));
+    firstTriangle.push_back(static_cast<uint32_t>(triangles.size()));
     roots.emplace_back(static_cast<uint32_t>(triangles.size()), mesh.triangleCount());
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
       triangles.emplace_back(base + mesh.indices[i], base + mesh.indices[i + 1], base + mesh.indices[i + 2], m);
   }
   if (triangles.size() >= HMB_BVH_PACKED_INDEX_LIMIT / 2)
     throw Error("the scene has more triangles than a BVH can index");
-  meshCount_ = static_cast<uint32_t>(scene.meshes.size());
-  meshFingerprint_ = fingerprintOf(scene);
-  status_ = vk::uploadedBuffer(context, std::vector<uint32_t>(HMB_TRACE_STATUS_WORDS, 0u), "trace status");
-  triangleCount_ = static_cast<uint32_t>(triangles.size());
-  // The build's input alone: traversal reads leafTriangles_ (below).
+  meshCount = static_cast<uint32_t>(scene.meshes.size());
+  fingerprint = fingerprintOf(scene);
+  triangleCount = static_cast<uint32_t>(triangles.size());
+  // The build's input alone: traversal reads leafTriangles (below).
   const vk::Buffer positionBuffer = vk::uploadedBuffer(context, positions, "trace positions");
   const vk::Buffer triangleBuffer = vk::uploadedBuffer(context, triangles, "trace triangles");
   // The boxes serve the build alone: freed before the trees are compacted, to lower the peak.
   vk::Buffer triangleBoxes(context, std::max<size_t>(triangles.size(), 1) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
                            "triangle boxes");
   if (roots.empty()) roots.emplace_back(0u, 0u);  // a scene without meshes: one empty tree
-  const uint32_t count = triangleCount_;
-  meshBvh_.build(frame, triangleBoxes, count, roots, [&](vk::FrameRecorder& f) {
-    f.dispatch(kTriangleBounds, triangleBoundsKernel_, {{HMB_TRIANGLE_BOUNDS_BINDING_POSITIONS, &positionBuffer},
+  const uint32_t count = triangleCount;
+  bvh.build(frame, triangleBoxes, count, roots, [&](vk::FrameRecorder& f) {
+    f.dispatch(kTriangleBounds, triangleBoundsKernel, {{HMB_TRIANGLE_BOUNDS_BINDING_POSITIONS, &positionBuffer},
                 {HMB_TRIANGLE_BOUNDS_BINDING_TRIANGLES, &triangleBuffer},
                 {HMB_TRIANGLE_BOUNDS_BINDING_BOXES, &triangleBoxes}},
                count,
                vk::foldedGroups(vk::groupsFor(count, HMB_BVH_BUILD_GROUP)));
   });
   triangleBoxes = {};
-  meshBvh_.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
+  bvh.compact(frame);  // built once, kept for every frame: about half the worst case it was built in
   // Each triangle's vertices in the leaves' order, which traversal reads without the leaves'
   // indirection or the vertex indices (the primitive order names each triangle, for the closest
   // hit only; the indices ride in w, for shading).
   std::vector<glm::vec4> leafTriangles(3 * std::max(count, 1u), glm::vec4(0.0f));
   if (count > 0) {
-    const std::vector<uint32_t> order = meshBvh_.primitives().download<uint32_t>();
+    const std::vector<uint32_t> order = bvh.primitives().download<uint32_t>();
     for (uint32_t entry = 0; entry < count; ++entry) {
       const glm::uvec4& triangle = triangles.at(order.at(entry));
       for (uint32_t corner = 0; corner < 3; ++corner)
@@ -135,13 +143,15 @@ TraceScene::TraceScene(const vk::Context& context, const scene::Scene& scene, vk
             glm::vec4(glm::vec3(positions.at(triangle[corner])), std::bit_cast<float>(triangle[corner]));
     }
   }
-  leafTriangles_ = vk::uploadedBuffer(context, leafTriangles, "trace triangles (leaf order)");
+  this->leafTriangles = vk::uploadedBuffer(context, leafTriangles, "trace triangles (leaf order)");
 }
+
+bool TraceScene::MeshTrees::serves(const scene::Scene& scene) const { return fingerprintOf(scene) == fingerprint; }
 
 vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float t, GpuScene& gpuScene,
                                               vk::FrameRecorder& frame) {
   vk::FrameTimings timings;
-  if (!gpuScene.deforms() || triangleCount_ == 0) return timings;
+  if (!gpuScene.deforms() || meshes_->triangleCount == 0) return timings;
   const double preparedMs = prepareRefit(scene, frame);
   if (preparedMs > 0.0) timings = {{{kRefit, preparedMs}}, preparedMs};
   frame.begin();
@@ -152,40 +162,40 @@ vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float 
 }
 
 double TraceScene::prepareRefit(const scene::Scene& scene, vk::FrameRecorder& setup) {
-  if (triangleCount_ == 0) return 0.0;
-  if (deformedBoxes_.size() < uint64_t(triangleCount_) * sizeof(gpu::BvhBox))
-    deformedBoxes_ = vk::Buffer(context_, uint64_t(triangleCount_) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
+  if (meshes_->triangleCount == 0) return 0.0;
+  if (deformedBoxes_.size() < uint64_t(meshes_->triangleCount) * sizeof(gpu::BvhBox))
+    deformedBoxes_ = vk::Buffer(context_, uint64_t(meshes_->triangleCount) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
                                 "deformed triangle boxes");
   // Only the deforming meshes' trees: a static mesh keeps its triangles and its bounds.
   deformedMeshes_.clear();
   for (const scene::Instance& instance : scene.instances)
-    if (instance.deforms()) deformedMeshes_.push_back({instance.mesh, meshFirstTriangle_.at(instance.mesh), 0u});
+    if (instance.deforms()) deformedMeshes_.push_back({instance.mesh, meshes_->firstTriangle.at(instance.mesh), 0u});
   for (glm::uvec3& mesh : deformedMeshes_) mesh.z = scene.meshes.at(mesh.x).triangleCount();
   std::sort(deformedMeshes_.begin(), deformedMeshes_.end(), [](glm::uvec3 a, glm::uvec3 b) { return a.x < b.x; });
   deformedMeshes_.erase(std::unique(deformedMeshes_.begin(), deformedMeshes_.end()), deformedMeshes_.end());
   std::vector<uint32_t> trees;
   for (const glm::uvec3 mesh : deformedMeshes_) trees.push_back(mesh.x);
-  return meshBvh_.prepareRefit(setup, trees);
+  return meshes_->bvh.prepareRefit(setup, trees);
 }
 
 void TraceScene::recordRefit(const GpuScene& gpuScene, vk::FrameRecorder& frame) {
-  if (triangleCount_ == 0) return;
+  if (meshes_->triangleCount == 0) return;
   for (const glm::uvec3 mesh : deformedMeshes_) {
     const glm::uvec2 entries(mesh.y, mesh.z);
     frame.dispatch(kDeformedLeaves, deformedLeavesKernel_,
                    {{HMB_DEFORMED_LEAVES_BINDING_VERTICES, &gpuScene.vertices()},
-                    {HMB_DEFORMED_LEAVES_BINDING_PRIMITIVES, &meshBvh_.primitives()},
-                    {HMB_DEFORMED_LEAVES_BINDING_LEAF_TRIANGLES, &leafTriangles_},
+                    {HMB_DEFORMED_LEAVES_BINDING_PRIMITIVES, &meshes_->bvh.primitives()},
+                    {HMB_DEFORMED_LEAVES_BINDING_LEAF_TRIANGLES, &meshes_->leafTriangles},
                     {HMB_DEFORMED_LEAVES_BINDING_BOXES, &deformedBoxes_}},
                    entries, vk::foldedGroups(vk::groupsFor(entries.y, HMB_BVH_BUILD_GROUP)));
   }
-  meshBvh_.recordRefit(frame, deformedBoxes_, kRefit);
+  meshes_->bvh.recordRefit(frame, deformedBoxes_, kRefit);
   // The instances' boxes moved: the top level must be built again. (The staged transforms stay:
   // a frame records the refit before the top level's build from them.)
   treeRecorded_ = false;
 }
 
-bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return fingerprintOf(scene) == meshFingerprint_; }
+bool TraceScene::hasMeshesOf(const scene::Scene& scene) const { return meshes_->serves(scene); }
 
 bool TraceScene::hasShutterTimes(const scene::Scene& scene, std::span<const float> times) const {
   // Staged and not yet recorded: no tree was built for them.
@@ -315,11 +325,11 @@ void TraceScene::recordInstanceTree(vk::FrameRecorder& frame, std::string_view p
   const gpu::TraceParams params{0u, instanceCount_, timeCount_, 0u};
   const auto motionBounds = [&](vk::FrameRecorder& f) {
     f.dispatch(pass, motionBoundsKernel_,
-               {{HMB_MOTION_BOUNDS_BINDING_MESH_NODES, &meshBvh_.nodes()},
+               {{HMB_MOTION_BOUNDS_BINDING_MESH_NODES, &meshes_->bvh.nodes()},
                 {HMB_MOTION_BOUNDS_BINDING_INSTANCES, &instances_},
                 {HMB_MOTION_BOUNDS_BINDING_TRANSFORMS, &transforms_},
                 {HMB_MOTION_BOUNDS_BINDING_BOXES, &instanceBoxes_},
-                {HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES, &meshBvh_.frames()}},
+                {HMB_MOTION_BOUNDS_BINDING_MESH_FRAMES, &meshes_->bvh.frames()}},
                params, vk::foldedGroups(vk::groupsFor(instanceCount_, HMB_TRACE_GROUP)));
   };
   // The still instances' tree kept, the moving ones inserted into it again
@@ -348,11 +358,11 @@ void TraceScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddr
                                  linear ? &linearInstanceBvh_.primitives() : &instanceBvh_.primitives(),
                                  &instances_,
                                  &transforms_,
-                                 &meshBvh_.nodes(),
-                                 &meshBvh_.primitives(),
-                                 &leafTriangles_,
+                                 &meshes_->bvh.nodes(),
+                                 &meshes_->bvh.primitives(),
+                                 &meshes_->leafTriangles,
                                  linear ? &linearInstanceBvh_.frames() : &instanceBvh_.frames(),
-                                 &meshBvh_.frames(),
+                                 &meshes_->bvh.frames(),
                                  &status_};
   group_.bind(bindings, firstBinding, byAddress, members);
 }

@@ -66,11 +66,33 @@ class TraceScene {
   // Why `scene`'s top level is not split at that threshold (empty: it is).
   static std::string whyNotSplit(const scene::Scene& scene, uint32_t stillInstances);
 
+  // The meshes' trees: every mesh's triangles in its own space under a BVH per mesh, and the
+  // triangles' vertices in the leaves' order. Trace scenes may share them (frames in flight,
+  // each with a top level of its own) while no mesh deforms: a refit changes them in place.
+  struct MeshTrees {
+    // Uploads the meshes and builds their trees (submits on `frame`).
+    MeshTrees(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame,
+              const passes::BvhBuildShape& meshShape);
+    // Whether they were built from meshes with the same positions and triangles as `scene`'s
+    // (a 64-bit fingerprint of them).
+    bool serves(const scene::Scene& scene) const;
+
+    passes::BvhBuildPass bvh;
+    vk::Buffer leafTriangles;  // per triangle in the leaves' order: 3 vec4 (vertex xyz, index bits)
+    uint32_t meshCount = 0;
+    uint32_t triangleCount = 0;
+    std::vector<uint32_t> firstTriangle;  // each mesh's first triangle
+    uint64_t fingerprint = 0;
+  };
+
   // Uploads the meshes and builds their trees (submits on `frame`), with the profile's mesh
   // builder or, where given, in `meshShape` (benchmarks and tests compare the builders).
   TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame);
   TraceScene(const vk::Context& context, const scene::Scene& scene, vk::FrameRecorder& frame,
              const passes::BvhBuildShape& meshShape);
+  // A trace scene over trees another built, with a top level of its own.
+  TraceScene(const vk::Context& context, std::shared_ptr<MeshTrees> meshes);
+  const std::shared_ptr<MeshTrees>& meshTrees() const { return meshes_; }
 
   // Transforms of every instance at each shutter time, and the top level over the instances'
   // boxes merged over those times (submits on `frame` and waits). Rays name a time by its
@@ -120,15 +142,15 @@ class TraceScene {
   // the mesh trees are. Returns the device milliseconds.
   double buildStillInstanceTree(vk::FrameRecorder& frame);
 
-  uint32_t meshCount() const { return meshCount_; }
+  uint32_t meshCount() const { return meshes_->meshCount; }
   uint32_t instanceCount() const { return instanceCount_; }
   uint32_t timeCount() const { return timeCount_; }
-  uint32_t triangleCount() const { return triangleCount_; }
+  uint32_t triangleCount() const { return meshes_->triangleCount; }
   // The first triangle of each mesh in the triangle buffer: a hit's triangle minus its
   // mesh's first is the triangle's index in scene::Mesh::indices / 3.
-  const std::vector<uint32_t>& meshFirstTriangle() const { return meshFirstTriangle_; }
+  const std::vector<uint32_t>& meshFirstTriangle() const { return meshes_->firstTriangle; }
 
-  const passes::BvhBuildPass& meshBvh() const { return meshBvh_; }
+  const passes::BvhBuildPass& meshBvh() const { return meshes_->bvh; }
   // The binned builder of the top level (a split top level's insertions are its): the tree
   // traversal reads unless the last build was the linear one (vk::DeviceProfile::linearTopLevel).
   const passes::BvhBuildPass& instanceBvh() const { return instanceBvh_; }
@@ -142,7 +164,7 @@ class TraceScene {
   // The device time of the top level's last build by setShutterTimes.
   double instanceTreeMilliseconds() const { return instanceTreeMilliseconds_; }
   // 3 vec4 per triangle in the leaves' order (BvhHit::entry): its vertices, their indices in w.
-  const vk::Buffer& leafTriangles() const { return leafTriangles_; }
+  const vk::Buffer& leafTriangles() const { return meshes_->leafTriangles; }
   const vk::Buffer& instances() const { return instances_; }
   const vk::Buffer& transforms() const { return transforms_; }
   const vk::Buffer& instanceBoxes() const { return instanceBoxes_; }
@@ -166,20 +188,15 @@ class TraceScene {
   double buildStagedTree(vk::FrameRecorder& frame, std::string_view pass);
 
   const vk::Context& context_;
-  vk::ComputeKernel triangleBoundsKernel_;
   vk::ComputeKernel motionBoundsKernel_;
   vk::ComputeKernel deformedLeavesKernel_;
-  passes::BvhBuildPass meshBvh_;
+  std::shared_ptr<MeshTrees> meshes_;
   passes::BvhBuildPass instanceBvh_;
   passes::LinearBvhPass linearInstanceBvh_;
   bool linearTopLevel_ = false;  // the last top level recorded was the linear builder's
   double instanceTreeMilliseconds_ = 0.0;
-  uint32_t meshCount_ = 0;
   uint32_t instanceCount_ = 0;
   uint32_t timeCount_ = 0;
-  uint32_t triangleCount_ = 0;
-  std::vector<uint32_t> meshFirstTriangle_;
-  uint64_t meshFingerprint_ = 0;
   // What the top level was last built from, to tell whether a frame can keep it.
   std::vector<gpu::TraceInstance> builtInstances_;
   std::vector<gpu::InstanceTransform> builtTransforms_;
@@ -201,7 +218,6 @@ class TraceScene {
   // keepsStillTree_: the staged frame inserts the moving ones into the kept tree alone.
   bool stillTreeRecorded_ = false;
   bool keepsStillTree_ = false;
-  vk::Buffer leafTriangles_;  // per triangle in the leaves' order: 3 vec4 (vertex xyz, index bits)
   vk::Buffer instances_;      // TraceInstance per instance
   vk::Buffer transforms_;     // InstanceTransform per (instance, time)
   vk::Buffer instanceBoxes_;  // BvhBox per instance: its motion bounds
@@ -209,6 +225,12 @@ class TraceScene {
   std::vector<glm::uvec3> deformedMeshes_;  // prepareRefit's: (mesh, first triangle, triangles)
   vk::Buffer status_;         // HMB_TRACE_STATUS_WORDS uint, written by the traces
   vk::BufferGroup group_;     // the buffers above, as tracing kernels bind them
+};
+
+// The mesh trees several trace scenes share (frames in flight: passes::HybridStage::shareMeshTrees):
+// the last ones a sharing stage built, empty until one does.
+struct SharedMeshTrees {
+  std::shared_ptr<TraceScene::MeshTrees> trees;
 };
 
 // The trace scene a stage keeps from one frame to the next (the hybrid's, the reference's).

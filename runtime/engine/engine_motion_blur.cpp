@@ -16,6 +16,7 @@
 #include "kernels/engine/engine_layout.h"
 #include "kernels/manifest.h"
 #include "runtime/device_scene/gpu_scene.h"
+#include "runtime/device_scene/trace_scene.h"
 #include "runtime/passes/hybrid_stage.h"
 #include "runtime/passes/image_layer.h"
 #include "runtime/passes/post_process_stage.h"
@@ -346,68 +347,88 @@ void EngineMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBuffer
 EngineFrameTimes EngineMotionBlur::timings() const { return engineTimes(passes_->recorder.readTimings()); }
 
 struct EngineHybridMotionBlur::Passes {
-  Passes(const vk::Context& context, uint32_t width, uint32_t height, const passes::HybridSettings& settings,
+  // What one frame in flight records into and reads: everything but the mesh trees.
+  struct Slot {
+    Slot(const vk::Context& context, uint32_t width, uint32_t height, const passes::HybridSettings& settings,
          const passes::HitShading* hits)
-      : pack(packKernel(context, true)),
-        blur(context, settings.blur),
-        hybrid(context, blur, hits),
-        layer(passes::ImageLayer::allocate(context, uint64_t(width) * height, "engine G-buffer")),
-        setup(context),
-        recorder(context),
-        images(context) {
-    blur.prepare(width, height);
-  }
-  std::unique_ptr<vk::ComputeKernel> pack;  // with normals and ids: the hybrid needs them
-  // The scene's materials, vertices and textures, for shading what rays find: made again when
-  // the scene's meshes or its instances' meshes and ids change (an EngineScene's next frame).
-  std::unique_ptr<GpuScene> gpuScene;
-  std::vector<glm::uvec2> gpuSceneInstances;  // (mesh, object id) of each instance it was made for
-  size_t gpuSceneMeshes = 0;
-  GpuScene::FrameInputs frameInputs;  // the last prepare()'s, written by record()
-  passes::PostProcessStage blur;
-  passes::HybridStage hybrid;
-  passes::ImageLayer layer;
-  vk::FrameRecorder setup;     // prepare()'s own submissions
-  vk::FrameRecorder recorder;  // the engine's command buffer
-  FramePlan plan;              // the last prepare()'s
-  EngineImageIo images;
+        : pack(packKernel(context, true)),
+          blur(context, settings.blur),
+          hybrid(context, blur, hits),
+          layer(passes::ImageLayer::allocate(context, uint64_t(width) * height, "engine G-buffer")),
+          setup(context),
+          recorder(context),
+          images(context) {
+      blur.prepare(width, height);
+    }
+    std::unique_ptr<vk::ComputeKernel> pack;  // with normals and ids: the hybrid needs them
+    // The scene's materials, vertices and textures, for shading what rays find: made again when
+    // the scene's meshes or its instances' meshes and ids change (an EngineScene's next frame).
+    std::unique_ptr<GpuScene> gpuScene;
+    std::vector<glm::uvec2> gpuSceneInstances;  // (mesh, object id) of each instance it was made for
+    size_t gpuSceneMeshes = 0;
+    GpuScene::FrameInputs frameInputs;  // the last prepare()'s, written by record()
+    passes::PostProcessStage blur;
+    passes::HybridStage hybrid;
+    passes::ImageLayer layer;
+    vk::FrameRecorder setup;     // prepare()'s own submissions
+    vk::FrameRecorder recorder;  // the engine's command buffer
+    FramePlan plan;              // the last prepare()'s
+    EngineImageIo images;
+  };
+  std::vector<std::unique_ptr<Slot>> slots;
+  size_t next = 0;      // the slot the next prepare() plans
+  size_t prepared = 0;  // the slot prepare() last planned, which record() records
+  size_t recorded = 0;  // the slot record() last recorded: its times and counts
+
+  Slot& preparedSlot() { return *slots[prepared]; }
+  const Slot& recordedSlot() const { return *slots[recorded]; }
 };
 
 EngineHybridMotionBlur::EngineHybridMotionBlur(const vk::Context& context, uint32_t width, uint32_t height,
                                                const scene::Scene& scene, const passes::HybridSettings& settings,
-                                               EngineDepth depth, const passes::HitShading* hits)
+                                               EngineDepth depth, const passes::HitShading* hits,
+                                               uint32_t framesInFlight)
     : context_(context), width_(width), height_(height), scene_(scene), settings_(settings), depth_(depth) {
   if (width == 0 || height == 0) throw Error("engine hybrid motion blur: an empty image");
+  if (framesInFlight < 1 || framesInFlight > kMaxFramesInFlight)
+    throw Error("engine hybrid motion blur: frames in flight must be 1 to " + std::to_string(kMaxFramesInFlight));
   validateDepth(depth);
   passes::validate(settings);
   if (settings.blur.motionPath != passes::MotionPath::Linear)
     throw Error("engine hybrid motion blur: the engine's G-buffer gives straight velocities only (motion-path linear)");
-  passes_ = std::make_unique<Passes>(context, width, height, settings, hits);
+  passes_ = std::make_unique<Passes>();
+  const auto shared = std::make_shared<SharedMeshTrees>();
+  for (uint32_t i = 0; i < framesInFlight; ++i) {
+    passes_->slots.push_back(std::make_unique<Passes::Slot>(context, width, height, settings, hits));
+    if (framesInFlight > 1) passes_->slots.back()->hybrid.shareMeshTrees(shared);
+  }
 }
 
 EngineHybridMotionBlur::~EngineHybridMotionBlur() = default;
 
 EngineFrameTimes EngineHybridMotionBlur::prepare(float frameTime) {
   if (!std::isfinite(frameTime)) throw Error("engine hybrid motion blur: the frame time must be finite");
+  Passes::Slot& slot = *passes_->slots[passes_->next];
   std::vector<glm::uvec2> instances;
   for (const scene::Instance& instance : scene_.instances) instances.emplace_back(instance.mesh, instance.objectId);
-  if (!passes_->gpuScene || instances != passes_->gpuSceneInstances || scene_.meshes.size() != passes_->gpuSceneMeshes) {
-    passes_->gpuScene.reset();  // the old one goes first: the two never take memory at once
-    passes_->gpuScene = std::make_unique<GpuScene>(context_, scene_);
-    passes_->gpuSceneInstances = std::move(instances);
-    passes_->gpuSceneMeshes = scene_.meshes.size();
+  if (!slot.gpuScene || instances != slot.gpuSceneInstances || scene_.meshes.size() != slot.gpuSceneMeshes) {
+    slot.gpuScene.reset();  // the old one goes first: the two never take memory at once
+    slot.gpuScene = std::make_unique<GpuScene>(context_, scene_);
+    slot.gpuSceneInstances = std::move(instances);
+    slot.gpuSceneMeshes = scene_.meshes.size();
   }
   // A deforming scene's joints and weights at the frame time and the one before, and the
   // transforms and the camera for shading what the rays find, are computed here on the host;
   // record() writes them, deforms the meshes and refits their trees in the frame.
-  if (passes_->gpuScene->deforms()) passes_->gpuScene->setDeformationFrame(scene_, frameTime);
-  passes_->frameInputs = GpuScene::frameInputs(scene_, frameTime, width_, height_);
+  if (slot.gpuScene->deforms()) slot.gpuScene->setDeformationFrame(scene_, frameTime);
+  slot.frameInputs = GpuScene::frameInputs(scene_, frameTime, width_, height_);
   FramePlan plan;
   plan.run(GpuScene::kFrameInputs);
   plan.run(kPackPass);
-  passes_->hybrid.plan(plan, scene_, frameTime, settings_);
-  const auto timings = passes_->hybrid.prepare(passes_->setup, scene_, frameTime, width_, height_, settings_, plan);
-  passes_->plan = plan;
+  slot.hybrid.plan(plan, scene_, frameTime, settings_);
+  const auto timings = slot.hybrid.prepare(slot.setup, scene_, frameTime, width_, height_, settings_, plan);
+  slot.plan = plan;
+  passes_->prepared = passes_->next;
   prepared_ = true;
   return engineTimes(timings.setup);
 }
@@ -418,13 +439,15 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
     throw Error("engine hybrid motion blur: the G-buffer's normal and objectId buffers are required");
   const vk::Buffer blurred =
       vk::Buffer::adopt(context_, output, uint64_t(width_) * height_ * sizeof(glm::vec4), "engine output");
-  vk::FrameRecorder& frame = passes_->recorder;
+  Passes::Slot& slot = passes_->preparedSlot();
+  vk::FrameRecorder& frame = slot.recorder;
   frame.beginInto(commandBuffer);
-  passes_->gpuScene->recordFrameInputs(passes_->frameInputs, frame);
-  recordPack(frame, context_, *passes_->pack, gbuffer, width_, height_, depth_, passes_->layer);
-  if (passes_->gpuScene->deforms()) passes_->gpuScene->recordFrameDeformation(frame);  // what the reveal shades
-  passes_->hybrid.record(frame, passes_->plan, passes_->layer, *passes_->gpuScene, blurred);
+  slot.gpuScene->recordFrameInputs(slot.frameInputs, frame);
+  recordPack(frame, context_, *slot.pack, gbuffer, width_, height_, depth_, slot.layer);
+  if (slot.gpuScene->deforms()) slot.gpuScene->recordFrameDeformation(frame);  // what the reveal shades
+  slot.hybrid.record(frame, slot.plan, slot.layer, *slot.gpuScene, blurred);
   frame.endInto();
+  recorded();
 }
 
 void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineGBufferImages& gbuffer,
@@ -432,29 +455,43 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
   if (!prepared_) throw Error("engine hybrid motion blur: record() before prepare()");
   if (!gbuffer.normal.view || !gbuffer.objectId.view)
     throw Error("engine hybrid motion blur: the G-buffer's normal and objectId images are required");
-  EngineImageIo& images = passes_->images;
   EngineImageIo::check(gbuffer, true, output);
+  Passes::Slot& slot = passes_->preparedSlot();
+  EngineImageIo& images = slot.images;
   const vk::Buffer& colour = images.colour(width_, height_);
-  vk::FrameRecorder& frame = passes_->recorder;
+  vk::FrameRecorder& frame = slot.recorder;
   frame.beginInto(commandBuffer);
-  passes_->gpuScene->recordFrameInputs(passes_->frameInputs, frame);
-  images.recordPack(frame, gbuffer, true, width_, height_, depth_, passes_->layer);
-  if (passes_->gpuScene->deforms()) passes_->gpuScene->recordFrameDeformation(frame);  // what the reveal shades
-  passes_->hybrid.record(frame, passes_->plan, passes_->layer, *passes_->gpuScene, colour);
+  slot.gpuScene->recordFrameInputs(slot.frameInputs, frame);
+  images.recordPack(frame, gbuffer, true, width_, height_, depth_, slot.layer);
+  if (slot.gpuScene->deforms()) slot.gpuScene->recordFrameDeformation(frame);  // what the reveal shades
+  slot.hybrid.record(frame, slot.plan, slot.layer, *slot.gpuScene, colour);
   images.recordOutput(frame, output, width_, height_);
   frame.endInto();
+  recorded();
 }
 
-EngineFrameTimes EngineHybridMotionBlur::timings() const { return engineTimes(passes_->recorder.readTimings()); }
+void EngineHybridMotionBlur::recorded() {
+  passes_->recorded = passes_->prepared;
+  passes_->next = (passes_->prepared + 1) % passes_->slots.size();
+}
 
-uint32_t EngineHybridMotionBlur::maskPixels() const { return passes_->hybrid.rayMask().counts().maskPixels; }
+EngineFrameTimes EngineHybridMotionBlur::timings() const {
+  return engineTimes(passes_->recordedSlot().recorder.readTimings());
+}
+
+uint32_t EngineHybridMotionBlur::maskPixels() const {
+  return passes_->recordedSlot().hybrid.rayMask().counts().maskPixels;
+}
 
 uint32_t EngineHybridMotionBlur::shutterRayPixels() const {
-  return passes_->hybrid.tracesShutterRays() ? uint32_t(passes_->hybrid.shutterRays().counts().pixels) : 0u;
+  const passes::HybridStage& hybrid = passes_->recordedSlot().hybrid;
+  return hybrid.tracesShutterRays() ? uint32_t(hybrid.shutterRays().counts().pixels) : 0u;
 }
 
-uint32_t EngineHybridMotionBlur::cutTraces() const { return passes_->hybrid.cutTraces(); }
+uint32_t EngineHybridMotionBlur::cutTraces() const { return passes_->recordedSlot().hybrid.cutTraces(); }
 
-const FramePlan& EngineHybridMotionBlur::plan() const { return passes_->plan; }
+const FramePlan& EngineHybridMotionBlur::plan() const { return passes_->slots[passes_->prepared]->plan; }
+
+uint32_t EngineHybridMotionBlur::framesInFlight() const { return uint32_t(passes_->slots.size()); }
 
 }  // namespace hmb

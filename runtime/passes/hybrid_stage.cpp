@@ -170,6 +170,12 @@ uint32_t HybridStage::cutTraces() const { return traceScene_ ? traceScene_->cutT
 
 void HybridStage::forgetTraceScene() { traceScene_.reset(); }
 
+void HybridStage::shareMeshTrees(std::shared_ptr<SharedMeshTrees> shared) { sharedTrees_ = std::move(shared); }
+
+bool HybridStage::takesSharedTrees(const scene::Scene& scene) const {
+  return sharedTrees_ && sharedTrees_->trees && !scene.hasDeformation() && sharedTrees_->trees->serves(scene);
+}
+
 void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTime,
                        const HybridSettings& settings) const {
   Frame f;
@@ -181,7 +187,13 @@ void HybridStage::plan(FramePlan& plan, const scene::Scene& scene, float frameTi
 
 void HybridStage::planTrees(FramePlan& plan, const scene::Scene& scene, float frameTime,
                             const HybridSettings& settings) const {
-  const bool sameMeshes = planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
+  bool sameMeshes = false;
+  if (takesSharedTrees(scene)) {
+    plan.skip(kBvhMeshes, kSharedMeshTreesReason);
+    sameMeshes = traceScene_ && traceScene_->meshTrees() == sharedTrees_->trees;
+  } else {
+    sameMeshes = planKeptMeshTrees(plan, kBvhMeshes, traceScene_.get(), scene);
+  }
   planDeformedTrees(plan, scene);
   const std::vector<float> times = traceTimes(scene, frameTime, settings);
   if (sameMeshes && !scene.hasDeformation() && traceScene_->hasShutterTimes(scene, times))
@@ -207,8 +219,16 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   PrepareTimings timings;
   // plan() decided what the last frame's trees still serve; only the others are built.
   const vk::FrameRecorder::ShapeMark meshesStart = frame.mark();
-  if (const std::optional<double> meshMs = prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
+  if (takesSharedTrees(scene)) {
+    if (!traceScene_ || traceScene_->meshTrees() != sharedTrees_->trees) {
+      traceScene_.reset();
+      traceScene_ = std::make_unique<TraceScene>(context_, sharedTrees_->trees);
+    }
+  } else if (const std::optional<double> meshMs =
+                 prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame)) {
     timings.setup = {{{kBvhMeshes, *meshMs}}, *meshMs};
+  }
+  if (sharedTrees_ && !scene.hasDeformation()) sharedTrees_->trees = traceScene_->meshTrees();
   timings.setupShape = frame.shapeSince(meshesStart, vk::FrameRecorder::HostWaitsUntil::Now);
   const std::vector<float> times = traceTimes(scene, frameTime, settings);
   shutterStrata_ = plan.runs(kShutterRaysTrace) ? settings.shutterRays : 0u;

@@ -37,6 +37,7 @@ namespace hmb {
 class FramePlan;
 class GpuScene;
 class TraceScene;
+struct SharedMeshTrees;
 }
 
 namespace hmb::passes {
@@ -49,6 +50,9 @@ inline constexpr const char* kRevealLeftToShutterRaysReason =
     "(--method hybrid reveals the mask, as the paper does; under --ray-budget the pixels left untraced keep it)";
 // Why a hybrid-rays frame without a ray budget skips the budget's pass.
 inline constexpr const char* kNoRayBudgetReason = "no ray budget: every listed pixel traces its rays";
+// Why a stage that shares its mesh trees skips their build.
+inline constexpr const char* kSharedMeshTreesReason =
+    "the meshes' trees another frame in flight built serve this one: frames in flight share them";
 // Why the paper's hybrid skips the shutter rays' passes.
 inline constexpr const char* kShutterRaysOffReason = "the paper's method traces no shutter rays (hybrid-rays does)";
 
@@ -99,6 +103,10 @@ class HybridStage {
 
   // The next frame builds its trees anew, whatever the last frame built.
   void forgetTraceScene();
+  // Frames in flight: every stage given the same holder traces the mesh trees the last of them
+  // built (while the meshes are the same), each over a top level of its own. A scene whose
+  // meshes deform is not shared: its refits change the trees of the frame that runs them.
+  void shareMeshTrees(std::shared_ptr<SharedMeshTrees> shared);
   // After a frame: its traces the device's loop limit cut short (TraceScene::cutTraces).
   uint32_t cutTraces() const;
 
@@ -147,6 +155,9 @@ class HybridStage {
   ShutterRaysPass shutterRays_;
   HybridSettings settings_;
   std::unique_ptr<TraceScene> traceScene_;
+  std::shared_ptr<SharedMeshTrees> sharedTrees_;  // shareMeshTrees()'s, or none
+  // Whether this frame traces the shared trees (they hold the scene's meshes, which do not deform).
+  bool takesSharedTrees(const scene::Scene& scene) const;
   ImageSize size_;
   // The shutter strata the frame traces rays at (0 when it traces none), and the camera at each
   // of the trace scene's times (the frame's first, then the strata's), written into cameraRays_

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
@@ -19,6 +21,7 @@
 #include "hmblur/engine_scene.h"
 #include "hmblur/load_scene.h"
 #include "hmblur/renderer.h"
+#include "runtime/passes/hybrid_stage.h"
 #include "tests/support/engine_device.h"
 #include "tests/support/expect_error.h"
 #include "tests/support/vulkan_test.h"
@@ -625,6 +628,117 @@ TEST(EngineMotionBlurTest, TheEnginesImagesBlurAsTheValuesTheyHold) {
 
 // The engine's settings are the renderer's for the scene at the engine's image size, under the
 // engine API's own names; an empty image is a one-line error.
+// Frames in flight: three sets of per-frame buffers over one set of mesh trees. Four frames of
+// the living room whose instances move, recorded one after another into their own command
+// buffers and submitted together, each the renderer's frame bit for bit; only the first builds
+// the meshes' trees (the others plan them shared, the fourth takes the first set again).
+TEST(EngineMotionBlurTest, FramesInFlightShareTheMeshTrees) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  std::vector<Frames> frames;
+  for (int f = 0; f < 4; ++f)
+    frames.push_back(renderedFrames(scene, Method::Hybrid, scene.settings.frameTime - float(f) / scene.settings.fps));
+  ASSERT_NE(frames[0].blurred, frames[1].blurred);
+  Engine engine(/*enableFeatures=*/true);
+  vk::Context context(engine.adopted(), countingOptions());
+  for (const uint32_t inFlight : {1u, 3u}) {
+    SCOPED_TRACE(inFlight);
+    EngineHybridMotionBlur blur(context, kWidth, kHeight, scene, *frames[0].hybrid, {}, nullptr, inFlight);
+    EXPECT_EQ(blur.framesInFlight(), inFlight);
+    std::vector<std::vector<Engine::OwnBuffer>> owned;
+    // Records frames [first, last) one after another, then submits them all and checks each.
+    const auto inFlightTogether = [&](size_t first, size_t last) {
+      std::vector<VkCommandBuffer> commands;
+      for (size_t f = first; f < last; ++f) {
+        owned.push_back(engineBuffers(engine, frames[f]));
+        blur.prepare(frames[f].frameTime);
+        const auto meshes = std::find_if(blur.plan().passes().begin(), blur.plan().passes().end(),
+                                         [](const PlannedPass& p) { return p.name == "hybrid-bvh-meshes"; });
+        ASSERT_NE(meshes, blur.plan().passes().end());
+        EXPECT_EQ(meshes->run, f == 0) << f;
+        if (f > 0) EXPECT_EQ(meshes->reason, passes::kSharedMeshTreesReason) << f;
+        commands.push_back(engine.beginCommands());
+        blur.record(commands.back(), gbufferOf(owned.back()), owned.back().back().buffer);
+      }
+      for (size_t k = 0; k < commands.size(); ++k) {
+        engine.submitAndWait(commands[k]);
+        expectTheRenderersFrame(engine, owned[first + k].back(), frames[first + k]);
+      }
+    };
+    inFlightTogether(0, inFlight);
+    if (inFlight == 3) inFlightTogether(3, 4);  // the first set again
+    for (auto& buffers : owned)
+      for (Engine::OwnBuffer& b : buffers) engine.destroy(b);
+  }
+  EXPECT_EQ(context.validationErrors(), 0u);
+  EXPECT_TRUE(engine.errors.empty());
+}
+
+// Three frames in flight hold the trees once: over a dense mesh (a 200 x 200 grid of quads,
+// two instances of it moving) the first frame's prepare() takes the memory of the per-frame
+// buffers and the trees, the second's and third's (the other sets) less by about one copy of
+// the trees. (Each set holds the scene's vertices, materials and textures of its own.)
+TEST(EngineMotionBlurTest, FramesInFlightHoldTheTreesOnce) {
+  constexpr uint32_t kCells = 200;
+  std::vector<glm::vec3> positions, normals;
+  std::vector<uint32_t> indices;
+  for (uint32_t y = 0; y <= kCells; ++y)
+    for (uint32_t x = 0; x <= kCells; ++x) {
+      const float u = float(x) / kCells, v = float(y) / kCells;
+      positions.emplace_back(u - 0.5f, v - 0.5f, 0.05f * std::sin(20.0f * u) * std::cos(20.0f * v));
+      normals.emplace_back(0.0f, 0.0f, 1.0f);
+    }
+  for (uint32_t y = 0; y < kCells; ++y)
+    for (uint32_t x = 0; x < kCells; ++x) {
+      const uint32_t a = y * (kCells + 1) + x, b = a + 1, c = a + kCells + 1, d = c + 1;
+      indices.insert(indices.end(), {a, b, d, a, d, c});
+    }
+  EngineScene engineScene(60.0f, 0.5f / 60.0f, 0.05f);
+  engineScene.addMesh(positions, normals, indices);
+  EngineScene::Camera camera;
+  camera.worldNow = camera.worldPrevious = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 3.0f));
+  const auto frameAt = [&](int f) {
+    const auto at = [](float x) { return glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.0f, 0.0f)); };
+    const std::vector<EngineScene::Instance> instances = {{0, 1, at(-0.5f + 0.02f * f), at(-0.5f + 0.02f * (f - 1))},
+                                                          {0, 2, at(0.5f - 0.02f * f), at(0.5f - 0.02f * (f - 1))}};
+    engineScene.setFrame(float(f) / 60.0f, instances, camera);
+  };
+  frameAt(0);
+  const Frames f = renderedFrames(engineScene.scene(), Method::Hybrid);
+  ASSERT_TRUE(f.hybrid);
+  Engine engine(/*enableFeatures=*/true);
+  vk::Context context(engine.adopted(), countingOptions());
+  std::vector<Engine::OwnBuffer> buffers = engineBuffers(engine, f);
+  std::vector<double> added;  // by each frame's prepare() and record()
+  {
+    EngineHybridMotionBlur blur(context, kWidth, kHeight, engineScene.scene(), *f.hybrid, {}, nullptr, 3);
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t before = context.memoryInUse();
+      frameAt(k);
+      blur.prepare(float(k) / 60.0f);
+      const VkCommandBuffer commands = engine.beginCommands();
+      blur.record(commands, gbufferOf(buffers), buffers.back().buffer);
+      engine.submitAndWait(commands);
+      added.push_back(double(context.memoryInUse()) - double(before));
+    }
+  }
+  for (Engine::OwnBuffer& b : buffers) engine.destroy(b);
+  // One copy of the trees, as the renderer builds them for the same scene.
+  RenderSettings render;
+  render.width = kWidth;
+  render.height = kHeight;
+  render.method = Method::Hybrid;
+  Renderer renderer(VulkanTest::context());
+  const RenderResult result = renderer.render(engineScene.scene(), render);
+  ASSERT_TRUE(result.memory.bvhAllocatedBytesPerTriangle.has_value());
+  // The nodes and indices, as the renderer reports them, and the leaves' triangles (3 vec4 each).
+  const double treeBytes = (*result.memory.bvhAllocatedBytesPerTriangle + 48.0) * double(indices.size() / 3);
+  std::cout << "[ in flight ] bytes taken by frames 1, 2, 3: " << added[0] << ", " << added[1] << ", " << added[2]
+            << "; one copy of the trees " << treeBytes << "\n";
+  for (int k = 1; k < 3; ++k) EXPECT_LT(added[k], added[0] - 0.9 * treeBytes) << k;
+  EXPECT_EQ(context.validationErrors(), 0u);
+  EXPECT_TRUE(engine.errors.empty());
+}
+
 TEST(EngineMotionBlurTest, TheEnginesSettingsAreTheRenderersForItsScene) {
   const scene::Scene scene = scene::loadScene("temple");
   RenderSettings render;
