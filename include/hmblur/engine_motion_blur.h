@@ -204,8 +204,8 @@ class EngineHybridMotionBlur {
                          const EngineShading* hits = nullptr, uint32_t framesInFlight = 1);
   // framesInFlight (1 to kMaxFramesInFlight): how many recorded frames may be on the device at
   // once. Each prepare()/record() pair takes the next of that many sets of per-frame buffers;
-  // the meshes' trees are built once and shared by all (a deforming scene's are per frame: its
-  // refits change them). The scene's vertices, materials and textures are held per frame too.
+  // the meshes' trees and the scene's vertices, materials and textures are made once and
+  // shared by all (a deforming scene's vertices and trees are per frame: each frame changes them).
   static constexpr uint32_t kMaxFramesInFlight = 8;
   uint32_t framesInFlight() const;
   ~EngineHybridMotionBlur();

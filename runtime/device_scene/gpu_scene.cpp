@@ -163,11 +163,12 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     materials.push_back(g);
   }
 
-  vertices_ = vk::uploadedBuffer(context, vertices, "scene vertices");
-  instanceVertices_ = vk::uploadedBuffer(context, instanceVertices, "instance vertices");
-  triangles_ = vk::uploadedBuffer(context, triangles, "triangles");
-  materials_ = vk::uploadedBuffer(context, materials, "materials");
-  texels_ = vk::uploadedBuffer(context, texels, "texels");
+  data_ = std::make_shared<Data>();
+  data_->vertices = vk::uploadedBuffer(context, vertices, "scene vertices");
+  data_->instanceVertices = vk::uploadedBuffer(context, instanceVertices, "instance vertices");
+  data_->triangles = vk::uploadedBuffer(context, triangles, "triangles");
+  data_->materials = vk::uploadedBuffer(context, materials, "materials");
+  data_->texels = vk::uploadedBuffer(context, texels, "texels");
   instances_ = vk::Buffer(context, std::max<size_t>(1, scene.instances.size()) * sizeof(gpu::GpuInstance),
                           vk::MemoryUse::Device, "instances");
   cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
@@ -177,25 +178,37 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
   }
 }
 
+GpuScene::GpuScene(const vk::Context& context, const GpuScene& sharesDataOf)
+    : triangleCount_(sharesDataOf.triangleCount_),
+      instanceVertexCount_(sharesDataOf.instanceVertexCount_),
+      texturePath_(sharesDataOf.texturePath_),
+      topLevelWalk_(sharesDataOf.topLevelWalk_),
+      camera_(sharesDataOf.camera_),
+      data_(sharesDataOf.data_) {
+  if (sharesDataOf.deforms()) throw Error("a deforming scene's vertices are written each frame: they are not shared");
+  instances_ = vk::Buffer(context, sharesDataOf.instances_.size(), vk::MemoryUse::Device, "instances");
+  cameraBuffer_ = vk::Buffer(context, sizeof(gpu::GpuCamera), vk::MemoryUse::Device, "camera");
+}
+
 GpuScene::GpuScene(GpuScene&&) noexcept = default;
 GpuScene::~GpuScene() = default;
 
 void GpuScene::recordFrameDeformation(vk::FrameRecorder& frame) const {
   if (!deformation_) return;
   deformation_->record(frame, DeformedVertices::kPreviousSlot, previousVertices_);
-  if (!verticesAtFrameTime_) deformation_->record(frame, DeformedVertices::kFrameSlot, vertices_);
+  if (!verticesAtFrameTime_) deformation_->record(frame, DeformedVertices::kFrameSlot, data_->vertices);
 }
 
 void GpuScene::recordDeformationAt(const scene::Scene& scene, float t, vk::FrameRecorder& frame) {
   if (!deformation_) return;
   deformation_->setTime(scene, DeformedVertices::kAnyTimeSlot, t);
-  deformation_->record(frame, DeformedVertices::kAnyTimeSlot, vertices_);
+  deformation_->record(frame, DeformedVertices::kAnyTimeSlot, data_->vertices);
   verticesAtFrameTime_ = t == frameTime_;
 }
 
 void GpuScene::bind(vk::Bindings& bindings, uint32_t firstBinding, bool byAddress) const {
   static_assert(sizeof(gpu::SceneTable) == 5 * sizeof(uint64_t));
-  const vk::Buffer* members[] = {&vertices_, &instances_, &materials_, &texels_, &cameraBuffer_};  // SceneTable's order
+  const vk::Buffer* members[] = {&data_->vertices, &instances_, &data_->materials, &data_->texels, &cameraBuffer_};  // SceneTable's order
   shading_.bind(bindings, firstBinding, byAddress, members);
 }
 

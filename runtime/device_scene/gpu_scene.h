@@ -38,6 +38,10 @@ bool cameraMovesOnScreen(const scene::Scene& scene, float t);
 class GpuScene {
  public:
   GpuScene(const vk::Context& context, const scene::Scene& scene);
+  // A scene over another's vertices, triangles, materials and textures, with frame inputs
+  // (instances, camera) of its own: frames in flight of a scene that does not deform (a
+  // deforming one is refused, hmb::Error: its vertices are written each frame).
+  GpuScene(const vk::Context& context, const GpuScene& sharesDataOf);
   GpuScene(GpuScene&&) noexcept;
   ~GpuScene();
 
@@ -83,14 +87,14 @@ class GpuScene {
   void keepTopLevelWalk() { topLevelWalk_ = true; }
 
   // Per mesh vertex (GpuVertex): deformed ones hold their deformation at the frame time.
-  const vk::Buffer& vertices() const { return vertices_; }
+  const vk::Buffer& vertices() const { return data_->vertices; }
   // The same at the previous frame (t - 1/fps): vertices() itself when nothing deforms.
-  const vk::Buffer& previousVertices() const { return deformation_ ? previousVertices_ : vertices_; }
-  const vk::Buffer& instanceVertices() const { return instanceVertices_; }
-  const vk::Buffer& triangles() const { return triangles_; }
+  const vk::Buffer& previousVertices() const { return deformation_ ? previousVertices_ : data_->vertices; }
+  const vk::Buffer& instanceVertices() const { return data_->instanceVertices; }
+  const vk::Buffer& triangles() const { return data_->triangles; }
   const vk::Buffer& instances() const { return instances_; }
-  const vk::Buffer& materials() const { return materials_; }
-  const vk::Buffer& texels() const { return texels_; }
+  const vk::Buffer& materials() const { return data_->materials; }
+  const vk::Buffer& texels() const { return data_->texels; }
   const vk::Buffer& cameraBuffer() const { return cameraBuffer_; }
   // Binds the scene as a shading kernel declares it (kernels/shared/scene_bindings.glsl) from
   // firstBinding on: vertices, instances, materials, texels and camera, or the table of their
@@ -103,12 +107,16 @@ class GpuScene {
   bool texturePath_ = false;
   bool topLevelWalk_ = true;
   FrameCamera camera_;
-  vk::Buffer vertices_;
-  vk::Buffer instanceVertices_;
-  vk::Buffer triangles_;
+  // What frames in flight may share: the scene as uploaded.
+  struct Data {
+    vk::Buffer vertices;
+    vk::Buffer instanceVertices;
+    vk::Buffer triangles;
+    vk::Buffer materials;
+    vk::Buffer texels;
+  };
+  std::shared_ptr<Data> data_;
   vk::Buffer instances_;
-  vk::Buffer materials_;
-  vk::Buffer texels_;
   vk::Buffer cameraBuffer_;
   vk::BufferGroup shading_;  // the buffers above that shading kernels bind together
   std::unique_ptr<DeformedVertices> deformation_;

@@ -361,8 +361,9 @@ struct EngineHybridMotionBlur::Passes {
       blur.prepare(width, height);
     }
     std::unique_ptr<vk::ComputeKernel> pack;  // with normals and ids: the hybrid needs them
-    // The scene's materials, vertices and textures, for shading what rays find: made again when
-    // the scene's meshes or its instances' meshes and ids change (an EngineScene's next frame).
+    // The scene's materials, vertices and textures, for shading what rays find (shared with
+    // the other sets where the scene does not deform): made again when the scene's meshes or its
+    // instances' meshes and ids change (an EngineScene's next frame).
     std::unique_ptr<GpuScene> gpuScene;
     std::vector<glm::uvec2> gpuSceneInstances;  // (mesh, object id) of each instance it was made for
     size_t gpuSceneMeshes = 0;
@@ -413,7 +414,15 @@ EngineFrameTimes EngineHybridMotionBlur::prepare(float frameTime) {
   for (const scene::Instance& instance : scene_.instances) instances.emplace_back(instance.mesh, instance.objectId);
   if (!slot.gpuScene || instances != slot.gpuSceneInstances || scene_.meshes.size() != slot.gpuSceneMeshes) {
     slot.gpuScene.reset();  // the old one goes first: the two never take memory at once
-    slot.gpuScene = std::make_unique<GpuScene>(context_, scene_);
+    // Another set's scene of the same instances and meshes lends its vertices, materials and
+    // textures (a deforming scene's vertices are each frame's own).
+    const Passes::Slot* lender = nullptr;
+    for (const std::unique_ptr<Passes::Slot>& other : passes_->slots)
+      if (other->gpuScene && !other->gpuScene->deforms() && other->gpuSceneInstances == instances &&
+          other->gpuSceneMeshes == scene_.meshes.size())
+        lender = other.get();
+    slot.gpuScene = lender ? std::make_unique<GpuScene>(context_, *lender->gpuScene)
+                           : std::make_unique<GpuScene>(context_, scene_);
     slot.gpuSceneInstances = std::move(instances);
     slot.gpuSceneMeshes = scene_.meshes.size();
   }
