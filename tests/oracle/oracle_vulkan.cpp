@@ -6,6 +6,7 @@
 #include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "runtime/vulkan/check.h"
+#include "tests/support/image_2d.h"
 
 namespace hmb::oracle {
 namespace {
@@ -45,17 +46,7 @@ Attachment createAttachment(const vk::Context& context, uint32_t width, uint32_t
                             VkImageUsageFlags usage, VkImageAspectFlags aspect) {
   const VkDevice device = context.device();
   Attachment a;
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = format;
-  info.extent = {width, height, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  const VkImageCreateInfo info = test::image2DInfo(width, height, format, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   try {
     HMB_VK_CHECK(vkCreateImage(device, &info, nullptr, &a.image));
     VkMemoryRequirements req{};

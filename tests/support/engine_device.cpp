@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/image_2d.h"
+
 namespace hmb::test {
 
 Engine::OwnBuffer Engine::makeBuffer(VkDeviceSize size, std::span<const std::byte> bytes) {
@@ -81,16 +83,8 @@ Engine::OwnImage Engine::makeImage(uint32_t width, uint32_t height, VkFormat for
   o.width = width;
   o.height = height;
   o.texelBytes = texelBytes;
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = format;
-  info.extent = {width, height, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = usage | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  const VkImageCreateInfo info =
+      image2DInfo(width, height, format, usage | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   EXPECT_EQ(vkCreateImage(device, &info, nullptr, &o.image), VK_SUCCESS);
   VkMemoryRequirements needs{};
   vkGetImageMemoryRequirements(device, o.image, &needs);
