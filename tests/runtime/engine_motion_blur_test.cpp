@@ -443,23 +443,39 @@ struct ImageFrame {
 };
 constexpr float kNear = 0.05f, kFar = 200.0f;
 
-ImageFrame imageFrame(Engine& engine, const Frames& f, bool engineFormats) {
+// Which formats the G-buffer's images take: 32-bit ones; RGBA16F colour, RG16F velocity in NDC
+// and octahedral RG16 SNORM normals; or B10G11R11 colour, RG16F velocity in pixels and
+// A2B10G10R10 UNORM normals (xyz biased).
+enum class ImageFormats { Full, Engine, Packed };
+
+ImageFrame imageFrame(Engine& engine, const Frames& f, ImageFormats formats) {
+  const bool engineFormats = formats != ImageFormats::Full;
   ImageFrame r;
   r.decoded = f;
   const size_t n = f.color.size();
   constexpr VkImageUsageFlags kSampled = VK_IMAGE_USAGE_SAMPLED_BIT;
   constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  // Colour: RGBA16F or RGBA32F.
-  std::vector<uint16_t> halfColor(4 * n);
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 4; ++c) {
-      halfColor[4 * i + c] = glm::packHalf1x16(f.color[i][c]);
-      if (engineFormats) r.decoded.color[i][c] = glm::unpackHalf1x16(halfColor[4 * i + c]);
+  // Colour: RGBA32F, RGBA16F or B10G11R11.
+  if (formats == ImageFormats::Packed) {
+    std::vector<uint32_t> packed(n);
+    for (size_t i = 0; i < n; ++i) {
+      packed[i] = glm::packF2x11_1x10(glm::max(glm::vec3(f.color[i]), glm::vec3(0.0f)));
+      r.decoded.color[i] = glm::vec4(glm::unpackF2x11_1x10(packed[i]), f.color[i].a);
     }
-  r.images.push_back(engineFormats ? engine.makeImage(kWidth, kHeight, VK_FORMAT_R16G16B16A16_SFLOAT, 8, kSampled,
-                                                      bytesOf(halfColor), kRead)
-                                   : engine.makeImage(kWidth, kHeight, VK_FORMAT_R32G32B32A32_SFLOAT, 16, kSampled,
-                                                      bytesOf(f.color), kRead));
+    r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_B10G11R11_UFLOAT_PACK32, 4, kSampled,
+                                        bytesOf(packed), kRead));
+  } else {
+    std::vector<uint16_t> halfColor(4 * n);
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 4; ++c) {
+        halfColor[4 * i + c] = glm::packHalf1x16(f.color[i][c]);
+        if (engineFormats) r.decoded.color[i][c] = glm::unpackHalf1x16(halfColor[4 * i + c]);
+      }
+    r.images.push_back(engineFormats ? engine.makeImage(kWidth, kHeight, VK_FORMAT_R16G16B16A16_SFLOAT, 8, kSampled,
+                                                        bytesOf(halfColor), kRead)
+                                     : engine.makeImage(kWidth, kHeight, VK_FORMAT_R32G32B32A32_SFLOAT, 16, kSampled,
+                                                        bytesOf(f.color), kRead));
+  }
   // Depth: D32 holding standard z/w (the far plane where the renderer's is background).
   r.depthValues.resize(n);
   for (size_t i = 0; i < n; ++i) {
@@ -469,8 +485,16 @@ ImageFrame imageFrame(Engine& engine, const Frames& f, bool engineFormats) {
   r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_D32_SFLOAT, 4,
                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                       bytesOf(r.depthValues), VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL));
-  // Velocity: RG16F in NDC, or RG32F in pixels.
-  if (engineFormats) {
+  // Velocity: RG16F in NDC or in pixels, or RG32F in pixels.
+  if (formats == ImageFormats::Packed) {
+    std::vector<uint16_t> pixels(2 * n);
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 2; ++c) {
+        pixels[2 * i + c] = glm::packHalf1x16(f.velocity[i][c]);
+        r.decoded.velocity[i][c] = glm::unpackHalf1x16(pixels[2 * i + c]);
+      }
+    r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_R16G16_SFLOAT, 4, kSampled, bytesOf(pixels), kRead));
+  } else if (engineFormats) {
     std::vector<uint16_t> ndc(2 * n);
     for (size_t i = 0; i < n; ++i) {
       const glm::vec2 size(kWidth, kHeight);
@@ -483,8 +507,17 @@ ImageFrame imageFrame(Engine& engine, const Frames& f, bool engineFormats) {
   } else {
     r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_R32G32_SFLOAT, 8, kSampled, bytesOf(f.velocity), kRead));
   }
-  // Normal: octahedral RG16 SNORM, or xyz in RGBA32F.
-  if (engineFormats) {
+  // Normal: xyz biased in A2B10G10R10 UNORM, octahedral RG16 SNORM, or xyz in RGBA32F.
+  if (formats == ImageFormats::Packed) {
+    std::vector<uint32_t> packed(n);
+    for (size_t i = 0; i < n; ++i) {
+      packed[i] = glm::packUnorm3x10_1x2(glm::vec4(glm::vec3(f.normal[i]) * 0.5f + 0.5f, 1.0f));
+      for (int c = 0; c < 3; ++c)
+        r.decoded.normal[i][c] = float((packed[i] >> (10 * c)) & 1023u) / 1023.0f * 2.0f - 1.0f;
+    }
+    r.images.push_back(engine.makeImage(kWidth, kHeight, VK_FORMAT_A2B10G10R10_UNORM_PACK32, 4, kSampled,
+                                        bytesOf(packed), kRead));
+  } else if (engineFormats) {
     std::vector<int16_t> octahedral(2 * n);
     for (size_t i = 0; i < n; ++i) {
       const glm::vec3 normal(f.normal[i]);
@@ -509,9 +542,11 @@ ImageFrame imageFrame(Engine& engine, const Frames& f, bool engineFormats) {
   r.gbuffer.normal = view(3, kRead);
   r.gbuffer.objectId = view(4, kRead);
   r.output = view(5, VK_IMAGE_LAYOUT_GENERAL);
-  if (engineFormats) {
+  if (formats == ImageFormats::Engine) {
     r.gbuffer.velocityUnits = EngineGBufferImages::VelocityUnits::Ndc;
     r.gbuffer.normalEncoding = EngineGBufferImages::NormalEncoding::Octahedral;
+  } else if (formats == ImageFormats::Packed) {
+    r.gbuffer.normalEncoding = EngineGBufferImages::NormalEncoding::XyzUnorm;
   }
   return r;
 }
@@ -550,21 +585,23 @@ size_t differingPixels(const std::vector<glm::vec4>& images, const std::vector<g
 }
 
 // The engine's own images, read in place: in full-precision formats the images path blurs as
-// the buffers path does, bit for bit; in the formats engines draw (RGBA16F colour and output,
-// D32 depth as z/w, RG16F velocity in NDC, octahedral RG16 SNORM normals, R32UI ids) it blurs
-// the values they hold (the host's decoding, given to the buffers path) to the output's
-// rounding; post-process and hybrid alike, under validation, recording without a wait.
+// the buffers path does, bit for bit; in the formats engines draw (RGBA16F or B10G11R11 colour,
+// RGBA16F output, D32 depth as z/w, RG16F velocity in NDC or pixels, octahedral RG16 SNORM or
+// biased A2B10G10R10 normals, R32UI ids) it blurs the values they hold (the host's decoding,
+// given to the buffers path) to the output's rounding; post-process and hybrid alike, under
+// validation, recording without a wait.
 TEST(EngineMotionBlurTest, TheEnginesImagesBlurAsTheValuesTheyHold) {
   const scene::Scene scene = scene::loadScene("living-room");
   const Frames f = renderedFrames(scene, Method::Hybrid);
   ASSERT_TRUE(f.hybrid);
   const EngineDepth depth{EngineDepth::Convention::StandardZ, kNear, kFar};
-  for (const bool engineFormats : {false, true}) {
-    SCOPED_TRACE(engineFormats ? "the engine's formats" : "full precision");
+  for (const ImageFormats formats : {ImageFormats::Full, ImageFormats::Engine, ImageFormats::Packed}) {
+    const bool engineFormats = formats != ImageFormats::Full;
+    SCOPED_TRACE(formats == ImageFormats::Full ? "full precision" : formats == ImageFormats::Engine ? "RGBA16F, NDC, octahedral" : "B10G11R11, A2B10G10R10");
     Engine engine(/*enableFeatures=*/true);
     {
       vk::Context context(engine.adopted(), countingOptions());
-      ImageFrame frame = imageFrame(engine, f, engineFormats);
+      ImageFrame frame = imageFrame(engine, f, formats);
       std::vector<Engine::OwnBuffer> buffers = engineBuffers(engine, frame.decoded);
       engine.destroy(buffers[1]);
       buffers[1] = engine.makeBuffer(frame.depthValues.size() * sizeof(float), bytesOf(frame.depthValues));
