@@ -41,6 +41,12 @@ TEST(PackageTest, AProjectOutsideTheTreeBuildsAgainstTheInstalledPackage) {
     EXPECT_TRUE(fs::exists(publicHeaders / relative)) << entry.path() << " is not the API's";
   }
   EXPECT_EQ(installed, size_t(std::distance(fs::directory_iterator(publicHeaders), fs::directory_iterator())));
+  // Every function an installed header declares links against an installed library (or is the
+  // header's own inline one).
+  const CliRun symbols = runProgram("sh", quoted(fs::path(HMB_CONSUMER_DIR) / "../installed_symbols.sh") + " " +
+                                              quoted(prefix) + " " + quoted(dir / "symbols"));
+  ASSERT_EQ(symbols.exitCode, 0) << symbols.output;
+  EXPECT_EQ(symbols.output, "") << "declared by the installed headers, defined by no installed library";
   // The library needs Vulkan and what the renderer truly uses: not the command line's parser,
   // nor the image files' and captions' libraries.
   for (const char* file : {"lib/cmake/hmblur/hmblurConfig.cmake", "lib/cmake/hmblur/hmblurTargets.cmake",
