@@ -12,7 +12,6 @@
 #include <iostream>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -21,6 +20,7 @@
 #include "hmblur/device_profile.h"
 #include "hmblur/error.h"
 #include "hmblur/load_scene.h"
+#include "hmblur/setting.h"
 #include "hmblur/renderer.h"
 #include "hmblur/report.h"
 #include "hmblur/system_info.h"
@@ -38,13 +38,6 @@
 namespace fs = std::filesystem;
 
 namespace {
-
-// A number as a user writes it: 24, 0.5, 1e-05.
-std::string shortNumber(float value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kValidationFailed = 3 };
 
@@ -752,15 +745,17 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--height", renderOptions.settings.height, "Image height in pixels")->capture_default_str();
   renderCmd->add_option("--frame-time", renderOptions.settings.frameTime,
                         "Time of the frame in seconds (shutter closes then); default: the scene's");
+  using hmb::settings::formatNumber;
+  using hmb::scene::kGltfFps, hmb::scene::kGltfShutterAngleDegrees;
   renderCmd->add_option("--fps", renderOptions.shutter.fps,
                         "Frame rate: the previous frame, whose positions give the post-process methods their "
                         "velocities, is 1/fps before; default: the scene's (a glTF file: " +
-                            shortNumber(hmb::scene::kGltfFps) + ")");
+                            formatNumber(kGltfFps) + ")");
   renderCmd->add_option("--exposure", renderOptions.shutter.exposureSeconds,
                         "Shutter open time in seconds, ending at the frame time: the span every method blurs "
-                        "over; default: the scene's (a glTF file: a " + shortNumber(hmb::scene::kGltfShutterAngleDegrees) +
-                            "-degree shutter, 1/" +
-                            shortNumber(hmb::scene::kGltfFps * 360.0f / hmb::scene::kGltfShutterAngleDegrees) + " s)")
+                        "over; default: the scene's (a glTF file: a " +
+                            formatNumber(kGltfShutterAngleDegrees) + "-degree shutter, 1/" +
+                            formatNumber(kGltfFps * 360.0f / kGltfShutterAngleDegrees) + " s)")
       ->type_name("SECONDS");
   renderCmd->add_option("--shutter-angle", renderOptions.shutter.shutterAngleDegrees,
                         "The exposure as a shutter angle: 360 degrees is the whole frame interval (1/fps)")
