@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -164,10 +165,8 @@ class EngineImageIo {
   static void check(const EngineGBufferImages& g, bool surfaces, const EngineImage& output) {
     checkImage(g.color, "color", FormatKind::Float, "a float, UNORM or SNORM format", false);
     // A depth attachment's depth view, or a float target holding (camera-space) depth.
-    if (formatKind(g.depth.format) != FormatKind::Float)
-      checkImage(g.depth, "depth", FormatKind::Depth, "a depth format or a float format", false);
-    else
-      checkImage(g.depth, "depth", FormatKind::Float, "a depth format or a float format", false);
+    const FormatKind depthKind = formatKind(g.depth.format) == FormatKind::Float ? FormatKind::Float : FormatKind::Depth;
+    checkImage(g.depth, "depth", depthKind, "a depth format or a float format", false);
     checkImage(g.velocity, "velocity", FormatKind::Float, "a float format", false);
     if (surfaces) {
       checkImage(g.normal, "normal", FormatKind::Float, "a float, UNORM or SNORM format", false);
@@ -375,6 +374,19 @@ struct EngineHybridMotionBlur::Passes {
     vk::FrameRecorder recorder;  // the engine's command buffer
     FramePlan plan;              // the last prepare()'s
     EngineImageIo images;
+
+    // The prepared frame into the engine's command buffer: its inputs, the G-buffer packed by
+    // `pack`, the frame's deformation, the hybrid's passes into `colour`, then `finish`.
+    void record(VkCommandBuffer commandBuffer, const std::function<void(vk::FrameRecorder&)>& pack,
+                const vk::Buffer& colour, const std::function<void(vk::FrameRecorder&)>& finish) {
+      recorder.beginInto(commandBuffer);
+      gpuScene->recordFrameInputs(frameInputs, recorder);
+      pack(recorder);
+      if (gpuScene->deforms()) gpuScene->recordFrameDeformation(recorder);  // what the reveal shades
+      hybrid.record(recorder, plan, layer, *gpuScene, colour);
+      if (finish) finish(recorder);
+      recorder.endInto();
+    }
   };
   std::vector<std::unique_ptr<Slot>> slots;
   size_t next = 0;      // the slot the next prepare() plans
@@ -449,13 +461,12 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
   const vk::Buffer blurred =
       vk::Buffer::adopt(context_, output, uint64_t(width_) * height_ * sizeof(glm::vec4), "engine output");
   Passes::Slot& slot = passes_->preparedSlot();
-  vk::FrameRecorder& frame = slot.recorder;
-  frame.beginInto(commandBuffer);
-  slot.gpuScene->recordFrameInputs(slot.frameInputs, frame);
-  recordPack(frame, context_, *slot.pack, gbuffer, width_, height_, depth_, slot.layer);
-  if (slot.gpuScene->deforms()) slot.gpuScene->recordFrameDeformation(frame);  // what the reveal shades
-  slot.hybrid.record(frame, slot.plan, slot.layer, *slot.gpuScene, blurred);
-  frame.endInto();
+  slot.record(
+      commandBuffer,
+      [&](vk::FrameRecorder& frame) {
+        recordPack(frame, context_, *slot.pack, gbuffer, width_, height_, depth_, slot.layer);
+      },
+      blurred, {});
   recorded();
 }
 
@@ -467,15 +478,11 @@ void EngineHybridMotionBlur::record(VkCommandBuffer commandBuffer, const EngineG
   EngineImageIo::check(gbuffer, true, output);
   Passes::Slot& slot = passes_->preparedSlot();
   EngineImageIo& images = slot.images;
-  const vk::Buffer& colour = images.colour(width_, height_);
-  vk::FrameRecorder& frame = slot.recorder;
-  frame.beginInto(commandBuffer);
-  slot.gpuScene->recordFrameInputs(slot.frameInputs, frame);
-  images.recordPack(frame, gbuffer, true, width_, height_, depth_, slot.layer);
-  if (slot.gpuScene->deforms()) slot.gpuScene->recordFrameDeformation(frame);  // what the reveal shades
-  slot.hybrid.record(frame, slot.plan, slot.layer, *slot.gpuScene, colour);
-  images.recordOutput(frame, output, width_, height_);
-  frame.endInto();
+  slot.record(
+      commandBuffer,
+      [&](vk::FrameRecorder& frame) { images.recordPack(frame, gbuffer, true, width_, height_, depth_, slot.layer); },
+      images.colour(width_, height_),
+      [&](vk::FrameRecorder& frame) { images.recordOutput(frame, output, width_, height_); });
   recorded();
 }
 
