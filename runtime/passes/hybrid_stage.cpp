@@ -17,6 +17,14 @@ namespace hmb::passes {
 
 namespace {
 
+// Whether `plan` (the stage's own for the frame) takes the shared mesh trees: it skipped their
+// build as shared, so prepare() need not fingerprint the scene's meshes a second time.
+bool planSharesMeshTrees(const FramePlan& plan) {
+  for (const PlannedPass& pass : plan.passes())
+    if (pass.name == HybridStage::kBvhMeshes) return !pass.run && pass.reason == kSharedMeshTreesReason;
+  return false;
+}
+
 // Why a frame traces no shutter rays; empty when it does.
 std::string shutterRaysSkipped(const scene::Scene& scene, const HybridSettings& settings) {
   if (settings.shutterRays == 0) return kShutterRaysOffReason;
@@ -219,7 +227,8 @@ HybridStage::PrepareTimings HybridStage::prepare(vk::FrameRecorder& frame, const
   PrepareTimings timings;
   // plan() decided what the last frame's trees still serve; only the others are built.
   const vk::FrameRecorder::ShapeMark meshesStart = frame.mark();
-  if (takesSharedTrees(scene)) {
+  if (planSharesMeshTrees(plan)) {
+    if (!sharedTrees_ || !sharedTrees_->trees) throw Error("hybrid: the plan shares mesh trees this stage was not given");
     if (!traceScene_ || traceScene_->meshTrees() != sharedTrees_->trees) {
       traceScene_.reset();
       traceScene_ = std::make_unique<TraceScene>(context_, sharedTrees_->trees);
