@@ -167,14 +167,14 @@ double TraceScene::prepareRefit(const scene::Scene& scene, vk::FrameRecorder& se
     deformedBoxes_ = vk::Buffer(context_, uint64_t(meshes_->triangleCount) * sizeof(gpu::BvhBox), vk::MemoryUse::Device,
                                 "deformed triangle boxes");
   // Only the deforming meshes' trees: a static mesh keeps its triangles and its bounds.
-  deformedMeshes_.clear();
-  for (const scene::Instance& instance : scene.instances)
-    if (instance.deforms()) deformedMeshes_.push_back({instance.mesh, meshes_->firstTriangle.at(instance.mesh), 0u});
-  for (glm::uvec3& mesh : deformedMeshes_) mesh.z = scene.meshes.at(mesh.x).triangleCount();
-  std::sort(deformedMeshes_.begin(), deformedMeshes_.end(), [](glm::uvec3 a, glm::uvec3 b) { return a.x < b.x; });
-  deformedMeshes_.erase(std::unique(deformedMeshes_.begin(), deformedMeshes_.end()), deformedMeshes_.end());
   std::vector<uint32_t> trees;
-  for (const glm::uvec3 mesh : deformedMeshes_) trees.push_back(mesh.x);
+  for (const scene::Instance& instance : scene.instances)
+    if (instance.deforms()) trees.push_back(instance.mesh);
+  std::sort(trees.begin(), trees.end());
+  trees.erase(std::unique(trees.begin(), trees.end()), trees.end());
+  deformedMeshes_.clear();
+  for (const uint32_t mesh : trees)
+    deformedMeshes_.emplace_back(mesh, meshes_->firstTriangle.at(mesh), scene.meshes.at(mesh).triangleCount());
   return meshes_->bvh.prepareRefit(setup, trees);
 }
 
