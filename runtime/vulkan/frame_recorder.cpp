@@ -93,15 +93,11 @@ void FrameRecorder::begin() {
   beginInfo.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   HMB_VK_CHECK(vkBeginCommandBuffer(ownCommandBuffer_, &beginInfo));
   startFrame(ownCommandBuffer_, false);
-  writeStamp(0);
 }
 
 void FrameRecorder::beginInto(VkCommandBuffer commandBuffer) {
   if (!commandBuffer) throw Error("beginInto() a VK_NULL_HANDLE command buffer");
   startFrame(commandBuffer, true);
-  // The frame starts once the engine's earlier commands have finished (a bottom-of-pipe stamp),
-  // so the first pass is not charged for the engine's draws.
-  writeStamp(0);
   // What the command buffer's earlier commands (and earlier submissions on the queue) wrote,
   // the first pass reads.
   recordBarrier(VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, kPassStages,
@@ -116,6 +112,9 @@ void FrameRecorder::startFrame(VkCommandBuffer commandBuffer, bool external) {
   if (queryPool_) vkCmdResetQueryPool(commandBuffer_, queryPool_, 0, maxPasses_ + 1);
   passNames_.clear();
   recording_ = true;
+  // The frame starts once the command buffer's earlier commands (an engine's draws) have
+  // finished: a bottom-of-pipe stamp, ahead of the first pass's barrier.
+  writeStamp(0);
 }
 
 void FrameRecorder::endInto() {
