@@ -121,6 +121,7 @@ inline constexpr KernelFacts kManifest[] = {
     {"reference/accumulate_sample", kShades | kAddressBuild, HMB_REFERENCE_BINDING_COUNT,
      sizeof(gpu::ReferenceSampleParams), kTracedSceneTexels},
     {"reference/average_samples", kPlain, HMB_AVERAGE_BINDING_COUNT, sizeof(gpu::AverageParams), 0},
+    {"reference/fold_sums", kPlain, HMB_FOLD_SUMS_BINDING_COUNT, sizeof(gpu::FoldSumsParams), 0},
     {"reference/find_moving_pixels", kPlain, HMB_MOVING_PIXELS_BINDING_COUNT, sizeof(gpu::MovingPixelsParams), 0},
     {"reveal/composite", kPlain, HMB_COMPOSITE_BINDING_COUNT, sizeof(gpu::GatherParams), 6},
     {"reveal/gather_background", kAddressBuild, HMB_BACKGROUND_GATHER_BINDING_COUNT, sizeof(gpu::GatherParams), 6},

@@ -10,6 +10,14 @@
 
 namespace hmb::passes {
 
+// One of `count` runs of consecutive samples (passes/reference_sum_tree.h's shardSamples),
+// 0-based: shards rendered apart merge to the whole render's image bit for bit.
+struct ReferenceShard {
+  uint32_t index = 0;
+  uint32_t count = 1;
+  bool operator==(const ReferenceShard&) const = default;
+};
+
 struct ReferenceSettings {
   uint32_t samplesPerPixel = 256;
   uint32_t seed = 1;
@@ -17,6 +25,9 @@ struct ReferenceSettings {
   uint32_t timesPerBatch = 64;    // shutter times whose transforms are on the device at once
   bool sampleStillPixelsOnce = true;  // with a still camera: pixels nothing moving crosses take one sample
   std::filesystem::path checkpoint;  // empty: none; else resumed from when it matches, rewritten every timesPerBatch samples
+  // The samples to take; with more than one shard the sums are kept in `checkpoint` (the part a
+  // merge reads), and the image is the mean of the shard's samples alone.
+  ReferenceShard shard;
 };
 
 // Every reference setting a user can choose, each described once (include/hmblur/setting.h). None

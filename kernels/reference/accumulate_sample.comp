@@ -2,7 +2,9 @@
 // One time sample of every pixel of the reference: the camera ray at the sample's shutter
 // time, traced against the scene at that time (instances carried by their transforms at that
 // time, so any motion is exact), shaded by the shading function every method shares, and
-// added to the pixel's sum. One dispatch per sample: each invocation owns its pixel's sum.
+// added into the pixel's sum tree (runtime/passes/reference_sum_tree.h): the held nodes it
+// completes are added before it, left to right, and the new node is written to its slot. One
+// dispatch per sample: each invocation owns its pixel's sums.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
 #include "reference_layout.h"
@@ -14,7 +16,7 @@
 layout(local_size_x = HMB_REFERENCE_GROUP_X, local_size_y = HMB_REFERENCE_GROUP_Y) in;
 
 layout(std430, binding = HMB_REFERENCE_BINDING_CAMERAS) readonly buffer Cameras { PinholeCamera cameras[]; };
-layout(std430, binding = HMB_REFERENCE_BINDING_SUM) buffer Sum { vec4 sum[]; };
+layout(std430, binding = HMB_REFERENCE_BINDING_SUMS) buffer Sums { vec4 sums[]; };
 layout(std430, binding = HMB_REFERENCE_BINDING_PIXELS) readonly buffer Pixels { uint pixelList[]; };
 #define HMB_SCENE_BINDING HMB_REFERENCE_BINDING_SCENE
 #include "../shared/scene_bindings.glsl"
@@ -53,5 +55,8 @@ void main() {
   const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES);
   const vec3 color = cameraRayColor(cameras[params.time], vec2(pixel) + offset, params.width, params.height,
                                     params.tMin, params.tMax, params.time, scene);
-  sum[index] += vec4(color, 1.0);
+  const uint pixelCount = params.width * params.height;
+  vec4 node = vec4(color, 1.0);
+  for (uint level = 0u; level < params.foldLevels; ++level) node = sums[(params.foldSlot + level) * pixelCount + index] + node;
+  sums[params.targetSlot * pixelCount + index] = node;
 }

@@ -1,6 +1,7 @@
 // Layouts of the reference renderer (Cook et al. 1984 distributed ray tracing): for every
 // pixel, rays at stratified shutter times, each traced against the scene at its own time and
-// shaded by the shared shading function, summed per pixel and averaged at the end.
+// shaded by the shared shading function, summed per pixel in a fixed order (a tree of pairwise
+// sums, runtime/passes/reference_sum_tree.h) and averaged at the end.
 #ifndef HMB_KERNELS_REFERENCE_REFERENCE_LAYOUT_H
 #define HMB_KERNELS_REFERENCE_REFERENCE_LAYOUT_H
 
@@ -14,7 +15,7 @@
 
 // accumulate_sample
 #define HMB_REFERENCE_BINDING_CAMERAS 0  // PinholeCamera per shutter time of the batch
-#define HMB_REFERENCE_BINDING_SUM 1      // vec4 per pixel: sum of the shaded samples so far
+#define HMB_REFERENCE_BINDING_SUMS 1     // vec4 per pixel per slot: the sum tree's nodes (rgb sum, w count)
 #define HMB_REFERENCE_BINDING_PIXELS 2   // uint pixel index per entry: the pixels to sample (list mode)
 // The trace scene (trace/trace_scene_bindings.glsl), then the scene's shading buffers
 // (shared/scene_bindings.glsl).
@@ -36,8 +37,14 @@
 #define HMB_MOVING_PIXELS_BINDING_LIST 3     // uint pixel index per entry
 #define HMB_MOVING_PIXELS_BINDING_COUNT 4
 
+// fold_sums: adds slots of the sum tree two at a time, in the order a list gives
+#define HMB_FOLD_SUMS_GROUP 64
+#define HMB_FOLD_SUMS_BINDING_SUMS 0  // vec4 per pixel per slot
+#define HMB_FOLD_SUMS_BINDING_OPS 1   // uvec4 per addition: slot x = slot x + slot y
+#define HMB_FOLD_SUMS_BINDING_COUNT 2
+
 // average_samples
-#define HMB_AVERAGE_BINDING_SUM 0    // vec4 per pixel
+#define HMB_AVERAGE_BINDING_SUMS 0   // vec4 per pixel per slot
 #define HMB_AVERAGE_BINDING_COLOR 1  // vec4 per pixel: the mean, linear RGB, a = 1
 #define HMB_AVERAGE_BINDING_COUNT 2
 
@@ -59,7 +66,21 @@ struct ReferenceSampleParams {
   float tMin;        // the near plane's depth
   float tMax;        // the far plane's depth
   uint listLength;   // HMB_REFERENCE_PIXEL_LIST: entries in the pixel list
+  // The sample's place in the sum tree: the sums in slots foldSlot .. foldSlot + foldLevels - 1
+  // are added before it in turn (each the left neighbour of what it has so far), and the
+  // result goes to slot targetSlot.
+  uint foldSlot;
+  uint foldLevels;
+  uint targetSlot;
   uint pad0;
+  uint pad1;
+};
+
+struct FoldSumsParams {
+  uint pixelCount;
+  uint opCount;
+  uint pad0;
+  uint pad1;
 };
 
 struct MovingPixelsParams {
@@ -75,14 +96,15 @@ struct MovingPixelsParams {
 
 struct AverageParams {
   uint pixelCount;  // each pixel's sample count is its sum's w
-  uint pad0;
+  uint sumSlot;     // the slot holding the total
   uint pad1;
   uint pad2;
 };
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(ReferenceSampleParams, 48)
+HMB_CHECK_SIZE(ReferenceSampleParams, 64)
+HMB_CHECK_SIZE(FoldSumsParams, 16)
 HMB_CHECK_SIZE(AverageParams, 16)
 HMB_CHECK_SIZE(MovingPixelsParams, 32)
 

@@ -25,6 +25,7 @@
 #include "hmblur/report.h"
 #include "hmblur/system_info.h"
 #include "runtime/cli/compare_command.h"
+#include "runtime/cli/merge_command.h"
 #include "runtime/cli/output_paths.h"
 #include "runtime/device_scene/gpu_scene.h"
 #include "runtime/io/image_files.h"
@@ -63,6 +64,7 @@ struct RenderOptions {
   std::string errorImage;      // FLIP error map of that comparison (.png)
   hmb::scene::ShutterChoice shutter;
   uint32_t repeat = 1;         // timed frames after the warm-up one; the median is printed
+  bool shard = false;          // --shard: `out` is the part (and the shard's checkpoint)
 };
 
 struct DemoOptions {
@@ -381,6 +383,7 @@ hmb::RenderSettings warmUpSettings(hmb::RenderSettings settings) {
   settings.onProgress = nullptr;
   settings.reference.samplesPerPixel = 1;
   settings.reference.checkpoint.clear();
+  settings.reference.shard = {};
   return settings;
 }
 
@@ -453,6 +456,12 @@ void checkRenderArguments(const RenderOptions& options,
   hmb::RenderSettings settings = options.settings;
   settings.method = hmb::parseMethod(options.method);
   requireSettingsOfTheMethod(given, settings.method);
+  if (options.shard) {
+    if (!options.frames.empty() || !options.referenceImage.empty() || options.repeat != 1)
+      throw hmb::Error("--shard renders one part of one frame: --frames, --reference and --repeat do not apply");
+    if (hmb::cli::lowerExtension(options.out) != ".hmbpart")
+      throw hmb::Error("--shard writes a part for hmblur merge: --out names it (.hmbpart)");
+  }
   hmb::validateRenderSettings(settings);
   if (options.repeat == 0 || options.repeat > 1000) throw hmb::Error("--repeat must be 1 to 1000");
   hmb::scene::Settings shutterCheck;
@@ -476,7 +485,10 @@ int render(const GlobalOptions& global, RenderOptions options) {
   settings.skipUnneededPasses = !options.runEveryPass;
   if (!global.quiet) settings.onProgress = referenceProgressPrinter(settings.width, settings.height);
   if (options.out.empty()) options.out = defaultOutput(options.scene, options.method);
-  hmb::cli::prepareOutputFile(options.out, {".exr", ".png"}, "--out");
+  if (options.shard)
+    hmb::cli::prepareOutputFile(options.out, {".hmbpart"}, "--out");
+  else
+    hmb::cli::prepareOutputFile(options.out, {".exr", ".png"}, "--out");
   hmb::cli::prepareOutputFile(options.report, {".json"}, "--report");
   hmb::cli::prepareOutputFile(options.errorImage, {".png"}, "--error-image");
   if (!options.frames.empty()) return renderFrames(global, options, settings);
@@ -501,10 +513,10 @@ int render(const GlobalOptions& global, RenderOptions options) {
   warnStillFrame(global, scene, result.frameTime);
   warnCutTraces(global, result);
 
-  writeImage(options.out, result);
+  if (!options.shard) writeImage(options.out, result);  // a shard's part is its checkpoint, written as it went
   nlohmann::json report = hmb::renderReport(context, hmb::querySystemInfo(), scene, result);
   report["timing"] = timingJson(timed, settings.method);
-  report["image"] = options.out;
+  report[options.shard ? "part" : "image"] = options.out;
   if (referenceImage) {
     // The blur region is where the reference differs from the sharp frame of the same instant.
     hmb::RenderSettings sharpSettings = settings;
@@ -800,6 +812,8 @@ int main(int argc, char** argv) {
   CLI::App* listDevicesCmd = app.add_subcommand("list-devices", "List the Vulkan devices");
   hmb::cli::CompareOptions compareOptions;
   CLI::App* compareCmd = hmb::cli::addCompareCommand(app, compareOptions);
+  hmb::cli::MergeOptions mergeOptions;
+  CLI::App* mergeCmd = hmb::cli::addMergeCommand(app, mergeOptions);
 
   try {
     app.parse(argc, argv);
@@ -809,9 +823,19 @@ int main(int argc, char** argv) {
   }
 
   try {
-    for (const auto& [description, text] : methodSettings)
-      if (text) description.read(renderOptions.settings, *text);
+    for (const auto& [description, text] : methodSettings) {
+      if (!text) continue;
+      description.read(renderOptions.settings, *text);
+      if (description.name == "shard") renderOptions.shard = true;
+    }
+    if (renderOptions.shard) {
+      // The part is the shard's checkpoint: the same command again resumes it.
+      if (!renderOptions.settings.reference.checkpoint.empty())
+        throw hmb::Error("with --shard, --out is the shard's checkpoint: leave out --checkpoint");
+      renderOptions.settings.reference.checkpoint = renderOptions.out;
+    }
     if (*renderCmd) checkRenderArguments(renderOptions, methodSettings);
+    if (*mergeCmd) hmb::cli::checkMergeArguments(mergeOptions);
   } catch (const std::exception& e) {
     std::cerr << "hmblur: error: " << e.what() << '\n';
     return kUsage;
@@ -823,6 +847,12 @@ int main(int argc, char** argv) {
     if (*renderCmd) return render(global, renderOptions);
     if (*demoCmd) return demo(global, demoOptions);
     if (*compareCmd) return hmb::cli::runCompare(compareOptions);
+    if (*mergeCmd) {
+      hmb::vk::Context context(contextOptions(global));
+      progress(global, hmb::deviceProgressLine(context));
+      hmb::cli::runMerge(mergeOptions, context, global.quiet);
+      return validationVerdict(context);
+    }
   } catch (const std::exception& e) {
     std::cerr << "hmblur: error: " << e.what() << '\n';
     return kError;

@@ -15,11 +15,8 @@
 #include "runtime/vulkan/frame_recorder.h"
 
 namespace hmb {
-namespace {
 
-// FNV-1a over 32-bit words: what a mesh tree depends on (positions and triangles), so a
-// change to any of them gives another fingerprint.
-uint64_t fingerprintOf(const scene::Scene& scene) {
+uint64_t meshFingerprint(const scene::Scene& scene) {
   uint64_t hash = 0xcbf29ce484222325ull;
   const auto mix = [&](uint32_t word) { hash = (hash ^ word) * 0x100000001b3ull; };
   mix(static_cast<uint32_t>(scene.meshes.size()));
@@ -32,6 +29,8 @@ uint64_t fingerprintOf(const scene::Scene& scene) {
   }
   return hash;
 }
+
+namespace {
 
 // The instances and their transforms at each shutter time, as the top level is built from.
 void instancesAt(const scene::Scene& scene, std::span<const float> times, std::vector<gpu::TraceInstance>& instances,
@@ -111,7 +110,7 @@ TraceScene::MeshTrees::MeshTrees(const vk::Context& context, const scene::Scene&
   if (triangles.size() >= HMB_BVH_PACKED_INDEX_LIMIT / 2)
     throw Error("the scene has more triangles than a BVH can index");
   meshCount = static_cast<uint32_t>(scene.meshes.size());
-  fingerprint = fingerprintOf(scene);
+  fingerprint = meshFingerprint(scene);
   triangleCount = static_cast<uint32_t>(triangles.size());
   // The build's input alone: traversal reads leafTriangles (below).
   const vk::Buffer positionBuffer = vk::uploadedBuffer(context, positions, "trace positions");
@@ -146,7 +145,7 @@ TraceScene::MeshTrees::MeshTrees(const vk::Context& context, const scene::Scene&
   this->leafTriangles = vk::uploadedBuffer(context, leafTriangles, "trace triangles (leaf order)");
 }
 
-bool TraceScene::MeshTrees::serves(const scene::Scene& scene) const { return fingerprintOf(scene) == fingerprint; }
+bool TraceScene::MeshTrees::serves(const scene::Scene& scene) const { return meshFingerprint(scene) == fingerprint; }
 
 vk::FrameTimings TraceScene::followDeformation(const scene::Scene& scene, float t, GpuScene& gpuScene,
                                               vk::FrameRecorder& frame) {

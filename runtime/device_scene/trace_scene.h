@@ -40,6 +40,10 @@ class GpuScene;
 // rasterizer projects with, so a ray through a pixel centre meets what the raster sees there.
 gpu::PinholeCamera pinholeCamera(const scene::Scene& scene, float t, uint32_t width, uint32_t height);
 
+// FNV-1a over 32-bit words of what the meshes' trees depend on (positions and triangles), so a
+// change to any of them gives another fingerprint.
+uint64_t meshFingerprint(const scene::Scene& scene);
+
 class TraceScene {
  public:
   static constexpr const char* kTriangleBounds = "bvh-triangle-bounds";

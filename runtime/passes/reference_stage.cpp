@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <numeric>
 
@@ -12,6 +10,7 @@
 
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
+#include "hmblur/hit_shading.h"
 #include "kernels/manifest.h"
 #include "kernels/reference/reference_layout.h"
 #include "kernels/trace/trace_layout.h"
@@ -22,8 +21,6 @@
 
 namespace hmb::passes {
 namespace {
-
-constexpr char kCheckpointMagic[8] = {'H', 'M', 'B', 'R', 'E', 'F', '1', '\0'};
 
 // SplitMix64: the per-stratum jitter from the seed (host side, shared by all pixels).
 uint64_t splitMix64(uint64_t x) {
@@ -84,61 +81,90 @@ std::vector<glm::vec4> sweptBoxesOfMovingInstances(const scene::Scene& scene, st
 }
 
 
-// What a checkpoint must match to be resumed: the scene, the image and every setting that
-// changes which samples are taken.
+// What a checkpoint must match to be resumed, and parts to be merged: the scene, the image and
+// every setting that changes which samples are taken or what they see.
 nlohmann::json checkpointIdentity(const scene::Scene& scene, float frameTime, uint32_t width, uint32_t height,
-                                  const ReferenceSettings& settings) {
+                                  const ReferenceSettings& settings, const HitShading* hits) {
+  std::string shading = "the library's";
+  if (hits && hits->custom()) {
+    uint64_t hash = 0xcbf29ce484222325ull;
+    for (const std::string* text : {&hits->shadeHit(), &hits->shadeMiss()}) {
+      for (const char c : *text) hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+      hash *= 0x100000001b3ull;  // the end of a text: "ab" + "" differs from "a" + "b"
+    }
+    shading = "a user's, text hash " + std::to_string(hash);
+  }
   return {{"scene", scene.name},
           {"triangles", scene.triangleCount()},
           {"instances", scene.instances.size()},
+          {"meshes_fingerprint", meshFingerprint(scene)},
           {"width", width},
           {"height", height},
           {"frame_time", frameTime},
           {"exposure", scene.settings.exposure},
           {"spp", settings.samplesPerPixel},
           {"seed", settings.seed},
-          {"pixel_jitter", settings.pixelJitter}};
+          {"pixel_jitter", settings.pixelJitter},
+          {"sample_still_pixels_once", settings.sampleStillPixelsOnce},
+          {"shading", shading}};
 }
 
-// Reads the samples done and the per-pixel sums; 0 when there is no file yet.
-uint32_t readCheckpoint(const std::filesystem::path& path, const nlohmann::json& identity,
-                        std::vector<glm::vec4>& sums) {
-  if (!std::filesystem::exists(path)) return 0;
-  std::ifstream in(path, std::ios::binary);
-  char magic[8] = {};
-  uint64_t headerBytes = 0;
-  in.read(magic, sizeof(magic));
-  in.read(reinterpret_cast<char*>(&headerBytes), sizeof(headerBytes));
-  if (!in || std::memcmp(magic, kCheckpointMagic, sizeof(magic)) != 0 || headerBytes > (1u << 20))
-    throw Error("checkpoint '" + path.string() + "' is not a reference checkpoint");
-  std::string text(headerBytes, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(headerBytes));
-  const nlohmann::json header = nlohmann::json::parse(text, nullptr, false);
-  if (!in || header.is_discarded() || !header.contains("identity") || !header.contains("samples_done"))
-    throw Error("checkpoint '" + path.string() + "' is damaged");
-  if (header["identity"] != identity)
-    throw Error("checkpoint '" + path.string() + "' was made for other settings (" + header["identity"].dump() +
+// The partial's header for a shard's tree as it stands.
+ReferencePartial partialOf(const nlohmann::json& identity, const ReferenceSettings& settings, SampleRange shard,
+                           uint64_t pixels, const ShardSumTree& tree) {
+  ReferencePartial header;
+  header.identity = identity;
+  header.version = referencePartialVersion();
+  header.samples = settings.samplesPerPixel;
+  header.shardIndex = settings.shard.index;
+  header.shardCount = settings.shard.count;
+  header.shard = shard;
+  header.samplesDone = tree.samplesDone();
+  header.pixels = pixels;
+  for (const ShardSumTree::Held& held : tree.held()) header.nodes.push_back(held.node);
+  return header;
+}
+
+// Resumes `tree` from the checkpoint, when there is one: its held nodes' sums go to their slots.
+void resumeFromCheckpoint(const std::filesystem::path& path, const ReferencePartial& expected, ShardSumTree& tree,
+                          vk::Buffer& sums) {
+  if (!std::filesystem::exists(path)) return;
+  const ReferencePartial saved = readReferencePartial(path);
+  const std::string name = "checkpoint '" + path.string() + "'";
+  if (saved.identity != expected.identity)
+    throw Error(name + " was made for other settings (" + saved.identity.dump() +
                 "); remove it or pass another --checkpoint");
-  in.read(reinterpret_cast<char*>(sums.data()), static_cast<std::streamsize>(sums.size() * sizeof(glm::vec4)));
-  if (!in) throw Error("checkpoint '" + path.string() + "' is truncated");
-  return header["samples_done"].get<uint32_t>();
+  if (saved.shardIndex != expected.shardIndex || saved.shardCount != expected.shardCount)
+    throw Error(name + " holds shard " + saved.shardText() + ", not " + expected.shardText());
+  if (saved.version != expected.version)
+    throw Error(name + " was written by " + saved.version + ", this is " + expected.version + ": render it again");
+  while (tree.samplesDone() < saved.samplesDone) tree.add();
+  const std::vector<ShardSumTree::Held> held = tree.held();
+  bool same = held.size() == saved.nodes.size();
+  for (size_t i = 0; same && i < held.size(); ++i) same = held[i].node == saved.nodes[i];
+  if (!same) throw Error(name + " is damaged: its nodes are not those of " + std::to_string(saved.samplesDone) + " samples");
+  std::vector<glm::vec4> data(saved.pixels);
+  for (size_t i = 0; i < held.size(); ++i) {
+    readReferencePartialNode(path, saved, i, data);
+    sums.write(std::as_bytes(std::span<const glm::vec4>(data)), held[i].slot * saved.pixels * sizeof(glm::vec4));
+  }
 }
 
-// Written beside the target and renamed over it, so an interrupted write never loses the last one.
-void writeCheckpoint(const std::filesystem::path& path, const nlohmann::json& identity, uint32_t samplesDone,
-                     const std::vector<glm::vec4>& sums) {
-  const std::string header = nlohmann::json{{"identity", identity}, {"samples_done", samplesDone}}.dump();
-  const uint64_t headerBytes = header.size();
-  const std::filesystem::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    out.write(kCheckpointMagic, sizeof(kCheckpointMagic));
-    out.write(reinterpret_cast<const char*>(&headerBytes), sizeof(headerBytes));
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    out.write(reinterpret_cast<const char*>(sums.data()), static_cast<std::streamsize>(sums.size() * sizeof(glm::vec4)));
-    if (!out) throw Error("cannot write checkpoint '" + partial.string() + "'");
-  }
-  std::filesystem::rename(partial, path);
+void writeCheckpoint(const std::filesystem::path& path, const ReferencePartial& header,
+                     const std::vector<ShardSumTree::Held>& held, const vk::Buffer& sums) {
+  writeReferencePartial(path, header, [&](size_t i) {
+    std::vector<glm::vec4> data(header.pixels);
+    sums.read(std::as_writable_bytes(std::span<glm::vec4>(data)), held[i].slot * header.pixels * sizeof(glm::vec4));
+    return data;
+  });
+}
+
+// The fold at the end of a shard's render: its held nodes, all in slots, added in the tree's order.
+FoldProgram foldOfFinishedShard(const ReferenceSettings& settings) {
+  const SampleRange shard = shardSamples(settings.samplesPerPixel, settings.shard.index, settings.shard.count);
+  ShardSumTree tree(settings.samplesPerPixel, shard);
+  while (!tree.finished()) tree.add();
+  return foldProgram(settings.samplesPerPixel, tree.held(), {}, tree.slotCount());
 }
 
 }  // namespace
@@ -160,7 +186,8 @@ ReferenceStage::ReferenceStage(const vk::Context& context, const HitShading* hit
       findMovingPixels_(context, kernels::kernel("reference/find_moving_pixels")),
       accumulate_(context, kernels::kernel("reference/accumulate_sample"), ShadingKernel::Rays::Traced,
                   hits),
-      average_(context, kernels::kernel("reference/average_samples")) {}
+      fold_(context),
+      hits_(hits) {}
 
 ReferenceStage::~ReferenceStage() = default;
 
@@ -234,6 +261,11 @@ void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float fram
   else
     plan.run(kMovingPixels);
   plan.run(kAccumulate);
+  if (foldOfFinishedShard(settings).steps.empty())
+    plan.skip(kFold, settings.shard.count > 1 ? "the shard's samples are one node of the sum tree"
+                                              : "one sample per pixel: nothing to add up");
+  else
+    plan.run(kFold);
   plan.run(kAverage);
 }
 
@@ -244,20 +276,26 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
                                         const std::function<void(const ReferenceProgress&)>& progress) {
   validateReferenceSettings(settings);
   const uint64_t pixels = uint64_t(width) * height;
-  const nlohmann::json identity = checkpointIdentity(scene, frameTime, width, height, settings);
-  std::vector<glm::vec4> sums(pixels, glm::vec4(0.0f));
-  progress_ = {};
-  progress_.samplesTotal = settings.samplesPerPixel;
-  if (!settings.checkpoint.empty()) progress_.samplesResumed = readCheckpoint(settings.checkpoint, identity, sums);
-  progress_.samplesDone = std::min(progress_.samplesResumed, settings.samplesPerPixel);
-  vk::Buffer sum(context_, pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "reference sums");
-  sum.upload(std::span<const glm::vec4>(sums));
-
+  const uint32_t samples = settings.samplesPerPixel;
+  const SampleRange shard = shardSamples(samples, settings.shard.index, settings.shard.count);
+  ShardSumTree tree(samples, shard);
+  const nlohmann::json identity = checkpointIdentity(scene, frameTime, width, height, settings, hits_);
+  const auto header = [&] { return partialOf(identity, settings, shard, pixels, tree); };
+  vk::Buffer sums(context_, tree.slotCount() * pixels * sizeof(glm::vec4), vk::MemoryUse::Device,
+                  "reference sum tree");
   vk::FrameTimings total;
+  // Slots start at zero: a pixel that takes only sample 0 holds zero in every node of the tree.
+  frame.begin();
+  frame.fill(kAccumulate, sums, 0);
+  vk::appendTimings(total, frame.submitAndWait());
+  progress_ = {};
+  progress_.samplesTotal = shard.size();
+  if (!settings.checkpoint.empty()) resumeFromCheckpoint(settings.checkpoint, header(), tree, sums);
+  progress_.samplesResumed = progress_.samplesDone = tree.samplesDone();
+
   if (traceScene_) traceScene_->resetStatus();  // a new one starts at zero
-  const std::vector<float> times =
-      referenceShutterTimes(frameTime, scene.settings.exposure, settings.samplesPerPixel, settings.seed);
-  if (progress_.samplesDone < settings.samplesPerPixel) {
+  const std::vector<float> times = referenceShutterTimes(frameTime, scene.settings.exposure, samples, settings.seed);
+  if (!tree.finished()) {
     if (const std::optional<double> meshMs =
             prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
       vk::appendTimings(total, {{{kBvhMeshes, *meshMs}}, *meshMs});
@@ -267,14 +305,18 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     const bool shapesChange = std::any_of(scene.instances.begin(), scene.instances.end(), [&](const scene::Instance& i) {
       return i.deforms() && scene::deformationIsAnimated(scene, i);
     });
-    uint32_t savedSamples = progress_.samplesDone;
-    while (progress_.samplesDone < settings.samplesPerPixel) {
-      const uint32_t first = progress_.samplesDone;
-      // A mesh whose deformation is animated has one shape per time: its trees are refitted to
-      // each time's alone.
+    uint32_t savedSamples = tree.samplesDone();
+    while (!tree.finished()) {
+      // Batches are the whole render's (every timesPerBatch samples from sample 0), whatever
+      // the shard: a batch's top level, built over all its times, is the same tree in every
+      // shard. A mesh whose deformation is animated has one shape per time: its trees are
+      // refitted to each time's alone.
+      const uint32_t first = shard.begin + tree.samplesDone();
       const uint32_t perBatch = shapesChange ? 1u : settings.timesPerBatch;
-      const uint32_t count = std::min(perBatch, settings.samplesPerPixel - first);
-      const std::span<const float> batch(times.data() + first, count);
+      const uint32_t batchBegin = first / perBatch * perBatch;
+      const uint32_t batchEnd = std::min(batchBegin + perBatch, samples);
+      const uint32_t runEnd = std::min(batchEnd, shard.end);
+      const std::span<const float> batch(times.data() + batchBegin, batchEnd - batchBegin);
       if (gpuScene.deforms()) vk::appendTimings(total, traceScene.followDeformation(scene, batch[0], gpuScene, frame));
       traceScene.setShutterTimes(scene, batch, frame);
       const double bvhMs = traceScene.instanceTreeMilliseconds();
@@ -282,15 +324,16 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
       std::vector<gpu::PinholeCamera> cameras;
       for (const float t : batch) cameras.push_back(pinholeCamera(scene, t, width, height));
       const vk::Buffer cameraBuffer = vk::uploadedBuffer(context_, cameras, "reference cameras");
-      for (uint32_t i = 0; i < count; ++i) {
-        // The first sample covers every pixel; later ones only the moving pixels when listed.
-        const bool listed = progress_.movingPixels && first + i > 0;
+      for (uint32_t sample = first; sample < runEnd; ++sample) {
+        const SumStep step = tree.add();
+        // Sample 0 covers every pixel; later ones only the moving pixels when listed.
+        const bool listed = progress_.movingPixels && sample > 0;
         const uint32_t listLength = listed ? static_cast<uint32_t>(*progress_.movingPixels) : 0u;
         const gpu::ReferenceSampleParams params{
             width,
             height,
-            i,
-            first + i,
+            sample - batchBegin,
+            sample,
             settings.seed,
             (settings.pixelJitter ? HMB_REFERENCE_PIXEL_JITTER : 0u) | (listed ? HMB_REFERENCE_PIXEL_LIST : 0u),
             traceScene.instanceCount(),
@@ -298,6 +341,10 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
             tMin,
             tMax,
             listLength,
+            step.foldSlot,
+            step.foldLevels,
+            step.targetSlot,
+            0u,
             0u};
         const TraceScene& ts = traceScene;
         const glm::uvec3 groups =
@@ -308,7 +355,7 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
         if (groups.x > 0) {
           const vk::ComputeKernel& kernel = accumulate_.forScene(gpuScene, &ts);
           vk::Bindings bindings = {{HMB_REFERENCE_BINDING_CAMERAS, &cameraBuffer},
-                                   {HMB_REFERENCE_BINDING_SUM, &sum},
+                                   {HMB_REFERENCE_BINDING_SUMS, &sums},
                                    {HMB_REFERENCE_BINDING_PIXELS, &pixelList}};
           ts.bind(bindings, HMB_REFERENCE_BINDING_TRACE_SCENE, kernel.bindsByAddress());
           gpuScene.bind(bindings, HMB_REFERENCE_BINDING_SCENE, kernel.bindsByAddress());
@@ -321,21 +368,56 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
       }
       // Saved every timesPerBatch samples (a deforming scene's batches are single times) and
       // at the end.
-      const bool saveNow = progress_.samplesDone - savedSamples >= settings.timesPerBatch ||
-                           progress_.samplesDone == settings.samplesPerPixel;
+      const bool saveNow = tree.samplesDone() - savedSamples >= settings.timesPerBatch || tree.finished();
       if (!settings.checkpoint.empty() && saveNow) {
-        writeCheckpoint(settings.checkpoint, identity, progress_.samplesDone, sum.download<glm::vec4>());
-        savedSamples = progress_.samplesDone;
+        writeCheckpoint(settings.checkpoint, header(), tree.held(), sums);
+        savedSamples = tree.samplesDone();
       }
     }
   }
-
-  const gpu::AverageParams params{static_cast<uint32_t>(pixels), 0u, 0u, 0u};
-  frame.begin();
-  frame.dispatch(kAverage, average_, {{HMB_AVERAGE_BINDING_SUM, &sum}, {HMB_AVERAGE_BINDING_COLOR, &color}}, params,
-                 vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_REFERENCE_AVERAGE_GROUP)));
-  vk::appendTimings(total, frame.submitAndWait());
+  const FoldProgram program = foldProgram(samples, tree.held(), {}, tree.slotCount());
+  vk::appendTimings(total, fold_.run(frame, program, sums, pixels, nullptr, color));
   return total;
+}
+
+ReferenceFold::ReferenceFold(const vk::Context& context)
+    : context_(context),
+      fold_(context, kernels::kernel("reference/fold_sums")),
+      average_(context, kernels::kernel("reference/average_samples")) {}
+
+vk::FrameTimings ReferenceFold::run(vk::FrameRecorder& frame, const FoldProgram& program, const vk::Buffer& sums,
+                                    uint64_t pixels, const std::function<void(const SumNode&, uint32_t slot)>& load,
+                                    const vk::Buffer& color) const {
+  if (!program.result) throw Error("reference: no samples to average");
+  vk::FrameTimings timings;
+  const glm::uvec3 groups = vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_FOLD_SUMS_GROUP));
+  std::vector<glm::uvec4> ops;
+  // The additions since the last load, in one dispatch.
+  const auto addUp = [&] {
+    if (ops.empty()) return;
+    const vk::Buffer opBuffer = vk::uploadedBuffer(context_, ops, "reference fold steps");
+    const gpu::FoldSumsParams params{static_cast<uint32_t>(pixels), static_cast<uint32_t>(ops.size()), 0u, 0u};
+    frame.begin();
+    frame.dispatch(ReferenceStage::kFold, fold_,
+                   {{HMB_FOLD_SUMS_BINDING_SUMS, &sums}, {HMB_FOLD_SUMS_BINDING_OPS, &opBuffer}}, params, groups);
+    vk::appendTimings(timings, frame.submitAndWait());
+    ops.clear();
+  };
+  for (const FoldStep& step : program.steps) {
+    if (step.kind == FoldStep::Kind::Add) {
+      ops.emplace_back(step.left, step.right, 0u, 0u);
+      continue;
+    }
+    addUp();
+    load(step.node, step.left);
+  }
+  addUp();
+  const gpu::AverageParams params{static_cast<uint32_t>(pixels), *program.result, 0u, 0u};
+  frame.begin();
+  frame.dispatch(ReferenceStage::kAverage, average_, {{HMB_AVERAGE_BINDING_SUMS, &sums}, {HMB_AVERAGE_BINDING_COLOR, &color}},
+                 params, vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_REFERENCE_AVERAGE_GROUP)));
+  vk::appendTimings(timings, frame.submitAndWait());
+  return timings;
 }
 
 }  // namespace hmb::passes

@@ -1,9 +1,11 @@
 // The reference renderer (Cook et al. 1984): every pixel sampled at N stratified shutter
 // times, each ray traced through the scene at its own time (kernels/reference/). Times are
 // taken in batches: a batch's instance transforms and top-level tree are set up once, then one
-// dispatch per time sample adds every pixel's shaded sample to its sum. The strata are visited
-// in a spread-out order, so the sum after any number of samples covers the whole shutter, and
-// a checkpoint file lets a long render stop after any batch and resume where it stopped.
+// dispatch per time sample adds every pixel's shaded sample into its sums, in the fixed order of
+// reference_sum_tree.h. The strata are visited in a spread-out order, so the sum after any
+// number of samples covers the whole shutter; a checkpoint file (reference_partial.h) lets a
+// long render stop after any batch and resume where it stopped; and a render split into shards
+// merges (ReferenceFold, mergeReferenceParts) to the bits of the whole.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,8 @@
 #include "hmblur/buffer.h"
 #include "hmblur/reference_settings.h"
 #include "hmblur/scene.h"
+#include "runtime/passes/reference_partial.h"
+#include "runtime/passes/reference_sum_tree.h"
 #include "runtime/passes/shading_kernel.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
@@ -33,6 +37,21 @@ namespace hmb::passes {
 // [open + s E / N, open + (s + 1) E / N) and is sampled at a jitter drawn from the seed.
 std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32_t samples, uint32_t seed);
 
+// Adds up sum-tree nodes held in slots of one buffer (`pixels` vec4 a slot), as a FoldProgram
+// says, and writes the mean of the total into a colour buffer: the end of a render, and the
+// whole of a merge. Its passes: ReferenceStage::kFold and kAverage.
+class ReferenceFold {
+ public:
+  explicit ReferenceFold(const vk::Context& context);
+  // `load` writes a node's sums into a slot of `sums` before the additions that read it.
+  vk::FrameTimings run(vk::FrameRecorder& frame, const FoldProgram& program, const vk::Buffer& sums, uint64_t pixels,
+                       const std::function<void(const SumNode&, uint32_t slot)>& load, const vk::Buffer& color) const;
+
+ private:
+  const vk::Context& context_;
+  vk::ComputeKernel fold_;
+  vk::ComputeKernel average_;
+};
 
 class ReferenceStage {
  public:
@@ -40,6 +59,7 @@ class ReferenceStage {
   static constexpr const char* kBvhInstances = "reference-bvh-instances";
   static constexpr const char* kMovingPixels = "reference-find-moving-pixels";
   static constexpr const char* kAccumulate = "reference-accumulate-sample";
+  static constexpr const char* kFold = "reference-fold-sums";
   static constexpr const char* kAverage = "reference-average";
 
   // hits: how samples shade what they hit (null: the library's shading).
@@ -55,7 +75,8 @@ class ReferenceStage {
   // After render(): its traces the device's loop limit cut short (TraceScene::cutTraces).
   uint32_t cutTraces() const;
 
-  // Renders the mean of the samples into `color` (vec4 per pixel, row 0 at the top) and
+  // Renders the mean of the samples (the shard's, for a shard) into `color` (vec4 per pixel,
+  // row 0 at the top) and
   // returns the device time of every submission it made, merged. `gpuScene` must have its
   // frame set (materials, the light); its deforming meshes are deformed to each shutter time
   // in turn (one time per batch). `plan` is this frame's, from plan(). `progress` is called
@@ -77,7 +98,8 @@ class ReferenceStage {
   const vk::Context& context_;
   vk::ComputeKernel findMovingPixels_;
   ShadingKernel accumulate_;
-  vk::ComputeKernel average_;
+  ReferenceFold fold_;
+  const HitShading* hits_;
   ReferenceProgress progress_;
   std::unique_ptr<TraceScene> traceScene_;
 };
