@@ -63,7 +63,7 @@ void runMerge(const MergeOptions& options, const vk::Context& context, bool quie
   const uint32_t shards = merged.parts.front().shardCount;
   const std::string held = std::to_string(merged.samplesHeld) + " of " + std::to_string(merged.samples) +
                            " samples per pixel";
-  if (merged.samplesHeld < merged.samples)
+  if (merged.samplesHeld < merged.samples && !quiet)
     std::cerr << "hmblur: warning: merged " << merged.parts.size() << " of " << shards << " shards (--allow-partial): "
               << held << '\n';
   if (!options.report.empty()) {

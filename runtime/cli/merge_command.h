@@ -27,8 +27,8 @@ CLI::App* addMergeCommand(CLI::App& app, MergeOptions& options);
 // a reference partial. Throws hmb::Error.
 void checkMergeArguments(const MergeOptions& options);
 
-// Merges, writes the image and the report, and says what it merged on stdout (nothing with
-// `quiet`); a merge of fewer samples than the render's is said on stderr. Throws hmb::Error.
+// Merges, writes the image and the report, and says what it merged on stdout and, for a merge
+// of fewer samples than the render's, on stderr (nothing with `quiet`). Throws hmb::Error.
 void runMerge(const MergeOptions& options, const vk::Context& context, bool quiet);
 
 }  // namespace hmb::cli

@@ -10,8 +10,12 @@
 namespace hmb::passes {
 namespace {
 
-// The first setting in which two parts' renders differ, as "spp 64 against 256".
+// The first setting in which two parts' renders differ, as "spp 64 against 256": the scene, the
+// size, the samples and the seed first, then the rest.
 std::string firstDifference(const nlohmann::json& a, const nlohmann::json& b) {
+  for (const char* key : {"scene", "width", "height", "spp", "seed"})
+    if (a.contains(key) && b.contains(key) && a.at(key) != b.at(key))
+      return std::string(key) + " " + b.at(key).dump() + " against " + a.at(key).dump();
   for (const auto& [key, value] : a.items())
     if (!b.contains(key) || b.at(key) != value)
       return key + " " + (b.contains(key) ? b.at(key).dump() : "missing") + " against " + value.dump();

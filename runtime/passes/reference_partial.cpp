@@ -34,7 +34,7 @@ std::string referencePartialVersion() {
 }
 
 ReferencePartial readReferencePartial(const std::filesystem::path& path) {
-  const std::string name = "'" + path.string() + "'";
+  const std::string name = std::string("'").append(path.string()).append("'");
   std::error_code error;
   const uintmax_t fileBytes = std::filesystem::file_size(path, error);
   if (error) throw Error(name + " cannot be read: " + error.message());
@@ -66,7 +66,9 @@ ReferencePartial readReferencePartial(const std::filesystem::path& path) {
   } catch (const std::exception&) {
     throw Error(name + " is damaged: its header is not a reference partial's");
   }
-  const bool consistent = header.shardCount > 0 && header.shardIndex < header.shardCount &&
+  // At most two nodes a level of a tree of 32 levels, and sample 0.
+  const bool consistent = header.pixels > 0 && header.pixels <= (uint64_t(1) << 32) && header.nodes.size() <= 65 &&
+                          header.shardCount > 0 && header.shardIndex < header.shardCount &&
                           header.shardCount <= header.samples &&
                           shardSamples(header.samples, header.shardIndex, header.shardCount).begin == header.shard.begin &&
                           shardSamples(header.samples, header.shardIndex, header.shardCount).end == header.shard.end &&
