@@ -60,6 +60,7 @@ struct ContextOptions {
   uint64_t memoryLimitBytes = 0;       // > 0: pretend no memory heap holds more (tests of running out)
   uint32_t storageBufferLimit = 0;     // > 0: pretend no stage or set takes more storage buffers
   uint32_t texelBufferLimit = 0;       // > 0: pretend texel views hold at most this many texels
+  uint32_t storageBufferRangeLimit = 0;  // > 0: pretend a storage buffer binding holds at most this many bytes
   // Kernels with an address build (vk::ComputeKernel) bind their groups of buffers as tables of
   // device addresses: always when true, else only where their bindings exceed the device's limits.
   bool bindByAddress = false;

@@ -3,7 +3,8 @@
 // time, traced against the scene at that time (instances carried by their transforms at that
 // time, so any motion is exact), shaded by the shading function every method shares, and
 // added into the pixel's sum tree (runtime/passes/reference_sum_tree.h): the held nodes it
-// completes are added before it, left to right, and the new node is written to its slot. One
+// completes are added to it, nearest first, each as the left operand, and the new node is
+// written to its slot. One
 // dispatch per sample: each invocation owns its pixel's sums.
 #extension GL_GOOGLE_include_directive : require
 #include "../shared/float_controls.glsl"
@@ -44,7 +45,9 @@ void main() {
     const uint listed = pixelList[entry];
     pixel = uvec2(listed % params.width, listed / params.width);
   }
+  if ((params.flags & HMB_REFERENCE_PIXEL_LIST) == 0u) pixel.y += params.bandFirstRow;
   if (pixel.x >= params.width || pixel.y >= params.height) return;
+  if (pixel.y < params.bandFirstRow || pixel.y - params.bandFirstRow >= params.bandRows) return;
   const uint index = pixel.y * params.width + pixel.x;
 
   vec2 offset = vec2(0.5);
@@ -55,8 +58,9 @@ void main() {
   const TraceSceneInfo scene = TraceSceneInfo(params.instanceCount, params.timeCount, HMB_TRACE_CULL_BACK_FACES);
   const vec3 color = cameraRayColor(cameras[params.time], vec2(pixel) + offset, params.width, params.height,
                                     params.tMin, params.tMax, params.time, scene);
-  const uint pixelCount = params.width * params.height;
+  const uint bandPixels = params.bandRows * params.width;
+  const uint inBand = (pixel.y - params.bandFirstRow) * params.width + pixel.x;
   vec4 node = vec4(color, 1.0);
-  for (uint level = 0u; level < params.foldLevels; ++level) node = sums[(params.foldSlot + level) * pixelCount + index] + node;
-  sums[params.targetSlot * pixelCount + index] = node;
+  for (uint i = 0u; i < params.foldCount; ++i) node = sums[params.foldSlots[i / 4u][i % 4u] * bandPixels + inBand] + node;
+  sums[params.targetSlot * bandPixels + inBand] = node;
 }

@@ -16,5 +16,5 @@ void main() {
   const uint i = linearInvocationIndex(HMB_REFERENCE_AVERAGE_GROUP);
   if (i >= params.pixelCount) return;
   const vec4 s = sums[params.sumSlot * params.pixelCount + i];
-  color[i] = vec4(s.w > 0.0 ? s.rgb / s.w : vec3(0.0), 1.0);
+  color[params.firstPixel + i] = vec4(s.w > 0.0 ? s.rgb / s.w : vec3(0.0), 1.0);
 }

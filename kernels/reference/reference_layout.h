@@ -44,7 +44,7 @@
 #define HMB_FOLD_SUMS_BINDING_COUNT 2
 
 // average_samples
-#define HMB_AVERAGE_BINDING_SUMS 0   // vec4 per pixel per slot
+#define HMB_AVERAGE_BINDING_SUMS 0   // vec4 per pixel of a band of rows per slot
 #define HMB_AVERAGE_BINDING_COLOR 1  // vec4 per pixel: the mean, linear RGB, a = 1
 #define HMB_AVERAGE_BINDING_COUNT 2
 
@@ -66,14 +66,18 @@ struct ReferenceSampleParams {
   float tMin;        // the near plane's depth
   float tMax;        // the far plane's depth
   uint listLength;   // HMB_REFERENCE_PIXEL_LIST: entries in the pixel list
-  // The sample's place in the sum tree: the sums in slots foldSlot .. foldSlot + foldLevels - 1
-  // are added before it in turn (each the left neighbour of what it has so far), and the
-  // result goes to slot targetSlot.
-  uint foldSlot;
-  uint foldLevels;
+  // The sample's place in the sum tree: the sums in slots foldSlots[0 .. foldCount) are added
+  // before it in turn (each the left neighbour of what it has so far), and the result goes to
+  // slot targetSlot.
+  uint foldCount;
   uint targetSlot;
+  // The band of rows whose sums the bound buffer holds (runtime/passes/reference_stage.h's
+  // DeviceSumSlots): slot s of pixel (x, y) is entry s * bandRows * width + (y - bandFirstRow)
+  // * width + x. Outside list mode the dispatch covers the band's rows alone.
+  uint bandFirstRow;
+  uint bandRows;
   uint pad0;
-  uint pad1;
+  uvec4 foldSlots[2];
 };
 
 struct FoldSumsParams {
@@ -95,15 +99,15 @@ struct MovingPixelsParams {
 };
 
 struct AverageParams {
-  uint pixelCount;  // each pixel's sample count is its sum's w
+  uint pixelCount;  // of the band of rows the sums hold; each pixel's sample count is its sum's w
   uint sumSlot;     // the slot holding the total
-  uint pad1;
+  uint firstPixel;  // the band's first pixel in the colour buffer
   uint pad2;
 };
 
 HMB_GPU_END
 
-HMB_CHECK_SIZE(ReferenceSampleParams, 64)
+HMB_CHECK_SIZE(ReferenceSampleParams, 96)
 HMB_CHECK_SIZE(FoldSumsParams, 16)
 HMB_CHECK_SIZE(AverageParams, 16)
 HMB_CHECK_SIZE(MovingPixelsParams, 32)

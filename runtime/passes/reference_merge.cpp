@@ -1,5 +1,6 @@
 #include "runtime/passes/reference_merge.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <utility>
@@ -72,27 +73,35 @@ MergedReference mergeReferenceParts(const vk::Context& context, vk::FrameRecorde
     throw Error(name(0) + " is damaged: its size and pixel count disagree");
   merged.samples = first.samples;
 
-  // Every node of every part, and where its sums lie.
-  std::vector<SumNode> nodes;
-  std::map<SumNode, std::pair<size_t, size_t>> source;  // node -> (part, node index)
-  for (size_t i = 0; i < merged.parts.size(); ++i) {
-    merged.samplesHeld += merged.parts[i].samplesDone;
-    for (size_t n = 0; n < merged.parts[i].nodes.size(); ++n) {
-      nodes.push_back(merged.parts[i].nodes[n]);
-      source[merged.parts[i].nodes[n]] = {i, n};
-    }
-  }
-  const FoldProgram program = foldProgram(first.samples, {}, nodes, 0);
-  vk::Buffer sums(context, std::max<uint32_t>(program.slotCount, 1) * first.pixels * sizeof(glm::vec4),
-                        vk::MemoryUse::Device, "merged reference sum tree");
-  const vk::Buffer color(context, first.pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "merged reference");
-  std::vector<glm::vec4> data(first.pixels);
-  const auto load = [&](const SumNode& node, uint32_t slot) {
-    const auto [part, index] = source.at(node);
-    readReferencePartialNode(paths[part], merged.parts[part], index, data);
-    sums.write(std::as_bytes(std::span<const glm::vec4>(data)), slot * first.pixels * sizeof(glm::vec4));
+  // Every node of every part in sample order (sample 0 first), and where its sums lie.
+  struct Source {
+    SumNode node;
+    size_t part;
+    size_t index;
   };
-  merged.timings = ReferenceFold(context).run(frame, program, sums, first.pixels, load, color);
+  std::vector<Source> sources;
+  for (size_t i = 0; i < merged.parts.size(); ++i) {
+    const ReferencePartial& part = merged.parts[i];
+    merged.samplesHeld += part.samplesDone;
+    if (part.nodes != heldNodes(part.shard, part.samplesDone))
+      throw Error(name(i) + " is damaged: its nodes are not those of its " + std::to_string(part.samplesDone) +
+                  " samples");
+    for (size_t n = 0; n < part.nodes.size(); ++n) sources.push_back({part.nodes[n], i, n});
+  }
+  std::sort(sources.begin(), sources.end(), [](const Source& a, const Source& b) {
+    return a.node.isFirstSample() != b.node.isFirstSample() ? a.node.isFirstSample() : a.node.start < b.node.start;
+  });
+
+  const vk::Buffer color(context, first.pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "merged reference");
+  const ReferenceSumKernels kernels(context);
+  DeviceSumSlots slots(context, frame, kernels, merged.width, merged.height, merged.timings);
+  SumStack stack(slots);
+  for (const Source& source : sources) {
+    std::vector<glm::vec4> sums(first.pixels);
+    readReferencePartialNode(paths[source.part], merged.parts[source.part], source.index, sums);
+    stack.push(source.node, std::move(sums), true);
+  }
+  slots.average(stack.total(), color);
   merged.color = color.download<glm::vec4>();
   return merged;
 }

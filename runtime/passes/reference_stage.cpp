@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "hmblur/context.h"
 #include "hmblur/error.h"
 #include "hmblur/frame_plan.h"
 #include "hmblur/hit_shading.h"
@@ -109,9 +110,9 @@ nlohmann::json checkpointIdentity(const scene::Scene& scene, float frameTime, ui
           {"shading", shading}};
 }
 
-// The partial's header for a shard's tree as it stands.
+// The partial's header for a shard that took `done` samples and holds `nodes`.
 ReferencePartial partialOf(const nlohmann::json& identity, const ReferenceSettings& settings, SampleRange shard,
-                           uint64_t pixels, const ShardSumTree& tree) {
+                           uint64_t pixels, uint32_t done, std::vector<SumNode> nodes) {
   ReferencePartial header;
   header.identity = identity;
   header.version = referencePartialVersion();
@@ -119,16 +120,16 @@ ReferencePartial partialOf(const nlohmann::json& identity, const ReferenceSettin
   header.shardIndex = settings.shard.index;
   header.shardCount = settings.shard.count;
   header.shard = shard;
-  header.samplesDone = tree.samplesDone();
+  header.samplesDone = done;
   header.pixels = pixels;
-  for (const ShardSumTree::Held& held : tree.held()) header.nodes.push_back(held.node);
+  header.nodes = std::move(nodes);
   return header;
 }
 
-// Resumes `tree` from the checkpoint, when there is one: its held nodes' sums go to their slots.
-void resumeFromCheckpoint(const std::filesystem::path& path, const ReferencePartial& expected, ShardSumTree& tree,
-                          vk::Buffer& sums) {
-  if (!std::filesystem::exists(path)) return;
+// Resumes from the checkpoint, when there is one: its nodes go onto the stack as they are.
+// Returns the samples it took.
+uint32_t resumeFromCheckpoint(const std::filesystem::path& path, const ReferencePartial& expected, SumStack& stack) {
+  if (!std::filesystem::exists(path)) return 0;
   const ReferencePartial saved = readReferencePartial(path);
   const std::string name = "checkpoint '" + path.string() + "'";
   if (saved.identity != expected.identity)
@@ -138,33 +139,24 @@ void resumeFromCheckpoint(const std::filesystem::path& path, const ReferencePart
     throw Error(name + " holds shard " + saved.shardText() + ", not " + expected.shardText());
   if (saved.version != expected.version)
     throw Error(name + " was written by " + saved.version + ", this is " + expected.version + ": render it again");
-  while (tree.samplesDone() < saved.samplesDone) tree.add();
-  const std::vector<ShardSumTree::Held> held = tree.held();
-  bool same = held.size() == saved.nodes.size();
-  for (size_t i = 0; same && i < held.size(); ++i) same = held[i].node == saved.nodes[i];
-  if (!same) throw Error(name + " is damaged: its nodes are not those of " + std::to_string(saved.samplesDone) + " samples");
-  std::vector<glm::vec4> data(saved.pixels);
-  for (size_t i = 0; i < held.size(); ++i) {
-    readReferencePartialNode(path, saved, i, data);
-    sums.write(std::as_bytes(std::span<const glm::vec4>(data)), held[i].slot * saved.pixels * sizeof(glm::vec4));
+  if (saved.nodes != heldNodes(saved.shard, saved.samplesDone))
+    throw Error(name + " is damaged: its nodes are not those of " + std::to_string(saved.samplesDone) + " samples");
+  for (size_t i = 0; i < saved.nodes.size(); ++i) {
+    std::vector<glm::vec4> sums(saved.pixels);
+    readReferencePartialNode(path, saved, i, sums);
+    stack.push(saved.nodes[i], std::move(sums), false);
   }
+  return saved.samplesDone;
 }
 
-void writeCheckpoint(const std::filesystem::path& path, const ReferencePartial& header,
-                     const std::vector<ShardSumTree::Held>& held, const vk::Buffer& sums) {
-  writeReferencePartial(path, header, [&](size_t i) {
-    std::vector<glm::vec4> data(header.pixels);
-    sums.read(std::as_writable_bytes(std::span<glm::vec4>(data)), held[i].slot * header.pixels * sizeof(glm::vec4));
-    return data;
-  });
+void writeCheckpoint(const std::filesystem::path& path, const ReferencePartial& header, const SumStack& stack) {
+  writeReferencePartial(path, header, [&](size_t i) { return stack.sumsOf(i); });
 }
 
-// The fold at the end of a shard's render: its held nodes, all in slots, added in the tree's order.
-FoldProgram foldOfFinishedShard(const ReferenceSettings& settings) {
+// Whether the end of the shard's render adds nodes up: more than one is held.
+bool shardEndsWithAdditions(const ReferenceSettings& settings) {
   const SampleRange shard = shardSamples(settings.samplesPerPixel, settings.shard.index, settings.shard.count);
-  ShardSumTree tree(settings.samplesPerPixel, shard);
-  while (!tree.finished()) tree.add();
-  return foldProgram(settings.samplesPerPixel, tree.held(), {}, tree.slotCount());
+  return heldNodes(shard, shard.size()).size() > 1;
 }
 
 }  // namespace
@@ -186,7 +178,7 @@ ReferenceStage::ReferenceStage(const vk::Context& context, const HitShading* hit
       findMovingPixels_(context, kernels::kernel("reference/find_moving_pixels")),
       accumulate_(context, kernels::kernel("reference/accumulate_sample"), ShadingKernel::Rays::Traced,
                   hits),
-      fold_(context),
+      sumKernels_(context),
       hits_(hits) {}
 
 ReferenceStage::~ReferenceStage() = default;
@@ -261,7 +253,7 @@ void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float fram
   else
     plan.run(kMovingPixels);
   plan.run(kAccumulate);
-  if (foldOfFinishedShard(settings).steps.empty())
+  if (!shardEndsWithAdditions(settings))
     plan.skip(kFold, settings.shard.count > 1 ? "the shard's samples are one node of the sum tree"
                                               : "one sample per pixel: nothing to add up");
   else
@@ -278,24 +270,24 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
   const uint64_t pixels = uint64_t(width) * height;
   const uint32_t samples = settings.samplesPerPixel;
   const SampleRange shard = shardSamples(samples, settings.shard.index, settings.shard.count);
-  ShardSumTree tree(samples, shard);
   const nlohmann::json identity = checkpointIdentity(scene, frameTime, width, height, settings, hits_);
-  const auto header = [&] { return partialOf(identity, settings, shard, pixels, tree); };
-  vk::Buffer sums(context_, tree.slotCount() * pixels * sizeof(glm::vec4), vk::MemoryUse::Device,
-                  "reference sum tree");
   vk::FrameTimings total;
-  // Slots start at zero: a pixel that takes only sample 0 holds zero in every node of the tree.
+  DeviceSumSlots slots(context_, frame, sumKernels_, width, height, total);
+  SumStack stack(slots);
+  uint32_t done = 0;
+  const auto header = [&] { return partialOf(identity, settings, shard, pixels, done, stack.nodes()); };
+  // Slots start at zero: a pixel that takes only sample 0 holds zero in every other node.
   frame.begin();
-  frame.fill(kAccumulate, sums, 0);
+  for (const DeviceSumSlots::Band& band : slots.bands()) frame.fill(kAccumulate, band.sums, 0);
   vk::appendTimings(total, frame.submitAndWait());
   progress_ = {};
   progress_.samplesTotal = shard.size();
-  if (!settings.checkpoint.empty()) resumeFromCheckpoint(settings.checkpoint, header(), tree, sums);
-  progress_.samplesResumed = progress_.samplesDone = tree.samplesDone();
+  if (!settings.checkpoint.empty()) done = resumeFromCheckpoint(settings.checkpoint, header(), stack);
+  progress_.samplesResumed = progress_.samplesDone = done;
 
   if (traceScene_) traceScene_->resetStatus();  // a new one starts at zero
   const std::vector<float> times = referenceShutterTimes(frameTime, scene.settings.exposure, samples, settings.seed);
-  if (!tree.finished()) {
+  if (done < shard.size()) {
     if (const std::optional<double> meshMs =
             prepareKeptMeshTrees(traceScene_, kBvhMeshes, plan, context_, scene, frame))
       vk::appendTimings(total, {{{kBvhMeshes, *meshMs}}, *meshMs});
@@ -305,13 +297,13 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     const bool shapesChange = std::any_of(scene.instances.begin(), scene.instances.end(), [&](const scene::Instance& i) {
       return i.deforms() && scene::deformationIsAnimated(scene, i);
     });
-    uint32_t savedSamples = tree.samplesDone();
-    while (!tree.finished()) {
+    uint32_t savedSamples = done;
+    while (done < shard.size()) {
       // Batches are the whole render's (every timesPerBatch samples from sample 0), whatever
       // the shard: a batch's top level, built over all its times, is the same tree in every
       // shard. A mesh whose deformation is animated has one shape per time: its trees are
       // refitted to each time's alone.
-      const uint32_t first = shard.begin + tree.samplesDone();
+      const uint32_t first = shard.begin + done;
       const uint32_t perBatch = shapesChange ? 1u : settings.timesPerBatch;
       const uint32_t batchBegin = first / perBatch * perBatch;
       const uint32_t batchEnd = std::min(batchBegin + perBatch, samples);
@@ -325,99 +317,139 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
       for (const float t : batch) cameras.push_back(pinholeCamera(scene, t, width, height));
       const vk::Buffer cameraBuffer = vk::uploadedBuffer(context_, cameras, "reference cameras");
       for (uint32_t sample = first; sample < runEnd; ++sample) {
-        const SumStep step = tree.add();
+        const SumStack::SampleStep step = stack.beginSample(sample);
+        glm::uvec4 foldSlots[2] = {glm::uvec4(0u), glm::uvec4(0u)};
+        for (size_t i = 0; i < step.fold.size(); ++i) foldSlots[i / 4][i % 4] = step.fold[i];
         // Sample 0 covers every pixel; later ones only the moving pixels when listed.
         const bool listed = progress_.movingPixels && sample > 0;
         const uint32_t listLength = listed ? static_cast<uint32_t>(*progress_.movingPixels) : 0u;
-        const gpu::ReferenceSampleParams params{
-            width,
-            height,
-            sample - batchBegin,
-            sample,
-            settings.seed,
-            (settings.pixelJitter ? HMB_REFERENCE_PIXEL_JITTER : 0u) | (listed ? HMB_REFERENCE_PIXEL_LIST : 0u),
-            traceScene.instanceCount(),
-            traceScene.timeCount(),
-            tMin,
-            tMax,
-            listLength,
-            step.foldSlot,
-            step.foldLevels,
-            step.targetSlot,
-            0u,
-            0u};
-        const TraceScene& ts = traceScene;
-        const glm::uvec3 groups =
-            listed ? vk::foldedGroups(vk::groupsFor(listLength, HMB_REFERENCE_GROUP_X * HMB_REFERENCE_GROUP_Y))
-                   : glm::uvec3(vk::groupsFor(width, HMB_REFERENCE_GROUP_X),
-                                vk::groupsFor(height, HMB_REFERENCE_GROUP_Y), 1);
+        // One dispatch a band of the sums: a band's invocations cover its rows (or the whole
+        // list, keeping the pixels of its rows).
         frame.begin();
-        if (groups.x > 0) {
+        for (const DeviceSumSlots::Band& band : slots.bands()) {
+          const gpu::ReferenceSampleParams params{
+              width,
+              height,
+              sample - batchBegin,
+              sample,
+              settings.seed,
+              (settings.pixelJitter ? HMB_REFERENCE_PIXEL_JITTER : 0u) | (listed ? HMB_REFERENCE_PIXEL_LIST : 0u),
+              traceScene.instanceCount(),
+              traceScene.timeCount(),
+              tMin,
+              tMax,
+              listLength,
+              static_cast<uint32_t>(step.fold.size()),
+              step.target,
+              band.firstRow,
+              band.rows,
+              0u,
+              {foldSlots[0], foldSlots[1]}};
+          const glm::uvec3 groups =
+              listed ? vk::foldedGroups(vk::groupsFor(listLength, HMB_REFERENCE_GROUP_X * HMB_REFERENCE_GROUP_Y))
+                     : glm::uvec3(vk::groupsFor(width, HMB_REFERENCE_GROUP_X),
+                                  vk::groupsFor(band.rows, HMB_REFERENCE_GROUP_Y), 1);
+          if (groups.x == 0) continue;
+          const TraceScene& ts = traceScene;
           const vk::ComputeKernel& kernel = accumulate_.forScene(gpuScene, &ts);
           vk::Bindings bindings = {{HMB_REFERENCE_BINDING_CAMERAS, &cameraBuffer},
-                                   {HMB_REFERENCE_BINDING_SUMS, &sums},
+                                   {HMB_REFERENCE_BINDING_SUMS, &band.sums},
                                    {HMB_REFERENCE_BINDING_PIXELS, &pixelList}};
           ts.bind(bindings, HMB_REFERENCE_BINDING_TRACE_SCENE, kernel.bindsByAddress());
           gpuScene.bind(bindings, HMB_REFERENCE_BINDING_SCENE, kernel.bindsByAddress());
           frame.dispatch(kAccumulate, kernel, bindings, params, groups);
         }
         vk::appendTimings(total, frame.submitAndWait());
+        stack.finishSample();
+        ++done;
         progress_.pixelSamples += listed ? listLength : pixels;
         ++progress_.samplesDone;
         if (progress) progress(progress_);
       }
       // Saved every timesPerBatch samples (a deforming scene's batches are single times) and
       // at the end.
-      const bool saveNow = tree.samplesDone() - savedSamples >= settings.timesPerBatch || tree.finished();
+      const bool saveNow = done - savedSamples >= settings.timesPerBatch || done == shard.size();
       if (!settings.checkpoint.empty() && saveNow) {
-        writeCheckpoint(settings.checkpoint, header(), tree.held(), sums);
-        savedSamples = tree.samplesDone();
+        writeCheckpoint(settings.checkpoint, header(), stack);
+        savedSamples = done;
       }
     }
   }
-  const FoldProgram program = foldProgram(samples, tree.held(), {}, tree.slotCount());
-  vk::appendTimings(total, fold_.run(frame, program, sums, pixels, nullptr, color));
+  slots.average(stack.total(), color);
   return total;
 }
 
-ReferenceFold::ReferenceFold(const vk::Context& context)
-    : context_(context),
-      fold_(context, kernels::kernel("reference/fold_sums")),
-      average_(context, kernels::kernel("reference/average_samples")) {}
+ReferenceSumKernels::ReferenceSumKernels(const vk::Context& context)
+    : fold(context, kernels::kernel("reference/fold_sums")), average(context, kernels::kernel("reference/average_samples")) {}
 
-vk::FrameTimings ReferenceFold::run(vk::FrameRecorder& frame, const FoldProgram& program, const vk::Buffer& sums,
-                                    uint64_t pixels, const std::function<void(const SumNode&, uint32_t slot)>& load,
-                                    const vk::Buffer& color) const {
-  if (!program.result) throw Error("reference: no samples to average");
-  vk::FrameTimings timings;
-  const glm::uvec3 groups = vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_FOLD_SUMS_GROUP));
-  std::vector<glm::uvec4> ops;
-  // The additions since the last load, in one dispatch.
-  const auto addUp = [&] {
-    if (ops.empty()) return;
-    const vk::Buffer opBuffer = vk::uploadedBuffer(context_, ops, "reference fold steps");
-    const gpu::FoldSumsParams params{static_cast<uint32_t>(pixels), static_cast<uint32_t>(ops.size()), 0u, 0u};
-    frame.begin();
-    frame.dispatch(ReferenceStage::kFold, fold_,
-                   {{HMB_FOLD_SUMS_BINDING_SUMS, &sums}, {HMB_FOLD_SUMS_BINDING_OPS, &opBuffer}}, params, groups);
-    vk::appendTimings(timings, frame.submitAndWait());
-    ops.clear();
-  };
-  for (const FoldStep& step : program.steps) {
-    if (step.kind == FoldStep::Kind::Add) {
-      ops.emplace_back(step.left, step.right, 0u, 0u);
-      continue;
-    }
-    addUp();
-    load(step.node, step.left);
+DeviceSumSlots::DeviceSumSlots(const vk::Context& context, vk::FrameRecorder& frame, const ReferenceSumKernels& kernels,
+                               uint32_t width, uint32_t height, vk::FrameTimings& timings)
+    : context_(context), frame_(frame), kernels_(kernels), width_(width), timings_(timings) {
+  const uint64_t slotBytes = uint64_t(width) * height * sizeof(glm::vec4);
+  count_ = static_cast<uint32_t>(std::clamp<uint64_t>(kDeviceBytes / std::max<uint64_t>(slotBytes, 1), kMinSlots, kMaxSlots));
+  const uint64_t rowBytes = uint64_t(count_) * width * sizeof(glm::vec4);
+  const uint64_t rowsPerBand = std::min<uint64_t>(context.info().maxStorageBufferRange / rowBytes, height);
+  if (rowsPerBand == 0)
+    throw Error("the reference's " + std::to_string(count_) + " sums of a row of " + std::to_string(width) +
+                " pixels do not fit in one of the device's storage buffers (" +
+                std::to_string(context.info().maxStorageBufferRange >> 20) + " MiB): use a narrower image");
+  const uint32_t bandCount = static_cast<uint32_t>((height + rowsPerBand - 1) / rowsPerBand);
+  for (uint32_t b = 0; b < bandCount; ++b) {
+    // Bands as even as they go.
+    const uint32_t first = static_cast<uint32_t>(uint64_t(height) * b / bandCount);
+    const uint32_t rows = static_cast<uint32_t>(uint64_t(height) * (b + 1) / bandCount) - first;
+    bands_.push_back({first, rows, vk::Buffer(context, uint64_t(count_) * rows * width * sizeof(glm::vec4),
+                                              vk::MemoryUse::Device, "reference sums")});
   }
-  addUp();
-  const gpu::AverageParams params{static_cast<uint32_t>(pixels), *program.result, 0u, 0u};
-  frame.begin();
-  frame.dispatch(ReferenceStage::kAverage, average_, {{HMB_AVERAGE_BINDING_SUMS, &sums}, {HMB_AVERAGE_BINDING_COLOR, &color}},
-                 params, vk::foldedGroups(vk::groupsFor(static_cast<uint32_t>(pixels), HMB_REFERENCE_AVERAGE_GROUP)));
-  vk::appendTimings(timings, frame.submitAndWait());
-  return timings;
+}
+
+void DeviceSumSlots::upload(uint32_t slot, std::span<const glm::vec4> sums) {
+  for (Band& band : bands_)
+    band.sums.write(std::as_bytes(sums.subspan(uint64_t(band.firstRow) * width_, bandPixels(band))),
+                    offsetOf(band, slot));
+}
+
+std::vector<glm::vec4> DeviceSumSlots::download(uint32_t slot) {
+  std::vector<glm::vec4> sums;
+  for (const Band& band : bands_) {
+    std::vector<glm::vec4> part(bandPixels(band));
+    band.sums.read(std::as_writable_bytes(std::span<glm::vec4>(part)), offsetOf(band, slot));
+    sums.insert(sums.end(), part.begin(), part.end());
+  }
+  return sums;
+}
+
+void DeviceSumSlots::clear(uint32_t slot) {
+  for (Band& band : bands_)
+    band.sums.write(std::as_bytes(std::span<const glm::vec4>(std::vector<glm::vec4>(bandPixels(band), glm::vec4(0.0f)))),
+                    offsetOf(band, slot));
+}
+
+void DeviceSumSlots::add(std::span<const glm::uvec2> pairs) {
+  std::vector<glm::uvec4> ops;
+  for (const glm::uvec2& p : pairs) ops.emplace_back(p.x, p.y, 0u, 0u);
+  const vk::Buffer opBuffer = vk::uploadedBuffer(context_, ops, "reference sum pairs");
+  frame_.begin();
+  for (const Band& band : bands_) {
+    const uint32_t pixels = static_cast<uint32_t>(bandPixels(band));
+    const gpu::FoldSumsParams params{pixels, static_cast<uint32_t>(ops.size()), 0u, 0u};
+    frame_.dispatch(ReferenceStage::kFold, kernels_.fold,
+                    {{HMB_FOLD_SUMS_BINDING_SUMS, &band.sums}, {HMB_FOLD_SUMS_BINDING_OPS, &opBuffer}}, params,
+                    vk::foldedGroups(vk::groupsFor(pixels, HMB_FOLD_SUMS_GROUP)));
+  }
+  vk::appendTimings(timings_, frame_.submitAndWait());
+}
+
+void DeviceSumSlots::average(uint32_t slot, const vk::Buffer& color) {
+  frame_.begin();
+  for (const Band& band : bands_) {
+    const uint32_t pixels = static_cast<uint32_t>(bandPixels(band));
+    const gpu::AverageParams params{pixels, slot, band.firstRow * width_, 0u};
+    frame_.dispatch(ReferenceStage::kAverage, kernels_.average,
+                    {{HMB_AVERAGE_BINDING_SUMS, &band.sums}, {HMB_AVERAGE_BINDING_COLOR, &color}}, params,
+                    vk::foldedGroups(vk::groupsFor(pixels, HMB_REFERENCE_AVERAGE_GROUP)));
+  }
+  vk::appendTimings(timings_, frame_.submitAndWait());
 }
 
 }  // namespace hmb::passes

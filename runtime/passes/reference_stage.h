@@ -5,7 +5,7 @@
 // reference_sum_tree.h. The strata are visited in a spread-out order, so the sum after any
 // number of samples covers the whole shutter; a checkpoint file (reference_partial.h) lets a
 // long render stop after any batch and resume where it stopped; and a render split into shards
-// merges (ReferenceFold, mergeReferenceParts) to the bits of the whole.
+// merges (reference_merge.h) to the bits of the whole.
 #pragma once
 
 #include <cstdint>
@@ -37,20 +37,56 @@ namespace hmb::passes {
 // [open + s E / N, open + (s + 1) E / N) and is sampled at a jitter drawn from the seed.
 std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32_t samples, uint32_t seed);
 
-// Adds up sum-tree nodes held in slots of one buffer (`pixels` vec4 a slot), as a FoldProgram
-// says, and writes the mean of the total into a colour buffer: the end of a render, and the
-// whole of a merge. Its passes: ReferenceStage::kFold and kAverage.
-class ReferenceFold {
+// The kernels that add up and average the reference's sums.
+struct ReferenceSumKernels {
+  explicit ReferenceSumKernels(const vk::Context& context);
+  vk::ComputeKernel fold;     // fold_sums
+  vk::ComputeKernel average;  // average_samples
+};
+
+// The sum stack's slots (reference_sum_tree.h) on the device: a vec4 a pixel each, kMinSlots
+// to kMaxSlots of them as the image's size allows within kDeviceBytes (a render keeps its
+// deepest nodes in host memory past them). One storage buffer holds every slot of a band of
+// rows: one band where a buffer holds them all, more for a large image on a device with small
+// storage buffers (lavapipe's are 128 MiB). Its additions are fold_sums dispatches
+// (ReferenceStage::kFold), their times added to `timings`; uploads and downloads go through the
+// buffers' staging.
+class DeviceSumSlots final : public SumSlots {
  public:
-  explicit ReferenceFold(const vk::Context& context);
-  // `load` writes a node's sums into a slot of `sums` before the additions that read it.
-  vk::FrameTimings run(vk::FrameRecorder& frame, const FoldProgram& program, const vk::Buffer& sums, uint64_t pixels,
-                       const std::function<void(const SumNode&, uint32_t slot)>& load, const vk::Buffer& color) const;
+  static constexpr uint32_t kMinSlots = 3;
+  static constexpr uint32_t kMaxSlots = 10;
+  static constexpr uint64_t kDeviceBytes = uint64_t(512) << 20;
+
+  struct Band {
+    uint32_t firstRow;
+    uint32_t rows;
+    vk::Buffer sums;  // count() slots of rows x width vec4
+  };
+
+  // Throws hmb::Error in one line when one storage buffer cannot hold the slots of one row.
+  DeviceSumSlots(const vk::Context& context, vk::FrameRecorder& frame, const ReferenceSumKernels& kernels,
+                 uint32_t width, uint32_t height, vk::FrameTimings& timings);
+
+  const std::vector<Band>& bands() const { return bands_; }
+  uint32_t count() const override { return count_; }
+  void upload(uint32_t slot, std::span<const glm::vec4> sums) override;
+  std::vector<glm::vec4> download(uint32_t slot) override;
+  void clear(uint32_t slot) override;
+  void add(std::span<const glm::uvec2> pairs) override;
+  // Writes the mean of the sums in `slot` into `color` (ReferenceStage::kAverage).
+  void average(uint32_t slot, const vk::Buffer& color);
 
  private:
+  uint64_t bandPixels(const Band& band) const { return uint64_t(band.rows) * width_; }
+  VkDeviceSize offsetOf(const Band& band, uint32_t slot) const { return slot * bandPixels(band) * sizeof(glm::vec4); }
+
   const vk::Context& context_;
-  vk::ComputeKernel fold_;
-  vk::ComputeKernel average_;
+  vk::FrameRecorder& frame_;
+  const ReferenceSumKernels& kernels_;
+  uint32_t width_;
+  uint32_t count_;
+  std::vector<Band> bands_;
+  vk::FrameTimings& timings_;
 };
 
 class ReferenceStage {
@@ -98,7 +134,7 @@ class ReferenceStage {
   const vk::Context& context_;
   vk::ComputeKernel findMovingPixels_;
   ShadingKernel accumulate_;
-  ReferenceFold fold_;
+  ReferenceSumKernels sumKernels_;
   const HitShading* hits_;
   ReferenceProgress progress_;
   std::unique_ptr<TraceScene> traceScene_;

@@ -1,10 +1,6 @@
 #include "runtime/passes/reference_sum_tree.h"
 
 #include <algorithm>
-#include <bit>
-#include <functional>
-#include <map>
-#include <set>
 
 #include "hmblur/error.h"
 
@@ -26,151 +22,167 @@ SampleRange shardSamples(uint32_t samples, uint32_t index, uint32_t count) {
           static_cast<uint32_t>(uint64_t(samples) * (index + 1) / count)};
 }
 
-ShardSumTree::ShardSumTree(uint32_t samples, SampleRange shard)
-    : samples_(samples),
-      shard_(shard),
-      levels_(samples > 1 ? static_cast<uint32_t>(std::bit_width(samples - 1)) : 0u),
-      next_(shard.begin) {
-  if (shard.begin > shard.end || shard.end > samples) throw Error("shard samples out of the render's range");
-  slots_.resize(slotCount());
+bool SumNode::isLeftOf(const SumNode& right) const {
+  return !isFirstSample() && !right.isFirstSample() && level == right.level && level < 32 &&
+         ((start >> level) & 1) == 0 && leafEnd() == right.start;
 }
 
-SumStep ShardSumTree::add() {
-  if (finished()) throw Error("the shard's samples are all taken");
-  const uint32_t sample = next_++;
-  if (sample == 0) {
-    slots_[0] = SumNode::firstSample();
-    return {0, 0, 0};
-  }
-  const uint64_t leaf = sample - 1;
-  const uint64_t firstLeaf = shard_.begin > 0 ? shard_.begin - 1 : 0;
-  // Climb while the node ending at this leaf is a right half whose left half lies in the shard
-  // (it waits, whole, in the right slot of its level).
-  uint32_t level = 0;
-  bool leftOutside = false;
-  for (;; ++level) {
-    const uint64_t size = uint64_t(1) << level;
-    const uint64_t start = leaf + 1 - size;
-    if (((start >> level) & 1) == 0) break;  // a left half: it waits for its right one
-    if (start < firstLeaf + size) {           // its left half starts before the shard
-      leftOutside = true;
-      break;
+std::vector<SumNode> heldNodes(SampleRange shard, uint32_t done) {
+  std::vector<SumNode> stack;
+  for (uint32_t sample = shard.begin; sample < shard.begin + done; ++sample) {
+    SumNode node = SumNode::ofSample(sample);
+    while (!stack.empty() && stack.back().isLeftOf(node)) {
+      node = node.parent();
+      stack.pop_back();
     }
-    const SumNode left{level, static_cast<uint32_t>(start - size)};
-    if (slots_[rightSlot(level)] != left) throw Error("reference sum tree: " + left.text() + " is not held");
-    slots_[rightSlot(level)].reset();
+    stack.push_back(node);
   }
-  const SumNode node{level, static_cast<uint32_t>(leaf + 1 - (uint64_t(1) << level))};
-  const uint32_t target = leftOutside ? leftSlot(level) : rightSlot(level);
-  slots_.at(target) = node;
-  return {rightSlot(0), level, target};
+  return stack;
 }
 
-std::vector<ShardSumTree::Held> ShardSumTree::held() const {
-  std::vector<Held> nodes;
-  for (uint32_t slot = 0; slot < slots_.size(); ++slot)
-    if (slots_[slot]) nodes.push_back({slot, *slots_[slot]});
+bool isTreeNode(const SumNode& node, uint32_t samples) {
+  if (node.isFirstSample()) return samples > 0;
+  return node.level < 32 && node.start % (uint64_t(1) << node.level) == 0 && samples > 0 &&
+         node.leafEnd() <= samples - 1;
+}
+
+SumStack::SumStack(SumSlots& slots) : slots_(slots) {
+  if (slots.count() < 2) throw Error("reference sums: at least two slots are needed");
+  for (uint32_t slot = slots.count(); slot-- > 0;) free_.push_back(slot);
+}
+
+uint32_t SumStack::freeSlot() {
+  if (free_.empty()) {
+    const auto deepest = std::find_if(stack_.begin(), stack_.end(), [](const Entry& e) { return e.slot.has_value(); });
+    if (deepest == stack_.end()) throw Error("reference sums: no slot left to park");
+    park(*deepest);
+  }
+  const uint32_t slot = free_.back();
+  free_.pop_back();
+  return slot;
+}
+
+void SumStack::park(Entry& entry) {
+  entry.parked = slots_.download(*entry.slot);
+  free_.push_back(*entry.slot);
+  entry.slot.reset();
+}
+
+uint32_t SumStack::onDevice(Entry& entry) {
+  if (!entry.slot) {
+    const uint32_t slot = freeSlot();
+    slots_.upload(slot, entry.parked);
+    entry.parked = {};
+    entry.slot = slot;
+  }
+  return *entry.slot;
+}
+
+SumStack::Entry SumStack::climb(Entry carry) {
+  while (!stack_.empty() && stack_.back().node.isLeftOf(carry.node)) {
+    const uint32_t left = onDevice(stack_.back());
+    const glm::uvec2 pair(left, *carry.slot);
+    slots_.add(std::span(&pair, 1));
+    free_.push_back(*carry.slot);
+    carry = {carry.node.parent(), left, {}};
+    stack_.pop_back();
+  }
+  return carry;
+}
+
+SumStack::SampleStep SumStack::beginSample(uint32_t sample) {
+  if (pending_) throw Error("reference sums: a sample is already begun");
+  SumNode node = SumNode::ofSample(sample);
+  SampleStep step;
+  // The nodes the sample completes that are on the device, nearest first, go to the kernel.
+  for (size_t i = stack_.size(); i > 0 && step.fold.size() < kMaxKernelFolds; --i) {
+    const Entry& left = stack_[i - 1];
+    if (!left.node.isLeftOf(node) || !left.slot) break;
+    step.fold.push_back(*left.slot);
+    node = node.parent();
+  }
+  step.target = step.fold.empty() ? freeSlot() : step.fold.back();  // read before written, pixel by pixel
+  pending_ = Entry{node, step.target, {}};
+  pendingFolds_ = static_cast<uint32_t>(step.fold.size());
+  return step;
+}
+
+void SumStack::finishSample() {
+  if (!pending_) throw Error("reference sums: no sample begun");
+  for (uint32_t i = 0; i < pendingFolds_; ++i) {
+    if (*stack_.back().slot != *pending_->slot) free_.push_back(*stack_.back().slot);
+    stack_.pop_back();
+  }
+  Entry carry = climb(std::move(*pending_));
+  pending_.reset();
+  if (carry.node.isFirstSample()) {
+    // Sample 0 is the one node that pixels the kernel leaves out hold a value in: it waits in
+    // host memory, and its slot is cleared for the nodes to come.
+    const uint32_t slot = *carry.slot;
+    park(carry);
+    slots_.clear(slot);
+  }
+  stack_.push_back(std::move(carry));
+}
+
+void SumStack::push(const SumNode& node, std::vector<glm::vec4> sums, bool merge) {
+  if (!merge) {
+    stack_.push_back({node, std::nullopt, std::move(sums)});
+    return;
+  }
+  const uint32_t slot = freeSlot();
+  slots_.upload(slot, sums);
+  stack_.push_back(climb({node, slot, {}}));
+}
+
+std::vector<SumNode> SumStack::nodes() const {
+  std::vector<SumNode> nodes;
+  for (const Entry& e : stack_) nodes.push_back(e.node);
   return nodes;
 }
 
-namespace {
+std::vector<glm::vec4> SumStack::sumsOf(size_t index) const {
+  const Entry& e = stack_.at(index);
+  return e.slot ? slots_.download(*e.slot) : e.parked;
+}
 
-// Evaluates the tree in post order, handing out slots as it goes.
-class FoldBuilder {
- public:
-  FoldBuilder(uint32_t samples, const std::vector<ShardSumTree::Held>& resident, const std::vector<SumNode>& loaded,
-              uint32_t firstFreeSlot)
-      : leaves_(samples > 0 ? samples - 1 : 0), nextSlot_(firstFreeSlot) {
-    for (const ShardSumTree::Held& h : resident) {
-      add(h.node, h.slot);
-      nextSlot_ = std::max(nextSlot_, h.slot + 1);
+uint32_t SumStack::total() {
+  if (stack_.empty()) throw Error("reference: no samples to add up");
+  std::optional<Entry> first;
+  if (stack_.front().node.isFirstSample()) {
+    first = std::move(stack_.front());
+    stack_.erase(stack_.begin());
+    if (first->slot) park(*first);
+  }
+  // ((B1 + B2) + B3) + ..., each node taken off the bottom of the stack.
+  std::optional<uint32_t> sum;
+  while (!stack_.empty()) {
+    Entry next = std::move(stack_.front());
+    stack_.erase(stack_.begin());
+    uint32_t slot = 0;
+    if (next.slot) {
+      slot = *next.slot;
+    } else {
+      slot = freeSlot();
+      slots_.upload(slot, next.parked);
     }
-    for (const SumNode& node : loaded) add(node, std::nullopt);
-    program_.slotCount = nextSlot_;
-    // Disjoint: sorted by start, each begins where the one before ends or later.
-    uint64_t end = 0;
-    const SumNode* before = nullptr;
-    for (const auto& [start, node] : byStart_) {
-      if (start < end) throw Error("reference parts overlap: " + before->text() + " and " + node.text());
-      end = node.leafEnd();
-      before = &node;
+    if (!sum) {
+      sum = slot;
+      continue;
     }
+    const glm::uvec2 pair(*sum, slot);
+    slots_.add(std::span(&pair, 1));
+    free_.push_back(slot);
   }
-
-  FoldProgram build() {
-    std::optional<uint32_t> total;
-    uint64_t start = 0;
-    for (int level = 31; level >= 0; --level) {
-      if (((leaves_ >> level) & 1) == 0) continue;
-      total = combine(total, eval({static_cast<uint32_t>(level), static_cast<uint32_t>(start)}));
-      start += uint64_t(1) << level;
-    }
-    program_.result = combine(take(SumNode::firstSample()), total);
-    return std::move(program_);
+  if (!first) return *sum;
+  const uint32_t slot = freeSlot();
+  slots_.upload(slot, first->parked);
+  if (sum) {
+    const glm::uvec2 pair(slot, *sum);
+    slots_.add(std::span(&pair, 1));
+    free_.push_back(*sum);
   }
-
- private:
-  void add(const SumNode& node, std::optional<uint32_t> slot) {
-    if (!node.isFirstSample()) {
-      if (node.level >= 32 || node.start % (uint64_t(1) << node.level) != 0 || node.leafEnd() > leaves_)
-        throw Error("reference part holds " + node.text() + ", not a node of the sum tree of " +
-                    std::to_string(uint64_t(leaves_) + 1) + " samples");
-      byStart_.emplace(node.start, node);
-    }
-    if (!present_.emplace(node, slot).second) throw Error("reference parts both hold " + node.text());
-  }
-
-  // The slot holding `node`'s sum, loaded if it is not resident; none when no part has it.
-  std::optional<uint32_t> take(const SumNode& node) {
-    const auto found = present_.find(node);
-    if (found == present_.end()) return std::nullopt;
-    if (found->second) return found->second;
-    const uint32_t slot = freeSlot();
-    program_.steps.push_back({FoldStep::Kind::Load, node, slot, 0});
-    return slot;
-  }
-
-  std::optional<uint32_t> eval(const SumNode& node) {
-    if (const std::optional<uint32_t> slot = take(node)) return slot;
-    // Nothing inside it is held: it is left out.
-    const auto inside = byStart_.lower_bound(node.start);
-    if (node.level == 0 || inside == byStart_.end() || inside->first >= node.leafEnd()) return std::nullopt;
-    const uint32_t half = node.start + (1u << (node.level - 1));
-    const std::optional<uint32_t> left = eval({node.level - 1, node.start});
-    return combine(left, eval({node.level - 1, half}));
-  }
-
-  std::optional<uint32_t> combine(std::optional<uint32_t> left, std::optional<uint32_t> right) {
-    if (!left) return right;
-    if (!right) return left;
-    program_.steps.push_back({FoldStep::Kind::Add, {}, *left, *right});
-    free_.insert(*right);
-    return left;
-  }
-
-  uint32_t freeSlot() {
-    if (!free_.empty()) {
-      const uint32_t slot = *free_.begin();
-      free_.erase(free_.begin());
-      return slot;
-    }
-    program_.slotCount = std::max(program_.slotCount, nextSlot_ + 1);
-    return nextSlot_++;
-  }
-
-  uint32_t leaves_;
-  uint32_t nextSlot_;
-  std::map<SumNode, std::optional<uint32_t>> present_;  // node -> its resident slot
-  std::multimap<uint32_t, SumNode> byStart_;            // the tree's nodes by first leaf
-  std::set<uint32_t> free_;
-  FoldProgram program_;
-};
-
-}  // namespace
-
-FoldProgram foldProgram(uint32_t samples, const std::vector<ShardSumTree::Held>& resident,
-                        const std::vector<SumNode>& loaded, uint32_t firstFreeSlot) {
-  return FoldBuilder(samples, resident, loaded, firstFreeSlot).build();
+  return slot;
 }
 
 }  // namespace hmb::passes

@@ -7,16 +7,24 @@
 // its sum is its left half's plus its right half's. The total is
 //   sample 0 + (((B1 + B2) + B3) + ...),
 // B1, B2, ... the largest aligned blocks that tile the leaves from the left (one per set bit of
-// N - 1). A shard holds the largest tree nodes inside its run, at most two per level; the merge
-// rebuilds every other node from them. Pairwise sums also keep the rounding error growing with
-// log N rather than N.
+// N - 1). Pairwise sums also keep the rounding error growing with log N rather than N.
+//
+// A SumStack keeps the nodes summed so far, in sample order: a new node is added to the nodes
+// it completes (its left neighbours of the same size) as it arrives. A render pushes its
+// samples, a merge the nodes its parts hold, and both end with the same additions. Every
+// addition is the device's (SumSlots), so a merge and a render on one device agree to the bit;
+// the stack keeps at most a few nodes on the device and parks the others in host memory.
 #pragma once
 
 #include <compare>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 namespace hmb::passes {
 
@@ -27,8 +35,12 @@ struct SumNode {
   uint32_t start = 0;
 
   static SumNode firstSample() { return {kFirstSample, 0}; }
+  static SumNode ofSample(uint32_t sample) { return sample == 0 ? firstSample() : SumNode{0, sample - 1}; }
   bool isFirstSample() const { return level == kFirstSample; }
   uint64_t leafEnd() const { return uint64_t(start) + (uint64_t(1) << level); }
+  // Whether this is the left half of the node whose right half is `right`.
+  bool isLeftOf(const SumNode& right) const;
+  SumNode parent() const { return {level + 1, static_cast<uint32_t>(start & ~((uint64_t(2) << level) - 1))}; }
   std::string text() const;  // "sample 0" or "samples 5..8"
   auto operator<=>(const SumNode&) const = default;
 };
@@ -43,67 +55,69 @@ struct SampleRange {
 // Shard `index` (0-based) of `count`: the count runs of consecutive samples, as even as they go.
 SampleRange shardSamples(uint32_t samples, uint32_t index, uint32_t count);
 
-// What the accumulate kernel does with one sample: it adds the sums in slots foldSlot ..
-// foldSlot + foldLevels - 1 in turn before it (each the left neighbour of what it has so far)
-// and writes the result to targetSlot.
-struct SumStep {
-  uint32_t foldSlot = 0;
-  uint32_t foldLevels = 0;
-  uint32_t targetSlot = 0;
+// The nodes a shard holds after its first `done` samples, in sample order.
+std::vector<SumNode> heldNodes(SampleRange shard, uint32_t done);
+
+// Whether `node` is a node of the tree of `samples` samples.
+bool isTreeNode(const SumNode& node, uint32_t samples);
+
+// The device's sums: `count()` slots of a vec4 a pixel (rgb sum, w the number of samples).
+class SumSlots {
+ public:
+  virtual ~SumSlots() = default;
+  virtual uint32_t count() const = 0;
+  virtual void upload(uint32_t slot, std::span<const glm::vec4> sums) = 0;
+  virtual std::vector<glm::vec4> download(uint32_t slot) = 0;
+  virtual void clear(uint32_t slot) = 0;
+  // For each pair in turn, slot x = slot x + slot y (x the left node).
+  virtual void add(std::span<const glm::uvec2> pairs) = 0;
 };
 
-// The nodes a shard's render holds on the device as it takes its samples in order, each in a
-// slot: slot 0 holds sample 0; slot 1 + j the node of level j still waiting for its right
-// neighbour; slot 1 + levels + j the node of level j whose left neighbour lies before the shard
-// (only a shard that does not start at sample 0 has such nodes).
-class ShardSumTree {
+class SumStack {
  public:
-  // `samples`: the render's N; `shard` within [0, N).
-  ShardSumTree(uint32_t samples, SampleRange shard);
+  static constexpr uint32_t kMaxKernelFolds = 8;  // nodes the accumulate kernel adds in place
 
-  uint32_t slotCount() const { return 1 + levels_ * (shard_.begin > 1 ? 2 : 1); }
-  uint32_t samplesDone() const { return next_ - shard_.begin; }
-  bool finished() const { return next_ == shard_.end; }
-  // The next sample's step; records that it was taken.
-  SumStep add();
-  // What the slots hold now, in slot order.
-  struct Held {
-    uint32_t slot;
-    SumNode node;
+  // At least two slots.
+  explicit SumStack(SumSlots& slots);
+
+  // A sample of a render, in order: the accumulate kernel adds the sums in `fold` (slots,
+  // nearest node first) before the sample's value, each as the left operand, and writes the
+  // result to `target`; call finishSample() once it has run. A pixel the kernel leaves out
+  // holds zero in every node but sample 0's.
+  struct SampleStep {
+    std::vector<uint32_t> fold;
+    uint32_t target = 0;
   };
-  std::vector<Held> held() const;
+  SampleStep beginSample(uint32_t sample);
+  void finishSample();
+
+  // A node whose sums are known: a part's, added to the nodes it completes (`merge`), or a
+  // checkpoint's own, held as it is.
+  void push(const SumNode& node, std::vector<glm::vec4> sums, bool merge);
+
+  std::vector<SumNode> nodes() const;                // held, in sample order
+  std::vector<glm::vec4> sumsOf(size_t index) const;  // of nodes()[index]
+  // Adds every held node up in the tree's order; the slot holding the total. The stack is
+  // empty after it. Throws when nothing is held.
+  uint32_t total();
 
  private:
-  uint32_t rightSlot(uint32_t level) const { return 1 + level; }
-  uint32_t leftSlot(uint32_t level) const { return 1 + levels_ + level; }
+  struct Entry {
+    SumNode node;
+    std::optional<uint32_t> slot;    // on the device, or
+    std::vector<glm::vec4> parked;   // in host memory
+  };
+  uint32_t freeSlot();  // parks the deepest node on the device when every slot is taken
+  uint32_t onDevice(Entry& entry);
+  void park(Entry& entry);
+  // Adds `carry` (on the device) to every held node it completes; returns it with the result.
+  Entry climb(Entry carry);
 
-  uint32_t samples_;
-  SampleRange shard_;
-  uint32_t levels_;  // levels of the tree over N - 1 leaves
-  uint32_t next_;
-  std::vector<std::optional<SumNode>> slots_;
+  SumSlots& slots_;
+  std::vector<Entry> stack_;
+  std::vector<uint32_t> free_;
+  std::optional<Entry> pending_;  // the sample between beginSample and finishSample
+  uint32_t pendingFolds_ = 0;
 };
-
-// How to add up a set of nodes (disjoint, each a node of the tree of N samples) in the tree's
-// order: loads of nodes into slots and sums of two slots into the left one's. Nodes already in
-// a slot are read there; the others are loaded into free slots when they are needed, so that at
-// most about one slot per level is in use however many nodes there are.
-struct FoldStep {
-  enum class Kind { Load, Add } kind;
-  SumNode node;   // Load: the node to load into `left`
-  uint32_t left;  // Add: left = left + right
-  uint32_t right;
-};
-
-struct FoldProgram {
-  std::vector<FoldStep> steps;
-  std::optional<uint32_t> result;  // the slot holding the total; none when no node is given
-  uint32_t slotCount = 0;          // slots the program uses (resident ones included)
-};
-
-// `resident`: nodes already in slots (their data may be overwritten); `loaded`: nodes to load.
-// Throws hmb::Error when a node is not one of the tree's or two overlap.
-FoldProgram foldProgram(uint32_t samples, const std::vector<ShardSumTree::Held>& resident,
-                        const std::vector<SumNode>& loaded, uint32_t firstFreeSlot);
 
 }  // namespace hmb::passes

@@ -459,6 +459,10 @@ void Context::readDevice(const ContextOptions& options) {
   }
   if (options.texelBufferLimit > 0)
     limits_.maxTexelBufferElements = std::min(limits_.maxTexelBufferElements, options.texelBufferLimit);
+  if (options.storageBufferRangeLimit > 0) {
+    limits_.maxStorageBufferRange = std::min(limits_.maxStorageBufferRange, options.storageBufferRangeLimit);
+    info_.maxStorageBufferRange = limits_.maxStorageBufferRange;
+  }
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
   for (uint32_t t = 0; t < memoryProperties_.memoryTypeCount; ++t) allocationTypes_[t] = t;
   if (options.hostVisibleDeviceLocalBytes > 0) pretendDiscreteMemory(options.hostVisibleDeviceLocalBytes);

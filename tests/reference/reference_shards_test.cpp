@@ -25,6 +25,7 @@
 #include "kernels/reference/reference_layout.h"
 #include "runtime/passes/reference_merge.h"
 #include "runtime/passes/reference_partial.h"
+#include "runtime/passes/reference_stage.h"
 #include "runtime/vulkan/compute_kernel.h"
 #include "runtime/vulkan/frame_recorder.h"
 #include "tests/support/expect_error.h"
@@ -126,6 +127,40 @@ TEST_F(ReferenceShardsTest, JitteredAndDeformingShardsMergeToTheSingleRender) {
   const scene::Scene arm = scene::loadScene((fs::path(HMB_DEFORMING_SCENES_DIR) / "skinned-arm.gltf").string(),
                                             scene::ShutterChoice{.fps = 120.0f, .exposureSeconds = 1.0f / 60.0f});
   expectShardsMergeToTheSingleRender(arm, referenceSettings(6), {2, 3}, "skinned-arm");
+}
+
+// A device whose storage buffers hold 1.5 MiB keeps the ten slots of 160x90 sums (2.2 MiB) in
+// two bands of rows, a buffer each: the image and the merge are the same bits as with one band.
+TEST(ReferenceShardsBandsTest, SumsInBandsOfRowsAddUpAlike) {
+  const scene::Scene scene = scene::loadScene("living-room");
+  RenderSettings settings = referenceSettings(9);
+  const std::vector<float> oneBand = beauty(Renderer(VulkanTest::context()).render(scene, settings));
+  vk::ContextOptions options;
+  options.validation = true;
+  options.storageBufferRangeLimit = 3u << 19;
+  vk::Context narrow(options);
+  Renderer renderer(narrow);
+  EXPECT_TRUE(sameBits(beauty(renderer.render(scene, settings)), oneBand));
+  const fs::path folder = partsFolder("bands");
+  std::vector<fs::path> parts;
+  for (uint32_t i = 0; i < 3; ++i) {
+    settings.reference.shard = {i, 3};
+    settings.reference.checkpoint = folder / ("part-" + std::to_string(i) + ".hmbpart");
+    renderer.render(scene, settings);
+    parts.push_back(settings.reference.checkpoint);
+  }
+  vk::FrameRecorder frame(narrow);
+  const passes::MergedReference merged = passes::mergeReferenceParts(narrow, frame, parts, false);
+  std::vector<float> values;
+  for (const glm::vec4& c : merged.color) values.insert(values.end(), {c.r, c.g, c.b, c.a});
+  EXPECT_TRUE(sameBits(values, oneBand));
+  EXPECT_EQ(narrow.validationErrors(), 0u);
+  vk::FrameTimings timings;
+  const passes::ReferenceSumKernels kernels(narrow);
+  const passes::DeviceSumSlots slots(narrow, frame, kernels, kWidth, kHeight, timings);
+  EXPECT_EQ(slots.bands().size(), 2u);
+  // The slots of one row must fit in one buffer.
+  expectError([&] { passes::DeviceSumSlots(narrow, frame, kernels, 10000, 2, timings); }, "use a narrower image");
 }
 
 TEST_F(ReferenceShardsTest, AShardStoppedMidwayResumesFromItsPart) {

@@ -19,12 +19,10 @@
 namespace hmb::test {
 namespace {
 
-using passes::FoldProgram;
-using passes::FoldStep;
 using passes::SampleRange;
-using passes::ShardSumTree;
 using passes::SumNode;
-using passes::SumStep;
+using passes::SumSlots;
+using passes::SumStack;
 
 // The definition: sample 0 + (((B1 + B2) + B3) + ...), each block the sum of its halves.
 float blockSum(const std::vector<float>& samples, uint32_t level, uint64_t start) {
@@ -49,61 +47,97 @@ float definedTotal(const std::vector<float>& samples) {
   return samples[0] + total;
 }
 
-// A shard's render of one pixel, as accumulate_sample does it: the nodes it holds at the end.
-struct Part {
-  std::map<SumNode, float> nodes;
+// The device's slots in host memory, each pixel's sums added as fold_sums adds them. A slot no
+// one wrote holds NaN, which would reach a total that read it.
+class HostSlots final : public SumSlots {
+ public:
+  HostSlots(uint32_t count, size_t pixels, float fill)
+      : data_(count, std::vector<glm::vec4>(pixels, glm::vec4(fill))) {}
+  uint32_t count() const override { return static_cast<uint32_t>(data_.size()); }
+  void upload(uint32_t slot, std::span<const glm::vec4> sums) override {
+    ASSERT_EQ(sums.size(), data_.at(slot).size());
+    std::copy(sums.begin(), sums.end(), data_.at(slot).begin());
+    ++uploads;
+  }
+  std::vector<glm::vec4> download(uint32_t slot) override {
+    ++downloads;
+    return data_.at(slot);
+  }
+  void clear(uint32_t slot) override { std::fill(data_.at(slot).begin(), data_.at(slot).end(), glm::vec4(0.0f)); }
+  void add(std::span<const glm::uvec2> pairs) override {
+    for (const glm::uvec2& p : pairs)
+      for (size_t i = 0; i < data_[p.x].size(); ++i) data_.at(p.x)[i] = data_[p.x][i] + data_.at(p.y)[i];
+  }
+  std::vector<glm::vec4>& operator[](uint32_t slot) { return data_.at(slot); }
+
+  size_t uploads = 0, downloads = 0;
+
+ private:
+  std::vector<std::vector<glm::vec4>> data_;
 };
 
-Part renderShard(const std::vector<float>& samples, SampleRange shard) {
-  ShardSumTree tree(static_cast<uint32_t>(samples.size()), shard);
-  std::vector<float> slots(tree.slotCount(), std::numeric_limits<float>::quiet_NaN());
-  for (uint32_t s = shard.begin; s < shard.end; ++s) {
-    const SumStep step = tree.add();
-    float node = samples[s];
-    for (uint32_t level = 0; level < step.foldLevels; ++level) node = slots.at(step.foldSlot + level) + node;
-    slots.at(step.targetSlot) = node;
-  }
-  Part part;
-  for (const ShardSumTree::Held& held : tree.held()) part.nodes[held.node] = slots[held.slot];
-  return part;
-}
+// Pixel 0 takes every sample; pixel 1 only sample 0, as a pixel nothing moving crosses.
+constexpr size_t kPixels = 2;
 
-// fold_sums playing a program; loads come from the parts.
-float runFold(const FoldProgram& program, std::vector<float> slots, const std::map<SumNode, float>& loadable) {
-  slots.resize(std::max<size_t>(slots.size(), program.slotCount), std::numeric_limits<float>::quiet_NaN());
-  for (const FoldStep& step : program.steps) {
-    if (step.kind == FoldStep::Kind::Load)
-      slots.at(step.left) = loadable.at(step.node);
-    else
-      slots.at(step.left) = slots.at(step.left) + slots.at(step.right);
-  }
-  return slots.at(*program.result);
-}
-
-float mergeParts(uint32_t samples, const std::vector<Part>& parts) {
+struct Part {
+  uint32_t done = 0;  // samples taken
   std::vector<SumNode> nodes;
-  std::map<SumNode, float> loadable;
-  for (const Part& part : parts)
-    for (const auto& [node, sum] : part.nodes) {
-      nodes.push_back(node);
-      loadable[node] = sum;
+  std::vector<std::vector<glm::vec4>> sums;
+};
+
+// A render of the shard's samples as the stage runs it, the accumulate kernel played per pixel,
+// from a part when given and for at most `stopAfter` samples: its part, its total, and how
+// many nodes it parked in host memory on the way.
+struct Rendered {
+  Part part;
+  std::vector<glm::vec4> total;
+  size_t parked = 0;
+};
+
+Rendered renderShard(const std::vector<float>& samples, SampleRange shard, uint32_t slotCount,
+                     const Part* resumeFrom = nullptr, uint32_t stopAfter = ~0u) {
+  HostSlots slots(slotCount, kPixels, 0.0f);
+  SumStack stack(slots);
+  uint32_t done = 0;
+  if (resumeFrom) {
+    for (size_t i = 0; i < resumeFrom->nodes.size(); ++i) stack.push(resumeFrom->nodes[i], resumeFrom->sums[i], false);
+    done = resumeFrom->done;
+  }
+  for (uint32_t s = shard.begin + done; s < shard.end && done < stopAfter; ++s, ++done) {
+    const SumStack::SampleStep step = stack.beginSample(s);
+    EXPECT_LE(step.fold.size(), SumStack::kMaxKernelFolds);
+    for (size_t p = 0; p < kPixels; ++p) {
+      if (s > 0 && p == 1) continue;  // left out by the kernel
+      glm::vec4 node(samples[s], 0.0f, 0.0f, 1.0f);
+      for (const uint32_t f : step.fold) node = slots[f][p] + node;
+      slots[step.target][p] = node;
     }
-  return runFold(passes::foldProgram(samples, {}, nodes, 0), {}, loadable);
+    stack.finishSample();
+    EXPECT_EQ(stack.nodes(), passes::heldNodes(shard, done + 1));
+  }
+  Rendered rendered;
+  rendered.parked = slots.downloads;
+  rendered.part.done = done;
+  rendered.part.nodes = stack.nodes();
+  for (size_t i = 0; i < rendered.part.nodes.size(); ++i) rendered.part.sums.push_back(stack.sumsOf(i));
+  rendered.total = slots[stack.total()];
+  return rendered;
 }
 
-// A whole render: its held nodes stay in their slots and are added there.
-float singleRender(const std::vector<float>& samples) {
-  const uint32_t n = static_cast<uint32_t>(samples.size());
-  ShardSumTree tree(n, {0, n});
-  std::vector<float> slots(tree.slotCount(), std::numeric_limits<float>::quiet_NaN());
-  for (uint32_t s = 0; s < n; ++s) {
-    const SumStep step = tree.add();
-    float node = samples[s];
-    for (uint32_t level = 0; level < step.foldLevels; ++level) node = slots.at(step.foldSlot + level) + node;
-    slots.at(step.targetSlot) = node;
-  }
-  return runFold(passes::foldProgram(n, tree.held(), {}, tree.slotCount()), slots, {});
+std::vector<glm::vec4> mergeParts(const std::vector<Part>& parts, uint32_t slotCount) {
+  HostSlots slots(slotCount, kPixels, std::numeric_limits<float>::quiet_NaN());
+  SumStack stack(slots);
+  std::vector<std::pair<SumNode, const std::vector<glm::vec4>*>> nodes;
+  for (const Part& part : parts)
+    for (size_t i = 0; i < part.nodes.size(); ++i) nodes.emplace_back(part.nodes[i], &part.sums[i]);
+  std::sort(nodes.begin(), nodes.end(), [](const auto& a, const auto& b) {
+    return a.first.isFirstSample() != b.first.isFirstSample() ? a.first.isFirstSample() : a.first.start < b.first.start;
+  });
+  for (const auto& [node, sums] : nodes) stack.push(node, *sums, true);
+  return slots[stack.total()];
 }
+
+uint32_t bitsOf(const glm::vec4& v) { return std::bit_cast<uint32_t>(v.x); }
 
 // Values whose sums round at every step, over many magnitudes, with zeros among them.
 std::vector<float> samplesOf(uint32_t n, std::mt19937& random) {
@@ -136,29 +170,62 @@ TEST(ReferenceSumTreeTest, ShardsAreConsecutiveRunsThatCoverTheSamples) {
   expectError([] { passes::shardSamples(16, 0, 0); }, "below the count");
 }
 
-TEST(ReferenceSumTreeTest, ASingleRenderAddsInTheDefinedOrder) {
+// The total's sums of the moving pixel are the definition's; the still pixel's are sample 0's;
+// the counts are the samples taken.
+void expectTotal(const std::vector<glm::vec4>& total, const std::vector<float>& samples, const std::string& what) {
+  EXPECT_EQ(bitsOf(total[0]), std::bit_cast<uint32_t>(definedTotal(samples))) << what;
+  EXPECT_EQ(total[0].w, float(samples.size())) << what;
+  EXPECT_EQ(bitsOf(total[1]), std::bit_cast<uint32_t>(samples[0])) << what;
+  EXPECT_EQ(total[1].w, 1.0f) << what;
+}
+
+TEST(ReferenceSumTreeTest, ASingleRenderAddsInTheDefinedOrderWithAnyNumberOfSlots) {
   std::mt19937 random(7);
   for (uint32_t n = 1; n <= 300; ++n) {
     const std::vector<float> samples = samplesOf(n, random);
-    EXPECT_EQ(std::bit_cast<uint32_t>(singleRender(samples)), std::bit_cast<uint32_t>(definedTotal(samples))) << n;
+    for (const uint32_t slots : {2u, 3u, 10u})
+      expectTotal(renderShard(samples, {0, n}, slots).total, samples, std::to_string(n) + " samples, " +
+                                                                            std::to_string(slots) + " slots");
   }
+  // Two slots park nodes in host memory as they go; ten keep 1000 samples' nodes on the device,
+  // but sample 0's.
+  std::vector<float> many = samplesOf(1000, random);
+  EXPECT_GT(renderShard(many, {0, 1000}, 2).parked, 100u);
+  EXPECT_EQ(renderShard(many, {0, 1000}, 10).parked, 1u);
 }
 
 TEST(ReferenceSumTreeTest, ShardsMergeToTheSingleRenderInAnyOrder) {
   std::mt19937 random(11);
   for (const uint32_t n : {1u, 2u, 3u, 5u, 16u, 17u, 64u, 100u, 255u, 256u, 257u, 1000u}) {
     const std::vector<float> samples = samplesOf(n, random);
-    const uint32_t single = std::bit_cast<uint32_t>(singleRender(samples));
     for (const uint32_t k : {1u, 2u, 3u, 7u, 13u, 64u, n}) {
       if (k > n) continue;
-      std::vector<Part> parts;
-      for (uint32_t i = 0; i < k; ++i) parts.push_back(renderShard(samples, passes::shardSamples(n, i, k)));
-      EXPECT_EQ(std::bit_cast<uint32_t>(mergeParts(n, parts)), single) << n << " samples, " << k << " shards";
-      std::reverse(parts.begin(), parts.end());
-      EXPECT_EQ(std::bit_cast<uint32_t>(mergeParts(n, parts)), single) << n << " samples, " << k << " shards reversed";
-      std::shuffle(parts.begin(), parts.end(), random);
-      EXPECT_EQ(std::bit_cast<uint32_t>(mergeParts(n, parts)), single) << n << " samples, " << k << " shards shuffled";
+      for (const uint32_t slots : {2u, 4u, 10u}) {
+        const std::string what =
+            std::to_string(n) + " samples, " + std::to_string(k) + " shards, " + std::to_string(slots) + " slots";
+        std::vector<Part> parts;
+        for (uint32_t i = 0; i < k; ++i) parts.push_back(renderShard(samples, passes::shardSamples(n, i, k), slots).part);
+        expectTotal(mergeParts(parts, slots), samples, what);
+        std::reverse(parts.begin(), parts.end());
+        expectTotal(mergeParts(parts, slots), samples, what + " reversed");
+        std::shuffle(parts.begin(), parts.end(), random);
+        expectTotal(mergeParts(parts, 2), samples, what + " shuffled, merged in two slots");
+      }
     }
+  }
+}
+
+TEST(ReferenceSumTreeTest, AShardResumedFromItsNodesEndsAsOneThatRanThrough) {
+  std::mt19937 random(13);
+  const std::vector<float> samples = samplesOf(200, random);
+  const SampleRange shard = passes::shardSamples(200, 1, 3);
+  const Part whole = renderShard(samples, shard, 3).part;
+  for (const uint32_t stop : {1u, 5u, 32u, 60u}) {
+    const Part half = renderShard(samples, shard, 3, nullptr, stop).part;
+    const Part resumed = renderShard(samples, shard, 3, &half).part;
+    ASSERT_EQ(resumed.nodes, whole.nodes) << stop;
+    for (size_t i = 0; i < whole.sums.size(); ++i)
+      EXPECT_EQ(bitsOf(resumed.sums[i][0]), bitsOf(whole.sums[i][0])) << stop << " node " << i;
   }
 }
 
@@ -167,45 +234,43 @@ TEST(ReferenceSumTreeTest, ShardsMergeToTheSingleRenderInAnyOrder) {
 TEST(ReferenceSumTreeTest, PairwiseSumsKeepTheMeanOfManySamples) {
   const uint32_t n = 1u << 20;
   const std::vector<float> samples(n, 0.1f);
-  const float tree = singleRender(samples) / float(n);
+  const float tree = definedTotal(samples) / float(n);
   float running = 0.0f;
   for (const float s : samples) running += s;
   EXPECT_NEAR(tree, 0.1f, 4e-8f);
   EXPECT_GT(std::abs(running / float(n) - 0.1f), 1e-4f);
 }
 
-// However many samples or shards: a shard holds at most two nodes a level, and a merge, which
-// loads them one at a time, uses about one slot a level.
-TEST(ReferenceSumTreeTest, ShardsAndMergesHoldFewNodes) {
+// However many samples: a shard holds at most two nodes a level, and sample 0's.
+TEST(ReferenceSumTreeTest, AShardHoldsFewNodes) {
   for (const uint32_t n : {2u, 100u, 1024u, 4097u, 65536u}) {
     const uint32_t levels = static_cast<uint32_t>(std::bit_width(n - 1));
     for (const uint32_t k : {1u, 3u, 7u, 61u}) {
       if (k > n) continue;
-      std::vector<SumNode> all;
       for (uint32_t i = 0; i < k; ++i) {
-        ShardSumTree tree(n, passes::shardSamples(n, i, k));
+        const SampleRange shard = passes::shardSamples(n, i, k);
         size_t most = 0;
-        while (!tree.finished()) {
-          tree.add();
-          most = std::max(most, tree.held().size());
-        }
+        for (uint32_t done = 0; done <= shard.size(); done += std::max(1u, shard.size() / 97))
+          most = std::max(most, passes::heldNodes(shard, done).size());
         EXPECT_LE(most, 2 * levels + 1) << n << " " << i << "/" << k;
-        EXPECT_LE(tree.slotCount(), 2 * levels + 1);
-        for (const ShardSumTree::Held& held : tree.held()) all.push_back(held.node);
+        for (const SumNode& node : passes::heldNodes(shard, shard.size()))
+          EXPECT_TRUE(passes::isTreeNode(node, n)) << node.text() << " (level " << node.level << ", start " << node.start << ") of " << n;
       }
-      const FoldProgram program = passes::foldProgram(n, {}, all, 0);
-      EXPECT_LE(program.slotCount, levels + 2) << n << " samples, " << k << " shards";
     }
   }
 }
 
-TEST(ReferenceSumTreeTest, AFoldRefusesNodesThatAreNotTheTreesOrOverlap) {
-  expectError([] { passes::foldProgram(16, {}, {{1, 1}}, 0); }, "not a node of the sum tree");  // misaligned
-  expectError([] { passes::foldProgram(16, {}, {{4, 0}}, 0); }, "not a node of the sum tree");  // past 15 leaves
-  expectError([] { passes::foldProgram(16, {}, {{2, 4}, {1, 6}}, 0); }, "overlap");
-  expectError([] { passes::foldProgram(16, {}, {{1, 4}, {1, 4}}, 0); }, "both hold");
-  expectError([] { passes::foldProgram(16, {}, {SumNode::firstSample(), SumNode::firstSample()}, 0); }, "both hold");
+TEST(ReferenceSumTreeTest, NodesOfTheTree) {
+  EXPECT_TRUE(passes::isTreeNode({2, 4}, 16));
+  EXPECT_FALSE(passes::isTreeNode({1, 1}, 16));  // misaligned
+  EXPECT_FALSE(passes::isTreeNode({4, 0}, 16));  // past 15 leaves
+  EXPECT_TRUE(passes::isTreeNode(SumNode::firstSample(), 1));
+  EXPECT_TRUE(SumNode({1, 4}).isLeftOf({1, 6}));
+  EXPECT_FALSE(SumNode({1, 6}).isLeftOf({1, 8}));  // a right half
+  EXPECT_FALSE(SumNode({1, 4}).isLeftOf({0, 6}));
+  EXPECT_FALSE(SumNode::firstSample().isLeftOf({0, 0}));
   EXPECT_EQ(SumNode({2, 4}).text(), "samples 5..8");
+  EXPECT_EQ(SumNode::ofSample(9), SumNode({0, 8}));
 }
 
 }  // namespace
