@@ -306,6 +306,10 @@ for ((s = 0; s < SHARDS; s++)); do
   [[ $t == null ]] || shard_sum=$(awk -v a="$shard_sum" -v b="$t" 'BEGIN { printf "%.3f", a + b }')
 done
 merge_seconds=$(time_of "$out/merge.time")
+part_bytes=()
+for ((s = 0; s < SHARDS; s++)); do
+  part_bytes+=("$(stat -c %s "$out/part-$s.hmbpart" 2> /dev/null || echo null)")
+done
 cpu_model=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
 hmblur_version=$("$HMBLUR" --version 2>&1 | head -n 1)
 date_utc=$(date -u +%FT%TZ)
@@ -318,6 +322,8 @@ date_utc=$(date -u +%FT%TZ)
   printf -v joined '%s, ' "${shard_times[@]}"
   echo "  \"shard_seconds\": [${joined%, }],"
   echo "  \"shard_seconds_sum\": $shard_sum,"
+  printf -v joined '%s, ' "${part_bytes[@]}"
+  echo "  \"part_bytes\": [${joined%, }],"
   echo "  \"merge_seconds\": $merge_seconds,"
   echo "  \"slurm_wall_seconds\": $slurm_seconds,"
   echo "  \"single_seconds\": ${single_seconds:-null},"
@@ -342,7 +348,7 @@ date_utc=$(date -u +%FT%TZ)
   echo "jobs: array $array, merge $merge"
   while read -r line; do echo "  $line"; done <<< "$job_states"
   for ((s = 0; s < SHARDS; s++)); do
-    echo "shard $s: ${shard_times[s]} s"
+    echo "shard $s: ${shard_times[s]} s, part ${part_bytes[s]} bytes"
   done
   echo "shards summed: $shard_sum s"
   echo "merge: $merge_seconds s"
