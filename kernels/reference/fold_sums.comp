@@ -17,8 +17,16 @@ layout(push_constant) uniform Params { FoldSumsParams params; };
 void main() {
   const uint i = linearInvocationIndex(HMB_FOLD_SUMS_GROUP);
   if (i >= params.pixelCount) return;
+  // A run of additions into one slot keeps its sum in a register and writes it once.
+  uint held = 0xffffffffu;
+  vec4 sum = vec4(0.0);
   for (uint op = 0u; op < params.opCount; ++op) {
-    const uint left = ops[op].x * params.pixelCount + i;
-    sums[left] = sums[left] + sums[ops[op].y * params.pixelCount + i];
+    if (ops[op].x != held) {
+      if (held != 0xffffffffu) sums[held * params.pixelCount + i] = sum;
+      held = ops[op].x;
+      sum = sums[held * params.pixelCount + i];
+    }
+    sum = sum + sums[ops[op].y * params.pixelCount + i];
   }
+  if (held != 0xffffffffu) sums[held * params.pixelCount + i] = sum;
 }

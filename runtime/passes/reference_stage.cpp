@@ -276,10 +276,6 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
   SumStack stack(slots);
   uint32_t done = 0;
   const auto header = [&] { return partialOf(identity, settings, shard, pixels, done, stack.nodes()); };
-  // Slots start at zero: a pixel that takes only sample 0 holds zero in every other node.
-  frame.begin();
-  for (const DeviceSumSlots::Band& band : slots.bands()) frame.fill(kAccumulate, band.sums, 0);
-  vk::appendTimings(total, frame.submitAndWait());
   progress_ = {};
   progress_.samplesTotal = shard.size();
   if (!settings.checkpoint.empty()) done = resumeFromCheckpoint(settings.checkpoint, header(), stack);
@@ -294,6 +290,13 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
     TraceScene& traceScene = *traceScene_;
     const float tMin = gpuScene.camera().znear, tMax = gpuScene.camera().zfar;
     const vk::Buffer pixelList = findMovingPixels(frame, scene, times, width, height, settings, tMin, tMax, total);
+    if (progress_.movingPixels) {
+      // Samples after the first write the listed pixels alone: the others must hold zero in
+      // every node but sample 0's, so the slots start at zero.
+      frame.begin();
+      for (const DeviceSumSlots::Band& band : slots.bands()) frame.fill(kAccumulate, band.sums, 0);
+      vk::appendTimings(total, frame.submitAndWait());
+    }
     const bool shapesChange = std::any_of(scene.instances.begin(), scene.instances.end(), [&](const scene::Instance& i) {
       return i.deforms() && scene::deformationIsAnimated(scene, i);
     });
@@ -385,10 +388,13 @@ ReferenceSumKernels::ReferenceSumKernels(const vk::Context& context)
 DeviceSumSlots::DeviceSumSlots(const vk::Context& context, vk::FrameRecorder& frame, const ReferenceSumKernels& kernels,
                                uint32_t width, uint32_t height, vk::FrameTimings& timings)
     : context_(context), frame_(frame), kernels_(kernels), width_(width), timings_(timings) {
-  const uint64_t slotBytes = uint64_t(width) * height * sizeof(glm::vec4);
-  count_ = static_cast<uint32_t>(std::clamp<uint64_t>(kDeviceBytes / std::max<uint64_t>(slotBytes, 1), kMinSlots, kMaxSlots));
+  const uint64_t slotBytes = std::max<uint64_t>(uint64_t(width) * height * sizeof(glm::vec4), 1);
+  const uint64_t range = context.info().maxStorageBufferRange;
+  count_ = static_cast<uint32_t>(std::clamp<uint64_t>(kDeviceBytes / slotBytes, kMinSlots, kMaxSlots));
+  // One band where one buffer holds enough slots: a band more costs a dispatch more a sample.
+  if (range / slotBytes >= kMinSlots) count_ = static_cast<uint32_t>(std::min<uint64_t>(count_, range / slotBytes));
   const uint64_t rowBytes = uint64_t(count_) * width * sizeof(glm::vec4);
-  const uint64_t rowsPerBand = std::min<uint64_t>(context.info().maxStorageBufferRange / rowBytes, height);
+  const uint64_t rowsPerBand = std::min<uint64_t>(range / rowBytes, height);
   if (rowsPerBand == 0)
     throw Error("the reference's " + std::to_string(count_) + " sums of a row of " + std::to_string(width) +
                 " pixels do not fit in one of the device's storage buffers (" +

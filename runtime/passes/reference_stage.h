@@ -45,10 +45,11 @@ struct ReferenceSumKernels {
 };
 
 // The sum stack's slots (reference_sum_tree.h) on the device: a vec4 a pixel each, kMinSlots
-// to kMaxSlots of them as the image's size allows within kDeviceBytes (a render keeps its
-// deepest nodes in host memory past them). One storage buffer holds every slot of a band of
-// rows: one band where a buffer holds them all, more for a large image on a device with small
-// storage buffers (lavapipe's are 128 MiB). Its additions are fold_sums dispatches
+// to kMaxSlots of them as the image's size allows within kDeviceBytes and, where it holds
+// kMinSlots, within one storage buffer (a render keeps its deepest nodes in host memory past
+// them). One storage buffer holds every slot of a band of rows: one band where a buffer holds
+// them all, more for a large image on a device with small storage buffers (lavapipe's are
+// 128 MiB). Its additions are fold_sums dispatches
 // (ReferenceStage::kFold), their times added to `timings`; uploads and downloads go through the
 // buffers' staging.
 class DeviceSumSlots final : public SumSlots {

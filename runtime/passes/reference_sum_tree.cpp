@@ -47,7 +47,7 @@ bool isTreeNode(const SumNode& node, uint32_t samples) {
 }
 
 SumStack::SumStack(SumSlots& slots) : slots_(slots) {
-  if (slots.count() < 2) throw Error("reference sums: at least two slots are needed");
+  if (slots.count() < 3) throw Error("reference sums: at least three slots are needed");
   for (uint32_t slot = slots.count(); slot-- > 0;) free_.push_back(slot);
 }
 
@@ -62,7 +62,14 @@ uint32_t SumStack::freeSlot() {
   return slot;
 }
 
+void SumStack::flush() {
+  if (pendingAdds_.empty()) return;
+  slots_.add(pendingAdds_);
+  pendingAdds_.clear();
+}
+
 void SumStack::park(Entry& entry) {
+  flush();
   entry.parked = slots_.download(*entry.slot);
   free_.push_back(*entry.slot);
   entry.slot.reset();
@@ -71,6 +78,7 @@ void SumStack::park(Entry& entry) {
 uint32_t SumStack::onDevice(Entry& entry) {
   if (!entry.slot) {
     const uint32_t slot = freeSlot();
+    flush();
     slots_.upload(slot, entry.parked);
     entry.parked = {};
     entry.slot = slot;
@@ -81,8 +89,7 @@ uint32_t SumStack::onDevice(Entry& entry) {
 SumStack::Entry SumStack::climb(Entry carry) {
   while (!stack_.empty() && stack_.back().node.isLeftOf(carry.node)) {
     const uint32_t left = onDevice(stack_.back());
-    const glm::uvec2 pair(left, *carry.slot);
-    slots_.add(std::span(&pair, 1));
+    add(left, *carry.slot);
     free_.push_back(*carry.slot);
     carry = {carry.node.parent(), left, {}};
     stack_.pop_back();
@@ -104,6 +111,7 @@ SumStack::SampleStep SumStack::beginSample(uint32_t sample) {
   step.target = step.fold.empty() ? freeSlot() : step.fold.back();  // read before written, pixel by pixel
   pending_ = Entry{node, step.target, {}};
   pendingFolds_ = static_cast<uint32_t>(step.fold.size());
+  flush();  // the kernel reads the slots next
   return step;
 }
 
@@ -123,6 +131,7 @@ void SumStack::finishSample() {
     slots_.clear(slot);
   }
   stack_.push_back(std::move(carry));
+  flush();
 }
 
 void SumStack::push(const SumNode& node, std::vector<glm::vec4> sums, bool merge) {
@@ -131,6 +140,7 @@ void SumStack::push(const SumNode& node, std::vector<glm::vec4> sums, bool merge
     return;
   }
   const uint32_t slot = freeSlot();
+  flush();
   slots_.upload(slot, sums);
   stack_.push_back(climb({node, slot, {}}));
 }
@@ -148,41 +158,31 @@ std::vector<glm::vec4> SumStack::sumsOf(size_t index) const {
 
 uint32_t SumStack::total() {
   if (stack_.empty()) throw Error("reference: no samples to add up");
-  std::optional<Entry> first;
+  // Sample 0's sums go to the device first, so that every addition below goes in one pass.
+  std::optional<uint32_t> first;
   if (stack_.front().node.isFirstSample()) {
-    first = std::move(stack_.front());
+    first = onDevice(stack_.front());
     stack_.erase(stack_.begin());
-    if (first->slot) park(*first);
   }
   // ((B1 + B2) + B3) + ..., each node taken off the bottom of the stack.
   std::optional<uint32_t> sum;
   while (!stack_.empty()) {
     Entry next = std::move(stack_.front());
     stack_.erase(stack_.begin());
-    uint32_t slot = 0;
-    if (next.slot) {
-      slot = *next.slot;
-    } else {
-      slot = freeSlot();
-      slots_.upload(slot, next.parked);
-    }
+    const uint32_t slot = next.slot ? *next.slot : onDevice(next);
     if (!sum) {
       sum = slot;
       continue;
     }
-    const glm::uvec2 pair(*sum, slot);
-    slots_.add(std::span(&pair, 1));
+    add(*sum, slot);
     free_.push_back(slot);
   }
-  if (!first) return *sum;
-  const uint32_t slot = freeSlot();
-  slots_.upload(slot, first->parked);
-  if (sum) {
-    const glm::uvec2 pair(slot, *sum);
-    slots_.add(std::span(&pair, 1));
+  if (first && sum) {
+    add(*first, *sum);
     free_.push_back(*sum);
   }
-  return slot;
+  flush();
+  return first ? *first : *sum;
 }
 
 }  // namespace hmb::passes

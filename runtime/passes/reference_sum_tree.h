@@ -77,7 +77,7 @@ class SumStack {
  public:
   static constexpr uint32_t kMaxKernelFolds = 8;  // nodes the accumulate kernel adds in place
 
-  // At least two slots.
+  // At least three slots.
   explicit SumStack(SumSlots& slots);
 
   // A sample of a render, in order: the accumulate kernel adds the sums in `fold` (slots,
@@ -96,7 +96,7 @@ class SumStack {
   void push(const SumNode& node, std::vector<glm::vec4> sums, bool merge);
 
   std::vector<SumNode> nodes() const;                // held, in sample order
-  std::vector<glm::vec4> sumsOf(size_t index) const;  // of nodes()[index]
+  std::vector<glm::vec4> sumsOf(size_t index) const;  // of nodes()[index]; after a flush
   // Adds every held node up in the tree's order; the slot holding the total. The stack is
   // empty after it. Throws when nothing is held.
   uint32_t total();
@@ -112,12 +112,16 @@ class SumStack {
   void park(Entry& entry);
   // Adds `carry` (on the device) to every held node it completes; returns it with the result.
   Entry climb(Entry carry);
+  // Additions wait here and go to the device together, before anything else reads the slots.
+  void add(uint32_t left, uint32_t right) { pendingAdds_.emplace_back(left, right); }
+  void flush();
 
   SumSlots& slots_;
   std::vector<Entry> stack_;
   std::vector<uint32_t> free_;
   std::optional<Entry> pending_;  // the sample between beginSample and finishSample
   uint32_t pendingFolds_ = 0;
+  std::vector<glm::uvec2> pendingAdds_;
 };
 
 }  // namespace hmb::passes

@@ -129,11 +129,14 @@ TEST_F(ReferenceShardsTest, JitteredAndDeformingShardsMergeToTheSingleRender) {
   expectShardsMergeToTheSingleRender(arm, referenceSettings(6), {2, 3}, "skinned-arm");
 }
 
-// A device whose storage buffers hold 1.5 MiB keeps the ten slots of 160x90 sums (2.2 MiB) in
-// two bands of rows, a buffer each: the image and the merge are the same bits as with one band.
+// A device whose storage buffers hold 1.5 MiB, less than three 320x180 sums (0.9 MB each),
+// keeps its ten slots in bands of rows, a buffer each: the image and the merge are the same bits
+// as with one band.
 TEST(ReferenceShardsBandsTest, SumsInBandsOfRowsAddUpAlike) {
   const scene::Scene scene = scene::loadScene("living-room");
   RenderSettings settings = referenceSettings(9);
+  settings.width = 320;
+  settings.height = 180;
   const std::vector<float> oneBand = beauty(Renderer(VulkanTest::context()).render(scene, settings));
   vk::ContextOptions options;
   options.validation = true;
@@ -157,10 +160,13 @@ TEST(ReferenceShardsBandsTest, SumsInBandsOfRowsAddUpAlike) {
   EXPECT_EQ(narrow.validationErrors(), 0u);
   vk::FrameTimings timings;
   const passes::ReferenceSumKernels kernels(narrow);
-  const passes::DeviceSumSlots slots(narrow, frame, kernels, kWidth, kHeight, timings);
-  EXPECT_EQ(slots.bands().size(), 2u);
+  const passes::DeviceSumSlots slots(narrow, frame, kernels, 320, 180, timings);
+  EXPECT_EQ(slots.count(), 10u);
+  EXPECT_EQ(slots.bands().size(), 6u);  // 30 rows of ten slots in 1.5 MiB
+  // Where one buffer holds three slots, one band of as many slots as it holds.
+  EXPECT_EQ(passes::DeviceSumSlots(narrow, frame, kernels, kWidth, kHeight, timings).bands().size(), 1u);
   // The slots of one row must fit in one buffer.
-  expectError([&] { passes::DeviceSumSlots(narrow, frame, kernels, 10000, 2, timings); }, "use a narrower image");
+  expectError([&] { passes::DeviceSumSlots(narrow, frame, kernels, 40000, 2, timings); }, "use a narrower image");
 }
 
 TEST_F(ReferenceShardsTest, AShardStoppedMidwayResumesFromItsPart) {

@@ -183,14 +183,14 @@ TEST(ReferenceSumTreeTest, ASingleRenderAddsInTheDefinedOrderWithAnyNumberOfSlot
   std::mt19937 random(7);
   for (uint32_t n = 1; n <= 300; ++n) {
     const std::vector<float> samples = samplesOf(n, random);
-    for (const uint32_t slots : {2u, 3u, 10u})
+    for (const uint32_t slots : {3u, 4u, 10u})
       expectTotal(renderShard(samples, {0, n}, slots).total, samples, std::to_string(n) + " samples, " +
                                                                             std::to_string(slots) + " slots");
   }
-  // Two slots park nodes in host memory as they go; ten keep 1000 samples' nodes on the device,
-  // but sample 0's.
+  // Three slots park nodes in host memory as they go; ten keep 1000 samples' nodes on the
+  // device, but sample 0's.
   std::vector<float> many = samplesOf(1000, random);
-  EXPECT_GT(renderShard(many, {0, 1000}, 2).parked, 100u);
+  EXPECT_GT(renderShard(many, {0, 1000}, 3).parked, 100u);
   EXPECT_EQ(renderShard(many, {0, 1000}, 10).parked, 1u);
 }
 
@@ -200,7 +200,7 @@ TEST(ReferenceSumTreeTest, ShardsMergeToTheSingleRenderInAnyOrder) {
     const std::vector<float> samples = samplesOf(n, random);
     for (const uint32_t k : {1u, 2u, 3u, 7u, 13u, 64u, n}) {
       if (k > n) continue;
-      for (const uint32_t slots : {2u, 4u, 10u}) {
+      for (const uint32_t slots : {3u, 4u, 10u}) {
         const std::string what =
             std::to_string(n) + " samples, " + std::to_string(k) + " shards, " + std::to_string(slots) + " slots";
         std::vector<Part> parts;
@@ -209,7 +209,7 @@ TEST(ReferenceSumTreeTest, ShardsMergeToTheSingleRenderInAnyOrder) {
         std::reverse(parts.begin(), parts.end());
         expectTotal(mergeParts(parts, slots), samples, what + " reversed");
         std::shuffle(parts.begin(), parts.end(), random);
-        expectTotal(mergeParts(parts, 2), samples, what + " shuffled, merged in two slots");
+        expectTotal(mergeParts(parts, 3), samples, what + " shuffled, merged in three slots");
       }
     }
   }
