@@ -1,6 +1,7 @@
 // The merge of a reference render's shards (hmblur merge): each shard's part (a partial file,
 // reference_partial.h) holds its nodes of the sum tree; the merge loads them one at a time and
-// adds them up in the tree's order (ReferenceFold), so the image is the single render's.
+// adds them up in the tree's order (SumStack on DeviceSumSlots), so the image is the single
+// render's.
 #pragma once
 
 #include <cstdint>

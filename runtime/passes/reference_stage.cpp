@@ -153,12 +153,6 @@ void writeCheckpoint(const std::filesystem::path& path, const ReferencePartial& 
   writeReferencePartial(path, header, [&](size_t i) { return stack.sumsOf(i); });
 }
 
-// Whether the end of the shard's render adds nodes up: more than one is held.
-bool shardEndsWithAdditions(const ReferenceSettings& settings) {
-  const SampleRange shard = shardSamples(settings.samplesPerPixel, settings.shard.index, settings.shard.count);
-  return heldNodes(shard, shard.size()).size() > 1;
-}
-
 }  // namespace
 
 std::vector<float> referenceShutterTimes(float frameTime, float exposure, uint32_t samples, uint32_t seed) {
@@ -253,9 +247,10 @@ void ReferenceStage::plan(FramePlan& plan, const scene::Scene& scene, float fram
   else
     plan.run(kMovingPixels);
   plan.run(kAccumulate);
-  if (!shardEndsWithAdditions(settings))
-    plan.skip(kFold, settings.shard.count > 1 ? "the shard's samples are one node of the sum tree"
-                                              : "one sample per pixel: nothing to add up");
+  // Sums held in host memory are added on the device as they come back, so any shard of more
+  // than one sample may add.
+  if (shardSamples(settings.samplesPerPixel, settings.shard.index, settings.shard.count).size() == 1)
+    plan.skip(kFold, "one sample: nothing to add up");
   else
     plan.run(kFold);
   plan.run(kAverage);
