@@ -83,14 +83,10 @@ MergedReference mergeReferenceParts(const vk::Context& context, vk::FrameRecorde
   for (size_t i = 0; i < merged.parts.size(); ++i) {
     const ReferencePartial& part = merged.parts[i];
     merged.samplesHeld += part.samplesDone;
-    if (part.nodes != heldNodes(part.shard, part.samplesDone))
-      throw Error(name(i) + " is damaged: its nodes are not those of its " + std::to_string(part.samplesDone) +
-                  " samples");
     for (size_t n = 0; n < part.nodes.size(); ++n) sources.push_back({part.nodes[n], i, n});
   }
-  std::sort(sources.begin(), sources.end(), [](const Source& a, const Source& b) {
-    return a.node.isFirstSample() != b.node.isFirstSample() ? a.node.isFirstSample() : a.node.start < b.node.start;
-  });
+  std::sort(sources.begin(), sources.end(),
+            [](const Source& a, const Source& b) { return a.node.firstSampleIndex() < b.node.firstSampleIndex(); });
 
   const vk::Buffer color(context, first.pixels * sizeof(glm::vec4), vk::MemoryUse::Device, "merged reference");
   const ReferenceSumKernels kernels(context);

@@ -74,6 +74,9 @@ ReferencePartial readReferencePartial(const std::filesystem::path& path) {
                           shardSamples(header.samples, header.shardIndex, header.shardCount).end == header.shard.end &&
                           header.samplesDone <= header.shard.size();
   if (!consistent) throw Error(name + " is damaged: its shard does not add up");
+  if (header.nodes != heldNodes(header.shard, header.samplesDone))
+    throw Error(name + " is damaged: its nodes are not those of its " + std::to_string(header.samplesDone) +
+                " samples");
   const uint64_t expected = kHeaderStart + headerBytes + header.nodes.size() * nodeBytes(header);
   if (fileBytes < expected)
     throw Error(name + " is truncated: " + std::to_string(fileBytes) + " bytes of " + std::to_string(expected));

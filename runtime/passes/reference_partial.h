@@ -40,8 +40,9 @@ struct ReferencePartial {
 // The version a partial written now records.
 std::string referencePartialVersion();
 
-// Reads and checks the header (not the sums). Throws hmb::Error in one line naming the file:
-// missing, not a reference partial, of another format, damaged, or shorter than its header says.
+// Reads and checks the header (not the sums): its shard and nodes are those of a shard of its
+// render. Throws hmb::Error in one line naming the file: missing, not a reference partial, of
+// another format, damaged, or shorter than its header says.
 ReferencePartial readReferencePartial(const std::filesystem::path& path);
 
 // Reads the sums of node `index` of the header into `sums` (one per pixel).

@@ -139,8 +139,6 @@ uint32_t resumeFromCheckpoint(const std::filesystem::path& path, const Reference
     throw Error(name + " holds shard " + saved.shardText() + ", not " + expected.shardText());
   if (saved.version != expected.version)
     throw Error(name + " was written by " + saved.version + ", this is " + expected.version + ": render it again");
-  if (saved.nodes != heldNodes(saved.shard, saved.samplesDone))
-    throw Error(name + " is damaged: its nodes are not those of " + std::to_string(saved.samplesDone) + " samples");
   for (size_t i = 0; i < saved.nodes.size(); ++i) {
     std::vector<glm::vec4> sums(saved.pixels);
     readReferencePartialNode(path, saved, i, sums);
@@ -359,9 +357,8 @@ vk::FrameTimings ReferenceStage::render(vk::FrameRecorder& frame, const scene::S
         }
         vk::appendTimings(total, frame.submitAndWait());
         stack.finishSample();
-        ++done;
+        progress_.samplesDone = ++done;
         progress_.pixelSamples += listed ? listLength : pixels;
-        ++progress_.samplesDone;
         if (progress) progress(progress_);
       }
       // Saved every timesPerBatch samples (a deforming scene's batches are single times) and
@@ -393,7 +390,7 @@ DeviceSumSlots::DeviceSumSlots(const vk::Context& context, vk::FrameRecorder& fr
   if (rowsPerBand == 0)
     throw Error("the reference's " + std::to_string(count_) + " sums of a row of " + std::to_string(width) +
                 " pixels do not fit in one of the device's storage buffers (" +
-                std::to_string(context.info().maxStorageBufferRange >> 20) + " MiB): use a narrower image");
+                std::to_string(range >> 20) + " MiB): use a narrower image");
   const uint32_t bandCount = static_cast<uint32_t>((height + rowsPerBand - 1) / rowsPerBand);
   for (uint32_t b = 0; b < bandCount; ++b) {
     // Bands as even as they go.

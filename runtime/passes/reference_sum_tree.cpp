@@ -1,16 +1,11 @@
 #include "runtime/passes/reference_sum_tree.h"
 
 #include <algorithm>
+#include <string>
 
 #include "hmblur/error.h"
 
 namespace hmb::passes {
-
-std::string SumNode::text() const {
-  if (isFirstSample()) return "sample 0";
-  // Leaf l is sample l + 1.
-  return "samples " + std::to_string(uint64_t(start) + 1) + ".." + std::to_string(leafEnd());
-}
 
 SampleRange shardSamples(uint32_t samples, uint32_t index, uint32_t count) {
   if (count == 0 || index >= count) throw Error("shard " + std::to_string(index) + "/" + std::to_string(count) +
@@ -38,12 +33,6 @@ std::vector<SumNode> heldNodes(SampleRange shard, uint32_t done) {
     stack.push_back(node);
   }
   return stack;
-}
-
-bool isTreeNode(const SumNode& node, uint32_t samples) {
-  if (node.isFirstSample()) return samples > 0;
-  return node.level < 32 && node.start % (uint64_t(1) << node.level) == 0 && samples > 0 &&
-         node.leafEnd() <= samples - 1;
 }
 
 SumStack::SumStack(SumSlots& slots) : slots_(slots) {
@@ -139,10 +128,9 @@ void SumStack::push(const SumNode& node, std::vector<glm::vec4> sums, bool merge
     stack_.push_back({node, std::nullopt, std::move(sums)});
     return;
   }
-  const uint32_t slot = freeSlot();
-  flush();
-  slots_.upload(slot, sums);
-  stack_.push_back(climb({node, slot, {}}));
+  Entry entry{node, std::nullopt, std::move(sums)};
+  onDevice(entry);
+  stack_.push_back(climb(std::move(entry)));
 }
 
 std::vector<SumNode> SumStack::nodes() const {
@@ -169,7 +157,7 @@ uint32_t SumStack::total() {
   while (!stack_.empty()) {
     Entry next = std::move(stack_.front());
     stack_.erase(stack_.begin());
-    const uint32_t slot = next.slot ? *next.slot : onDevice(next);
+    const uint32_t slot = onDevice(next);
     if (!sum) {
       sum = slot;
       continue;

@@ -20,7 +20,6 @@
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -37,11 +36,12 @@ struct SumNode {
   static SumNode firstSample() { return {kFirstSample, 0}; }
   static SumNode ofSample(uint32_t sample) { return sample == 0 ? firstSample() : SumNode{0, sample - 1}; }
   bool isFirstSample() const { return level == kFirstSample; }
+  // The first sample it holds (leaf l is sample l + 1): a stack takes nodes in this order.
+  uint64_t firstSampleIndex() const { return isFirstSample() ? 0 : uint64_t(start) + 1; }
   uint64_t leafEnd() const { return uint64_t(start) + (uint64_t(1) << level); }
   // Whether this is the left half of the node whose right half is `right`.
   bool isLeftOf(const SumNode& right) const;
   SumNode parent() const { return {level + 1, static_cast<uint32_t>(start & ~((uint64_t(2) << level) - 1))}; }
-  std::string text() const;  // "sample 0" or "samples 5..8"
   auto operator<=>(const SumNode&) const = default;
 };
 
@@ -57,9 +57,6 @@ SampleRange shardSamples(uint32_t samples, uint32_t index, uint32_t count);
 
 // The nodes a shard holds after its first `done` samples, in sample order.
 std::vector<SumNode> heldNodes(SampleRange shard, uint32_t done);
-
-// Whether `node` is a node of the tree of `samples` samples.
-bool isTreeNode(const SumNode& node, uint32_t samples);
 
 // The device's sums: `count()` slots of a vec4 a pixel (rgb sum, w the number of samples).
 class SumSlots {

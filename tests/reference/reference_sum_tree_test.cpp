@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -130,14 +131,26 @@ std::vector<glm::vec4> mergeParts(const std::vector<Part>& parts, uint32_t slotC
   std::vector<std::pair<SumNode, const std::vector<glm::vec4>*>> nodes;
   for (const Part& part : parts)
     for (size_t i = 0; i < part.nodes.size(); ++i) nodes.emplace_back(part.nodes[i], &part.sums[i]);
-  std::sort(nodes.begin(), nodes.end(), [](const auto& a, const auto& b) {
-    return a.first.isFirstSample() != b.first.isFirstSample() ? a.first.isFirstSample() : a.first.start < b.first.start;
-  });
+  std::sort(nodes.begin(), nodes.end(),
+            [](const auto& a, const auto& b) { return a.first.firstSampleIndex() < b.first.firstSampleIndex(); });
   for (const auto& [node, sums] : nodes) stack.push(node, *sums, true);
   return slots[stack.total()];
 }
 
 uint32_t bitsOf(const glm::vec4& v) { return std::bit_cast<uint32_t>(v.x); }
+
+// Whether `node` is a node of the tree of `samples` samples: aligned, within the N - 1 leaves.
+bool isTreeNode(const SumNode& node, uint32_t samples) {
+  if (node.isFirstSample()) return samples > 0;
+  return node.level < 32 && node.start % (uint64_t(1) << node.level) == 0 && samples > 0 &&
+         node.leafEnd() <= samples - 1;
+}
+
+// "sample 0" or "samples 5..8".
+std::string text(const SumNode& node) {
+  if (node.isFirstSample()) return "sample 0";
+  return "samples " + std::to_string(node.firstSampleIndex()) + ".." + std::to_string(node.leafEnd());
+}
 
 // Values whose sums round at every step, over many magnitudes, with zeros among them.
 std::vector<float> samplesOf(uint32_t n, std::mt19937& random) {
@@ -254,22 +267,24 @@ TEST(ReferenceSumTreeTest, AShardHoldsFewNodes) {
           most = std::max(most, passes::heldNodes(shard, done).size());
         EXPECT_LE(most, 2 * levels + 1) << n << " " << i << "/" << k;
         for (const SumNode& node : passes::heldNodes(shard, shard.size()))
-          EXPECT_TRUE(passes::isTreeNode(node, n)) << node.text() << " (level " << node.level << ", start " << node.start << ") of " << n;
+          EXPECT_TRUE(isTreeNode(node, n)) << text(node) << " (level " << node.level << ", start " << node.start << ") of " << n;
       }
     }
   }
 }
 
 TEST(ReferenceSumTreeTest, NodesOfTheTree) {
-  EXPECT_TRUE(passes::isTreeNode({2, 4}, 16));
-  EXPECT_FALSE(passes::isTreeNode({1, 1}, 16));  // misaligned
-  EXPECT_FALSE(passes::isTreeNode({4, 0}, 16));  // past 15 leaves
-  EXPECT_TRUE(passes::isTreeNode(SumNode::firstSample(), 1));
+  EXPECT_TRUE(isTreeNode({2, 4}, 16));
+  EXPECT_FALSE(isTreeNode({1, 1}, 16));  // misaligned
+  EXPECT_FALSE(isTreeNode({4, 0}, 16));  // past 15 leaves
+  EXPECT_TRUE(isTreeNode(SumNode::firstSample(), 1));
   EXPECT_TRUE(SumNode({1, 4}).isLeftOf({1, 6}));
   EXPECT_FALSE(SumNode({1, 6}).isLeftOf({1, 8}));  // a right half
   EXPECT_FALSE(SumNode({1, 4}).isLeftOf({0, 6}));
   EXPECT_FALSE(SumNode::firstSample().isLeftOf({0, 0}));
-  EXPECT_EQ(SumNode({2, 4}).text(), "samples 5..8");
+  EXPECT_EQ(text(SumNode({2, 4})), "samples 5..8");
+  EXPECT_EQ(SumNode::firstSample().firstSampleIndex(), 0u);
+  EXPECT_EQ(SumNode({2, 4}).firstSampleIndex(), 5u);
   EXPECT_EQ(SumNode::ofSample(9), SumNode({0, 8}));
 }
 
